@@ -1,0 +1,48 @@
+# neem-oracle: the two commands a newcomer needs are `make setup` and `make test`.
+SHELL := /bin/bash
+VENV ?= .venv
+PY := $(VENV)/bin/python
+PLT := $(wildcard prolog/*.plt)
+
+.PHONY: setup test test-python test-prolog bench demo up down test-mongo clean help
+
+help:
+	@echo "make setup      install SWI-Prolog (Debian) if missing, create $(VENV), install the package"
+	@echo "make test       plunit suites, then pytest"
+	@echo "make bench      benchmarks (printed figures)"
+	@echo "make demo       the main job on the embedded default store"
+	@echo "make up/down    docker compose dev stack with MongoDB (needs a Docker engine)"
+	@echo "make test-mongo the whole suite against the MongoDB at NEEM_MONGO_URI"
+
+setup:
+	@if ! command -v swipl >/dev/null 2>&1; then \
+	  echo "installing swi-prolog-nox from Debian"; \
+	  SUDO=$$( [ "$$(id -u)" = 0 ] || echo sudo ); \
+	  $$SUDO apt-get update -qq && \
+	  DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends swi-prolog-nox; \
+	fi
+	@swipl --version
+	@test -x $(PY) || python3 -m venv $(VENV)
+	$(PY) -m pip install -q --upgrade pip
+	$(PY) -m pip install -q -e '.[dev]'
+	@$(PY) -c "import oracle, pyswip, rdflib, owlready2, numpy, yaml, pymongo; print('neem-oracle', oracle.__version__, 'ready')"
+
+test: test-prolog test-python
+
+test-prolog:
+	@set -e; for t in $(PLT); do \
+	  m=$${t%.plt}.pl; echo "plunit: $$t"; \
+	  swipl -q -g "load_files(['$$m'],[]),load_test_files([]),(run_tests->halt(0);halt(1))" -t 'halt(1)'; \
+	done
+
+test-python:
+	$(PY) -m pytest -q
+
+bench:
+	$(PY) -m oracle bench
+
+demo:
+	$(PY) -m oracle demo
+
+clean:
+	rm -rf build dist *.egg-info python/*.egg-info .pytest_cache

@@ -1,0 +1,138 @@
+"""Action chains in text: ``task(obj1[, obj2])`` (thesis 5.2) and their JSONL files.
+
+A call names an odb task and zero, one or two odb objects. With two arguments the first plays
+the task's reference role (the object the arm holds or uses) and the second its target role;
+with one argument the object plays the target role, or the reference role when the task has no
+target role (docs/ontology.md, "Roles of chain arguments").
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass, field
+from datetime import datetime
+from pathlib import Path
+
+from oracle.errors import ChainSyntaxError
+
+_NAME = r"[A-Za-z_][A-Za-z0-9_\-]*"
+_CALL = re.compile(rf"^\s*({_NAME})\s*(?:\(\s*(.*?)\s*\))?\s*$")
+_ARG = re.compile(rf"^{_NAME}$")
+
+
+@dataclass(frozen=True)
+class TaskCall:
+    """One task with its objects as written in a chain, e.g. ``pour(thermos, green_mug)``."""
+
+    task: str
+    args: tuple[str, ...] = ()
+
+    def __str__(self) -> str:
+        return f"{self.task}({', '.join(self.args)})" if self.args else self.task
+
+
+def parse_call(text: str) -> TaskCall:
+    """Parse ``task(a[, b])``; raise ChainSyntaxError naming the text on any defect."""
+    if not isinstance(text, str):
+        raise ChainSyntaxError(f"action must be a string like 'pick(red_mug)', got {text!r}")
+    match = _CALL.match(text)
+    if match is None:
+        raise ChainSyntaxError(f"malformed action {text!r}: expected task(object[, object])")
+    task, inner = match.group(1), match.group(2)
+    args: tuple[str, ...] = ()
+    if inner is not None and inner != "":
+        args = tuple(part.strip() for part in inner.split(","))
+        for arg in args:
+            if not _ARG.match(arg):
+                raise ChainSyntaxError(f"malformed action {text!r}: bad object name {arg!r}")
+    elif inner == "":
+        raise ChainSyntaxError(f"malformed action {text!r}: empty argument list")
+    if len(args) > 2:
+        raise ChainSyntaxError(f"malformed action {text!r}: at most two objects (target, reference)")
+    return TaskCall(task, args)
+
+
+@dataclass(frozen=True)
+class ChainRow:
+    """One line of a chains JSONL file."""
+
+    user: str
+    action: TaskCall
+    time: datetime | None = None
+    available: tuple[TaskCall, ...] | None = None
+    line: int = 0
+    extra: dict[str, object] = field(default_factory=dict, compare=False)
+
+    def to_json(self) -> dict[str, object]:
+        row: dict[str, object] = {"user": self.user}
+        if self.time is not None:
+            row["time"] = self.time.isoformat()
+        row["action"] = str(self.action)
+        if self.available is not None:
+            row["available"] = [str(call) for call in self.available]
+        row.update(self.extra)
+        return row
+
+
+def parse_row(obj: object, where: str = "<row>") -> ChainRow:
+    """Turn one decoded JSON object into a ChainRow; ``where`` names file and line in errors."""
+    if not isinstance(obj, dict):
+        raise ChainSyntaxError(f"{where}: expected a JSON object, got {type(obj).__name__}")
+    unknown = set(obj) - {"user", "time", "action", "available"}
+    user = obj.get("user")
+    if not isinstance(user, str) or not user:
+        raise ChainSyntaxError(f"{where}: 'user' must be a non-empty string")
+    if "action" not in obj:
+        raise ChainSyntaxError(f"{where}: missing 'action'")
+    try:
+        action = parse_call(obj["action"])  # type: ignore[arg-type]
+        available = None
+        if obj.get("available") is not None:
+            if not isinstance(obj["available"], list):
+                raise ChainSyntaxError("'available' must be a list of actions")
+            available = tuple(parse_call(item) for item in obj["available"])
+    except ChainSyntaxError as error:
+        raise ChainSyntaxError(f"{where}: {error}") from None
+    time = None
+    if obj.get("time") is not None:
+        raw = obj["time"]
+        if not isinstance(raw, str):
+            raise ChainSyntaxError(f"{where}: 'time' must be an ISO-8601 string")
+        try:
+            time = datetime.fromisoformat(raw.replace("Z", "+00:00"))
+        except ValueError:
+            raise ChainSyntaxError(f"{where}: 'time' {raw!r} is not ISO-8601") from None
+    line = int(where.rsplit(":", 1)[-1]) if where.rsplit(":", 1)[-1].isdigit() else 0
+    extra = {key: obj[key] for key in sorted(unknown)}
+    return ChainRow(user, action, time, available, line, extra)
+
+
+def read_chains(path: Path | str) -> Iterator[ChainRow]:
+    """Yield the rows of a JSONL chains file (blank lines and ``#`` comments are skipped)."""
+    path = Path(path)
+    try:
+        handle = path.open(encoding="utf-8")
+    except OSError as error:
+        raise ChainSyntaxError(f"{path}: cannot read ({error.strerror})") from None
+    with handle:
+        for number, text in enumerate(handle, start=1):
+            stripped = text.strip()
+            if not stripped or stripped.startswith("#"):
+                continue
+            try:
+                obj = json.loads(stripped)
+            except json.JSONDecodeError as error:
+                raise ChainSyntaxError(f"{path}:{number}: invalid JSON ({error.msg})") from None
+            yield parse_row(obj, f"{path}:{number}")
+
+
+def write_chains(rows: Iterable[ChainRow], path: Path | str) -> int:
+    """Write rows as JSONL; return how many were written."""
+    count = 0
+    with Path(path).open("w", encoding="utf-8") as handle:
+        for row in rows:
+            handle.write(json.dumps(row.to_json(), ensure_ascii=False) + "\n")
+            count += 1
+    return count

@@ -1,0 +1,1 @@
+"""Sub-commands of ``python -m oracle``; each module exposes ``register(subparsers)``."""
