@@ -1,0 +1,1 @@
+"""The kitchen world: symbolic state, task inference and repair, and the persona benchmark."""

@@ -1,0 +1,444 @@
+"""Task inference for the kitchen world: preconditions, effects, available tasks and repair.
+
+The rules live in ``ontology/kitchen-world.yaml`` (PDDL-like, with a fixed vocabulary of
+predicates and effects implemented here). ``World.available(state)`` lists every task call whose
+preconditions hold, as EDAN's task inference does (thesis 2.2); ``World.repair`` inserts the
+missing intermediate tasks in front of an action that is not yet feasible (thesis 5.2).
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+import yaml
+
+from oracle.chains import TaskCall, parse_call
+from oracle.errors import ChainSyntaxError, NeemOracleError, OntologyError
+from oracle.world.state import HAND, KINDS, ObjectSpec, State, blocker, reachable
+
+#: The world file of the sample kitchen (thesis Table 5.1).
+DEFAULT_WORLD = Path(__file__).resolve().parents[3] / "ontology" / "kitchen-world.yaml"
+
+#: Predicate and effect signatures: "o" is a task parameter (an object), "l" a literal word.
+PREDICATES: dict[str, str] = {
+    "hand_free": "",
+    "holding": "o",
+    "reachable": "o",
+    "tagged": "ol",
+    "opened": "o",
+    "closed": "o",
+    "switched_on": "o",
+    "switched_off": "o",
+    "accepts": "oo",
+    "distinct": "oo",
+}
+EFFECTS: dict[str, str] = {
+    "grasp": "o",
+    "put": "oo",
+    "open": "o",
+    "close": "o",
+    "switch_on": "o",
+    "switch_off": "o",
+}
+
+_ATOM = re.compile(r"^\s*([a-z_]+)\s*(?:\(\s*([^()]*?)\s*\))?\s*$")
+_TOP_KEYS = frozenset({"world", "park", "objects", "tasks"})
+_OBJECT_KEYS = frozenset({"kind", "at", "affords", "tags", "accepts"})
+_TASK_KEYS = frozenset({"args", "requires", "effects"})
+
+
+@dataclass(frozen=True)
+class Condition:
+    """One precondition or effect atom, e.g. ``holding(source)``; args are parameters or literals."""
+
+    name: str
+    args: tuple[str, ...]
+    signature: str
+
+    def __str__(self) -> str:
+        return f"{self.name}({', '.join(self.args)})" if self.args else self.name
+
+    def params(self) -> frozenset[str]:
+        return frozenset(a for a, kind in zip(self.args, self.signature) if kind == "o")
+
+    def bind(self, binding: Mapping[str, str]) -> list[str]:
+        """The arguments with parameters replaced by objects; literals stay as written."""
+        return [binding[a] if kind == "o" else a for a, kind in zip(self.args, self.signature)]
+
+
+@dataclass(frozen=True)
+class TaskRule:
+    name: str
+    params: tuple[str, ...]
+    requires: tuple[Condition, ...]
+    effects: tuple[Condition, ...]
+
+
+@dataclass(frozen=True)
+class Failure:
+    """Why an action is not feasible: the first failing precondition, bound to objects."""
+
+    call: TaskCall
+    condition: Condition
+    bound: tuple[str, ...]
+
+    def __str__(self) -> str:
+        inner = ", ".join(self.bound)
+        return f"{self.call} is not feasible: {self.condition.name}({inner}) does not hold"
+
+
+class World:
+    """Objects and task rules of one world file; stateless apart from the loaded definitions."""
+
+    def __init__(self, objects: Mapping[str, ObjectSpec], tasks: Mapping[str, TaskRule], park: str, source: Path):
+        self.objects = dict(objects)
+        self.tasks = dict(tasks)
+        self.park = park
+        self.source = source
+        self._names = tuple(self.objects)
+        self._affording = {
+            task: tuple(name for name, spec in self.objects.items() if task in spec.affords) for task in self.tasks
+        }
+        # Conditions that only need the first argument are checked before the second is bound.
+        self._split: dict[str, tuple[tuple[Condition, ...], tuple[Condition, ...]]] = {}
+        for task, rule in self.tasks.items():
+            first = frozenset(rule.params[:1])
+            early = tuple(c for c in rule.requires if c.params() <= first)
+            late = tuple(c for c in rule.requires if not c.params() <= first)
+            self._split[task] = (early, late)
+
+    # --- queries ------------------------------------------------------------------------------
+    def initial_state(self) -> State:
+        """Table 5.1: every item where its ``at`` puts it, containers closed, appliances off."""
+        location = {name: spec.at for name, spec in self.objects.items() if spec.at is not None}
+        return State(location)
+
+    def check_call(self, call: TaskCall | str) -> TaskCall:
+        """Parse and validate names and arity against the world; raise OntologyError otherwise."""
+        if isinstance(call, str):
+            call = parse_call(call)
+        rule = self.tasks.get(call.task)
+        if rule is None:
+            raise OntologyError(f"{self.source}: no task {call.task!r} (in action {call}); known: {', '.join(self.tasks)}")
+        if len(call.args) != len(rule.params):
+            raise ChainSyntaxError(
+                f"action {call}: task {call.task!r} takes {len(rule.params)} object(s) ({', '.join(rule.params)})"
+            )
+        for arg in call.args:
+            if arg not in self.objects:
+                raise OntologyError(f"{self.source}: no object {arg!r} (in action {call})")
+        return call
+
+    def failure(self, state: State, call: TaskCall) -> Failure | None:
+        """The first precondition of ``call`` that does not hold in ``state``, or None."""
+        call = self.check_call(call)
+        rule = self.tasks[call.task]
+        if call.task not in self.objects[call.args[0]].affords:
+            return Failure(call, Condition("affords", (rule.params[0], call.task), "ol"), (call.args[0], call.task))
+        binding = dict(zip(rule.params, call.args))
+        for condition in rule.requires:
+            if not self._holds(state, condition, binding):
+                return Failure(call, condition, tuple(condition.bind(binding)))
+        return None
+
+    def feasible(self, state: State, call: TaskCall) -> bool:
+        return self.failure(state, call) is None
+
+    def available(self, state: State) -> tuple[TaskCall, ...]:
+        """Every feasible task call, in world-file order of tasks and objects."""
+        found: list[TaskCall] = []
+        for task, rule in self.tasks.items():
+            early, late = self._split[task]
+            first = rule.params[0]
+            for x in self._affording[task]:
+                binding = {first: x}
+                if not all(self._holds(state, c, binding) for c in early):
+                    continue
+                if len(rule.params) == 1:
+                    found.append(TaskCall(task, (x,)))
+                    continue
+                second = rule.params[1]
+                for y in self._names:
+                    binding[second] = y
+                    if all(self._holds(state, c, binding) for c in late):
+                        found.append(TaskCall(task, (x, y)))
+        return tuple(found)
+
+    def apply(self, state: State, call: TaskCall | str) -> State:
+        """The state after ``call``; raise NeemOracleError naming the failed precondition."""
+        call = self.check_call(call)
+        failure = self.failure(state, call)
+        if failure is not None:
+            raise NeemOracleError(str(failure))
+        return self._effects(state, call)
+
+    def replay(self, calls: Iterable[TaskCall | str], state: State | None = None) -> Iterator[tuple[State, TaskCall]]:
+        """Yield (state before, call) for each call, applying it; infeasible calls raise."""
+        state = self.initial_state() if state is None else state
+        for call in calls:
+            call = self.check_call(call)
+            yield state, call
+            state = self.apply(state, call)
+
+    # --- repair -------------------------------------------------------------------------------
+    def repair(self, state: State, call: TaskCall | str, park: str | None = None, depth: int = 4) -> list[TaskCall] | None:
+        """The intermediate tasks plus ``call`` that make it feasible from ``state``, or None.
+
+        The first failing precondition is fixed by one achieving task (itself repaired
+        recursively), then the check repeats: a held object is put down on ``park`` (the world's
+        park surface by default), a closed container is opened, an object to hold is picked.
+        Conditions about the target's own state (already open, already on) are not repaired.
+        """
+        call = self.check_call(call)
+        park = self.park if park is None else park
+        plan: list[TaskCall] = []
+        current = state
+        for _ in range(8):
+            failure = self.failure(current, call)
+            if failure is None:
+                return plan + [call]
+            if depth == 0:
+                return None
+            fix = self._achiever(current, failure, park)
+            if fix is None:
+                return None
+            steps = self.repair(current, fix, park, depth - 1)
+            if steps is None:
+                return None
+            for step in steps:
+                current = self._effects(current, step)
+            plan.extend(steps)
+        return None
+
+    def _achiever(self, state: State, failure: Failure, park: str) -> TaskCall | None:
+        name, bound = failure.condition.name, failure.bound
+        if name == "hand_free":
+            return TaskCall("place", (state.held, self._park_for(state, state.held, park)))  # type: ignore[arg-type]
+        if name == "holding":
+            return TaskCall("pick", (bound[0],))
+        if name == "reachable":
+            return self._unblock(state, bound[0], park)
+        if name == "accepts":
+            destination = bound[0]
+            spec = self.objects[destination]
+            if spec.kind == "container" and destination not in state.opened:
+                return TaskCall("open", (destination,))
+            if spec.kind == "appliance" and destination in state.switched_on:
+                return TaskCall("turn_off", (destination,))
+            if not reachable(state, self.objects, destination):
+                return self._unblock(state, destination, park)
+        return None
+
+    def _unblock(self, state: State, obj: str, park: str) -> TaskCall | None:
+        block = blocker(state, self.objects, obj)
+        if block is None:
+            return None
+        if block == state.held:
+            return TaskCall("place", (block, self._park_for(state, block, park)))
+        spec = self.objects[block]
+        if spec.kind == "container":
+            return TaskCall("open", (block,))
+        if spec.kind == "appliance":
+            return TaskCall("turn_off", (block,))
+        return None
+
+    def _park_for(self, state: State, held: str, park: str) -> str:
+        if self._accepts(state, park, held):
+            return park
+        return self.park
+
+    # --- predicates and effects -----------------------------------------------------------------
+    def _accepts(self, state: State, destination: str, obj: str) -> bool:
+        if destination == obj or destination == HAND:
+            return False
+        spec = self.objects[destination]
+        if spec.kind == "item" and not spec.accepts:
+            return False
+        if not reachable(state, self.objects, destination):
+            return False
+        if spec.kind == "surface":
+            return True
+        if spec.kind == "container":
+            return destination in state.opened
+        if spec.kind == "appliance" and destination in state.switched_on:
+            return False
+        return bool(spec.accepts & self.objects[obj].tags)
+
+    def _holds(self, state: State, condition: Condition, binding: Mapping[str, str]) -> bool:
+        name = condition.name
+        args = condition.bind(binding)
+        if name == "hand_free":
+            return state.held is None
+        if name == "holding":
+            return state.held == args[0]
+        if name == "reachable":
+            return reachable(state, self.objects, args[0])
+        if name == "tagged":
+            return args[1] in self.objects[args[0]].tags
+        if name == "opened":
+            return args[0] in state.opened
+        if name == "closed":
+            return self.objects[args[0]].kind == "container" and args[0] not in state.opened
+        if name == "switched_on":
+            return args[0] in state.switched_on
+        if name == "switched_off":
+            return self.objects[args[0]].kind == "appliance" and args[0] not in state.switched_on
+        if name == "accepts":
+            return self._accepts(state, args[0], args[1])
+        if name == "distinct":
+            return args[0] != args[1]
+        raise AssertionError(f"unvalidated predicate {name}")  # load_world rejects unknown names
+
+    def _effects(self, state: State, call: TaskCall) -> State:
+        rule = self.tasks[call.task]
+        binding = dict(zip(rule.params, call.args))
+        for effect in rule.effects:
+            args = effect.bind(binding)
+            if effect.name == "grasp":
+                state = state.grasp(args[0])
+            elif effect.name == "put":
+                state = state.put(args[0], args[1])
+            elif effect.name == "open":
+                state = state.open(args[0])
+            elif effect.name == "close":
+                state = state.close(args[0])
+            elif effect.name == "switch_on":
+                state = state.switch_on(args[0])
+            elif effect.name == "switch_off":
+                state = state.switch_off(args[0])
+        return state
+
+
+# --- loading -----------------------------------------------------------------------------------
+def load_world(path: Path | str | None = None) -> World:
+    """Read and validate a world file; every error names the file and the entry."""
+    path = DEFAULT_WORLD if path is None else Path(path)
+    try:
+        data = yaml.safe_load(path.read_text(encoding="utf-8"))
+    except OSError as error:
+        raise OntologyError(f"{path}: cannot read world file ({error.strerror})") from None
+    except yaml.YAMLError as error:
+        mark = getattr(error, "problem_mark", None)
+        where = f"{path}:{mark.line + 1}" if mark is not None else str(path)
+        raise OntologyError(f"{where}: malformed YAML ({getattr(error, 'problem', error)})") from None
+    if not isinstance(data, dict):
+        raise OntologyError(f"{path}: expected a mapping with keys objects, tasks, park")
+    unknown = set(data) - _TOP_KEYS
+    if unknown:
+        raise OntologyError(f"{path}: unknown key(s) {', '.join(sorted(map(str, unknown)))}; allowed: {', '.join(sorted(_TOP_KEYS))}")
+    raw_tasks = data.get("tasks")
+    raw_objects = data.get("objects")
+    if not isinstance(raw_tasks, dict) or not raw_tasks:
+        raise OntologyError(f"{path}: 'tasks' must be a non-empty mapping")
+    if not isinstance(raw_objects, dict) or not raw_objects:
+        raise OntologyError(f"{path}: 'objects' must be a non-empty mapping")
+    objects = {str(name): _object(path, str(name), spec, raw_tasks) for name, spec in raw_objects.items()}
+    _check_locations(path, objects)
+    tags = frozenset().union(*(spec.tags for spec in objects.values()))
+    tasks = {str(name): _task(path, str(name), spec, tags) for name, spec in raw_tasks.items()}
+    park = data.get("park")
+    if park not in objects or objects[park].kind != "surface":
+        raise OntologyError(f"{path}: park: {park!r} is not a surface of the world")
+    return World(objects, tasks, park, path)
+
+
+def _names(path: Path, where: str, value: object) -> tuple[str, ...]:
+    if value is None:
+        return ()
+    if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+        raise OntologyError(f"{path}: {where}: expected a list of names, got {value!r}")
+    return tuple(value)
+
+
+def _object(path: Path, name: str, spec: object, tasks: Mapping) -> ObjectSpec:
+    where = f"objects.{name}"
+    if not isinstance(spec, dict):
+        raise OntologyError(f"{path}: {where}: expected a mapping like {{at: counter_top, affords: [pick]}}")
+    unknown = set(spec) - _OBJECT_KEYS
+    if unknown:
+        raise OntologyError(f"{path}: {where}: unknown key(s) {', '.join(sorted(map(str, unknown)))}")
+    kind = spec.get("kind", "item")
+    if kind not in KINDS:
+        raise OntologyError(f"{path}: {where}.kind: {kind!r} is not one of {', '.join(KINDS)}")
+    affords = _names(path, f"{where}.affords", spec.get("affords"))
+    for task in affords:
+        if task not in tasks:
+            raise OntologyError(f"{path}: {where}.affords: unknown task {task!r}")
+    at = spec.get("at")
+    if at is not None and not isinstance(at, str):
+        raise OntologyError(f"{path}: {where}.at: expected an object name, got {at!r}")
+    if kind in ("surface", "container", "appliance") and at is not None:
+        raise OntologyError(f"{path}: {where}.at: a {kind} is a fixture and has no start location")
+    if kind in ("item", "receptacle") and at is None:
+        raise OntologyError(f"{path}: {where}: a {kind} needs a start location 'at'")
+    tags = frozenset(_names(path, f"{where}.tags", spec.get("tags")))
+    accepts = frozenset(_names(path, f"{where}.accepts", spec.get("accepts")))
+    return ObjectSpec(name, kind, at, affords, tags, accepts)
+
+
+def _check_locations(path: Path, objects: Mapping[str, ObjectSpec]) -> None:
+    for name, spec in objects.items():
+        if spec.at is None:
+            continue
+        holder = objects.get(spec.at)
+        if holder is None:
+            raise OntologyError(f"{path}: objects.{name}.at: unknown object {spec.at!r}")
+        if holder.kind == "item" and not holder.accepts:
+            raise OntologyError(f"{path}: objects.{name}.at: {spec.at!r} is an item that holds nothing")
+        seen = [name]
+        current: str | None = spec.at
+        while current is not None:
+            if current in seen:
+                raise OntologyError(f"{path}: objects.{name}.at: locations form a cycle ({' -> '.join(seen + [current])})")
+            seen.append(current)
+            current = objects[current].at
+
+
+def _atom(path: Path, where: str, text: object, table: Mapping[str, str], params: tuple[str, ...], tags: frozenset[str]) -> Condition:
+    if not isinstance(text, str) or (match := _ATOM.match(text)) is None:
+        raise OntologyError(f"{path}: {where}: {text!r} is not an atom like holding(object)")
+    name, inner = match.group(1), match.group(2)
+    args = tuple(part.strip() for part in inner.split(",")) if inner else ()
+    if name not in table:
+        raise OntologyError(f"{path}: {where}: unknown predicate {name!r}; known: {', '.join(table)}")
+    signature = table[name]
+    if len(args) != len(signature):
+        raise OntologyError(f"{path}: {where}: {name} takes {len(signature)} argument(s), got {text!r}")
+    for arg, kind in zip(args, signature):
+        if kind == "o" and arg not in params:
+            raise OntologyError(f"{path}: {where}: {arg!r} in {text!r} is not a parameter ({', '.join(params)})")
+        if kind == "l" and arg not in tags:
+            raise OntologyError(f"{path}: {where}: no object has the tag {arg!r} used in {text!r}")
+    return Condition(name, args, signature)
+
+
+def _task(path: Path, name: str, spec: object, tags: frozenset[str]) -> TaskRule:
+    where = f"tasks.{name}"
+    if not isinstance(spec, dict):
+        raise OntologyError(f"{path}: {where}: expected a mapping with args, requires, effects")
+    unknown = set(spec) - _TASK_KEYS
+    if unknown:
+        raise OntologyError(f"{path}: {where}: unknown key(s) {', '.join(sorted(map(str, unknown)))}")
+    params = _names(path, f"{where}.args", spec.get("args"))
+    if not 1 <= len(params) <= 2 or len(set(params)) != len(params):
+        raise OntologyError(f"{path}: {where}.args: expected one or two distinct parameter names")
+    requires = tuple(
+        _atom(path, f"{where}.requires[{i}]", text, PREDICATES, params, tags)
+        for i, text in enumerate(_list(path, f"{where}.requires", spec.get("requires")))
+    )
+    effects = tuple(
+        _atom(path, f"{where}.effects[{i}]", text, EFFECTS, params, tags)
+        for i, text in enumerate(_list(path, f"{where}.effects", spec.get("effects")))
+    )
+    return TaskRule(name, params, requires, effects)
+
+
+def _list(path: Path, where: str, value: object) -> list:
+    if value is None:
+        return []
+    if not isinstance(value, list):
+        raise OntologyError(f"{path}: {where}: expected a list, got {value!r}")
+    return value
