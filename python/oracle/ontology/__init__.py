@@ -1,0 +1,12 @@
+"""odb + mapping -> OWL ontology under SOMA/DUL, its taxonomy and its distances."""
+
+from oracle.ontology.builder import BuildReport, build_ontology, build_with_report, write_ontology
+from oracle.ontology.distance import DistanceMatrix, owl_distance
+from oracle.ontology.model import ObjectClass, OdbOntology, TaskClass, load_ontology
+from oracle.ontology.taxonomy import Taxonomy
+from oracle.ontology.vocabulary import Vocabulary
+
+__all__ = [
+    "BuildReport", "DistanceMatrix", "ObjectClass", "OdbOntology", "TaskClass", "Taxonomy", "Vocabulary",
+    "build_ontology", "build_with_report", "load_ontology", "owl_distance", "write_ontology",
+]

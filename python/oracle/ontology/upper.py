@@ -1,0 +1,49 @@
+"""The upper ontology the odb attaches to: the official SOMA/DUL files or the project's core TBox.
+
+The core TBox (``ontology/soma-core.ttl``) holds every SOMA/DUL class and property this project
+uses, with the official IRIs and the asserted subclass chains of the official files, so the
+project works without them. ``--soma DIR`` loads ``DUL.owl``, ``SOMA.owl`` and ``SOMA-HOME.owl``
+from DIR instead.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from rdflib import Graph, URIRef
+from rdflib.namespace import OWL, RDF
+
+from oracle.errors import OntologyError
+
+#: Folder of the shipped data (sample odb, mapping, core TBox, kitchen world).
+DATA_DIR = Path(__file__).resolve().parents[3] / "ontology"
+CORE_TBOX = DATA_DIR / "soma-core.ttl"
+OFFICIAL_FILES = ("DUL.owl", "SOMA.owl", "SOMA-HOME.owl")
+
+
+def load_upper(soma_dir: Path | str | None = None) -> Graph:
+    """Return the upper TBox: the official files from ``soma_dir`` or the shipped core TBox."""
+    graph = Graph()
+    if soma_dir is None:
+        if not CORE_TBOX.exists():
+            raise OntologyError(f"{CORE_TBOX}: core TBox missing from the installation")
+        graph.parse(CORE_TBOX, format="turtle")
+        return graph
+    directory = Path(soma_dir)
+    if not directory.is_dir():
+        raise OntologyError(f"{directory}: SOMA folder not found")
+    found = [directory / name for name in OFFICIAL_FILES if (directory / name).exists()]
+    if not any(p.name in ("SOMA.owl", "SOMA-HOME.owl") for p in found):
+        raise OntologyError(f"{directory}: neither SOMA.owl nor SOMA-HOME.owl found")
+    for path in found:
+        try:
+            graph.parse(path, format="xml")
+        except Exception as error:  # rdflib raises many parser-specific types
+            raise OntologyError(f"{path}: cannot parse as RDF/XML ({error})") from None
+    return graph
+
+
+def declared_entities(graph: Graph) -> frozenset[str]:
+    """IRIs declared as classes or properties in a graph."""
+    kinds = (OWL.Class, OWL.ObjectProperty, OWL.DatatypeProperty, OWL.AnnotationProperty)
+    return frozenset(str(s) for kind in kinds for s in graph.subjects(RDF.type, kind) if isinstance(s, URIRef))
