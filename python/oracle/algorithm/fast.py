@@ -1,0 +1,304 @@
+"""The PreferenceOracle for production: the reference algorithm with tables, numpy and incremental state.
+
+What is precomputed (docs/algorithm.md, "Fast implementation"):
+
+* every distinct executed or available option (task, target, reference) gets an id, and the
+  Algorithm 2 distance between every pair of ids is kept in one growing table;
+* every distinct available-option set gets an id; Algorithm 3's set distances between sets are
+  memoised per pair as they are first needed;
+* the Algorithm 3 distances of each of the last ``event horizon backwards`` executed steps to all
+  earlier steps are computed once, when the step is added, as the thesis caches predecessor
+  distances; a rank then only looks them up, shifted along the history.
+
+It performs the same floating-point operations in the same order as ``reference``, so both
+return identical scores; the property tests hold them to 1e-9.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+
+import numpy as np
+
+from oracle.algorithm.params import Hyperparameters, OracleParams
+from oracle.algorithm.reference import (
+    Candidate, assemble_ranking, class_row, importance_weights, offered_options,
+)
+from oracle.algorithm.situation import Option, Ranking, Step, option_key
+from oracle.errors import SettingsError
+from oracle.timeofday import TIME_OF_DAY_NAMES
+
+_TOD = {name: code for code, name in enumerate(TIME_OF_DAY_NAMES)}
+
+
+class _Column:
+    """A growing 1-d numpy array with amortised O(1) append."""
+
+    def __init__(self, dtype) -> None:
+        self._data = np.empty(64, dtype=dtype)
+        self.size = 0
+
+    def append(self, value) -> None:
+        if self.size == self._data.size:
+            self._data = np.concatenate([self._data, np.empty_like(self._data)])
+        self._data[self.size] = value
+        self.size += 1
+
+    @property
+    def view(self) -> np.ndarray:
+        return self._data[: self.size]
+
+
+class PreferenceOracle(OracleParams):
+    """PreferenceOracle, fast version; same parameters and results as ``ReferenceOracle``.
+
+    ``fit(history)`` learns from a list of Steps, ``partial_fit(step)`` adds one more,
+    ``rank(current)`` scores the available options without changing the model.
+    """
+
+    # -- learning -------------------------------------------------------------------------
+
+    def fit(self, history: Iterable[Step]) -> PreferenceOracle:
+        p = self.hyperparameters()
+        self.params_ = p
+        self._matrix_values = np.asarray(self.distances.values, dtype=np.float64)
+        self.options_: list[Option] = []            # id -> option
+        self._option_ids: dict[Option, int] = {}
+        self._option_classes = np.empty((0, 3), dtype=np.int64)  # task, target, reference rows (-1: none)
+        self._option_table = np.empty((0, 0), dtype=np.float64)  # Algorithm 2 between option ids
+        self._option_count = 0
+        self._set_ids: dict[tuple[int, ...], int] = {}
+        self._set_members: list[np.ndarray] = []     # option ids in canonical order
+        self._set_distances: dict[int, np.ndarray] = {}  # set a -> Algorithm 3 set distance to set b (nan: unknown)
+        self._executed = _Column(np.int64)
+        self._set_of_step = _Column(np.int64)
+        self._idle = _Column(np.bool_)
+        self._time_of_day = _Column(np.int64)          # -1: unknown
+        self._next_position = _Column(np.int64)        # successor position for the tree, -1: none
+        self._rows: dict[int, np.ndarray] = {}         # position a -> Algorithm 3 to every earlier step
+        self.n_steps_ = 0
+        steps = list(history)
+        for step in steps:
+            self._add_step(step)
+        for position in range(max(0, len(steps) - p.event_horizon_backwards), len(steps)):
+            self._rows[position] = self._situation_row(position)
+        return self
+
+    def partial_fit(self, step: Step) -> PreferenceOracle:
+        if not hasattr(self, "params_"):
+            return self.fit([step])
+        p = self._check_params()
+        self._add_step(step)
+        position = self.n_steps_ - 1
+        if p.event_horizon_backwards > 0:
+            self._rows[position] = self._situation_row(position)
+            self._rows.pop(position - p.event_horizon_backwards, None)
+        return self
+
+    def _check_params(self) -> Hyperparameters:
+        if not hasattr(self, "params_"):
+            raise SettingsError(f"{type(self).__name__} is not fitted; call fit(history) first")
+        if self.hyperparameters() != self.params_:
+            raise SettingsError("hyperparameters changed since fit; call fit(history) again")
+        return self.params_
+
+    def _add_step(self, step: Step) -> None:
+        if not isinstance(step, Step):
+            raise TypeError(f"history entries must be Step records, got {type(step).__name__}")
+        executed = self._intern_options([step.option])[0]
+        available = self._intern_options(step.options)
+        key = tuple(sorted(set(available), key=lambda i: option_key(self.options_[i])))
+        set_id = self._set_ids.get(key)
+        if set_id is None:
+            set_id = self._set_ids[key] = len(self._set_members)
+            self._set_members.append(np.array(key, dtype=np.int64))
+        position = self.n_steps_
+        if position > 0 and not step.idle:
+            self._next_position.view[position - 1] = position
+        self._executed.append(executed)
+        self._set_of_step.append(set_id)
+        self._idle.append(step.idle)
+        self._time_of_day.append(_TOD.get(step.time_of_day, -1))
+        self._next_position.append(-1)
+        self.n_steps_ = position + 1
+
+    def _classes_of(self, options) -> np.ndarray:
+        rows = np.empty((len(options), 3), dtype=np.int64)
+        for i, option in enumerate(options):
+            rows[i, 0] = class_row(self.distances, option.task)
+            rows[i, 1] = -1 if option.target is None else class_row(self.distances, option.target)
+            rows[i, 2] = -1 if option.reference is None else class_row(self.distances, option.reference)
+        return rows
+
+    def _intern_options(self, options) -> list[int]:
+        new = [o for o in dict.fromkeys(options) if o not in self._option_ids]
+        if new:
+            classes = self._classes_of(new)
+            old, count = self._option_count, self._option_count + len(new)
+            if count > self._option_table.shape[0]:
+                size = max(64, 2 * count)
+                table = np.empty((size, size), dtype=np.float64)
+                table[:old, :old] = self._option_table[:old, :old]
+                self._option_table = table
+                grown = np.empty((size, 3), dtype=np.int64)
+                grown[:old] = self._option_classes[:old]
+                self._option_classes = grown
+            self._option_classes[old:count] = classes
+            all_classes = self._option_classes[:count]
+            # both directions, so an asymmetric rounding in the class matrix is reproduced exactly
+            self._option_table[old:count, :count] = self._option_distances(classes, all_classes)
+            self._option_table[:count, old:count] = self._option_distances(all_classes, classes)
+            for option in new:
+                self._option_ids[option] = len(self.options_)
+                self.options_.append(option)
+            self._option_count = count
+        return [self._option_ids[o] for o in options]
+
+    def _option_distances(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """Algorithm 2 between every option of ``a`` and every option of ``b`` (rows of class ids)."""
+        p, values = self.params_, self._matrix_values
+        task = values[a[:, 0][:, None], b[:, 0][None, :]]
+        total = np.zeros(task.shape)
+        count = np.zeros(task.shape, dtype=np.int64)
+        for slot in (1, 2):  # target, then reference: the order of the reference's sum
+            mine, theirs = a[:, slot][:, None], b[:, slot][None, :]
+            both = (mine >= 0) & (theirs >= 0)
+            one = (mine >= 0) ^ (theirs >= 0)
+            term = np.where(both, values[np.maximum(mine, 0), np.maximum(theirs, 0)], 0.0)
+            term = np.where(one, p.penalty, term)
+            total = total + term
+            count += both | one
+        average = np.divide(total, count, out=np.zeros(task.shape), where=count > 0)
+        return p.task_factor * task + p.object_factor * average
+
+    def _set_distance_vector(self, rows: np.ndarray, set_ids: np.ndarray) -> np.ndarray:
+        """Algorithm 3's option set distance from the options behind ``rows`` (canonical order;
+        each row holds their Algorithm 2 distances to all option ids) to each set in ``set_ids``."""
+        p = self.params_
+        k = rows.shape[0]
+        if k == 0:
+            return np.zeros(set_ids.size)
+        members = [self._set_members[s] for s in set_ids.tolist()]
+        sizes = np.array([m.size for m in members], dtype=np.int64)
+        best = np.full((k, set_ids.size), p.penalty)
+        filled = np.flatnonzero(sizes > 0)
+        if filled.size:
+            flat = np.concatenate([members[i] for i in filled.tolist()])
+            starts = np.concatenate([[0], np.cumsum(sizes[filled])[:-1]])
+            best[:, filled] = np.minimum.reduceat(rows[:, flat], starts, axis=1)
+        total = np.zeros(set_ids.size)
+        for i in range(k):  # left to right, as the reference adds
+            total += best[i]
+        return total / k
+
+    def _historic_set_distances(self, set_a: int, needed: np.ndarray) -> np.ndarray:
+        """Memoised set distances from historic set ``set_a`` to every set id (nan where not needed)."""
+        known = self._set_distances.get(set_a)
+        n_sets = len(self._set_members)
+        if known is None or known.size < n_sets:
+            grown = np.full(n_sets, np.nan)
+            if known is not None:
+                grown[: known.size] = known
+            known = self._set_distances[set_a] = grown
+        missing = needed[np.isnan(known[needed])]
+        if missing.size:
+            members = self._set_members[set_a]
+            rows = self._option_table[members, : self._option_count]
+            known[missing] = self._set_distance_vector(rows, missing)
+        return known
+
+    def _situation_row(self, a: int) -> np.ndarray:
+        """Algorithm 3 distance of step ``a`` (as the current side) to every earlier step."""
+        p = self.params_
+        executed = self._executed.view
+        base = self._option_table[executed[a], executed[:a]]
+        if p.compare_situations <= 0 or a == 0:
+            return base
+        need = base < p.knockout
+        if not need.any():
+            return base
+        sets = self._set_of_step.view[:a]
+        table = self._historic_set_distances(int(self._set_of_step.view[a]), np.unique(sets[need]))
+        row = base.copy()
+        row[need] = base[need] + table[sets[need]] * p.compare_situations
+        return row
+
+    # -- ranking --------------------------------------------------------------------------
+
+    def rank(self, current: Step | Iterable[Option], time_of_day: str | None = None, *,
+             tree_roots: int | None = 3, present_objects: Iterable[str] | None = None) -> Ranking:
+        """Rank the available options of ``current`` (a Step, or options plus ``time_of_day``).
+
+        The forward tree is built for the best ``tree_roots`` options (None: all).
+        """
+        p = self._check_params()
+        offered, now = offered_options(current, time_of_day)
+        classes = self._classes_of(offered)
+        count, length = self._option_count, self.n_steps_
+        cand_rows = self._option_distances(classes, self._option_classes[:count])  # C x options
+        executed = self._executed.view
+        base = cand_rows[:, executed]                                               # C x L
+        d0 = base
+        if p.compare_situations > 0 and length and offered:
+            need = base < p.knockout
+            if need.any():
+                order = sorted(range(len(offered)), key=lambda i: option_key(offered[i]))
+                sets = self._set_of_step.view
+                needed = np.unique(sets[need.any(axis=0)])
+                lookup = np.zeros(len(self._set_members))
+                lookup[needed] = self._set_distance_vector(cand_rows[order], needed)
+                d0 = np.where(need, base + lookup[sets][None, :] * p.compare_situations, base)
+        members = d0 <= p.knockout
+        columns = np.flatnonzero(members.any(axis=0)) if length else np.empty(0, dtype=np.int64)
+
+        weights = importance_weights(p.decreasing_importance_factor, p.event_horizon_backwards)
+        before, before_weight = self._predecessors(columns, weights)
+        dist = (weights[0] * d0[:, columns] + before) / (weights[0] + before_weight)
+        now_code = _TOD.get(now, -1) if now is not None else -1
+        if now_code >= 0:
+            then = self._time_of_day.view[columns]
+            dist = np.where((then >= 0) & (then != now_code), dist * p.time_of_day_penalty, dist)
+        inside = members[:, columns]
+        totals = np.cumsum(np.where(inside, dist, 0.0), axis=1)[:, -1] if columns.size else np.zeros(len(offered))
+        nearest = base.min(axis=1) if length else np.full(len(offered), math.inf)
+
+        results = []
+        for c, option in enumerate(offered):
+            chosen = np.flatnonzero(inside[c])
+            results.append(Candidate(c, option, int(chosen.size), float(totals[c]), float(nearest[c]),
+                                     columns[chosen], dist[c, chosen]))
+        return assemble_ranking(p, self.opening_tasks, offered, results, tree_roots, present_objects,
+                                self._next_position.view, executed, self.options_)
+
+    def _predecessors(self, columns: np.ndarray, weights: list[float]) -> tuple[np.ndarray, np.ndarray]:
+        """Weighted predecessor distances for the historic steps at ``columns`` (see reference)."""
+        p = self.params_
+        length = self.n_steps_
+        idle = self._idle.view
+        total = np.zeros(columns.size)
+        weight_sum = np.zeros(columns.size)
+        running = np.ones(columns.size, dtype=bool)    # not stopped at a common chain start
+        knocked = np.zeros(columns.size, dtype=bool)
+        for n in range(1, p.event_horizon_backwards + 1):
+            if not running.any():
+                break
+            a = length - n
+            b = columns - n
+            historic_start = (b < 0) | idle[np.maximum(b, 0)]
+            active = running & ~knocked
+            if a < 0 or idle[a]:
+                running &= ~(active & historic_start)
+                knocked |= active & ~historic_start
+            else:
+                knocked |= active & historic_start  # only the historic chain starts here
+                compared = np.flatnonzero(active & ~historic_start)
+                d = self._rows[a][b[compared]]
+                over = d > p.knockout
+                knocked[compared[over]] = True
+                fine = compared[~over]
+                total[fine] += weights[n] * d[~over]
+                weight_sum[fine] += weights[n]
+            total[knocked] += weights[n] * p.penalty
+            weight_sum[knocked] += weights[n]
+        return total, weight_sum

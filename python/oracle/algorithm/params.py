@@ -1,0 +1,198 @@
+"""The ten hyperparameters of the PreferenceOracle (thesis Table 4.2), their presets and YAML files.
+
+``Hyperparameters`` is the validated record; ``PRESETS`` holds the Fig. 5.5 settings A-N;
+``OracleParams`` gives the estimators their scikit-learn ``get_params``/``set_params``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass, fields, replace
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from oracle.errors import SettingsError
+
+
+@dataclass(frozen=True)
+class Hyperparameters:
+    """Thesis Table 4.2 ("recommended") as defaults; ``event_horizon_forward`` was not trained: 3 as in Fig. 4.6."""
+
+    object_factor: float = 1.0
+    task_factor: float = 2.0
+    knockout: float = 1.16
+    penalty: float = 3.7
+    event_horizon_backwards: int = 16
+    decreasing_importance_factor: float = 0.81
+    compare_situations: float = 1.0
+    time_of_day_penalty: float = 1.18
+    event_horizon_forward: int = 3
+    multiple_occurrences_factor: float = 0.25
+
+    def __post_init__(self) -> None:
+        validate(asdict(self))
+
+    def to_dict(self) -> dict[str, float | int]:
+        return asdict(self)
+
+
+NAMES: tuple[str, ...] = tuple(f.name for f in fields(Hyperparameters))
+_INTS = {"event_horizon_backwards", "event_horizon_forward"}
+
+
+def validate(values: dict[str, Any], where: str = "settings") -> None:
+    """Raise SettingsError naming ``where`` and the entry when a value is missing, mistyped or out of range."""
+    for name in NAMES:
+        if name not in values:
+            raise SettingsError(f"{where}: missing {name!r}")
+        value = values[name]
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise SettingsError(f"{where}: {name!r} must be a number, got {value!r}")
+        if name in _INTS and not (isinstance(value, int) or float(value).is_integer()):
+            raise SettingsError(f"{where}: {name!r} must be a whole number, got {value!r}")
+        if not math.isfinite(value):
+            raise SettingsError(f"{where}: {name!r} must be finite, got {value!r}")
+        if value < 0:
+            raise SettingsError(f"{where}: {name!r} must be >= 0, got {value!r}")
+    factor = values["decreasing_importance_factor"]
+    if not 0 < factor <= 1:
+        raise SettingsError(f"{where}: 'decreasing_importance_factor' must be in (0, 1], got {factor!r}")
+
+
+def _canonical_name(key: object, where: str) -> str:
+    name = str(key).strip().lower().replace(" ", "_").replace("-", "_")
+    if name == "multiple_occurrence_factor":  # the spelling of Table 4.2
+        name = "multiple_occurrences_factor"
+    if name not in NAMES:
+        raise SettingsError(f"{where}: unknown hyperparameter {key!r} (known: {', '.join(NAMES)})")
+    return name
+
+
+def from_mapping(mapping: dict[str, Any], where: str = "settings") -> Hyperparameters:
+    """Build settings from a mapping: optional ``preset`` (A-N or a name) plus overrides.
+
+    Keys may be written as in the thesis ("event horizon backwards") or in snake_case.
+    """
+    if not isinstance(mapping, dict):
+        raise SettingsError(f"{where}: expected a mapping of hyperparameters, got {type(mapping).__name__}")
+    base = PRESETS["recommended"]
+    values = dict(mapping)
+    if "preset" in values:
+        base = preset(str(values.pop("preset")), where)
+    merged: dict[str, Any] = base.to_dict()
+    for key, value in values.items():
+        merged[_canonical_name(key, where)] = value
+    validate(merged, where)
+    for name in _INTS:
+        merged[name] = int(merged[name])
+    return Hyperparameters(**merged)
+
+
+def load_settings(path: Path | str) -> Hyperparameters:
+    """Read a YAML settings file; errors name the file."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as error:
+        raise SettingsError(f"{path}: cannot read ({error.strerror})") from None
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as error:
+        mark = getattr(error, "problem_mark", None)
+        line = f":{mark.line + 1}" if mark is not None else ""
+        raise SettingsError(f"{path}{line}: invalid YAML") from None
+    return from_mapping(data if data is not None else {}, str(path))
+
+
+def save_settings(settings: Hyperparameters, path: Path | str) -> None:
+    """Write settings as YAML with the thesis names as comments-free snake_case keys."""
+    Path(path).write_text(yaml.safe_dump(settings.to_dict(), sort_keys=False), encoding="utf-8")
+
+
+_RECOMMENDED = Hyperparameters()
+
+#: Thesis Fig. 5.5 settings: each is the recommended settings with one parameter changed.
+PRESETS: dict[str, Hyperparameters] = {
+    "A": _RECOMMENDED,
+    "B": replace(_RECOMMENDED, compare_situations=0.0),
+    "C": replace(_RECOMMENDED, time_of_day_penalty=10.0),
+    "D": replace(_RECOMMENDED, time_of_day_penalty=1.0),
+    "E": replace(_RECOMMENDED, multiple_occurrences_factor=1.0),
+    "F": replace(_RECOMMENDED, multiple_occurrences_factor=0.0),
+    "G": replace(_RECOMMENDED, decreasing_importance_factor=1.0),
+    "H": replace(_RECOMMENDED, object_factor=0.0),
+    "I": replace(_RECOMMENDED, task_factor=0.0),
+    "J": replace(_RECOMMENDED, penalty=_RECOMMENDED.knockout),
+    "K": replace(_RECOMMENDED, penalty=20.0),
+    "L": replace(_RECOMMENDED, knockout=0.0),
+    "M": replace(_RECOMMENDED, knockout=20.0),
+    "N": replace(_RECOMMENDED, event_horizon_backwards=0),
+}
+PRESETS["recommended"] = PRESETS["A"]
+PRESETS["no_situations"] = PRESETS["B"]
+
+
+def preset(name: str, where: str = "settings") -> Hyperparameters:
+    """A named preset: A-N (Fig. 5.5), "recommended" (= A) or "no_situations" (= B)."""
+    key = name.strip()
+    if key.upper() in PRESETS and len(key) == 1:
+        key = key.upper()
+    if key not in PRESETS:
+        raise SettingsError(f"{where}: unknown preset {name!r} (known: {', '.join(PRESETS)})")
+    return PRESETS[key]
+
+
+class OracleParams:
+    """scikit-learn style parameter handling shared by the reference and the fast oracle.
+
+    Subclasses list their constructor arguments in ``_param_names``; ``__init__`` only stores them.
+    """
+
+    _param_names: tuple[str, ...] = ("distances", "opening_tasks", *NAMES)
+
+    def __init__(self, distances: Any = None, *, opening_tasks: frozenset[str] = frozenset(),
+                 object_factor: float = 1.0, task_factor: float = 2.0, knockout: float = 1.16,
+                 penalty: float = 3.7, event_horizon_backwards: int = 16,
+                 decreasing_importance_factor: float = 0.81, compare_situations: float = 1.0,
+                 time_of_day_penalty: float = 1.18, event_horizon_forward: int = 3,
+                 multiple_occurrences_factor: float = 0.25) -> None:
+        self.distances = distances
+        self.opening_tasks = opening_tasks
+        self.object_factor = object_factor
+        self.task_factor = task_factor
+        self.knockout = knockout
+        self.penalty = penalty
+        self.event_horizon_backwards = event_horizon_backwards
+        self.decreasing_importance_factor = decreasing_importance_factor
+        self.compare_situations = compare_situations
+        self.time_of_day_penalty = time_of_day_penalty
+        self.event_horizon_forward = event_horizon_forward
+        self.multiple_occurrences_factor = multiple_occurrences_factor
+
+    def get_params(self, deep: bool = True) -> dict[str, Any]:
+        return {name: getattr(self, name) for name in self._param_names}
+
+    def set_params(self, **params: Any) -> OracleParams:
+        for name, value in params.items():
+            if name not in self._param_names:
+                raise SettingsError(f"unknown parameter {name!r} for {type(self).__name__}")
+            setattr(self, name, value)
+        return self
+
+    def hyperparameters(self) -> Hyperparameters:
+        """The current hyperparameters, validated (raises SettingsError)."""
+        values = {name: getattr(self, name) for name in NAMES}
+        validate(values, type(self).__name__)
+        for name in _INTS:
+            values[name] = int(values[name])
+        return Hyperparameters(**values)
+
+    @classmethod
+    def from_settings(cls, distances: Any, settings: Hyperparameters | str = "recommended",
+                      opening_tasks: frozenset[str] = frozenset()):
+        """Build an oracle from a Hyperparameters record or a preset name."""
+        if isinstance(settings, str):
+            settings = preset(settings)
+        return cls(distances, opening_tasks=opening_tasks, **settings.to_dict())
