@@ -44,5 +44,19 @@ bench:
 demo:
 	$(PY) -m oracle demo
 
+up:
+	@command -v docker >/dev/null 2>&1 || { echo "make up: docker not found; install Docker Engine with the compose plugin (docs/docker.md)" >&2; exit 1; }
+	@docker compose version >/dev/null 2>&1 || { echo "make up: the docker compose plugin is missing (docs/docker.md)" >&2; exit 1; }
+	@test -f docker/.env || { echo "make up: docker/.env is missing; run: cp docker/.env.example docker/.env  and set its passwords" >&2; exit 1; }
+	@! grep -q '=change-me' docker/.env || { echo "make up: docker/.env still has change-me passwords; set real ones first" >&2; exit 1; }
+	docker compose -f docker/docker-compose.yml --env-file docker/.env up -d --build
+
+down:
+	@command -v docker >/dev/null 2>&1 || { echo "make down: docker not found" >&2; exit 1; }
+	docker compose -f docker/docker-compose.yml --env-file $$( [ -f docker/.env ] && echo docker/.env || echo docker/.env.example ) down
+
+test-mongo:
+	@$(PY) scripts/check-mongo.py -- $(PY) -m pytest -q
+
 clean:
 	rm -rf build dist *.egg-info python/*.egg-info .pytest_cache

@@ -1,0 +1,24 @@
+// First start only (empty mongo-data volume): the image runs this with mongosh as the root user.
+// 1. the account the oracle services use: readWrite on the NEEM database only (authSource admin);
+// 2. KnowRob 2.x's `one` collection: every mongolog query is an aggregate on it, and a read-only
+//    KnowRob does not create it. Same document as KnowRob's initialize_one_db (doubles are Decimal128).
+const dbName = process.env.NEEM_DB || "roslog";
+const appUser = process.env.NEEM_APP_USER;
+const appPassword = process.env.NEEM_APP_PASSWORD;
+if (!appUser || !appPassword) {
+  throw new Error("NEEM_APP_USER and NEEM_APP_PASSWORD must be set in docker/.env");
+}
+
+const admin = db.getSiblingDB("admin");
+if (admin.getUser(appUser) === null) {
+  admin.createUser({ user: appUser, pwd: appPassword, roles: [{ role: "readWrite", db: dbName }] });
+  print(`neem-oracle: created user ${appUser} (readWrite on ${dbName})`);
+}
+
+const neems = db.getSiblingDB(dbName);
+if (neems.getCollection("one").countDocuments({}) === 0) {
+  neems.getCollection("one").insertOne({
+    v_scope: { time: { since: NumberDecimal("0"), until: NumberDecimal("Infinity") } },
+  });
+  print(`neem-oracle: created ${dbName}.one`);
+}
