@@ -216,3 +216,23 @@ def test_missing_world_file(tmp_path):
 
 def test_default_world_file_is_in_the_project():
     assert DEFAULT_WORLD == Path(__file__).resolve().parents[2] / "ontology" / "kitchen-world.yaml"
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.lists(st.integers(min_value=0, max_value=10_000), max_size=40))
+def test_available_equals_brute_force_over_all_calls(walk):
+    """The fast enumeration lists exactly the calls whose preconditions hold."""
+    world = load_world()
+    state = world.initial_state()
+    for pick in walk:
+        available = world.available(state)
+        state = world.apply(state, available[pick % len(available)])
+    brute = []
+    for task, rule in world.tasks.items():
+        for x in world.objects:
+            seconds = [()] if len(rule.params) == 1 else [(y,) for y in world.objects]
+            for rest in seconds:
+                call = TaskCall(task, (x, *rest))
+                if world.feasible(state, call):
+                    brute.append(call)
+    assert list(world.available(state)) == brute

@@ -102,13 +102,17 @@ class World:
         self._affording = {
             task: tuple(name for name, spec in self.objects.items() if task in spec.affords) for task in self.tasks
         }
-        # Conditions that only need the first argument are checked before the second is bound.
-        self._split: dict[str, tuple[tuple[Condition, ...], tuple[Condition, ...]]] = {}
+        # available() checks conditions on the first argument before it binds the second, and
+        # binds the second only to objects that pass the conditions that do not depend on state.
+        self._compiled: dict[str, tuple[tuple, tuple, tuple[str, ...] | None]] = {}
         for task, rule in self.tasks.items():
             first = frozenset(rule.params[:1])
-            early = tuple(c for c in rule.requires if c.params() <= first)
-            late = tuple(c for c in rule.requires if not c.params() <= first)
-            self._split[task] = (early, late)
+            early = tuple(self._compile(c, rule.params) for c in rule.requires if c.params() <= first)
+            late = tuple(self._compile(c, rule.params) for c in rule.requires if not c.params() <= first)
+            candidates = None
+            if len(rule.params) == 2:
+                candidates = tuple(y for y in self._names if self._could_bind(rule, y))
+            self._compiled[task] = (early, late, candidates)
 
     # --- queries ------------------------------------------------------------------------------
     def initial_state(self) -> State:
@@ -150,20 +154,22 @@ class World:
     def available(self, state: State) -> tuple[TaskCall, ...]:
         """Every feasible task call, in world-file order of tasks and objects."""
         found: list[TaskCall] = []
-        for task, rule in self.tasks.items():
-            early, late = self._split[task]
-            first = rule.params[0]
+        memo: dict[str, bool] = {}
+
+        def reach(obj: str) -> bool:
+            if obj not in memo:
+                memo[obj] = reachable(state, self.objects, obj)
+            return memo[obj]
+
+        for task, (early, late, candidates) in self._compiled.items():
             for x in self._affording[task]:
-                binding = {first: x}
-                if not all(self._holds(state, c, binding) for c in early):
+                if not all(test(state, x, x, reach) for test in early):
                     continue
-                if len(rule.params) == 1:
+                if candidates is None:
                     found.append(TaskCall(task, (x,)))
                     continue
-                second = rule.params[1]
-                for y in self._names:
-                    binding[second] = y
-                    if all(self._holds(state, c, binding) for c in late):
+                for y in candidates:
+                    if all(test(state, x, y, reach) for test in late):
                         found.append(TaskCall(task, (x, y)))
         return tuple(found)
 
@@ -245,19 +251,52 @@ class World:
             return TaskCall("turn_off", (block,))
         return None
 
+    def _could_bind(self, rule: TaskRule, obj: str) -> bool:
+        """Whether ``obj`` may fill the second parameter in some state (tags and kinds only)."""
+        spec = self.objects[obj]
+        second = rule.params[1]
+        for condition in rule.requires:
+            if condition.name == "tagged" and condition.args[0] == second and condition.args[1] not in spec.tags:
+                return False
+            if condition.name == "accepts" and condition.args[0] == second:
+                if spec.kind not in ("surface", "container") and not spec.accepts:
+                    return False
+        return True
+
+    def _compile(self, condition: Condition, params: tuple[str, ...]):
+        """A test ``f(state, first, second, reach)`` equivalent to ``_holds`` for this condition."""
+        pick = [(lambda x, y: x) if a == params[0] else (lambda x, y: y) for a in condition.args]
+        name, args, objects = condition.name, condition.args, self.objects
+        if name == "hand_free":
+            return lambda s, x, y, r: s.held is None
+        if name == "holding":
+            p0 = pick[0]
+            return lambda s, x, y, r: s.held == p0(x, y)
+        if name == "reachable":
+            p0 = pick[0]
+            return lambda s, x, y, r: r(p0(x, y))
+        if name == "tagged":
+            p0, tag = pick[0], args[1]
+            return lambda s, x, y, r: tag in objects[p0(x, y)].tags
+        if name == "accepts":
+            p0, p1 = pick
+            return lambda s, x, y, r: self._accepts(s, p0(x, y), p1(x, y), r)
+        binding_names = params
+        return lambda s, x, y, r: self._holds(s, condition, dict(zip(binding_names, (x, y))))
+
     def _park_for(self, state: State, held: str, park: str) -> str:
         if self._accepts(state, park, held):
             return park
         return self.park
 
     # --- predicates and effects -----------------------------------------------------------------
-    def _accepts(self, state: State, destination: str, obj: str) -> bool:
+    def _accepts(self, state: State, destination: str, obj: str, reach=None) -> bool:
         if destination == obj or destination == HAND:
             return False
         spec = self.objects[destination]
         if spec.kind == "item" and not spec.accepts:
             return False
-        if not reachable(state, self.objects, destination):
+        if not (reach(destination) if reach is not None else reachable(state, self.objects, destination)):
             return False
         if spec.kind == "surface":
             return True
