@@ -18,10 +18,11 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
+from functools import partial
 
 import numpy as np
 
-from oracle.algorithm.params import Hyperparameters, OracleParams
+from oracle.algorithm.params import NAMES, Hyperparameters, OracleParams
 from oracle.algorithm.reference import (
     Candidate, assemble_ranking, class_row, importance_weights, offered_options,
 )
@@ -62,6 +63,8 @@ class PreferenceOracle(OracleParams):
     def fit(self, history: Iterable[Step]) -> PreferenceOracle:
         p = self.hyperparameters()
         self.params_ = p
+        self._raw_params = tuple(getattr(self, name) for name in NAMES)
+        self._weights = importance_weights(p.decreasing_importance_factor, p.event_horizon_backwards)
         self._matrix_values = np.asarray(self.distances.values, dtype=np.float64)
         self.options_: list[Option] = []            # id -> option
         self._option_ids: dict[Option, int] = {}
@@ -70,6 +73,9 @@ class PreferenceOracle(OracleParams):
         self._option_count = 0
         self._set_ids: dict[tuple[int, ...], int] = {}
         self._set_members: list[np.ndarray] = []     # option ids in canonical order
+        self._set_flat = _Column(np.int64)              # all sets' members, concatenated
+        self._set_start = _Column(np.int64)
+        self._set_size = _Column(np.int64)
         self._set_distances: dict[int, np.ndarray] = {}  # set a -> Algorithm 3 set distance to set b (nan: unknown)
         self._executed = _Column(np.int64)
         self._set_of_step = _Column(np.int64)
@@ -83,7 +89,15 @@ class PreferenceOracle(OracleParams):
             self._add_step(step)
         for position in range(max(0, len(steps) - p.event_horizon_backwards), len(steps)):
             self._rows[position] = self._situation_row(position)
+        self._update_predecessors()
         return self
+
+    def _update_predecessors(self) -> None:
+        """The weighted predecessor distances of every historic step against the current chain.
+
+        They depend on the history only, not on the candidate, so they are computed once per
+        added step rather than once per rank."""
+        self._before, self._before_weight = self._predecessors(np.arange(self.n_steps_), self._weights)
 
     def partial_fit(self, step: Step) -> PreferenceOracle:
         if not hasattr(self, "params_"):
@@ -94,12 +108,13 @@ class PreferenceOracle(OracleParams):
         if p.event_horizon_backwards > 0:
             self._rows[position] = self._situation_row(position)
             self._rows.pop(position - p.event_horizon_backwards, None)
+        self._update_predecessors()
         return self
 
     def _check_params(self) -> Hyperparameters:
         if not hasattr(self, "params_"):
             raise SettingsError(f"{type(self).__name__} is not fitted; call fit(history) first")
-        if self.hyperparameters() != self.params_:
+        if tuple(getattr(self, name) for name in NAMES) != self._raw_params:
             raise SettingsError("hyperparameters changed since fit; call fit(history) again")
         return self.params_
 
@@ -113,6 +128,10 @@ class PreferenceOracle(OracleParams):
         if set_id is None:
             set_id = self._set_ids[key] = len(self._set_members)
             self._set_members.append(np.array(key, dtype=np.int64))
+            self._set_start.append(self._set_flat.size)
+            self._set_size.append(len(key))
+            for member in key:
+                self._set_flat.append(member)
         position = self.n_steps_
         if position > 0 and not step.idle:
             self._next_position.view[position - 1] = position
@@ -179,15 +198,28 @@ class PreferenceOracle(OracleParams):
         k = rows.shape[0]
         if k == 0:
             return np.zeros(set_ids.size)
+        best = np.full((k, set_ids.size), p.penalty)
+        n_sets = len(self._set_members)
+        if 4 * set_ids.size >= n_sets:  # most sets are needed: reduce over all of them at once
+            filled = np.flatnonzero(self._set_size.view > 0)
+            if filled.size:
+                mins = np.full((k, n_sets), p.penalty)
+                mins[:, filled] = np.minimum.reduceat(rows[:, self._set_flat.view], self._set_start.view[filled], axis=1)
+                best = mins[:, set_ids]
+            return self._average_rows(best)
         members = [self._set_members[s] for s in set_ids.tolist()]
         sizes = np.array([m.size for m in members], dtype=np.int64)
-        best = np.full((k, set_ids.size), p.penalty)
         filled = np.flatnonzero(sizes > 0)
         if filled.size:
             flat = np.concatenate([members[i] for i in filled.tolist()])
             starts = np.concatenate([[0], np.cumsum(sizes[filled])[:-1]])
             best[:, filled] = np.minimum.reduceat(rows[:, flat], starts, axis=1)
-        total = np.zeros(set_ids.size)
+        return self._average_rows(best)
+
+    @staticmethod
+    def _average_rows(best: np.ndarray) -> np.ndarray:
+        k = best.shape[0]
+        total = np.zeros(best.shape[1])
         for i in range(k):  # left to right, as the reference adds
             total += best[i]
         return total / k
@@ -234,9 +266,13 @@ class PreferenceOracle(OracleParams):
         """
         p = self._check_params()
         offered, now = offered_options(current, time_of_day)
-        classes = self._classes_of(offered)
         count, length = self._option_count, self.n_steps_
-        cand_rows = self._option_distances(classes, self._option_classes[:count])  # C x options
+        known = [self._option_ids.get(option, -1) for option in offered]
+        if -1 in known:
+            classes = self._classes_of(offered)
+            cand_rows = self._option_distances(classes, self._option_classes[:count])  # C x options
+        else:
+            cand_rows = self._option_table[known, :count]
         executed = self._executed.view
         base = cand_rows[:, executed]                                               # C x L
         d0 = base
@@ -252,8 +288,8 @@ class PreferenceOracle(OracleParams):
         members = d0 <= p.knockout
         columns = np.flatnonzero(members.any(axis=0)) if length else np.empty(0, dtype=np.int64)
 
-        weights = importance_weights(p.decreasing_importance_factor, p.event_horizon_backwards)
-        before, before_weight = self._predecessors(columns, weights)
+        weights = self._weights
+        before, before_weight = self._before[columns], self._before_weight[columns]
         dist = (weights[0] * d0[:, columns] + before) / (weights[0] + before_weight)
         now_code = _TOD.get(now, -1) if now is not None else -1
         if now_code >= 0:
@@ -263,11 +299,14 @@ class PreferenceOracle(OracleParams):
         totals = np.cumsum(np.where(inside, dist, 0.0), axis=1)[:, -1] if columns.size else np.zeros(len(offered))
         nearest = base.min(axis=1) if length else np.full(len(offered), math.inf)
 
-        results = []
-        for c, option in enumerate(offered):
+        counts = inside.sum(axis=1).tolist()
+
+        def members(c: int) -> tuple[np.ndarray, np.ndarray]:
             chosen = np.flatnonzero(inside[c])
-            results.append(Candidate(c, option, int(chosen.size), float(totals[c]), float(nearest[c]),
-                                     columns[chosen], dist[c, chosen]))
+            return columns[chosen], dist[c, chosen]
+
+        results = [Candidate(c, option, counts[c], float(totals[c]), float(nearest[c]), partial(members, c))
+                   for c, option in enumerate(offered)]
         return assemble_ranking(p, self.opening_tasks, offered, results, tree_roots, present_objects,
                                 self._next_position.view, executed, self.options_)
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 
 import numpy as np
 
@@ -234,7 +234,7 @@ class ReferenceOracle(OracleParams):
                 total += dist
             roots = np.array([j for j, _ in similar], dtype=np.int64)
             dists = np.array([d for _, d in similar], dtype=np.float64)
-            results.append(Candidate(position, candidate, len(similar), total, nearest, roots, dists))
+            results.append(Candidate(position, candidate, len(similar), total, nearest, lambda r=roots, d=dists: (r, d)))
 
         option_ids: dict[Option, int] = {}
         executed = np.array([option_ids.setdefault(step.option, len(option_ids)) for step in history],
@@ -262,16 +262,15 @@ def offered_options(current, time_of_day: str | None) -> tuple[tuple[Option, ...
 @dataclass(frozen=True)
 class Candidate:
     """What the scoring found for one offered option: ``|H(s_o)|``, the sum of the member distances
-    (added in history order), the members' history positions and distances, and the nearest
-    Algorithm 2 distance to any executed step."""
+    (added in history order), the nearest Algorithm 2 distance to any executed step, and a
+    function returning the members' history positions and distances (only the tree needs them)."""
 
     position: int
     option: Option
     n_similar: int
     total: float
     nearest: float
-    roots: np.ndarray
-    dists: np.ndarray
+    members: Callable[[], tuple[np.ndarray, np.ndarray]]
 
 
 def assemble_ranking(p: Hyperparameters, opening_tasks, offered: Sequence[Option],
@@ -295,7 +294,8 @@ def assemble_ranking(p: Hyperparameters, opening_tasks, offered: Sequence[Option
     for rank, (_, score, found) in enumerate(scored, start=1):
         successors = ()
         if found.n_similar and (tree_roots is None or rank <= tree_roots):
-            successors = successor_tree(found.roots, found.dists, next_position, executed, options,
+            roots, dists = found.members()
+            successors = successor_tree(roots, dists, next_position, executed, options,
                                         p.event_horizon_forward, p.multiple_occurrences_factor,
                                         present, opening, found.option.task not in opening)
         tasks.append(RankedTask(rank, score, found.option, found.n_similar, found.nearest, successors))

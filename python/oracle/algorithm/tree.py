@@ -33,38 +33,74 @@ def successor_tree(
     opening_tasks: frozenset[str],
     checked: bool,
 ) -> tuple[TreeNode, ...]:
-    """Children of a node whose chains currently stand at history positions ``roots``.
+    """The successor nodes of one candidate whose similar historic situations are at ``roots``.
 
-    ``roots`` (ascending) and ``distances`` pair each similar historic situation with its
-    distance to the candidate; ``next_position[i]`` is the position of the successor of step i
-    (-1 when the history ends or the successor is an odb:IdleTask, which ends the chain);
-    ``executed[i]`` is the id of step i's executed option in ``options``. ``checked`` is False
-    below an Opening task, where objects are not checked for presence (Fig. 4.7).
+    ``roots`` (ascending history positions) and ``distances`` pair each member of ``H(s_o)`` with
+    its distance to the candidate; ``next_position[i]`` is the position of the successor of step
+    i (-1 when the history ends or the successor is an odb:IdleTask, which ends the chain);
+    ``executed[i]`` is the id of step i's executed option in ``options``. ``checked`` is False when
+    the candidate is an Opening task, below which objects are not checked for presence (Fig. 4.7).
+
+    A node at depth k is a distinct sequence of k successor options; it gathers the roots whose
+    chains follow that sequence and is valued by eq. 4.12 over their distances, which are summed
+    in history order. Siblings are sorted by value, then by the earliest history position.
     """
     if depth <= 0 or roots.size == 0:
         return ()
-    successors = next_position[roots]
-    keep = successors >= 0
-    successors, weights = successors[keep], distances[keep]
-    if successors.size == 0:
-        return ()
-    ids = executed[successors]
-    groups, first, inverse = np.unique(ids, return_index=True, return_inverse=True)
-    # bincount adds in input order, i.e. in history order, so the sum is reproducible.
-    totals = np.bincount(inverse, weights=weights, minlength=groups.size)
-    counts = np.bincount(inverse, minlength=groups.size)
-    nodes: list[tuple[float, int, TreeNode]] = []
-    for g, option_id in enumerate(groups.tolist()):
-        option = options[option_id]
-        if checked and not set(option.objects()) <= present:
-            continue  # Fig. 4.7: this successor needs an object that is not here now
-        count = int(counts[g])
-        score = occurrence_value(float(totals[g]), count, factor)
-        mask = inverse == g
-        children = successor_tree(
-            successors[mask], weights[mask], next_position, executed, options, depth - 1, factor,
-            present, opening_tasks, checked and option.task not in opening_tasks,
-        )
-        nodes.append((score, int(successors[first[g]]), TreeNode(option, score, count, children)))
-    nodes.sort(key=lambda item: (item[0], item[1]))
-    return tuple(node for _, _, node in nodes)
+    n_options = max(len(options), 1)
+    position = roots.astype(np.int64)
+    parent = np.zeros(roots.size, dtype=np.int64)        # node index of each root at the previous level
+    levels = []                                          # per depth: (option ids, parents, scores, counts, first positions)
+    for _ in range(depth):
+        alive = position >= 0
+        position = np.where(alive, next_position[np.maximum(position, 0)], -1)
+        alive = position >= 0
+        if not alive.any():
+            break
+        codes = np.where(alive, parent * n_options + executed[np.maximum(position, 0)], -1)
+        chosen = np.flatnonzero(alive)
+        unique, first, inverse = np.unique(codes[chosen], return_index=True, return_inverse=True)
+        totals = np.bincount(inverse, weights=distances[chosen], minlength=unique.size)
+        counts = np.bincount(inverse, minlength=unique.size)
+        levels.append((unique % n_options, unique // n_options, totals, counts, position[chosen[first]]))
+        parent = np.full(roots.size, -1, dtype=np.int64)
+        parent[chosen] = inverse
+        position = np.where(parent >= 0, position, -1)
+
+    # top-down: which nodes survive the presence check, and which are below an Opening task
+    keep_above = [True]
+    checked_above = [checked]
+    kept_levels = []
+    here_now: dict[int, bool] = {}
+    for option_ids, parents, _, _, _ in levels:
+        keep, check = [], []
+        for option_id, up in zip(option_ids.tolist(), parents.tolist()):
+            ok = keep_above[up]
+            if ok and checked_above[up]:
+                present_here = here_now.get(option_id)
+                if present_here is None:
+                    option = options[option_id]
+                    present_here = here_now[option_id] = (
+                        (option.target is None or option.target in present)
+                        and (option.reference is None or option.reference in present))
+                ok = present_here
+            keep.append(ok)
+            check.append(checked_above[up] and options[option_id].task not in opening_tasks)
+        kept_levels.append(keep)
+        keep_above, checked_above = keep, check
+
+    # bottom-up: build the kept nodes with their sorted children
+    below: dict[int, list[tuple[float, int, TreeNode]]] = {}
+    for (option_ids, parents, totals, counts, firsts), keep in zip(reversed(levels), reversed(kept_levels)):
+        here: dict[int, list[tuple[float, int, TreeNode]]] = {}
+        for index, (option_id, up, total, count, first) in enumerate(
+                zip(option_ids.tolist(), parents.tolist(), totals.tolist(), counts.tolist(), firsts.tolist())):
+            if not keep[index]:
+                continue
+            score = occurrence_value(total, count, factor)
+            children = sorted(below.get(index, ()), key=lambda item: (item[0], item[1]))
+            node = TreeNode(options[option_id], score, count, tuple(node for _, _, node in children))
+            here.setdefault(up, []).append((score, first, node))
+        below = here
+    top = sorted(below.get(0, ()), key=lambda item: (item[0], item[1]))
+    return tuple(node for _, _, node in top)
