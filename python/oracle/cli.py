@@ -23,6 +23,7 @@ COMMAND_MODULES = (
     "prolog",
     "rank",
     "evaluation",
+    "evaluate",
     "demo",
     "bench",
 )

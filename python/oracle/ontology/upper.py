@@ -14,9 +14,10 @@ from rdflib import Graph, URIRef
 from rdflib.namespace import OWL, RDF
 
 from oracle.errors import OntologyError
+from oracle.paths import data_dir
 
 #: Folder of the shipped data (sample odb, mapping, core TBox, kitchen world).
-DATA_DIR = Path(__file__).resolve().parents[3] / "ontology"
+DATA_DIR = data_dir()
 CORE_TBOX = DATA_DIR / "soma-core.ttl"
 OFFICIAL_FILES = ("DUL.owl", "SOMA.owl", "SOMA-HOME.owl")
 

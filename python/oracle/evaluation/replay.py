@@ -1,0 +1,217 @@
+"""Progressive replay: before each action, every method ranks that step's candidates using only
+the user's earlier actions (thesis 5.3); then the action joins the history.
+
+Rows without an ``available`` set get as candidates every distinct action of that user in the
+input. Candidate sets are shuffled with a generator seeded by user and position, identically for
+every method. A gap of ``IDLE_THRESHOLD_S`` or more between two timed actions inserts an
+odb:IdleTask step into the history (it is a chain delimiter, never a prediction target).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import random
+import sys
+import time
+from collections import OrderedDict
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Protocol
+
+from oracle.algorithm.fast import PreferenceOracle
+from oracle.algorithm.params import Hyperparameters
+from oracle.algorithm.situation import Option, Step
+from oracle.chains import ChainRow, read_chains
+from oracle.errors import ChainSyntaxError, OntologyError
+from oracle.evaluation.baselines import BASELINES, chance_hit
+from oracle.namespaces import SOMA
+from oracle.ontology import OdbOntology
+from oracle.ontology.vocabulary import IDLE_THRESHOLD_S
+from oracle.situations import check_call, idle_step, option_of, step_of
+from oracle.timeofday import time_of_day
+
+KS = (1, 3, 5)
+
+
+class Method(Protocol):
+    name: str
+
+    def reset(self) -> None: ...
+
+    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None) -> list[Option]: ...
+
+    def observe(self, step: Step) -> None: ...
+
+
+class OracleMethod:
+    """The fast PreferenceOracle behind the replay's Method interface."""
+
+    def __init__(self, ontology: OdbOntology, settings: Hyperparameters, name: str = "oracle") -> None:
+        self.name = name
+        self.settings = settings
+        self.distances = ontology.distances()
+        self.opening = frozenset(iri for name, iri in ((n, t.iri) for n, t in ontology.tasks.items())
+                                 if ontology.taxonomy.is_subclass_of(iri, str(SOMA.Opening)))
+        self.reset()
+
+    def reset(self) -> None:
+        self.model = PreferenceOracle.from_settings(self.distances, self.settings, self.opening).fit([])
+
+    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None) -> list[Option]:
+        return list(self.model.rank(list(candidates), time_of_day, tree_roots=0).options())
+
+    def observe(self, step: Step) -> None:
+        self.model.partial_fit(step)
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """One prediction: where each method put the truth (1-based rank, None if not offered)."""
+
+    user: str
+    index: int
+    n_candidates: int
+    truth_offered: bool
+    ranks: dict[str, int | None]
+    seconds: dict[str, float]
+
+
+@dataclass
+class ReplayResult:
+    outcomes: list[Outcome] = field(default_factory=list)
+
+    def methods(self) -> list[str]:
+        return list(self.outcomes[0].ranks) if self.outcomes else []
+
+
+def load_users(path: Path | str) -> "OrderedDict[str, list[ChainRow]]":
+    """Rows of a JSONL file, or of every ``*.jsonl`` in a folder, grouped by user in file order."""
+    path = Path(path)
+    files = sorted(path.glob("*.jsonl")) if path.is_dir() else [path]
+    if not files:
+        raise ChainSyntaxError(f"{path}: no *.jsonl chain files found")
+    users: OrderedDict[str, list[ChainRow]] = OrderedDict()
+    for file in files:
+        for row in read_chains(file):
+            users.setdefault(row.user, []).append(row)
+    if not users:
+        raise ChainSyntaxError(f"{path}: no actions found")
+    return users
+
+
+def check_users(ontology: OdbOntology, users: dict[str, list[ChainRow]], source: str) -> None:
+    """Fail early, naming file line and name, when a chain uses an unknown task or object."""
+    for rows in users.values():
+        for row in rows:
+            where = f"{source}:{row.line}" if row.line else source
+            check_call(ontology, row.action, where)
+            for call in row.available or ():
+                check_call(ontology, call, where)
+
+
+def _rng(user: str, index: int, seed: int) -> random.Random:
+    digest = hashlib.sha256(f"{seed}:{user}:{index}".encode()).digest()
+    return random.Random(int.from_bytes(digest[:8], "big"))
+
+
+def replay(
+    ontology: OdbOntology,
+    users: dict[str, list[ChainRow]],
+    methods: Sequence[Method],
+    seed: int = 0,
+    progress: Callable[[int, int, str], None] | None = None,
+) -> ReplayResult:
+    result = ReplayResult()
+    for number, (user, rows) in enumerate(users.items(), start=1):
+        if progress is not None:
+            progress(number, len(users), user)
+        fallback = list(OrderedDict.fromkeys(option_of(ontology, row.action) for row in rows))
+        for method in methods:
+            method.reset()
+        previous_time = None
+        for index, row in enumerate(rows):
+            if (row.time is not None and previous_time is not None
+                    and (row.time - previous_time).total_seconds() >= IDLE_THRESHOLD_S):
+                idle = idle_step(ontology, row.time)
+                for method in methods:
+                    method.observe(idle)
+            previous_time = row.time if row.time is not None else previous_time
+            step = step_of(ontology, row.action, row.available or (), row.time)
+            truth = step.option
+            candidates = list(OrderedDict.fromkeys(step.options)) if row.available is not None else list(fallback)
+            _rng(user, index, seed).shuffle(candidates)
+            tod = time_of_day(row.time) if row.time is not None else None
+            ranks: dict[str, int | None] = {}
+            seconds: dict[str, float] = {}
+            offered = truth in candidates
+            for method in methods:
+                start = time.perf_counter()
+                order = method.rank(candidates, tod)
+                seconds[method.name] = time.perf_counter() - start
+                ranks[method.name] = order.index(truth) + 1 if offered else None
+            result.outcomes.append(Outcome(user, index, len(candidates), offered, ranks, seconds))
+            observed = Step(step.task, step.target, step.reference, tuple(candidates), tod, False, step.label)
+            for method in methods:
+                method.observe(observed)
+    return result
+
+
+def stderr_progress(done: int, total: int, user: str) -> None:
+    width = 30
+    filled = int(width * done / total)
+    sys.stderr.write(f"\rreplay [{'#' * filled}{'.' * (width - filled)}] {done}/{total} {user[:24]:24s}")
+    if done == total:
+        sys.stderr.write("\n")
+    sys.stderr.flush()
+
+
+def make_methods(ontology: OdbOntology, settings: Hyperparameters, baselines: bool) -> list[Method]:
+    methods: list[Method] = [OracleMethod(ontology, settings)]
+    if baselines:
+        methods.extend(cls() for cls in BASELINES.values())
+    return methods
+
+
+def summarize(result: ReplayResult) -> dict:
+    """The JSON summary of the issue: accuracies as fractions, per user and overall."""
+    methods = result.methods()
+    out: dict = {"methods": {}, "n_predictions": len(result.outcomes)}
+    users = list(OrderedDict.fromkeys(o.user for o in result.outcomes))
+    for name in methods:
+        entry: dict = {}
+        for k in KS:
+            entry[f"top{k}"] = _rate(result.outcomes, name, k)
+        entry["ms_per_prediction"] = 1000 * sum(o.seconds[name] for o in result.outcomes) / max(1, len(result.outcomes))
+        entry["per_user"] = {
+            user: {f"top{k}": _rate([o for o in result.outcomes if o.user == user], name, k) for k in KS}
+            for user in users
+        }
+        out["methods"][name] = entry
+    out["chance"] = {f"top{k}": sum(chance_hit(k, o.n_candidates, o.truth_offered) for o in result.outcomes)
+                     / max(1, len(result.outcomes)) for k in KS}
+    out["mean_candidates"] = sum(o.n_candidates for o in result.outcomes) / max(1, len(result.outcomes))
+    out["truth_not_offered"] = sum(1 for o in result.outcomes if not o.truth_offered)
+    return out
+
+
+def _rate(outcomes: Iterable[Outcome], name: str, k: int) -> float:
+    outcomes = list(outcomes)
+    hits = sum(1 for o in outcomes if o.ranks[name] is not None and o.ranks[name] <= k)
+    return hits / len(outcomes) if outcomes else 0.0
+
+
+def learning_curve(result: ReplayResult, name: str, k: int, max_index: int | None = None) -> tuple[list[float], list[float], list[int]]:
+    """Accuracy by action index across users, chance at the same index, and the number of users."""
+    by_index: dict[int, list[Outcome]] = {}
+    for o in result.outcomes:
+        if max_index is None or o.index < max_index:
+            by_index.setdefault(o.index, []).append(o)
+    indices = sorted(by_index)
+    acc = [_rate(by_index[i], name, k) for i in indices]
+    chance = [sum(chance_hit(k, o.n_candidates, o.truth_offered) for o in by_index[i]) / len(by_index[i]) for i in indices]
+    return acc, chance, [len(by_index[i]) for i in indices]
+
+
+__all__ = ["KS", "Method", "OracleMethod", "Outcome", "ReplayResult", "check_users", "learning_curve",
+           "load_users", "make_methods", "replay", "stderr_progress", "summarize", "OntologyError"]

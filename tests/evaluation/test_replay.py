@@ -1,0 +1,103 @@
+import json
+from datetime import datetime, timedelta
+
+import pytest
+
+from oracle.algorithm.params import Hyperparameters
+from oracle.algorithm.situation import Option, Step
+from oracle.cli import main
+from oracle.errors import OntologyError
+from oracle.evaluation.baselines import Bigram, MostFrequent, NGram, chance_hit
+from oracle.evaluation.replay import OracleMethod, check_users, load_users, replay, summarize
+from oracle.ontology import build_ontology
+
+
+@pytest.fixture(scope="module")
+def kitchen():
+    return build_ontology()
+
+
+def write_chain(path, user, actions, available=None, start=datetime(2026, 3, 2, 8, 0), gap=10):
+    with path.open("a") as handle:
+        t = start
+        for action in actions:
+            row = {"user": user, "time": t.isoformat(), "action": action}
+            if available is not None:
+                row["available"] = available
+            handle.write(json.dumps(row) + "\n")
+            t += timedelta(seconds=gap)
+
+
+def step(label):
+    return Step(task=label, label=label)
+
+
+def test_baselines_rank_by_counts():
+    a, b, c = Option("a"), Option("b"), Option("c")
+    mf, bi, ng = MostFrequent(), Bigram(), NGram()
+    for method in (mf, bi, ng):
+        for t in ["a", "b", "a", "c", "a", "b"]:
+            method.observe(Step(t))
+    assert mf.rank([c, b, a]) == [a, b, c]
+    # after "b" came "a" once; after "a" came b twice and c once
+    assert bi.rank([c, b, a])[0] == a
+    assert ng.rank([a, b, c])[0] == a
+
+
+def test_chance_is_exact():
+    assert chance_hit(1, 4, True) == 0.25 and chance_hit(5, 4, True) == 1.0 and chance_hit(1, 4, False) == 0.0
+
+
+def test_replay_learns_a_routine_and_beats_chance(tmp_path, kitchen):
+    routine = ["open(small_drawer)", "pick(red_mug)", "place(red_mug)", "close(small_drawer)", "pick(thermos)",
+               "pour(thermos, red_mug)", "place(thermos)"]
+    available = sorted(set(routine + ["pick(banana)", "eat(banana)", "open(fridge)", "pick(blue_mug)"]))
+    path = tmp_path / "c.jsonl"
+    for day in range(6):
+        write_chain(path, "ada", routine, available, start=datetime(2026, 3, 2 + day, 8, 0))
+    users = load_users(path)
+    result = replay(kitchen, users, [OracleMethod(kitchen, Hyperparameters()), Bigram()])
+    summary = summarize(result)
+    assert summary["n_predictions"] == 42
+    assert summary["methods"]["oracle"]["top3"] > summary["chance"]["top3"] + 0.3
+    last_day = [o for o in result.outcomes if o.index >= 35]
+    assert all(o.ranks["oracle"] <= 5 for o in last_day)
+    assert sum(o.ranks["oracle"] == 1 for o in last_day) >= 4
+
+
+def test_missing_available_uses_all_user_actions(tmp_path, kitchen):
+    path = tmp_path / "c.jsonl"
+    write_chain(path, "bo", ["pick(red_mug)", "place(red_mug)", "pick(apple)"])
+    result = replay(kitchen, load_users(path), [MostFrequent()])
+    assert [o.n_candidates for o in result.outcomes] == [3, 3, 3]
+
+
+def test_unknown_object_is_reported_with_line(tmp_path, kitchen):
+    path = tmp_path / "c.jsonl"
+    write_chain(path, "bo", ["pick(red_mug)", "pick(unicorn)"])
+    with pytest.raises(OntologyError, match=r"c\.jsonl:2: unknown object 'unicorn'"):
+        check_users(kitchen, load_users(path), str(path))
+
+
+def test_evaluate_command_writes_json_report_and_plots(tmp_path, capsys):
+    path = tmp_path / "c.jsonl"
+    for day in range(3):
+        write_chain(path, "cy", ["pick(apple)", "eat(apple)", "pick(red_mug)", "drink_from(red_mug)"],
+                    start=datetime(2026, 3, 2 + day, 19, 0))
+    out = tmp_path / "out"
+    code = main(["evaluate", str(path), "--baselines", "--json", str(out / "s.json"), "--report", str(out / "r.md"),
+                 "--plots", str(out)])
+    assert code == 0
+    summary = json.loads((out / "s.json").read_text())
+    assert set(summary["methods"]) == {"oracle", "most_frequent", "bigram", "ngram"}
+    assert set(summary["chance"]) == {"top1", "top3", "top5"} and summary["n_predictions"] == 12
+    assert summary["methods"]["oracle"]["per_user"]["cy"]["top5"] == 1.0
+    assert "| oracle |" in (out / "r.md").read_text()
+    assert (out / "per_user_box.png").stat().st_size > 1000 and (out / "learning_curve.png").exists()
+
+
+def test_evaluate_rejects_bad_settings(tmp_path, capsys):
+    path = tmp_path / "c.jsonl"
+    write_chain(path, "cy", ["pick(apple)"])
+    assert main(["evaluate", str(path), "--settings", "Z"]) == 1
+    assert "not a YAML file" in capsys.readouterr().err
