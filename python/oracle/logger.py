@@ -1,0 +1,543 @@
+"""NEEM logger (thesis 3.4-3.5): what the robot perceived, could do, did and predicted, as triples.
+
+One NEEM per user. Every public call validates first and then writes one transaction, so bad
+input raises before anything is written and a killed process loses at most the call in flight.
+Task, role, plan and object individuals are descriptions shared by every event of the NEEM that
+uses them (DUL concepts), so the task an action executes is the very task its plan imagined and
+its preference ranked; events (actions, intervals) get fresh individuals. See docs/store.md.
+"""
+
+from __future__ import annotations
+
+import re
+import uuid
+from collections.abc import Iterable, Iterator, Sequence
+from dataclasses import dataclass
+from datetime import datetime, timezone
+from typing import Any
+
+from oracle.chains import TaskCall, parse_call
+from oracle.errors import ChainSyntaxError, LoggingError, OntologyError, StoreError
+from oracle.namespaces import DUL, OWL, SOMA
+from oracle.store import RDF_TYPE, Store, Triple, TriplePattern, Var
+from oracle.store.tbox import TBox, load_tbox, tbox_from_graph
+from oracle.timeofday import time_of_day
+
+#: Shared grasping of at least this many seconds is an odb:IdleTask action (thesis 3.4).
+IDLE_THRESHOLD = 20.0
+NAMED_INDIVIDUAL = str(OWL.NamedIndividual)
+
+_ACTION = str(DUL.Action)
+_MENTAL_ACTION = str(SOMA.MentalAction)
+_EXECUTES = str(DUL.executesTask)
+_PARTICIPANT = str(DUL.hasParticipant)
+_PERFORMED_BY = str(SOMA.isPerformedBy)
+_HAS_INTERVAL = str(DUL.hasTimeInterval)
+_TIME_INTERVAL = str(DUL.TimeInterval)
+_BEGIN = str(SOMA.hasIntervalBegin)
+_END = str(SOMA.hasIntervalEnd)
+_IS_TASK_OF = str(DUL.isTaskOf)
+_CLASSIFIES = str(DUL.classifies)
+_PLAN = str(SOMA.ActionExecutionPlan)
+_PLAN_FOR = str(SOMA.isPlanFor)
+_IMAGINING = str(SOMA.Imagining)
+_REASONING = str(SOMA.Reasoning)
+_PREFERENCE_ORDER = str(SOMA.PreferenceOrder)
+_ORDER = str(SOMA.Order)
+_ORDERS = str(SOMA.orders)
+_ORDERED_ELEMENT = str(SOMA.OrderedElement)
+_ENCAPSULATES = str(SOMA.encapsulates)
+_ROBOT_CLASS = str(DUL.PhysicalAgent)
+_PERSON_CLASS = str(DUL.NaturalPerson)
+
+_SLUG = re.compile(r"[^A-Za-z0-9_\-]+")
+
+Moment = datetime | float | int
+
+
+@dataclass(frozen=True)
+class Instant:
+    """A logged time: unix seconds for the interval, wall-clock part of day for odb:TimeOfDay."""
+
+    seconds: float
+    part_of_day: str
+
+    @staticmethod
+    def of(moment: Moment) -> Instant:
+        """Naive datetimes are taken as UTC for the seconds; the part of day always comes from
+        the clock time as written (the user's local time), never from the machine's zone."""
+        if isinstance(moment, datetime):
+            aware = moment if moment.tzinfo else moment.replace(tzinfo=timezone.utc)
+            return Instant(aware.timestamp(), time_of_day(moment))
+        if isinstance(moment, bool) or not isinstance(moment, (int, float)):
+            raise LoggingError(f"a time must be a datetime or unix seconds, got {moment!r}")
+        seconds = float(moment)
+        return Instant(seconds, time_of_day(datetime.fromtimestamp(seconds, timezone.utc)))
+
+
+@dataclass(frozen=True)
+class LoggedAction:
+    """What ``NeemLogger.action`` wrote: the action, and the idle action it inserted before it."""
+
+    iri: str
+    call: TaskCall
+    begin: float
+    end: float
+    part_of_day: str
+    task: str
+    idle: str | None = None
+    imagining: str | None = None
+
+
+class _Out(list[Triple]):
+    """Triples of one call, before they are written, and the individuals they create."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.created: set[str] = set()
+
+
+def _slug(text: str) -> str:
+    return _SLUG.sub("-", text).strip("-") or "x"
+
+
+class NeemLogger:
+    """Writes one user's episode into one NEEM of a store."""
+
+    def __init__(self, store: Store, onto: Any, neem_id: str, *, idle_threshold: float = IDLE_THRESHOLD) -> None:
+        self.store = store
+        self.onto = onto
+        self.neem_id = neem_id
+        self.idle_threshold = idle_threshold
+        self.ns: str = onto.namespace
+        self.vocab = onto.vocab
+        info = store.neem(neem_id)
+        self.user: str = info.user or "user"
+        self._known: set[str] = set()
+        self._last_end: Instant | None = None
+        self._last_end = self._resume_last_end()
+
+    # -- creation ---------------------------------------------------------------------------
+    @classmethod
+    def create(
+        cls,
+        store: Store,
+        onto: Any,
+        *,
+        user: str,
+        neem_id: str | None = None,
+        temporary: bool = False,
+        replace: bool = False,
+        tbox: TBox | None = None,
+        idle_threshold: float = IDLE_THRESHOLD,
+    ) -> NeemLogger:
+        """A new NEEM for ``user`` holding the ontology's TBox (id: the user's name, made unique)."""
+        if not isinstance(user, str) or not user.strip():
+            raise LoggingError("a NEEM needs a user name")
+        if neem_id is None:
+            base = _SLUG.sub("-", user).strip("-")[:48] or "user"
+            neem_id, n = base, 1
+            while store.has_neem(neem_id) and not replace:
+                n += 1
+                neem_id = f"{base}-{n}"
+        if replace and store.has_neem(neem_id):
+            store.drop_neem(neem_id)
+        store.create_neem(neem_id, user=user, temporary=temporary, meta={"name": neem_id})
+        load_tbox(store, neem_id, tbox if tbox is not None else tbox_from_graph(onto.graph))
+        return cls(store, onto, neem_id, idle_threshold=idle_threshold)
+
+    @classmethod
+    def start_session(
+        cls, store: Store, onto: Any, *, user: str, tbox: TBox | None = None, idle_threshold: float = IDLE_THRESHOLD
+    ) -> NeemLogger:
+        """Privacy (thesis 3.5): wipe every temporary NEEM, then log into a fresh temporary one."""
+        for info in store.neems():
+            if info.temporary:
+                store.drop_neem(info.id)
+        stamp = datetime.now(timezone.utc).strftime("%Y%m%dT%H%M%S")
+        neem_id = f"session-{stamp}-{uuid.uuid4().hex[:6]}"
+        return cls.create(store, onto, user=user, neem_id=neem_id, temporary=True, tbox=tbox,
+                          idle_threshold=idle_threshold)  # fmt: skip
+
+    # -- individuals ------------------------------------------------------------------------
+    def _event(self, kind: str) -> str:
+        return f"{self.ns}{kind}_{uuid.uuid4().hex[:16]}"
+
+    def _exists(self, iri: str) -> bool:
+        if iri in self._known:
+            return True
+        if next(self.store.find(self.neem_id, s=iri, limit=1, exact=True), None) is not None:
+            self._known.add(iri)
+            return True
+        return False
+
+    def _new(self, iri: str, out: _Out) -> bool:
+        """True the first time an individual is met (then the caller writes its triples)."""
+        if iri in out.created or self._exists(iri):
+            return False
+        out.created.add(iri)
+        return True
+
+    def _individual(self, iri: str, cls_iri: str, out: _Out, since: float = 0.0) -> str:
+        if self._new(iri, out):
+            out.append(Triple(iri, RDF_TYPE, cls_iri, since=since))
+            out.append(Triple(iri, RDF_TYPE, NAMED_INDIVIDUAL, since=since))
+        return iri
+
+    def object_iri(self, name: str) -> str:
+        return f"{self.ns}Object_{_slug(name)}"
+
+    def _object(self, name: str, out: _Out, since: float) -> str:
+        try:
+            cls_iri = self.onto.object_iri(name)
+        except OntologyError as error:
+            raise LoggingError(str(error)) from None
+        return self._individual(self.object_iri(name), cls_iri, out, since)
+
+    def _agent(self, who: str, out: _Out) -> str:
+        if who == "robot":
+            return self._individual(f"{self.ns}Agent_robot", _ROBOT_CLASS, out)
+        if who == "user":
+            return self._individual(f"{self.ns}Agent_{_slug(self.user)}", _PERSON_CLASS, out)
+        raise LoggingError(f"performed_by must be 'robot' or 'user', got {who!r}")
+
+    def _resolve(self, call: TaskCall | str) -> TaskCall:
+        if isinstance(call, str):
+            try:
+                call = parse_call(call)
+            except ChainSyntaxError as error:
+                raise LoggingError(str(error)) from None
+        if call.task not in self.onto.tasks:
+            raise LoggingError(f"unknown task {call.task!r} in {call}; known tasks: {', '.join(sorted(self.onto.tasks))}")
+        for arg in call.args:
+            if arg not in self.onto.objects:
+                raise LoggingError(f"unknown object {arg!r} in {call}")
+        return call
+
+    def _task(self, call: TaskCall, out: _Out, since: float) -> str:
+        """The task individual of a call with its roles (``Role dul:classifies Object``)."""
+        key = _slug(str(call).replace(", ", "__").replace("(", "__").replace(")", ""))
+        task = f"{self.ns}Task_{key}"
+        if not self._new(task, out):
+            return task
+        out.append(Triple(task, RDF_TYPE, self.onto.task_iri(call.task)))
+        out.append(Triple(task, RDF_TYPE, NAMED_INDIVIDUAL))
+        try:
+            roles = self.onto.task_roles(call.task, len(call.args))
+        except OntologyError as error:
+            raise LoggingError(str(error)) from None
+        for index, (arg, role_class) in enumerate(zip(call.args, roles)):
+            obj = self._object(arg, out, since)
+            if role_class is None:
+                continue
+            role = f"{self.ns}Role_{key}__{index}"
+            out.append(Triple(role, RDF_TYPE, role_class))
+            out.append(Triple(role, RDF_TYPE, NAMED_INDIVIDUAL))
+            out.append(Triple(task, _IS_TASK_OF, role))
+            out.append(Triple(role, _CLASSIFIES, obj))
+        return task
+
+    def _plan(self, call: TaskCall, out: _Out, since: float) -> str:
+        task = self._task(call, out, since)
+        plan = f"{self.ns}Plan_{task[len(self.ns) + len('Task_'):]}"
+        if self._new(plan, out):
+            out.append(Triple(plan, RDF_TYPE, _PLAN))
+            out.append(Triple(plan, RDF_TYPE, NAMED_INDIVIDUAL))
+            out.append(Triple(plan, _PLAN_FOR, task))
+        return plan
+
+    def _interval(self, begin: Instant, end: Instant, out: _Out) -> str:
+        """A dul:TimeInterval also typed with its odb:TimeOfDay part (that is how it is recorded)."""
+        interval = self._event("TimeInterval")
+        out.append(Triple(interval, RDF_TYPE, _TIME_INTERVAL))
+        out.append(Triple(interval, RDF_TYPE, self.vocab.part_of_day(begin.part_of_day)))
+        out.append(Triple(interval, _BEGIN, begin.seconds))
+        out.append(Triple(interval, _END, end.seconds))
+        return interval
+
+    def _mental(self, task_class: str, task_key: str, at: Instant, out: _Out) -> str:
+        action = self._event("MentalAction")
+        task = self._individual(f"{self.ns}Task_{task_key}", task_class, out)
+        out.append(Triple(action, RDF_TYPE, _MENTAL_ACTION))
+        out.append(Triple(action, _EXECUTES, task))
+        out.append(Triple(action, _PERFORMED_BY, self._agent("robot", out)))
+        out.append(Triple(action, _HAS_INTERVAL, self._interval(at, at, out)))
+        return action
+
+    # -- checks -----------------------------------------------------------------------------
+    def _check_time(self, at: Instant, what: str) -> None:
+        if self._last_end is not None and at.seconds < self._last_end.seconds:
+            raise LoggingError(
+                f"time goes backwards: {what} at {at.seconds:.3f} is before the end of the last action"
+                f" ({self._last_end.seconds:.3f}) in NEEM {self.neem_id!r}"
+            )
+
+    def _resume_last_end(self) -> Instant | None:
+        """When logging continues into an existing NEEM: the end of its last executed action."""
+        executed = {doc["s"] for doc in self.store.find(self.neem_id, p=RDF_TYPE, o=_ACTION, exact=True)}
+        if not executed:
+            return None
+        latest: float | None = None
+        for row in self.store.match(
+            self.neem_id,
+            [TriplePattern(Var("A"), _HAS_INTERVAL, Var("I")), TriplePattern(Var("I"), _END, Var("E"))],
+        ):
+            if row["A"] in executed and (latest is None or row["E"] > latest):
+                latest = row["E"]
+        return None if latest is None else Instant.of(latest)
+
+    # -- public API -------------------------------------------------------------------------
+    def perceive(self, obj: str, at: Moment) -> str:
+        """The robot perceives an odb object; its type triple is scoped from the first perception."""
+        when = Instant.of(at)
+        self._check_time(when, f"perception of {obj!r}")
+        out = _Out()
+        iri = self._object(obj, out, when.seconds)
+        self._write(out)
+        return iri
+
+    def available(self, calls: Iterable[TaskCall | str], at: Moment) -> str:
+        """The tasks available at a moment: a MentalAction executing Imagining that
+        odb:imagines_situation one ActionExecutionPlan per task (thesis 3.4)."""
+        when = Instant.of(at)
+        resolved = [self._resolve(call) for call in calls]
+        self._check_time(when, "available tasks")
+        out = _Out()
+        action = self._imagining(resolved, when, out)
+        self._write(out)
+        return action
+
+    def _imagining(self, calls: Sequence[TaskCall], when: Instant, out: _Out) -> str:
+        action = self._mental(_IMAGINING, "imagining", when, out)
+        for call in calls:
+            out.append(Triple(action, self.vocab.imagines_situation, self._plan(call, out, when.seconds)))
+        return action
+
+    def action(
+        self,
+        call: TaskCall | str,
+        begin: Moment,
+        end: Moment | None = None,
+        *,
+        performed_by: str = "robot",
+        action_id: str | None = None,
+        available: Iterable[TaskCall | str] | None = None,
+    ) -> LoggedAction:
+        """Log an executed action (and, in the same transaction, the tasks available when it
+        started and the idle action filling a gap of ``idle_threshold`` seconds or more)."""
+        call = self._resolve(call)
+        start = Instant.of(begin)
+        stop = start if end is None else Instant.of(end)
+        if stop.seconds < start.seconds:
+            raise LoggingError(f"{call}: ends ({stop.seconds:.3f}) before it starts ({start.seconds:.3f})")
+        self._check_time(start, f"action {call}")
+        options = [self._resolve(c) for c in available] if available is not None else None
+        if action_id is not None:
+            iri = f"{self.ns}Action_{_slug(action_id)}"
+            if self._exists(iri):
+                raise LoggingError(f"duplicate action id {action_id!r} in NEEM {self.neem_id!r}")
+        else:
+            iri = self._event("Action")
+        out = _Out()
+        idle = None
+        if self._last_end is not None and start.seconds - self._last_end.seconds >= self.idle_threshold:
+            idle = self._idle(self._last_end, start, out)
+        imagining = self._imagining(options, start, out) if options is not None else None
+        task = self._task(call, out, start.seconds)
+        out.append(Triple(iri, RDF_TYPE, _ACTION))
+        out.append(Triple(iri, RDF_TYPE, NAMED_INDIVIDUAL))
+        out.append(Triple(iri, _EXECUTES, task))
+        for arg in call.args:
+            out.append(Triple(iri, _PARTICIPANT, self._object(arg, out, start.seconds)))
+        out.append(Triple(iri, _PERFORMED_BY, self._agent(performed_by, out)))
+        out.append(Triple(iri, _HAS_INTERVAL, self._interval(start, stop, out)))
+        self._write(out)
+        self._last_end = stop
+        return LoggedAction(iri, call, start.seconds, stop.seconds, start.part_of_day, task, idle, imagining)
+
+    def _idle(self, begin: Instant, end: Instant, out: _Out) -> str:
+        idle = self._event("Action")
+        task = self._individual(f"{self.ns}Task_idle", self.vocab.idle_task, out)
+        out.append(Triple(idle, RDF_TYPE, _ACTION))
+        out.append(Triple(idle, RDF_TYPE, NAMED_INDIVIDUAL))
+        out.append(Triple(idle, _EXECUTES, task))
+        out.append(Triple(idle, _PERFORMED_BY, self._agent("robot", out)))
+        out.append(Triple(idle, _HAS_INTERVAL, self._interval(begin, end, out)))
+        return idle
+
+    def preference(self, ranking: Sequence[tuple[TaskCall | str, float]], at: Moment) -> str:
+        """A predicted preference (written by the oracle): a MentalAction executing Reasoning
+        that odb:imagines_preference a PreferenceOrder (also typed soma:Order) which soma:orders
+        one OrderedElement per task, each soma:encapsulates the task's plan and carries
+        odb:hasPreferenceRank (1 = most preferred, the order given) and odb:hasPreferenceScore.
+        Returns the PreferenceOrder's IRI."""
+        when = Instant.of(at)
+        resolved = [(self._resolve(call), float(score)) for call, score in ranking]
+        self._check_time(when, "preference")
+        out = _Out()
+        action = self._mental(_REASONING, "reasoning", when, out)
+        order = self._event("PreferenceOrder")
+        out.append(Triple(action, self.vocab.imagines_preference, order))
+        out.append(Triple(order, RDF_TYPE, _PREFERENCE_ORDER))
+        out.append(Triple(order, RDF_TYPE, _ORDER))
+        for rank, (call, score) in enumerate(resolved, start=1):
+            element = f"{order}_{rank}"
+            out.append(Triple(element, RDF_TYPE, _ORDERED_ELEMENT))
+            out.append(Triple(order, _ORDERS, element))
+            out.append(Triple(element, _ENCAPSULATES, self._plan(call, out, when.seconds)))
+            out.append(Triple(element, self.vocab.has_rank, rank))
+            out.append(Triple(element, self.vocab.has_score, score))
+        self._write(out)
+        return order
+
+    def _write(self, out: _Out) -> None:
+        try:
+            self.store.insert(self.neem_id, out)
+        except StoreError as error:
+            raise LoggingError(f"NEEM {self.neem_id!r}: {error}") from None
+        self._known.update(out.created)
+
+
+# -- reading back -------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class ActionView:
+    """An executed action as read from a NEEM (for the oracle and for listings)."""
+
+    iri: str
+    task_class: str
+    begin: float
+    end: float
+    participants: tuple[str, ...]
+
+
+def executed_actions(store: Store, neem_id: str) -> Iterator[ActionView]:
+    """Executed (non-mental) actions in time order, each with its task class and participants."""
+    executed = {doc["s"] for doc in store.find(neem_id, p=RDF_TYPE, o=_ACTION, exact=True)}
+    rows = store.match(
+        neem_id,
+        [
+            TriplePattern(Var("A"), _EXECUTES, Var("T")),
+            TriplePattern(Var("T"), RDF_TYPE, Var("C")),
+            TriplePattern(Var("A"), _HAS_INTERVAL, Var("I")),
+            TriplePattern(Var("I"), _BEGIN, Var("B")),
+            TriplePattern(Var("I"), _END, Var("E")),
+        ],
+    )
+    found: dict[str, tuple[str, float, float]] = {}
+    for row in rows:
+        if row["A"] in executed and row["C"] != NAMED_INDIVIDUAL:
+            found[row["A"]] = (row["C"], row["B"], row["E"])
+    performers = {(row["A"], row["X"]) for row in store.match(neem_id, [TriplePattern(Var("A"), _PERFORMED_BY, Var("X"))])}
+    participants: dict[str, list[str]] = {}
+    for row in store.match(neem_id, [TriplePattern(Var("A"), _PARTICIPANT, Var("O"))]):
+        if (row["A"], row["O"]) in performers:
+            continue
+        if row["A"] in found and row["O"] not in participants.setdefault(row["A"], []):
+            participants[row["A"]].append(row["O"])
+    for iri, (cls_iri, begin, end) in sorted(found.items(), key=lambda item: (item[1][1], item[0])):
+        yield ActionView(iri, cls_iri, begin, end, tuple(participants.get(iri, ())))
+
+
+@dataclass(frozen=True)
+class NeemSummary:
+    """One line of ``python -m oracle neems``."""
+
+    id: str
+    user: str | None
+    actions: int
+    begin: float | None
+    end: float | None
+    temporary: bool
+
+
+def summarize(store: Store, neem_id: str) -> NeemSummary:
+    """User, number of executed actions and time span of a NEEM (ours or a loaded one)."""
+    info = store.neem(neem_id)
+    actions = {
+        doc["s"]
+        for doc in store.find(neem_id, p=RDF_TYPE, o=_ACTION)
+        if _MENTAL_ACTION not in (doc.get("o*") or ()) and doc.get("o") != _MENTAL_ACTION
+    }
+    begins = [row["B"] for row in store.match(neem_id, [TriplePattern(Var("I"), _BEGIN, Var("B"))])]
+    ends = [row["E"] for row in store.match(neem_id, [TriplePattern(Var("I"), _END, Var("E"))])]
+    numbers = lambda values: [v for v in values if isinstance(v, (int, float))]  # noqa: E731
+    return NeemSummary(
+        id=neem_id,
+        user=info.user,
+        actions=len(actions),
+        begin=min(numbers(begins), default=None),
+        end=max(numbers(ends) or numbers(begins), default=None),
+        temporary=info.temporary,
+    )
+
+
+def persist(store: Store, neem_id: str, name: str) -> Any:
+    """Keep a NEEM (thesis 3.5): it gets the id ``name`` and survives the next session start."""
+    store.rename_neem(neem_id, name)
+    return store.update_meta(name, temporary=False, name=name)
+
+
+def import_chains(
+    store: Store,
+    onto: Any,
+    path: str | Any,
+    *,
+    replace: bool = False,
+    report: dict[str, int] | None = None,
+    idle_threshold: float = IDLE_THRESHOLD,
+) -> dict[str, int]:
+    """Log a chains JSONL file, one NEEM per user; return {NEEM id: actions logged}.
+
+    Rows may carry ``end`` (ISO-8601), ``duration`` (seconds), ``id`` and ``performed_by``
+    besides the chain fields. Every row is committed as it is logged, so an error on line n
+    leaves lines before it in the store; the error names the file and line.
+    """
+    from oracle.chains import read_chains
+
+    report = {} if report is None else report
+    loggers: dict[str, NeemLogger] = {}
+    tbox = tbox_from_graph(onto.graph)
+    where = str(path)
+    try:
+        for row in read_chains(path):
+            where = f"{path}:{row.line}"
+            if row.time is None:
+                raise LoggingError("'time' is required to log an action")
+            end = _row_end(row.time, row.extra)
+            logger = loggers.get(row.user)
+            if logger is None:
+                logger = NeemLogger.create(store, onto, user=row.user, replace=replace, tbox=tbox,
+                                           idle_threshold=idle_threshold)  # fmt: skip
+                loggers[row.user] = logger
+                report[logger.neem_id] = 0
+            action_id = row.extra.get("id")
+            logger.action(
+                row.action,
+                row.time,
+                end,
+                performed_by=str(row.extra.get("performed_by", "robot")),
+                action_id=None if action_id is None else str(action_id),
+                available=row.available,
+            )
+            report[logger.neem_id] += 1
+    except LoggingError as error:
+        raise LoggingError(f"{where}: {error}") from None
+    return report
+
+
+def _row_end(begin: datetime, extra: dict[str, object]) -> datetime | None:
+    from datetime import timedelta
+
+    if extra.get("end") is not None:
+        raw = extra["end"]
+        try:
+            return datetime.fromisoformat(str(raw).replace("Z", "+00:00"))
+        except ValueError:
+            raise LoggingError(f"'end' {raw!r} is not ISO-8601") from None
+    if extra.get("duration") is not None:
+        try:
+            seconds = float(extra["duration"])  # type: ignore[arg-type]
+        except (TypeError, ValueError):
+            raise LoggingError(f"'duration' must be a number of seconds, got {extra['duration']!r}") from None
+        return begin + timedelta(seconds=seconds)
+    return None

@@ -1,0 +1,285 @@
+"""The Store interface both backends implement, and the insert path they share.
+
+Closure and propagation are computed here once, in Python, so SQLite and MongoDB hold the very
+same documents; a backend only stores documents, finds them, and rewrites closures on request.
+"""
+
+from __future__ import annotations
+
+import re
+from abc import ABC, abstractmethod
+from collections.abc import Iterable, Iterator, Mapping, Sequence
+from contextlib import AbstractContextManager
+from dataclasses import dataclass, field
+from datetime import datetime, timezone
+from typing import Any
+
+from oracle.errors import StoreError
+from oracle.store.model import (
+    HIERARCHY,
+    Annotation,
+    DocumentBuilder,
+    Hierarchy,
+    NumberFormat,
+    Scope,
+    Term,
+    Triple,
+    TriplePattern,
+    annotation_document,
+)
+
+#: The logical collections of a NEEM, in KnowRob's order (``mng_client:collection_names``).
+KINDS: tuple[str, ...] = ("triples", "annotations", "tf", "inferred")
+
+_NEEM_ID = re.compile(r"^[A-Za-z0-9][A-Za-z0-9\-]{0,63}$")
+
+
+def check_neem_id(neem_id: str) -> str:
+    """NEEM ids become collection and table prefixes, so they are restricted to safe names.
+
+    Underscores are refused because ``<id>_triples`` must split back into id and kind.
+    """
+    if not isinstance(neem_id, str) or not _NEEM_ID.match(neem_id):
+        raise StoreError(
+            f"invalid NEEM id {neem_id!r}: use 1-64 letters, digits and '-', starting with a letter or digit"
+        )
+    return neem_id
+
+
+@dataclass(frozen=True)
+class NeemInfo:
+    """A NEEM's registry entry (openEASE's ``meta`` document, trimmed to what we use)."""
+
+    id: str
+    user: str | None = None
+    created_at: str | None = None
+    temporary: bool = False
+    meta: Mapping[str, Any] = field(default_factory=dict, compare=False)
+
+    @staticmethod
+    def from_meta(neem_id: str, meta: Mapping[str, Any]) -> NeemInfo:
+        return NeemInfo(
+            id=neem_id,
+            user=meta.get("created_by"),
+            created_at=meta.get("created_at"),
+            temporary=bool(meta.get("temporary", False)),
+            meta=dict(meta),
+        )
+
+
+def new_meta(user: str | None, temporary: bool, extra: Mapping[str, Any] | None = None) -> dict[str, Any]:
+    meta: dict[str, Any] = {
+        "created_by": user,
+        "created_at": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+        "temporary": temporary,
+    }
+    meta.update(extra or {})
+    return meta
+
+
+class Store(ABC):
+    """A set of NEEMs in the KnowRob 2.x layout; see docs/store.md.
+
+    Reads never change anything; every write of one call is one transaction on SQLite (the
+    logger relies on it for crash safety); MongoDB has no transactions, as in KnowRob.
+    """
+
+    number_format: NumberFormat
+    location: str
+
+    def __init__(self, number_format: NumberFormat = "decimal128") -> None:
+        if number_format not in ("decimal128", "double"):
+            raise StoreError(f"number format must be 'decimal128' or 'double', not {number_format!r}")
+        self.number_format = number_format
+        self._hierarchies: dict[str, Hierarchy] = {}
+
+    # -- registry ---------------------------------------------------------------------------
+    @abstractmethod
+    def neems(self) -> list[NeemInfo]:
+        """Every NEEM in the store, sorted by id."""
+
+    def neem(self, neem_id: str) -> NeemInfo:
+        for info in self.neems():
+            if info.id == neem_id:
+                return info
+        raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
+
+    def has_neem(self, neem_id: str) -> bool:
+        return any(info.id == neem_id for info in self.neems())
+
+    @abstractmethod
+    def create_neem(
+        self, neem_id: str, *, user: str | None = None, temporary: bool = False, meta: Mapping[str, Any] | None = None
+    ) -> NeemInfo:
+        """Create the empty collections (with KnowRob's indexes) and the registry entry."""
+
+    @abstractmethod
+    def drop_neem(self, neem_id: str) -> None:
+        """Delete a NEEM and everything in it."""
+
+    @abstractmethod
+    def rename_neem(self, neem_id: str, new_id: str) -> None:
+        """Give a NEEM a new id (collection prefix); its documents are untouched."""
+
+    @abstractmethod
+    def update_meta(self, neem_id: str, **fields: Any) -> NeemInfo:
+        """Change registry fields such as ``temporary``."""
+
+    # -- writing ----------------------------------------------------------------------------
+    @abstractmethod
+    def transaction(self) -> AbstractContextManager[None]:
+        """Group writes so they commit together (SQLite) or run as they come (MongoDB)."""
+
+    def insert(self, neem_id: str, triples: Iterable[Triple]) -> int:
+        """Store triples with KnowRob's ``p*``/``o*`` closure; return how many were stored.
+
+        A subClassOf/subPropertyOf triple also extends the closures of stored documents that pass
+        through its subject, as kb_project does, so load order does not change the result.
+        """
+        hierarchy = self.hierarchy(neem_id)
+        builder = DocumentBuilder(hierarchy, self.number_format)
+        try:
+            count = self._insert_closed(neem_id, triples, hierarchy, builder)
+        except BaseException:
+            # The in-memory taxonomy may hold edges the rolled-back transaction never stored.
+            self._hierarchies.pop(neem_id, None)
+            raise
+        return count
+
+    def _insert_closed(
+        self, neem_id: str, triples: Iterable[Triple], hierarchy: Hierarchy, builder: DocumentBuilder
+    ) -> int:
+        pending: list[dict[str, Any]] = []
+        count = 0
+        with self.transaction():
+            for triple in triples:
+                if triple.p in HIERARCHY and isinstance(triple.o, str):
+                    pending.append(builder.document(triple))
+                    _, gained = hierarchy.add_edge(triple.s, triple.o)
+                    if gained and triple.s in hierarchy.used:
+                        self._insert_documents(neem_id, "triples", pending)
+                        count += len(pending)
+                        pending = []
+                        self._propagate(neem_id, triple.s, gained)
+                        hierarchy.patch_closures(triple.s, gained)
+                        hierarchy.used.update(gained)
+                else:
+                    pending.append(builder.document(triple))
+            if pending:
+                self._insert_documents(neem_id, "triples", pending)
+                count += len(pending)
+        return count
+
+    def insert_annotations(self, neem_id: str, annotations: Iterable[Annotation]) -> int:
+        docs = [annotation_document(a) for a in annotations]
+        with self.transaction():
+            if docs:
+                self._insert_documents(neem_id, "annotations", docs)
+        return len(docs)
+
+    def write_documents(self, neem_id: str, kind: str, docs: Iterable[Mapping[str, Any]]) -> int:
+        """Store documents exactly as given (a NEEM being loaded keeps its own closures)."""
+        if kind not in KINDS:
+            raise StoreError(f"unknown collection kind {kind!r}; expected one of {', '.join(KINDS)}")
+        batch: list[dict[str, Any]] = []
+        count = 0
+        with self.transaction():
+            for doc in docs:
+                batch.append(dict(doc))
+                if len(batch) >= 5000:
+                    self._insert_documents(neem_id, kind, batch)
+                    count += len(batch)
+                    batch = []
+            if batch:
+                self._insert_documents(neem_id, kind, batch)
+                count += len(batch)
+        self._hierarchies.pop(neem_id, None)
+        return count
+
+    @abstractmethod
+    def _insert_documents(self, neem_id: str, kind: str, docs: list[dict[str, Any]]) -> None: ...
+
+    @abstractmethod
+    def _propagate(self, neem_id: str, subject: str, gained: tuple[Any, ...]) -> None:
+        """Append ``gained`` to ``o*`` of taxonomic and ``p*`` of other documents containing ``subject``."""
+
+    # -- hierarchy --------------------------------------------------------------------------
+    def hierarchy(self, neem_id: str) -> Hierarchy:
+        """The NEEM's taxonomy, read once from its subClassOf/subPropertyOf documents."""
+        cached = self._hierarchies.get(neem_id)
+        if cached is None:
+            self.neem(neem_id)
+            edges, used = self._hierarchy_source(neem_id)
+            cached = self._hierarchies[neem_id] = Hierarchy(edges, used)
+        return cached
+
+    @abstractmethod
+    def _hierarchy_source(self, neem_id: str) -> tuple[list[tuple[str, tuple[Any, ...]]], set[Any]]:
+        """(subject, o*) of every hierarchy edge, and every term used in a stored closure."""
+
+    # -- reading ----------------------------------------------------------------------------
+    @abstractmethod
+    def read_documents(self, neem_id: str, kind: str) -> Iterator[dict[str, Any]]:
+        """Every document of one collection, in insertion order, exactly as stored."""
+
+    @abstractmethod
+    def count(self, neem_id: str, kind: str = "triples") -> int: ...
+
+    @abstractmethod
+    def find(
+        self,
+        neem_id: str,
+        s: Term = None,
+        p: Term = None,
+        o: Term = None,
+        *,
+        graph: str | None = None,
+        scope: Scope | None = None,
+        limit: int | None = None,
+        exact: bool = False,
+    ) -> Iterator[dict[str, Any]]:
+        """Documents matching one pattern with KnowRob's semantics (see TriplePattern).
+
+        ``exact`` compares s, p and o with the asserted fields only (no ``p*``/``o*``), which
+        also finds documents without closures such as version markers. ``scope`` None means any time (KnowRob's wildcard scope); otherwise a document is
+        returned when its scope overlaps the given one.
+        """
+
+    @abstractmethod
+    def match(
+        self,
+        neem_id: str,
+        patterns: Sequence[TriplePattern],
+        *,
+        scope: Scope | None = None,
+        limit: int | None = None,
+    ) -> Iterator[dict[str, Any]]:
+        """Solutions of a conjunction of patterns, computed by the database in ONE query.
+
+        Yields one dict per solution mapping variable names to plain Python values
+        (numbers as float or int, IRIs and strings as str). SQLite runs one SQL join,
+        MongoDB one aggregation on ``one`` with a ``$lookup`` per pattern, as mongolog does.
+        """
+
+    def annotations(self, neem_id: str, s: str | None = None, p: str | None = None) -> Iterator[Annotation]:
+        for doc in self.read_documents(neem_id, "annotations"):
+            if (s is None or doc.get("s") == s) and (p is None or doc.get("p") == p):
+                yield Annotation(doc["s"], doc["p"], doc.get("v"))
+
+    # -- lifetime ---------------------------------------------------------------------------
+    @abstractmethod
+    def close(self) -> None: ...
+
+    def __enter__(self) -> Store:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+
+def validate_patterns(patterns: Sequence[TriplePattern]) -> None:
+    if not patterns:
+        raise StoreError("a query needs at least one triple pattern")
+    for pattern in patterns:
+        if not isinstance(pattern, TriplePattern):
+            raise StoreError(f"not a TriplePattern: {pattern!r}")

@@ -1,0 +1,281 @@
+"""KnowRob 2.x document model: triple records, typed values, and the ``p*``/``o*`` closure.
+
+Both backends store exactly the documents built here, so a NEEM written by either one dumps to
+the same KnowRob ``triples`` layout (knowrob-2x-facts §3-§5).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+from datetime import datetime, timezone
+from typing import Any, Literal, Union
+
+from bson.decimal128 import Decimal128
+from bson.int64 import Int64
+from bson.objectid import ObjectId
+
+from oracle.namespaces import RDF, RDFS
+
+RDF_TYPE = str(RDF.type)
+SUBCLASS_OF = str(RDFS.subClassOf)
+SUBPROPERTY_OF = str(RDFS.subPropertyOf)
+#: Properties whose object is closed over the class/property taxonomy (``o*``) instead of ``p*``.
+TAXONOMIC: frozenset[str] = frozenset({RDF_TYPE, SUBCLASS_OF, SUBPROPERTY_OF})
+#: The two properties whose assertion changes the taxonomy and so the closures of other documents.
+HIERARCHY: frozenset[str] = frozenset({SUBCLASS_OF, SUBPROPERTY_OF})
+#: Predicate of KnowRob's per-graph version marker documents (no ``p*``, ``o*`` or scope).
+VERSION_PREDICATE = "tripledbVersionString"
+
+INFINITY = math.inf
+NumberFormat = Literal["decimal128", "double"]
+NUMBER_FORMATS: tuple[str, ...] = ("decimal128", "double")
+
+#: A value as Python code sees it: IRIs and string literals are both ``str``, as in KnowRob.
+Value = Union[str, float, int, bool, datetime]
+
+
+@dataclass(frozen=True)
+class Triple:
+    """One assertion to store; ``since``/``until`` are unix seconds of its time scope."""
+
+    s: str
+    p: str
+    o: Value
+    graph: str = "user"
+    since: float = 0.0
+    until: float = INFINITY
+
+
+@dataclass(frozen=True)
+class Annotation:
+    """A label, comment or other annotation value, kept in the ``annotations`` collection."""
+
+    s: str
+    p: str
+    v: str
+
+
+@dataclass(frozen=True)
+class Var:
+    """A variable of a triple pattern; variables with the same name must bind the same value."""
+
+    name: str
+
+    def __post_init__(self) -> None:
+        if not self.name or not self.name.replace("_", "a").isalnum():
+            raise ValueError(f"variable names must be alphanumeric, got {self.name!r}")
+
+
+#: A pattern term: a variable, a constant, or None for "anything" (an anonymous variable).
+Term = Union[Var, Value, None]
+
+
+@dataclass(frozen=True)
+class TriplePattern:
+    """``triple(S, P, O)`` with KnowRob's query semantics (knowrob-2x-facts §5).
+
+    A constant taxonomic P (rdf:type, subClassOf, subPropertyOf) matches ``p`` exactly and a
+    bound O against ``o*``; any other constant P matches ``p*`` and O against ``o``. A variable P
+    binds the asserted ``p``; a variable O binds the asserted ``o``.
+    """
+
+    s: Term = None
+    p: Term = None
+    o: Term = None
+    graph: str | None = None
+
+    def variables(self) -> tuple[str, ...]:
+        return tuple(t.name for t in (self.s, self.p, self.o) if isinstance(t, Var))
+
+
+@dataclass(frozen=True)
+class Scope:
+    """A time window; a fact is visible when its scope overlaps ``[since, until]``."""
+
+    since: float = 0.0
+    until: float = INFINITY
+
+
+def encode_number(value: float, number_format: NumberFormat) -> Decimal128 | float:
+    """KnowRob 2.x writes every float as Decimal128 (so Infinity fits); KnowRob 3 as double."""
+    if number_format == "double":
+        return float(value)
+    if math.isinf(value):
+        return Decimal128("Infinity" if value > 0 else "-Infinity")
+    if math.isnan(value):
+        return Decimal128("NaN")
+    return Decimal128(repr(float(value)))
+
+
+def encode_value(value: Value, number_format: NumberFormat) -> Any:
+    """A Python value as the BSON value KnowRob would write for it."""
+    if isinstance(value, bool) or isinstance(value, str):
+        return value
+    if isinstance(value, int):
+        return value if -(2**31) <= value < 2**31 else Int64(value)
+    if isinstance(value, float):
+        return encode_number(value, number_format)
+    if isinstance(value, datetime):
+        return value if value.tzinfo else value.replace(tzinfo=timezone.utc)
+    raise TypeError(f"cannot store a {type(value).__name__} as a triple value: {value!r}")
+
+
+def decode_value(value: Any) -> Any:
+    """A stored BSON value as plain Python: Decimal128 and double become float, Int64 int."""
+    if isinstance(value, Decimal128):
+        return float(value.to_decimal())
+    if isinstance(value, Int64):
+        return int(value)
+    return value
+
+
+def query_values(value: Value) -> list[Any]:
+    """Every BSON form a value may be stored in, so a query finds Decimal128 and double alike."""
+    if isinstance(value, bool) or isinstance(value, str):
+        return [value]
+    if isinstance(value, (int, float)):
+        forms: list[Any] = [float(value), encode_number(float(value), "decimal128")]
+        if float(value).is_integer() and abs(value) < 2**63:
+            forms.append(int(value))
+        return forms
+    return [encode_value(value, "decimal128")]
+
+
+def unix_seconds(value: Any) -> float | None:
+    """A stored time (Decimal128, double, int or Date) as unix seconds, None when absent."""
+    if value is None:
+        return None
+    if isinstance(value, datetime):
+        if value.tzinfo is None:
+            value = value.replace(tzinfo=timezone.utc)
+        return value.timestamp()
+    return float(decode_value(value))
+
+
+class Hierarchy:
+    """The asserted class and property taxonomy of one NEEM, as KnowRob closes it on insert.
+
+    ``parents`` of a term are the ``o*`` lists of its own subClassOf/subPropertyOf documents;
+    ``closure(term)`` is the term followed by those, without repeats, which is what KnowRob
+    stores as ``o*`` of a type triple and as ``p*`` of a non-taxonomic triple. ``used`` holds
+    every term that occurs in some stored closure, so a new edge only triggers the (costly)
+    propagation through stored documents when it can change one.
+    """
+
+    def __init__(self, edges: Iterable[tuple[str, tuple[Any, ...]]] = (), used: Iterable[Any] = ()) -> None:
+        self._parents: dict[str, list[tuple[Any, ...]]] = {}
+        self._cache: dict[str, tuple[Any, ...]] = {}
+        self.used: set[Any] = set(used)
+        for subject, closure in edges:
+            self._parents.setdefault(subject, []).append(tuple(closure))
+
+    def closure(self, term: Any, *, mark: bool = True) -> tuple[Any, ...]:
+        """The closure a document about ``term`` stores; ``mark`` records it as used."""
+        cached = self._cache.get(term)
+        if cached is not None:
+            return cached
+        seen = {term}
+        out = [term]
+        for parent_closure in self._parents.get(term, ()):
+            for item in parent_closure:
+                if item not in seen:
+                    seen.add(item)
+                    out.append(item)
+        result = tuple(out)
+        if mark:
+            self.used.update(result)
+            if isinstance(term, str):
+                self._cache[term] = result
+        return result
+
+    def add_edge(self, subject: str, parent: Any) -> tuple[tuple[Any, ...], tuple[Any, ...]]:
+        """Record ``subject ⊑ parent``; return (o* of the new edge document, ancestors gained)."""
+        edge_closure = self.closure(parent)
+        before = set(self.closure(subject, mark=False))
+        self._parents.setdefault(subject, []).append(edge_closure)
+        gained = tuple(item for item in edge_closure if item not in before)
+        if gained:
+            # Every cached closure that passes through the subject grows as well.
+            self._cache = {k: v for k, v in self._cache.items() if subject not in v}
+        return edge_closure, gained
+
+    def patch_closures(self, subject: str, gained: tuple[Any, ...]) -> None:
+        """After propagation: the parent closures stored for other terms that contain ``subject``."""
+        for key, closures in self._parents.items():
+            self._parents[key] = [extend_closure(c, gained) if subject in c else c for c in closures]
+        self._cache = {k: v for k, v in self._cache.items() if subject not in v}
+
+
+def extend_closure(closure: Iterable[Any], extra: Iterable[Any]) -> tuple[Any, ...]:
+    """``closure`` followed by the items of ``extra`` it lacks (KnowRob's $setUnion, order kept)."""
+    out = list(closure)
+    seen = set(out)
+    for item in extra:
+        if item not in seen:
+            seen.add(item)
+            out.append(item)
+    return tuple(out)
+
+
+@dataclass
+class DocumentBuilder:
+    """Builds KnowRob triple documents with their closures; knows the NEEM's hierarchy."""
+
+    hierarchy: Hierarchy
+    number_format: NumberFormat = "decimal128"
+    _scope_cache: dict[tuple[float, float], dict[str, Any]] = field(default_factory=dict)
+
+    def scope(self, since: float, until: float) -> dict[str, Any]:
+        key = (since, until)
+        cached = self._scope_cache.get(key)
+        if cached is None:
+            cached = {
+                "time": {
+                    "since": encode_number(since, self.number_format),
+                    "until": encode_number(until, self.number_format),
+                }
+            }
+            if len(self._scope_cache) < 1024:
+                self._scope_cache[key] = cached
+        return cached
+
+    def document(self, triple: Triple) -> dict[str, Any]:
+        """The document KnowRob's kb_project would insert for ``triple`` (without propagation)."""
+        if triple.since > triple.until:
+            raise ValueError(f"scope of {triple} ends before it starts")
+        if triple.p in TAXONOMIC:
+            pstar: tuple[Any, ...] = (triple.p,)
+            ostar = self.hierarchy.closure(triple.o) if isinstance(triple.o, str) else (triple.o,)
+        else:
+            pstar = self.hierarchy.closure(triple.p)
+            ostar = (triple.o,)
+        value = encode_value(triple.o, self.number_format)
+        return {
+            "_id": ObjectId(),
+            "s": triple.s,
+            "p": triple.p,
+            "o": value,
+            "p*": list(pstar),
+            "o*": [encode_value(v, self.number_format) for v in ostar] if ostar != (triple.o,) else [value],
+            "graph": triple.graph,
+            "scope": self.scope(triple.since, triple.until),
+        }
+
+
+def version_document(ontology: str, version: str, graph: str) -> dict[str, Any]:
+    """KnowRob's marker saying which version of an ontology a graph holds."""
+    return {"_id": ObjectId(), "s": ontology, "p": VERSION_PREDICATE, "o": version, "graph": graph}
+
+
+def annotation_document(annotation: Annotation) -> dict[str, Any]:
+    return {"_id": ObjectId(), "s": annotation.s, "p": annotation.p, "v": annotation.v}
+
+
+def document_scope(doc: Mapping[str, Any]) -> tuple[float, float]:
+    """A document's time scope in unix seconds; universal when the document has none (KnowRob 3)."""
+    time = (doc.get("scope") or {}).get("time") or {}
+    since = unix_seconds(time.get("since"))
+    until = unix_seconds(time.get("until"))
+    return (0.0 if since is None else since, INFINITY if until is None else until)

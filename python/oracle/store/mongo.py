@@ -1,0 +1,307 @@
+"""The MongoDB backend: KnowRob 2.x's layout to the letter (knowrob-2x-facts §2-§3).
+
+Database ``roslog`` unless the URI names one; collections ``<neem>_triples``, ``_annotations``,
+``_tf``, ``_inferred``; the ``one`` collection every mongolog query starts from; the 15
+indexes on triples. NEEM registry entries live in ``meta`` as on openEASE.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Mapping, Sequence
+from contextlib import contextmanager
+from typing import Any
+
+from bson.decimal128 import Decimal128
+
+from oracle.errors import StoreError
+from oracle.store.base import KINDS, NeemInfo, Store, check_neem_id, new_meta, validate_patterns
+from oracle.store.model import (
+    HIERARCHY,
+    TAXONOMIC,
+    NumberFormat,
+    Scope,
+    Term,
+    TriplePattern,
+    Var,
+    decode_value,
+    encode_number,
+    query_values,
+)
+
+DEFAULT_DB = "roslog"
+META = "meta"
+
+#: The 15 ascending indexes KnowRob creates on ``triples`` (lang/db.pl; same in the C++ rewrite).
+TRIPLE_INDEXES: tuple[tuple[str, ...], ...] = (
+    ("s",), ("p",), ("o",), ("p*",), ("o*",),
+    ("s", "p"), ("s", "o"), ("o", "p"), ("s", "p*"), ("s", "o*"), ("o", "p*"), ("p", "o*"),
+    ("s", "o", "p"), ("s", "o", "p*"), ("s", "o*", "p"),
+)  # fmt: skip
+ANNOTATION_INDEXES: tuple[tuple[str, ...], ...] = (("s",), ("p",), ("s", "p"))
+TF_INDEXES: tuple[tuple[str, ...], ...] = (("header.stamp",), ("child_frame_id", "header.stamp"))
+INDEXES: dict[str, tuple[tuple[str, ...], ...]] = {
+    "triples": TRIPLE_INDEXES,
+    "annotations": ANNOTATION_INDEXES,
+    "tf": TF_INDEXES,
+    "inferred": (),
+}
+ONE_DOCUMENT = {"v_scope": {"time": {"since": Decimal128("0"), "until": Decimal128("Infinity")}}}
+
+
+class MongoStore(Store):
+    """NEEMs in a MongoDB database (or a pymongo-compatible test double)."""
+
+    def __init__(self, client: Any, db_name: str = DEFAULT_DB, number_format: NumberFormat = "decimal128",
+                 location: str | None = None) -> None:  # fmt: skip
+        super().__init__(number_format)
+        self.client = client
+        self.db = client[db_name]
+        self.location = location or f"mongodb database {db_name!r}"
+        try:
+            if self.db["one"].count_documents({}) == 0:
+                self.db["one"].insert_one(dict(ONE_DOCUMENT))
+        except Exception as error:  # pymongo raises many types; all mean "no usable server"
+            raise StoreError(f"{self.location}: cannot reach MongoDB ({error})") from None
+
+    def close(self) -> None:
+        self.client.close()
+
+    @contextmanager
+    def transaction(self) -> Iterator[None]:
+        # KnowRob writes without transactions (they need a replica set); each bulk write is atomic
+        # per document only.
+        yield
+
+    def _coll(self, neem_id: str, kind: str) -> Any:
+        return self.db[f"{neem_id}_{kind}"]
+
+    # -- registry ---------------------------------------------------------------------------
+    def neems(self) -> list[NeemInfo]:
+        infos = {doc["_id"]: NeemInfo.from_meta(doc["_id"], {k: v for k, v in doc.items() if k != "_id"})
+                 for doc in self.db[META].find({})}  # fmt: skip
+        # NEEMs restored with mongorestore have collections but no meta entry.
+        for name in self.db.list_collection_names():
+            if name.endswith("_triples"):
+                neem_id = name[: -len("_triples")]
+                infos.setdefault(neem_id, NeemInfo(neem_id))
+        return [infos[key] for key in sorted(infos)]
+
+    def has_neem(self, neem_id: str) -> bool:
+        if self.db[META].count_documents({"_id": neem_id}, limit=1):
+            return True
+        return f"{neem_id}_triples" in self.db.list_collection_names()
+
+    def create_neem(
+        self, neem_id: str, *, user: str | None = None, temporary: bool = False, meta: Mapping[str, Any] | None = None
+    ) -> NeemInfo:
+        check_neem_id(neem_id)
+        if self.has_neem(neem_id):
+            raise StoreError(f"{self.location}: NEEM {neem_id!r} already exists")
+        record = new_meta(user, temporary, meta)
+        for kind in KINDS:
+            coll = self.db.create_collection(f"{neem_id}_{kind}")
+            for keys in INDEXES[kind]:
+                coll.create_index([(key, 1) for key in keys])
+        self.db[META].insert_one({"_id": neem_id, **record})
+        self._hierarchies.pop(neem_id, None)
+        return NeemInfo.from_meta(neem_id, record)
+
+    def drop_neem(self, neem_id: str) -> None:
+        self.neem(neem_id)
+        for kind in KINDS:
+            self._coll(neem_id, kind).drop()
+        self.db[META].delete_one({"_id": neem_id})
+        self._hierarchies.pop(neem_id, None)
+
+    def rename_neem(self, neem_id: str, new_id: str) -> None:
+        info = self.neem(neem_id)
+        check_neem_id(new_id)
+        if self.has_neem(new_id):
+            raise StoreError(f"{self.location}: NEEM {new_id!r} already exists")
+        names = set(self.db.list_collection_names())
+        for kind in KINDS:
+            if f"{neem_id}_{kind}" in names:
+                self._coll(neem_id, kind).rename(f"{new_id}_{kind}")
+        self.db[META].delete_one({"_id": neem_id})
+        self.db[META].insert_one({"_id": new_id, **dict(info.meta)})
+        self._hierarchies.pop(neem_id, None)
+
+    def update_meta(self, neem_id: str, **fields: Any) -> NeemInfo:
+        meta = dict(self.neem(neem_id).meta)
+        meta.update(fields)
+        self.db[META].replace_one({"_id": neem_id}, {"_id": neem_id, **meta}, upsert=True)
+        return NeemInfo.from_meta(neem_id, meta)
+
+    # -- writing ----------------------------------------------------------------------------
+    def _insert_documents(self, neem_id: str, kind: str, docs: list[dict[str, Any]]) -> None:
+        if not self.has_neem(neem_id):
+            raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
+        try:
+            self._coll(neem_id, kind).insert_many(docs, ordered=True)
+        except Exception as error:
+            raise StoreError(f"{self.location}: NEEM {neem_id!r}: cannot store {kind} documents ({error})") from None
+
+    def _propagate(self, neem_id: str, subject: str, gained: tuple[Any, ...]) -> None:
+        coll = self._coll(neem_id, "triples")
+        taxonomic = sorted(TAXONOMIC)
+        coll.update_many({"o*": subject, "p": {"$in": taxonomic}}, {"$addToSet": {"o*": {"$each": list(gained)}}})
+        coll.update_many({"p*": subject, "p": {"$nin": taxonomic}}, {"$addToSet": {"p*": {"$each": list(gained)}}})
+
+    def _hierarchy_source(self, neem_id: str) -> tuple[list[tuple[str, tuple[Any, ...]]], set[Any]]:
+        coll = self._coll(neem_id, "triples")
+        edges = [
+            (doc["s"], tuple(doc.get("o*") or (doc["o"],)))
+            for doc in coll.find({"p": {"$in": sorted(HIERARCHY)}}, {"s": 1, "o": 1, "o*": 1})
+        ]
+        used: set[Any] = set()
+        for value in coll.distinct("o*", {"p": {"$in": sorted(TAXONOMIC)}}):
+            if isinstance(value, str):
+                used.add(value)
+        for value in coll.distinct("p*"):
+            if isinstance(value, str):
+                used.add(value)
+        return edges, used
+
+    # -- reading ----------------------------------------------------------------------------
+    def read_documents(self, neem_id: str, kind: str) -> Iterator[dict[str, Any]]:
+        if kind not in KINDS:
+            raise StoreError(f"unknown collection kind {kind!r}")
+        self.neem(neem_id)
+        yield from self._coll(neem_id, kind).find({})
+
+    def count(self, neem_id: str, kind: str = "triples") -> int:
+        if kind not in KINDS:
+            raise StoreError(f"unknown collection kind {kind!r}")
+        return self._coll(neem_id, kind).count_documents({})
+
+    def find(
+        self,
+        neem_id: str,
+        s: Term = None,
+        p: Term = None,
+        o: Term = None,
+        *,
+        graph: str | None = None,
+        scope: Scope | None = None,
+        limit: int | None = None,
+        exact: bool = False,
+    ) -> Iterator[dict[str, Any]]:
+        for term in (s, p, o):
+            if isinstance(term, Var):
+                raise StoreError("find() takes constants; use match() for variables")
+        if not self.has_neem(neem_id):
+            raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
+        query = _pattern_filter(TriplePattern(s, p, o, graph), self.number_format, exact)
+        query.update(_scope_filter(scope, self.number_format))
+        cursor = self._coll(neem_id, "triples").find(query)
+        if limit is not None:
+            cursor = cursor.limit(int(limit))
+        yield from cursor
+
+    def match(
+        self,
+        neem_id: str,
+        patterns: Sequence[TriplePattern],
+        *,
+        scope: Scope | None = None,
+        limit: int | None = None,
+    ) -> Iterator[dict[str, Any]]:
+        validate_patterns(patterns)
+        if not self.has_neem(neem_id):
+            raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
+        pipeline = compile_pipeline(f"{neem_id}_triples", patterns, scope, limit, self.number_format)
+        names = sorted({name for pattern in patterns for name in pattern.variables()})
+        for row in self.db["one"].aggregate(pipeline):
+            yield {name: decode_value(row.get(f"v_{name}")) for name in names}
+
+
+def _value_condition(value: Any) -> Any:
+    forms = query_values(value)
+    return forms[0] if len(forms) == 1 else {"$in": forms}
+
+
+def _pattern_filter(pattern: TriplePattern, number_format: NumberFormat, exact: bool = False) -> dict[str, Any]:
+    """The ``$match`` of the constant parts of a pattern (KnowRob's triple/3 query)."""
+    query: dict[str, Any] = {}
+    p = pattern.p
+    taxonomic = isinstance(p, str) and p in TAXONOMIC
+    if exact:
+        for field, term in (("s", pattern.s), ("p", p), ("o", pattern.o)):
+            if term is not None and not isinstance(term, Var):
+                query[field] = _value_condition(term)
+        if pattern.graph is not None:
+            query["graph"] = pattern.graph
+        return query
+    if pattern.s is not None and not isinstance(pattern.s, Var):
+        query["s"] = pattern.s
+    if p is not None and not isinstance(p, Var):
+        query["p" if taxonomic else "p*"] = p
+    if pattern.o is not None and not isinstance(pattern.o, Var):
+        query["o*" if taxonomic else "o"] = _value_condition(pattern.o)
+    if pattern.graph is not None:
+        query["graph"] = pattern.graph
+    return query
+
+
+def _scope_filter(scope: Scope | None, number_format: NumberFormat) -> dict[str, Any]:
+    if scope is None:
+        return {}
+    until = encode_number(scope.until, number_format)
+    since = encode_number(scope.since, number_format)
+    return {
+        "$and": [
+            {"$or": [{"scope.time.since": {"$exists": False}}, {"scope.time.since": {"$lte": until}}]},
+            {"$or": [{"scope.time.until": {"$exists": False}}, {"scope.time.until": {"$gte": since}}]},
+        ]
+    }
+
+
+def compile_pipeline(
+    collection: str,
+    patterns: Sequence[TriplePattern],
+    scope: Scope | None,
+    limit: int | None,
+    number_format: NumberFormat = "decimal128",
+) -> list[dict[str, Any]]:
+    """mongolog's shape: from the single ``one`` document, one ``$lookup`` per triple pattern.
+
+    Variables are fields ``v_<name>`` of the flowing document; a variable bound by an earlier
+    pattern enters the lookup through ``let`` and is compared in ``$expr``.
+    """
+    stages: list[dict[str, Any]] = [{"$limit": 1}, {"$project": {"_id": 0}}]
+    bound: set[str] = set()
+    for pattern in patterns:
+        match = _pattern_filter(pattern, number_format)
+        match.update(_scope_filter(scope, number_format))
+        taxonomic = isinstance(pattern.p, str) and pattern.p in TAXONOMIC
+        exprs: list[dict[str, Any]] = []
+        let: dict[str, str] = {}
+        new: dict[str, str] = {}
+        for field, term in (("s", pattern.s), ("p", pattern.p), ("o", pattern.o)):
+            if not isinstance(term, Var):
+                continue
+            name = f"v_{term.name}"
+            if term.name in bound:
+                let[name] = f"${name}"
+                if field == "o" and taxonomic:
+                    exprs.append({"$in": [f"$${name}", "$o*"]})
+                else:
+                    exprs.append({"$eq": [f"${field}", f"$${name}"]})
+            elif name in new:
+                exprs.append({"$eq": [f"${field}", f"${new[name]}"]})
+            else:
+                new[name] = field
+        if exprs:
+            match["$expr"] = exprs[0] if len(exprs) == 1 else {"$and": exprs}
+        lookup: dict[str, Any] = {"from": collection, "as": "next", "pipeline": [{"$match": match}]}
+        if let:
+            lookup["let"] = let
+        stages.append({"$lookup": lookup})
+        stages.append({"$unwind": "$next"})
+        if new:
+            stages.append({"$set": {name: f"$next.{field}" for name, field in new.items()}})
+        stages.append({"$unset": "next"})
+        bound.update(name[2:] for name in new)
+    if limit is not None:
+        stages.append({"$limit": int(limit)})
+    return stages

@@ -1,0 +1,508 @@
+"""The embedded default backend: one SQLite file holding KnowRob documents, indexed.
+
+Each NEEM gets the four KnowRob collections as tables ``"<id>_triples"`` and so on. A triple
+row keeps the exact BSON document (so dumps round-trip byte for byte) beside the columns the
+indexes need. ``p*``/``o*`` are stored by reference to a content-addressed closure table: all
+``rdf:type dul:Action`` triples share one closure row, so the closure costs one integer per
+triple and ``o* contains C`` is an indexed lookup.
+"""
+
+from __future__ import annotations
+
+import os
+import sqlite3
+from collections.abc import Iterator, Mapping, Sequence
+from contextlib import contextmanager
+from datetime import datetime, timezone
+from pathlib import Path
+from typing import Any
+
+import bson
+from bson.decimal128 import Decimal128
+from bson.int64 import Int64
+
+from oracle.errors import StoreError
+from oracle.store.base import KINDS, NeemInfo, Store, check_neem_id, new_meta, validate_patterns
+from oracle.store.model import (
+    SUBCLASS_OF,
+    SUBPROPERTY_OF,
+    TAXONOMIC,
+    Annotation,
+    NumberFormat,
+    Scope,
+    Term,
+    TriplePattern,
+    Var,
+    extend_closure,
+    unix_seconds,
+)
+
+SCHEMA_VERSION = "1"
+
+# Kinds of the ``o`` column, so a value reads back with its BSON type.
+K_STR, K_DOUBLE, K_DECIMAL, K_INT, K_LONG, K_BOOL, K_DATE, K_OTHER = range(8)
+_NUMERIC_KINDS = (K_DOUBLE, K_DECIMAL, K_INT, K_LONG)
+
+
+def _sql_value(value: Any) -> tuple[Any, int]:
+    """A BSON value as (SQLite value, kind)."""
+    if isinstance(value, str):
+        return value, K_STR
+    if isinstance(value, bool):
+        return int(value), K_BOOL
+    if isinstance(value, Int64):
+        return int(value), K_LONG
+    if isinstance(value, int):
+        return value, K_INT
+    if isinstance(value, float):
+        return value, K_DOUBLE
+    if isinstance(value, Decimal128):
+        return float(value.to_decimal()), K_DECIMAL
+    if isinstance(value, datetime):
+        return unix_seconds(value), K_DATE
+    return None, K_OTHER
+
+
+def _python_value(value: Any, kind: int) -> Any:
+    if kind == K_BOOL:
+        return bool(value)
+    if kind == K_DATE and value is not None:
+        return datetime.fromtimestamp(value, timezone.utc)
+    if kind in (K_DOUBLE, K_DECIMAL) and value is not None:
+        return float(value)
+    return value
+
+
+def _quote(name: str) -> str:
+    return '"' + name.replace('"', '""') + '"'
+
+
+def _table(neem_id: str, kind: str) -> str:
+    return _quote(f"{neem_id}_{kind}")
+
+
+_TRIPLE_INDEXES = (("sp", "s, p"), ("op", "o, p"), ("postar", "p, ostar"), ("pstaro", "pstar, o"))
+
+
+class SQLiteStore(Store):
+    """A NEEM store in one SQLite file (WAL, synchronous=NORMAL: an action committed survives
+    a killed process, which is the crash model of issue 3)."""
+
+    def __init__(self, path: str | os.PathLike[str], number_format: NumberFormat = "decimal128") -> None:
+        super().__init__(number_format)
+        self.path = Path(path).expanduser()
+        self.location = str(self.path)
+        self._conn = self._connect()
+        self._depth = 0
+        self._cids: dict[Any, int] = {}
+        self._members: dict[int, tuple[Any, ...]] = {}
+        self._time_cache: dict[bytes, float] = {}
+
+    # -- connection -------------------------------------------------------------------------
+    def _connect(self) -> sqlite3.Connection:
+        try:
+            self.path.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
+            # Create the file 0600 before SQLite does; its -wal and -shm files copy the mode.
+            fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o600)
+            os.close(fd)
+            conn = sqlite3.connect(self.path, isolation_level=None, check_same_thread=False)
+            conn.execute("PRAGMA journal_mode=WAL")
+            conn.execute("PRAGMA synchronous=NORMAL")
+            conn.execute("PRAGMA temp_store=MEMORY")
+            conn.execute("PRAGMA cache_size=-65536")
+            conn.executescript(
+                """
+                CREATE TABLE IF NOT EXISTS store_info(key TEXT PRIMARY KEY, value TEXT);
+                CREATE TABLE IF NOT EXISTS neems(id TEXT PRIMARY KEY, meta BLOB NOT NULL);
+                CREATE TABLE IF NOT EXISTS closure(cid INTEGER PRIMARY KEY, key BLOB UNIQUE NOT NULL);
+                CREATE TABLE IF NOT EXISTS closure_member(cid INTEGER NOT NULL, pos INTEGER NOT NULL, value,
+                    PRIMARY KEY(cid, pos)) WITHOUT ROWID;
+                CREATE INDEX IF NOT EXISTS closure_member_value ON closure_member(value, cid);
+                INSERT OR IGNORE INTO store_info VALUES ('schema', '1');
+                """
+            )
+            version = conn.execute("SELECT value FROM store_info WHERE key='schema'").fetchone()[0]
+        except (OSError, sqlite3.Error) as error:
+            raise StoreError(f"{self.path}: cannot open the NEEM store ({error})") from None
+        if version != SCHEMA_VERSION:
+            raise StoreError(f"{self.path}: store schema {version}, this version reads {SCHEMA_VERSION}")
+        return conn
+
+    def close(self) -> None:
+        self._conn.close()
+
+    @contextmanager
+    def transaction(self) -> Iterator[None]:
+        if self._depth == 0:
+            self._conn.execute("BEGIN IMMEDIATE")
+        self._depth += 1
+        try:
+            yield
+        except BaseException:
+            self._depth -= 1
+            if self._depth == 0:
+                self._conn.execute("ROLLBACK")
+                self._cids.clear()
+                self._members.clear()
+            raise
+        self._depth -= 1
+        if self._depth == 0:
+            self._conn.execute("COMMIT")
+
+    # -- registry ---------------------------------------------------------------------------
+    def neems(self) -> list[NeemInfo]:
+        rows = self._conn.execute("SELECT id, meta FROM neems ORDER BY id").fetchall()
+        return [NeemInfo.from_meta(neem_id, bson.decode(meta)) for neem_id, meta in rows]
+
+    def has_neem(self, neem_id: str) -> bool:
+        return self._conn.execute("SELECT 1 FROM neems WHERE id=?", (neem_id,)).fetchone() is not None
+
+    def neem(self, neem_id: str) -> NeemInfo:
+        row = self._conn.execute("SELECT meta FROM neems WHERE id=?", (neem_id,)).fetchone()
+        if row is None:
+            raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
+        return NeemInfo.from_meta(neem_id, bson.decode(row[0]))
+
+    def create_neem(
+        self, neem_id: str, *, user: str | None = None, temporary: bool = False, meta: Mapping[str, Any] | None = None
+    ) -> NeemInfo:
+        check_neem_id(neem_id)
+        if self.has_neem(neem_id):
+            raise StoreError(f"{self.location}: NEEM {neem_id!r} already exists")
+        record = new_meta(user, temporary, meta)
+        t = lambda kind: _table(neem_id, kind)  # noqa: E731
+        with self.transaction():
+            self._conn.execute("INSERT INTO neems VALUES (?, ?)", (neem_id, bson.encode(record)))
+            self._conn.execute(
+                f"CREATE TABLE {t('triples')}(id INTEGER PRIMARY KEY, s, p, o, ok INTEGER, pstar INTEGER,"
+                " ostar INTEGER, graph, since REAL, until REAL, doc BLOB NOT NULL)"
+            )
+            for name, cols in _TRIPLE_INDEXES:
+                self._conn.execute(f"CREATE INDEX {_quote(f'{neem_id}_triples_{name}')} ON {t('triples')}({cols})")
+            self._conn.execute(f"CREATE TABLE {t('annotations')}(id INTEGER PRIMARY KEY, s, p, doc BLOB NOT NULL)")
+            self._conn.execute(f"CREATE INDEX {_quote(f'{neem_id}_annotations_sp')} ON {t('annotations')}(s, p)")
+            self._conn.execute(
+                f"CREATE TABLE {t('tf')}(id INTEGER PRIMARY KEY, child, stamp REAL, doc BLOB NOT NULL)"
+            )
+            self._conn.execute(f"CREATE INDEX {_quote(f'{neem_id}_tf_cs')} ON {t('tf')}(child, stamp)")
+            self._conn.execute(f"CREATE TABLE {t('inferred')}(id INTEGER PRIMARY KEY, doc BLOB NOT NULL)")
+        self._hierarchies.pop(neem_id, None)
+        return NeemInfo.from_meta(neem_id, record)
+
+    def drop_neem(self, neem_id: str) -> None:
+        self.neem(neem_id)
+        with self.transaction():
+            for kind in KINDS:
+                self._conn.execute(f"DROP TABLE IF EXISTS {_table(neem_id, kind)}")
+            self._conn.execute("DELETE FROM neems WHERE id=?", (neem_id,))
+        self._hierarchies.pop(neem_id, None)
+
+    def rename_neem(self, neem_id: str, new_id: str) -> None:
+        info = self.neem(neem_id)
+        check_neem_id(new_id)
+        if self.has_neem(new_id):
+            raise StoreError(f"{self.location}: NEEM {new_id!r} already exists")
+        with self.transaction():
+            for kind in KINDS:
+                self._conn.execute(f"ALTER TABLE {_table(neem_id, kind)} RENAME TO {_table(new_id, kind)}")
+            self._conn.execute("UPDATE neems SET id=? WHERE id=?", (new_id, neem_id))
+        del info
+        self._hierarchies.pop(neem_id, None)
+
+    def update_meta(self, neem_id: str, **fields: Any) -> NeemInfo:
+        meta = dict(self.neem(neem_id).meta)
+        meta.update(fields)
+        with self.transaction():
+            self._conn.execute("UPDATE neems SET meta=? WHERE id=?", (bson.encode(meta), neem_id))
+        return NeemInfo.from_meta(neem_id, meta)
+
+    # -- closures ---------------------------------------------------------------------------
+    def _cid(self, closure: Sequence[Any]) -> int:
+        """Id of a closure list, created on first use (content-addressed, shared by all NEEMs)."""
+        key: Any = tuple(closure)
+        if not all(type(item) is str for item in key):
+            key = bson.encode({"c": list(closure)})
+        cid = self._cids.get(key)
+        if cid is not None:
+            return cid
+        blob = key if isinstance(key, bytes) else bson.encode({"c": list(closure)})
+        row = self._conn.execute("SELECT cid FROM closure WHERE key=?", (blob,)).fetchone()
+        if row is None:
+            cid = self._conn.execute("INSERT INTO closure(key) VALUES (?)", (blob,)).lastrowid
+            self._conn.executemany(
+                "INSERT INTO closure_member VALUES (?, ?, ?)",
+                [(cid, pos, _sql_value(value)[0]) for pos, value in enumerate(closure)],
+            )
+        else:
+            cid = row[0]
+        self._cids[key] = cid
+        return cid
+
+    def _closure(self, cid: int) -> tuple[Any, ...]:
+        members = self._members.get(cid)
+        if members is None:
+            row = self._conn.execute("SELECT key FROM closure WHERE cid=?", (cid,)).fetchone()
+            members = self._members[cid] = tuple(bson.decode(row[0])["c"])
+        return members
+
+    # -- writing ----------------------------------------------------------------------------
+    def _seconds(self, value: Any) -> float | None:
+        if isinstance(value, Decimal128):
+            cached = self._time_cache.get(value.bid)
+            if cached is None:
+                cached = float(value.to_decimal())
+                if len(self._time_cache) < 4096:
+                    self._time_cache[value.bid] = cached
+            return cached
+        return unix_seconds(value)
+
+    def _triple_row(self, doc: Mapping[str, Any]) -> tuple[Any, ...]:
+        p = doc.get("p")
+        o = doc.get("o")
+        sql_o, kind = _sql_value(o)
+        pstar = doc.get("p*")
+        ostar = doc.get("o*")
+        pstar_cid = None if pstar is None else self._cid(pstar)
+        if ostar is None:
+            ostar_cid = None
+        elif p not in TAXONOMIC and len(ostar) == 1 and type(ostar[0]) is type(o) and ostar[0] == o:
+            ostar_cid = 0  # the trivial [o] of a non-taxonomic triple needs no closure row
+        else:
+            ostar_cid = self._cid(ostar)
+        time = (doc.get("scope") or {}).get("time") or {}
+        since = self._seconds(time.get("since"))
+        until = self._seconds(time.get("until"))
+        return (doc.get("s"), p, sql_o, kind, pstar_cid, ostar_cid, doc.get("graph"), since, until, bson.encode(doc))
+
+    def _insert_documents(self, neem_id: str, kind: str, docs: list[dict[str, Any]]) -> None:
+        self._require(neem_id)
+        table = _table(neem_id, kind)
+        try:
+            if kind == "triples":
+                rows = [self._triple_row(doc) for doc in docs]
+                self._conn.executemany(
+                    f"INSERT INTO {table}(s, p, o, ok, pstar, ostar, graph, since, until, doc)"
+                    " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                    rows,
+                )
+            elif kind == "annotations":
+                self._conn.executemany(
+                    f"INSERT INTO {table}(s, p, doc) VALUES (?, ?, ?)",
+                    [(d.get("s"), d.get("p"), bson.encode(d)) for d in docs],
+                )
+            elif kind == "tf":
+                self._conn.executemany(
+                    f"INSERT INTO {table}(child, stamp, doc) VALUES (?, ?, ?)",
+                    [
+                        (d.get("child_frame_id"), unix_seconds((d.get("header") or {}).get("stamp")), bson.encode(d))
+                        for d in docs
+                    ],
+                )
+            else:
+                self._conn.executemany(f"INSERT INTO {table}(doc) VALUES (?)", [(bson.encode(d),) for d in docs])
+        except (bson.errors.InvalidDocument, OverflowError) as error:
+            raise StoreError(f"{self.location}: NEEM {neem_id!r}: cannot store a {kind} document ({error})") from None
+
+    def _require(self, neem_id: str) -> None:
+        if not self.has_neem(neem_id):
+            raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
+
+    def _propagate(self, neem_id: str, subject: str, gained: tuple[Any, ...]) -> None:
+        table = _table(neem_id, "triples")
+        cids = [row[0] for row in self._conn.execute("SELECT DISTINCT cid FROM closure_member WHERE value=?", (subject,))]
+        for cid in cids:
+            new_cid = self._cid(extend_closure(self._closure(cid), gained))
+            for column, field, taxonomic in (("ostar", "o*", True), ("pstar", "p*", False)):
+                op = "IN" if taxonomic else "NOT IN"
+                rows = self._conn.execute(
+                    f"SELECT id, doc FROM {table} WHERE {column}=? AND p {op} (?, ?, ?)", (cid, *sorted(TAXONOMIC))
+                ).fetchall()
+                updates = []
+                for rowid, blob in rows:
+                    doc = bson.decode(blob)
+                    doc[field] = list(extend_closure(doc[field], gained))
+                    updates.append((new_cid, bson.encode(doc), rowid))
+                self._conn.executemany(f"UPDATE {table} SET {column}=?, doc=? WHERE id=?", updates)
+
+    def _hierarchy_source(self, neem_id: str) -> tuple[list[tuple[str, tuple[Any, ...]]], set[Any]]:
+        table = _table(neem_id, "triples")
+        edges = [
+            (s, self._closure(cid))
+            for s, cid in self._conn.execute(
+                f"SELECT s, ostar FROM {table} WHERE p IN (?, ?) AND ostar > 0 ORDER BY id",
+                (SUBCLASS_OF, SUBPROPERTY_OF),
+            )
+        ]
+        used = {
+            value
+            for (value,) in self._conn.execute(
+                f"SELECT DISTINCT value FROM closure_member WHERE cid IN"
+                f" (SELECT ostar FROM {table} UNION SELECT pstar FROM {table})"
+            )
+        }
+        return edges, used
+
+    # -- reading ----------------------------------------------------------------------------
+    def read_documents(self, neem_id: str, kind: str) -> Iterator[dict[str, Any]]:
+        if kind not in KINDS:
+            raise StoreError(f"unknown collection kind {kind!r}")
+        self._require(neem_id)
+        cursor = self._conn.execute(f"SELECT doc FROM {_table(neem_id, kind)} ORDER BY id")
+        for (blob,) in cursor:
+            yield bson.decode(blob)
+
+    def count(self, neem_id: str, kind: str = "triples") -> int:
+        if kind not in KINDS:
+            raise StoreError(f"unknown collection kind {kind!r}")
+        self._require(neem_id)
+        return self._conn.execute(f"SELECT count(*) FROM {_table(neem_id, kind)}").fetchone()[0]
+
+    def find(
+        self,
+        neem_id: str,
+        s: Term = None,
+        p: Term = None,
+        o: Term = None,
+        *,
+        graph: str | None = None,
+        scope: Scope | None = None,
+        limit: int | None = None,
+        exact: bool = False,
+    ) -> Iterator[dict[str, Any]]:
+        for term in (s, p, o):
+            if isinstance(term, Var):
+                raise StoreError("find() takes constants; use match() for variables")
+        pattern = TriplePattern(s, p, o, graph)
+        query = _Compiler(_table(neem_id, "triples"), scope)
+        query.add(pattern, exact=exact)
+        self._require(neem_id)
+        sql = f"SELECT t0.doc FROM {query.from_clause()} WHERE {query.where()} ORDER BY t0.id"
+        if limit is not None:
+            sql += f" LIMIT {int(limit)}"
+        for (blob,) in self._conn.execute(sql, query.params):
+            yield bson.decode(blob)
+
+    def match(
+        self,
+        neem_id: str,
+        patterns: Sequence[TriplePattern],
+        *,
+        scope: Scope | None = None,
+        limit: int | None = None,
+    ) -> Iterator[dict[str, Any]]:
+        validate_patterns(patterns)
+        self._require(neem_id)
+        query = _Compiler(_table(neem_id, "triples"), scope)
+        for pattern in patterns:
+            query.add(pattern)
+        names = list(query.bound)
+        if not names:
+            select = "1"
+        else:
+            select = ", ".join(f"{query.bound[n][0]}, {query.bound[n][1] or 0}" for n in names)
+        order = ", ".join(f"{alias}.id" for alias in query.aliases)
+        sql = f"SELECT {select} FROM {query.from_clause()} WHERE {query.where()} ORDER BY {order}"
+        if limit is not None:
+            sql += f" LIMIT {int(limit)}"
+        for row in self._conn.execute(sql, query.params):
+            yield {name: _python_value(row[2 * i], row[2 * i + 1]) for i, name in enumerate(names)}
+
+    def annotations(self, neem_id: str, s: str | None = None, p: str | None = None) -> Iterator[Annotation]:
+        self._require(neem_id)
+        conds, params = ["1"], []
+        if s is not None:
+            conds.append("s=?")
+            params.append(s)
+        if p is not None:
+            conds.append("p=?")
+            params.append(p)
+        sql = f"SELECT doc FROM {_table(neem_id, 'annotations')} WHERE {' AND '.join(conds)} ORDER BY id"
+        for (blob,) in self._conn.execute(sql, params):
+            doc = bson.decode(blob)
+            yield Annotation(doc["s"], doc["p"], doc.get("v"))
+
+
+class _Compiler:
+    """Turns triple patterns into one SQL join with KnowRob's p*/o* semantics."""
+
+    def __init__(self, table: str, scope: Scope | None) -> None:
+        self.table = table
+        self.scope = scope
+        self.aliases: list[str] = []
+        self.conds: list[str] = []
+        self.params: list[Any] = []
+        #: variable -> (SQL expression of its value, SQL expression of its kind or None)
+        self.bound: dict[str, tuple[str, str | None]] = {}
+
+    def from_clause(self) -> str:
+        return ", ".join(f"{self.table} AS {alias}" for alias in self.aliases)
+
+    def where(self) -> str:
+        return " AND ".join(self.conds) if self.conds else "1"
+
+    def _constant(self, column: str, value: Any) -> None:
+        sql, kind = _sql_value(value)
+        if kind == K_OTHER:
+            raise StoreError(f"cannot query for a {type(value).__name__} value: {value!r}")
+        self.conds.append(f"{column}=?")
+        self.params.append(sql)
+        if not column.endswith(".o"):
+            return
+        if kind in _NUMERIC_KINDS:
+            self.conds.append(f"{column[:-2]}.ok IN (1, 2, 3, 4)")
+        elif kind != K_STR:
+            self.conds.append(f"{column[:-2]}.ok={kind}")
+
+    def add(self, pattern: TriplePattern, exact: bool = False) -> None:
+        a = f"t{len(self.aliases)}"
+        self.aliases.append(a)
+        p = pattern.p
+        if exact:
+            for term, column in ((pattern.s, "s"), (p, "p"), (pattern.o, "o")):
+                self._term(term, f"{a}.{column}", f"{a}.ok" if column == "o" else None)
+            self._filters(a, pattern)
+            return
+        taxonomic = isinstance(p, str) and p in TAXONOMIC
+        # subject
+        self._term(pattern.s, f"{a}.s", None)
+        # property
+        if isinstance(p, Var):
+            self._term(p, f"{a}.p", None)
+        elif p is not None:
+            if not isinstance(p, str):
+                raise StoreError(f"a property must be an IRI, got {p!r}")
+            if taxonomic:
+                self.conds.append(f"{a}.p=?")
+            else:
+                self.conds.append(f"{a}.pstar IN (SELECT cid FROM closure_member WHERE value=?)")
+            self.params.append(p)
+        # object
+        o = pattern.o
+        if isinstance(o, Var) and o.name in self.bound and taxonomic:
+            expr = self.bound[o.name][0]
+            self.conds.append(f"{a}.ostar IN (SELECT cid FROM closure_member WHERE value={expr})")
+        elif o is not None and not isinstance(o, Var) and taxonomic:
+            self.conds.append(f"{a}.ostar IN (SELECT cid FROM closure_member WHERE value=?)")
+            self.params.append(_sql_value(o)[0])
+        else:
+            self._term(o, f"{a}.o", f"{a}.ok")
+        self._filters(a, pattern)
+
+    def _filters(self, a: str, pattern: TriplePattern) -> None:
+        if pattern.graph is not None:
+            self.conds.append(f"{a}.graph=?")
+            self.params.append(pattern.graph)
+        if self.scope is not None:
+            self.conds.append(f"({a}.since IS NULL OR {a}.since<=?) AND ({a}.until IS NULL OR {a}.until>=?)")
+            self.params.extend([self.scope.until, self.scope.since])
+
+    def _term(self, term: Term, column: str, kind_column: str | None) -> None:
+        if term is None:
+            return
+        if isinstance(term, Var):
+            if term.name in self.bound:
+                self.conds.append(f"{column}={self.bound[term.name][0]}")
+            else:
+                self.bound[term.name] = (column, kind_column)
+            return
+        self._constant(column, term)

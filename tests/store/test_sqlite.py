@@ -1,0 +1,52 @@
+"""What only the embedded backend promises: a private file that survives reopening."""
+
+from __future__ import annotations
+
+import os
+import stat
+
+import pytest
+
+from oracle.errors import StoreError
+from oracle.store import RDF_TYPE, SUBCLASS_OF, Triple, open_store
+from oracle.store.sqlite import SQLiteStore
+
+X = "http://example.org/x#"
+
+
+def test_store_files_are_private_and_survive_reopening(tmp_path):
+    path = tmp_path / "sub" / "neems.sqlite"
+    with open_store(f"sqlite://{path}") as store:
+        store.create_neem("n1")
+        store.insert("n1", [Triple(X + "Cup", SUBCLASS_OF, X + "Item"), Triple(X + "c", RDF_TYPE, X + "Cup")])
+    for file in path.parent.iterdir():
+        assert stat.S_IMODE(os.stat(file).st_mode) == 0o600, file
+    with open_store(str(path)) as store:
+        store.insert("n1", [Triple(X + "d", RDF_TYPE, X + "Cup")])  # taxonomy read back from the file
+        assert sorted(d["s"] for d in store.find("n1", p=RDF_TYPE, o=X + "Item")) == [X + "c", X + "d"]
+
+
+def test_type_queries_use_an_index(tmp_path):
+    store = SQLiteStore(tmp_path / "s.sqlite")
+    store.create_neem("n1")
+    plan = store._conn.execute(
+        'EXPLAIN QUERY PLAN SELECT doc FROM "n1_triples" WHERE p=? AND ostar IN (SELECT cid FROM closure_member WHERE value=?)',
+        (RDF_TYPE, X + "Item"),
+    ).fetchall()
+    assert any("USING INDEX" in row[-1] or "USING COVERING INDEX" in row[-1] for row in plan)
+
+
+def test_unknown_store_specs_are_errors(monkeypatch):
+    with pytest.raises(StoreError, match="unknown store"):
+        open_store("ftp://host/x")
+    monkeypatch.delenv("NEEM_MONGO_URI", raising=False)
+    with pytest.raises(StoreError, match="NEEM_MONGO_URI"):
+        open_store("mongodb")
+
+
+def test_default_store_lives_in_the_user_data_dir(monkeypatch, tmp_path):
+    monkeypatch.setenv("XDG_DATA_HOME", str(tmp_path))
+    monkeypatch.setenv("HOME", str(tmp_path))
+    with open_store(None) as store:
+        assert str(store.location).startswith(str(tmp_path))
+        assert store.location.endswith("default.sqlite")
