@@ -43,10 +43,13 @@ def random_matrix(seed: int, classes=TASKS + OBJECTS + (IDLE,), scale: float = 1
     return Matrix(tuple(classes), values)
 
 
-def options_strategy(max_size: int = 5):
+def option_strategy():
     obj = st.one_of(st.none(), st.sampled_from(OBJECTS[:5]))
-    option = st.builds(Option, st.sampled_from(TASKS[:5]), obj, obj)
-    return st.lists(option, max_size=max_size).map(tuple)
+    return st.builds(Option, st.sampled_from(TASKS[:5]), obj, obj)
+
+
+def options_strategy(max_size: int = 5):
+    return st.lists(option_strategy(), max_size=max_size).map(tuple)
 
 
 @st.composite

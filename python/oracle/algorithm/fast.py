@@ -198,12 +198,12 @@ class PreferenceOracle(OracleParams):
         k = rows.shape[0]
         if k == 0:
             return np.zeros(set_ids.size)
-        best = np.full((k, set_ids.size), p.penalty)
+        best = np.zeros((k, set_ids.size))  # an empty (unrecorded) set compares as 0
         n_sets = len(self._set_members)
         if 4 * set_ids.size >= n_sets:  # most sets are needed: reduce over all of them at once
             filled = np.flatnonzero(self._set_size.view > 0)
             if filled.size:
-                mins = np.full((k, n_sets), p.penalty)
+                mins = np.zeros((k, n_sets))
                 mins[:, filled] = np.minimum.reduceat(rows[:, self._set_flat.view], self._set_start.view[filled], axis=1)
                 best = mins[:, set_ids]
             return self._average_rows(best)

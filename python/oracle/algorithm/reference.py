@@ -69,10 +69,10 @@ def overall_distance(p: Hyperparameters, matrix, a: Option, b: Option) -> float:
 def option_set_distance(p: Hyperparameters, matrix, mine: Sequence[Option], theirs: Sequence[Option]) -> float:
     """Average over ``mine`` of the smallest Algorithm 2 distance to any option in ``theirs``.
 
-    Both are canonical option sets. An empty ``mine`` averages nothing (0); an option of ``mine``
-    with nothing to match in an empty ``theirs`` gets ``penalty``, as a missing object does.
+    Both are canonical option sets. When either set is empty (not recorded) there is nothing to
+    compare and the distance is 0: missing information is not evidence of a different situation.
     """
-    if not mine:
+    if not mine or not theirs:
         return 0.0
     best_distances: list[float] = []
     for option in mine:
@@ -81,7 +81,7 @@ def option_set_distance(p: Hyperparameters, matrix, mine: Sequence[Option], thei
             d = overall_distance(p, matrix, option, other)
             if d <= best:
                 best = d
-        best_distances.append(best if theirs else p.penalty)
+        best_distances.append(best)
     total = 0.0
     for value in best_distances:
         total += value
