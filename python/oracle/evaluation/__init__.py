@@ -1,0 +1,1 @@
+"""Evaluation: replay, baselines, metrics, plots, tuning, and the dataset converters."""
