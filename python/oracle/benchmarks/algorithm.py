@@ -1,0 +1,161 @@
+"""Benchmark of the PreferenceOracle: time per prediction of ``fast`` and ``reference`` (issue 5).
+
+Synthetic histories of 100 to 10,000 steps with ~20 available options per situation, over a
+random 90-class taxonomy whose distances follow thesis eq. 4.5; a routine-like Markov chain over
+60 world states decides what is available and what is done. Times are per ``rank`` call (with the
+forward tree of the best option); ``partial_fit`` rows time adding one step.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import tracemalloc
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from oracle.algorithm.fast import PreferenceOracle
+from oracle.algorithm.params import PRESETS
+from oracle.algorithm.reference import ReferenceOracle
+from oracle.algorithm.situation import Option, Step
+from oracle.timeofday import TIME_OF_DAY_NAMES
+
+NS = "https://example.org/bench#"
+SETTINGS = ("recommended", "no_situations")
+
+
+@dataclass(frozen=True)
+class _Matrix:
+    classes: tuple[str, ...]
+    values: np.ndarray
+    index: dict[str, int] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        self.index.update({iri: i for i, iri in enumerate(self.classes)})
+
+    def distance(self, a: str, b: str) -> float:
+        return float(self.values[self.index[a], self.index[b]])
+
+
+def taxonomy(rng: np.random.Generator, n_tasks: int = 30, n_objects: int = 60) -> tuple[_Matrix, list[str], list[str]]:
+    """Two random trees (tasks, objects) under one root; distance log(path * CSpec + 1) (eq. 4.5)."""
+    names = ["Thing"]
+    parent = [-1]
+    leaves: dict[str, list[str]] = {"Task": [], "Object": []}
+    for kind, count in (("Task", n_tasks), ("Object", n_objects)):
+        top = len(names)
+        names.append(kind); parent.append(0)
+        groups = []
+        for g in range(max(2, count // 6)):
+            groups.append(len(names)); names.append(f"{kind}Group{g}"); parent.append(top)
+        for i in range(count):
+            names.append(f"{kind}{i}"); parent.append(int(rng.choice(groups)))
+            leaves[kind].append(NS + names[-1])
+    n = len(names)
+    ancestors = []
+    for i in range(n):
+        chain, node = [], i
+        while node >= 0:
+            chain.append(node); node = parent[node]
+        ancestors.append(chain)
+    depth_total = max(len(a) for a in ancestors)
+    values = np.zeros((n, n))
+    for i in range(n):
+        for j in range(i + 1, n):
+            common = next(a for a in ancestors[i] if a in ancestors[j])
+            path = ancestors[i].index(common) + ancestors[j].index(common)
+            cspec = 1 - len(ancestors[common]) / depth_total
+            values[i, j] = values[j, i] = math.log(path * cspec + 1)
+    return _Matrix(tuple(NS + name for name in names), values), leaves["Task"], leaves["Object"]
+
+
+def history(n: int, seed: int = 0, n_options: int = 20, n_states: int = 60):
+    rng = np.random.default_rng(seed)
+    matrix, tasks, objects = taxonomy(rng)
+    idle_task = tasks[0]
+    def option() -> Option:
+        kind = rng.integers(0, 3)
+        target = objects[rng.integers(len(objects))] if kind >= 1 else None
+        reference = objects[rng.integers(len(objects))] if kind == 2 else None
+        return Option(tasks[1 + rng.integers(len(tasks) - 1)], target, reference)
+    states = [tuple(dict.fromkeys(option() for _ in range(n_options))) for _ in range(n_states)]
+    favourite = rng.integers(0, n_options, size=(n_states, 4))
+    steps, state = [], 0
+    for i in range(n):
+        options = states[state]
+        tod = TIME_OF_DAY_NAMES[(i // 40) % 4]
+        if rng.random() < 0.05:
+            steps.append(Step(idle_task, None, None, options, tod, True, "idle"))
+            state = int(rng.integers(n_states))
+            continue
+        pick = favourite[state, rng.integers(4)] if rng.random() < 0.8 else rng.integers(n_options)
+        chosen = options[int(pick) % len(options)]
+        steps.append(Step(chosen.task, chosen.target, chosen.reference, options, tod, False, str(chosen)))
+        state = (state * 5 + int(pick) + 1) % n_states
+    return matrix, steps
+
+
+def _times(oracle, queries) -> list[float]:
+    out = []
+    for query in queries:
+        start = time.perf_counter()
+        oracle.rank(query, tree_roots=1)
+        out.append((time.perf_counter() - start) * 1000.0)
+    return out
+
+
+def _peak_mb(make, prefix, queries) -> float:
+    tracemalloc.start()
+    oracle = make().fit(prefix)
+    for query in queries[:3]:
+        oracle.rank(query, tree_roots=1)
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    return peak / 2**20
+
+
+def run(quick: bool = False) -> list[dict]:
+    sizes = (100, 300) if quick else (100, 300, 1000, 10000)
+    reference_queries = {100: 5, 300: 3} if quick else {100: 10, 300: 5, 1000: 3}
+    fast_queries = 40 if quick else 200
+    rows: list[dict] = []
+    print(f"{'history':>8} {'settings':<14} {'impl':<10} {'median ms':>10} {'p99 ms':>9} {'peak MB':>8} {'ratio':>7}")
+    for size in sizes:
+        matrix, steps = history(size + fast_queries, seed=size)
+        prefix, queries = steps[:size], steps[size:]
+        for name in SETTINGS:
+            settings = PRESETS[name].to_dict()
+            found = {}
+            for impl, cls, count in (("fast", PreferenceOracle, fast_queries),
+                                     ("reference", ReferenceOracle, reference_queries.get(size, 0))):
+                if count == 0:
+                    continue
+                oracle = cls(matrix, **settings).fit(prefix)
+                oracle.rank(queries[0], tree_roots=1)  # warm caches of numpy and Python
+                times = _times(oracle, queries[:count])
+                found[impl] = median = float(np.median(times))
+                p99 = float(np.percentile(times, 99))
+                peak = _peak_mb(lambda: cls(matrix, **settings), prefix, queries)
+                rows.append({"area": "algorithm", "name": "rank", "history": size, "impl": impl,
+                             "settings": name, "median_ms": round(median, 4), "p99_ms": round(p99, 4),
+                             "peak_mb": round(peak, 2)})
+                ratio = f"{found['reference'] / found['fast']:.0f}x" if impl == "reference" else ""
+                print(f"{size:>8} {name:<14} {impl:<10} {median:>10.3f} {p99:>9.3f} {peak:>8.1f} {ratio:>7}", flush=True)
+            # adding a step (incremental state) costs this much, once per executed task
+            oracle = PreferenceOracle(matrix, **settings).fit(prefix[:-20])
+            adds = []
+            for step in prefix[-20:]:
+                start = time.perf_counter()
+                oracle.partial_fit(step)
+                adds.append((time.perf_counter() - start) * 1000.0)
+            rows.append({"area": "algorithm", "name": "partial_fit", "history": size, "impl": "fast",
+                         "settings": name, "median_ms": round(float(np.median(adds)), 4),
+                         "p99_ms": round(float(np.percentile(adds, 99)), 4), "peak_mb": None})
+            print(f"{size:>8} {name:<14} {'fast add':<10} {np.median(adds):>10.3f} {np.percentile(adds, 99):>9.3f}",
+                  flush=True)
+    return rows
+
+
+if __name__ == "__main__":
+    run(quick=False)
