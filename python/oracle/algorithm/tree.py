@@ -68,35 +68,31 @@ def successor_tree(
         position = np.where(parent >= 0, position, -1)
 
     # top-down: which nodes survive the presence check, and which are below an Opening task
-    keep_above = [True]
-    checked_above = [checked]
+    keep_above = np.array([True])
+    checked_above = np.array([checked])
     kept_levels = []
-    here_now: dict[int, bool] = {}
     for option_ids, parents, _, _, _ in levels:
-        keep, check = [], []
-        for option_id, up in zip(option_ids.tolist(), parents.tolist()):
-            ok = keep_above[up]
-            if ok and checked_above[up]:
-                present_here = here_now.get(option_id)
-                if present_here is None:
-                    option = options[option_id]
-                    present_here = here_now[option_id] = (
-                        (option.target is None or option.target in present)
-                        and (option.reference is None or option.reference in present))
-                ok = present_here
-            keep.append(ok)
-            check.append(checked_above[up] and options[option_id].task not in opening_tasks)
+        distinct, where = np.unique(option_ids, return_inverse=True)
+        here_now = np.empty(distinct.size, dtype=bool)
+        opens = np.empty(distinct.size, dtype=bool)
+        for k, option_id in enumerate(distinct.tolist()):
+            option = options[option_id]
+            here_now[k] = ((option.target is None or option.target in present)
+                           and (option.reference is None or option.reference in present))
+            opens[k] = option.task in opening_tasks
+        checked_here = checked_above[parents]
+        keep = keep_above[parents] & (~checked_here | here_now[where])
         kept_levels.append(keep)
-        keep_above, checked_above = keep, check
+        keep_above, checked_above = keep, checked_here & ~opens[where]
 
     # bottom-up: build the kept nodes with their sorted children
     below: dict[int, list[tuple[float, int, TreeNode]]] = {}
     for (option_ids, parents, totals, counts, firsts), keep in zip(reversed(levels), reversed(kept_levels)):
         here: dict[int, list[tuple[float, int, TreeNode]]] = {}
-        for index, (option_id, up, total, count, first) in enumerate(
-                zip(option_ids.tolist(), parents.tolist(), totals.tolist(), counts.tolist(), firsts.tolist())):
-            if not keep[index]:
-                continue
+        kept = np.flatnonzero(keep)
+        for index, option_id, up, total, count, first in zip(
+                kept.tolist(), option_ids[kept].tolist(), parents[kept].tolist(), totals[kept].tolist(),
+                counts[kept].tolist(), firsts[kept].tolist()):
             score = occurrence_value(total, count, factor)
             children = sorted(below.get(index, ()), key=lambda item: (item[0], item[1]))
             node = TreeNode(options[option_id], score, count, tuple(node for _, _, node in children))
