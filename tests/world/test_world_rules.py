@@ -6,7 +6,7 @@ from hypothesis import strategies as st
 
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import ChainSyntaxError, NeemOracleError, OntologyError
-from oracle.world.rules import DEFAULT_WORLD, load_world
+from oracle.world.rules import default_world, load_world
 from oracle.world.state import HAND
 
 TABLE_5_1 = (
@@ -38,7 +38,7 @@ def test_world_has_exactly_the_table_5_1_objects(world):
 
 
 def test_world_affordances_are_the_odb_tasks(world):
-    odb_dir = DEFAULT_WORLD.parent / "kitchen-odb"
+    odb_dir = default_world().parent / "kitchen-odb"
     if not odb_dir.is_dir():
         pytest.skip("ontology/kitchen-odb/ is absent")
     from oracle.ontology.odb import read_odb
@@ -219,7 +219,7 @@ def test_missing_world_file(tmp_path):
 
 
 def test_default_world_file_is_in_the_project():
-    assert DEFAULT_WORLD == Path(__file__).resolve().parents[2] / "ontology" / "kitchen-world.yaml"
+    assert default_world() == Path(__file__).resolve().parents[2] / "ontology" / "kitchen-world.yaml"
 
 
 @settings(max_examples=25, deadline=None)

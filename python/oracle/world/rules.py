@@ -17,10 +17,15 @@ import yaml
 
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import ChainSyntaxError, NeemOracleError, OntologyError
+from oracle.paths import data_dir
 from oracle.world.state import HAND, KINDS, ObjectSpec, State, blocker, reachable
 
-#: The world file of the sample kitchen (thesis Table 5.1).
-DEFAULT_WORLD = Path(__file__).resolve().parents[3] / "ontology" / "kitchen-world.yaml"
+
+
+def default_world() -> Path:
+    """The world file of the sample kitchen (thesis Table 5.1) in the project's ``ontology/``."""
+    return data_dir() / "kitchen-world.yaml"
+
 
 #: Predicate and effect signatures: "o" is a task parameter (an object), "l" a literal word.
 PREDICATES: dict[str, str] = {
@@ -354,7 +359,7 @@ class World:
 # --- loading -----------------------------------------------------------------------------------
 def load_world(path: Path | str | None = None) -> World:
     """Read and validate a world file; every error names the file and the entry."""
-    path = DEFAULT_WORLD if path is None else Path(path)
+    path = default_world() if path is None else Path(path)
     try:
         data = yaml.safe_load(path.read_text(encoding="utf-8"))
     except OSError as error:
