@@ -12,6 +12,7 @@ import json
 import re
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
+from functools import lru_cache
 from datetime import datetime
 from pathlib import Path
 
@@ -37,6 +38,12 @@ def parse_call(text: str) -> TaskCall:
     """Parse ``task(a[, b])``; raise ChainSyntaxError naming the text on any defect."""
     if not isinstance(text, str):
         raise ChainSyntaxError(f"action must be a string like 'pick(red_mug)', got {text!r}")
+    return _parse_call(text)
+
+
+@lru_cache(maxsize=1 << 16)
+def _parse_call(text: str) -> TaskCall:
+    # Chains repeat the same few hundred calls many times; parsing is pure, so it is memoised.
     match = _CALL.match(text)
     if match is None:
         raise ChainSyntaxError(f"malformed action {text!r}: expected task(object[, object])")

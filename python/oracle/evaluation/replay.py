@@ -28,7 +28,7 @@ from oracle.evaluation.baselines import BASELINES, chance_hit
 from oracle.namespaces import SOMA
 from oracle.ontology import OdbOntology
 from oracle.ontology.vocabulary import IDLE_THRESHOLD_S
-from oracle.situations import check_call, idle_step, option_of, step_of
+from oracle.situations import check_call, idle_step, option_of
 from oracle.timeofday import time_of_day
 
 KS = (1, 3, 5)
@@ -123,6 +123,14 @@ def replay(
     progress: Callable[[int, int, str], None] | None = None,
 ) -> ReplayResult:
     result = ReplayResult()
+    known: dict = {}
+
+    def convert(call):
+        option = known.get(call)
+        if option is None:
+            option = known[call] = option_of(ontology, call)
+        return option
+
     for number, (user, rows) in enumerate(users.items(), start=1):
         if progress is not None:
             progress(number, len(users), user)
@@ -137,9 +145,11 @@ def replay(
                 for method in methods:
                     method.observe(idle)
             previous_time = row.time if row.time is not None else previous_time
-            step = step_of(ontology, row.action, row.available or (), row.time)
-            truth = step.option
-            candidates = list(OrderedDict.fromkeys(step.options)) if row.available is not None else list(fallback)
+            truth = convert(row.action)
+            if row.available is not None:
+                candidates = list(OrderedDict.fromkeys(convert(call) for call in row.available))
+            else:
+                candidates = list(fallback)
             _rng(user, index, seed).shuffle(candidates)
             tod = time_of_day(row.time) if row.time is not None else None
             ranks: dict[str, int | None] = {}
@@ -151,7 +161,7 @@ def replay(
                 seconds[method.name] = time.perf_counter() - start
                 ranks[method.name] = order.index(truth) + 1 if offered else None
             result.outcomes.append(Outcome(user, index, len(candidates), offered, ranks, seconds))
-            observed = Step(step.task, step.target, step.reference, tuple(candidates), tod, False, step.label)
+            observed = Step(truth.task, truth.target, truth.reference, tuple(candidates), tod, False, str(row.action))
             for method in methods:
                 method.observe(observed)
     return result
