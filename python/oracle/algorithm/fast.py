@@ -275,37 +275,46 @@ class PreferenceOracle(OracleParams):
             cand_rows = self._option_table[known, :count]
         executed = self._executed.view
         base = cand_rows[:, executed]                                               # C x L
-        d0 = base
+        knockout = p.knockout
+        # the (candidate, step) pairs of H(s_o), row-major: by candidate, then history order
         if p.compare_situations > 0 and length and offered:
-            need = base < p.knockout
-            if need.any():
+            rows, cols = np.nonzero(base < knockout)       # Algorithm 3 compares these situations
+            sets = self._set_of_step.view[cols]
+            needed = np.unique(sets)
+            lookup = np.zeros(len(self._set_members))
+            if needed.size:
                 order = sorted(range(len(offered)), key=lambda i: option_key(offered[i]))
-                sets = self._set_of_step.view
-                needed = np.unique(sets[need.any(axis=0)])
-                lookup = np.zeros(len(self._set_members))
                 lookup[needed] = self._set_distance_vector(cand_rows[order], needed)
-                d0 = np.where(need, base + lookup[sets][None, :] * p.compare_situations, base)
-        members = d0 <= p.knockout
-        columns = np.flatnonzero(members.any(axis=0)) if length else np.empty(0, dtype=np.int64)
+            d0 = base[rows, cols] + lookup[sets] * p.compare_situations
+            keep = d0 <= knockout
+            rows, cols, d0 = rows[keep], cols[keep], d0[keep]
+            edge_rows, edge_cols = np.nonzero(base == knockout)  # skipped by Algorithm 3, still similar
+            if edge_rows.size:
+                rows = np.concatenate([rows, edge_rows])
+                cols = np.concatenate([cols, edge_cols])
+                d0 = np.concatenate([d0, base[edge_rows, edge_cols]])
+                order_pairs = np.lexsort((cols, rows))
+                rows, cols, d0 = rows[order_pairs], cols[order_pairs], d0[order_pairs]
+        else:
+            rows, cols = np.nonzero(base <= knockout)
+            d0 = base[rows, cols]
 
         weights = self._weights
-        before, before_weight = self._before[columns], self._before_weight[columns]
-        dist = (weights[0] * d0[:, columns] + before) / (weights[0] + before_weight)
+        dist = (weights[0] * d0 + self._before[cols]) / (weights[0] + self._before_weight[cols])
         now_code = _TOD.get(now, -1) if now is not None else -1
         if now_code >= 0:
-            then = self._time_of_day.view[columns]
+            then = self._time_of_day.view[cols]
             dist = np.where((then >= 0) & (then != now_code), dist * p.time_of_day_penalty, dist)
-        inside = members[:, columns]
-        totals = np.cumsum(np.where(inside, dist, 0.0), axis=1)[:, -1] if columns.size else np.zeros(len(offered))
-        nearest = base.min(axis=1) if length else np.full(len(offered), math.inf)
-
-        counts = inside.sum(axis=1).tolist()
+        # bincount adds each candidate's members one by one in history order, as the reference does
+        totals = np.bincount(rows, weights=dist, minlength=len(offered)).tolist()
+        counts = np.bincount(rows, minlength=len(offered)).tolist()
+        bounds = np.searchsorted(rows, np.arange(len(offered) + 1)).tolist()
+        nearest = base.min(axis=1).tolist() if length else [math.inf] * len(offered)
 
         def members(c: int) -> tuple[np.ndarray, np.ndarray]:
-            chosen = np.flatnonzero(inside[c])
-            return columns[chosen], dist[c, chosen]
+            return cols[bounds[c]:bounds[c + 1]], dist[bounds[c]:bounds[c + 1]]
 
-        results = [Candidate(c, option, counts[c], float(totals[c]), float(nearest[c]), partial(members, c))
+        results = [Candidate(c, option, counts[c], totals[c], nearest[c], partial(members, c))
                    for c, option in enumerate(offered)]
         return assemble_ranking(p, self.opening_tasks, offered, results, tree_roots, present_objects,
                                 self._next_position.view, executed, self.options_)

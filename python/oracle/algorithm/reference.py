@@ -172,7 +172,7 @@ class ReferenceOracle(OracleParams):
 
     def fit(self, history: Iterable[Step]) -> ReferenceOracle:
         self.params_ = self.hyperparameters()
-        self.history_: tuple[Step, ...] = ()
+        self.history_: list[Step] = []
         for step in history:
             self._append(step)
         return self
@@ -190,7 +190,7 @@ class ReferenceOracle(OracleParams):
         for option in (step.option, *step.options):
             for iri in (option.task, *option.objects()):
                 class_row(self.distances, iri)
-        self.history_ = self.history_ + (step,)
+        self.history_.append(step)
 
     def _check_params(self) -> Hyperparameters:
         if not hasattr(self, "params_"):
