@@ -128,7 +128,7 @@ def test_kasteren_house_a(tmp_path):
     report = convert_kasteren.convert(KASTEREN, tmp_path)
     rows = check_output(tmp_path)
     assert report.actions == len(rows) == 1319
-    assert {r.user for r in rows} == {"kasteren_house_a"}
+    assert {r.user for r in rows} == {"kasteren-house-a"}
     times = [r.time for r in rows]
     assert times == sorted(times)
     assert len({r.action for r in rows}) == 14

@@ -1,3 +1,4 @@
+import re
 import subprocess
 import sys
 from collections import defaultdict
@@ -30,6 +31,8 @@ def test_split_is_17_of_105_like_the_thesis():
     assert [p.split for p in people].count("tune") == 17
     assert [p.split for p in people].count("test") == 88
     assert len({p.file_name for p in people}) == 105
+    # the user id of the chains is also the NEEM id: letters, digits and '-'
+    assert all(re.fullmatch(r"[A-Za-z0-9][A-Za-z0-9-]{0,63}", p.file_name) for p in people)
 
 
 def test_personas_have_the_appendix_b_shape_and_known_intentions():

@@ -67,7 +67,7 @@ ACTIONS = {
     "flush": {"task": "soma:PushingDown", "ref_role": False, "target_role": "soma:Patient", "disposition": "soma:Disposition"},
 }
 
-USER = "kasteren_house_a"
+USER = "kasteren-house-a"  # also the NEEM id, which allows no underscores
 _STAMP = "%d-%b-%Y %H:%M:%S"
 _LABEL = re.compile(r"^\s*\[\s*(\d+)\]\s*'([^']+)'")
 _ACTIVITY = re.compile(r"^\s*(\d+)\s*:\s*'([^']+)'")

@@ -165,9 +165,9 @@ def make_persona(seed: int, index: int, split: str = "test") -> Persona:
         f"You are {_article(occupation)} {occupation} {rng.choice(_AGES)}{rng.choice(_CONDITIONS)}; you {drink_text}, "
         f"always prefer your {colour} mug and like {prefs.snacks[0]}s as a snack."
     )
-    slug = f"{hot}_{colour}_{prefs.breakfast}"
+    slug = f"{hot}-{colour}-{prefs.breakfast}"  # hyphens: the user id is also the NEEM id
     return Persona(
-        file_name=f"p{index:03d}_{slug}",
+        file_name=f"p{index:03d}-{slug}",
         persona=text,
         daily_routine=tuple(sorted(routine, key=lambda e: e.time)),
         variations=tuple(variations),
