@@ -30,7 +30,7 @@ def test_type_queries_use_an_index(tmp_path):
     store = SQLiteStore(tmp_path / "s.sqlite")
     store.create_neem("n1")
     plan = store._conn.execute(
-        'EXPLAIN QUERY PLAN SELECT doc FROM "n1_triples" WHERE p=? AND ostar IN (SELECT cid FROM closure_member WHERE value=?)',
+        'EXPLAIN QUERY PLAN SELECT raw FROM "n1_triples" WHERE p=? AND ostar IN (SELECT cid FROM closure_member WHERE value=?)',
         (RDF_TYPE, X + "Item"),
     ).fetchall()
     assert any("USING INDEX" in row[-1] or "USING COVERING INDEX" in row[-1] for row in plan)

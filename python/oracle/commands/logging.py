@@ -16,6 +16,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     add_store_argument(parser)
     parser.add_argument("--ontology", type=Path, metavar="OWL", help="odb ontology file (default: build the shipped one)")
     parser.add_argument("--replace", action="store_true", help="replace a user's NEEM instead of adding a new one")
+    parser.add_argument("--commit-every", type=int, default=100, metavar="N",
+                        help="actions per transaction (1 = each action durable before the next; default 100)")
     parser.set_defaults(handler=run)
 
 
@@ -27,7 +29,7 @@ def run(args: argparse.Namespace) -> int:
     with open_store(args.store, number_format=args.numbers) as store:
         report: dict[str, int] = {}
         try:
-            import_chains(store, onto, args.chains, replace=args.replace, report=report)
+            import_chains(store, onto, args.chains, replace=args.replace, report=report, commit_every=args.commit_every)
         except NeemOracleError:
             _print(report)
             raise

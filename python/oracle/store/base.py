@@ -31,6 +31,9 @@ from oracle.store.model import (
 #: The logical collections of a NEEM, in KnowRob's order (``mng_client:collection_names``).
 KINDS: tuple[str, ...] = ("triples", "annotations", "tf", "inferred")
 
+#: A triple with its ``p*`` and ``o*``, ready to store.
+Closed = tuple[Triple, tuple[Any, ...], tuple[Any, ...]]
+
 _NEEM_ID = re.compile(r"^[A-Za-z0-9][A-Za-z0-9\-]{0,63}$")
 
 
@@ -149,24 +152,22 @@ class Store(ABC):
     def _insert_closed(
         self, neem_id: str, triples: Iterable[Triple], hierarchy: Hierarchy, builder: DocumentBuilder
     ) -> int:
-        pending: list[dict[str, Any]] = []
+        pending: list[Closed] = []
         count = 0
         with self.transaction():
             for triple in triples:
+                pending.append((triple, *builder.closures(triple)))
                 if triple.p in HIERARCHY and isinstance(triple.o, str):
-                    pending.append(builder.document(triple))
                     _, gained = hierarchy.add_edge(triple.s, triple.o)
                     if gained and triple.s in hierarchy.used:
-                        self._insert_documents(neem_id, "triples", pending)
+                        self._insert_triples(neem_id, pending, builder)
                         count += len(pending)
                         pending = []
                         self._propagate(neem_id, triple.s, gained)
                         hierarchy.patch_closures(triple.s, gained)
                         hierarchy.used.update(gained)
-                else:
-                    pending.append(builder.document(triple))
             if pending:
-                self._insert_documents(neem_id, "triples", pending)
+                self._insert_triples(neem_id, pending, builder)
                 count += len(pending)
         return count
 
@@ -195,6 +196,10 @@ class Store(ABC):
                 count += len(batch)
         self._hierarchies.pop(neem_id, None)
         return count
+
+    def _insert_triples(self, neem_id: str, closed: list[Closed], builder: DocumentBuilder) -> None:
+        """Store triples whose closures are computed; backends may skip building documents."""
+        self._insert_documents(neem_id, "triples", [builder.document(t, (ps, os_)) for t, ps, os_ in closed])
 
     @abstractmethod
     def _insert_documents(self, neem_id: str, kind: str, docs: list[dict[str, Any]]) -> None: ...

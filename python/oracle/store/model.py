@@ -176,6 +176,9 @@ class Hierarchy:
         cached = self._cache.get(term)
         if cached is not None:
             return cached
+        return self._compute(term, mark)
+
+    def _compute(self, term: Any, mark: bool) -> tuple[Any, ...]:
         seen = {term}
         out = [term]
         for parent_closure in self._parents.get(term, ()):
@@ -241,19 +244,26 @@ class DocumentBuilder:
                 self._scope_cache[key] = cached
         return cached
 
-    def document(self, triple: Triple) -> dict[str, Any]:
-        """The document KnowRob's kb_project would insert for ``triple`` (without propagation)."""
+    def closures(self, triple: Triple) -> tuple[tuple[Any, ...], tuple[Any, ...]]:
+        """(p*, o*) of a triple as kb_project computes them (knowrob-2x-facts §5)."""
         if triple.since > triple.until:
             raise ValueError(f"scope of {triple} ends before it starts")
-        if triple.p in TAXONOMIC:
-            pstar: tuple[Any, ...] = (triple.p,)
-            ostar = self.hierarchy.closure(triple.o) if isinstance(triple.o, str) else (triple.o,)
-        else:
-            pstar = self.hierarchy.closure(triple.p)
-            ostar = (triple.o,)
+        p = triple.p
+        if p in TAXONOMIC:
+            o = triple.o
+            return (p,), (self.hierarchy.closure(o) if type(o) is str else (o,))
+        return self.hierarchy.closure(p), (triple.o,)
+
+    def document(
+        self, triple: Triple, closures: tuple[tuple[Any, ...], tuple[Any, ...]] | None = None
+    ) -> dict[str, Any]:
+        """The document KnowRob's kb_project would insert for ``triple`` (without propagation).
+
+        It has no ``_id``: the database assigns one on insert, as for KnowRob's documents.
+        """
+        pstar, ostar = closures if closures is not None else self.closures(triple)
         value = encode_value(triple.o, self.number_format)
         return {
-            "_id": ObjectId(),
             "s": triple.s,
             "p": triple.p,
             "o": value,

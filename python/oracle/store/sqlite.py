@@ -9,8 +9,11 @@ triple and ``o* contains C`` is an indexed lookup.
 
 from __future__ import annotations
 
+import math
 import os
 import sqlite3
+import struct
+import time
 from collections.abc import Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from datetime import datetime, timezone
@@ -19,25 +22,30 @@ from typing import Any
 
 import bson
 from bson.decimal128 import Decimal128
+from bson.codec_options import DEFAULT_CODEC_OPTIONS, DatetimeConversion
 from bson.int64 import Int64
+from bson.objectid import ObjectId
 
 from oracle.errors import StoreError
-from oracle.store.base import KINDS, NeemInfo, Store, check_neem_id, new_meta, validate_patterns
+from oracle.store.base import KINDS, Closed, NeemInfo, Store, check_neem_id, new_meta, validate_patterns
 from oracle.store.model import (
     SUBCLASS_OF,
     SUBPROPERTY_OF,
     TAXONOMIC,
     Annotation,
+    DocumentBuilder,
     NumberFormat,
     Scope,
     Term,
     TriplePattern,
     Var,
+    encode_number,
+    encode_value,
     extend_closure,
     unix_seconds,
 )
 
-SCHEMA_VERSION = "1"
+SCHEMA_VERSION = "2"
 
 # Kinds of the ``o`` column, so a value reads back with its BSON type.
 K_STR, K_DOUBLE, K_DECIMAL, K_INT, K_LONG, K_BOOL, K_DATE, K_OTHER = range(8)
@@ -81,7 +89,20 @@ def _table(neem_id: str, kind: str) -> str:
     return _quote(f"{neem_id}_{kind}")
 
 
-_TRIPLE_INDEXES = (("sp", "s, p"), ("op", "o, p"), ("postar", "p, ostar"), ("pstaro", "pstar, o"))
+#: Columns ``_document`` rebuilds a triple document from.
+_DOC_COLUMNS = ", ".join(f"t0.{c}" for c in ("oid", "s", "p", "o", "ok", "pstar", "ostar", "graph", "since", "until", "sk", "raw"))
+SK_DECIMAL, SK_DOUBLE = 1, 2
+_CODEC = DEFAULT_CODEC_OPTIONS.with_options(datetime_conversion=DatetimeConversion.DATETIME_AUTO)
+
+# Partial indexes: the o* index only holds taxonomic rows and the p* index only the others,
+# so each row updates three indexes; queries repeat the WHERE term so SQLite may use them.
+_TAXONOMIC_SQL = "(" + ", ".join(f"'{p}'" for p in sorted(TAXONOMIC)) + ")"
+_TRIPLE_INDEXES = (
+    ("sp", "s, p", ""),
+    ("op", "o, p", ""),
+    ("postar", "p, ostar", " WHERE ostar > 0"),
+    ("pstaro", "pstar, o", f" WHERE p NOT IN {_TAXONOMIC_SQL}"),
+)
 
 
 class SQLiteStore(Store):
@@ -97,6 +118,12 @@ class SQLiteStore(Store):
         self._cids: dict[Any, int] = {}
         self._members: dict[int, tuple[Any, ...]] = {}
         self._time_cache: dict[bytes, float] = {}
+        self._scopes: dict[tuple[Any, ...], dict[str, Any]] = {}
+        #: NEEM ids seen to exist; forgotten on drop/rename (another process may drop one too,
+        #: then the next statement fails with "no such table", still a StoreError).
+        self._present: set[str] = set()
+        self._random = os.urandom(5)
+        self._counter = int.from_bytes(os.urandom(3), "big")
 
     # -- connection -------------------------------------------------------------------------
     def _connect(self) -> sqlite3.Connection:
@@ -109,6 +136,8 @@ class SQLiteStore(Store):
             conn.execute("PRAGMA journal_mode=WAL")
             conn.execute("PRAGMA synchronous=NORMAL")
             conn.execute("PRAGMA temp_store=MEMORY")
+            # Fewer, larger checkpoints: each one fsyncs, commits themselves do not.
+            conn.execute("PRAGMA wal_autocheckpoint=8192")
             conn.execute("PRAGMA cache_size=-65536")
             conn.executescript(
                 """
@@ -118,7 +147,7 @@ class SQLiteStore(Store):
                 CREATE TABLE IF NOT EXISTS closure_member(cid INTEGER NOT NULL, pos INTEGER NOT NULL, value,
                     PRIMARY KEY(cid, pos)) WITHOUT ROWID;
                 CREATE INDEX IF NOT EXISTS closure_member_value ON closure_member(value, cid);
-                INSERT OR IGNORE INTO store_info VALUES ('schema', '1');
+                INSERT OR IGNORE INTO store_info VALUES ('schema', '2');
                 """
             )
             version = conn.execute("SELECT value FROM store_info WHERE key='schema'").fetchone()[0]
@@ -155,7 +184,12 @@ class SQLiteStore(Store):
         return [NeemInfo.from_meta(neem_id, bson.decode(meta)) for neem_id, meta in rows]
 
     def has_neem(self, neem_id: str) -> bool:
-        return self._conn.execute("SELECT 1 FROM neems WHERE id=?", (neem_id,)).fetchone() is not None
+        if neem_id in self._present:
+            return True
+        found = self._conn.execute("SELECT 1 FROM neems WHERE id=?", (neem_id,)).fetchone() is not None
+        if found:
+            self._present.add(neem_id)
+        return found
 
     def neem(self, neem_id: str) -> NeemInfo:
         row = self._conn.execute("SELECT meta FROM neems WHERE id=?", (neem_id,)).fetchone()
@@ -174,11 +208,13 @@ class SQLiteStore(Store):
         with self.transaction():
             self._conn.execute("INSERT INTO neems VALUES (?, ?)", (neem_id, bson.encode(record)))
             self._conn.execute(
-                f"CREATE TABLE {t('triples')}(id INTEGER PRIMARY KEY, s, p, o, ok INTEGER, pstar INTEGER,"
-                " ostar INTEGER, graph, since REAL, until REAL, doc BLOB NOT NULL)"
+                f"CREATE TABLE {t('triples')}(id INTEGER PRIMARY KEY, oid BLOB NOT NULL, s, p, o, ok INTEGER,"
+                " pstar INTEGER, ostar INTEGER, graph, since REAL, until REAL, sk INTEGER, raw BLOB)"
             )
-            for name, cols in _TRIPLE_INDEXES:
-                self._conn.execute(f"CREATE INDEX {_quote(f'{neem_id}_triples_{name}')} ON {t('triples')}({cols})")
+            for name, cols, where in _TRIPLE_INDEXES:
+                self._conn.execute(
+                    f"CREATE INDEX {_quote(f'{neem_id}_triples_{name}')} ON {t('triples')}({cols}){where}"
+                )
             self._conn.execute(f"CREATE TABLE {t('annotations')}(id INTEGER PRIMARY KEY, s, p, doc BLOB NOT NULL)")
             self._conn.execute(f"CREATE INDEX {_quote(f'{neem_id}_annotations_sp')} ON {t('annotations')}(s, p)")
             self._conn.execute(
@@ -195,6 +231,7 @@ class SQLiteStore(Store):
             for kind in KINDS:
                 self._conn.execute(f"DROP TABLE IF EXISTS {_table(neem_id, kind)}")
             self._conn.execute("DELETE FROM neems WHERE id=?", (neem_id,))
+        self._present.discard(neem_id)
         self._hierarchies.pop(neem_id, None)
 
     def rename_neem(self, neem_id: str, new_id: str) -> None:
@@ -207,6 +244,7 @@ class SQLiteStore(Store):
                 self._conn.execute(f"ALTER TABLE {_table(neem_id, kind)} RENAME TO {_table(new_id, kind)}")
             self._conn.execute("UPDATE neems SET id=? WHERE id=?", (new_id, neem_id))
         del info
+        self._present.discard(neem_id)
         self._hierarchies.pop(neem_id, None)
 
     def update_meta(self, neem_id: str, **fields: Any) -> NeemInfo:
@@ -219,6 +257,9 @@ class SQLiteStore(Store):
     # -- closures ---------------------------------------------------------------------------
     def _cid(self, closure: Sequence[Any]) -> int:
         """Id of a closure list, created on first use (content-addressed, shared by all NEEMs)."""
+        cid = self._cids.get(closure) if type(closure) is tuple else None
+        if cid is not None:
+            return cid
         key: Any = tuple(closure)
         if not all(type(item) is str for item in key):
             key = bson.encode({"c": list(closure)})
@@ -256,7 +297,42 @@ class SQLiteStore(Store):
             return cached
         return unix_seconds(value)
 
+    def _oid(self) -> bytes:
+        """A fresh ObjectId's 12 bytes (time, per-store random, counter), without the object."""
+        self._counter = (self._counter + 1) & 0xFFFFFF
+        return struct.pack(">I", int(time.time())) + self._random + self._counter.to_bytes(3, "big")
+
+    def _insert_triples(self, neem_id: str, closed: list[Closed], builder: DocumentBuilder) -> None:
+        """Rows straight from triples: the document is rebuilt from columns when read."""
+        self._require(neem_id)
+        decimal = builder.number_format == "decimal128"
+        float_kind, scope_kind = (K_DECIMAL, SK_DECIMAL) if decimal else (K_DOUBLE, SK_DOUBLE)
+        cid = self._cid
+        rows = []
+        for triple, pstar, ostar in closed:
+            o = triple.o
+            if type(o) is str:
+                sql_o, kind = o, K_STR
+            elif type(o) is float:
+                sql_o, kind = o, float_kind
+            else:
+                sql_o, kind = _sql_value(encode_value(o, builder.number_format))
+            if triple.p in TAXONOMIC:
+                ostar_cid = cid(ostar)
+            else:
+                ostar_cid = 0
+            rows.append((self._oid(), triple.s, triple.p, sql_o, kind, cid(pstar), ostar_cid, triple.graph,
+                         triple.since, triple.until, scope_kind))  # fmt: skip
+        self._conn.executemany(
+            f"INSERT INTO {_table(neem_id, 'triples')}(oid, s, p, o, ok, pstar, ostar, graph, since, until, sk)"
+            " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+            rows,
+        )
+
     def _triple_row(self, doc: Mapping[str, Any]) -> tuple[Any, ...]:
+        """Columns of a document stored as given (kept whole in ``raw`` for an exact dump)."""
+        if "_id" not in doc:
+            doc = {"_id": ObjectId(), **doc}
         p = doc.get("p")
         o = doc.get("o")
         sql_o, kind = _sql_value(o)
@@ -269,10 +345,12 @@ class SQLiteStore(Store):
             ostar_cid = 0  # the trivial [o] of a non-taxonomic triple needs no closure row
         else:
             ostar_cid = self._cid(ostar)
-        time = (doc.get("scope") or {}).get("time") or {}
-        since = self._seconds(time.get("since"))
-        until = self._seconds(time.get("until"))
-        return (doc.get("s"), p, sql_o, kind, pstar_cid, ostar_cid, doc.get("graph"), since, until, bson.encode(doc))
+        time_ = (doc.get("scope") or {}).get("time") or {}
+        since = self._seconds(time_.get("since"))
+        until = self._seconds(time_.get("until"))
+        oid = doc["_id"].binary if isinstance(doc["_id"], ObjectId) else b""
+        return (oid, doc.get("s"), p, sql_o, kind, pstar_cid, ostar_cid, doc.get("graph"), since, until, None,
+                bson.encode(doc, codec_options=_CODEC))  # fmt: skip
 
     def _insert_documents(self, neem_id: str, kind: str, docs: list[dict[str, Any]]) -> None:
         self._require(neem_id)
@@ -281,8 +359,8 @@ class SQLiteStore(Store):
             if kind == "triples":
                 rows = [self._triple_row(doc) for doc in docs]
                 self._conn.executemany(
-                    f"INSERT INTO {table}(s, p, o, ok, pstar, ostar, graph, since, until, doc)"
-                    " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
+                    f"INSERT INTO {table}(oid, s, p, o, ok, pstar, ostar, graph, since, until, sk, raw)"
+                    " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
                     rows,
                 )
             elif kind == "annotations":
@@ -314,15 +392,20 @@ class SQLiteStore(Store):
             new_cid = self._cid(extend_closure(self._closure(cid), gained))
             for column, field, taxonomic in (("ostar", "o*", True), ("pstar", "p*", False)):
                 op = "IN" if taxonomic else "NOT IN"
+                self._conn.execute(
+                    f"UPDATE {table} SET {column}=? WHERE {column}=? AND raw IS NULL AND p {op} (?, ?, ?)",
+                    (new_cid, cid, *sorted(TAXONOMIC)),
+                )
                 rows = self._conn.execute(
-                    f"SELECT id, doc FROM {table} WHERE {column}=? AND p {op} (?, ?, ?)", (cid, *sorted(TAXONOMIC))
+                    f"SELECT id, raw FROM {table} WHERE {column}=? AND raw IS NOT NULL AND p {op} (?, ?, ?)",
+                    (cid, *sorted(TAXONOMIC)),
                 ).fetchall()
                 updates = []
                 for rowid, blob in rows:
-                    doc = bson.decode(blob)
+                    doc = bson.decode(blob, codec_options=_CODEC)
                     doc[field] = list(extend_closure(doc[field], gained))
-                    updates.append((new_cid, bson.encode(doc), rowid))
-                self._conn.executemany(f"UPDATE {table} SET {column}=?, doc=? WHERE id=?", updates)
+                    updates.append((new_cid, bson.encode(doc, codec_options=_CODEC), rowid))
+                self._conn.executemany(f"UPDATE {table} SET {column}=?, raw=? WHERE id=?", updates)
 
     def _hierarchy_source(self, neem_id: str) -> tuple[list[tuple[str, tuple[Any, ...]]], set[Any]]:
         table = _table(neem_id, "triples")
@@ -347,9 +430,14 @@ class SQLiteStore(Store):
         if kind not in KINDS:
             raise StoreError(f"unknown collection kind {kind!r}")
         self._require(neem_id)
+        if kind == "triples":
+            cursor = self._conn.execute(f"SELECT {_DOC_COLUMNS} FROM {_table(neem_id, kind)} AS t0 ORDER BY id")
+            for row in cursor:
+                yield self._document(row)
+            return
         cursor = self._conn.execute(f"SELECT doc FROM {_table(neem_id, kind)} ORDER BY id")
         for (blob,) in cursor:
-            yield bson.decode(blob)
+            yield bson.decode(blob, codec_options=_CODEC)
 
     def count(self, neem_id: str, kind: str = "triples") -> int:
         if kind not in KINDS:
@@ -376,11 +464,47 @@ class SQLiteStore(Store):
         query = _Compiler(_table(neem_id, "triples"), scope)
         query.add(pattern, exact=exact)
         self._require(neem_id)
-        sql = f"SELECT t0.doc FROM {query.from_clause()} WHERE {query.where()} ORDER BY t0.id"
+        sql = f"SELECT {_DOC_COLUMNS} FROM {query.from_clause()} WHERE {query.where()} ORDER BY t0.id"
         if limit is not None:
             sql += f" LIMIT {int(limit)}"
-        for (blob,) in self._conn.execute(sql, query.params):
-            yield bson.decode(blob)
+        for row in self._conn.execute(sql, query.params).fetchall():
+            yield self._document(row)
+
+    def _scope_doc(self, since: float | None, until: float | None, sk: int) -> dict[str, Any]:
+        key = (since, until, sk)
+        cached = self._scopes.get(key)
+        if cached is None:
+            fmt: NumberFormat = "decimal128" if sk == SK_DECIMAL else "double"
+            cached = {"time": {"since": encode_number(since, fmt), "until": encode_number(until, fmt)}}
+            if len(self._scopes) < 4096:
+                self._scopes[key] = cached
+        return {"time": dict(cached["time"])}
+
+    def _document(self, row: Sequence[Any]) -> dict[str, Any]:
+        """A stored document: the raw one when loaded, else rebuilt from the columns."""
+        oid, s, p, o, ok, pstar, ostar, graph, since, until, sk, raw = row
+        if raw is not None:
+            return bson.decode(raw, codec_options=_CODEC)
+        if ok in (K_DECIMAL, K_DOUBLE) and o is None:
+            o = math.nan  # SQLite keeps NaN as NULL
+        if ok == K_DECIMAL:
+            value: Any = encode_number(o, "decimal128")
+        elif ok == K_LONG:
+            value = Int64(o)
+        elif ok == K_DATE:
+            value = datetime.fromtimestamp(o, timezone.utc).replace(tzinfo=None)  # as pymongo decodes Dates
+        else:
+            value = _python_value(o, ok)
+        return {
+            "_id": ObjectId(oid),
+            "s": s,
+            "p": p,
+            "o": value,
+            "p*": list(self._closure(pstar)),
+            "o*": [value] if ostar == 0 else list(self._closure(ostar)),
+            "graph": graph,
+            "scope": self._scope_doc(since, until, sk),
+        }
 
     def match(
         self,
@@ -474,15 +598,17 @@ class _Compiler:
             if taxonomic:
                 self.conds.append(f"{a}.p=?")
             else:
-                self.conds.append(f"{a}.pstar IN (SELECT cid FROM closure_member WHERE value=?)")
+                self.conds.append(
+                    f"{a}.pstar IN (SELECT cid FROM closure_member WHERE value=?) AND {a}.p NOT IN {_TAXONOMIC_SQL}"
+                )
             self.params.append(p)
         # object
         o = pattern.o
         if isinstance(o, Var) and o.name in self.bound and taxonomic:
             expr = self.bound[o.name][0]
-            self.conds.append(f"{a}.ostar IN (SELECT cid FROM closure_member WHERE value={expr})")
+            self.conds.append(f"{a}.ostar IN (SELECT cid FROM closure_member WHERE value={expr}) AND {a}.ostar > 0")
         elif o is not None and not isinstance(o, Var) and taxonomic:
-            self.conds.append(f"{a}.ostar IN (SELECT cid FROM closure_member WHERE value=?)")
+            self.conds.append(f"{a}.ostar IN (SELECT cid FROM closure_member WHERE value=?) AND {a}.ostar > 0")
             self.params.append(_sql_value(o)[0])
         else:
             self._term(o, f"{a}.o", f"{a}.ok")
