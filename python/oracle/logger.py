@@ -532,6 +532,7 @@ def import_chains(
     report: dict[str, int] | None = None,
     idle_threshold: float = IDLE_THRESHOLD,
     commit_every: int = 1,
+    tbox: TBox | None = None,
 ) -> dict[str, int]:
     """Log a chains JSONL file, one NEEM per user; return {NEEM id: actions committed}.
 
@@ -544,7 +545,7 @@ def import_chains(
 
     report = {} if report is None else report
     loggers: dict[str, NeemLogger] = {}
-    tbox = tbox_from_graph(onto.graph)
+    tbox = tbox if tbox is not None else tbox_from_graph(onto.graph)
     where = str(path)
     try:
         for row in read_chains(path):
