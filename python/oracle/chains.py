@@ -1,5 +1,9 @@
 """Action chains in text: ``task(obj1[, obj2])`` (thesis 5.2) and their JSONL files.
 
+A JSONL row is ``{"user", "time", "end" | "duration", "action", "available"}``; only ``user`` and
+``action`` are required. ``end`` matters for idle detection: a gap of 20 s or more between one
+action's end (its start when no end is given) and the next start is an odb:IdleTask.
+
 A call names an odb task and zero, one or two odb objects. With two arguments the first plays
 the task's reference role (the object the arm holds or uses) and the second its target role;
 with one argument the object plays the target role, or the reference role when the task has no
@@ -13,7 +17,7 @@ import re
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from functools import lru_cache
-from datetime import datetime
+from datetime import datetime, timedelta
 from pathlib import Path
 
 from oracle.errors import ChainSyntaxError
@@ -71,11 +75,14 @@ class ChainRow:
     available: tuple[TaskCall, ...] | None = None
     line: int = 0
     extra: dict[str, object] = field(default_factory=dict, compare=False)
+    end: datetime | None = None
 
     def to_json(self) -> dict[str, object]:
         row: dict[str, object] = {"user": self.user}
         if self.time is not None:
             row["time"] = self.time.isoformat()
+        if self.end is not None:
+            row["end"] = self.end.isoformat()
         row["action"] = str(self.action)
         if self.available is not None:
             row["available"] = [str(call) for call in self.available]
@@ -87,7 +94,7 @@ def parse_row(obj: object, where: str = "<row>") -> ChainRow:
     """Turn one decoded JSON object into a ChainRow; ``where`` names file and line in errors."""
     if not isinstance(obj, dict):
         raise ChainSyntaxError(f"{where}: expected a JSON object, got {type(obj).__name__}")
-    unknown = set(obj) - {"user", "time", "action", "available"}
+    unknown = set(obj) - {"user", "time", "end", "duration", "action", "available"}
     user = obj.get("user")
     if not isinstance(user, str) or not user:
         raise ChainSyntaxError(f"{where}: 'user' must be a non-empty string")
@@ -102,18 +109,34 @@ def parse_row(obj: object, where: str = "<row>") -> ChainRow:
             available = tuple(parse_call(item) for item in obj["available"])
     except ChainSyntaxError as error:
         raise ChainSyntaxError(f"{where}: {error}") from None
-    time = None
-    if obj.get("time") is not None:
-        raw = obj["time"]
-        if not isinstance(raw, str):
-            raise ChainSyntaxError(f"{where}: 'time' must be an ISO-8601 string")
-        try:
-            time = datetime.fromisoformat(raw.replace("Z", "+00:00"))
-        except ValueError:
-            raise ChainSyntaxError(f"{where}: 'time' {raw!r} is not ISO-8601") from None
+    time = _moment(obj, "time", where)
+    end = _moment(obj, "end", where)
+    if obj.get("duration") is not None:
+        duration = obj["duration"]
+        if isinstance(duration, bool) or not isinstance(duration, (int, float)) or duration < 0:
+            raise ChainSyntaxError(f"{where}: 'duration' must be a number of seconds >= 0, got {duration!r}")
+        if time is None:
+            raise ChainSyntaxError(f"{where}: 'duration' needs a 'time'")
+        if end is not None:
+            raise ChainSyntaxError(f"{where}: give 'end' or 'duration', not both")
+        end = time + timedelta(seconds=float(duration))
+    if end is not None and (time is None or end < time):
+        raise ChainSyntaxError(f"{where}: 'end' must not be before 'time'")
     line = int(where.rsplit(":", 1)[-1]) if where.rsplit(":", 1)[-1].isdigit() else 0
     extra = {key: obj[key] for key in sorted(unknown)}
-    return ChainRow(user, action, time, available, line, extra)
+    return ChainRow(user, action, time, available, line, extra, end)
+
+
+def _moment(obj: dict, key: str, where: str) -> datetime | None:
+    raw = obj.get(key)
+    if raw is None:
+        return None
+    if not isinstance(raw, str):
+        raise ChainSyntaxError(f"{where}: {key!r} must be an ISO-8601 string")
+    try:
+        return datetime.fromisoformat(raw.replace("Z", "+00:00"))
+    except ValueError:
+        raise ChainSyntaxError(f"{where}: {key!r} {raw!r} is not ISO-8601") from None
 
 
 def read_chains(path: Path | str) -> Iterator[ChainRow]:

@@ -3,8 +3,8 @@ the user's earlier actions (thesis 5.3); then the action joins the history.
 
 Rows without an ``available`` set get as candidates every distinct action of that user in the
 input. Candidate sets are shuffled with a generator seeded by user and position, identically for
-every method. A gap of ``IDLE_THRESHOLD_S`` or more between two timed actions inserts an
-odb:IdleTask step into the history (it is a chain delimiter, never a prediction target).
+every method. A gap of ``IDLE_THRESHOLD_S`` or more between one action's end (its start when the
+row has no end) and the next start inserts an odb:IdleTask step into the history (it is a chain delimiter, never a prediction target).
 """
 
 from __future__ import annotations
@@ -144,7 +144,8 @@ def replay(
                 idle = idle_step(ontology, row.time)
                 for method in methods:
                     method.observe(idle)
-            previous_time = row.time if row.time is not None else previous_time
+            if row.time is not None:
+                previous_time = row.end if row.end is not None else row.time
             truth = convert(row.action)
             if row.available is not None:
                 candidates = list(OrderedDict.fromkeys(convert(call) for call in row.available))

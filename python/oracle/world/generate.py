@@ -24,6 +24,10 @@ from oracle.world.state import State
 
 #: Day 1 of every simulated week (a Monday); times are naive local clock times.
 FIRST_DAY = datetime(2025, 3, 3)
+#: An action takes 3-45 s; the next starts 1-10 s after it ended, so within a routine the robot
+#: never idles (an idle period is 20 s or more, thesis 3.4) and between routines it always does.
+ACTION_SECONDS = (3.0, 45.0)
+TRANSITION_SECONDS = (1.0, 10.0)
 
 #: A script step: an action text, or a directive evaluated against the state when it is reached.
 Step = str | tuple[str, ...]
@@ -300,19 +304,21 @@ class _Simulator:
             for wanted in self._expand(day, step, state):
                 if day.rng.random() < prefs.noise:
                     stray = day.rng.choice(world.available(state))
-                    row = ChainRow(user, stray, clock, world.available(state))
+                    end = clock + timedelta(seconds=day.rng.uniform(*ACTION_SECONDS))
+                    row = ChainRow(user, stray, clock, world.available(state), end=end)
                     state = world.apply(state, stray)
                     yield row, state, clock
-                    clock += timedelta(seconds=day.rng.uniform(3, 60))
+                    clock = end + timedelta(seconds=day.rng.uniform(*TRANSITION_SECONDS))
                 plan = world.repair(state, wanted, park=prefs.table)
                 if plan is None:
                     self.skipped += 1
                     continue
                 for call in plan:
-                    row = ChainRow(user, call, clock, world.available(state))
+                    end = clock + timedelta(seconds=day.rng.uniform(*ACTION_SECONDS))
+                    row = ChainRow(user, call, clock, world.available(state), end=end)
                     state = world.apply(state, call)
                     yield row, state, clock
-                    clock += timedelta(seconds=day.rng.uniform(3, 60))
+                    clock = end + timedelta(seconds=day.rng.uniform(*TRANSITION_SECONDS))
 
 
 def simulate(persona: Persona, world: World, days: int, seed: int) -> tuple[list[ChainRow], int]:
