@@ -1,0 +1,211 @@
+:- module(answers,
+    [ why_not/2,                  % +Call, -Reason
+      why_not/3,                  % +Call, +Time, -Reason
+      what_next/1,                % -Chain
+      something_else/2,           % ?Current, -Alternative
+      something_else/3,           % ?Current, -Alternative, -RankScore
+      chosen_after/3,             % +Time, -Call, -Begin
+      call_text/2,                % +Call, -Text
+      reason_dict/2,              % +Reason, -Dict
+      answer_json/1               % -JSONString
+    ]).
+/** <module> The robot's answers (thesis 4.6)
+
+"Why didn't you do X?", "What do you want to do next?" and "Do something else!",
+answered from the history of imagined situations, imagined preferences and executed
+actions in the NEEM (odb_model). Calls are chain terms such as `pick(banana)`.
+
+Reason terms of why_not/2,3 (each a separate solution, most telling first):
+
+  - done(Call, Begin): it was done then (the question's premise is wrong);
+  - not_available(Call, When, Why): it was not among the tasks imagined available at
+    the decision of time When; Why is `object_not_perceived(Object)` when an object of
+    the call appears in none of the available tasks, else `precondition_failed`;
+  - ranked_lower(Call, When, rank(Rank, Score), Higher): it was available but the
+    imagined preference ranked the tasks Higher (`ranked(Call, Rank, Score)`) above it;
+  - user_chose(Other, Begin): the user had the robot do Other instead;
+  - done_later(Call, Begin) / done_earlier(Call, Begin): when it was done nearest after
+    (before) the time asked about.
+*/
+
+:- use_module(library(error)).
+:- use_module(library(lists)).
+:- use_module(library(apply)).
+:- use_module(library(http/json)).
+:- use_module(neem_store).
+:- use_module(knowrob_model).
+:- use_module(odb_model).
+
+%!  why_not(+Call, -Reason) is nondet.
+%   Why Call was not done lately: at the latest decision the robot made.
+why_not(Call, Reason) :-
+    check_call(Call),
+    (   findall(B, decision(situation, _, B), Bs), max_list(Bs, At)
+    ->  true
+    ;   get_time(At)
+    ),
+    why_not(Call, At, Reason).
+
+%!  why_not(+Call, +Time, -Reason) is nondet.
+%   Why Call was not done at Time (unix seconds).
+why_not(Call, At, Reason) :-
+    check_call(Call),
+    must_be(number, At),
+    times_done(Call, Done),
+    (   member(action(B, E, _), Done), B =< At, At =< E
+    ->  Reason = done(Call, B)
+    ;   decision_at(situation, At, M)
+    ->  once(kb_call(event_interval(M, When, _), any)),
+        reasons_at(Call, At, M, When, Done, Reason)
+    ;   later_earlier(Call, At, Done, Reason)
+    ).
+
+reasons_at(Call, At, M, When, Done, Reason) :-
+    imagined_available(M, Available),
+    (   \+ memberchk(Call, Available)
+    ->  missing_reason(Call, Available, Why),
+        R1 = [not_available(Call, When, Why)]
+    ;   preference_at(At, _, Ranked),
+        nth1(_, Ranked, ranked(Call, Rank, Score)),
+        Rank > 1
+    ->  findall(ranked(C, R, S), ( member(ranked(C, R, S), Ranked), R < Rank ), Higher),
+        R1 = [ranked_lower(Call, When, rank(Rank, Score), Higher)]
+    ;   R1 = []
+    ),
+    (   chosen_after(When, Other, OB), Other \== Call
+    ->  R2 = [user_chose(Other, OB)]
+    ;   R2 = []
+    ),
+    findall(R, later_earlier(Call, At, Done, R), R3),
+    append([R1, R2, R3], Reasons),
+    member(Reason, Reasons).
+
+missing_reason(Call, Available, object_not_perceived(Obj)) :-
+    Call =.. [_|Objects],
+    findall(O, ( member(A, Available), A =.. [_|Os], member(O, Os) ), Seen),
+    member(Obj, Objects),
+    \+ memberchk(Obj, Seen), !.
+missing_reason(_, _, precondition_failed).
+
+later_earlier(Call, At, Done, done_later(Call, B)) :-
+    member(action(B, _, _), Done), B > At, !.
+later_earlier(Call, At, Done, done_earlier(Call, B)) :-
+    reverse(Done, Rev),
+    member(action(B, E, _), Rev), E < At, !.
+
+%!  chosen_after(+Time, -Call, -Begin) is semidet.
+%   The first non-idle task executed at or after Time.
+chosen_after(Time, Call, Begin) :-
+    odb_iri('IdleTask', Idle),
+    findall(B-T, kb_call(( executes_task(A, T), has_time_interval(A, I),
+                           has_interval_begin(I, B) ), any), Pairs0),
+    include(not_before(Time), Pairs0, Pairs1),
+    sort(Pairs1, Pairs),
+    member(Begin-T, Pairs),
+    \+ kb_call(instance_of(T, Idle), any),
+    task_call(T, Call), !.
+
+not_before(Time, B-_) :- B >= Time.
+
+%!  what_next(-Chain) is semidet.
+%   The predicted next tasks, best first, from the latest imagined preference:
+%   a list of `ranked(Call, Rank, Score)`.
+what_next(Chain) :-
+    latest_preference(_, _, Chain).
+
+%!  something_else(?Current, -Alternative) is nondet.
+%!  something_else(?Current, -Alternative, -RankScore) is nondet.
+%   Alternatives to Current, best first, from the preference imagined before Current
+%   started (or the latest one when Current was not started). Current defaults to the
+%   task of the latest action. RankScore is `rank(Rank, Score)`.
+something_else(Current, Alternative) :-
+    something_else(Current, Alternative, _).
+
+something_else(Current, Alternative, rank(R, S)) :-
+    (   var(Current)
+    ->  latest_action(Current, Begin)
+    ;   check_call(Current),
+        (   times_done(Current, Done), last(Done, action(Begin, _, _)) -> true ; true )
+    ),
+    (   number(Begin), preference_at(Begin, _, Ranked)
+    ->  true
+    ;   latest_preference(_, _, Ranked)
+    ),
+    member(ranked(Alternative, R, S), Ranked),
+    Alternative \== Current.
+
+latest_action(Call, Begin) :-
+    odb_iri('IdleTask', Idle),
+    findall(B-T, kb_call(( executes_task(A, T), has_time_interval(A, I),
+                           has_interval_begin(I, B) ), any), Pairs0),
+    sort(0, @>=, Pairs0, Pairs),
+    member(Begin-T, Pairs),
+    \+ kb_call(instance_of(T, Idle), any),
+    task_call(T, Call), !.
+
+check_call(Call) :-
+    must_be(callable, Call),
+    Call =.. [_|Args],
+    maplist(must_be(atom), Args).
+
+                 /*******************************
+                 *        FOR THE BRIDGE        *
+                 *******************************/
+
+%!  call_text(+Call, -Text) is det.
+%   `pick(banana)` as the string "pick(banana)" (chain syntax, no quoting).
+call_text(Call, Text) :-
+    Call =.. [Name|Args],
+    (   Args == []
+    ->  atom_string(Name, Text)
+    ;   atomic_list_concat(Args, ', ', Inner),
+        format(string(Text), "~w(~w)", [Name, Inner])
+    ).
+
+ranked_dict(ranked(C, R, S), _{task: T, rank: R, score: S}) :-
+    call_text(C, T).
+
+%!  reason_dict(+Reason, -Dict) is det.
+%   A reason term as a JSON-ready dict with a `reason` key naming its kind.
+reason_dict(done(C, B), _{reason: done, task: T, time: B}) :- call_text(C, T).
+reason_dict(not_available(C, W, Why), D) :-
+    call_text(C, T),
+    (   Why = object_not_perceived(O)
+    ->  D = _{reason: not_available, task: T, time: W, why: object_not_perceived, object: O}
+    ;   D = _{reason: not_available, task: T, time: W, why: Why}
+    ).
+reason_dict(ranked_lower(C, W, rank(R, S), Higher), _{reason: ranked_lower, task: T, time: W,
+                                                      rank: R, score: S, higher: Hs}) :-
+    call_text(C, T), maplist(ranked_dict, Higher, Hs).
+reason_dict(user_chose(C, B), _{reason: user_chose, task: T, time: B}) :- call_text(C, T).
+reason_dict(done_later(C, B), _{reason: done_later, task: T, time: B}) :- call_text(C, T).
+reason_dict(done_earlier(C, B), _{reason: done_earlier, task: T, time: B}) :- call_text(C, T).
+
+%!  answer_json(-JSON) is det.
+%   Answer the request the Python bridge handed over (store_python_request/1) as a JSON
+%   string; the request's values arrive as arguments, never as query text.
+answer_json(JSON) :-
+    store_python_request(Request),
+    answer(Request, Dict),
+    with_output_to(string(JSON), json_write_dict(current_output, Dict, [width(0)])).
+
+answer([why_not, Name, Args, At], _{question: why_not, task: T, at: AtOut, reasons: Ds}) :-
+    Call =.. [Name|Args],
+    call_text(Call, T),
+    (   number(At)
+    ->  findall(R, why_not(Call, At, R), Rs), AtOut = At
+    ;   findall(R, why_not(Call, R), Rs), AtOut = null
+    ),
+    maplist(reason_dict, Rs, Ds).
+answer([what_next], _{question: what_next, chain: Ds}) :-
+    (   what_next(Chain) -> true ; Chain = [] ),
+    maplist(ranked_dict, Chain, Ds).
+answer([something_else, Name, Args], _{question: something_else, current: CT,
+                                       alternatives: Ds}) :-
+    (   Name == none -> true ; Current =.. [Name|Args] ),
+    findall(ranked(A, R, S), something_else(Current, A, rank(R, S)), Alts),
+    (   var(Current) -> CT = null ; call_text(Current, CT) ),
+    maplist(ranked_dict, Alts, Ds).
+answer([chain_before, Action, N], _{question: chain_before, chain: Ts}) :-
+    chain_before(Action, N, Calls),
+    maplist(call_text, Calls, Ts).

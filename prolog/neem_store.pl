@@ -1,0 +1,283 @@
+:- module(neem_store,
+    [ store_backend/1,          % ?Backend
+      store_use_memory/0,
+      store_use_python/1,       % +NeemId
+      store_current_neem/1,     % ?NeemId
+      store_assert/1,           % +Triple
+      store_assert/3,           % +Triple, +Since, +Until
+      store_reset/0,
+      store_match/2,            % +Patterns, +Scope
+      store_match/3,            % +Patterns, +Scope, +Options
+      store_insert/1,           % +Triples
+      store_taxonomic/1,        % ?Property
+      store_scope_now/1,        % -Scope
+      store_python_request/1,   % -Request
+      store_set_request/1       % +Request
+    ]).
+/** <module> NEEM store access: the only module that touches the Python store
+
+Every triple lookup of the Prolog side goes through store_match/2, which evaluates a list of
+triple patterns `t(S,P,O)` as ONE conjunction with KnowRob 2.x's `p*`/`o*` semantics
+(knowrob-2x-facts §5):
+
+  - a taxonomic property (rdf:type, rdfs:subClassOf, rdfs:subPropertyOf) matches the
+    asserted property exactly and a bound object against the class closure `o*`;
+  - any other property matches the property closure `p*`, the object exactly.
+
+Two backends implement it:
+
+  - `python`: the Python bridge (python/oracle/bridge.py) registered the foreign predicate
+    py_match/2 in this module; the conjunction crosses into Python once and becomes one SQL
+    join (SQLite) or one aggregation pipeline (MongoDB). Results come back in chunks.
+  - `memory`: triples asserted with store_assert/1,3, evaluated in Prolog. It lets every
+    module above this one be tested with plunit, without Python.
+
+A question scope is `scope(Since, Until)`: a fact is visible when its own scope contains
+`[Since, Until]` (KnowRob's `since =< Since, until >= Until`), or `any` for no time filter.
+*/
+
+:- use_module(library(error)).
+:- use_module(library(lists)).
+:- use_module(library(apply)).
+
+:- dynamic backend_/1.
+:- dynamic mem_triple/5.        % S, P, O, Since, Until
+
+backend_(memory).
+
+rdf_type('http://www.w3.org/1999/02/22-rdf-syntax-ns#type').
+subclass_of_iri('http://www.w3.org/2000/01/rdf-schema#subClassOf').
+subproperty_of_iri('http://www.w3.org/2000/01/rdf-schema#subPropertyOf').
+
+%!  store_taxonomic(?Property) is nondet.
+%   Property is one of the three taxonomic properties whose object is closed over `o*`.
+store_taxonomic(P) :- rdf_type(P).
+store_taxonomic(P) :- subclass_of_iri(P).
+store_taxonomic(P) :- subproperty_of_iri(P).
+
+%!  store_backend(?Backend) is det.
+%   Backend is `memory` or `python(NeemId)`.
+store_backend(B) :- backend_(B).
+
+%!  store_use_memory is det.
+%   Answer from the asserted triples (the default).
+store_use_memory :-
+    retractall(backend_(_)),
+    assertz(backend_(memory)).
+
+%!  store_use_python(+NeemId) is det.
+%   Answer from the Python store, NEEM NeemId. Called by the bridge after it registered
+%   py_match/2 and py_insert/2 in this module.
+store_use_python(NeemId) :-
+    must_be(atom, NeemId),
+    (   current_predicate(neem_store:py_match/2)
+    ->  true
+    ;   existence_error(foreign_predicate, neem_store:py_match/2)
+    ),
+    retractall(backend_(_)),
+    assertz(backend_(python(NeemId))).
+
+%!  store_current_neem(?NeemId) is semidet.
+%   The NEEM the Python backend reads; `memory` for the asserted triples.
+store_current_neem(Id) :-
+    (   backend_(python(Id0)) -> Id = Id0 ; Id = memory ).
+
+%!  store_scope_now(-Scope) is det.
+%   KnowRob's default question scope: the facts true now.
+store_scope_now(scope(Now, Now)) :- get_time(Now).
+
+%!  store_assert(+Triple) is det.
+%!  store_assert(+Triple, +Since, +Until) is det.
+%   Add `triple(S,P,O)` to the memory backend, universal scope unless given.
+store_assert(Triple) :-
+    Inf is inf,
+    store_assert(Triple, 0.0, Inf).
+store_assert(triple(S, P, O), Since, Until) :-
+    !,
+    must_be(atom, S), must_be(atom, P), must_be(atomic, O),
+    must_be(number, Since), must_be(number, Until),
+    assertz(mem_triple(S, P, O, Since, Until)).
+store_assert(Triple, _, _) :-
+    type_error(triple, Triple).
+
+%!  store_reset is det.
+%   Forget every asserted triple and go back to the memory backend.
+store_reset :-
+    retractall(mem_triple(_,_,_,_,_)),
+    store_use_memory.
+
+%!  store_insert(+Triples) is det.
+%   Write a list of `triple(S,P,O,Since,Until)` into the current backend (kb_project/1).
+store_insert(Triples) :-
+    must_be(list, Triples),
+    maplist(check_insert, Triples),
+    (   backend_(python(Neem))
+    ->  maplist(insert_row, Triples, Rows),
+        neem_store:py_insert([Neem|Rows], Reply),
+        reply_rows(Reply, _)
+    ;   forall(member(triple(S,P,O,Since,Until), Triples),
+               assertz(mem_triple(S, P, O, Since, Until)))
+    ).
+
+check_insert(triple(S,P,O,Since,Until)) :-
+    !,
+    must_be(atom, S), must_be(atom, P), must_be(atomic, O),
+    must_be(number, Since), must_be(number, Until).
+check_insert(T) :-
+    type_error(triple, T).
+
+insert_row(triple(S,P,O,Since,Until), [S,P,O,Since,Until]).
+
+%!  store_match(+Patterns, +Scope) is nondet.
+%!  store_match(+Patterns, +Scope, +Options) is nondet.
+%   Solve the conjunction of `t(S,P,O)` patterns in ONE store query, binding their
+%   variables. Options: `limit(N)`. Terms must be variables or atomic values.
+store_match(Patterns, Scope) :-
+    store_match(Patterns, Scope, []).
+
+store_match(Patterns, Scope, Options) :-
+    must_be(list, Patterns),
+    Patterns \== [],
+    maplist(check_pattern, Patterns),
+    check_scope(Scope),
+    backend_(Backend),
+    match(Backend, Patterns, Scope, Options).
+
+check_pattern(t(S,P,O)) :-
+    !,
+    check_term(S), check_term(P), check_term(O).
+check_pattern(X) :-
+    type_error(triple_pattern, X).
+
+check_term(X) :- var(X), !.
+check_term(X) :- atomic(X), !.
+check_term(X) :- type_error(atomic_or_var, X).
+
+check_scope(any) :- !.
+check_scope(scope(S, U)) :- number(S), number(U), !.
+check_scope(X) :- type_error(scope, X).
+
+match(memory, Patterns, Scope, Options) :-
+    (   option_limit(Options, N)
+    ->  limit(N, mem_conj(Patterns, Scope))
+    ;   mem_conj(Patterns, Scope)
+    ).
+match(python(Neem), Patterns, Scope, Options) :-
+    term_variables(Patterns, Vars),
+    maplist(encode_pattern(Vars), Patterns, Encoded),
+    encode_scope(Scope, S0, S1),
+    (   option_limit(Options, N) -> true ; N = -1 ),
+    length(Vars, NVars),
+    neem_store:py_match([Neem, S0, S1, N, NVars|Encoded], Reply),
+    reply_rows(Reply, Rows),
+    member(Vars, Rows).
+
+option_limit(Options, N) :-
+    memberchk(limit(N), Options),
+    must_be(positive_integer, N).
+
+%   Scope ends as numbers; -1, -1 for no time filter. The bridge turns them into the
+%   store's Scope (see python/oracle/bridge.py).
+encode_scope(any, -1, -1).
+encode_scope(scope(S, U), S, U).
+
+%   A pattern slot as two list cells: kind (v, c) and value (variable index or constant).
+encode_pattern(Vars, t(S,P,O), [SK,SV,PK,PV,OK,OV]) :-
+    encode_term(Vars, S, SK, SV),
+    encode_term(Vars, P, PK, PV),
+    encode_term(Vars, O, OK, OV).
+
+encode_term(Vars, X, v, I) :-
+    var(X), !,
+    nth0_var(Vars, X, 0, I).
+encode_term(_, X, c, X).
+
+nth0_var([V|Vs], X, I0, I) :-
+    (   V == X -> I = I0 ; I1 is I0+1, nth0_var(Vs, X, I1, I) ).
+
+%   A chunk of solutions arrives as the text of a list of rows, each row a list of quoted
+%   atoms and numbers (5x cheaper than a pyswip list, toolchain-facts §2). It is read as
+%   data, never called, and must be a ground list; an error arrives as `error(Message)`.
+reply_rows(Reply, Rows) :-
+    term_string(T, Reply),
+    (   T = error(Message)
+    ->  throw(error(neem_store_error(Message), _))
+    ;   is_list(T), ground(T)
+    ->  Rows = T
+    ;   throw(error(neem_store_error(unexpected_reply(T)), _))
+    ).
+
+:- dynamic request_/1.
+
+%!  store_python_request(-Request) is det.
+%   The request the Python bridge handed over for the current query (a list of atoms,
+%   numbers and lists): how values reach Prolog without becoming query text.
+store_python_request(R) :-
+    (   retract(request_(R0))
+    ->  R = R0
+    ;   current_predicate(neem_store:py_request/1)
+    ->  neem_store:py_request(R0),
+        R = R0
+    ;   existence_error(python_request, neem_store)
+    ).
+
+%!  store_set_request(+Request) is det.
+%   Hand over a request from Prolog (tests and the memory backend).
+store_set_request(R) :-
+    retractall(request_(_)),
+    assertz(request_(R)).
+
+                 /*******************************
+                 *        MEMORY BACKEND        *
+                 *******************************/
+
+mem_conj([], _).
+mem_conj([t(S,P,O)|Ps], Scope) :-
+    mem_pattern(S, P, O, Scope),
+    mem_conj(Ps, Scope).
+
+mem_pattern(S, P, O, Scope) :-
+    atom(P), store_taxonomic(P), !,
+    (   var(O)
+    ->  mem_triple(S, P, O, Since, Until)
+    ;   mem_triple(S, P, O0, Since, Until),
+        mem_closure(O0, Closure),
+        memberchk(O, Closure)
+    ),
+    in_scope(Scope, Since, Until).
+mem_pattern(S, P, O, Scope) :-
+    atom(P), !,
+    mem_triple(S, P0, O, Since, Until),
+    (   P0 == P
+    ->  true
+    ;   \+ store_taxonomic(P0),
+        mem_closure(P0, Closure),
+        memberchk(P, Closure)
+    ),
+    in_scope(Scope, Since, Until).
+mem_pattern(S, P, O, Scope) :-
+    mem_triple(S, P, O, Since, Until),
+    in_scope(Scope, Since, Until).
+
+in_scope(any, _, _) :- !.
+in_scope(scope(QS, QU), Since, Until) :-
+    Since =< QS,
+    Until >= QU.
+
+%   The term and its ancestors over asserted subClassOf/subPropertyOf edges (KnowRob's o*).
+mem_closure(Term, Closure) :-
+    mem_closure_([Term], [Term], Rev),
+    reverse(Rev, Closure).
+
+mem_closure_([], Seen, Seen).
+mem_closure_([T|Ts], Seen0, Seen) :-
+    findall(Parent,
+            ( ( subclass_of_iri(E) ; subproperty_of_iri(E) ),
+              mem_triple(T, E, Parent, _, _),
+              \+ memberchk(Parent, Seen0) ),
+            Parents0),
+    list_to_set(Parents0, Parents),
+    reverse(Parents, RevParents),
+    append(RevParents, Seen0, Seen1),
+    append(Ts, Parents, Queue),
+    mem_closure_(Queue, Seen1, Seen).

@@ -1,0 +1,68 @@
+:- begin_tests(neem_store).
+
+:- use_module(neem_store).
+
+ex(Local, IRI) :- atom_concat('http://example.org/t#', Local, IRI).
+type(IRI) :- IRI = 'http://www.w3.org/1999/02/22-rdf-syntax-ns#type'.
+sub(IRI) :- IRI = 'http://www.w3.org/2000/01/rdf-schema#subClassOf'.
+subp(IRI) :- IRI = 'http://www.w3.org/2000/01/rdf-schema#subPropertyOf'.
+
+setup :-
+    store_reset,
+    type(T), sub(SC), subp(SP),
+    maplist(ex, [a, b, 'Cup', 'Container', 'Thing', hasPart, relatedTo, 'it''s (odd)'],
+            [A, B, Cup, Container, Thing, HasPart, Related, Odd]),
+    store_assert(triple(Cup, SC, Container)),
+    store_assert(triple(Container, SC, Thing)),
+    store_assert(triple(HasPart, SP, Related)),
+    store_assert(triple(A, T, Cup)),
+    store_assert(triple(B, T, Container)),
+    store_assert(triple(A, HasPart, B)),
+    store_assert(triple(Odd, T, Cup)),
+    store_assert(triple(A, HasPart, Odd), 10.0, 20.0).
+
+test(type_closure, [setup(setup), cleanup(store_reset)]) :-
+    maplist(ex, [a, b, 'Thing', 'it''s (odd)'], [A, B, Thing, Odd]),
+    type(T),
+    findall(X, store_match([t(X, T, Thing)], any), Xs),
+    msort(Xs, Sorted), msort([A, B, Odd], Sorted).
+
+test(free_object_binds_asserted_type, [setup(setup), cleanup(store_reset)]) :-
+    maplist(ex, [a, 'Cup'], [A, Cup]), type(T),
+    findall(C, store_match([t(A, T, C)], any), Cs),
+    Cs == [Cup].
+
+test(property_closure, [setup(setup), cleanup(store_reset)]) :-
+    maplist(ex, [a, b, relatedTo, 'it''s (odd)'], [A, B, Related, Odd]),
+    findall(O, store_match([t(A, Related, O)], any), Os),
+    msort(Os, Sorted), msort([B, Odd], Sorted).
+
+test(scope_containment, [setup(setup), cleanup(store_reset)]) :-
+    maplist(ex, [a, hasPart, 'it''s (odd)'], [A, HasPart, Odd]),
+    store_match([t(A, HasPart, Odd)], scope(12.0, 18.0)),
+    \+ store_match([t(A, HasPart, Odd)], scope(5.0, 18.0)),
+    \+ store_match([t(A, HasPart, Odd)], scope(30.0, 30.0)).
+
+test(conjunction_join, [setup(setup), cleanup(store_reset)]) :-
+    maplist(ex, [a, b, hasPart, 'Container'], [A, B, HasPart, Container]), type(T),
+    findall(X-Y, store_match([t(X, HasPart, Y), t(Y, T, Container)], scope(100.0, 100.0)), Ps),
+    Ps == [A-B].
+
+test(limit, [setup(setup), cleanup(store_reset)]) :-
+    ex('Thing', Thing), type(T),
+    findall(X, store_match([t(X, T, Thing)], any, [limit(1)]), Xs),
+    length(Xs, 1).
+
+test(bad_pattern, [error(type_error(atomic_or_var, f(x)))]) :-
+    store_match([t(f(x), _, _)], any).
+
+test(bad_scope, [error(type_error(scope, now))]) :-
+    store_match([t(_, _, _)], now).
+
+test(insert_memory, [cleanup(store_reset)]) :-
+    store_reset,
+    store_insert([triple(s, p, o, 0.0, 5.0)]),
+    store_match([t(s, p, X)], scope(1.0, 2.0)),
+    X == o.
+
+:- end_tests(neem_store).

@@ -1,0 +1,349 @@
+"""pyswip: the one place Python and Prolog meet.
+
+The Python process owns the store; SWI-Prolog runs the rules in prolog/. The bridge
+registers three foreign predicates in module ``neem_store`` and nothing else touches them:
+
+``py_match(+Request, -Chunk)`` (nondeterministic)
+    one conjunction of triple patterns -> ``Store.match`` (one SQL join / one aggregation
+    pipeline); each solution of the predicate is a chunk of up to ``CHUNK`` rows.
+``py_insert(+Request, -Reply)``
+    kb_project's triples -> ``Store.insert``.
+``py_request(-Request)``
+    the arguments of the question Python is asking, so values reach Prolog as terms and
+    never as query text.
+
+pyswip's traps (toolchain-facts §2) shape the code: outputs are always fresh variables
+unified in Prolog, exceptions inside foreign predicates are caught here and handed over as
+``error(Message)`` (pyswip would turn them into silent failure), no ``Prolog.query`` runs
+inside a foreign predicate, and every use of pyswip holds one process-wide lock.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import threading
+from collections.abc import Iterator, Sequence
+from datetime import datetime
+from itertools import islice
+from pathlib import Path
+from typing import Any
+
+from oracle.errors import PrologError, StoreError
+from oracle.store import Scope, Store, TriplePattern, Triple, Var
+
+PROLOG_DIR = Path(__file__).resolve().parents[2] / "prolog"
+MODULES = ("neem_store", "knowrob_model", "odb_model", "answers")
+#: Rows per chunk handed to Prolog by one solution of py_match/2.
+CHUNK = 5000
+
+_LOCK = threading.RLock()
+_STATE: dict[str, Any] = {"bridge": None, "loaded": False, "request": None}
+_GENERATORS: dict[int, Iterator[str]] = {}
+_NEXT_KEY = [1]
+#: How many times Prolog called into Python (crossings), per foreign predicate.
+CROSSINGS = {"py_match": 0, "py_insert": 0, "py_request": 0}
+
+
+# -- values ------------------------------------------------------------------------------
+def _plain(value: Any) -> Any:
+    """A value pyswip handed to Python as the plain value the store expects."""
+    from pyswip import Atom
+
+    if isinstance(value, Atom):
+        return value.value if isinstance(value.value, str) else value.value.decode("utf-8")
+    if isinstance(value, bytes):
+        return value.decode("utf-8")
+    return value
+
+
+def quote_atom(text: str) -> str:
+    """``text`` as a quoted Prolog atom in pure ASCII (every other character escaped)."""
+    out = ["'"]
+    for ch in text:
+        code = ord(ch)
+        if ch == "'" or ch == "\\":
+            out.append("\\" + ch)
+        elif 32 <= code < 127:
+            out.append(ch)
+        else:
+            out.append(f"\\x{code:x}\\")
+    out.append("'")
+    return "".join(out)
+
+
+def term_text(value: Any) -> str:
+    """A store value as Prolog term text: IRIs and strings as atoms, numbers as numbers."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if math.isnan(value):
+            return "1.5NaN"
+        if math.isinf(value):
+            return "1.0Inf" if value > 0 else "-1.0Inf"
+        text = repr(value)
+        if "e" in text and "." not in text.split("e")[0]:
+            mantissa, exponent = text.split("e")
+            text = f"{mantissa}.0e{exponent}"
+        return text
+    if isinstance(value, datetime):
+        return term_text(value.timestamp())
+    if isinstance(value, str):
+        return quote_atom(value)
+    if value is None:
+        return quote_atom("")
+    if hasattr(value, "to_decimal"):  # Decimal128 from a store that did not decode it
+        return term_text(float(value.to_decimal()))
+    return quote_atom(str(value))
+
+
+def _error_text(error: BaseException) -> str:
+    return f"error({quote_atom(str(error) or type(error).__name__)})"
+
+
+# -- the foreign predicates --------------------------------------------------------------
+def _decode_request(req: Sequence[Any]) -> tuple[str, list[TriplePattern], Scope | None, int | None, int]:
+    neem = _plain(req[0])
+    s0, s1, limit, n_vars = req[1], req[2], req[3], req[4]
+    patterns = []
+    for enc in req[5:]:
+        terms = []
+        for kind, value in zip(enc[0::2], enc[1::2]):
+            kind = _plain(kind)
+            terms.append(Var(f"v{value}") if kind == "v" else _plain(value))
+        patterns.append(TriplePattern(*terms))
+    if s0 == -1 and s1 == -1:
+        scope = None
+    else:
+        # KnowRob asks for facts whose scope CONTAINS [s0, s1] (since =< s0, until >= s1);
+        # the store tests overlap (since =< scope.until, until >= scope.since), so the ends
+        # are handed over swapped.
+        scope = Scope(since=float(s1), until=float(s0))
+    return neem, patterns, scope, (None if limit == -1 else int(limit)), int(n_vars)
+
+
+def _chunks(store: Store, req: Sequence[Any]) -> Iterator[str]:
+    neem, patterns, scope, limit, n_vars = _decode_request(req)
+    names = [f"v{i}" for i in range(n_vars)]
+    if n_vars == 0:
+        limit = 1
+    rows = store.match(neem, patterns, scope=scope, limit=limit)
+    while True:
+        batch = list(islice(rows, CHUNK))
+        if not batch:
+            return
+        yield "[" + ",".join("[" + ",".join(term_text(row[n]) for n in names) + "]" for row in batch) + "]"
+        if len(batch) < CHUNK:
+            return
+
+
+def py_match(req: Any, out: Any, handle: Any) -> Any:
+    from pyswip.core import PL_FIRST_CALL, PL_PRUNED, PL_REDO, PL_foreign_context, PL_foreign_control, PL_retry
+
+    control = PL_foreign_control(handle)
+    if control == PL_PRUNED:
+        _GENERATORS.pop(PL_foreign_context(handle), None)
+        return True
+    if control == PL_FIRST_CALL:
+        CROSSINGS["py_match"] += 1
+        bridge = _STATE["bridge"]
+        try:
+            if bridge is None:
+                raise PrologError("no store is connected to Prolog")
+            chunks = _chunks(bridge.store, req)
+            first = next(chunks, "[]")
+        except Exception as error:  # handed to Prolog: pyswip would make it silent failure
+            out.unify(_error_text(error))
+            return True
+        key = _NEXT_KEY[0]
+        _NEXT_KEY[0] += 1
+        _GENERATORS[key] = chunks
+        out.unify(first)
+        return PL_retry(key)
+    if control == PL_REDO:
+        key = PL_foreign_context(handle)
+        chunks = _GENERATORS.get(key)
+        try:
+            chunk = next(chunks, None) if chunks is not None else None
+        except Exception as error:
+            _GENERATORS.pop(key, None)
+            out.unify(_error_text(error))
+            return True
+        if chunk is None:
+            _GENERATORS.pop(key, None)
+            return False
+        out.unify(chunk)
+        return PL_retry(key)
+    return False
+
+
+def py_insert(req: Any, out: Any) -> bool:
+    CROSSINGS["py_insert"] += 1
+    try:
+        bridge = _STATE["bridge"]
+        if bridge is None:
+            raise PrologError("no store is connected to Prolog")
+        neem = _plain(req[0])
+        triples = [
+            Triple(_plain(s), _plain(p), _plain(o), since=float(since), until=float(until))
+            for s, p, o, since, until in req[1:]
+        ]
+        bridge.store.insert(neem, triples)
+        out.unify("[]")
+    except Exception as error:
+        out.unify(_error_text(error))
+    return True
+
+
+def py_request(out: Any) -> bool:
+    CROSSINGS["py_request"] += 1
+    request = _STATE["request"]
+    if request is None:
+        return False
+    out.unify(request)
+    return True
+
+
+def _ensure_loaded() -> None:
+    """Register the foreign predicates and load the Prolog modules, once per process."""
+    if _STATE["loaded"]:
+        return
+    from pyswip import Atom, Prolog
+
+    Prolog.register_foreign(py_match, arity=2, module="neem_store", nondeterministic=True)
+    Prolog.register_foreign(py_insert, arity=2, module="neem_store")
+    Prolog.register_foreign(py_request, arity=1, module="neem_store")
+    for name in MODULES:
+        path = PROLOG_DIR / f"{name}.pl"
+        if not path.exists():
+            raise PrologError(f"{path}: Prolog module missing")
+        _STATE["request"] = [Atom(str(path))]
+        _run("neem_store:py_request(R), R = [F], use_module(user:F)")
+    _STATE["request"] = None
+    _STATE["loaded"] = True
+
+
+def _run(query: str, maxresult: int = -1) -> list[dict[str, Any]]:
+    from pyswip import Prolog
+    from pyswip.prolog import PrologError as PySwipError
+
+    try:
+        return list(Prolog.query(query, maxresult=maxresult))
+    except PySwipError as error:
+        raise PrologError(_clean_prolog_error(str(error))) from None
+
+
+def _clean_prolog_error(text: str) -> str:
+    if "neem_store_error" in text:
+        start = text.find("neem_store_error(")
+        return "store: " + text[start + len("neem_store_error("):].split(")", 1)[0].strip("'\"")
+    return text.replace("Caused by: ", "").strip()
+
+
+class Bridge:
+    """Prolog connected to one NEEM of a store. Only one bridge is active per process
+    (pyswip's Prolog is process-wide); creating a new one replaces the previous."""
+
+    def __init__(self, store: Store, neem_id: str, ontology: Any | None = None) -> None:
+        from pyswip import Atom
+
+        self.store = store
+        self.neem_id = neem_id
+        store.neem(neem_id)  # StoreError when the NEEM does not exist
+        with _LOCK:
+            _ensure_loaded()
+            _STATE["bridge"] = self
+            self._with_request([Atom(neem_id)], "neem_store:py_request(R), R = [N], neem_store:store_use_python(N)")
+            if ontology is not None:
+                self.set_ontology(ontology)
+
+    def set_ontology(self, ontology: Any) -> None:
+        """Tell odb_model the ontology's namespace and which role of each task is which."""
+        from pyswip import Atom
+
+        rows = [
+            [Atom(task.iri), Atom(task.target_role or "none"), Atom(task.ref_role or "none")]
+            for task in ontology.tasks.values()
+        ]
+        with _LOCK:
+            self._with_request([Atom(ontology.namespace), rows],
+                               "neem_store:py_request(Q), Q = [NS, Rows], odb_model:odb_set_namespace(NS),"
+                               " forall(member([T, Ta, R], Rows), odb_model:odb_set_task_roles(T, Ta, R))")
+
+    def _with_request(self, request: list[Any], query: str) -> list[dict[str, Any]]:
+        with _LOCK:
+            _STATE["bridge"] = self
+            _STATE["request"] = request
+            try:
+                return _run(query)
+            finally:
+                _STATE["request"] = None
+
+    # -- queries ---------------------------------------------------------------------------
+    def query(self, text: str, maxresult: int = -1) -> list[dict[str, Any]]:
+        """Solutions of a Prolog query the user typed (text is the query, not data)."""
+        with _LOCK:
+            _STATE["bridge"] = self
+            return [{k: _python_value(v) for k, v in row.items()} for row in _run(text, maxresult)]
+
+    def answer(self, request: list[Any]) -> dict[str, Any]:
+        """answers:answer_json/1 on a request; values travel as terms."""
+        rows = self._with_request(request, "answers:answer_json(J)")
+        if not rows:
+            raise PrologError(f"Prolog found no answer to {request[0]}")
+        text = rows[0]["J"]
+        return json.loads(text.decode("utf-8") if isinstance(text, bytes) else text)
+
+    def why_not(self, task: str, args: Sequence[str], at: float | None = None) -> dict[str, Any]:
+        from pyswip import Atom
+
+        return self.answer([Atom("why_not"), Atom(task), [Atom(a) for a in args],
+                            float(at) if at is not None else Atom("none")])
+
+    def what_next(self) -> dict[str, Any]:
+        from pyswip import Atom
+
+        return self.answer([Atom("what_next")])
+
+    def something_else(self, task: str | None = None, args: Sequence[str] = ()) -> dict[str, Any]:
+        from pyswip import Atom
+
+        return self.answer([Atom("something_else"), Atom(task or "none"), [Atom(a) for a in args]])
+
+    def solutions(self, goal: str, variables: Sequence[str], *, stepwise: bool = False) -> list[tuple[Any, ...]]:
+        """All solutions of a kb_call goal (its text) as tuples of the named variables."""
+        wrapper = "kb_call_stepwise" if stepwise else "kb_call"
+        template = "[" + ",".join(variables) + "]"
+        rows = self.query(f"findall({template}, {wrapper}(({goal}), any), Rows__)")
+        return [tuple(_python_value(v) for v in row) for row in rows[0]["Rows__"]]
+
+    def close(self) -> None:
+        with _LOCK:
+            if _STATE["bridge"] is self:
+                _STATE["bridge"] = None
+                _run("neem_store:store_use_memory")
+
+
+def _python_value(value: Any) -> Any:
+    from pyswip import Atom
+
+    if isinstance(value, Atom):
+        return value.value
+    if isinstance(value, bytes):
+        return value.decode("utf-8")
+    if isinstance(value, list):
+        return [_python_value(v) for v in value]
+    return value
+
+
+def connect(store: Store, neem_id: str, ontology: Any | None = None) -> Bridge:
+    """A bridge to ``neem_id``; raises StoreError when the NEEM is missing."""
+    try:
+        return Bridge(store, neem_id, ontology)
+    except StoreError:
+        raise
+
+
+__all__ = ["Bridge", "CROSSINGS", "PROLOG_DIR", "connect", "quote_atom", "term_text"]
