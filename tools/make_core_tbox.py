@@ -25,7 +25,12 @@ EXTRA_CLASSES = [
     SOMA.Preference, SOMA.Order, SOMA.OrderedElement, SOMA.Singleton, SOMA.AgentRole, SOMA.Patient, SOMA.Instrument,
     SOMA.Cup, SOMA.Glass, SOMA.Bottle, SOMA.Bowl, SOMA.Plate, SOMA.Knife, SOMA.Spoon, SOMA.Fork, SOMA.Cutlery,
     SOMA.Crockery, SOMA.Table, SOMA.Countertop, SOMA.Placing, SOMA.PouringInto, SOMA.Pouring, SOMA.Transporting,
-    SOMA.Kitchen, SOMA.ExecutionStateRegion,
+    SOMA.Kitchen, SOMA.ExecutionStateRegion, SOMA.Destination,
+    # used by the mappings the dataset converters write (python/oracle/evaluation/convert_*.py)
+    DUL.DesignedArtifact, DUL.DesignedSubstance, SOMA.Door, SOMA.Cupboard, SOMA.Fluid, SOMA.Hand, SOMA.Pan,
+    SOMA.Pot, SOMA.Cleaning, SOMA.LookingAt, SOMA.Mixing, SOMA.ModifyingPhysicalObject, SOMA.Positioning,
+    SOMA.PushingDown, SOMA.PuttingDown, SOMA.Squeezing, SOMA.AlteredObject, SOMA.Dish, SOMA.Bread,
+    SOMA.Refrigerator, SOMA.Dishwasher, SOMA.Stove, SOMA.Tap, SOMA.Drawer, SOMA.CutObject,
 ]
 EXTRA_PROPERTIES = [
     DUL.executesTask, DUL.isExecutedIn, DUL.hasParticipant, DUL.isParticipantIn, SOMA.isPerformedBy,

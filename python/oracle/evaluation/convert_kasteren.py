@@ -163,18 +163,19 @@ def read_kasteren(folder: Path | str) -> list[ChainRow]:
     activities = {int(m.group(1)): m.group(2).strip() for m in map(_ACTIVITY.match, act_lines) if m}
     intervals = [(start, end, activities.get(ident, str(ident))) for _, start, end, ident in _rows(acts, act_lines)]
     firings = []
-    for number, start, _end, ident in _rows(sense, sense_lines):
+    for number, start, end, ident in _rows(sense, sense_lines):
         label = labels.get(ident)
         if label not in SENSORS:
             raise NeemOracleError(f"{sense}:{number}: unknown sensor id {ident} ({label!r})")
-        firings.append((start, number, SENSORS[label]))
+        firings.append((start, number, SENSORS[label], max(start, end)))
     if not firings:
         raise NeemOracleError(f"{sense}: no sensor firings found")
     rows = []
-    for start, _number, (obj, task, _parent) in sorted(firings):
-        inside = [name for begin, end, name in intervals if begin <= start <= end]
+    for start, _number, (obj, task, _parent), end in sorted(firings):
+        inside = [name for begin, stop, name in intervals if begin <= start <= stop]
         extra = {"activity": inside[-1]} if inside else {}
-        rows.append(ChainRow(USER, TaskCall(task, (obj,)), start, None, extra=extra))
+        # The firing lasts while the sensor is active; the gap after it decides idle periods.
+        rows.append(ChainRow(USER, TaskCall(task, (obj,)), start, None, extra=extra, end=end))
     return rows
 
 
