@@ -19,8 +19,9 @@ Reason terms of why_not/2,3 (each a separate solution, most telling first):
 
   - done(Call, Begin): it was done then (the question's premise is wrong);
   - not_available(Call, When, Why): it was not among the tasks imagined available at
-    the decision of time When; Why is `object_not_perceived(Object)` when an object of
-    the call appears in none of the available tasks, else `precondition_failed`;
+    the decision of time When; Why is `object_not_perceived(Object)` when no object of
+    that class had been perceived by then (the logger scopes an object's type from its
+    first perception), else `precondition_failed` (the NEEM does not say which);
   - ranked_lower(Call, When, rank(Rank, Score), Higher): it was available but the
     imagined preference ranked the tasks Higher (`ranked(Call, Rank, Score)`) above it;
   - user_chose(Other, Begin): the user had the robot do Other instead;
@@ -63,7 +64,7 @@ why_not(Call, At, Reason) :-
 reasons_at(Call, At, M, When, Done, Reason) :-
     imagined_available(M, Available),
     (   \+ memberchk(Call, Available)
-    ->  missing_reason(Call, Available, Why),
+    ->  missing_reason(Call, When, Why),
         R1 = [not_available(Call, When, Why)]
     ;   preference_at(At, _, Ranked),
         nth1(_, Ranked, ranked(Call, Rank, Score)),
@@ -80,11 +81,10 @@ reasons_at(Call, At, M, When, Done, Reason) :-
     append([R1, R2, R3], Reasons),
     member(Reason, Reasons).
 
-missing_reason(Call, Available, object_not_perceived(Obj)) :-
+missing_reason(Call, When, object_not_perceived(Obj)) :-
     Call =.. [_|Objects],
-    findall(O, ( member(A, Available), A =.. [_|Os], member(O, Os) ), Seen),
     member(Obj, Objects),
-    \+ memberchk(Obj, Seen), !.
+    \+ perceived_at(Obj, When), !.
 missing_reason(_, _, precondition_failed).
 
 later_earlier(Call, At, Done, done_later(Call, B)) :-
@@ -202,7 +202,10 @@ answer([what_next], _{question: what_next, chain: Ds}) :-
     maplist(ranked_dict, Chain, Ds).
 answer([something_else, Name, Args], _{question: something_else, current: CT,
                                        alternatives: Ds}) :-
-    (   Name == none -> true ; Current =.. [Name|Args] ),
+    (   Name == none
+    ->  ignore(latest_action(Current, _))
+    ;   Current =.. [Name|Args]
+    ),
     findall(ranked(A, R, S), something_else(Current, A, rank(R, S)), Alts),
     (   var(Current) -> CT = null ; call_text(Current, CT) ),
     maplist(ranked_dict, Alts, Ds).

@@ -18,7 +18,8 @@
       latest_preference/3,        % -Reasoning, -Begin, -Ranked
       times_available/2,          % +Call, -Begins
       times_done/2,               % +Call, -Actions
-      chain_before/3              % +Action, +N, -Calls
+      chain_before/3,             % +Action, +N, -Calls
+      perceived_at/2              % +ObjectName, +Time
     ]).
 /** <module> The odb model: what the EDAN NEEM logger adds to SOMA (thesis 3.4)
 
@@ -30,7 +31,7 @@ one compiled store query:
   - decisions: the soma:Imagining mental actions that odb:imagines_situation the available
     tasks (soma:ActionExecutionPlan soma:isPlanFor task), and the soma:Reasoning mental
     actions that odb:imagines_preference a soma:PreferenceOrder whose soma:orders elements
-    carry odb:hasPreferenceRank and odb:hasPreferenceScore;
+    carry odb:hasPreferenceRank and odb:hasPreferenceScore and soma:encapsulates the plan;
   - task calls: a task individual (typed with its odb task class, roles classifying
     objects typed with odb object classes) as the chain term `pick(banana)`;
   - the chain of actions before an action.
@@ -202,7 +203,11 @@ imagined_preference(M, Ranked) :-
             ( member(_-ranked(E, R, S), Pairs), element_call(E, Call) ),
             Ranked).
 
-%   An ordered element is the task individual itself or points at one.
+%   An ordered element soma:encapsulates the plan for the task (the logger's shape), is the
+%   task individual itself, or points at one.
+element_call(E, Call) :-
+    kb_call(( holds(E, soma:encapsulates, P), plan_defines_task(P, T) ), any),
+    task_call(T, Call), !.
 element_call(E, Call) :-
     task_call(E, Call), !.
 element_call(E, Call) :-
@@ -262,3 +267,11 @@ take_calls([_-T|Ps], Idle, N, Calls) :-
     ;   Calls = Rest, N1 = N
     ),
     take_calls(Ps, Idle, N1, Rest).
+
+%!  perceived_at(+ObjectName, +Time) is semidet.
+%   Some object of the odb class ObjectName was known at Time: the logger scopes an
+%   object's type triple from its first perception.
+perceived_at(Name, Time) :-
+    must_be(atom, Name), must_be(number, Time),
+    odb_iri(Name, C),
+    once(kb_call(instance_of(_, C), scope(Time, Time))).

@@ -1,0 +1,62 @@
+"""English sentences for the robot's answers (thesis 4.6), built from the reason terms of
+prolog/answers.pl as the bridge hands them over (JSON dicts)."""
+
+from __future__ import annotations
+
+from datetime import datetime
+from typing import Any
+
+
+def _when(seconds: float | None) -> str:
+    if seconds is None:
+        return "lately"
+    return datetime.fromtimestamp(seconds).strftime("%Y-%m-%d %H:%M")
+
+
+def _ranked(items: list[dict[str, Any]]) -> str:
+    return ", ".join(f"{i['task']} (rank {i['rank']}, score {i['score']:.3g})" for i in items)
+
+
+def reason_sentence(reason: dict[str, Any]) -> str:
+    kind = reason["reason"]
+    task = reason["task"]
+    at = _when(reason.get("time"))
+    if kind == "done":
+        return f"I did {task}: it started at {at}."
+    if kind == "not_available":
+        if reason.get("why") == "object_not_perceived":
+            return f"{task} was not available at {at}: I had not perceived any {reason['object']}."
+        return f"{task} was not available at {at}: a precondition did not hold (the NEEM does not say which)."
+    if kind == "ranked_lower":
+        return (f"At {at} I ranked {task} {reason['rank']} (score {reason['score']:.3g}); "
+                f"ranked higher: {_ranked(reason['higher'])}.")
+    if kind == "user_chose":
+        return f"You chose {task} instead, at {at}."
+    if kind == "done_later":
+        return f"I did {task} later, at {at}."
+    if kind == "done_earlier":
+        return f"I had already done {task} earlier, at {at}."
+    return f"{kind}: {reason}"
+
+
+def why_not_sentence(answer: dict[str, Any]) -> str:
+    reasons = answer.get("reasons") or []
+    if not reasons:
+        return f"I cannot tell why {answer['task']} was not done: the NEEM holds no decision about it."
+    return " ".join(reason_sentence(r) for r in reasons)
+
+
+def what_next_sentence(answer: dict[str, Any]) -> str:
+    chain = answer.get("chain") or []
+    if not chain:
+        return "I have not imagined any preference yet, so I cannot say what comes next."
+    return f"Next I expect {chain[0]['task']}" + (f", then {_ranked(chain[1:])}." if len(chain) > 1 else ".")
+
+
+def something_else_sentence(answer: dict[str, Any]) -> str:
+    alternatives = answer.get("alternatives") or []
+    current = answer.get("current") or "the current task"
+    if not alternatives:
+        return f"I know of no alternative to {current}."
+    best = alternatives[0]
+    return f"Instead of {current} I would do {best['task']} (rank {best['rank']}, score {best['score']:.3g})."
