@@ -1,0 +1,48 @@
+"""The commands print one sentence (or JSON) and report user errors as one line, exit 1."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+from oracle.cli import main
+from oracle.store import open_store
+
+from .conftest import log_episode
+
+
+def _store(tmp_path, onto):
+    path = tmp_path / "neems.sqlite"
+    store = open_store(path)
+    log_episode(store, onto)
+    store.close()
+    return str(path)
+
+
+def test_why_not_json_and_sentence(tmp_path, onto, capsys):
+    path = _store(tmp_path, onto)
+    assert main(["why-not", "pick(apple)", "--at", "2024-05-01T08:02+00:00", "--store", path, "--json"]) == 0
+    answer = json.loads(capsys.readouterr().out)
+    assert answer["reasons"][0]["reason"] == "ranked_lower"
+    assert main(["what-next", "--store", path]) == 0
+    assert "Next I expect pick(apple)" in capsys.readouterr().out
+    assert main(["something-else", "pour(thermos, green_mug)", "--store", path]) == 0
+    assert "pick(apple)" in capsys.readouterr().out
+
+
+def test_unknown_task_is_a_clear_error(tmp_path, onto, capsys):
+    path = _store(tmp_path, onto)
+    assert main(["why-not", "fly(banana)", "--store", path]) == 1
+    assert "unknown task 'fly'" in capsys.readouterr().err
+    assert main(["why-not", "pick(unicorn)", "--store", path]) == 1
+    assert "unknown object 'unicorn'" in capsys.readouterr().err
+
+
+def test_toplevel_with_piped_stdin(tmp_path, onto):
+    path = _store(tmp_path, onto)
+    queries = "aggregate_all(count, is_action(_), N).\nX = 'it''s'.\n"
+    out = subprocess.run([sys.executable, "-m", "oracle", "prolog", "--store", path], input=queries,
+                         capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+    assert "N = " in out.stdout and "X = 'it\\'s'" in out.stdout
