@@ -19,7 +19,8 @@
       times_available/2,          % +Call, -Begins
       times_done/2,               % +Call, -Actions
       chain_before/3,             % +Action, +N, -Calls
-      perceived_at/2              % +ObjectName, +Time
+      perceived_at/2,             % +ObjectName, +Time
+      task_calls/2                % +Tasks, -Pairs
     ]).
 /** <module> The odb model: what the EDAN NEEM logger adds to SOMA (thesis 3.4)
 
@@ -133,10 +134,22 @@ action_call(A, Call, B, E) :-
     ->  call_classes(Call, TC, _)
     ;   true
     ),
-    kb_call(( executes_task(A, T), triple(T, rdf:type, TC),
-              event_interval(A, B, E) ), any),
-    odb_iri(_, TC),
-    task_call(T, Call).
+    findall(A0-T-B0-E0,
+            ( kb_call(( executes_task(A0, T), triple(T, rdf:type, TC),
+                        event_interval(A0, B0, E0) ), any),
+              odb_iri(_, TC) ),
+            Rows),
+    findall(T, member(_-T-_-_, Rows), Ts),
+    task_calls(Ts, Calls),
+    member(A-T1-B-E, Rows),
+    memberchk(T1-Call, Calls).
+
+%!  task_calls(+Tasks, -Pairs) is det.
+%   `Task-Call` for each distinct task individual (the logger reuses one individual per
+%   call, so this costs one store query per distinct task, not per action).
+task_calls(Ts, Pairs) :-
+    sort(Ts, Distinct),
+    findall(T-C, ( member(T, Distinct), task_call(T, C) ), Pairs).
 
 %!  event_time_of_day(?Event, ?Part) is nondet.
 %   Part (`'Morning'`, `'Midday'`, `'Evening'` or `'Night'`) is the odb:TimeOfDay class of
@@ -234,7 +247,9 @@ times_available(Call, Begins) :-
     findall(B-T, kb_call(( triple(T, rdf:type, TC), plan_defines_task(P, T),
                            holds(M, odb:imagines_situation, P),
                            event_interval(M, B, _) ), any), Pairs),
-    findall(B, ( member(B-T, Pairs), task_call(T, Call) ), Bs),
+    findall(T, member(_-T, Pairs), Ts),
+    task_calls(Ts, Calls),
+    findall(B, ( member(B-T, Pairs), memberchk(T-Call, Calls) ), Bs),
     sort(Bs, Begins).
 
 %!  times_done(+Call, -Actions) is det.
