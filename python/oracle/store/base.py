@@ -186,7 +186,7 @@ class Store(ABC):
         count = 0
         with self.transaction():
             for doc in docs:
-                batch.append(dict(doc))
+                batch.append(doc if isinstance(doc, dict) else dict(doc))
                 if len(batch) >= 5000:
                     self._insert_documents(neem_id, kind, batch)
                     count += len(batch)

@@ -95,6 +95,16 @@ def export_all(store: Store, out: Path | str, *, db_name: str = DEFAULT_DB) -> d
     return {info.id: export_neem(store, info.id, Path(out) / info.id, db_name=db_name) for info in store.neems()}
 
 
+class LoadedDocument(dict):  # type: ignore[type-arg]
+    """A decoded document that remembers its BSON bytes, so storing it needs no re-encoding."""
+
+    __slots__ = ("raw",)
+
+    def __init__(self, raw: bytes) -> None:
+        super().__init__(bson.decode(raw, codec_options=_CODEC))
+        self.raw = raw
+
+
 def iter_bson(path: Path) -> Iterator[dict[str, Any]]:
     """Documents of a ``.bson`` file; a truncated or corrupt file is an error naming it."""
     try:
@@ -115,9 +125,10 @@ def iter_bson(path: Path) -> Iterator[dict[str, Any]]:
             if size < 5 or len(body) != size - 4:
                 raise StoreError(f"{path}: document {number} is truncated or corrupt")
             try:
-                yield bson.decode(head + body, codec_options=_CODEC)
+                doc = LoadedDocument(head + body)
             except Exception as error:
                 raise StoreError(f"{path}: document {number} is not valid BSON ({error})") from None
+            yield doc
 
 
 _SAFE = re.compile(r"[^A-Za-z0-9\-]+")

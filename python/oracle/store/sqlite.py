@@ -4,7 +4,8 @@ Each NEEM gets the four KnowRob collections as tables ``"<id>_triples"`` and so 
 row keeps the exact BSON document (so dumps round-trip byte for byte) beside the columns the
 indexes need. ``p*``/``o*`` are stored by reference to a content-addressed closure table: all
 ``rdf:type dul:Action`` triples share one closure row, so the closure costs one integer per
-triple and ``o* contains C`` is an indexed lookup.
+triple and ``o* contains C`` is an indexed lookup. IRIs and strings are interned in a ``terms`` table so
+rows and index entries hold small integers (half the cost of indexing the IRI text).
 """
 
 from __future__ import annotations
@@ -29,6 +30,7 @@ from bson.objectid import ObjectId
 from oracle.errors import StoreError
 from oracle.store.base import KINDS, Closed, NeemInfo, Store, check_neem_id, new_meta, validate_patterns
 from oracle.store.model import (
+    RDF_TYPE,
     SUBCLASS_OF,
     SUBPROPERTY_OF,
     TAXONOMIC,
@@ -45,7 +47,7 @@ from oracle.store.model import (
     unix_seconds,
 )
 
-SCHEMA_VERSION = "2"
+SCHEMA_VERSION = "3"
 
 # Kinds of the ``o`` column, so a value reads back with its BSON type.
 K_STR, K_DOUBLE, K_DECIMAL, K_INT, K_LONG, K_BOOL, K_DATE, K_OTHER = range(8)
@@ -81,6 +83,12 @@ def _python_value(value: Any, kind: int) -> Any:
     return value
 
 
+def _blob(doc: Mapping[str, Any]) -> bytes:
+    """A document's BSON: the bytes it was read with when it came from a dump."""
+    raw = getattr(doc, "raw", None)
+    return raw if raw is not None else bson.encode(doc, codec_options=_CODEC)
+
+
 def _quote(name: str) -> str:
     return '"' + name.replace('"', '""') + '"'
 
@@ -94,9 +102,12 @@ _DOC_COLUMNS = ", ".join(f"t0.{c}" for c in ("oid", "s", "p", "o", "ok", "pstar"
 SK_DECIMAL, SK_DOUBLE = 1, 2
 _CODEC = DEFAULT_CODEC_OPTIONS.with_options(datetime_conversion=DatetimeConversion.DATETIME_AUTO)
 
+#: The taxonomic properties get fixed term ids so SQL (and partial indexes) can name them.
+_RESERVED_TERMS = ((1, RDF_TYPE), (2, SUBCLASS_OF), (3, SUBPROPERTY_OF))
+_HIERARCHY_SQL = "(2, 3)"
 # Partial indexes: the o* index only holds taxonomic rows and the p* index only the others,
 # so each row updates three indexes; queries repeat the WHERE term so SQLite may use them.
-_TAXONOMIC_SQL = "(" + ", ".join(f"'{p}'" for p in sorted(TAXONOMIC)) + ")"
+_TAXONOMIC_SQL = "(1, 2, 3)"
 _TRIPLE_INDEXES = (
     ("sp", "s, p", ""),
     ("op", "o, p", ""),
@@ -122,6 +133,9 @@ class SQLiteStore(Store):
         #: NEEM ids seen to exist; forgotten on drop/rename (another process may drop one too,
         #: then the next statement fails with "no such table", still a StoreError).
         self._present: set[str] = set()
+        self._tids: dict[str, int] = {}
+        self._tvals: dict[int, str] = {}
+        self._all_terms = False
         self._random = os.urandom(5)
         self._counter = int.from_bytes(os.urandom(3), "big")
 
@@ -147,9 +161,11 @@ class SQLiteStore(Store):
                 CREATE TABLE IF NOT EXISTS closure_member(cid INTEGER NOT NULL, pos INTEGER NOT NULL, value,
                     PRIMARY KEY(cid, pos)) WITHOUT ROWID;
                 CREATE INDEX IF NOT EXISTS closure_member_value ON closure_member(value, cid);
-                INSERT OR IGNORE INTO store_info VALUES ('schema', '2');
+                CREATE TABLE IF NOT EXISTS terms(id INTEGER PRIMARY KEY, value TEXT NOT NULL UNIQUE);
+                INSERT OR IGNORE INTO store_info VALUES ('schema', '3');
                 """
             )
+            conn.executemany("INSERT OR IGNORE INTO terms VALUES (?, ?)", _RESERVED_TERMS)
             version = conn.execute("SELECT value FROM store_info WHERE key='schema'").fetchone()[0]
         except (OSError, sqlite3.Error) as error:
             raise StoreError(f"{self.path}: cannot open the NEEM store ({error})") from None
@@ -173,6 +189,9 @@ class SQLiteStore(Store):
                 self._conn.execute("ROLLBACK")
                 self._cids.clear()
                 self._members.clear()
+                self._tids.clear()
+                self._tvals.clear()
+                self._all_terms = False
             raise
         self._depth -= 1
         if self._depth == 0:
@@ -254,6 +273,55 @@ class SQLiteStore(Store):
             self._conn.execute("UPDATE neems SET meta=? WHERE id=?", (bson.encode(meta), neem_id))
         return NeemInfo.from_meta(neem_id, meta)
 
+    # -- terms ------------------------------------------------------------------------------
+    def _tid(self, value: str) -> int:
+        """The id of an IRI or string, interned on first use."""
+        tid = self._tids.get(value)
+        if tid is None:
+            cursor = self._conn.execute("INSERT OR IGNORE INTO terms(value) VALUES (?)", (value,))
+            if cursor.rowcount == 1:
+                tid = cursor.lastrowid
+            else:
+                tid = self._conn.execute("SELECT id FROM terms WHERE value=?", (value,)).fetchone()[0]
+            self._tids[value] = tid
+            self._tvals[tid] = value  # type: ignore[index]
+        return tid  # type: ignore[return-value]
+
+    def _known_tid(self, value: str) -> int:
+        """The id of a term for a query; -1 (matching nothing) when the store never saw it."""
+        tid = self._tids.get(value)
+        if tid is None:
+            row = self._conn.execute("SELECT id FROM terms WHERE value=?", (value,)).fetchone()
+            if row is None:
+                return -1
+            tid = self._tids[value] = row[0]
+            self._tvals[tid] = value
+        return tid
+
+    def _tval(self, tid: int) -> str:
+        value = self._tvals.get(tid)
+        if value is None:
+            if not self._all_terms:
+                # Reading a NEEM touches most of its terms: one scan beats many lookups.
+                for key, text in self._conn.execute("SELECT id, value FROM terms"):
+                    self._tvals[key] = text
+                    self._tids[text] = key
+                self._all_terms = True
+                value = self._tvals.get(tid)
+            if value is None:
+                value = self._conn.execute("SELECT value FROM terms WHERE id=?", (tid,)).fetchone()[0]
+                self._tvals[tid] = value
+        return value
+
+    def _sql_term(self, value: Any) -> tuple[Any, int]:
+        """A BSON value as (column value, kind) with strings interned."""
+        if type(value) is str:
+            return self._tid(value), K_STR
+        return _sql_value(value)
+
+    def _out(self, value: Any, kind: int) -> Any:
+        return self._tval(value) if kind == K_STR and value is not None else _python_value(value, kind)
+
     # -- closures ---------------------------------------------------------------------------
     def _cid(self, closure: Sequence[Any]) -> int:
         """Id of a closure list, created on first use (content-addressed, shared by all NEEMs)."""
@@ -272,7 +340,7 @@ class SQLiteStore(Store):
             cid = self._conn.execute("INSERT INTO closure(key) VALUES (?)", (blob,)).lastrowid
             self._conn.executemany(
                 "INSERT INTO closure_member VALUES (?, ?, ?)",
-                [(cid, pos, _sql_value(value)[0]) for pos, value in enumerate(closure)],
+                [(cid, pos, self._tid(v) if type(v) is str else None) for pos, v in enumerate(closure)],
             )
         else:
             cid = row[0]
@@ -308,21 +376,21 @@ class SQLiteStore(Store):
         decimal = builder.number_format == "decimal128"
         float_kind, scope_kind = (K_DECIMAL, SK_DECIMAL) if decimal else (K_DOUBLE, SK_DOUBLE)
         cid = self._cid
+        tids = self._tids
+        tid = self._tid
         rows = []
         for triple, pstar, ostar in closed:
             o = triple.o
             if type(o) is str:
-                sql_o, kind = o, K_STR
+                sql_o, kind = tids.get(o) or tid(o), K_STR
             elif type(o) is float:
                 sql_o, kind = o, float_kind
             else:
-                sql_o, kind = _sql_value(encode_value(o, builder.number_format))
-            if triple.p in TAXONOMIC:
-                ostar_cid = cid(ostar)
-            else:
-                ostar_cid = 0
-            rows.append((self._oid(), triple.s, triple.p, sql_o, kind, cid(pstar), ostar_cid, triple.graph,
-                         triple.since, triple.until, scope_kind))  # fmt: skip
+                sql_o, kind = self._sql_term(encode_value(o, builder.number_format))
+            p = triple.p
+            ostar_cid = cid(ostar) if p in TAXONOMIC else 0
+            rows.append((self._oid(), tids.get(triple.s) or tid(triple.s), tids.get(p) or tid(p), sql_o, kind,
+                         cid(pstar), ostar_cid, triple.graph, triple.since, triple.until, scope_kind))  # fmt: skip
         self._conn.executemany(
             f"INSERT INTO {_table(neem_id, 'triples')}(oid, s, p, o, ok, pstar, ostar, graph, since, until, sk)"
             " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
@@ -331,11 +399,14 @@ class SQLiteStore(Store):
 
     def _triple_row(self, doc: Mapping[str, Any]) -> tuple[Any, ...]:
         """Columns of a document stored as given (kept whole in ``raw`` for an exact dump)."""
+        raw = getattr(doc, "raw", None)  # bytes kept by the dump reader
         if "_id" not in doc:
             doc = {"_id": ObjectId(), **doc}
+            raw = None
         p = doc.get("p")
         o = doc.get("o")
-        sql_o, kind = _sql_value(o)
+        sql_o, kind = self._sql_term(o)
+        s = doc.get("s")
         pstar = doc.get("p*")
         ostar = doc.get("o*")
         pstar_cid = None if pstar is None else self._cid(pstar)
@@ -349,8 +420,8 @@ class SQLiteStore(Store):
         since = self._seconds(time_.get("since"))
         until = self._seconds(time_.get("until"))
         oid = doc["_id"].binary if isinstance(doc["_id"], ObjectId) else b""
-        return (oid, doc.get("s"), p, sql_o, kind, pstar_cid, ostar_cid, doc.get("graph"), since, until, None,
-                bson.encode(doc, codec_options=_CODEC))  # fmt: skip
+        return (oid, self._tid(s) if type(s) is str else None, self._tid(p) if type(p) is str else None, sql_o, kind,
+                pstar_cid, ostar_cid, doc.get("graph"), since, until, None, raw or bson.encode(doc, codec_options=_CODEC))  # fmt: skip
 
     def _insert_documents(self, neem_id: str, kind: str, docs: list[dict[str, Any]]) -> None:
         self._require(neem_id)
@@ -366,18 +437,18 @@ class SQLiteStore(Store):
             elif kind == "annotations":
                 self._conn.executemany(
                     f"INSERT INTO {table}(s, p, doc) VALUES (?, ?, ?)",
-                    [(d.get("s"), d.get("p"), bson.encode(d)) for d in docs],
+                    [(d.get("s"), d.get("p"), _blob(d)) for d in docs],
                 )
             elif kind == "tf":
                 self._conn.executemany(
                     f"INSERT INTO {table}(child, stamp, doc) VALUES (?, ?, ?)",
                     [
-                        (d.get("child_frame_id"), unix_seconds((d.get("header") or {}).get("stamp")), bson.encode(d))
+                        (d.get("child_frame_id"), unix_seconds((d.get("header") or {}).get("stamp")), _blob(d))
                         for d in docs
                     ],
                 )
             else:
-                self._conn.executemany(f"INSERT INTO {table}(doc) VALUES (?)", [(bson.encode(d),) for d in docs])
+                self._conn.executemany(f"INSERT INTO {table}(doc) VALUES (?)", [(_blob(d),) for d in docs])
         except (bson.errors.InvalidDocument, OverflowError) as error:
             raise StoreError(f"{self.location}: NEEM {neem_id!r}: cannot store a {kind} document ({error})") from None
 
@@ -387,18 +458,19 @@ class SQLiteStore(Store):
 
     def _propagate(self, neem_id: str, subject: str, gained: tuple[Any, ...]) -> None:
         table = _table(neem_id, "triples")
-        cids = [row[0] for row in self._conn.execute("SELECT DISTINCT cid FROM closure_member WHERE value=?", (subject,))]
+        subject_id = self._known_tid(subject)
+        cids = [row[0] for row in self._conn.execute("SELECT DISTINCT cid FROM closure_member WHERE value=?", (subject_id,))]
         for cid in cids:
             new_cid = self._cid(extend_closure(self._closure(cid), gained))
             for column, field, taxonomic in (("ostar", "o*", True), ("pstar", "p*", False)):
                 op = "IN" if taxonomic else "NOT IN"
                 self._conn.execute(
-                    f"UPDATE {table} SET {column}=? WHERE {column}=? AND raw IS NULL AND p {op} (?, ?, ?)",
-                    (new_cid, cid, *sorted(TAXONOMIC)),
+                    f"UPDATE {table} SET {column}=? WHERE {column}=? AND raw IS NULL AND p {op} {_TAXONOMIC_SQL}",
+                    (new_cid, cid),
                 )
                 rows = self._conn.execute(
-                    f"SELECT id, raw FROM {table} WHERE {column}=? AND raw IS NOT NULL AND p {op} (?, ?, ?)",
-                    (cid, *sorted(TAXONOMIC)),
+                    f"SELECT id, raw FROM {table} WHERE {column}=? AND raw IS NOT NULL AND p {op} {_TAXONOMIC_SQL}",
+                    (cid,),
                 ).fetchall()
                 updates = []
                 for rowid, blob in rows:
@@ -410,18 +482,17 @@ class SQLiteStore(Store):
     def _hierarchy_source(self, neem_id: str) -> tuple[list[tuple[str, tuple[Any, ...]]], set[Any]]:
         table = _table(neem_id, "triples")
         edges = [
-            (s, self._closure(cid))
+            (self._tval(s), self._closure(cid))
             for s, cid in self._conn.execute(
-                f"SELECT s, ostar FROM {table} WHERE p IN (?, ?) AND ostar > 0 ORDER BY id",
-                (SUBCLASS_OF, SUBPROPERTY_OF),
-            )
+                f"SELECT s, ostar FROM {table} WHERE p IN {_HIERARCHY_SQL} AND ostar > 0 AND s IS NOT NULL ORDER BY id"
+            ).fetchall()
         ]
         used = {
-            value
+            self._tval(value)
             for (value,) in self._conn.execute(
-                f"SELECT DISTINCT value FROM closure_member WHERE cid IN"
+                f"SELECT DISTINCT value FROM closure_member WHERE value IS NOT NULL AND cid IN"
                 f" (SELECT ostar FROM {table} UNION SELECT pstar FROM {table})"
-            )
+            ).fetchall()
         }
         return edges, used
 
@@ -461,7 +532,7 @@ class SQLiteStore(Store):
             if isinstance(term, Var):
                 raise StoreError("find() takes constants; use match() for variables")
         pattern = TriplePattern(s, p, o, graph)
-        query = _Compiler(_table(neem_id, "triples"), scope)
+        query = _Compiler(self, _table(neem_id, "triples"), scope)
         query.add(pattern, exact=exact)
         self._require(neem_id)
         sql = f"SELECT {_DOC_COLUMNS} FROM {query.from_clause()} WHERE {query.where()} ORDER BY t0.id"
@@ -494,11 +565,11 @@ class SQLiteStore(Store):
         elif ok == K_DATE:
             value = datetime.fromtimestamp(o, timezone.utc).replace(tzinfo=None)  # as pymongo decodes Dates
         else:
-            value = _python_value(o, ok)
+            value = self._out(o, ok)
         return {
             "_id": ObjectId(oid),
-            "s": s,
-            "p": p,
+            "s": self._tval(s),
+            "p": self._tval(p),
             "o": value,
             "p*": list(self._closure(pstar)),
             "o*": [value] if ostar == 0 else list(self._closure(ostar)),
@@ -516,20 +587,21 @@ class SQLiteStore(Store):
     ) -> Iterator[dict[str, Any]]:
         validate_patterns(patterns)
         self._require(neem_id)
-        query = _Compiler(_table(neem_id, "triples"), scope)
+        query = _Compiler(self, _table(neem_id, "triples"), scope)
         for pattern in patterns:
             query.add(pattern)
         names = list(query.bound)
         if not names:
             select = "1"
         else:
-            select = ", ".join(f"{query.bound[n][0]}, {query.bound[n][1] or 0}" for n in names)
+            select = ", ".join(f"{query.bound[n][0]}, {query.bound[n][1] or K_STR}" for n in names)
         order = ", ".join(f"{alias}.id" for alias in query.aliases)
         sql = f"SELECT {select} FROM {query.from_clause()} WHERE {query.where()} ORDER BY {order}"
         if limit is not None:
             sql += f" LIMIT {int(limit)}"
-        for row in self._conn.execute(sql, query.params):
-            yield {name: _python_value(row[2 * i], row[2 * i + 1]) for i, name in enumerate(names)}
+        out = self._out
+        for row in self._conn.execute(sql, query.params).fetchall():
+            yield {name: out(row[2 * i], row[2 * i + 1]) for i, name in enumerate(names)}
 
     def annotations(self, neem_id: str, s: str | None = None, p: str | None = None) -> Iterator[Annotation]:
         self._require(neem_id)
@@ -549,13 +621,14 @@ class SQLiteStore(Store):
 class _Compiler:
     """Turns triple patterns into one SQL join with KnowRob's p*/o* semantics."""
 
-    def __init__(self, table: str, scope: Scope | None) -> None:
+    def __init__(self, store: SQLiteStore, table: str, scope: Scope | None) -> None:
+        self.store = store
         self.table = table
         self.scope = scope
         self.aliases: list[str] = []
         self.conds: list[str] = []
         self.params: list[Any] = []
-        #: variable -> (SQL expression of its value, SQL expression of its kind or None)
+        #: variable -> (SQL expression of its value, SQL expression of its kind; None for a term id)
         self.bound: dict[str, tuple[str, str | None]] = {}
 
     def from_clause(self) -> str:
@@ -564,32 +637,51 @@ class _Compiler:
     def where(self) -> str:
         return " AND ".join(self.conds) if self.conds else "1"
 
-    def _constant(self, column: str, value: Any) -> None:
+    def _iri(self, value: Any) -> int:
+        return self.store._known_tid(value) if isinstance(value, str) else -1
+
+    def _constant(self, column: str, kind_column: str | None, value: Any) -> None:
+        if kind_column is None:  # s or p: always a term
+            self.conds.append(f"{column}=?")
+            self.params.append(self._iri(value))
+            return
+        if isinstance(value, str):
+            self.conds.append(f"{column}=? AND {kind_column}={K_STR}")
+            self.params.append(self._iri(value))
+            return
         sql, kind = _sql_value(value)
         if kind == K_OTHER:
             raise StoreError(f"cannot query for a {type(value).__name__} value: {value!r}")
         self.conds.append(f"{column}=?")
         self.params.append(sql)
-        if not column.endswith(".o"):
-            return
         if kind in _NUMERIC_KINDS:
-            self.conds.append(f"{column[:-2]}.ok IN (1, 2, 3, 4)")
-        elif kind != K_STR:
-            self.conds.append(f"{column[:-2]}.ok={kind}")
+            self.conds.append(f"{kind_column} IN (1, 2, 3, 4)")
+        else:
+            self.conds.append(f"{kind_column}={kind}")
+
+    def _closure_test(self, column: str, var: str | None, value: Any = None) -> None:
+        """``column`` names a closure containing the term (a bound variable or a constant)."""
+        if var is None:
+            self.conds.append(f"{column} IN (SELECT cid FROM closure_member WHERE value=?) AND {column} > 0")
+            self.params.append(self._iri(value))
+            return
+        expr, kind = self.bound[var]
+        self.conds.append(f"{column} IN (SELECT cid FROM closure_member WHERE value={expr}) AND {column} > 0")
+        if kind is not None:
+            self.conds.append(f"{kind}={K_STR}")
 
     def add(self, pattern: TriplePattern, exact: bool = False) -> None:
         a = f"t{len(self.aliases)}"
         self.aliases.append(a)
         p = pattern.p
         if exact:
-            for term, column in ((pattern.s, "s"), (p, "p"), (pattern.o, "o")):
-                self._term(term, f"{a}.{column}", f"{a}.ok" if column == "o" else None)
+            self._term(pattern.s, f"{a}.s", None)
+            self._term(p, f"{a}.p", None)
+            self._term(pattern.o, f"{a}.o", f"{a}.ok")
             self._filters(a, pattern)
             return
         taxonomic = isinstance(p, str) and p in TAXONOMIC
-        # subject
         self._term(pattern.s, f"{a}.s", None)
-        # property
         if isinstance(p, Var):
             self._term(p, f"{a}.p", None)
         elif p is not None:
@@ -597,19 +689,15 @@ class _Compiler:
                 raise StoreError(f"a property must be an IRI, got {p!r}")
             if taxonomic:
                 self.conds.append(f"{a}.p=?")
+                self.params.append(self._iri(p))
             else:
-                self.conds.append(
-                    f"{a}.pstar IN (SELECT cid FROM closure_member WHERE value=?) AND {a}.p NOT IN {_TAXONOMIC_SQL}"
-                )
-            self.params.append(p)
-        # object
+                self._closure_test(f"{a}.pstar", None, p)
+                self.conds.append(f"{a}.p NOT IN {_TAXONOMIC_SQL}")
         o = pattern.o
-        if isinstance(o, Var) and o.name in self.bound and taxonomic:
-            expr = self.bound[o.name][0]
-            self.conds.append(f"{a}.ostar IN (SELECT cid FROM closure_member WHERE value={expr}) AND {a}.ostar > 0")
-        elif o is not None and not isinstance(o, Var) and taxonomic:
-            self.conds.append(f"{a}.ostar IN (SELECT cid FROM closure_member WHERE value=?) AND {a}.ostar > 0")
-            self.params.append(_sql_value(o)[0])
+        if taxonomic and isinstance(o, Var) and o.name in self.bound:
+            self._closure_test(f"{a}.ostar", o.name)
+        elif taxonomic and o is not None and not isinstance(o, Var):
+            self._closure_test(f"{a}.ostar", None, o)
         else:
             self._term(o, f"{a}.o", f"{a}.ok")
         self._filters(a, pattern)
@@ -625,10 +713,18 @@ class _Compiler:
     def _term(self, term: Term, column: str, kind_column: str | None) -> None:
         if term is None:
             return
-        if isinstance(term, Var):
-            if term.name in self.bound:
-                self.conds.append(f"{column}={self.bound[term.name][0]}")
-            else:
-                self.bound[term.name] = (column, kind_column)
+        if not isinstance(term, Var):
+            self._constant(column, kind_column, term)
             return
-        self._constant(column, term)
+        if term.name not in self.bound:
+            self.bound[term.name] = (column, kind_column)
+            return
+        expr, kind = self.bound[term.name]
+        self.conds.append(f"{column}={expr}")
+        # Term ids and literal numbers share the column types: compare like with like.
+        if kind_column is None and kind is not None:
+            self.conds.append(f"{kind}={K_STR}")
+        elif kind_column is not None and kind is None:
+            self.conds.append(f"{kind_column}={K_STR}")
+        elif kind_column is not None and kind is not None:
+            self.conds.append(f"({kind_column}={K_STR})=({kind}={K_STR})")
