@@ -36,7 +36,7 @@ def canonical(rows):
     return sorted(sorted((k, repr(v)) for k, v in row.items()) for row in rows)
 
 
-@settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(st.lists(triples, max_size=25), st.lists(st.lists(patterns, min_size=1, max_size=3), max_size=4))
 def test_sqlite_and_mongo_agree(tmp_path_factory, batch, queries):
     root = tmp_path_factory.mktemp("eq")

@@ -681,6 +681,8 @@ class _Compiler:
             self._filters(a, pattern)
             return
         taxonomic = isinstance(p, str) and p in TAXONOMIC
+        # Only a variable bound by an earlier pattern is "bound" for o* (mongolog binds per goal).
+        earlier = set(self.bound)
         self._term(pattern.s, f"{a}.s", None)
         if isinstance(p, Var):
             self._term(p, f"{a}.p", None)
@@ -694,7 +696,7 @@ class _Compiler:
                 self._closure_test(f"{a}.pstar", None, p)
                 self.conds.append(f"{a}.p NOT IN {_TAXONOMIC_SQL}")
         o = pattern.o
-        if taxonomic and isinstance(o, Var) and o.name in self.bound:
+        if taxonomic and isinstance(o, Var) and o.name in earlier:
             self._closure_test(f"{a}.ostar", o.name)
         elif taxonomic and o is not None and not isinstance(o, Var):
             self._closure_test(f"{a}.ostar", None, o)

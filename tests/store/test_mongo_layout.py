@@ -1,0 +1,55 @@
+"""The Mongo code path writes KnowRob's layout and queries the way mongolog does."""
+
+from __future__ import annotations
+
+from bson.decimal128 import Decimal128
+
+from oracle.store import RDF_TYPE, Triple, TriplePattern, Var
+from oracle.store.mongo import TRIPLE_INDEXES, compile_pipeline
+from tests.store.conftest import make_store
+
+X = "http://example.org/x#"
+
+
+def test_collections_indexes_one_and_meta(tmp_path):
+    store = make_store("mongomock", tmp_path)
+    store.create_neem("5fc8ff968f880006aa208e19", user="alice")
+    names = set(store.db.list_collection_names())
+    assert {f"5fc8ff968f880006aa208e19_{k}" for k in ("triples", "annotations", "tf", "inferred")} <= names
+    keys = {tuple(k for k, _ in spec["key"]) for spec in store.db["5fc8ff968f880006aa208e19_triples"].index_information().values()}
+    assert len(TRIPLE_INDEXES) == 15 and set(TRIPLE_INDEXES) <= keys
+    (one,) = store.db["one"].find({}, {"_id": 0})
+    assert one == {"v_scope": {"time": {"since": Decimal128("0"), "until": Decimal128("Infinity")}}}
+    assert store.db["meta"].find_one({"_id": "5fc8ff968f880006aa208e19"})["created_by"] == "alice"
+
+
+def test_restored_collections_without_meta_are_listed(tmp_path):
+    store = make_store("mongomock", tmp_path)
+    store.db["abc_triples"].insert_one({"s": X + "a", "p": RDF_TYPE, "o": X + "C", "p*": [RDF_TYPE], "o*": [X + "C"]})
+    assert [info.id for info in store.neems()] == ["abc"]
+    assert [d["s"] for d in store.find("abc", p=RDF_TYPE, o=X + "C")] == [X + "a"]
+
+
+def test_a_conjunction_is_one_aggregation_on_one():
+    pipeline = compile_pipeline(
+        "n_triples",
+        [TriplePattern(Var("A"), X + "hasParticipant", Var("O")), TriplePattern(Var("O"), RDF_TYPE, X + "Cup")],
+        None,
+        None,
+    )
+    lookups = [stage["$lookup"] for stage in pipeline if "$lookup" in stage]
+    assert [lk["from"] for lk in lookups] == ["n_triples", "n_triples"]
+    assert "let" not in lookups[0] and lookups[1]["let"] == {"v_O": "$v_O"}
+    assert lookups[0]["pipeline"][0]["$match"] == {"p*": X + "hasParticipant"}
+    second = lookups[1]["pipeline"][0]["$match"]
+    assert second["p"] == RDF_TYPE and second["o*"] == X + "Cup"
+    assert second["$expr"] == {"$eq": ["$s", "$$v_O"]}
+
+
+def test_numbers_written_as_decimal128_are_found_by_a_double(tmp_path):
+    store = make_store("mongomock", tmp_path)
+    store.create_neem("n")
+    store.insert("n", [Triple(X + "i", X + "begin", 12.5)])
+    (doc,) = store.db["n_triples"].find({})
+    assert doc["o"] == Decimal128("12.5")
+    assert list(store.match("n", [TriplePattern(Var("I"), X + "begin", 12.5)])) == [{"I": X + "i"}]
