@@ -133,6 +133,7 @@ class NeemLogger:
         info = store.neem(neem_id)
         self.user: str = info.user or "user"
         self._known: set[str] = set()
+        self._keys: dict[TaskCall, str] = {}
         self._last_end: Instant | None = None
         self._last_end = self._resume_last_end()
 
@@ -238,9 +239,11 @@ class NeemLogger:
 
     def _task(self, call: TaskCall, out: _Out, since: float) -> str:
         """The task individual of a call with its roles (``Role dul:classifies Object``)."""
-        key = _slug(str(call).replace(", ", "__").replace("(", "__").replace(")", ""))
+        key = self._keys.get(call)
+        if key is None:
+            key = self._keys[call] = _slug(str(call).replace(", ", "__").replace("(", "__").replace(")", ""))
         task = f"{self.ns}Task_{key}"
-        if not self._new(task, out):
+        if task in self._known or not self._new(task, out):
             return task
         out.append(Triple(task, RDF_TYPE, self.onto.task_iri(call.task)))
         out.append(Triple(task, RDF_TYPE, NAMED_INDIVIDUAL))
@@ -260,6 +263,9 @@ class NeemLogger:
         return task
 
     def _plan(self, call: TaskCall, out: _Out, since: float) -> str:
+        key = self._keys.get(call)
+        if key is not None and f"{self.ns}Plan_{key}" in self._known:
+            return f"{self.ns}Plan_{key}"
         task = self._task(call, out, since)
         plan = f"{self.ns}Plan_{task[len(self.ns) + len('Task_'):]}"
         if self._new(plan, out):

@@ -57,6 +57,8 @@ class MongoStore(Store):
         self.client = client
         self.db = client[db_name]
         self.location = location or f"mongodb database {db_name!r}"
+        #: NEEM ids seen to exist, so each write does not ask the server again.
+        self._present: set[str] = set()
         try:
             if self.db["one"].count_documents({}) == 0:
                 self.db["one"].insert_one(dict(ONE_DOCUMENT))
@@ -87,9 +89,14 @@ class MongoStore(Store):
         return [infos[key] for key in sorted(infos)]
 
     def has_neem(self, neem_id: str) -> bool:
-        if self.db[META].count_documents({"_id": neem_id}, limit=1):
+        if neem_id in self._present:
             return True
-        return f"{neem_id}_triples" in self.db.list_collection_names()
+        found = bool(self.db[META].count_documents({"_id": neem_id}, limit=1)) or (
+            f"{neem_id}_triples" in self.db.list_collection_names()
+        )
+        if found:
+            self._present.add(neem_id)
+        return found
 
     def create_neem(
         self, neem_id: str, *, user: str | None = None, temporary: bool = False, meta: Mapping[str, Any] | None = None
@@ -111,6 +118,7 @@ class MongoStore(Store):
         for kind in KINDS:
             self._coll(neem_id, kind).drop()
         self.db[META].delete_one({"_id": neem_id})
+        self._present.discard(neem_id)
         self._hierarchies.pop(neem_id, None)
 
     def rename_neem(self, neem_id: str, new_id: str) -> None:
@@ -124,6 +132,7 @@ class MongoStore(Store):
                 self._coll(neem_id, kind).rename(f"{new_id}_{kind}")
         self.db[META].delete_one({"_id": neem_id})
         self.db[META].insert_one({"_id": new_id, **dict(info.meta)})
+        self._present.discard(neem_id)
         self._hierarchies.pop(neem_id, None)
 
     def update_meta(self, neem_id: str, **fields: Any) -> NeemInfo:

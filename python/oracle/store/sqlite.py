@@ -378,8 +378,12 @@ class SQLiteStore(Store):
         cid = self._cid
         tids = self._tids
         tid = self._tid
+        # ObjectId bytes: this second, the store's random part, then a counter per row.
+        prefix = struct.pack(">I", int(time.time())) + self._random
+        counter = self._counter
         rows = []
         for triple, pstar, ostar in closed:
+            counter = (counter + 1) & 0xFFFFFF
             o = triple.o
             if type(o) is str:
                 sql_o, kind = tids.get(o) or tid(o), K_STR
@@ -389,8 +393,9 @@ class SQLiteStore(Store):
                 sql_o, kind = self._sql_term(encode_value(o, builder.number_format))
             p = triple.p
             ostar_cid = cid(ostar) if p in TAXONOMIC else 0
-            rows.append((self._oid(), tids.get(triple.s) or tid(triple.s), tids.get(p) or tid(p), sql_o, kind,
+            rows.append((prefix + counter.to_bytes(3, "big"), tids.get(triple.s) or tid(triple.s), tids.get(p) or tid(p), sql_o, kind,
                          cid(pstar), ostar_cid, triple.graph, triple.since, triple.until, scope_kind))  # fmt: skip
+        self._counter = counter
         self._conn.executemany(
             f"INSERT INTO {_table(neem_id, 'triples')}(oid, s, p, o, ok, pstar, ostar, graph, since, until, sk)"
             " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
