@@ -323,3 +323,25 @@ def test_a_killed_logger_loses_at_most_the_action_in_flight(tmp_path, onto):
         view = views[name]
         assert view.task_class == onto.iri("pour") and view.end - view.begin == 1.0
         assert len(view.participants) == 2
+
+
+def test_neem_ids_are_made_from_any_user_name(tmp_path, onto, small_tbox):
+    store = SQLiteStore(tmp_path / "s.sqlite")
+    first = NeemLogger.create(store, onto, user="Ann_B. Smith", tbox=small_tbox)
+    second = NeemLogger.create(store, onto, user="Ann_B. Smith", tbox=small_tbox)
+    assert (first.neem_id, second.neem_id) == ("Ann-B-Smith", "Ann-B-Smith-2")
+    assert store.neem(second.neem_id).user == "Ann_B. Smith"
+
+
+def test_a_logged_neem_survives_export_and_load(tmp_path, onto, small_tbox):
+    from oracle.store.dump import export_neem, load_dump
+
+    store = SQLiteStore(tmp_path / "s.sqlite")
+    logger = NeemLogger.create(store, onto, user="alice", tbox=small_tbox)
+    logger.action("pour(thermos, green_mug)", T0, T0 + timedelta(seconds=4), available=["pick(green_mug)"])
+    logger.action("pick(green_mug)", T0 + timedelta(minutes=2))
+    export_neem(store, logger.neem_id, tmp_path / "dump")
+    other = make_store("mongomock", tmp_path)
+    (loaded,) = load_dump(other, tmp_path / "dump")
+    assert list(executed_actions(other, loaded)) == list(executed_actions(store, logger.neem_id))
+    assert summarize(other, loaded).actions == 3

@@ -53,6 +53,8 @@ _ROBOT_CLASS = str(DUL.PhysicalAgent)
 _PERSON_CLASS = str(DUL.NaturalPerson)
 
 _SLUG = re.compile(r"[^A-Za-z0-9_\-]+")
+#: NEEM ids are collection prefixes: no underscores (see store.base.check_neem_id).
+_NEEM_SLUG = re.compile(r"[^A-Za-z0-9\-]+")
 
 Moment = datetime | float | int
 
@@ -156,7 +158,7 @@ class NeemLogger:
         if not isinstance(user, str) or not user.strip():
             raise LoggingError("a NEEM needs a user name")
         if neem_id is None:
-            base = _SLUG.sub("-", user).strip("-")[:48] or "user"
+            base = _NEEM_SLUG.sub("-", user).strip("-")[:48] or "user"
             neem_id, n = base, 1
             while store.has_neem(neem_id) and not replace:
                 n += 1
@@ -164,7 +166,11 @@ class NeemLogger:
         if replace and store.has_neem(neem_id):
             store.drop_neem(neem_id)
         store.create_neem(neem_id, user=user, temporary=temporary, meta={"name": neem_id})
-        load_tbox(store, neem_id, tbox if tbox is not None else tbox_from_graph(onto.graph))
+        try:
+            load_tbox(store, neem_id, tbox if tbox is not None else tbox_from_graph(onto.graph))
+        except BaseException:
+            store.drop_neem(neem_id)  # a NEEM without its TBox would give wrong closures
+            raise
         return cls(store, onto, neem_id, idle_threshold=idle_threshold, commit_every=commit_every)
 
     @classmethod

@@ -365,11 +365,6 @@ class SQLiteStore(Store):
             return cached
         return unix_seconds(value)
 
-    def _oid(self) -> bytes:
-        """A fresh ObjectId's 12 bytes (time, per-store random, counter), without the object."""
-        self._counter = (self._counter + 1) & 0xFFFFFF
-        return struct.pack(">I", int(time.time())) + self._random + self._counter.to_bytes(3, "big")
-
     def _insert_triples(self, neem_id: str, closed: list[Closed], builder: DocumentBuilder) -> None:
         """Rows straight from triples: the document is rebuilt from columns when read."""
         self._require(neem_id)
