@@ -13,6 +13,21 @@ test(action_call, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
     findall(C-B, action_call(_, C, B, _), L), msort(L, S),
     S == ['IdleTask'-110, pick(apple)-201, pour(thermos, green_mug)-101].
 
+test(situation_history, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
+    situation_history(S),
+    S = [situation(B1, E1, C1, P1, A1), situation(_, _, C2, _, A2), situation(_, _, C3, P3, A3)],
+    B1 =:= 101, E1 =:= 110, C1 == pour(thermos, green_mug), P1 == 'Morning',
+    A1 == [pick(apple), pour(thermos, green_mug)],
+    C2 == idle, A2 == none,
+    C3 == pick(apple), P3 == 'Midday', A3 == [pick(apple)].
+
+test(situation_history_json, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
+    situation_history_json(J), sub_string(J, _, _, _, "\"call\":\"pour(thermos,green_mug)\"").
+
+test(latest_situation, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
+    latest_situation(B, C), B =:= 200, C == [pick(apple)],
+    latest_situation_json(J), sub_string(J, _, _, _, "\"begin\":200").
+
 test(time_of_day, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
     n(a1, A1), n(a3, A3),
     event_time_of_day(A1, 'Morning'), event_time_of_day(A3, P), P == 'Midday'.

@@ -312,6 +312,22 @@ class Bridge:
 
         return self.answer([Atom("something_else"), Atom(task or "none"), [Atom(a) for a in args]])
 
+    def _json(self, goal: str) -> Any:
+        rows = self._with_request([], f"{goal}(J)")
+        if not rows:
+            raise PrologError(f"Prolog found no answer to {goal}")
+        text = rows[0]["J"]
+        return json.loads(text.decode("utf-8") if isinstance(text, bytes) else text)
+
+    def history(self) -> list[dict[str, Any]]:
+        """odb_model:situation_history/1 in one crossing: every executed action in begin order
+        as ``{"begin", "end", "call", "part", "available"}`` (calls in the chain syntax)."""
+        return self._json("odb_model:situation_history_json")
+
+    def latest_situation(self) -> dict[str, Any] | None:
+        """The latest imagined situation as ``{"begin", "available"}``, or None."""
+        return self._json("odb_model:latest_situation_json")
+
     def solutions(self, goal: str, variables: Sequence[str], *, stepwise: bool = False) -> list[tuple[Any, ...]]:
         """All solutions of a kb_call goal (its text) as tuples of the named variables."""
         wrapper = "kb_call_stepwise" if stepwise else "kb_call"

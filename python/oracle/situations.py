@@ -62,3 +62,21 @@ def check_call(ontology: OdbOntology, call: TaskCall, where: str) -> None:
         option_of(ontology, call)
     except OntologyError as error:
         raise OntologyError(f"{where}: {error}") from None
+
+
+def steps_from_history(ontology: OdbOntology, rows: Iterable[dict]) -> list[Step]:
+    """The oracle's history from the Prolog bridge's ``situation_history`` rows (begin order)."""
+    from oracle.chains import parse_call
+
+    steps: list[Step] = []
+    for row in rows:
+        part = row.get("part")
+        part = part if part not in (None, "none") else None
+        if row["call"] == "idle":
+            steps.append(Step(ontology.vocab.idle_task, time_of_day=part, idle=True, label="idle"))
+            continue
+        call = parse_call(row["call"])
+        option = option_of(ontology, call)
+        options = tuple(option_of(ontology, parse_call(c)) for c in row.get("available") or ())
+        steps.append(Step(option.task, option.target, option.reference, options, part, False, str(call)))
+    return steps

@@ -44,6 +44,11 @@ class Method(Protocol):
     def observe(self, step: Step) -> None: ...
 
 
+def opening_tasks(ontology: OdbOntology) -> frozenset[str]:
+    """Task classes under soma:Opening: their successors are not pruned (thesis Fig. 4.7)."""
+    return frozenset(t.iri for t in ontology.tasks.values() if ontology.taxonomy.is_subclass_of(t.iri, str(SOMA.Opening)))
+
+
 class OracleMethod:
     """The fast PreferenceOracle behind the replay's Method interface."""
 
@@ -51,8 +56,7 @@ class OracleMethod:
         self.name = name
         self.settings = settings
         self.distances = ontology.distances()
-        self.opening = frozenset(iri for name, iri in ((n, t.iri) for n, t in ontology.tasks.items())
-                                 if ontology.taxonomy.is_subclass_of(iri, str(SOMA.Opening)))
+        self.opening = opening_tasks(ontology)
         self.reset()
 
     def reset(self) -> None:

@@ -1,0 +1,57 @@
+"""The oracle in the system: history from the NEEM through the Prolog bridge, ranking written back."""
+
+import json
+import shutil
+
+import pytest
+
+from oracle.cli import main
+
+pytestmark = pytest.mark.skipif(shutil.which("swipl") is None, reason="SWI-Prolog (swipl) is not installed; run make setup")
+
+CHAIN = [
+    "open(small_drawer)", "pick(red_mug)", "place(red_mug, counter_top)", "close(small_drawer)",
+    "pick(thermos)", "pour(thermos, red_mug)", "place(thermos, counter_top)",
+]
+
+
+@pytest.fixture()
+def store(tmp_path):
+    rows = []
+    available = sorted(set(CHAIN + ["pick(banana)", "open(fridge)"]))
+    for day in range(3):
+        for i, action in enumerate(CHAIN):
+            rows.append({"user": "ada", "time": f"2026-03-0{2 + day}T08:00:{8 * i:02d}", "duration": 5,
+                         "action": action, "available": available})
+    chains = tmp_path / "c.jsonl"
+    chains.write_text("".join(json.dumps(r) + "\n" for r in rows))
+    path = tmp_path / "s.sqlite"
+    assert main(["import", str(chains), "--store", str(path)]) == 0
+    return path
+
+
+def test_rank_latest_situation_writes_preference_that_prolog_reads(store, capsys):
+    capsys.readouterr()
+    assert main(["rank", "--store", str(store), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["history"] == 22  # 3 days x 7 actions + 2 idle delimiters, minus the ranked decision's action
+    assert "place(thermos, counter_top)" in [r["call"] for r in out["ranking"][:3]]
+    assert [r["rank"] for r in out["ranking"]] == list(range(1, len(out["ranking"]) + 1))
+    assert out["written"].startswith("https://ontology.dlr.de/soma/odb#PreferenceOrder")
+    assert main(["what-next", "--store", str(store), "--json"]) == 0
+    answer = json.loads(capsys.readouterr().out)
+    assert "place(thermos,counter_top)" in json.dumps(answer).replace(" ", "")
+
+
+def test_rank_given_options_without_write(store, capsys):
+    capsys.readouterr()
+    code = main(["rank", "--store", str(store), "--available", "pick(red_mug)", "open(small_drawer)",
+                 "--at", "2026-03-05T08:00:00", "--no-write", "--json"])
+    assert code == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["ranking"][0]["call"] == "open(small_drawer)" and out["written"] is None
+
+
+def test_rank_rejects_unknown_objects(store, capsys):
+    assert main(["rank", "--store", str(store), "--available", "pick(unicorn)"]) == 1
+    assert "unknown object 'unicorn'" in capsys.readouterr().err
