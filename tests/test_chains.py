@@ -59,3 +59,29 @@ def test_bad_line_names_file_and_line(tmp_path):
 def test_row_to_json_keeps_fields():
     row = ChainRow("u", TaskCall("pick", ("a",)))
     assert row.to_json() == {"user": "u", "action": "pick(a)"}
+
+
+def test_end_and_duration(tmp_path):
+    path = tmp_path / "c.jsonl"
+    path.write_text(
+        '{"user": "u", "time": "2026-01-01T08:00:00", "duration": 12.5, "action": "pick(a)"}\n'
+        '{"user": "u", "time": "2026-01-01T08:01:00", "end": "2026-01-01T08:01:30", "action": "place(a)"}\n'
+    )
+    first, second = read_chains(path)
+    assert (first.end - first.time).total_seconds() == 12.5 and (second.end - second.time).total_seconds() == 30
+    assert second.to_json()["end"] == "2026-01-01T08:01:30"
+
+
+@pytest.mark.parametrize(
+    "row, message",
+    [
+        ('{"user": "u", "time": "2026-01-01T08:00:00", "end": "2026-01-01T07:00:00", "action": "a"}', "'end' must not be before"),
+        ('{"user": "u", "duration": 3, "action": "a"}', "'duration' needs a 'time'"),
+        ('{"user": "u", "time": "2026-01-01T08:00:00", "duration": -1, "action": "a"}', "'duration' must be a number"),
+    ],
+)
+def test_bad_end_or_duration(tmp_path, row, message):
+    path = tmp_path / "c.jsonl"
+    path.write_text(row + "\n")
+    with pytest.raises(ChainSyntaxError, match=message):
+        list(read_chains(path))

@@ -23,10 +23,11 @@ from oracle.errors import ChainSyntaxError, LoggingError, OntologyError, StoreEr
 from oracle.namespaces import DUL, OWL, SOMA
 from oracle.store import RDF_TYPE, Store, Triple, TriplePattern, Var
 from oracle.store.tbox import TBox, load_tbox, tbox_from_graph
+from oracle.ontology.vocabulary import IDLE_THRESHOLD_S
 from oracle.timeofday import time_of_day
 
 #: Shared grasping of at least this many seconds is an odb:IdleTask action (thesis 3.4).
-IDLE_THRESHOLD = 20.0
+IDLE_THRESHOLD = IDLE_THRESHOLD_S
 NAMED_INDIVIDUAL = str(OWL.NamedIndividual)
 
 _ACTION = str(DUL.Action)
@@ -548,8 +549,8 @@ def import_chains(
 ) -> dict[str, int]:
     """Log a chains JSONL file, one NEEM per user; return {NEEM id: actions committed}.
 
-    Rows may carry ``end`` (ISO-8601), ``duration`` (seconds), ``id`` and ``performed_by``
-    besides the chain fields. Rows are committed as they are logged (in groups of
+    Rows may carry ``id`` and ``performed_by`` besides the chain fields (``end``/``duration``
+    are chain fields, see oracle.chains). Rows are committed as they are logged (in groups of
     ``commit_every``); an error on line n commits every good line before it, then raises an
     error naming the file and line.
     """
@@ -564,7 +565,7 @@ def import_chains(
             where = f"{path}:{row.line}"
             if row.time is None:
                 raise LoggingError("'time' is required to log an action")
-            end = _row_end(row.time, row.extra)
+            end = row.end
             logger = loggers.get(row.user)
             if logger is None:
                 logger = NeemLogger.create(store, onto, user=row.user, replace=replace, tbox=tbox,
@@ -589,19 +590,3 @@ def import_chains(
     return report
 
 
-def _row_end(begin: datetime, extra: dict[str, object]) -> datetime | None:
-    from datetime import timedelta
-
-    if extra.get("end") is not None:
-        raw = extra["end"]
-        try:
-            return datetime.fromisoformat(str(raw).replace("Z", "+00:00"))
-        except ValueError:
-            raise LoggingError(f"'end' {raw!r} is not ISO-8601") from None
-    if extra.get("duration") is not None:
-        try:
-            seconds = float(extra["duration"])  # type: ignore[arg-type]
-        except (TypeError, ValueError):
-            raise LoggingError(f"'duration' must be a number of seconds, got {extra['duration']!r}") from None
-        return begin + timedelta(seconds=seconds)
-    return None
