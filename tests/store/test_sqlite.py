@@ -62,3 +62,14 @@ def test_default_store_lives_in_the_user_data_dir(monkeypatch, tmp_path):
     with open_store(None) as store:
         assert str(store.location).startswith(str(tmp_path))
         assert store.location.endswith("default.sqlite")
+
+
+def test_a_neem_dropped_by_another_process_is_a_store_error(tmp_path):
+    first = SQLiteStore(tmp_path / "s.sqlite")
+    first.create_neem("n1")
+    first.insert("n1", [Triple(X + "c", RDF_TYPE, X + "Cup")])
+    second = SQLiteStore(tmp_path / "s.sqlite")
+    second.drop_neem("n1")
+    with pytest.raises(StoreError, match="no such table"):
+        first.insert("n1", [Triple(X + "d", RDF_TYPE, X + "Cup")])
+    assert not second.has_neem("n1")

@@ -116,6 +116,29 @@ _TRIPLE_INDEXES = (
 )
 
 
+class _Connection:
+    """sqlite3 errors (a NEEM dropped by another process, a locked or full disk) as StoreError."""
+
+    def __init__(self, conn: sqlite3.Connection, location: str) -> None:
+        self.conn = conn
+        self.location = location
+
+    def execute(self, sql: str, params: Sequence[Any] = ()) -> sqlite3.Cursor:
+        try:
+            return self.conn.execute(sql, params)
+        except sqlite3.Error as error:
+            raise StoreError(f"{self.location}: {error}") from None
+
+    def executemany(self, sql: str, rows: Any) -> sqlite3.Cursor:
+        try:
+            return self.conn.executemany(sql, rows)
+        except sqlite3.Error as error:
+            raise StoreError(f"{self.location}: {error}") from None
+
+    def close(self) -> None:
+        self.conn.close()
+
+
 class SQLiteStore(Store):
     """A NEEM store in one SQLite file (WAL, synchronous=NORMAL: an action committed survives
     a killed process, which is the crash model of issue 3)."""
@@ -124,7 +147,7 @@ class SQLiteStore(Store):
         super().__init__(number_format)
         self.path = Path(path).expanduser()
         self.location = str(self.path)
-        self._conn = self._connect()
+        self._conn = _Connection(self._connect(), self.location)
         self._depth = 0
         self._cids: dict[Any, int] = {}
         self._members: dict[int, tuple[Any, ...]] = {}
@@ -149,6 +172,7 @@ class SQLiteStore(Store):
             conn = sqlite3.connect(self.path, isolation_level=None, check_same_thread=False)
             conn.execute("PRAGMA journal_mode=WAL")
             conn.execute("PRAGMA synchronous=NORMAL")
+            conn.execute("PRAGMA busy_timeout=10000")  # concurrent writers wait instead of failing
             conn.execute("PRAGMA temp_store=MEMORY")
             # Fewer, larger checkpoints: each one fsyncs, commits themselves do not.
             conn.execute("PRAGMA wal_autocheckpoint=8192")
@@ -185,7 +209,7 @@ class SQLiteStore(Store):
             yield
         except BaseException:
             self._depth -= 1
-            if self._depth == 0:
+            if self._depth == 0 and self._conn.conn.in_transaction:
                 self._conn.execute("ROLLBACK")
                 self._cids.clear()
                 self._members.clear()
