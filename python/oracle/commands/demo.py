@@ -1,22 +1,66 @@
-"""``python -m oracle demo``: the main job on the embedded default store."""
+"""``python -m oracle demo``: the main job on the embedded default store, in a few seconds.
+
+Builds the sample kitchen ontology, logs five simulated days of one user into a NEEM named
+``demo`` (replaced on every run), logs what is available on the sixth morning, ranks it from the
+history through the Prolog bridge, writes the ranking back, and asks Prolog why a lower-ranked
+task was not chosen.
+"""
 
 from __future__ import annotations
 
 import argparse
-
-from oracle.ontology import build_with_report
+import time
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
-    parser = subparsers.add_parser("demo", help="build the sample kitchen and show what the oracle does")
+    parser = subparsers.add_parser("demo", help="log a simulated user, rank the next task, answer why-not (embedded store)")
+    parser.add_argument("--store", help="store to use (default: the user's embedded SQLite store)")
+    parser.add_argument("--days", type=int, default=5, help="days of history to simulate (default 5)")
+    parser.add_argument("--seed", type=int, default=3, help="which simulated user (default 3)")
     parser.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    ontology, report = build_with_report()
-    print(f"sample kitchen ontology: {report.n_objects} objects, {report.n_tasks} tasks, "
-          f"{len(ontology.taxonomy.classes)} classes under SOMA/DUL")
-    matrix = ontology.distances()
-    for a, b in (("red_mug", "green_mug"), ("red_mug", "banana"), ("pick", "place"), ("open", "eat")):
-        print(f"  dist({a}, {b}) = {matrix.distance(ontology.iri(a), ontology.iri(b)):.3f}")
+    from oracle.algorithm.params import Hyperparameters
+    from oracle.answers import why_not_sentence
+    from oracle.bridge import Bridge
+    from oracle.commands.rank import print_ranking
+    from oracle.errors import NeemOracleError
+    from oracle.logger import NeemLogger
+    from oracle.ontology import build_with_report
+    from oracle.ranking import rank_neem
+    from oracle.store import open_store
+    from oracle.world.generate import simulate
+    from oracle.world.personas import make_persona
+    from oracle.world.rules import load_world
+
+    if args.days < 1:
+        raise NeemOracleError("--days must be at least 1")
+    started = time.perf_counter()
+    onto, report = build_with_report()
+    print(f"1. ontology: sample kitchen, {report.n_objects} odb objects and {report.n_tasks} tasks under SOMA/DUL")
+
+    persona = make_persona(args.seed, 0)
+    rows, _ = simulate(persona, load_world(), args.days + 1, args.seed)
+    last_day = rows[-1].time.date()
+    history = [r for r in rows if r.time.date() != last_day]
+    now = next(r for r in rows if r.time.date() == last_day)
+    store = open_store(args.store)
+    logger = NeemLogger.create(store, onto, user=persona.file_name, neem_id="demo", replace=True, commit_every=200)
+    for row in history:
+        logger.action(row.action, row.time, row.end, available=row.available)
+    logger.available(now.available, now.time)
+    logger.flush()
+    print(f"2. NEEM 'demo' in {store.location}: {len(history)} actions of {persona.file_name} over {args.days} days")
+    print(f"   ({persona.persona})")
+
+    bridge = Bridge(store, "demo", onto)
+    result = rank_neem(bridge, onto, Hyperparameters())
+    print(f"3. what the user may want now (they went on to do {now.action}):")
+    print_ranking(result, limit=5)
+
+    asked = result.calls[min(5, len(result.calls) - 1)]
+    answer = bridge.why_not(asked.task, list(asked.args), result.at)
+    print(f"4. why not {asked}?  {why_not_sentence(answer)}")
+    print(f"done in {time.perf_counter() - started:.1f} s; try: python -m oracle prolog --neem demo")
     return 0
