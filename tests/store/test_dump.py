@@ -7,7 +7,6 @@ import json
 import os
 import stat
 
-import bson
 import pytest
 from bson.decimal128 import Decimal128
 from bson.int64 import Int64

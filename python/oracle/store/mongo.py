@@ -18,6 +18,7 @@ from oracle.store.base import KINDS, NeemInfo, Store, check_neem_id, new_meta, v
 from oracle.store.model import (
     HIERARCHY,
     TAXONOMIC,
+    Annotation,
     NumberFormat,
     Scope,
     Term,
@@ -177,6 +178,13 @@ class MongoStore(Store):
             raise StoreError(f"unknown collection kind {kind!r}")
         self.neem(neem_id)
         yield from self._coll(neem_id, kind).find({})
+
+    def annotations(self, neem_id: str, s: str | None = None, p: str | None = None) -> Iterator[Annotation]:
+        if not self.has_neem(neem_id):
+            raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
+        query = {k: v for k, v in (("s", s), ("p", p)) if v is not None}
+        for doc in self._coll(neem_id, "annotations").find(query):
+            yield Annotation(doc["s"], doc["p"], doc.get("v"))
 
     def count(self, neem_id: str, kind: str = "triples") -> int:
         if kind not in KINDS:

@@ -8,7 +8,6 @@ annotation values go to the ``annotations`` collection, English or untagged only
 from __future__ import annotations
 
 import hashlib
-from collections.abc import Iterable
 from dataclasses import dataclass
 
 from rdflib import BNode, Graph, Literal, URIRef
@@ -148,8 +147,3 @@ def load_tbox(store: Store, neem_id: str, tbox: TBox) -> int:
             neem_id, "triples", [version_document(iri, tbox.version, graph) for iri, graph in tbox.markers]
         )
     return count
-
-
-def hierarchy_triples(triples: Iterable[Triple]) -> list[Triple]:
-    """Exposed for tests: the load order used by ``tbox_from_graph``."""
-    return _hierarchy_first(list(triples))
