@@ -81,11 +81,13 @@ def run_neems(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps([{**row.__dict__, "begin": _iso(row.begin), "end": _iso(row.end)} for row in rows], indent=2))
         return 0
-    print(f"{'NEEM':<32} {'user':<16} {'actions':>7}  {'begin':<25} {'end':<25} kept")
+    wid = max([4] + [len(row.id) for row in rows])
+    wuser = max([4] + [len(row.user or "-") for row in rows])
+    print(f"{'NEEM':<{wid}}  {'user':<{wuser}}  {'actions':>7}  {'begin':<25}  {'end':<25}  kept")
     for row in rows:
         print(
-            f"{row.id:<32} {row.user or '-':<16} {row.actions:>7}  {_iso(row.begin) or '-':<25}"
-            f" {_iso(row.end) or '-':<25} {'no' if row.temporary else 'yes'}"
+            f"{row.id:<{wid}}  {row.user or '-':<{wuser}}  {row.actions:>7}  {_iso(row.begin) or '-':<25}"
+            f"  {_iso(row.end) or '-':<25}  {'no' if row.temporary else 'yes'}"
         )
     return 0
 
