@@ -173,6 +173,11 @@ def replay(
 
 
 def stderr_progress(done: int, total: int, user: str) -> None:
+    """A bar redrawn in place on a terminal; on a log file, one line per tenth of the users."""
+    if not sys.stderr.isatty():
+        if done == total or done % max(1, total // 10) == 0:
+            sys.stderr.write(f"replay {done}/{total} users\n")
+        return
     width = 30
     filled = int(width * done / total)
     sys.stderr.write(f"\rreplay [{'#' * filled}{'.' * (width - filled)}] {done}/{total} {user[:24]:24s}")

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# Regenerates every figure of docs/results.md (about 20 minutes on 2 cores). Data stays in out/.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+PY=${PY:-.venv/bin/python}
+SHARED=${SHARED:-../shared/datasets}
+$PY -m oracle generate --personas 105 --days 7 --seed 0 --out out/bench
+$PY -m oracle evaluate out/bench/test.jsonl --baselines --ablations \
+    --json out/persona-recommended.json --report out/persona-recommended.md --plots docs/results/persona
+$PY -m oracle tune out/bench/tune.jsonl --metric top1 --budget 80 --out out/tuned-top1.yaml
+$PY -m oracle evaluate out/bench/test.jsonl --settings out/tuned-top1.yaml --baselines \
+    --json out/persona-tuned.json --report out/persona-tuned.md --plots docs/results/persona-tuned
+if [ -d "$SHARED/kasteren_house_a" ]; then
+  $PY -m oracle convert kasteren "$SHARED/kasteren_house_a" --out out/kasteren
+  for s in recommended out/tuned-top1.yaml; do
+    tag=$(basename "$s" .yaml)
+    $PY -m oracle evaluate out/kasteren/chains.jsonl --odb out/kasteren/odb --mapping out/kasteren/mapping.yaml \
+        --settings "$s" --baselines --json "out/kasteren-$tag.json" --report "out/kasteren-$tag.md" \
+        --plots "docs/results/kasteren-$tag"
+  done
+fi
+if [ -d "$SHARED/egtea_gaze_plus" ]; then
+  $PY -m oracle convert egtea "$SHARED/egtea_gaze_plus" --out out/egtea
+  for s in recommended out/tuned-top1.yaml; do
+    tag=$(basename "$s" .yaml)
+    $PY -m oracle evaluate out/egtea/chains.jsonl --odb out/egtea/odb --mapping out/egtea/mapping.yaml \
+        --settings "$s" --baselines --json "out/egtea-$tag.json" --report "out/egtea-$tag.md" \
+        --plots "docs/results/egtea-$tag"
+  done
+fi
