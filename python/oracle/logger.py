@@ -405,10 +405,13 @@ class NeemLogger:
         that odb:imagines_preference a PreferenceOrder (also typed soma:Order) which soma:orders
         one OrderedElement per task, each soma:encapsulates the task's plan and carries
         odb:hasPreferenceRank (1 = most preferred, the order given) and odb:hasPreferenceScore.
-        Returns the PreferenceOrder's IRI."""
+        Returns the PreferenceOrder's IRI.
+
+        ``at`` is the time of the decision ranked; it may lie before actions already logged (a
+        recorded NEEM ranked afterwards), so it is not checked against the last action's end and
+        does not move the logger's clock."""
         when = Instant.of(at)
         resolved = [(self._resolve(call), float(score)) for call, score in ranking]
-        self._check_time(when, "preference")
         out = _Out()
         action = self._mental(_REASONING, "reasoning", when, out)
         order = self._event("PreferenceOrder")
