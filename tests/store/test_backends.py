@@ -8,7 +8,7 @@ import pytest
 from bson.decimal128 import Decimal128
 
 from oracle.errors import StoreError
-from oracle.store import RDF_TYPE, SUBCLASS_OF, SUBPROPERTY_OF, Annotation, Scope, Triple, TriplePattern, Var
+from oracle.store import RDF_TYPE, SUBCLASS_OF, SUBPROPERTY_OF, Annotation, Cmp, Scope, Triple, TriplePattern, Var
 from tests.store.conftest import make_store
 
 X = "http://example.org/x#"
@@ -119,6 +119,47 @@ def test_match_repeated_variable_and_limit(store):
     store.insert("n1", [Triple(X + "a", X + "knows", X + "a"), Triple(X + "a", X + "knows", X + "b")])
     assert list(store.match("n1", [TriplePattern(Var("S"), X + "knows", Var("S"))])) == [{"S": X + "a"}]
     assert len(list(store.match("n1", [TriplePattern(Var("S"), X + "knows", Var("O"))], limit=1))) == 1
+
+
+@pytest.mark.parametrize("number_format", ["decimal128", "double"])
+def test_comparisons_are_evaluated_by_the_database(backend, tmp_path, number_format):
+    store = make_store(backend, tmp_path, number_format)
+    try:
+        world(store)
+        store.insert("n1", [Triple(X + "a3", X + "begin", 30), Triple(X + "a4", X + "begin", "15"),
+                            Triple(X + "a5", X + "begin", True)])  # fmt: skip
+        begin = lambda op, v: sorted(  # noqa: E731
+            (r["A"], r["T"]) for r in store.match("n1", [TriplePattern(Var("A"), X + "begin", Cmp(op, v, Var("T")))])
+        )
+        assert begin(">=", 20) == [(X + "a2", 20.0), (X + "a3", 30)]
+        assert begin(">", 20.0) == [(X + "a3", 30)]
+        assert begin("<", 20) == [(X + "a1", 10.5)]
+        assert begin("=<", 20) == [(X + "a1", 10.5), (X + "a2", 20.0)]
+        # a comparison without a variable, joined with other patterns
+        rows = store.match("n1", [TriplePattern(Var("A"), X + "hasParticipant", Var("O")),
+                                  TriplePattern(Var("A"), X + "begin", Cmp(">", 15))])  # fmt: skip
+        assert [r["O"] for r in rows] == [X + "thermos1"]
+        with pytest.raises(StoreError):
+            list(store.find("n1", o=Cmp(">", 1)))
+    finally:
+        getattr(store, "_test_cleanup", lambda: None)()
+        store.close()
+
+
+def test_order_and_limit_give_the_latest_before_a_time(store):
+    world(store)
+    # (floats only: the mongomock-ng double cannot sort Decimal128 among ints; MongoDB can)
+    store.insert("n1", [Triple(X + "a3", X + "begin", 30.0), Triple(X + "a4", X + "begin", 25.0)])
+    latest = lambda *extra, limit=1, desc=True: list(  # noqa: E731
+        store.match("n1", [TriplePattern(Var("A"), X + "begin", Cmp(*extra, Var("T")) if extra else Var("T"))],
+                    order=[("T", desc)], limit=limit)  # fmt: skip
+    )
+    assert latest() == [{"A": X + "a3", "T": 30.0}]
+    assert latest("=<", 26) == [{"A": X + "a4", "T": 25}]
+    assert latest("<", 25, limit=None) == [{"A": X + "a2", "T": 20.0}, {"A": X + "a1", "T": 10.5}]
+    assert [r["T"] for r in latest(limit=None, desc=False)] == [10.5, 20.0, 25, 30.0]
+    with pytest.raises(StoreError):
+        list(store.match("n1", [TriplePattern(Var("A"), X + "begin", Var("T"))], order=[("B", True)]))
 
 
 def test_scope_hides_facts_outside_the_window(store):

@@ -18,6 +18,7 @@ from oracle.store.model import (
     SUBPROPERTY_OF,
     TAXONOMIC,
     Annotation,
+    Cmp,
     NumberFormat,
     Scope,
     Triple,
@@ -85,6 +86,6 @@ def open_mongo(uri: str, *, number_format: NumberFormat = "decimal128", timeout_
 
 __all__ = [
     "INFINITY", "KINDS", "MONGO_ENV", "RDF_TYPE", "SUBCLASS_OF", "SUBPROPERTY_OF", "TAXONOMIC",
-    "Annotation", "NeemInfo", "NumberFormat", "Scope", "Store", "Triple", "TriplePattern", "Var",
+    "Annotation", "Cmp", "NeemInfo", "NumberFormat", "Scope", "Store", "Triple", "TriplePattern", "Var",
     "check_neem_id", "default_store_path", "open_mongo", "open_store",
 ]  # fmt: skip

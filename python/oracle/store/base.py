@@ -18,6 +18,7 @@ from oracle.errors import StoreError
 from oracle.store.model import (
     HIERARCHY,
     Annotation,
+    Cmp,
     DocumentBuilder,
     Hierarchy,
     NumberFormat,
@@ -258,12 +259,15 @@ class Store(ABC):
         *,
         scope: Scope | None = None,
         limit: int | None = None,
+        order: Sequence[tuple[str, bool]] = (),
     ) -> Iterator[dict[str, Any]]:
         """Solutions of a conjunction of patterns, computed by the database in ONE query.
 
         Yields one dict per solution mapping variable names to plain Python values
         (numbers as float or int, IRIs and strings as str). SQLite runs one SQL join,
         MongoDB one aggregation on ``one`` with a ``$lookup`` per pattern, as mongolog does.
+        ``order`` is ``[(variable, descending), ...]`` over numeric variables, applied before
+        ``limit`` by the database ("the latest decision before T" is one row, not a scan).
         """
 
     def annotations(self, neem_id: str, s: str | None = None, p: str | None = None) -> Iterator[Annotation]:
@@ -288,3 +292,15 @@ def validate_patterns(patterns: Sequence[TriplePattern]) -> None:
     for pattern in patterns:
         if not isinstance(pattern, TriplePattern):
             raise StoreError(f"not a TriplePattern: {pattern!r}")
+        if isinstance(pattern.s, Cmp) or isinstance(pattern.p, Cmp):
+            raise StoreError(f"a comparison may only stand for the object: {pattern!r}")
+
+
+def validate_order(patterns: Sequence[TriplePattern], order: Sequence[tuple[str, bool]]) -> list[tuple[str, bool]]:
+    names = {name for pattern in patterns for name in pattern.variables()}
+    checked = []
+    for name, descending in order:
+        if name not in names:
+            raise StoreError(f"cannot order by {name!r}: no pattern binds it")
+        checked.append((name, bool(descending)))
+    return checked

@@ -68,7 +68,41 @@ class Var:
             raise ValueError(f"variable names must be alphanumeric, got {self.name!r}")
 
 
-#: A pattern term: a variable, a constant, or None for "anything" (an anonymous variable).
+#: Comparison operators of ``Cmp``, spelled as in Prolog (and KnowRob's value operators).
+CMP_OPS: tuple[str, ...] = ("<", "=<", ">", ">=")
+
+
+@dataclass(frozen=True)
+class Cmp:
+    """The object of a pattern compared with a number: ``o OP value`` (``=<`` as in Prolog).
+
+    Only numeric objects match (numbers of any BSON type, and Dates as unix seconds), as
+    KnowRob's ``triple(S, P, >=(V))``; ``var`` (optional) binds the object's value. The
+    database evaluates it: an SQL ``WHERE`` on SQLite, a ``$match`` on MongoDB.
+    """
+
+    op: str
+    value: float
+    var: Var | None = None
+
+    def __post_init__(self) -> None:
+        if self.op not in CMP_OPS:
+            raise ValueError(f"comparison operator must be one of {', '.join(CMP_OPS)}, got {self.op!r}")
+        if isinstance(self.value, bool) or not isinstance(self.value, (int, float)):
+            raise ValueError(f"a comparison needs a number, got {self.value!r}")
+
+    def holds(self, value: Any) -> bool:
+        if self.op == "<":
+            return value < self.value
+        if self.op == "=<":
+            return value <= self.value
+        if self.op == ">":
+            return value > self.value
+        return value >= self.value
+
+
+#: A pattern term: a variable, a constant, or None for "anything" (an anonymous variable);
+#: the object may also be a ``Cmp``.
 Term = Union[Var, Value, None]
 
 
@@ -87,7 +121,8 @@ class TriplePattern:
     graph: str | None = None
 
     def variables(self) -> tuple[str, ...]:
-        return tuple(t.name for t in (self.s, self.p, self.o) if isinstance(t, Var))
+        o = self.o.var if isinstance(self.o, Cmp) else self.o
+        return tuple(t.name for t in (self.s, self.p, o) if isinstance(t, Var))
 
 
 @dataclass(frozen=True)

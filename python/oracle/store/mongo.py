@@ -7,18 +7,21 @@ indexes on triples. NEEM registry entries live in ``meta`` as on openEASE.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator, Mapping, Sequence
 from contextlib import contextmanager
+from datetime import datetime, timezone
 from typing import Any
 
 from bson.decimal128 import Decimal128
 
 from oracle.errors import StoreError
-from oracle.store.base import KINDS, NeemInfo, Store, check_neem_id, new_meta, validate_patterns
+from oracle.store.base import KINDS, NeemInfo, Store, check_neem_id, new_meta, validate_order, validate_patterns
 from oracle.store.model import (
     HIERARCHY,
     TAXONOMIC,
     Annotation,
+    Cmp,
     NumberFormat,
     Scope,
     Term,
@@ -204,8 +207,8 @@ class MongoStore(Store):
         exact: bool = False,
     ) -> Iterator[dict[str, Any]]:
         for term in (s, p, o):
-            if isinstance(term, Var):
-                raise StoreError("find() takes constants; use match() for variables")
+            if isinstance(term, (Var, Cmp)):
+                raise StoreError("find() takes constants; use match() for variables and comparisons")
         if not self.has_neem(neem_id):
             raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
         query = _pattern_filter(TriplePattern(s, p, o, graph), self.number_format, exact)
@@ -222,11 +225,13 @@ class MongoStore(Store):
         *,
         scope: Scope | None = None,
         limit: int | None = None,
+        order: Sequence[tuple[str, bool]] = (),
     ) -> Iterator[dict[str, Any]]:
         validate_patterns(patterns)
+        order = validate_order(patterns, order)
         if not self.has_neem(neem_id):
             raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
-        pipeline = compile_pipeline(f"{neem_id}_triples", patterns, scope, limit, self.number_format)
+        pipeline = compile_pipeline(f"{neem_id}_triples", patterns, scope, limit, self.number_format, order)
         names = sorted({name for pattern in patterns for name in pattern.variables()})
         for row in self.db["one"].aggregate(pipeline):
             yield {name: decode_value(row.get(f"v_{name}")) for name in names}
@@ -253,7 +258,7 @@ def _pattern_filter(pattern: TriplePattern, number_format: NumberFormat, exact: 
         query["s"] = pattern.s
     if p is not None and not isinstance(p, Var):
         query["p" if taxonomic else "p*"] = p
-    if pattern.o is not None and not isinstance(pattern.o, Var):
+    if pattern.o is not None and not isinstance(pattern.o, (Var, Cmp)):
         query["o*" if taxonomic else "o"] = _value_condition(pattern.o)
     if pattern.graph is not None:
         query["graph"] = pattern.graph
@@ -279,6 +284,7 @@ def compile_pipeline(
     scope: Scope | None,
     limit: int | None,
     number_format: NumberFormat = "decimal128",
+    order: Sequence[tuple[str, bool]] = (),
 ) -> list[dict[str, Any]]:
     """mongolog's shape: from the single ``one`` document, one ``$lookup`` per triple pattern.
 
@@ -294,7 +300,11 @@ def compile_pipeline(
         exprs: list[dict[str, Any]] = []
         let: dict[str, str] = {}
         new: dict[str, str] = {}
-        for field, term in (("s", pattern.s), ("p", pattern.p), ("o", pattern.o)):
+        o = pattern.o
+        if isinstance(o, Cmp):
+            match.setdefault("$and", []).append(_compare_condition(o))
+            o = o.var
+        for field, term in (("s", pattern.s), ("p", pattern.p), ("o", o)):
             if not isinstance(term, Var):
                 continue
             name = f"v_{term.name}"
@@ -319,6 +329,29 @@ def compile_pipeline(
             stages.append({"$set": {name: f"$next.{field}" for name, field in new.items()}})
         stages.append({"$unset": "next"})
         bound.update(name[2:] for name in new)
+    if order:
+        stages.append({"$sort": {f"v_{name}": -1 if descending else 1 for name, descending in order}})
     if limit is not None:
         stages.append({"$limit": int(limit)})
     return stages
+
+
+_MONGO_OPS = {"<": "$lt", "=<": "$lte", ">": "$gt", ">=": "$gte"}
+
+
+def _compare_condition(cmp: Cmp) -> dict[str, Any]:
+    """``o OP value`` for numbers of every BSON type (MongoDB compares them by value) and,
+    as Prolog sees Dates as unix seconds, for Dates."""
+    op = _MONGO_OPS[cmp.op]
+    value = float(cmp.value)
+    # One form per BSON type, each guarded by $type: MongoDB would compare across numeric
+    # types by itself, but the mongomock-ng test double cannot compare Decimal128 with int.
+    forms: list[dict[str, Any]] = [
+        {"o": {"$type": "double", op: value}},
+        {"o": {"$type": "int", op: value}},
+        {"o": {"$type": "long", op: value}},
+        {"o": {"$type": "decimal", op: encode_number(value, "decimal128")}},
+    ]
+    if math.isfinite(value) and abs(value) < 2.5e11:
+        forms.append({"o": {"$type": "date", op: datetime.fromtimestamp(value, timezone.utc).replace(tzinfo=None)}})
+    return {"$or": forms}

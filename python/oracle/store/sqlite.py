@@ -28,13 +28,14 @@ from bson.int64 import Int64
 from bson.objectid import ObjectId
 
 from oracle.errors import StoreError
-from oracle.store.base import KINDS, Closed, NeemInfo, Store, check_neem_id, new_meta, validate_patterns
+from oracle.store.base import KINDS, Closed, NeemInfo, Store, check_neem_id, new_meta, validate_order, validate_patterns
 from oracle.store.model import (
     RDF_TYPE,
     SUBCLASS_OF,
     SUBPROPERTY_OF,
     TAXONOMIC,
     Annotation,
+    Cmp,
     DocumentBuilder,
     NumberFormat,
     Scope,
@@ -52,6 +53,9 @@ SCHEMA_VERSION = "3"
 # Kinds of the ``o`` column, so a value reads back with its BSON type.
 K_STR, K_DOUBLE, K_DECIMAL, K_INT, K_LONG, K_BOOL, K_DATE, K_OTHER = range(8)
 _NUMERIC_KINDS = (K_DOUBLE, K_DECIMAL, K_INT, K_LONG)
+#: Kinds a comparison (``Cmp``) sees as numbers: Prolog receives Dates as unix seconds too.
+_COMPARABLE_SQL = f"({K_DOUBLE}, {K_DECIMAL}, {K_INT}, {K_LONG}, {K_DATE})"
+_SQL_OPS = {"<": "<", "=<": "<=", ">": ">", ">=": ">="}
 
 
 def _sql_value(value: Any) -> tuple[Any, int]:
@@ -553,8 +557,8 @@ class SQLiteStore(Store):
         exact: bool = False,
     ) -> Iterator[dict[str, Any]]:
         for term in (s, p, o):
-            if isinstance(term, Var):
-                raise StoreError("find() takes constants; use match() for variables")
+            if isinstance(term, (Var, Cmp)):
+                raise StoreError("find() takes constants; use match() for variables and comparisons")
         pattern = TriplePattern(s, p, o, graph)
         query = _Compiler(self, _table(neem_id, "triples"), scope)
         query.add(pattern, exact=exact)
@@ -608,19 +612,25 @@ class SQLiteStore(Store):
         *,
         scope: Scope | None = None,
         limit: int | None = None,
+        order: Sequence[tuple[str, bool]] = (),
     ) -> Iterator[dict[str, Any]]:
         validate_patterns(patterns)
+        order = validate_order(patterns, order)
         self._require(neem_id)
         query = _Compiler(self, _table(neem_id, "triples"), scope)
-        for pattern in patterns:
+        first = next((i for i, pt in enumerate(patterns) if order and order[0][0] in pt.variables()), -1)
+        for i, pattern in enumerate(patterns):
+            query.inline_closures = i == first
             query.add(pattern)
         names = list(query.bound)
         if not names:
             select = "1"
         else:
             select = ", ".join(f"{query.bound[n][0]}, {query.bound[n][1] or K_STR}" for n in names)
-        order = ", ".join(f"{alias}.id" for alias in query.aliases)
-        sql = f"SELECT {select} FROM {query.from_clause()} WHERE {query.where()} ORDER BY {order}"
+        keys = [f"{query.bound[name][0]} {'DESC' if descending else 'ASC'}" for name, descending in order]
+        keys += [f"{alias}.id" for alias in query.aliases]
+        source = query.from_clause() if not order else query.ordered_from_clause(patterns, order[0][0])
+        sql = f"SELECT {select} FROM {source} WHERE {query.where()} ORDER BY {', '.join(keys)}"
         if limit is not None:
             sql += f" LIMIT {int(limit)}"
         out = self._out
@@ -650,6 +660,7 @@ class _Compiler:
         self.table = table
         self.scope = scope
         self.aliases: list[str] = []
+        self.inline_closures = False
         self.conds: list[str] = []
         self.params: list[Any] = []
         #: variable -> (SQL expression of its value, SQL expression of its kind; None for a term id)
@@ -657,6 +668,21 @@ class _Compiler:
 
     def from_clause(self) -> str:
         return ", ".join(f"{self.table} AS {alias}" for alias in self.aliases)
+
+    def ordered_from_clause(self, patterns: Sequence[TriplePattern], first: str) -> str:
+        """A join order for "the first rows by ``first``": start at the pattern binding it
+        (its index scan yields rows in that order, so LIMIT stops early instead of joining
+        everything and sorting), then each pattern sharing a variable with those before.
+        CROSS JOIN makes SQLite keep this order."""
+        names = [set(pattern.variables()) for pattern in patterns]
+        start = next(i for i, vs in enumerate(names) if first in vs)
+        chosen, bound = [start], set(names[start])
+        while len(chosen) < len(patterns):
+            rest = [i for i in range(len(patterns)) if i not in chosen]
+            nxt = next((i for i in rest if names[i] & bound), rest[0])
+            chosen.append(nxt)
+            bound |= names[nxt]
+        return " CROSS JOIN ".join(f"{self.table} AS {self.aliases[i]}" for i in chosen)
 
     def where(self) -> str:
         return " AND ".join(self.conds) if self.conds else "1"
@@ -685,6 +711,17 @@ class _Compiler:
 
     def _closure_test(self, column: str, var: str | None, value: Any = None) -> None:
         """``column`` names a closure containing the term (a bound variable or a constant)."""
+        if var is None and self.inline_closures:
+            # The closure ids as literals: an ordered query can then scan the (pstar, o)
+            # index by o, where a subquery makes SQLite fall back to the (o, p) index.
+            cids = [cid for (cid,) in self.store._conn.execute(
+                "SELECT DISTINCT cid FROM closure_member WHERE value=?", (self._iri(value),))]  # fmt: skip
+            if len(cids) == 1:
+                self.conds.append(f"{column}=? AND {column} > 0")
+            else:
+                self.conds.append(f"{column} IN ({', '.join('?' * len(cids))}) AND {column} > 0")
+            self.params.extend(cids)
+            return
         if var is None:
             self.conds.append(f"{column} IN (SELECT cid FROM closure_member WHERE value=?) AND {column} > 0")
             self.params.append(self._iri(value))
@@ -701,7 +738,7 @@ class _Compiler:
         if exact:
             self._term(pattern.s, f"{a}.s", None)
             self._term(p, f"{a}.p", None)
-            self._term(pattern.o, f"{a}.o", f"{a}.ok")
+            self._object(pattern.o, a)
             self._filters(a, pattern)
             return
         taxonomic = isinstance(p, str) and p in TAXONOMIC
@@ -725,8 +762,17 @@ class _Compiler:
         elif taxonomic and o is not None and not isinstance(o, Var):
             self._closure_test(f"{a}.ostar", None, o)
         else:
-            self._term(o, f"{a}.o", f"{a}.ok")
+            self._object(o, a)
         self._filters(a, pattern)
+
+    def _object(self, o: Any, a: str) -> None:
+        if not isinstance(o, Cmp):
+            self._term(o, f"{a}.o", f"{a}.ok")
+            return
+        self._term(o.var, f"{a}.o", f"{a}.ok")
+        # NaN is stored as NULL, so it never compares, as in Prolog.
+        self.conds.append(f"{a}.ok IN {_COMPARABLE_SQL} AND {a}.o {_SQL_OPS[o.op]} ?")
+        self.params.append(float(o.value))
 
     def _filters(self, a: str, pattern: TriplePattern) -> None:
         if pattern.graph is not None:
