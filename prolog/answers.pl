@@ -41,27 +41,29 @@ Reason terms of why_not/2,3 (each a separate solution, most telling first):
 %   Why Call was not done lately: at the latest decision the robot made.
 why_not(Call, Reason) :-
     check_call(Call),
-    (   findall(B, decision(situation, _, B), Bs), max_list(Bs, At)
+    (   latest_decision(situation, any, _, At)
     ->  true
     ;   get_time(At)
     ),
     why_not(Call, At, Reason).
 
 %!  why_not(+Call, +Time, -Reason) is nondet.
-%   Why Call was not done at Time (unix seconds).
+%   Why Call was not done at Time (unix seconds). Every step asks the store for the one
+%   row it needs (comparisons, order and limit evaluated by the database), so the answer
+%   costs a few queries however long the NEEM.
 why_not(Call, At, Reason) :-
     check_call(Call),
     must_be(number, At),
-    times_done(Call, Done),
-    (   member(action(B, E, _), Done), B =< At, At =< E
+    call_tasks(Call, Tasks),
+    (   action_time(Tasks, =<(At), >=(At), min, B)
     ->  Reason = done(Call, B)
     ;   decision_at(situation, At, M)
     ->  once(kb_call(event_interval(M, When, _), any)),
-        reasons_at(Call, At, M, When, Done, Reason)
-    ;   later_earlier(Call, At, Done, Reason)
+        reasons_at(Call, At, M, When, Tasks, Reason)
+    ;   later_earlier(Call, At, Tasks, Reason)
     ).
 
-reasons_at(Call, At, M, When, Done, Reason) :-
+reasons_at(Call, At, M, When, Tasks, Reason) :-
     imagined_available(M, Available),
     (   \+ memberchk(Call, Available)
     ->  missing_reason(Call, When, Why),
@@ -77,7 +79,7 @@ reasons_at(Call, At, M, When, Done, Reason) :-
     ->  R2 = [user_chose(Other, OB)]
     ;   R2 = []
     ),
-    findall(R, later_earlier(Call, At, Done, R), R3),
+    findall(R, later_earlier(Call, At, Tasks, R), R3),
     append([R1, R2, R3], Reasons),
     member(Reason, Reasons).
 
@@ -87,25 +89,46 @@ missing_reason(Call, When, object_not_perceived(Obj)) :-
     \+ perceived_at(Obj, When), !.
 missing_reason(_, _, precondition_failed).
 
-later_earlier(Call, At, Done, done_later(Call, B)) :-
-    member(action(B, _, _), Done), B > At, !.
-later_earlier(Call, At, Done, done_earlier(Call, B)) :-
-    reverse(Done, Rev),
-    member(action(B, E, _), Rev), E < At, !.
+%   done_later: the first begin after At; else done_earlier: the latest begin of an action
+%   that ended before At.
+later_earlier(Call, At, Tasks, done_later(Call, B)) :-
+    action_time(Tasks, >(At), _, asc, B), !.
+later_earlier(Call, At, Tasks, done_earlier(Call, B)) :-
+    action_time(Tasks, _, <(At), desc, B), !.
 
 %!  chosen_after(+Time, -Call, -Begin) is semidet.
-%   The first non-idle task executed at or after Time.
+%   The first non-idle task executed at or after Time: executions in begin order, fetched
+%   from the store in growing ordered chunks until one is not idle.
 chosen_after(Time, Call, Begin) :-
+    must_be(number, Time),
     odb_iri('IdleTask', Idle),
-    findall(B-T, kb_call(( executes_task(A, T), has_time_interval(A, I),
-                           has_interval_begin(I, B) ), any), Pairs0),
-    include(not_before(Time), Pairs0, Pairs1),
-    sort(Pairs1, Pairs),
+    chosen_from(Time, 16, Idle, Call, Begin).
+
+chosen_from(Time, N, Idle, Call, Begin) :-
+    maplist(kb_iri, [dul:executesTask, dul:hasTimeInterval, soma:hasIntervalBegin], [Ex, HI, BeginP]),
+    findall(B-T, store_match([t(A, Ex, T), t(A, HI, I), t(I, BeginP, cmp(>=, Time, B))], any,
+                             [order([asc(B)]), limit(N)]),
+            Rows),
+    length(Rows, Got),
+    (   Got < N
+    ->  sort(Rows, Pairs),
+        first_choice(Pairs, Idle, Call, Begin)
+    ;   last(Rows, Last-_),
+        include(begins_before(Last), Rows, Complete),  % the last begin may have more rows
+        sort(Complete, Pairs),
+        (   first_choice(Pairs, Idle, Call, Begin)
+        ->  true
+        ;   N1 is N*4,
+            chosen_from(Last, N1, Idle, Call, Begin)
+        )
+    ).
+
+begins_before(Last, B-_) :- B < Last.
+
+first_choice(Pairs, Idle, Call, Begin) :-
     member(Begin-T, Pairs),
     \+ kb_call(instance_of(T, Idle), any),
     task_call(T, Call), !.
-
-not_before(Time, B-_) :- B >= Time.
 
 %!  what_next(-Chain) is semidet.
 %   The predicted next tasks, best first, from the latest imagined preference:

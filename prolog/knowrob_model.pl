@@ -244,13 +244,23 @@ sub_plan(G, Mod, Scope, Plan) :-
 triple_steps(Su, P, O, Scope, [pattern(t(Su, P, X), Scope)|S0], S) :-
     value_filter(O, X, S0, S).
 
+%   A comparison with a number known when the goal is compiled is evaluated by the store
+%   (`cmp(Op, Number, Value)` as the pattern's object); other operators filter afterwards.
+value_filter(O, cmp(Op, Arg, V), S, S) :-
+    nonvar(O), O = (C -> V), var(V), store_comparison(C, Op, Arg), !.
 value_filter(O, X, S0, S) :-
     nonvar(O), O = (Op -> V), !,
     value_filter(Op, X, S0, [call(V = X)|S]).
+value_filter(O, cmp(Op, Arg, _), S, S) :-
+    store_comparison(O, Op, Arg), !.
 value_filter(O, X, [call(value_test(Op, Arg, X))|S], S) :-
     nonvar(O), O =.. [Op, Arg],
     memberchk(Op, [<, =<, >, >=, in, nin, regex]), !.
 value_filter(O, O, S, S).
+
+store_comparison(O, Op, Arg) :-
+    nonvar(O), O =.. [Op, Arg],
+    memberchk(Op, [<, =<, >, >=]), number(Arg).
 
 %!  value_test(+Op, +Arg, +Value) is semidet.
 value_test(<, A, X) :- number(X), X < A.

@@ -135,19 +135,35 @@ insert_row(triple(S,P,O,Since,Until), [S,P,O,Since,Until]).
 store_match(Patterns, Scope) :-
     store_match(Patterns, Scope, []).
 
-store_match(Patterns, Scope, Options) :-
-    must_be(list, Patterns),
-    Patterns \== [],
-    maplist(check_pattern, Patterns),
+store_match(Patterns0, Scope, Options) :-
+    must_be(list, Patterns0),
+    Patterns0 \== [],
+    maplist(check_pattern, Patterns0),
     check_scope(Scope),
+    maplist(bound_comparison, Patterns0, Patterns),
     backend_(Backend),
     match(Backend, Patterns, Scope, Options).
 
+%   A comparison whose value is already bound is that value, if it passes.
+bound_comparison(t(S, P, C), t(S, P, O)) :-
+    nonvar(C), C = cmp(Op, A, X), nonvar(X), !,
+    number(X), compare_value(Op, X, A),
+    O = X.
+bound_comparison(T, T).
+
 check_pattern(t(S,P,O)) :-
     !,
-    check_term(S), check_term(P), check_term(O).
+    check_term(S), check_term(P), check_object(O).
 check_pattern(X) :-
     type_error(triple_pattern, X).
+
+%   cmp(Op, Number, X): the object compared with a number in the database; X binds it.
+check_object(C) :-
+    nonvar(C), C = cmp(Op, A, _), !,
+    must_be(oneof([<, =<, >, >=]), Op),
+    must_be(number, A).
+check_object(O) :-
+    check_term(O).
 
 check_term(X) :- var(X), !.
 check_term(X) :- atomic(X), !.
@@ -158,6 +174,18 @@ check_scope(scope(S, U)) :- number(S), number(U), !.
 check_scope(X) :- type_error(scope, X).
 
 match(memory, Patterns, Scope, Options) :-
+    option_order(Options, Keys),
+    Keys \== [], !,
+    term_variables(Patterns, Vars),
+    findall(Row, ( mem_conj(Patterns, Scope), order_row(Keys, Vars, Row) ), Rows0),
+    length(Keys, NKeys),
+    sort_rows(NKeys, Keys, Rows0, Rows1),
+    VarsArg is NKeys+1,
+    (   option_limit(Options, N)
+    ->  limit(N, ( member(Row, Rows1), arg(VarsArg, Row, Vars) ))
+    ;   member(Row, Rows1), arg(VarsArg, Row, Vars)
+    ).
+match(memory, Patterns, Scope, Options) :-
     (   option_limit(Options, N)
     ->  limit(N, mem_conj(Patterns, Scope))
     ;   mem_conj(Patterns, Scope)
@@ -167,14 +195,49 @@ match(python(Neem), Patterns, Scope, Options) :-
     maplist(encode_pattern(Vars), Patterns, Encoded),
     encode_scope(Scope, S0, S1),
     (   option_limit(Options, N) -> true ; N = -1 ),
+    option_order(Options, Keys),
+    maplist(encode_key(Vars), Keys, Order),
     length(Vars, NVars),
-    neem_store:py_match([Neem, S0, S1, N, NVars|Encoded], Reply),
+    neem_store:py_match([Neem, S0, S1, N, NVars, Order|Encoded], Reply),
     reply_rows(Reply, Rows),
     member(Vars, Rows).
 
 option_limit(Options, N) :-
     memberchk(limit(N), Options),
     must_be(positive_integer, N).
+
+%   order(Keys): Keys is a list of asc(Var) and desc(Var) over numeric variables of the
+%   patterns, applied before limit(N) (by the database on the python backend).
+option_order(Options, Keys) :-
+    (   memberchk(order(Keys), Options)
+    ->  must_be(list, Keys),
+        maplist(check_key, Keys)
+    ;   Keys = []
+    ).
+
+check_key(asc(V)) :- var(V), !.
+check_key(desc(V)) :- var(V), !.
+check_key(K) :- type_error(order_key, K).
+
+encode_key(Vars, Key, [I, Dir]) :-
+    Key =.. [Dir, V],
+    nth0_var(Vars, V, 0, I).
+
+order_row(Keys, Vars, Row) :-
+    maplist(key_value, Keys, Vs),
+    append(Vs, [Vars], Args),
+    Row =.. [row|Args].
+
+key_value(K, V) :- arg(1, K, V).
+
+%   Stable sorts from the last key to the first give the lexicographic order.
+sort_rows(0, _, Rows, Rows) :- !.
+sort_rows(I, Keys, Rows0, Rows) :-
+    nth1(I, Keys, Key),
+    (   Key = asc(_) -> Ord = @=< ; Ord = @>= ),
+    sort(I, Ord, Rows0, Rows1),
+    I1 is I-1,
+    sort_rows(I1, Keys, Rows1, Rows).
 
 %   Scope ends as numbers; -1, -1 for no time filter. The bridge turns them into the
 %   store's Scope (see python/oracle/bridge.py).
@@ -189,6 +252,8 @@ encode_pattern(Vars, t(S,P,O), [SK,SV,PK,PV,OK,OV]) :-
 
 encode_term(Vars, X, v, I) :-
     var(X), !,
+    nth0_var(Vars, X, 0, I).
+encode_term(Vars, cmp(Op, A, X), cmp, [Op, A, I]) :- !,
     nth0_var(Vars, X, 0, I).
 encode_term(_, X, c, X).
 
@@ -236,6 +301,11 @@ mem_conj([t(S,P,O)|Ps], Scope) :-
     mem_pattern(S, P, O, Scope),
     mem_conj(Ps, Scope).
 
+mem_pattern(S, P, C, Scope) :-
+    nonvar(C), C = cmp(Op, A, X), !,
+    mem_pattern(S, P, X, Scope),
+    number(X),
+    compare_value(Op, X, A).
 mem_pattern(S, P, O, Scope) :-
     atom(P), store_taxonomic(P), !,
     (   var(O)
@@ -258,6 +328,11 @@ mem_pattern(S, P, O, Scope) :-
 mem_pattern(S, P, O, Scope) :-
     mem_triple(S, P, O, Since, Until),
     in_scope(Scope, Since, Until).
+
+compare_value(<, X, A) :- X < A.
+compare_value(=<, X, A) :- X =< A.
+compare_value(>, X, A) :- X > A.
+compare_value(>=, X, A) :- X >= A.
 
 in_scope(any, _, _) :- !.
 in_scope(scope(QS, QU), Since, Until) :-

@@ -11,6 +11,9 @@
       idle_action/3,              % ?Action, ?Begin, ?End
       decision/3,                 % ?Kind, ?MentalAction, ?Begin
       decision_at/3,              % +Kind, +Time, -MentalAction
+      latest_decision/4,          % +Kind, +Test, -MentalAction, -Begin
+      call_tasks/2,               % +Call, -TaskIndividuals
+      action_time/5,              % +Tasks, ?BeginTest, ?EndTest, +Dir, -Begin
       imagined_available/2,       % +Imagining, -Calls
       available_tasks_at/2,       % +Time, -Calls
       imagined_preference/2,      % +Reasoning, -Ranked
@@ -50,6 +53,7 @@ whose arguments are the odb object local names, reference role first (chains.py)
 :- use_module(library(apply)).
 :- use_module(library(pairs)).
 :- use_module(library(semweb/rdf_prefixes)).
+:- use_module(neem_store, [store_match/2, store_match/3]).
 :- use_module(knowrob_model).
 :- use_module(library(http/json)).
 
@@ -188,8 +192,62 @@ decision(preference, M, B) :-
 %   The latest decision of Kind that began at or before Time.
 decision_at(Kind, Time, M) :-
     must_be(number, Time),
-    findall(B-M0, ( decision(Kind, M0, B), B =< Time ), Pairs),
+    latest_decision(Kind, =<(Time), M, _).
+
+%!  latest_decision(+Kind, +Test, -MentalAction, -Begin) is semidet.
+%   The latest decision of Kind whose begin passes Test (`=<(Time)`, or `any`): one store
+%   query ordered by begin for the latest begin, one for the decisions that began then
+%   (the greatest in the standard order of terms when several did, as max_member/2).
+latest_decision(Kind, Test, M, B) :-
+    (   Test = =<(Time) -> BO = cmp(=<, Time, B0) ; BO = B0 ),
+    decision_patterns(Kind, _, BO, Ps),
+    once(store_match(Ps, any, [order([desc(B0)]), limit(1)])),
+    B = B0,
+    decision_patterns(Kind, M0, B, Ps1),
+    findall(B-M0, store_match(Ps1, any), Pairs),
     max_member(_-M, Pairs).
+
+%   decision/3 as store patterns (what kb_call compiles it to).
+decision_patterns(Kind, M, BO, [t(M, Ex, T), t(T, Type, C), t(M, HI, I), t(I, Begin, BO), t(I, End, _)]) :-
+    decision_class(Kind, C0),
+    maplist(kb_iri, [dul:executesTask, rdf:type, C0, dul:hasTimeInterval, soma:hasIntervalBegin, soma:hasIntervalEnd],
+            [Ex, Type, C, HI, Begin, End]).
+
+decision_class(situation, soma:'Imagining').
+decision_class(preference, soma:'Reasoning').
+
+%!  call_tasks(+Call, -Tasks) is det.
+%   The task individuals whose call is Call (the logger makes one per call).
+call_tasks(Call, Tasks) :-
+    call_classes(Call, TC, _),
+    findall(T, kb_call(triple(T, rdf:type, TC), any), Ts0),
+    sort(Ts0, Ts),
+    findall(T, ( member(T, Ts), task_call(T, C), C = Call ), Tasks).
+
+%!  action_time(+Tasks, ?BeginTest, ?EndTest, +Dir, -Begin) is semidet.
+%   The least (Dir `asc` or `min`) or greatest (`desc`) begin of an action executing one of
+%   Tasks whose begin and end pass the tests (`>(T)`, `=<(T)`, ...; unbound: any): one store
+%   query per task, compared by the database. `asc`/`desc` also order and limit there (the
+%   scan starts at the test's bound); `min` lets the database plan from the task, for tests
+%   that bound the begin from above only and so would scan every earlier action.
+action_time(Tasks, BTest, ETest, Dir, B) :-
+    maplist(kb_iri, [dul:executesTask, dul:hasTimeInterval, soma:hasIntervalBegin, soma:hasIntervalEnd],
+            [Ex, HI, Begin, End]),
+    findall(B0, ( member(T, Tasks),
+                  test_object(BTest, B0, BO), test_object(ETest, _, EO),
+                  Ps = [t(A, Ex, T), t(A, HI, I), t(I, Begin, BO), t(I, End, EO)],
+                  (   Dir == min
+                  ->  store_match(Ps, any)
+                  ;   Key =.. [Dir, B0],
+                      once(store_match(Ps, any, [order([Key]), limit(1)]))
+                  ) ),
+            Bs),
+    Bs \== [],
+    (   Dir == desc -> max_list(Bs, B) ; min_list(Bs, B) ).
+
+test_object(Test, V, cmp(Op, Arg, V)) :-
+    nonvar(Test), Test =.. [Op, Arg], !.
+test_object(_, V, V).
 
 %!  imagined_available(+Imagining, -Calls) is det.
 %   The task calls an imagining found available, sorted.
@@ -241,8 +299,7 @@ preference_at(Time, M, Ranked) :-
 
 %!  latest_preference(-Reasoning, -Begin, -Ranked) is semidet.
 latest_preference(M, B, Ranked) :-
-    findall(B0-M0, decision(preference, M0, B0), Pairs),
-    max_member(B-M, Pairs),
+    latest_decision(preference, any, M, B),
     imagined_preference(M, Ranked).
 
 %!  times_available(+Call, -Begins) is det.
@@ -357,8 +414,7 @@ situation_dict(situation(B, E, Call, Part, Avail), _{begin:B, end:E, call:CallTe
 %   The latest imagined situation of the NEEM: when it began and the calls it found
 %   available (sorted). Fails when nothing was ever imagined.
 latest_situation(B, Calls) :-
-    findall(B0-M0, decision(situation, M0, B0), Pairs),
-    max_member(B-M, Pairs),
+    latest_decision(situation, any, M, B),
     imagined_available(M, Calls).
 
 %!  latest_situation_json(-JSON) is det.

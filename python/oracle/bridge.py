@@ -30,7 +30,7 @@ from pathlib import Path
 from typing import Any
 
 from oracle.errors import PrologError, StoreError
-from oracle.store import Scope, Store, TriplePattern, Triple, Var
+from oracle.store import Cmp, Scope, Store, TriplePattern, Triple, Var
 
 PROLOG_DIR = Path(__file__).resolve().parents[2] / "prolog"
 MODULES = ("neem_store", "knowrob_model", "odb_model", "answers")
@@ -104,15 +104,24 @@ def _error_text(error: BaseException) -> str:
 
 
 # -- the foreign predicates --------------------------------------------------------------
-def _decode_request(req: Sequence[Any]) -> tuple[str, list[TriplePattern], Scope | None, int | None, int]:
+def _decode_request(
+    req: Sequence[Any],
+) -> tuple[str, list[TriplePattern], Scope | None, int | None, int, list[tuple[str, bool]]]:
     neem = _plain(req[0])
     s0, s1, limit, n_vars = req[1], req[2], req[3], req[4]
+    order = [(f"v{index}", _plain(direction) == "desc") for index, direction in req[5]]
     patterns = []
-    for enc in req[5:]:
-        terms = []
+    for enc in req[6:]:
+        terms: list[Any] = []
         for kind, value in zip(enc[0::2], enc[1::2]):
             kind = _plain(kind)
-            terms.append(Var(f"v{value}") if kind == "v" else _plain(value))
+            if kind == "v":
+                terms.append(Var(f"v{value}"))
+            elif kind == "cmp":  # cmp(Op, Number, Var), checked by neem_store
+                op, number, index = value
+                terms.append(Cmp(_plain(op), number, Var(f"v{index}")))
+            else:
+                terms.append(_plain(value))
         patterns.append(TriplePattern(*terms))
     if s0 == -1 and s1 == -1:
         scope = None
@@ -121,15 +130,15 @@ def _decode_request(req: Sequence[Any]) -> tuple[str, list[TriplePattern], Scope
         # the store tests overlap (since =< scope.until, until >= scope.since), so the ends
         # are handed over swapped.
         scope = Scope(since=float(s1), until=float(s0))
-    return neem, patterns, scope, (None if limit == -1 else int(limit)), int(n_vars)
+    return neem, patterns, scope, (None if limit == -1 else int(limit)), int(n_vars), order
 
 
 def _chunks(store: Store, req: Sequence[Any]) -> Iterator[str]:
-    neem, patterns, scope, limit, n_vars = _decode_request(req)
+    neem, patterns, scope, limit, n_vars, order = _decode_request(req)
     names = [f"v{i}" for i in range(n_vars)]
     if n_vars == 0:
         limit = 1
-    rows = store.match(neem, patterns, scope=scope, limit=limit)
+    rows = store.match(neem, patterns, scope=scope, limit=limit, order=order)
     while True:
         batch = list(islice(rows, CHUNK))
         if not batch:
