@@ -46,11 +46,21 @@ def why_not_sentence(answer: dict[str, Any]) -> str:
     return " ".join(reason_sentence(r) for r in reasons)
 
 
+#: How many alternatives a spoken answer names; the JSON answer keeps them all.
+SPOKEN_ALTERNATIVES = 4
+
+
 def what_next_sentence(answer: dict[str, Any]) -> str:
     chain = answer.get("chain") or []
     if not chain:
         return "I have not imagined any preference yet, so I cannot say what comes next."
-    return f"Next I expect {chain[0]['task']}" + (f", then {_ranked(chain[1:])}." if len(chain) > 1 else ".")
+    head = f"Next I expect {chain[0]['task']}"
+    rest = chain[1:SPOKEN_ALTERNATIVES]
+    more = len(chain) - 1 - len(rest)
+    if not rest:
+        return head + "."
+    tail = f" and {more} less likely" if more > 0 else ""
+    return f"{head}; otherwise {_ranked(rest)}{tail}."
 
 
 def something_else_sentence(answer: dict[str, Any]) -> str:
