@@ -45,7 +45,7 @@ def test_yaml_round_trip_with_thesis_names_and_preset(tmp_path):
     ("knockout: -1\n", "knockout"), ("nockout: 1\n", "unknown hyperparameter"),
     ("decreasing importance factor: 0\n", "decreasing_importance_factor"),
     ("event horizon forward: 2.5\n", "whole number"), ("penalty: high\n", "number"),
-    ("[1, 2]\n", "mapping"), ("knockout: [\n", "invalid YAML"), ("preset: Z\n", "unknown preset")])
+    ("[1, 2]\n", "mapping"), ("knockout: [\n", "malformed YAML"), ("preset: Z\n", "unknown preset")])
 def test_bad_settings_name_the_file_and_entry(tmp_path, text, message):
     path = tmp_path / "bad.yaml"
     path.write_text(text)

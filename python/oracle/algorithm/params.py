@@ -14,6 +14,7 @@ from typing import Any
 import yaml
 
 from oracle.errors import SettingsError
+from oracle.yamlfile import read_yaml
 
 
 @dataclass(frozen=True)
@@ -93,16 +94,7 @@ def from_mapping(mapping: dict[str, Any], where: str = "settings") -> Hyperparam
 def load_settings(path: Path | str) -> Hyperparameters:
     """Read a YAML settings file; errors name the file."""
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as error:
-        raise SettingsError(f"{path}: cannot read ({error.strerror})") from None
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as error:
-        mark = getattr(error, "problem_mark", None)
-        line = f":{mark.line + 1}" if mark is not None else ""
-        raise SettingsError(f"{path}{line}: invalid YAML") from None
+    data = read_yaml(path, SettingsError, "settings")
     return from_mapping(data if data is not None else {}, str(path))
 
 

@@ -12,10 +12,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-import yaml
-
 from oracle.errors import OntologyError
 from oracle.namespaces import DEFAULT_ODB_NAMESPACE, STANDARD_PREFIXES
+from oracle.yamlfile import read_yaml
 
 TOP_KEYS = frozenset({"namespace", "imports", "soma_odb_map", "root_object", "action_defaults", "actions"})
 ACTION_FIELDS = ("task", "ref_role", "target_role", "disposition")
@@ -83,14 +82,7 @@ def _role(value: object, prefixes: dict[str, str], where: str) -> str | None:
 def load_mapping(path: Path | str) -> Mapping:
     """Read and validate a mapping YAML; every error names the file and the entry."""
     path = Path(path)
-    try:
-        data = yaml.safe_load(path.read_text(encoding="utf-8"))
-    except OSError as error:
-        raise OntologyError(f"{path}: cannot read ({error.strerror})") from None
-    except yaml.YAMLError as error:
-        mark = getattr(error, "problem_mark", None)
-        where = f"{path}:{mark.line + 1}" if mark is not None else str(path)
-        raise OntologyError(f"{where}: malformed YAML ({getattr(error, 'problem', error)})") from None
+    data = read_yaml(path, OntologyError, "mapping")
     if not isinstance(data, dict):
         raise OntologyError(f"{path}: expected a mapping at the top level")
     unknown = set(data) - TOP_KEYS

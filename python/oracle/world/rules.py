@@ -13,11 +13,10 @@ from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
-import yaml
-
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import ChainSyntaxError, NeemOracleError, OntologyError
 from oracle.paths import data_dir
+from oracle.yamlfile import read_yaml
 from oracle.world.state import HAND, KINDS, ObjectSpec, State, blocker, reachable
 
 
@@ -360,14 +359,7 @@ class World:
 def load_world(path: Path | str | None = None) -> World:
     """Read and validate a world file; every error names the file and the entry."""
     path = default_world() if path is None else Path(path)
-    try:
-        data = yaml.safe_load(path.read_text(encoding="utf-8"))
-    except OSError as error:
-        raise OntologyError(f"{path}: cannot read world file ({error.strerror})") from None
-    except yaml.YAMLError as error:
-        mark = getattr(error, "problem_mark", None)
-        where = f"{path}:{mark.line + 1}" if mark is not None else str(path)
-        raise OntologyError(f"{where}: malformed YAML ({getattr(error, 'problem', error)})") from None
+    data = read_yaml(path, OntologyError, "world file")
     if not isinstance(data, dict):
         raise OntologyError(f"{path}: expected a mapping with keys objects, tasks, park")
     unknown = set(data) - _TOP_KEYS

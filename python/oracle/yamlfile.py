@@ -1,0 +1,24 @@
+"""Reading a YAML file so that every failure names the file (and line) in the caller's error type."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from oracle.errors import NeemOracleError
+
+
+def read_yaml(path: Path, error: type[NeemOracleError], what: str = "file") -> Any:
+    """Parsed content of ``path``; unreadable or malformed files raise ``error`` naming file and line."""
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as failure:
+        raise error(f"{path}: cannot read {what} ({failure.strerror})") from None
+    try:
+        return yaml.safe_load(text)
+    except yaml.YAMLError as failure:
+        mark = getattr(failure, "problem_mark", None)
+        where = f"{path}:{mark.line + 1}" if mark is not None else str(path)
+        raise error(f"{where}: malformed YAML ({getattr(failure, 'problem', failure)})") from None
