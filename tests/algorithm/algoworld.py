@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 
 import numpy as np
 from hypothesis import strategies as st
 
 from oracle.algorithm.situation import Option, Step
+from oracle.ontology.distance import DistanceMatrix
 from oracle.timeofday import TIME_OF_DAY_NAMES
 
 ODB = "https://ontology.dlr.de/soma/odb#"
@@ -15,21 +15,6 @@ TASKS = tuple(f"{ODB}{name}" for name in ("Pick", "Place", "Pour", "Open", "Clos
 OBJECTS = tuple(f"{ODB}{name}" for name in ("RedMug", "BlueMug", "Thermos", "Drawer", "Table", "Spoon", "Plate"))
 IDLE = f"{ODB}IdleTask"
 OPEN = f"{ODB}Open"
-
-
-@dataclass(frozen=True)
-class Matrix:
-    """The DistanceMatrix interface of the ontology engineer: index, classes, values, distance."""
-
-    classes: tuple[str, ...]
-    values: np.ndarray
-    index: dict[str, int] = field(default_factory=dict)
-
-    def __post_init__(self) -> None:
-        self.index.update({iri: i for i, iri in enumerate(self.classes)})
-
-    def distance(self, a: str, b: str) -> float:
-        return float(self.values[self.index[a], self.index[b]])
 
 
 def random_matrix(seed: int, classes=TASKS + OBJECTS + (IDLE,), scale: float = 1.5) -> Matrix:
@@ -40,7 +25,7 @@ def random_matrix(seed: int, classes=TASKS + OBJECTS + (IDLE,), scale: float = 1
     upper = np.where(rng.random((n, n)) < 0.1, np.round(upper, 1), upper)
     values = upper + upper.T
     np.fill_diagonal(values, 0.0)
-    return Matrix(tuple(classes), values)
+    return DistanceMatrix.from_values(tuple(classes), values)
 
 
 def option_strategy():

@@ -9,7 +9,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from algoworld import IDLE, OBJECTS, OPEN, TASKS, Matrix, option_strategy, random_matrix
+from algoworld import IDLE, OBJECTS, OPEN, TASKS, option_strategy, random_matrix
+from oracle.ontology.distance import DistanceMatrix
 from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import PRESETS, Hyperparameters
 from oracle.algorithm.reference import (
@@ -124,7 +125,7 @@ def two_class_matrix():
     classes = TASKS + OBJECTS + (IDLE,)
     values = np.full((len(classes), len(classes)), 3.0)
     np.fill_diagonal(values, 0.0)
-    return Matrix(classes, values)
+    return DistanceMatrix.from_values(classes, values)
 
 
 def test_identity_history_ranks_the_repeated_task_first_with_known_score():

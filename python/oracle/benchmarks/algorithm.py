@@ -12,7 +12,6 @@ from __future__ import annotations
 import math
 import time
 import tracemalloc
-from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -20,23 +19,11 @@ from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import PRESETS
 from oracle.algorithm.reference import ReferenceOracle
 from oracle.algorithm.situation import Option, Step
+from oracle.ontology.distance import DistanceMatrix
 from oracle.timeofday import TIME_OF_DAY_NAMES
 
 NS = "https://example.org/bench#"
 SETTINGS = ("recommended", "no_situations")
-
-
-@dataclass(frozen=True)
-class _Matrix:
-    classes: tuple[str, ...]
-    values: np.ndarray
-    index: dict[str, int] = field(default_factory=dict)
-
-    def __post_init__(self) -> None:
-        self.index.update({iri: i for i, iri in enumerate(self.classes)})
-
-    def distance(self, a: str, b: str) -> float:
-        return float(self.values[self.index[a], self.index[b]])
 
 
 def taxonomy(rng: np.random.Generator, n_tasks: int = 30, n_objects: int = 60) -> tuple[_Matrix, list[str], list[str]]:
@@ -68,7 +55,7 @@ def taxonomy(rng: np.random.Generator, n_tasks: int = 30, n_objects: int = 60) -
             path = ancestors[i].index(common) + ancestors[j].index(common)
             cspec = 1 - len(ancestors[common]) / depth_total
             values[i, j] = values[j, i] = math.log(path * cspec + 1)
-    return _Matrix(tuple(NS + name for name in names), values), leaves["Task"], leaves["Object"]
+    return DistanceMatrix.from_values(tuple(NS + name for name in names), values), leaves["Task"], leaves["Object"]
 
 
 def history(n: int, seed: int = 0, n_options: int = 20, n_states: int = 60):

@@ -59,6 +59,11 @@ class DistanceMatrix:
         self.lcs_index = lcs
         self.key = key
 
+    @classmethod
+    def from_values(cls, classes: tuple[str, ...], values: np.ndarray) -> "DistanceMatrix":
+        """A matrix given outright (synthetic worlds in tests and benchmarks); no LCS is known."""
+        return cls(tuple(classes), values, np.zeros(values.shape, dtype=np.int32), "given")
+
     def distance(self, a: str, b: str) -> float:
         return float(self.values[self._row(a), self._row(b)])
 
