@@ -345,3 +345,25 @@ def test_a_logged_neem_survives_export_and_load(tmp_path, onto, small_tbox):
     (loaded,) = load_dump(other, tmp_path / "dump")
     assert list(executed_actions(other, loaded)) == list(executed_actions(store, logger.neem_id))
     assert summarize(other, loaded).actions == 3
+
+
+def test_a_repeated_available_set_writes_only_the_new_mental_action(tmp_path, onto, small_tbox):
+    """Plans, tasks and roles are shared: the second time the same options are available only
+    the MentalAction, its interval and its imagines_situation links are new."""
+    store = SQLiteStore(tmp_path / "s.sqlite")
+    logger = NeemLogger.create(store, onto, user="alice", tbox=small_tbox)
+    options = ["pick(green_mug)", "pour(thermos, green_mug)", "pick(thermos)"]
+    logger.available(options, T0)
+    before = store.count(logger.neem_id)
+    second = logger.available(options, T0 + timedelta(seconds=5))
+    assert store.count(logger.neem_id) - before == 4 + 4 + len(options)  # action, interval, links
+    plans = objects_of(store, logger.neem_id, second, logger.vocab.imagines_situation)
+    assert len(plans) == len(options) and all(p.startswith(logger.ns + "Plan_") for p in plans)
+    store.close()
+
+
+def test_event_iris_are_unique_and_grow_with_time(logger):
+    iris = [logger.action("pick(green_mug)", T0 + timedelta(seconds=i)).iri for i in range(50)]
+    ids = [iri.rsplit("_", 1)[1] for iri in iris]
+    assert len(set(iris)) == 50 and all(len(i) == 24 and int(i, 16) >= 0 for i in ids)
+    assert ids == sorted(ids)  # appended at the end of the indexes

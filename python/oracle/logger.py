@@ -9,14 +9,14 @@ its preference ranked; events (actions, intervals) get fresh individuals. See do
 
 from __future__ import annotations
 
+import os
 import re
+import time
 import uuid
 from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from datetime import datetime, timezone
 from typing import Any
-
-from bson.objectid import ObjectId
 
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import ChainSyntaxError, LoggingError, OntologyError, StoreError
@@ -135,8 +135,18 @@ class NeemLogger:
         self.vocab = onto.vocab
         info = store.neem(neem_id)
         self.user: str = info.user or "user"
+        #: Individuals known to be stored (or buffered): no store query needed for them.
         self._known: set[str] = set()
         self._keys: dict[TaskCall, str] = {}
+        #: Calls already checked, and plans of calls already in ``_known``: an available set of
+        #: 20 plans that were logged before costs 20 dictionary look-ups, not 20 checks.
+        self._resolved: dict[TaskCall | str, TaskCall] = {}
+        self._plans: dict[TaskCall, str] = {}
+        self._imagines = self.vocab.imagines_situation
+        # Event ids in ObjectId's layout (seconds, 5 random bytes, counter), made without
+        # ObjectId's per-call lock and pid check.
+        self._random = os.urandom(5).hex()
+        self._counter = int.from_bytes(os.urandom(3), "big") >> 1  # 8M ids before it wraps
         self._last_end: Instant | None = None
         self._last_end = self._resume_last_end()
 
@@ -189,9 +199,10 @@ class NeemLogger:
 
     # -- individuals ------------------------------------------------------------------------
     def _event(self, kind: str) -> str:
-        # ObjectIds grow with time, so new IRIs land at the end of the indexes (few dirty pages
-        # per commit) and stay unique across processes.
-        return f"{self.ns}{kind}_{ObjectId()}"
+        # ObjectId-like ids grow with time, so new IRIs land at the end of the indexes (few
+        # dirty pages per commit) and stay unique across processes (random part per logger).
+        self._counter = counter = (self._counter + 1) & 0xFFFFFF
+        return f"{self.ns}{kind}_{int(time.time()):08x}{self._random}{counter:06x}"
 
     def _exists(self, iri: str) -> bool:
         if iri in self._known:
@@ -232,6 +243,10 @@ class NeemLogger:
         raise LoggingError(f"performed_by must be 'robot' or 'user', got {who!r}")
 
     def _resolve(self, call: TaskCall | str) -> TaskCall:
+        resolved = self._resolved.get(call)
+        if resolved is not None:
+            return resolved
+        original = call
         if isinstance(call, str):
             try:
                 call = parse_call(call)
@@ -242,6 +257,8 @@ class NeemLogger:
         for arg in call.args:
             if arg not in self.onto.objects:
                 raise LoggingError(f"unknown object {arg!r} in {call}")
+        if len(self._resolved) < 100_000:
+            self._resolved[original] = call
         return call
 
     def _task(self, call: TaskCall, out: _Out, since: float) -> str:
@@ -270,9 +287,13 @@ class NeemLogger:
         return task
 
     def _plan(self, call: TaskCall, out: _Out, since: float) -> str:
+        plan = self._plans.get(call)
+        if plan is not None:
+            return plan
         key = self._keys.get(call)
         if key is not None and f"{self.ns}Plan_{key}" in self._known:
-            return f"{self.ns}Plan_{key}"
+            plan = self._plans[call] = f"{self.ns}Plan_{key}"
+            return plan
         task = self._task(call, out, since)
         plan = f"{self.ns}Plan_{task[len(self.ns) + len('Task_'):]}"
         if self._new(plan, out):
@@ -344,8 +365,12 @@ class NeemLogger:
 
     def _imagining(self, calls: Sequence[TaskCall], when: Instant, out: _Out) -> str:
         action = self._mental(_IMAGINING, "imagining", when, out)
+        imagines, plans = self._imagines, self._plans
         for call in calls:
-            out.append(Triple(action, self.vocab.imagines_situation, self._plan(call, out, when.seconds)))
+            plan = plans.get(call)
+            if plan is None:
+                plan = self._plan(call, out, when.seconds)
+            out.append(Triple(action, imagines, plan))
         return action
 
     def action(
@@ -443,6 +468,7 @@ class NeemLogger:
             except StoreError as error:
                 # The in-memory view may now name individuals that were never stored.
                 self._known.clear()
+                self._plans.clear()
                 raise LoggingError(f"NEEM {self.neem_id!r}: {error}") from None
             finally:
                 self._buffer = []

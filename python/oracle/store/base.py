@@ -17,6 +17,7 @@ from typing import Any
 from oracle.errors import StoreError
 from oracle.store.model import (
     HIERARCHY,
+    TAXONOMIC,
     Annotation,
     Cmp,
     DocumentBuilder,
@@ -153,17 +154,42 @@ class Store(ABC):
     def _insert_closed(
         self, neem_id: str, triples: Iterable[Triple], hierarchy: Hierarchy, builder: DocumentBuilder
     ) -> int:
+        # The closures of DocumentBuilder.closures, inlined: a batch uses few properties and
+        # classes, so p* per property and o* per class are looked up once per batch, until a
+        # subClassOf/subPropertyOf triple may change them.
         pending: list[Closed] = []
+        append = pending.append
         count = 0
+        closure = hierarchy.closure
+        pstars: dict[str, tuple[Any, ...]] = {}
+        ostars: dict[str, tuple[Any, ...]] = {}
         with self.transaction():
             for triple in triples:
-                pending.append((triple, *builder.closures(triple)))
-                if triple.p in HIERARCHY and isinstance(triple.o, str):
-                    _, gained = hierarchy.add_edge(triple.s, triple.o)
+                _, p, o, _, since, until = triple
+                if since > until:
+                    raise ValueError(f"scope of {triple} ends before it starts")
+                if p not in TAXONOMIC:
+                    pstar = pstars.get(p)
+                    if pstar is None:
+                        pstar = pstars[p] = closure(p)
+                    append((triple, pstar, (o,)))
+                    continue
+                if type(o) is str:
+                    ostar = ostars.get(o)
+                    if ostar is None:
+                        ostar = ostars[o] = closure(o)
+                else:
+                    ostar = (o,)
+                append((triple, (p,), ostar))
+                if p in HIERARCHY and isinstance(o, str):
+                    pstars.clear()
+                    ostars.clear()
+                    _, gained = hierarchy.add_edge(triple.s, o)
                     if gained and triple.s in hierarchy.used:
                         self._insert_triples(neem_id, pending, builder)
                         count += len(pending)
                         pending = []
+                        append = pending.append
                         self._propagate(neem_id, triple.s, gained)
                         hierarchy.patch_closures(triple.s, gained)
                         hierarchy.used.update(gained)
