@@ -391,7 +391,10 @@ class NeemLogger:
         if stop.seconds < start.seconds:
             raise LoggingError(f"{call}: ends ({stop.seconds:.3f}) before it starts ({start.seconds:.3f})")
         self._check_time(start, f"action {call}")
-        options = [self._resolve(c) for c in available] if available is not None else None
+        options = None
+        if available is not None:
+            known = self._resolved.get  # most options were checked before: skip the call
+            options = [known(c) or self._resolve(c) for c in available]
         if action_id is not None:
             iri = f"{self.ns}Action_{_slug(action_id)}"
             if self._exists(iri):
