@@ -618,9 +618,11 @@ class SQLiteStore(Store):
         order = validate_order(patterns, order)
         self._require(neem_id)
         query = _Compiler(self, _table(neem_id, "triples"), scope)
-        first = next((i for i, pt in enumerate(patterns) if order and order[0][0] in pt.variables()), -1)
+        plan, joined = _join_order(patterns, order[0][0]) if order else ([], set())
+        first = plan[0] if plan else -1
         for i, pattern in enumerate(patterns):
             query.inline_closures = i == first
+            query.joined = i in joined
             query.add(pattern)
         names = list(query.bound)
         if not names:
@@ -629,7 +631,7 @@ class SQLiteStore(Store):
             select = ", ".join(f"{query.bound[n][0]}, {query.bound[n][1] or K_STR}" for n in names)
         keys = [f"{query.bound[name][0]} {'DESC' if descending else 'ASC'}" for name, descending in order]
         keys += [f"{alias}.id" for alias in query.aliases]
-        source = query.from_clause() if not order else query.ordered_from_clause(patterns, order[0][0])
+        source = query.from_clause() if not order else query.ordered_from_clause(plan)
         sql = f"SELECT {select} FROM {source} WHERE {query.where()} ORDER BY {', '.join(keys)}"
         if limit is not None:
             sql += f" LIMIT {int(limit)}"
@@ -652,6 +654,26 @@ class SQLiteStore(Store):
             yield Annotation(doc["s"], doc["p"], doc.get("v"))
 
 
+def _join_order(patterns: Sequence[TriplePattern], first: str) -> tuple[list[int], set[int]]:
+    """A join order for "the first rows by ``first``", and the patterns in it joined to one
+    before. It starts at the pattern binding ``first`` (its index scan yields rows in that
+    order, so LIMIT stops early instead of joining everything and sorting), then takes each
+    pattern sharing a variable with those before (a pattern sharing none comes last)."""
+    names = [set(pattern.variables()) for pattern in patterns]
+    start = next(i for i, vs in enumerate(names) if first in vs)
+    chosen, bound, joined = [start], set(names[start]), set()
+    while len(chosen) < len(patterns):
+        rest = [i for i in range(len(patterns)) if i not in chosen]
+        nxt = next((i for i in rest if names[i] & bound), None)
+        if nxt is None:
+            nxt = rest[0]
+        else:
+            joined.add(nxt)
+        chosen.append(nxt)
+        bound |= names[nxt]
+    return chosen, joined
+
+
 class _Compiler:
     """Turns triple patterns into one SQL join with KnowRob's p*/o* semantics."""
 
@@ -661,6 +683,14 @@ class _Compiler:
         self.scope = scope
         self.aliases: list[str] = []
         self.inline_closures = False
+        #: The pattern being added is reached from an earlier one in a forced join order:
+        #: its closure tests must not drive an index (``+column``), so SQLite looks it up by
+        #: the joined subject or object instead of scanning the closure's whole range (an
+        #: ordered "latest decision" query fell from ~90 ms to ~0.1 ms on 10,000 actions).
+        self.joined = False
+        #: Likewise for a pattern with a known subject: the (s, p) index finds its few rows,
+        #: where SQLite (no statistics) would scan the (p, ostar) range of every type triple.
+        self.constant_subject = False
         self.conds: list[str] = []
         self.params: list[Any] = []
         #: variable -> (SQL expression of its value, SQL expression of its kind; None for a term id)
@@ -669,20 +699,10 @@ class _Compiler:
     def from_clause(self) -> str:
         return ", ".join(f"{self.table} AS {alias}" for alias in self.aliases)
 
-    def ordered_from_clause(self, patterns: Sequence[TriplePattern], first: str) -> str:
-        """A join order for "the first rows by ``first``": start at the pattern binding it
-        (its index scan yields rows in that order, so LIMIT stops early instead of joining
-        everything and sorting), then each pattern sharing a variable with those before.
-        CROSS JOIN makes SQLite keep this order."""
-        names = [set(pattern.variables()) for pattern in patterns]
-        start = next(i for i, vs in enumerate(names) if first in vs)
-        chosen, bound = [start], set(names[start])
-        while len(chosen) < len(patterns):
-            rest = [i for i in range(len(patterns)) if i not in chosen]
-            nxt = next((i for i in rest if names[i] & bound), rest[0])
-            chosen.append(nxt)
-            bound |= names[nxt]
-        return " CROSS JOIN ".join(f"{self.table} AS {self.aliases[i]}" for i in chosen)
+    def ordered_from_clause(self, plan: Sequence[int]) -> str:
+        """The patterns joined in ``plan`` order (``_join_order``); CROSS JOIN makes SQLite
+        keep it."""
+        return " CROSS JOIN ".join(f"{self.table} AS {self.aliases[i]}" for i in plan)
 
     def where(self) -> str:
         return " AND ".join(self.conds) if self.conds else "1"
@@ -711,6 +731,8 @@ class _Compiler:
 
     def _closure_test(self, column: str, var: str | None, value: Any = None) -> None:
         """``column`` names a closure containing the term (a bound variable or a constant)."""
+        if self.joined or self.constant_subject:
+            column = "+" + column
         if var is None and self.inline_closures:
             # The closure ids as literals: an ordered query can then scan the (pstar, o)
             # index by o, where a subquery makes SQLite fall back to the (o, p) index.
@@ -742,6 +764,7 @@ class _Compiler:
             self._filters(a, pattern)
             return
         taxonomic = isinstance(p, str) and p in TAXONOMIC
+        self.constant_subject = pattern.s is not None and not isinstance(pattern.s, Var)
         # Only a variable bound by an earlier pattern is "bound" for o* (mongolog binds per goal).
         earlier = set(self.bound)
         self._term(pattern.s, f"{a}.s", None)
