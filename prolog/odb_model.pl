@@ -196,16 +196,25 @@ decision_at(Kind, Time, M) :-
 
 %!  latest_decision(+Kind, +Test, -MentalAction, -Begin) is semidet.
 %   The latest decision of Kind whose begin passes Test (`=<(Time)`, or `any`): one store
-%   query ordered by begin for the latest begin, one for the decisions that began then
-%   (the greatest in the standard order of terms when several did, as max_member/2).
+%   query ordered by begin, limited to a few rows, which holds every decision that began
+%   at the latest begin unless they fill it (then it is asked again with a larger limit);
+%   the greatest in the standard order of terms when several began then, as max_member/2.
 latest_decision(Kind, Test, M, B) :-
+    latest_decision_(Kind, Test, 4, M, B).
+
+latest_decision_(Kind, Test, N, M, B) :-
     (   Test = =<(Time) -> BO = cmp(=<, Time, B0) ; BO = B0 ),
-    decision_patterns(Kind, _, BO, Ps),
-    once(store_match(Ps, any, [order([desc(B0)]), limit(1)])),
-    B = B0,
-    decision_patterns(Kind, M0, B, Ps1),
-    findall(B-M0, store_match(Ps1, any), Pairs),
-    max_member(_-M, Pairs).
+    decision_patterns(Kind, M0, BO, Ps),
+    findall(B0-M0, store_match(Ps, any, [order([desc(B0)]), limit(N)]), Rows),
+    Rows = [B1-_|_],
+    findall(Bx-Mx, ( member(Bx-Mx, Rows), Bx =:= B1 ), Latest),
+    length(Latest, NLatest),
+    (   NLatest < N
+    ->  max_member(_-M, Latest),
+        B = B1
+    ;   N1 is N*4,
+        latest_decision_(Kind, Test, N1, M, B)
+    ).
 
 %   decision/3 as store patterns (what kb_call compiles it to).
 decision_patterns(Kind, M, BO, [t(M, Ex, T), t(T, Type, C), t(M, HI, I), t(I, Begin, BO), t(I, End, _)]) :-

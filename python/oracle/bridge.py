@@ -136,8 +136,6 @@ def _decode_request(
 def _chunks(store: Store, req: Sequence[Any]) -> Iterator[str]:
     neem, patterns, scope, limit, n_vars, order = _decode_request(req)
     names = [f"v{i}" for i in range(n_vars)]
-    if n_vars == 0:
-        limit = 1
     rows = store.match(neem, patterns, scope=scope, limit=limit, order=order)
     while True:
         batch = list(islice(rows, CHUNK))
