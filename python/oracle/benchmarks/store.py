@@ -48,6 +48,20 @@ def _log(logger, steps: list[Step]) -> float:
     return time.perf_counter() - t0
 
 
+def _python_share(store, onto, tbox, steps: list[Step]) -> float:
+    """Microseconds of CPU per action spent outside SQLite's row insert (logger, closures,
+    commits of nothing): what the logger and the shared insert path cost, whatever the disk."""
+    from oracle.logger import NeemLogger
+
+    logger = NeemLogger.create(store, onto, user="bench-python", tbox=tbox, commit_every=100)
+    store._insert_triples = lambda *args: None  # this store is not used for anything else
+    t0 = time.process_time()
+    for call, begin, end, available in steps:
+        logger.action(call, begin, end, available=available)
+    logger.flush()
+    return (time.process_time() - t0) / len(steps) * 1e6
+
+
 #: (commit_every, label, what a killed process can lose), see docs/store.md "Crash safety".
 SETTINGS = (
     (1, "default logger, commit_every=1", "each action durable when action() returns"),
@@ -81,6 +95,12 @@ def run(quick: bool = False) -> list[dict]:
                   f" tasks each in {elapsed:.2f} s; NEEM has {triples:,} triples; {durability})")  # fmt: skip
             rows.append({"area": "store", "name": f"logging_actions_per_s_commit_{commit_every}",
                          "value": round(rate, 1), "actions": count, "triples": triples})  # fmt: skip
+
+        scratch = SQLiteStore(work / "python-share.sqlite")
+        share = min(_python_share(scratch, onto, tbox, _workload(rng, pool, 2_000)) for _ in range(3))
+        scratch.close()
+        print(f"logging, Python share (SQLite's row insert left out, CPU time, best of 3): {share:.0f} us per action")
+        rows.append({"area": "store", "name": "logging_python_us_per_action", "value": round(share, 1)})
 
         t0 = time.perf_counter()
         export_neem(store, logger.neem_id, work / "dump")  # the 10,000-action NEEM
