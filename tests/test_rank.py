@@ -55,3 +55,15 @@ def test_rank_given_options_without_write(store, capsys):
 def test_rank_rejects_unknown_objects(store, capsys):
     assert main(["rank", "--store", str(store), "--available", "pick(unicorn)"]) == 1
     assert "unknown object 'unicorn'" in capsys.readouterr().err
+
+
+def test_rank_and_why_not_with_an_ontology_file(store, tmp_path, capsys):
+    owl = tmp_path / "odb.owl"
+    assert main(["ontology", "build", "--out", str(owl)]) == 0
+    capsys.readouterr()
+    assert main(["rank", "--store", str(store), "--ontology", str(owl), "--no-write", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["ranking"]
+    assert main(["why-not", "pick(banana)", "--store", str(store), "--ontology", str(owl), "--json"]) == 0
+    assert "reasons" in json.loads(capsys.readouterr().out)
+    assert main(["why-not", "pick(banana)", "--store", str(store), "--ontology", str(owl), "--odb", str(tmp_path)]) == 1
+    assert "either --ontology or --odb/--mapping" in capsys.readouterr().err

@@ -12,13 +12,13 @@ from pathlib import Path
 from oracle.algorithm.params import Hyperparameters, load_settings, preset, save_settings
 from oracle.errors import NeemOracleError, SettingsError
 from oracle.evaluation.replay import check_users, load_users, make_methods, replay, stderr_progress, summarize
-from oracle.ontology import OdbOntology, build_ontology, load_ontology
+from oracle.commands.common import add_ontology_options, ontology_from
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     evaluate = subparsers.add_parser("evaluate", help="replay chains and score the oracle against baselines")
     evaluate.add_argument("chains", type=Path, help="chains JSONL file or a folder of them")
-    _ontology_options(evaluate)
+    add_ontology_options(evaluate)
     evaluate.add_argument("--settings", default="recommended",
                           help="settings YAML, 'recommended', or a thesis Fig. 5.5 letter A-N (default: recommended)")
     evaluate.add_argument("--baselines", action="store_true", help="also run most-frequent, bigram and n-gram")
@@ -31,28 +31,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
     tune = subparsers.add_parser("tune", help="tune the hyperparameters by coordinate search (thesis 4.5)")
     tune.add_argument("chains", type=Path, help="tuning chains JSONL file or folder")
-    _ontology_options(tune)
+    add_ontology_options(tune)
     tune.add_argument("--metric", choices=("top1", "top3", "top5"), default="top5")
     tune.add_argument("--budget", type=int, default=40, help="number of replays to spend (default 40)")
     tune.add_argument("--start", default="recommended", help="settings YAML or preset to start from")
     tune.add_argument("--out", type=Path, required=True, help="settings YAML to write")
     tune.add_argument("--seed", type=int, default=0)
     tune.set_defaults(handler=run_tune)
-
-
-def _ontology_options(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--odb", type=Path, help="odb folder (default: the sample kitchen)")
-    parser.add_argument("--mapping", type=Path, help="mapping YAML (default: the sample kitchen's)")
-    parser.add_argument("--soma", type=Path, help="official SOMA/DUL folder (default: core TBox)")
-    parser.add_argument("--ontology", type=Path, help="OWL file written by 'ontology build' (instead of --odb/--mapping)")
-
-
-def _ontology(args: argparse.Namespace) -> OdbOntology:
-    if args.ontology is not None:
-        if args.odb is not None or args.mapping is not None:
-            raise NeemOracleError("give either --ontology or --odb/--mapping, not both")
-        return load_ontology(args.ontology)
-    return build_ontology(args.odb, args.mapping, args.soma)
 
 
 def settings_from(text: str) -> Hyperparameters:
@@ -67,7 +52,7 @@ def settings_from(text: str) -> Hyperparameters:
 
 
 def run_evaluate(args: argparse.Namespace) -> int:
-    ontology = _ontology(args)
+    ontology = ontology_from(args)
     settings = settings_from(args.settings)
     users = load_users(args.chains)
     check_users(ontology, users, str(args.chains))
@@ -123,7 +108,7 @@ def _write(path: Path, text: str) -> None:
 def run_tune(args: argparse.Namespace) -> int:
     from oracle.evaluation.tuning import tune
 
-    ontology = _ontology(args)
+    ontology = ontology_from(args)
     users = load_users(args.chains)
     check_users(ontology, users, str(args.chains))
 

@@ -6,6 +6,7 @@ import argparse
 import json
 from datetime import datetime
 
+from oracle.commands.common import add_ontology_options, ontology_from
 from oracle.errors import NeemOracleError, StoreError
 
 
@@ -34,6 +35,7 @@ def _common(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--store", help="store: a SQLite path, sqlite:///PATH or mongodb://... (default: the user's store)")
     parser.add_argument("--neem", help="NEEM id (default: the newest NEEM in the store)")
     parser.add_argument("--json", action="store_true", help="print the answer as JSON")
+    add_ontology_options(parser)
 
 
 def _connect(args: argparse.Namespace, with_ontology: bool = True):  # noqa: ANN202
@@ -49,9 +51,7 @@ def _connect(args: argparse.Namespace, with_ontology: bool = True):  # noqa: ANN
         neem = max(infos, key=lambda info: (info.created_at or "", info.id)).id
     onto = None
     if with_ontology:
-        from oracle.ontology import build_ontology
-
-        onto = build_ontology()
+        onto = ontology_from(args)
     return Bridge(store, neem, onto), onto
 
 

@@ -7,6 +7,8 @@ import json
 import math
 from datetime import datetime
 
+from oracle.commands.common import add_ontology_options
+
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser("rank", help="rank the available tasks and predict the chain (writes the ranking back)")
@@ -19,6 +21,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         help="settings YAML, 'recommended' or a thesis Fig. 5.5 letter (default: recommended)")
     parser.add_argument("--no-write", action="store_true", help="do not write the ranking back into the NEEM")
     parser.add_argument("--json", action="store_true", help="print the ranking as JSON")
+    add_ontology_options(parser)
     parser.set_defaults(handler=run)
 
 
