@@ -189,9 +189,7 @@ class NeemLogger:
         cls, store: Store, onto: Any, *, user: str, tbox: TBox | None = None, idle_threshold: float = IDLE_THRESHOLD
     ) -> NeemLogger:
         """Privacy (thesis 3.5): wipe every temporary NEEM, then log into a fresh temporary one."""
-        for info in store.neems():
-            if info.temporary:
-                store.drop_neem(info.id)
+        wipe_temporary_neems(store)
         stamp = datetime.now(timezone.utc).strftime("%Y%m%dT%H%M%S")
         neem_id = f"session-{stamp}-{uuid.uuid4().hex[:6]}"
         return cls.create(store, onto, user=user, neem_id=neem_id, temporary=True, tbox=tbox,
@@ -568,6 +566,14 @@ def persist(store: Store, neem_id: str, name: str) -> Any:
     return store.update_meta(name, temporary=False, name=name)
 
 
+def wipe_temporary_neems(store: Store) -> list[str]:
+    """Privacy (thesis 3.5): drop every NEEM still marked temporary (a session never persisted)."""
+    dropped = [info.id for info in store.neems() if info.temporary]
+    for neem_id in dropped:
+        store.drop_neem(neem_id)
+    return dropped
+
+
 def import_chains(
     store: Store,
     onto: Any,
@@ -578,8 +584,12 @@ def import_chains(
     idle_threshold: float = IDLE_THRESHOLD,
     commit_every: int = 1,
     tbox: TBox | None = None,
+    session: bool = False,
 ) -> dict[str, int]:
     """Log a chains JSONL file, one NEEM per user; return {NEEM id: actions committed}.
+
+    With ``session`` the NEEMs are temporary (thesis 3.5): earlier temporary NEEMs are wiped
+    first, and these are wiped by the next session unless ``persist`` keeps them.
 
     Rows may carry ``id`` and ``performed_by`` besides the chain fields (``end``/``duration``
     are chain fields, see oracle.chains). Rows are committed as they are logged (in groups of
@@ -600,7 +610,9 @@ def import_chains(
             end = row.end
             logger = loggers.get(row.user)
             if logger is None:
-                logger = NeemLogger.create(store, onto, user=row.user, replace=replace, tbox=tbox,
+                if session and not loggers:
+                    wipe_temporary_neems(store)
+                logger = NeemLogger.create(store, onto, user=row.user, replace=replace, tbox=tbox, temporary=session,
                                            idle_threshold=idle_threshold, commit_every=commit_every)  # fmt: skip
                 loggers[row.user] = logger
                 report[logger.neem_id] = 0

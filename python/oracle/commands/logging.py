@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from oracle.commands.common import add_ontology_options, ontology_from
 from oracle.commands.store import add_store_argument
 from oracle.errors import NeemOracleError
 from oracle.store import open_store
@@ -14,8 +15,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser("import", help="log action chains (JSONL) as one NEEM per user")
     parser.add_argument("chains", type=Path, metavar="CHAINS.jsonl")
     add_store_argument(parser)
-    parser.add_argument("--ontology", type=Path, metavar="OWL", help="odb ontology file (default: build the shipped one)")
+    add_ontology_options(parser)
     parser.add_argument("--replace", action="store_true", help="replace a user's NEEM instead of adding a new one")
+    parser.add_argument("--session", action="store_true",
+                        help="log into temporary NEEMs, wiping earlier temporary ones (keep them with 'persist')")
     parser.add_argument("--commit-every", type=int, default=100, metavar="N",
                         help="actions per transaction (1 = each action durable before the next; default 100)")
     parser.set_defaults(handler=run)
@@ -23,13 +26,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from oracle.logger import import_chains
-    from oracle.ontology import build_ontology, load_ontology
 
-    onto = load_ontology(args.ontology) if args.ontology else build_ontology()
+    onto = ontology_from(args)
     with open_store(args.store, number_format=args.numbers) as store:
         report: dict[str, int] = {}
         try:
-            import_chains(store, onto, args.chains, replace=args.replace, report=report, commit_every=args.commit_every)
+            import_chains(store, onto, args.chains, replace=args.replace, report=report, commit_every=args.commit_every,
+                          session=args.session)
         except NeemOracleError:
             _print(report)
             raise
