@@ -17,7 +17,7 @@ IDLE = f"{ODB}IdleTask"
 OPEN = f"{ODB}Open"
 
 
-def random_matrix(seed: int, classes=TASKS + OBJECTS + (IDLE,), scale: float = 1.5) -> Matrix:
+def random_matrix(seed: int, classes=TASKS + OBJECTS + (IDLE,), scale: float = 1.5) -> DistanceMatrix:
     rng = np.random.default_rng(seed)
     n = len(classes)
     upper = np.triu(rng.uniform(0.05, scale, size=(n, n)), 1)

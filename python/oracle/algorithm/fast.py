@@ -194,7 +194,6 @@ class PreferenceOracle(OracleParams):
     def _set_distance_vector(self, rows: np.ndarray, set_ids: np.ndarray) -> np.ndarray:
         """Algorithm 3's option set distance from the options behind ``rows`` (canonical order;
         each row holds their Algorithm 2 distances to all option ids) to each set in ``set_ids``."""
-        p = self.params_
         k = rows.shape[0]
         if k == 0:
             return np.zeros(set_ids.size)

@@ -26,7 +26,7 @@ NS = "https://example.org/bench#"
 SETTINGS = ("recommended", "no_situations")
 
 
-def taxonomy(rng: np.random.Generator, n_tasks: int = 30, n_objects: int = 60) -> tuple[_Matrix, list[str], list[str]]:
+def taxonomy(rng: np.random.Generator, n_tasks: int = 30, n_objects: int = 60) -> tuple[DistanceMatrix, list[str], list[str]]:
     """Two random trees (tasks, objects) under one root; distance log(path * CSpec + 1) (eq. 4.5)."""
     names = ["Thing"]
     parent = [-1]

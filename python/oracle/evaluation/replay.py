@@ -23,7 +23,7 @@ from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.situation import Option, Step
 from oracle.chains import ChainRow, read_chains
-from oracle.errors import ChainSyntaxError, OntologyError
+from oracle.errors import ChainSyntaxError
 from oracle.evaluation.baselines import BASELINES, chance_hit
 from oracle.namespaces import SOMA
 from oracle.ontology import OdbOntology
@@ -234,4 +234,4 @@ def learning_curve(result: ReplayResult, name: str, k: int, max_index: int | Non
 
 
 __all__ = ["KS", "Method", "OracleMethod", "Outcome", "ReplayResult", "check_users", "learning_curve",
-           "load_users", "make_methods", "replay", "stderr_progress", "summarize", "OntologyError"]
+           "load_users", "make_methods", "opening_tasks", "replay", "stderr_progress", "summarize"]

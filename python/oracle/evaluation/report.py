@@ -2,9 +2,6 @@
 
 from __future__ import annotations
 
-from oracle.evaluation.replay import KS
-
-
 def _pct(value: float) -> str:
     return f"{100 * value:.1f}"
 
@@ -33,5 +30,3 @@ def markdown(summary: dict, command: str, title: str = "Evaluation") -> str:
     lines.append("")
     return "\n".join(lines)
 
-
-__all__ = ["markdown", "KS"]
