@@ -27,6 +27,7 @@ from oracle.store.model import (
     Term,
     Triple,
     TriplePattern,
+    Var,
     annotation_document,
 )
 
@@ -254,10 +255,15 @@ class Store(ABC):
     def read_documents(self, neem_id: str, kind: str) -> Iterator[dict[str, Any]]:
         """Every document of one collection, in insertion order, exactly as stored."""
 
-    @abstractmethod
-    def count(self, neem_id: str, kind: str = "triples") -> int: ...
+    def count(self, neem_id: str, kind: str = "triples") -> int:
+        """How many documents one collection of a NEEM holds."""
+        if kind not in KINDS:
+            raise StoreError(f"unknown collection kind {kind!r}")
+        return self._count(neem_id, kind)
 
     @abstractmethod
+    def _count(self, neem_id: str, kind: str) -> int: ...
+
     def find(
         self,
         neem_id: str,
@@ -276,6 +282,15 @@ class Store(ABC):
         also finds documents without closures such as version markers. ``scope`` None means any time (KnowRob's wildcard scope); otherwise a document is
         returned when its scope overlaps the given one.
         """
+        for term in (s, p, o):
+            if isinstance(term, (Var, Cmp)):
+                raise StoreError("find() takes constants; use match() for variables and comparisons")
+        return self._find(neem_id, TriplePattern(s, p, o, graph), scope, limit, exact)
+
+    @abstractmethod
+    def _find(
+        self, neem_id: str, pattern: TriplePattern, scope: Scope | None, limit: int | None, exact: bool
+    ) -> Iterator[dict[str, Any]]: ...
 
     @abstractmethod
     def match(

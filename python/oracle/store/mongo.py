@@ -24,7 +24,6 @@ from oracle.store.model import (
     Cmp,
     NumberFormat,
     Scope,
-    Term,
     TriplePattern,
     Var,
     decode_value,
@@ -189,29 +188,15 @@ class MongoStore(Store):
         for doc in self._coll(neem_id, "annotations").find(query):
             yield Annotation(doc["s"], doc["p"], doc.get("v"))
 
-    def count(self, neem_id: str, kind: str = "triples") -> int:
-        if kind not in KINDS:
-            raise StoreError(f"unknown collection kind {kind!r}")
+    def _count(self, neem_id: str, kind: str) -> int:
         return self._coll(neem_id, kind).count_documents({})
 
-    def find(
-        self,
-        neem_id: str,
-        s: Term = None,
-        p: Term = None,
-        o: Term = None,
-        *,
-        graph: str | None = None,
-        scope: Scope | None = None,
-        limit: int | None = None,
-        exact: bool = False,
+    def _find(
+        self, neem_id: str, pattern: TriplePattern, scope: Scope | None, limit: int | None, exact: bool
     ) -> Iterator[dict[str, Any]]:
-        for term in (s, p, o):
-            if isinstance(term, (Var, Cmp)):
-                raise StoreError("find() takes constants; use match() for variables and comparisons")
         if not self.has_neem(neem_id):
             raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
-        query = _pattern_filter(TriplePattern(s, p, o, graph), self.number_format, exact)
+        query = _pattern_filter(pattern, self.number_format, exact)
         query.update(_scope_filter(scope, self.number_format))
         cursor = self._coll(neem_id, "triples").find(query)
         if limit is not None:

@@ -538,28 +538,13 @@ class SQLiteStore(Store):
         for (blob,) in cursor:
             yield bson.decode(blob, codec_options=_CODEC)
 
-    def count(self, neem_id: str, kind: str = "triples") -> int:
-        if kind not in KINDS:
-            raise StoreError(f"unknown collection kind {kind!r}")
+    def _count(self, neem_id: str, kind: str) -> int:
         self._require(neem_id)
         return self._conn.execute(f"SELECT count(*) FROM {_table(neem_id, kind)}").fetchone()[0]
 
-    def find(
-        self,
-        neem_id: str,
-        s: Term = None,
-        p: Term = None,
-        o: Term = None,
-        *,
-        graph: str | None = None,
-        scope: Scope | None = None,
-        limit: int | None = None,
-        exact: bool = False,
+    def _find(
+        self, neem_id: str, pattern: TriplePattern, scope: Scope | None, limit: int | None, exact: bool
     ) -> Iterator[dict[str, Any]]:
-        for term in (s, p, o):
-            if isinstance(term, (Var, Cmp)):
-                raise StoreError("find() takes constants; use match() for variables and comparisons")
-        pattern = TriplePattern(s, p, o, graph)
         query = _Compiler(self, _table(neem_id, "triples"), scope)
         query.add(pattern, exact=exact)
         self._require(neem_id)
