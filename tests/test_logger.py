@@ -22,7 +22,7 @@ from oracle.store import RDF_TYPE, TriplePattern, Var
 from oracle.store.model import HIERARCHY
 from oracle.store.sqlite import SQLiteStore
 from oracle.store.tbox import tbox_from_graph
-from tests.store.conftest import make_store
+from tests.store.conftest import backend, make_store, store  # noqa: F401 - the shared backend fixtures
 
 T0 = datetime(2024, 5, 6, 8, 30)  # a Monday morning, wall clock
 
@@ -47,17 +47,6 @@ def small_tbox(tbox):
     return replace(tbox, triples=keep, annotations=())
 
 
-@pytest.fixture(params=["sqlite", "mongomock", "mongodb"])
-def backend(request):
-    return request.param
-
-
-@pytest.fixture
-def store(backend, tmp_path):
-    store = make_store(backend, tmp_path)
-    yield store
-    getattr(store, "_test_cleanup", lambda: None)()
-    store.close()
 
 
 @pytest.fixture
