@@ -42,7 +42,7 @@ def _connect(args: argparse.Namespace, with_ontology: bool = True):  # noqa: ANN
     from oracle.bridge import Bridge
     from oracle.store import open_store
 
-    store = open_store(args.store)
+    store = open_store(args.store, create=False)
     neem = args.neem
     if neem is None:
         infos = store.neems()

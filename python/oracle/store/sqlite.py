@@ -155,10 +155,14 @@ class SQLiteStore(Store):
     """A NEEM store in one SQLite file (WAL, synchronous=NORMAL: an action committed survives
     a killed process, which is the crash model of issue 3)."""
 
-    def __init__(self, path: str | os.PathLike[str], number_format: NumberFormat = "decimal128") -> None:
+    def __init__(
+        self, path: str | os.PathLike[str], number_format: NumberFormat = "decimal128", *, create: bool = True
+    ) -> None:
         super().__init__(number_format)
         self.path = Path(path).expanduser()
         self.location = str(self.path)
+        if not create and not self.path.is_file():
+            raise StoreError(f"{self.path}: no NEEM store there (check --store; 'import' or 'load' creates one)")
         self._conn = _Connection(self._connect(), self.location)
         self._depth = 0
         self._cids: dict[Any, int] = {}
