@@ -14,7 +14,7 @@ from rdflib import Graph, Literal, URIRef
 from rdflib.namespace import OWL, RDF, RDFS
 
 from oracle.errors import OntologyError
-from oracle.namespaces import DUL, SOMA
+from oracle.namespaces import DUL, SOMA, STANDARD_PREFIXES
 from oracle.ontology.distance import DistanceMatrix
 from oracle.ontology.taxonomy import Taxonomy
 from oracle.ontology.vocabulary import Vocabulary
@@ -105,6 +105,7 @@ class OdbOntology:
     @classmethod
     def from_graph(cls, graph: Graph, namespace: str | None = None, cache_dir: Path | None = None) -> "OdbOntology":
         namespace = namespace or find_namespace(graph)
+        _bind_standard_prefixes(graph)
         vocab = Vocabulary(namespace)
         taxonomy = Taxonomy.from_graph(graph)
         own = [c for c in taxonomy.classes if c.startswith(namespace) and c[len(namespace):] not in vocab.locals]
@@ -146,6 +147,16 @@ class OdbOntology:
                         afforded.append(task_name)
             objects[name] = ObjectClass(obj.name, obj.iri, obj.parents, tuple(afforded), obj.abstract)
         return cls(namespace, graph, objects, tasks, cache_dir)
+
+
+def _bind_standard_prefixes(graph: Graph) -> None:
+    """RDF/XML keeps only the prefixes its element names use, so an ontology read back from a
+    file would lose ``soma:`` and ``dul:``; bind the ones every mapping may use, where free."""
+    bound = {prefix for prefix, _ in graph.namespaces()}
+    spaces = {str(ns) for _, ns in graph.namespaces()}
+    for prefix, iri in STANDARD_PREFIXES.items():
+        if prefix not in bound and iri not in spaces:
+            graph.bind(prefix, iri)
 
 
 def find_namespace(graph: Graph) -> str:
