@@ -6,8 +6,8 @@ import argparse
 import json
 from datetime import datetime
 
-from oracle.commands.common import add_ontology_options, ontology_from
-from oracle.errors import NeemOracleError, StoreError
+from oracle.commands.common import add_ontology_options
+from oracle.errors import NeemOracleError
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -38,21 +38,12 @@ def _common(parser: argparse.ArgumentParser) -> None:
     add_ontology_options(parser)
 
 
-def _connect(args: argparse.Namespace, with_ontology: bool = True):  # noqa: ANN202
+def _connect(args: argparse.Namespace):  # noqa: ANN202
     from oracle.bridge import Bridge
-    from oracle.store import open_store
+    from oracle.commands.target import open_target
 
-    store = open_store(args.store, create=False)
-    neem = args.neem
-    if neem is None:
-        infos = store.neems()
-        if not infos:
-            raise StoreError(f"{store.location}: the store holds no NEEM; log one first")
-        neem = max(infos, key=lambda info: (info.created_at or "", info.id)).id
-    onto = None
-    if with_ontology:
-        onto = ontology_from(args)
-    return Bridge(store, neem, onto), onto
+    target = open_target(args)
+    return Bridge(target.store, target.neem_id, target.onto), target.onto
 
 
 def _parse_task(text: str, onto) -> tuple[str, list[str]]:  # noqa: ANN001

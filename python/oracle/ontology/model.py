@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
+from typing import Any
 
 from rdflib import Graph, Literal, URIRef
 from rdflib.namespace import OWL, RDF, RDFS
@@ -16,6 +17,7 @@ from rdflib.namespace import OWL, RDF, RDFS
 from oracle.errors import OntologyError
 from oracle.namespaces import DUL, SOMA, STANDARD_PREFIXES
 from oracle.ontology.distance import DistanceMatrix
+from oracle.ontology.provenance import OntologySource
 from oracle.ontology.taxonomy import Taxonomy
 from oracle.ontology.vocabulary import Vocabulary
 
@@ -51,6 +53,8 @@ class OdbOntology:
     objects: dict[str, ObjectClass]
     tasks: dict[str, TaskClass]
     cache_dir: Path | None = field(default=None, repr=False)
+    #: Where it came from (an ``OntologySource``), recorded by the NEEMs logged with it.
+    source: Any = field(default=None, repr=False)
 
     @property
     def vocab(self) -> Vocabulary:
@@ -179,6 +183,8 @@ def load_ontology(path: Path | str, cache_dir: Path | None = None) -> OdbOntolog
     except Exception as error:  # rdflib raises parser-specific types
         raise OntologyError(f"{path}: cannot parse as {fmt} ({error})") from None
     try:
-        return OdbOntology.from_graph(graph, cache_dir=cache_dir)
+        onto = OdbOntology.from_graph(graph, cache_dir=cache_dir)
     except OntologyError as error:
         raise OntologyError(f"{path}: {error}") from None
+    onto.source = OntologySource.loaded(path)
+    return onto
