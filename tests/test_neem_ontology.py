@@ -82,3 +82,20 @@ def test_the_sample_kitchen_is_recorded_portably(tmp_path, capsys):
     recorded = _neem_state(store)[1]["ontology"]
     assert recorded["odb"] is None and recorded["mapping"] is None and recorded["owl"] is None
     assert main(["rank", "--store", str(store), "--no-write"]) == 0
+
+
+def test_with_several_neems_a_read_command_asks_for_neem(tmp_path, capsys):
+    store = tmp_path / "s.sqlite"
+    chains = _chains(tmp_path)
+    bob = tmp_path / "bob.jsonl"
+    bob.write_text(chains.read_text().replace('"ada"', '"bob"'))
+    assert main(["import", str(chains), "--store", str(store)]) == 0
+    assert main(["import", str(bob), "--store", str(store)]) == 0
+    before = _neem_state(store)
+    capsys.readouterr()
+    for command in (["why-not", "pick(banana)"], ["rank"], ["what-next"], ["something-else"]):
+        assert main([*command, "--store", str(store)]) == 1
+        err = capsys.readouterr().err
+        assert "holds 2 NEEMs (ada, bob); choose one with --neem" in err
+    assert _neem_state(store) == before
+    assert main(["why-not", "pick(banana)", "--store", str(store), "--neem", "ada"]) == 0

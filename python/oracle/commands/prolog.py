@@ -33,7 +33,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def _common(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--store", help="store: a SQLite path, sqlite:///PATH or mongodb://... (default: the user's store)")
-    parser.add_argument("--neem", help="NEEM id (default: the newest NEEM in the store)")
+    parser.add_argument("--neem", help="NEEM id (needed when the store holds several)")
     parser.add_argument("--json", action="store_true", help="print the answer as JSON")
     add_ontology_options(parser)
 

@@ -38,8 +38,12 @@ def open_target(args: argparse.Namespace) -> Target:
 
 
 def default_neem(store: Any) -> str:
-    """The newest NEEM of the store."""
-    infos = store.neems()
-    if not infos:
+    """The store's only NEEM. With several, guessing (say, the newest) would answer about the
+    wrong user without a word, so the user is asked to choose."""
+    ids = [info.id for info in store.neems()]
+    if not ids:
         raise StoreError(f"{store.location}: the store holds no NEEM; log one first")
-    return max(infos, key=lambda info: (info.created_at or "", info.id)).id
+    if len(ids) > 1:
+        shown = ", ".join(ids[:6]) + (", ..." if len(ids) > 6 else "")
+        raise StoreError(f"{store.location} holds {len(ids)} NEEMs ({shown}); choose one with --neem")
+    return ids[0]
