@@ -101,6 +101,14 @@ _TRIPLE_INDEXES = (
 )
 
 
+def _indexes(neem_id: str) -> list[tuple[str, str]]:
+    """(name, CREATE INDEX statement) of every index of a NEEM's tables."""
+    t = lambda kind: _table(neem_id, kind)  # noqa: E731
+    made = [(f"{neem_id}_triples_{name}", f"ON {t('triples')}({cols}){where}") for name, cols, where in _TRIPLE_INDEXES]
+    made += [(f"{neem_id}_annotations_sp", f"ON {t('annotations')}(s, p)"), (f"{neem_id}_tf_cs", f"ON {t('tf')}(child, stamp)")]
+    return [(name, f"CREATE INDEX {_quote(name)} {target}") for name, target in made]
+
+
 class _Connection:
     """sqlite3 errors (a NEEM dropped by another process, a locked or full disk) as StoreError."""
 
@@ -128,10 +136,14 @@ class SQLiteStore(Store):
     """A NEEM store in one SQLite file (WAL, synchronous=NORMAL: an action committed survives
     a killed process, which is the crash model of issue 3)."""
 
-    def __init__(self, path: str | os.PathLike[str], number_format: NumberFormat = "decimal128") -> None:
+    def __init__(
+        self, path: str | os.PathLike[str], number_format: NumberFormat = "decimal128", *, create: bool = True
+    ) -> None:
         super().__init__(number_format)
         self.path = Path(path).expanduser()
         self.location = str(self.path)
+        if not create and not self.path.is_file():
+            raise StoreError(f"{self.path}: no NEEM store there (check --store; 'import' or 'load' creates one)")
         self._conn = _Connection(self._connect(), self.location)
         self._depth = 0
         self._cids: dict[Any, int] = {}
@@ -239,17 +251,13 @@ class SQLiteStore(Store):
                 f"CREATE TABLE {t('triples')}(id INTEGER PRIMARY KEY, oid BLOB NOT NULL, s, p, o, ok INTEGER,"
                 " pstar INTEGER, ostar INTEGER, graph, since REAL, until REAL, sk INTEGER, raw BLOB)"
             )
-            for name, cols, where in _TRIPLE_INDEXES:
-                self._conn.execute(
-                    f"CREATE INDEX {_quote(f'{neem_id}_triples_{name}')} ON {t('triples')}({cols}){where}"
-                )
             self._conn.execute(f"CREATE TABLE {t('annotations')}(id INTEGER PRIMARY KEY, s, p, doc BLOB NOT NULL)")
-            self._conn.execute(f"CREATE INDEX {_quote(f'{neem_id}_annotations_sp')} ON {t('annotations')}(s, p)")
             self._conn.execute(
                 f"CREATE TABLE {t('tf')}(id INTEGER PRIMARY KEY, child, stamp REAL, doc BLOB NOT NULL)"
             )
-            self._conn.execute(f"CREATE INDEX {_quote(f'{neem_id}_tf_cs')} ON {t('tf')}(child, stamp)")
             self._conn.execute(f"CREATE TABLE {t('inferred')}(id INTEGER PRIMARY KEY, doc BLOB NOT NULL)")
+            for _, sql in _indexes(neem_id):
+                self._conn.execute(sql)
         self._hierarchies.pop(neem_id, None)
         return NeemInfo.from_meta(neem_id, record)
 
@@ -270,6 +278,12 @@ class SQLiteStore(Store):
         with self.transaction():
             for kind in KINDS:
                 self._conn.execute(f"ALTER TABLE {_table(neem_id, kind)} RENAME TO {_table(new_id, kind)}")
+            # Index names are database-wide and SQLite cannot rename them: left behind, they
+            # would stop a new NEEM from taking the old id.
+            for name, _ in _indexes(neem_id):
+                self._conn.execute(f"DROP INDEX IF EXISTS {_quote(name)}")
+            for _, sql in _indexes(new_id):
+                self._conn.execute(sql)
             self._conn.execute("UPDATE neems SET id=? WHERE id=?", (new_id, neem_id))
         del info
         self._present.discard(neem_id)
