@@ -33,7 +33,7 @@ from oracle.errors import PrologError, StoreError
 from oracle.store import Cmp, Scope, Store, TriplePattern, Triple, Var
 
 PROLOG_DIR = Path(__file__).resolve().parents[2] / "prolog"
-MODULES = ("neem_store", "knowrob_model", "odb_model", "answers")
+MODULES = ("neem_store", "knowrob_model", "odb_model", "answers", "batch_toplevel")
 #: Rows per chunk handed to Prolog by one solution of py_match/2.
 CHUNK = 5000
 
@@ -294,6 +294,17 @@ class Bridge:
         with _LOCK:
             _STATE["bridge"] = self
             return [{k: _python_value(v) for k, v in row.items()} for row in _run(text, maxresult)]
+
+    def run_batch(self, max_answers: int | None = None) -> int:
+        """Answer the queries on standard input (a pipe or file) without asking for more; every
+        answer, or the first ``max_answers`` of each. Returns 1 when a query raised an error."""
+        limit = "inf" if max_answers is None else str(int(max_answers))
+        return int(self.query(f"batch_toplevel:batch_queries(user_input, {limit}, S)")[0]["S"])
+
+    def run_goal(self, text: str) -> int:
+        """Run a goal once as ``swipl -g`` does: 0 on success, 1 on failure, 2 on an error."""
+        rows = self._with_request([text], "neem_store:py_request(R), R = [G], batch_toplevel:batch_goal(G, S)")
+        return int(rows[0]["S"])
 
     def answer(self, request: list[Any]) -> dict[str, Any]:
         """answers:answer_json/1 on a request; values travel as terms."""
