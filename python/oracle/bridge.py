@@ -299,6 +299,12 @@ class Bridge:
             _STATE["bridge"] = self
             return [{k: _python_value(v) for k, v in row.items()} for row in _run(text, maxresult)]
 
+    def ask(self, query: str, request: list[Any]) -> list[dict[str, Any]]:
+        """Solutions of ``query``, which reads its values with ``neem_store:py_request/1``:
+        values a client sent travel as terms and never become query text."""
+        with _LOCK:
+            return [{k: _python_value(v) for k, v in row.items()} for row in self._with_request(request, query)]
+
     def answer(self, request: list[Any]) -> dict[str, Any]:
         """answers:answer_json/1 on a request; values travel as terms."""
         rows = self._with_request(request, "answers:answer_json(J)")
