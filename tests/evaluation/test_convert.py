@@ -170,7 +170,7 @@ def _import_and_evaluate(out: Path, tmp_path: Path) -> tuple[int, str]:
     onto = ["--odb", str(out / "odb"), "--mapping", str(out / "mapping.yaml")]
     assert main(["import", str(out / "chains.jsonl"), "--store", str(tmp_path / "s.sqlite"), *onto]) == 0
     assert main(["evaluate", str(out / "chains.jsonl"), *onto]) == 0
-    from oracle.logger import summarize
+    from oracle.neem.query import summarize_neem as summarize
     from oracle.store import open_store
 
     with open_store(tmp_path / "s.sqlite") as store:

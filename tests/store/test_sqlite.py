@@ -9,7 +9,8 @@ import pytest
 
 from oracle.errors import StoreError
 from oracle.store import RDF_TYPE, SUBCLASS_OF, Triple, TriplePattern, open_store
-from oracle.store.sqlite import SQLiteStore, _Compiler
+from oracle.store.sql import SqlCompiler
+from oracle.store.sqlite import SQLiteStore
 
 X = "http://example.org/x#"
 
@@ -39,7 +40,7 @@ def test_pattern_queries_use_an_index(tmp_path, pattern):
     store.create_neem("n1")
     store.insert("n1", [Triple(X + "Cup", SUBCLASS_OF, X + "Item"), Triple(X + "c", RDF_TYPE, X + "Cup"),
                         Triple(X + "a", X + "hasPart", X + "c")])  # fmt: skip
-    query = _Compiler(store, '"n1_triples"', None)
+    query = SqlCompiler(store, '"n1_triples"', None)
     query.add(pattern)
     plan = store._conn.execute(
         f"EXPLAIN QUERY PLAN SELECT t0.id FROM {query.from_clause()} WHERE {query.where()}", query.params
