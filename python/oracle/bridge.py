@@ -30,9 +30,10 @@ from pathlib import Path
 from typing import Any
 
 from oracle.errors import PrologError, StoreError
+from oracle.paths import prolog_dir
 from oracle.store import Cmp, Scope, Store, TriplePattern, Triple, Var
 
-PROLOG_DIR = Path(__file__).resolve().parents[2] / "prolog"
+PROLOG_DIR = prolog_dir()
 #: The Prolog modules under PROLOG_DIR, in load order (KnowRob's layout: lang/, model/; the
 #: odb extension in odb/); each is imported into ``user`` so a typed query sees its exports.
 MODULES = ("neem_store", "lang/triple", "lang/scope", "lang/query", "lang/holds", "lang/temporal",
