@@ -50,6 +50,8 @@ up:
 	@test -f docker/.env || { echo "make up: docker/.env is missing; run: cp docker/.env.example docker/.env  and set its passwords" >&2; exit 1; }
 	@! grep -q '=change-me' docker/.env || { echo "make up: docker/.env still has change-me passwords; set real ones first" >&2; exit 1; }
 	docker compose -f docker/docker-compose.yml --env-file docker/.env up -d --build
+	@echo "NEEMs in the stack's MongoDB:"
+	@docker compose -f docker/docker-compose.yml --env-file docker/.env run --rm --no-deps oracle neems
 
 down:
 	@command -v docker >/dev/null 2>&1 || { echo "make down: docker not found" >&2; exit 1; }
