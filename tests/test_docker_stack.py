@@ -362,6 +362,24 @@ def test_init_script_creates_app_user_and_one_collection_once(tmp_path):
     ]
 
 
+def test_init_script_runs_in_the_legacy_mongo_shell_of_mongo_4_4(tmp_path):
+    """mongo:4.4 (CPUs without AVX) runs init scripts with the legacy shell: no process.env, but _getEnv."""
+    node = shutil.which("node")
+    if node is None:
+        pytest.skip("node is not installed here (mongosh scripts are JavaScript)")
+    legacy = FAKE_MONGOSH.replace("process: { env: JSON.parse(process.argv[3]) },",
+                                  "_getEnv: (k) => JSON.parse(process.argv[3])[k] || \"\",")
+    assert legacy != FAKE_MONGOSH
+    harness = tmp_path / "legacy.js"
+    harness.write_text(legacy)
+    env = {"NEEM_DB": "roslog", "NEEM_APP_USER": "neem", "NEEM_APP_PASSWORD": "pw"}
+    done = subprocess.run([node, str(harness), str(DOCKER / "mongo-init" / "10-neem-app.js"), json.dumps(env)],
+                          capture_output=True, text=True, timeout=30)
+    assert done.returncode == 0, done.stderr
+    assert json.loads(done.stdout)[0] == ["createUser", "admin", {"user": "neem", "pwd": "pw",
+                                                                  "roles": [{"role": "readWrite", "db": "roslog"}]}]
+
+
 def test_init_script_refuses_without_app_credentials(tmp_path):
     done = run_init_script(tmp_path, {"NEEM_DB": "roslog"})
     assert done.returncode != 0
