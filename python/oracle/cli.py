@@ -26,6 +26,8 @@ COMMAND_MODULES = (
     "evaluate",
     "demo",
     "bench",
+    "serve",
+    "simulate",
 )
 
 

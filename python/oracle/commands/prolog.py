@@ -4,16 +4,25 @@ from __future__ import annotations
 
 import argparse
 import json
+import sys
 from typing import TYPE_CHECKING
 
 from oracle.commands.common import AT, JSON, NEEM, ONTOLOGY_OPTIONS, STORE, add_options, connect, moment_from
+from oracle.errors import NeemOracleError
 
 if TYPE_CHECKING:
     from oracle.ontology import OdbOntology
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
-    top = subparsers.add_parser("prolog", help="interactive SWI-Prolog toplevel with the NEEM store connected")
+    top = subparsers.add_parser(
+        "prolog", help="SWI-Prolog toplevel with the NEEM store connected (piped queries: every answer)",
+        description="Interactive toplevel on a terminal. Queries piped in are answered one by one with every "
+        "answer (or --answers N), and the exit status is 1 when one raised an error. -g GOAL runs goals as "
+        "'swipl -g GOAL -t halt' does (status 1: a goal failed, 2: it raised an error).")
+    top.add_argument("-g", dest="goals", action="append", metavar="GOAL", help="run GOAL once, then exit (repeatable)")
+    top.add_argument("-q", "--quiet", action="store_true", help="no banner")
+    top.add_argument("--answers", type=int, metavar="N", help="piped queries: print at most N answers each")
     _common(top)
     top.set_defaults(handler=run_toplevel)
 
@@ -48,8 +57,22 @@ def _parse_task(text: str, onto: OdbOntology) -> tuple[str, list[str]]:
 
 
 def run_toplevel(args: argparse.Namespace) -> int:
+    if args.answers is not None and args.answers < 1:
+        raise NeemOracleError("--answers must be at least 1")
     bridge, _ = connect(args)
-    print(f"% NEEM {bridge.neem_id} of {bridge.store.location}; KnowRob predicates loaded (halt. or EOF to leave)")
+    interactive = not args.goals and sys.stdin.isatty()
+    if not args.quiet:
+        banner = f"% NEEM {bridge.neem_id} of {bridge.store.location}; KnowRob predicates loaded"
+        print(banner + " (halt. or EOF to leave)" if interactive else banner, file=sys.stdout if interactive else sys.stderr)
+    sys.stdout.flush()  # Prolog writes to the same file descriptor
+    if args.goals:
+        for goal in args.goals:
+            status = bridge.run_goal(goal)
+            if status:
+                return status
+        return 0
+    if not interactive:
+        return bridge.run_batch(args.answers)
     bridge.query("prolog")
     return 0
 
