@@ -5,9 +5,10 @@ Handlers only move JSON: each hands one job to the engine thread and publishes w
 
 from __future__ import annotations
 
+import threading
 from typing import Any, Literal
 
-from fastapi import APIRouter, Query, Request
+from fastapi import APIRouter, BackgroundTasks, Query, Request
 from fastapi.responses import HTMLResponse, StreamingResponse
 from pydantic import BaseModel, Field
 
@@ -68,6 +69,14 @@ def _ctx(request: Request) -> Any:
     return request.app.state.ctx
 
 
+@router.get("/api/health", tags=["neems"])
+async def health(request: Request) -> dict[str, Any]:
+    """A round trip through the engine thread doing nothing: the floor under every answer."""
+    ctx = _ctx(request)
+    sessions = await ctx.thread.run(lambda: len(ctx.engine.sessions))
+    return {"ok": True, "sessions": sessions, "subscribers": ctx.hub.subscribers}
+
+
 # -- NEEMs --------------------------------------------------------------------------------
 @router.get("/api/neems", tags=["neems"])
 async def list_neems(request: Request) -> list[dict[str, Any]]:
@@ -99,7 +108,7 @@ async def perception(neem: str, body: Perception, request: Request) -> dict[str,
 
 
 @router.post("/api/neems/{neem}/situation", tags=["robot"])
-async def situation(neem: str, body: SituationIn, request: Request) -> dict[str, Any]:
+async def situation(neem: str, body: SituationIn, request: Request, background: BackgroundTasks) -> dict[str, Any]:
     """Log the available tasks as the imagined situation, rank them, write the ranking back as
     the imagined preference. The answer is sent as soon as the ranking is known; the NEEM write
     is the next job on the engine thread, before any later request."""
@@ -113,11 +122,28 @@ async def situation(neem: str, body: SituationIn, request: Request) -> dict[str,
     found, ranking, answer = await ctx.thread.run(job)
     write = lambda: ctx.engine.session(neem).write_situation(found, ranking)  # noqa: E731
     if ctx.write_behind:
-        ctx.thread.submit(write)
+        # The write is queued now (so no later request overtakes it) but waits until the answer
+        # is on the wire: run at once, it holds the GIL while the event loop sends the answer.
+        sent = threading.Event()
+        ctx.thread.submit(_after, sent, write)
+
+        async def release() -> None:
+            sent.set()
+
+        background.add_task(release)
     else:
         await ctx.thread.run(write)
     ctx.hub.publish(Event("situation", neem, answer))
     return answer
+
+
+def _after(sent: threading.Event, write: Any) -> None:
+    sent.wait(RELEASE_S)
+    write()
+
+
+#: Longest a queued write waits for its answer to be sent (a client that vanished).
+RELEASE_S = 1.0
 
 
 @router.get("/api/neems/{neem}/situation", tags=["robot"])
