@@ -2,11 +2,12 @@
 
 :- use_module(json_query).
 :- use_module(answers).
-:- use_module(knowrob_model).
+
 :- use_module(neem_store).
-:- use_module(test_episode).
+:- use_module(fixtures/test_episode).
 :- use_module(library(http/json)).
-:- use_module(user:knowrob_model).  % service queries run in user, where the bridge loads it
+:- use_module(user:lang/query).  % service queries run in user, where the bridge loads the modules
+:- use_module(user:model/event).
 
 reply(Text, Bindings, Offset, Limit, Dict) :-
     json_query([Text, Bindings, Offset, Limit, 5.0], JSON),
@@ -37,7 +38,7 @@ test(halt_refused_also_inside_kb_call) :-
 
 test(writes_refused) :-
     reply("kb_project(triple(a, b, c))", [], 0, 1, D1), contains(D1.error, "kb_project/1"),
-    reply("knowrob_model:kb_project(triple(a, b, c))", [], 0, 1, D2), contains(D2.error, "kb_project/1"),
+    reply("kb_query:kb_project(triple(a, b, c))", [], 0, 1, D2), contains(D2.error, "kb_project/1"),
     reply("assertz(foo)", [], 0, 1, D3), contains(D3.error, "assertz/1").
 
 test(variable_goal_refused) :-

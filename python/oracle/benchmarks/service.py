@@ -33,7 +33,7 @@ def _free_port() -> int:
 
 def _prepare(store: Path, robots: int, actions: int, steps: int) -> list[tuple[str, str, list]]:
     """One NEEM per robot holding ``actions`` logged actions; the next ``steps`` rows to post."""
-    from oracle.logger import NeemLogger
+    from oracle.neem.writer import NeemLogger
     from oracle.ontology import build_ontology
     from oracle.store import open_store
 
@@ -41,9 +41,11 @@ def _prepare(store: Path, robots: int, actions: int, steps: int) -> list[tuple[s
     db = open_store(store)
     plans = []
     for robot in range(robots):
-        user, rows = persona_rows(robot, 3, 2 + (actions + steps) // 30)
-        if len(rows) < actions + steps:
-            raise RuntimeError(f"persona {robot}: only {len(rows)} rows simulated")
+        days = 2 + (actions + steps) // 30
+        user, rows = persona_rows(robot, 3, days)
+        while len(rows) < actions + steps:  # personas differ in how much they do a day
+            days = days * 3 // 2
+            user, rows = persona_rows(robot, 3, days)
         logger = NeemLogger.create(db, onto, user=user, neem_id=f"bench-{robot}", commit_every=500)
         for row in rows[:actions]:
             logger.action(row.action, row.time, row.end, available=row.available)
