@@ -77,6 +77,17 @@ def test_real_server_runs_the_loop_and_survives_bad_requests(server):
     assert status == 200 and "pick(banana)" in answer["sentence"]
 
 
+def test_simulated_robot_drives_a_persona_without_errors(server):
+    from oracle.service.robot import drive, persona_rows
+
+    user, rows = persona_rows(1, 3, 1)
+    result = drive(server, user, rows[:20], "robot-sim")
+    assert result.errors == [] and result.steps == 20
+    assert len(result.latencies["situation"]) == 20
+    history = call(server, "/api/neems/robot-sim/situation")[1]["history"]
+    assert history >= 19  # every action but the last was in the history the last situation ranked
+
+
 def test_binding_beyond_loopback_needs_a_token():
     result = subprocess.run([sys.executable, "-m", "oracle", "serve", "--host", "0.0.0.0", "--port", "1"],
                             cwd=ROOT, capture_output=True, text=True, timeout=60)
@@ -130,10 +141,16 @@ def test_page_shows_ranking_updates_live_posts_the_tap_and_answers_why_not(serve
     page.locator("#tasks .whynot").nth(1).click()
     page.wait_for_function("document.getElementById('status').textContent.includes('ranked')")
     assert second["ranking"][1]["task"] in page.locator("#status").text_content()
+    # the predicted chain is one choice: the whole workflow is posted, its first step first
+    call(server, "/api/neems/cem/situation", {"available": AVAILABLE, "at": at(1, 2)})
+    page.wait_for_function(f"document.querySelectorAll('#tasks .task').length === {len(AVAILABLE)}")
+    _, latest = call(server, "/api/neems/cem/situation")
+    if len(latest["chain"]) >= 2:
+        page.locator("#workflow").click()
+        page.wait_for_function("document.getElementById('status').textContent.startsWith('You chose the workflow')")
+        assert call(server, "/api/neems/cem/choice")[1]["workflow"] == latest["chain"]
     shot = os.environ.get("NEEM_ORACLE_SCREENSHOT")
     if shot:
-        call(server, "/api/neems/cem/situation", {"available": AVAILABLE, "at": at(1, 2)})
-        page.wait_for_function(f"document.querySelectorAll('#tasks .task').length === {len(AVAILABLE)}")
         page.locator("#tasks .whynot").nth(2).click()
         page.wait_for_function("document.getElementById('status').textContent.includes('ranked')")
         page.screenshot(path=shot, full_page=True)
