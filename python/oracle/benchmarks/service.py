@@ -124,7 +124,7 @@ def run(quick: bool = False) -> list[dict]:
 
             neem, user, todo = plans[0]
             alone = drive(url, user, todo[:steps], neem, stop=stop)
-            for kind in ("situation", "rank", "action"):
+            for kind in ("situation", "server", "rank", "action"):
                 rows.append(_row("1 robot", kind, alone.latencies.get(kind, []), 1, len(alone.errors)))
 
             results: list[Drive] = [Drive() for _ in plans]
@@ -142,7 +142,7 @@ def run(quick: bool = False) -> list[dict]:
                 thread.join()
             seconds = time.perf_counter() - started
             errors = sum(len(r.errors) for r in results)
-            for kind in ("situation", "rank", "action"):
+            for kind in ("situation", "server", "rank", "action"):
                 values = [v for r in results for v in r.latencies.get(kind, [])]
                 rows.append(_row(f"{len(plans)} robots at once", kind, values, len(plans), errors))
             posted = sum(len(r.latencies.get("situation", [])) + len(r.latencies.get("action", [])) for r in results)

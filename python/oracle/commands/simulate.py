@@ -51,7 +51,7 @@ def run(args: argparse.Namespace) -> int:
     steps = sum(r.steps for r in results)
     errors = [e for r in results for e in r.errors]
     print(f"{args.robots} robot(s) drove {steps} steps in {seconds:.1f} s; {len(errors)} errors")
-    for kind in ("perception", "situation", "rank", "action"):
+    for kind in ("perception", "situation", "server", "rank", "action"):
         values = sorted(v for r in results for v in r.latencies.get(kind, []))
         if values:
             print(f"  {kind:10s} n={len(values):5d}  p50 {percentile(values, 50):6.2f} ms  p99 {percentile(values, 99):6.2f} ms")

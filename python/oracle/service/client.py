@@ -30,6 +30,8 @@ class Client:
         if token:
             self.headers["Authorization"] = f"Bearer {token}"
         self._conn: http.client.HTTPConnection | None = None
+        #: The last answer's Server-Timing metrics (name -> ms), where the service sent them.
+        self.server_timing: dict[str, float] = {}
 
     def request(self, method: str, path: str, body: dict[str, Any] | None = None) -> tuple[Any, float]:
         """The answer's JSON and the round trip in milliseconds; ServiceError on a 4xx/5xx."""
@@ -48,6 +50,7 @@ class Client:
                     raise ServiceError(0, f"http://{self.host}:{self.port}{path}: {error}") from None
                 continue
             ms = (time.perf_counter() - started) * 1000
+            self.server_timing = _server_timing(response.getheader("Server-Timing"))
             answer = json.loads(data) if data else None
             if response.status >= 400:
                 message = answer.get("error") if isinstance(answer, dict) else str(answer)
@@ -65,3 +68,16 @@ class Client:
         if self._conn is not None:
             self._conn.close()
             self._conn = None
+
+
+def _server_timing(header: str | None) -> dict[str, float]:
+    """``queue;dur=0.2, engine;dur=2.5`` as {"queue": 0.2, "engine": 2.5}."""
+    metrics: dict[str, float] = {}
+    for part in (header or "").split(","):
+        name, _, rest = part.strip().partition(";")
+        if rest.startswith("dur="):
+            try:
+                metrics[name] = float(rest[4:])
+            except ValueError:
+                pass
+    return metrics

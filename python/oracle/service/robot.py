@@ -62,6 +62,9 @@ def drive(url: str, user: str, rows: list[Any], neem: str | None, token: str | N
                 answer, ms = client.request("POST", f"{base}/situation", {"available": available, "at": at})
                 result.latencies.setdefault("situation", []).append(ms)
                 result.latencies.setdefault("rank", []).append(float(answer["ms"]))
+                timing = client.server_timing
+                if "engine" in timing:
+                    result.latencies.setdefault("server", []).append(timing["engine"] + timing.get("queue", 0.0))
                 end = row.end.isoformat() if row.end is not None else None
                 _, ms = client.request("POST", f"{base}/actions", {"call": str(row.action), "begin": at, "end": end})
                 result.latencies.setdefault("action", []).append(ms)

@@ -6,10 +6,11 @@ Handlers only move JSON: each hands one job to the engine thread and publishes w
 from __future__ import annotations
 
 import threading
+import time
 from typing import Any, Literal
 
 from fastapi import APIRouter, BackgroundTasks, Query, Request
-from fastapi.responses import HTMLResponse, StreamingResponse
+from fastapi.responses import HTMLResponse, Response, StreamingResponse
 from pydantic import BaseModel, Field
 
 from oracle.service.events import Event
@@ -108,18 +109,23 @@ async def perception(neem: str, body: Perception, request: Request) -> dict[str,
 
 
 @router.post("/api/neems/{neem}/situation", tags=["robot"])
-async def situation(neem: str, body: SituationIn, request: Request, background: BackgroundTasks) -> dict[str, Any]:
+async def situation(neem: str, body: SituationIn, request: Request, response: Response,
+                    background: BackgroundTasks) -> dict[str, Any]:
     """Log the available tasks as the imagined situation, rank them, write the ranking back as
     the imagined preference. The answer is sent as soon as the ranking is known; the NEEM write
-    is the next job on the engine thread, before any later request."""
+    is the next job on the engine thread, before any later request. The Server-Timing header
+    says how long the job waited for the engine thread and how long it ran (ms)."""
     ctx = _ctx(request)
+    queued = time.perf_counter()
 
-    def job() -> tuple[Any, Any, dict[str, Any]]:
+    def job() -> tuple[Any, Any, dict[str, Any], float, float]:
+        started = time.perf_counter()
         session = ctx.engine.session(neem)
         found, ranking, ms = session.situation(body.available, body.at)
-        return found, ranking, session.describe(found, ranking, ms)
+        return found, ranking, session.describe(found, ranking, ms), started, time.perf_counter()
 
-    found, ranking, answer = await ctx.thread.run(job)
+    found, ranking, answer, started, done = await ctx.thread.run(job)
+    response.headers["Server-Timing"] = f"queue;dur={(started - queued) * 1000:.3f}, engine;dur={(done - started) * 1000:.3f}"
     write = lambda: ctx.engine.session(neem).write_situation(found, ranking)  # noqa: E731
     if ctx.write_behind:
         # The write is queued now (so no later request overtakes it) but waits until the answer
