@@ -26,14 +26,20 @@ import threading
 from collections.abc import Iterator, Sequence
 from datetime import datetime
 from itertools import islice
-from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from oracle.errors import PrologError, StoreError
+from oracle.paths import prolog_dir
 from oracle.store import Cmp, Scope, Store, TriplePattern, Triple, Var
 
-PROLOG_DIR = Path(__file__).resolve().parents[2] / "prolog"
-MODULES = ("neem_store", "knowrob_model", "odb_model", "answers")
+if TYPE_CHECKING:
+    from oracle.ontology import OdbOntology
+
+#: The Prolog modules under ``paths.prolog_dir()``, in load order (KnowRob's layout: lang/, model/; the
+#: odb extension in odb/); each is imported into ``user`` so a typed query sees its exports.
+MODULES = ("neem_store", "lang/triple", "lang/scope", "lang/query", "lang/holds", "lang/temporal",
+           "model/rdfs", "model/event", "model/object", "model/situation",
+           "odb/names", "odb/calls", "odb/events", "odb/decisions", "odb/history", "answers")
 #: Rows per chunk handed to Prolog by one solution of py_match/2.
 CHUNK = 5000
 
@@ -171,9 +177,9 @@ def py_match(req: Any, out: Any, handle: Any) -> Any:
         return PL_retry(key)
     if control == PL_REDO:
         key = PL_foreign_context(handle)
-        chunks = _GENERATORS.get(key)
+        pending = _GENERATORS.get(key)
         try:
-            chunk = next(chunks, None) if chunks is not None else None
+            chunk = next(pending, None) if pending is not None else None
         except Exception as error:
             _GENERATORS.pop(key, None)
             out.unify(_error_text(error))
@@ -222,8 +228,9 @@ def _ensure_loaded() -> None:
     Prolog.register_foreign(py_match, arity=2, module="neem_store", nondeterministic=True)
     Prolog.register_foreign(py_insert, arity=2, module="neem_store")
     Prolog.register_foreign(py_request, arity=1, module="neem_store")
+    folder = prolog_dir()
     for name in MODULES:
-        path = PROLOG_DIR / f"{name}.pl"
+        path = folder / f"{name}.pl"
         if not path.exists():
             raise PrologError(f"{path}: Prolog module missing")
         _STATE["request"] = [Atom(str(path))]
@@ -253,7 +260,7 @@ class Bridge:
     """Prolog connected to one NEEM of a store. Only one bridge is active per process
     (pyswip's Prolog is process-wide); creating a new one replaces the previous."""
 
-    def __init__(self, store: Store, neem_id: str, ontology: Any | None = None) -> None:
+    def __init__(self, store: Store, neem_id: str, ontology: OdbOntology | None = None) -> None:
         from pyswip import Atom
 
         self.store = store
@@ -266,8 +273,8 @@ class Bridge:
             if ontology is not None:
                 self.set_ontology(ontology)
 
-    def set_ontology(self, ontology: Any) -> None:
-        """Tell odb_model the ontology's namespace and which role of each task is which."""
+    def set_ontology(self, ontology: OdbOntology) -> None:
+        """Tell odb_names the ontology's namespace and which role of each task is which."""
         from pyswip import Atom
 
         rows = [
@@ -276,8 +283,8 @@ class Bridge:
         ]
         with _LOCK:
             self._with_request([Atom(ontology.namespace), rows],
-                               "neem_store:py_request(Q), Q = [NS, Rows], odb_model:odb_set_namespace(NS),"
-                               " forall(member([T, Ta, R], Rows), odb_model:odb_set_task_roles(T, Ta, R))")
+                               "neem_store:py_request(Q), Q = [NS, Rows], odb_names:odb_set_namespace(NS),"
+                               " forall(member([T, Ta, R], Rows), odb_names:odb_set_task_roles(T, Ta, R))")
 
     def _with_request(self, request: list[Any], query: str) -> list[dict[str, Any]]:
         with _LOCK:
@@ -327,13 +334,13 @@ class Bridge:
         return json.loads(text.decode("utf-8") if isinstance(text, bytes) else text)
 
     def history(self) -> list[dict[str, Any]]:
-        """odb_model:situation_history/1 in one crossing: every executed action in begin order
+        """odb_history:situation_history/1 in one crossing: every executed action in begin order
         as ``{"begin", "end", "call", "part", "available"}`` (calls in the chain syntax)."""
-        return self._json("odb_model:situation_history_json")
+        return self._json("odb_history:situation_history_json")
 
     def latest_situation(self) -> dict[str, Any] | None:
         """The latest imagined situation as ``{"begin", "available"}``, or None."""
-        return self._json("odb_model:latest_situation_json")
+        return self._json("odb_history:latest_situation_json")
 
     def solutions(self, goal: str, variables: Sequence[str], *, stepwise: bool = False) -> list[tuple[Any, ...]]:
         """All solutions of a kb_call goal (its text) as tuples of the named variables."""
@@ -369,4 +376,4 @@ def connect(store: Store, neem_id: str, ontology: Any | None = None) -> Bridge:
         raise
 
 
-__all__ = ["Bridge", "CROSSINGS", "PROLOG_DIR", "connect", "quote_atom", "term_text"]
+__all__ = ["Bridge", "CROSSINGS", "connect", "quote_atom", "term_text"]

@@ -1,6 +1,6 @@
 """The oracle in the system: history from the NEEM (through Prolog), ranking, write-back.
 
-NEEM -> ``odb_model:situation_history`` (one crossing) -> Steps -> PreferenceOracle -> ranking
+NEEM -> ``odb_history:situation_history`` (one crossing) -> Steps -> PreferenceOracle -> ranking
 -> ``NeemLogger.preference`` (an imagined preference the Prolog answers read).
 """
 

@@ -58,6 +58,7 @@ def test_unknown_store_specs_are_errors(monkeypatch):
 
 
 def test_default_store_lives_in_the_user_data_dir(monkeypatch, tmp_path):
+    monkeypatch.delenv("NEEM_MONGO_URI", raising=False)
     monkeypatch.setenv("XDG_DATA_HOME", str(tmp_path))
     monkeypatch.setenv("HOME", str(tmp_path))
     with open_store(None) as store:

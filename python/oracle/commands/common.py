@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from oracle.errors import NeemOracleError, SettingsError, StoreError
+from oracle.errors import NeemOracleError, SettingsError
 
 if TYPE_CHECKING:  # imported lazily at run time, so that --help stays fast
     from oracle.algorithm.params import Hyperparameters
@@ -41,7 +41,7 @@ NUMBERS = Option(("--numbers",), {
     "choices": ("decimal128", "double"), "default": "decimal128",
     "help": "how new numbers are written: Decimal128 (KnowRob 2.x, default) or double (KnowRob 3)",
 })
-NEEM = Option(("--neem",), {"metavar": "ID", "help": "NEEM id (default: the newest NEEM in the store)"})
+NEEM = Option(("--neem",), {"metavar": "ID", "help": "NEEM id (needed when the store holds several)"})
 JSON = Option(("--json",), {"action": "store_true", "help": "print the result as JSON"})
 AT = Option(("--at",), {
     "help": "time of the decision: unix seconds or ISO-8601, a time without zone read as UTC "
@@ -75,19 +75,13 @@ def ontology_from(args: argparse.Namespace) -> OdbOntology:
 
 
 def connect(args: argparse.Namespace) -> tuple[Bridge, OdbOntology]:
-    """The Prolog bridge over ``--store``/``--neem`` (default: the newest NEEM) and the ontology."""
+    """The Prolog bridge over the NEEM ``--store``/``--neem`` name, with the NEEM's ontology
+    (``commands.target``: the store is never created, several NEEMs need ``--neem``)."""
     from oracle.bridge import Bridge
-    from oracle.store import open_store
+    from oracle.commands.target import open_target
 
-    store = open_store(args.store)
-    neem = args.neem
-    if neem is None:
-        infos = store.neems()
-        if not infos:
-            raise StoreError(f"{store.location}: the store holds no NEEM; log one first")
-        neem = max(infos, key=lambda info: (info.created_at or "", info.id)).id
-    onto = ontology_from(args)
-    return Bridge(store, neem, onto), onto
+    target = open_target(args)
+    return Bridge(target.store, target.neem_id, target.onto), target.onto
 
 
 def settings_from(text: str) -> Hyperparameters:

@@ -22,6 +22,7 @@ from oracle.errors import ChainSyntaxError, LoggingError, OntologyError, StoreEr
 from oracle.neem import terms as T
 from oracle.neem.lifecycle import wipe_temporary_neems
 from oracle.ontology.model import OdbOntology
+from oracle.ontology.provenance import META_KEY as ONTOLOGY_KEY, check_logged_with, record_of
 from oracle.store import RDF_TYPE, Store, Triple, TriplePattern, Var
 from oracle.store.tbox import TBox, load_tbox, tbox_from_graph
 from oracle.timeline import IDLE_THRESHOLD_S, Instant, Moment, TimeValueError, is_idle_gap
@@ -92,6 +93,7 @@ class NeemLogger:
         self.ns: str = onto.namespace
         self.vocab = onto.vocab
         info = store.neem(neem_id)
+        check_logged_with(neem_id, info.meta, onto)
         self.user: str = info.user or "user"
         #: Individuals known to be stored (or buffered): no store query needed for them.
         self._known: set[str] = set()
@@ -134,7 +136,9 @@ class NeemLogger:
                 neem_id = f"{base}-{n}"
         if replace and store.has_neem(neem_id):
             store.drop_neem(neem_id)
-        store.create_neem(neem_id, user=user, temporary=temporary, meta={"name": neem_id})
+        recorded = record_of(onto)  # readers use the same ontology by default
+        extra = {"name": neem_id} if recorded is None else {"name": neem_id, ONTOLOGY_KEY: recorded.to_meta()}
+        store.create_neem(neem_id, user=user, temporary=temporary, meta=extra)
         try:
             load_tbox(store, neem_id, tbox if tbox is not None else tbox_from_graph(onto.graph))
         except BaseException:

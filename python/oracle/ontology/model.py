@@ -9,13 +9,15 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
+from typing import Any
 
 from rdflib import Graph, Literal, URIRef
 from rdflib.namespace import OWL, RDF, RDFS
 
 from oracle.errors import OntologyError
-from oracle.namespaces import DUL, SOMA
+from oracle.namespaces import DUL, SOMA, STANDARD_PREFIXES
 from oracle.ontology.distance import DistanceMatrix
+from oracle.ontology.provenance import OntologySource
 from oracle.ontology.taxonomy import Taxonomy
 from oracle.ontology.vocabulary import Vocabulary
 
@@ -43,6 +45,18 @@ class TaskClass:
     disposition: str | None
     parent: str | None
 
+    def slots(self, n_args: int) -> tuple[str, ...]:
+        """The role slot ("reference" or "target") each argument of a call fills, in order: the
+        one home of this rule. ``task(a, b)``: a is the reference, b the target; ``task(a)``: a
+        is the target unless the task has a reference role and no target role."""
+        if n_args == 0:
+            return ()
+        if n_args == 1:
+            return ("reference",) if self.target_role is None and self.ref_role is not None else ("target",)
+        if n_args == 2:
+            return ("reference", "target")
+        raise OntologyError(f"task {self.name!r} takes at most two objects, got {n_args}")
+
 
 @dataclass(eq=False)
 class OdbOntology:
@@ -51,6 +65,8 @@ class OdbOntology:
     objects: dict[str, ObjectClass]
     tasks: dict[str, TaskClass]
     cache_dir: Path | None = field(default=None, repr=False)
+    #: Where it came from (an ``OntologySource``), recorded by the NEEMs logged with it.
+    source: Any = field(default=None, repr=False)
 
     @property
     def vocab(self) -> Vocabulary:
@@ -83,13 +99,7 @@ class OdbOntology:
         info = self.tasks.get(task)
         if info is None:
             raise OntologyError(f"unknown task {task!r}; known tasks: {', '.join(sorted(self.tasks))}")
-        if n_args == 0:
-            return ()
-        if n_args == 1:
-            return (info.target_role if info.target_role is not None else info.ref_role,)
-        if n_args == 2:
-            return (info.ref_role, info.target_role)
-        raise OntologyError(f"task {task!r} takes at most two objects, got {n_args}")
+        return tuple(info.ref_role if slot == "reference" else info.target_role for slot in info.slots(n_args))
 
     @cached_property
     def taxonomy(self) -> Taxonomy:
@@ -103,8 +113,9 @@ class OdbOntology:
         return self.taxonomy.is_subclass_of(self.task_iri(task), soma_class)
 
     @classmethod
-    def from_graph(cls, graph: Graph, namespace: str | None = None, cache_dir: Path | None = None) -> "OdbOntology":
+    def from_graph(cls, graph: Graph, namespace: str | None = None, cache_dir: Path | None = None) -> OdbOntology:
         namespace = namespace or find_namespace(graph)
+        _bind_standard_prefixes(graph)
         vocab = Vocabulary(namespace)
         taxonomy = Taxonomy.from_graph(graph)
         own = [c for c in taxonomy.classes if c.startswith(namespace) and c[len(namespace):] not in vocab.locals]
@@ -148,6 +159,16 @@ class OdbOntology:
         return cls(namespace, graph, objects, tasks, cache_dir)
 
 
+def _bind_standard_prefixes(graph: Graph) -> None:
+    """RDF/XML keeps only the prefixes its element names use, so an ontology read back from a
+    file would lose ``soma:`` and ``dul:``; bind the ones every mapping may use, where free."""
+    bound = {prefix for prefix, _ in graph.namespaces()}
+    spaces = {str(ns) for _, ns in graph.namespaces()}
+    for prefix, iri in STANDARD_PREFIXES.items():
+        if prefix not in bound and iri not in spaces:
+            graph.bind(prefix, iri)
+
+
 def find_namespace(graph: Graph) -> str:
     for node in graph.subjects(RDF.type, OWL.Ontology):
         if (node, RDFS.comment, Literal(GENERATED_MARK)) in graph:
@@ -168,6 +189,8 @@ def load_ontology(path: Path | str, cache_dir: Path | None = None) -> OdbOntolog
     except Exception as error:  # rdflib raises parser-specific types
         raise OntologyError(f"{path}: cannot parse as {fmt} ({error})") from None
     try:
-        return OdbOntology.from_graph(graph, cache_dir=cache_dir)
+        onto = OdbOntology.from_graph(graph, cache_dir=cache_dir)
     except OntologyError as error:
         raise OntologyError(f"{path}: {error}") from None
+    onto.source = OntologySource.loaded(path)
+    return onto

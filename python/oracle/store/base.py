@@ -279,8 +279,9 @@ class Store(ABC):
         """Documents matching one pattern with KnowRob's semantics (see TriplePattern).
 
         ``exact`` compares s, p and o with the asserted fields only (no ``p*``/``o*``), which
-        also finds documents without closures such as version markers. ``scope`` None means any time (KnowRob's wildcard scope); otherwise a document is
-        returned when its scope overlaps the given one.
+        also finds documents without closures such as version markers. ``scope`` None means any
+        time (KnowRob's wildcard scope); otherwise a document is returned when its scope overlaps
+        the given one.
         """
         for term in (s, p, o):
             if isinstance(term, (Var, Cmp)):

@@ -189,7 +189,7 @@ class MongoStore(Store):
             yield Annotation(doc["s"], doc["p"], doc.get("v"))
 
     def _count(self, neem_id: str, kind: str) -> int:
-        return self._coll(neem_id, kind).count_documents({})
+        return int(self._coll(neem_id, kind).count_documents({}))
 
     def _find(
         self, neem_id: str, pattern: TriplePattern, scope: Scope | None, limit: int | None, exact: bool

@@ -17,6 +17,7 @@ import struct
 import time
 from collections.abc import Iterator, Mapping, Sequence
 from contextlib import contextmanager
+from functools import partial
 from datetime import datetime, timezone
 from pathlib import Path
 from typing import Any
@@ -101,6 +102,21 @@ _TRIPLE_INDEXES = (
 )
 
 
+def _indexes(neem_id: str) -> list[tuple[str, str]]:
+    """(name, CREATE INDEX statement) of every index of a NEEM's tables."""
+    t = partial(_table, neem_id)
+    made = [(f"{neem_id}_triples_{name}", f"ON {t('triples')}({cols}){where}") for name, cols, where in _TRIPLE_INDEXES]
+    made += [(f"{neem_id}_annotations_sp", f"ON {t('annotations')}(s, p)"), (f"{neem_id}_tf_cs", f"ON {t('tf')}(child, stamp)")]
+    return [(name, f"CREATE INDEX {_quote(name)} {target}") for name, target in made]
+
+
+def _rowid(cursor: sqlite3.Cursor) -> int:
+    """The id of the row an INSERT just made (sqlite3 types it Optional for other statements)."""
+    if cursor.lastrowid is None:
+        raise StoreError("SQLite reported no id for an inserted row")
+    return cursor.lastrowid
+
+
 class _Connection:
     """sqlite3 errors (a NEEM dropped by another process, a locked or full disk) as StoreError."""
 
@@ -128,10 +144,14 @@ class SQLiteStore(Store):
     """A NEEM store in one SQLite file (WAL, synchronous=NORMAL: an action committed survives
     a killed process, which is the crash model of issue 3)."""
 
-    def __init__(self, path: str | os.PathLike[str], number_format: NumberFormat = "decimal128") -> None:
+    def __init__(
+        self, path: str | os.PathLike[str], number_format: NumberFormat = "decimal128", *, create: bool = True
+    ) -> None:
         super().__init__(number_format)
         self.path = Path(path).expanduser()
         self.location = str(self.path)
+        if not create and not self.path.is_file():
+            raise StoreError(f"{self.path}: no NEEM store there (check --store; 'import' or 'load' creates one)")
         self._conn = _Connection(self._connect(), self.location)
         self._depth = 0
         self._cids: dict[Any, int] = {}
@@ -232,24 +252,20 @@ class SQLiteStore(Store):
         if self.has_neem(neem_id):
             raise StoreError(f"{self.location}: NEEM {neem_id!r} already exists")
         record = new_meta(user, temporary, meta)
-        t = lambda kind: _table(neem_id, kind)  # noqa: E731
+        t = partial(_table, neem_id)
         with self.transaction():
             self._conn.execute("INSERT INTO neems VALUES (?, ?)", (neem_id, bson.encode(record)))
             self._conn.execute(
                 f"CREATE TABLE {t('triples')}(id INTEGER PRIMARY KEY, oid BLOB NOT NULL, s, p, o, ok INTEGER,"
                 " pstar INTEGER, ostar INTEGER, graph, since REAL, until REAL, sk INTEGER, raw BLOB)"
             )
-            for name, cols, where in _TRIPLE_INDEXES:
-                self._conn.execute(
-                    f"CREATE INDEX {_quote(f'{neem_id}_triples_{name}')} ON {t('triples')}({cols}){where}"
-                )
             self._conn.execute(f"CREATE TABLE {t('annotations')}(id INTEGER PRIMARY KEY, s, p, doc BLOB NOT NULL)")
-            self._conn.execute(f"CREATE INDEX {_quote(f'{neem_id}_annotations_sp')} ON {t('annotations')}(s, p)")
             self._conn.execute(
                 f"CREATE TABLE {t('tf')}(id INTEGER PRIMARY KEY, child, stamp REAL, doc BLOB NOT NULL)"
             )
-            self._conn.execute(f"CREATE INDEX {_quote(f'{neem_id}_tf_cs')} ON {t('tf')}(child, stamp)")
             self._conn.execute(f"CREATE TABLE {t('inferred')}(id INTEGER PRIMARY KEY, doc BLOB NOT NULL)")
+            for _, sql in _indexes(neem_id):
+                self._conn.execute(sql)
         self._hierarchies.pop(neem_id, None)
         return NeemInfo.from_meta(neem_id, record)
 
@@ -270,6 +286,12 @@ class SQLiteStore(Store):
         with self.transaction():
             for kind in COLLECTION_KINDS:
                 self._conn.execute(f"ALTER TABLE {_table(neem_id, kind)} RENAME TO {_table(new_id, kind)}")
+            # Index names are database-wide and SQLite cannot rename them: left behind, they
+            # would stop a new NEEM from taking the old id.
+            for name, _ in _indexes(neem_id):
+                self._conn.execute(f"DROP INDEX IF EXISTS {_quote(name)}")
+            for _, sql in _indexes(new_id):
+                self._conn.execute(sql)
             self._conn.execute("UPDATE neems SET id=? WHERE id=?", (new_id, neem_id))
         del info
         self._present.discard(neem_id)
@@ -289,12 +311,12 @@ class SQLiteStore(Store):
         if tid is None:
             cursor = self._conn.execute("INSERT OR IGNORE INTO terms(value) VALUES (?)", (value,))
             if cursor.rowcount == 1:
-                tid = cursor.lastrowid
+                tid = _rowid(cursor)
             else:
                 tid = self._conn.execute("SELECT id FROM terms WHERE value=?", (value,)).fetchone()[0]
             self._tids[value] = tid
-            self._tvals[tid] = value  # type: ignore[index]
-        return tid  # type: ignore[return-value]
+            self._tvals[tid] = value
+        return tid
 
     def known_term_id(self, value: str) -> int:
         """The id of a term for a query; -1 (matching nothing) when the store never saw it."""
@@ -351,7 +373,7 @@ class SQLiteStore(Store):
         blob = key if isinstance(key, bytes) else bson.encode({"c": list(closure)})
         row = self._conn.execute("SELECT cid FROM closure WHERE key=?", (blob,)).fetchone()
         if row is None:
-            cid = self._conn.execute("INSERT INTO closure(key) VALUES (?)", (blob,)).lastrowid
+            cid = _rowid(self._conn.execute("INSERT INTO closure(key) VALUES (?)", (blob,)))
             self._conn.executemany(
                 "INSERT INTO closure_member VALUES (?, ?, ?)",
                 [(cid, pos, self._tid(v) if type(v) is str else None) for pos, v in enumerate(closure)],
@@ -391,6 +413,7 @@ class SQLiteStore(Store):
         prefix = struct.pack(">I", int(time.time())) + self._random
         counter = self._counter
         rows = []
+        sql_o: Any
         for triple, pstar, ostar in closed:
             counter = (counter + 1) & 0xFFFFFF
             o = triple.o
@@ -526,7 +549,7 @@ class SQLiteStore(Store):
 
     def _count(self, neem_id: str, kind: str) -> int:
         self._require(neem_id)
-        return self._conn.execute(f"SELECT count(*) FROM {_table(neem_id, kind)}").fetchone()[0]
+        return int(self._conn.execute(f"SELECT count(*) FROM {_table(neem_id, kind)}").fetchone()[0])
 
     def _find(
         self, neem_id: str, pattern: TriplePattern, scope: Scope | None, limit: int | None, exact: bool
@@ -540,7 +563,7 @@ class SQLiteStore(Store):
         for row in self._conn.execute(sql, query.params).fetchall():
             yield self._document(row)
 
-    def _scope_doc(self, since: float | None, until: float | None, sk: int) -> dict[str, Any]:
+    def _scope_doc(self, since: float, until: float, sk: int) -> dict[str, Any]:
         key = (since, until, sk)
         cached = self._scopes.get(key)
         if cached is None:

@@ -65,11 +65,13 @@ def _fetch(obj: str, destination: str) -> ScriptStep:
 
 
 def _use(obj: str, target: str, day: _Day) -> list[ScriptStep]:
-    return [f"pick({obj})", f"pour({obj}, {target})", day.back(obj)]
+    steps: list[ScriptStep] = [f"pick({obj})", f"pour({obj}, {target})", day.back(obj)]
+    return steps
 
 
 def _drink(vessel: str, day: _Day) -> list[ScriptStep]:
-    return [f"pick({vessel})"] + [f"drink_from({vessel})"] * day.sips() + [f"place({vessel}, {day.prefs.table})"]
+    steps: list[ScriptStep] = [f"pick({vessel})", *[f"drink_from({vessel})"] * day.sips(), f"place({vessel}, {day.prefs.table})"]
+    return steps
 
 
 # --- intentions -----------------------------------------------------------------------------------
@@ -81,7 +83,7 @@ def hot_drink(day: _Day, state: State, kind: str | None = None, mug: str | None 
         mug = "espresso_cup"
     steps: list[ScriptStep] = [_fetch(mug, t)]
     if kind == "tea":
-        bag = [f"pick({p.tea})", f"place({p.tea}, {mug})"]
+        bag: list[ScriptStep] = [f"pick({p.tea})", f"place({p.tea}, {mug})"]
         steps += day.ordered("tea", bag, _use("thermos", mug, day))
     elif p.coffee == "instant":
         steps += day.ordered("coffee", _use("instant_coffee", mug, day), _use("thermos", mug, day))
@@ -259,7 +261,8 @@ class _Simulator:
                 clock = max(clock + timedelta(minutes=1), start)
                 day = _Day(self.persona, self.rng, entry.time)
                 steps = INTENTIONS[entry.intention](day, state) + self._closing(day)
-                for row, state, clock in self._execute(day, steps, state, clock):
+                # _execute hands back the state and clock after each row: the next intention starts there
+                for row, state, clock in self._execute(day, steps, state, clock):  # noqa: B007, B020
                     yield row
 
     def _agenda(self) -> list[RoutineEntry]:

@@ -16,7 +16,7 @@ from pathlib import Path
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import ChainSyntaxError, NeemOracleError, WorldError
 from oracle.paths import data_dir
-from oracle.yamlfile import read_yaml
+from oracle.yamlfile import check_keys, read_yaml
 from oracle.world.state import HAND, OBJECT_KINDS, ObjectSpec, State, blocker, reachable
 
 
@@ -362,9 +362,7 @@ def load_world(path: Path | str | None = None) -> World:
     data = read_yaml(path, WorldError, "world file")
     if not isinstance(data, dict):
         raise WorldError(f"{path}: expected a mapping with keys objects, tasks, park")
-    unknown = set(data) - _TOP_KEYS
-    if unknown:
-        raise WorldError(f"{path}: unknown key(s) {', '.join(sorted(map(str, unknown)))}; allowed: {', '.join(sorted(_TOP_KEYS))}")
+    check_keys(data, _TOP_KEYS, str(path), WorldError)
     raw_tasks = data.get("tasks")
     raw_objects = data.get("objects")
     if not isinstance(raw_tasks, dict) or not raw_tasks:
@@ -393,9 +391,7 @@ def _object(path: Path, name: str, spec: object, tasks: Mapping) -> ObjectSpec:
     where = f"objects.{name}"
     if not isinstance(spec, dict):
         raise WorldError(f"{path}: {where}: expected a mapping like {{at: counter_top, affords: [pick]}}")
-    unknown = set(spec) - _OBJECT_KEYS
-    if unknown:
-        raise WorldError(f"{path}: {where}: unknown key(s) {', '.join(sorted(map(str, unknown)))}")
+    check_keys(spec, _OBJECT_KEYS, f"{path}: {where}", WorldError)
     kind = spec.get("kind", "item")
     if kind not in OBJECT_KINDS:
         raise WorldError(f"{path}: {where}.kind: {kind!r} is not one of {', '.join(OBJECT_KINDS)}")
@@ -455,9 +451,7 @@ def _task(path: Path, name: str, spec: object, tags: frozenset[str]) -> TaskRule
     where = f"tasks.{name}"
     if not isinstance(spec, dict):
         raise WorldError(f"{path}: {where}: expected a mapping with args, requires, effects")
-    unknown = set(spec) - _TASK_KEYS
-    if unknown:
-        raise WorldError(f"{path}: {where}: unknown key(s) {', '.join(sorted(map(str, unknown)))}")
+    check_keys(spec, _TASK_KEYS, f"{path}: {where}", WorldError)
     params = _names(path, f"{where}.args", spec.get("args"))
     if not 1 <= len(params) <= 2 or len(set(params)) != len(params):
         raise WorldError(f"{path}: {where}.args: expected one or two distinct parameter names")
