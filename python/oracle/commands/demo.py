@@ -39,7 +39,7 @@ def run(args: argparse.Namespace) -> int:
     from oracle.store import open_store
     from oracle.world.generate import simulate
     from oracle.world.personas import make_persona
-    from oracle.world.rules import load_world
+    from oracle.world.worldfile import load_world
 
     if args.days < 1:
         raise NeemOracleError("--days must be at least 1")

@@ -6,6 +6,11 @@ indexes need. ``p*``/``o*`` are stored by reference to a content-addressed closu
 ``rdf:type dul:Action`` triples share one closure row, so the closure costs one integer per
 triple and ``o* contains C`` is an indexed lookup. IRIs and strings are interned in a ``terms`` table so
 rows and index entries hold small integers (half the cost of indexing the IRI text).
+
+Why this module is large: the schema, term and closure interning, the insert path and the
+closure propagation share the connection and three caches (terms, closures, scopes) that must
+stay consistent within one transaction; split across modules they would share private state.
+The query compiler, which needs none of it but term ids, lives in ``store.sql``.
 """
 
 from __future__ import annotations
@@ -29,7 +34,7 @@ from bson.int64 import Int64
 from bson.objectid import ObjectId
 
 from oracle.errors import StoreError
-from oracle.store.base import COLLECTION_KINDS, Closed, NeemInfo, Store, check_neem_id, new_meta
+from oracle.store.base import COLLECTION_KINDS, Closed, NeemInfo, Store
 from oracle.store.model import (
     RDF_TYPE,
     SUBCLASS_OF,
@@ -245,13 +250,7 @@ class SQLiteStore(Store):
             raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
         return NeemInfo.from_meta(neem_id, bson.decode(row[0]))
 
-    def create_neem(
-        self, neem_id: str, *, user: str | None = None, temporary: bool = False, meta: Mapping[str, Any] | None = None
-    ) -> NeemInfo:
-        check_neem_id(neem_id)
-        if self.has_neem(neem_id):
-            raise StoreError(f"{self.location}: NEEM {neem_id!r} already exists")
-        record = new_meta(user, temporary, meta)
+    def _create_neem(self, neem_id: str, record: dict[str, Any]) -> None:
         t = partial(_table, neem_id)
         with self.transaction():
             self._conn.execute("INSERT INTO neems VALUES (?, ?)", (neem_id, bson.encode(record)))
@@ -266,23 +265,15 @@ class SQLiteStore(Store):
             self._conn.execute(f"CREATE TABLE {t('inferred')}(id INTEGER PRIMARY KEY, doc BLOB NOT NULL)")
             for _, sql in _indexes(neem_id):
                 self._conn.execute(sql)
-        self._hierarchies.pop(neem_id, None)
-        return NeemInfo.from_meta(neem_id, record)
 
-    def drop_neem(self, neem_id: str) -> None:
-        self.neem(neem_id)
+    def _drop_neem(self, neem_id: str) -> None:
         with self.transaction():
             for kind in COLLECTION_KINDS:
                 self._conn.execute(f"DROP TABLE IF EXISTS {_table(neem_id, kind)}")
             self._conn.execute("DELETE FROM neems WHERE id=?", (neem_id,))
         self._present.discard(neem_id)
-        self._hierarchies.pop(neem_id, None)
 
-    def rename_neem(self, neem_id: str, new_id: str) -> None:
-        info = self.neem(neem_id)
-        check_neem_id(new_id)
-        if self.has_neem(new_id):
-            raise StoreError(f"{self.location}: NEEM {new_id!r} already exists")
+    def _rename_neem(self, neem_id: str, new_id: str, info: NeemInfo) -> None:
         with self.transaction():
             for kind in COLLECTION_KINDS:
                 self._conn.execute(f"ALTER TABLE {_table(neem_id, kind)} RENAME TO {_table(new_id, kind)}")
@@ -293,9 +284,7 @@ class SQLiteStore(Store):
             for _, sql in _indexes(new_id):
                 self._conn.execute(sql)
             self._conn.execute("UPDATE neems SET id=? WHERE id=?", (new_id, neem_id))
-        del info
         self._present.discard(neem_id)
-        self._hierarchies.pop(neem_id, None)
 
     def update_meta(self, neem_id: str, **fields: Any) -> NeemInfo:
         meta = dict(self.neem(neem_id).meta)

@@ -20,7 +20,8 @@ from oracle.chains import ChainRow, TaskCall, parse_call, write_chains
 from oracle.errors import NeemOracleError
 from oracle.timeline import first_hour
 from oracle.world.personas import MUGS, Persona, RoutineEntry, make_personas
-from oracle.world.rules import World, load_world
+from oracle.world.rules import World
+from oracle.world.worldfile import load_world
 from oracle.world.state import State
 
 #: Day 1 of every simulated week (a Monday); times are wall-clock times without a zone
