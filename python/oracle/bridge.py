@@ -368,7 +368,7 @@ def _python_value(value: Any) -> Any:
     return value
 
 
-def connect(store: Store, neem_id: str, ontology: Any | None = None) -> Bridge:
+def connect(store: Store, neem_id: str, ontology: OdbOntology | None = None) -> Bridge:
     """A bridge to ``neem_id``; raises StoreError when the NEEM is missing."""
     try:
         return Bridge(store, neem_id, ontology)

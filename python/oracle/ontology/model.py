@@ -9,7 +9,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
-from typing import Any
 
 from rdflib import Graph, Literal, URIRef
 from rdflib.namespace import OWL, RDF, RDFS
@@ -66,7 +65,7 @@ class OdbOntology:
     tasks: dict[str, TaskClass]
     cache_dir: Path | None = field(default=None, repr=False)
     #: Where it came from (an ``OntologySource``), recorded by the NEEMs logged with it.
-    source: Any = field(default=None, repr=False)
+    source: OntologySource | None = field(default=None, repr=False)
 
     @property
     def vocab(self) -> Vocabulary:
