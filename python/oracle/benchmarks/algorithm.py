@@ -33,19 +33,24 @@ def taxonomy(rng: np.random.Generator, n_tasks: int = 30, n_objects: int = 60) -
     leaves: dict[str, list[str]] = {"Task": [], "Object": []}
     for kind, count in (("Task", n_tasks), ("Object", n_objects)):
         top = len(names)
-        names.append(kind); parent.append(0)
+        names.append(kind)
+        parent.append(0)
         groups = []
         for g in range(max(2, count // 6)):
-            groups.append(len(names)); names.append(f"{kind}Group{g}"); parent.append(top)
+            groups.append(len(names))
+            names.append(f"{kind}Group{g}")
+            parent.append(top)
         for i in range(count):
-            names.append(f"{kind}{i}"); parent.append(int(rng.choice(groups)))
+            names.append(f"{kind}{i}")
+            parent.append(int(rng.choice(groups)))
             leaves[kind].append(NS + names[-1])
     n = len(names)
     ancestors = []
     for i in range(n):
         chain, node = [], i
         while node >= 0:
-            chain.append(node); node = parent[node]
+            chain.append(node)
+            node = parent[node]
         ancestors.append(chain)
     depth_total = max(len(a) for a in ancestors)
     values = np.zeros((n, n))

@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from oracle.errors import NeemOracleError, SettingsError, StoreError
+from oracle.errors import NeemOracleError, SettingsError
 
 if TYPE_CHECKING:  # imported lazily at run time, so that --help stays fast
     from oracle.algorithm.params import Hyperparameters
@@ -75,8 +75,8 @@ def ontology_from(args: argparse.Namespace) -> OdbOntology:
 
 
 def connect(args: argparse.Namespace) -> tuple[Bridge, OdbOntology]:
-    """The Prolog bridge over the NEEM a reading command works on and the ontology it was logged
-    with (``commands.target``: the store is never created, several NEEMs need ``--neem``)."""
+    """The Prolog bridge over the NEEM ``--store``/``--neem`` name, with the NEEM's ontology
+    (``commands.target``: the store is never created, several NEEMs need ``--neem``)."""
     from oracle.bridge import Bridge
     from oracle.commands.target import open_target
 

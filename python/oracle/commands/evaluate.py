@@ -48,7 +48,9 @@ def run_evaluate(args: argparse.Namespace) -> int:
     summary = summarize(result)
     summary["settings"] = settings.to_dict()
     summary["replay_seconds"] = time.perf_counter() - started
-    command = "python -m oracle " + " ".join(shlex.quote(a) for a in sys.argv[1:]) if sys.argv[1:2] == ["evaluate"] else "python -m oracle evaluate"
+    command = "python -m oracle evaluate"
+    if sys.argv[1:2] == ["evaluate"]:
+        command = "python -m oracle " + " ".join(shlex.quote(a) for a in sys.argv[1:])
     if args.ablations:
         from oracle.evaluation.ablations import run_ablations
 

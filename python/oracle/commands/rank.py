@@ -5,8 +5,12 @@ from __future__ import annotations
 import argparse
 import json
 import math
+from typing import TYPE_CHECKING
 from oracle.commands.common import AT, JSON, NEEM, ONTOLOGY_OPTIONS, SETTINGS, STORE, add_options
 from oracle.timeline import format_clock
+
+if TYPE_CHECKING:
+    from oracle.ranking import NeemRanking
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -41,7 +45,7 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def print_ranking(result, limit: int | None = None) -> None:  # noqa: ANN001
+def print_ranking(result: NeemRanking, limit: int | None = None) -> None:
     when = format_clock(result.at)
     print(f"NEEM {result.neem}: {result.history} past actions, decision at {when} ({result.time_of_day}); "
           f"ranked {len(result.calls)} options in {result.milliseconds:.2f} ms")

@@ -82,7 +82,7 @@ class ReplayResult:
         return list(self.outcomes[0].ranks) if self.outcomes else []
 
 
-def load_users(path: Path | str) -> "OrderedDict[str, list[ChainRow]]":
+def load_users(path: Path | str) -> OrderedDict[str, list[ChainRow]]:
     """Rows of a JSONL file, or of every ``*.jsonl`` in a folder, grouped by user in file order."""
     path = Path(path)
     files = sorted(path.glob("*.jsonl")) if path.is_dir() else [path]
@@ -209,7 +209,7 @@ def summarize(result: ReplayResult) -> dict:
 
 def _rate(outcomes: Iterable[Outcome], name: str, k: int) -> float:
     outcomes = list(outcomes)
-    hits = sum(1 for o in outcomes if o.ranks[name] is not None and o.ranks[name] <= k)
+    hits = sum(1 for o in outcomes if (rank := o.ranks[name]) is not None and rank <= k)
     return hits / len(outcomes) if outcomes else 0.0
 
 
