@@ -3,7 +3,9 @@
       current_scope/1,          % -Scope
       scope_check/1,            % +Scope
       scope_overlaps/3,         % +Scope, +Begin, +End
-      runtime_scope/3           % +Kind, +Argument, -Scope
+      runtime_scope/3,          % +Kind, +Argument, -Scope
+      scope_term/2,             % +ScopeOrDict, -Scope
+      scope_dict/2              % +Scope, -Dict
     ]).
 /** <module> Question scopes (KnowRob 2.x src/lang/scope.pl)
 
@@ -63,3 +65,35 @@ runtime_scope(until, T, Scope) :-
 event_bounds(E, B, End) :-
     maplist(kb_iri, [dul:hasTimeInterval, soma:hasIntervalBegin, soma:hasIntervalEnd], [HI, Begin, EndP]),
     once(store_match([t(E, HI, I), t(I, Begin, B), t(I, EndP, End)], any)).
+
+%!  scope_term(+ScopeOrDict, -Scope) is det.
+%   A question scope from `any`, `scope(S,U)` or a KnowRob scope dictionary:
+%   `dict{}` (no time filter), `dict{time: dict{since: Op(T0), until: Op(T1)}}` where
+%   Op is `=<`, `>=`, `=`, `<` or `>` and T may be wrapped as `double(T)`; a missing end is
+%   open (0 or inf).
+scope_term(S, S) :- S == any, !.
+scope_term(scope(A, B), scope(A, B)) :- !.
+scope_term(D, Scope) :-
+    is_dict(D), !,
+    (   get_dict(time, D, Time)
+    ->  must_be(dict, Time),
+        ( get_dict(since, Time, S0) -> bound_value(S0, S) ; S = 0.0 ),
+        ( get_dict(until, Time, U0) -> bound_value(U0, U) ; U is inf ),
+        Scope = scope(S, U)
+    ;   Scope = any
+    ).
+scope_term(X, _) :-
+    type_error(scope, X).
+
+bound_value(V, _) :- var(V), !, instantiation_error(V).
+bound_value(double(V), X) :- !, bound_value(V, X).
+bound_value(V, X) :-
+    compound(V), V =.. [Op, A], memberchk(Op, [=<, >=, =, <, >]), !,
+    bound_value(A, X).
+bound_value(V, X) :-
+    must_be(number, V), X = V.
+
+%!  scope_dict(+Scope, -Dict) is det.
+%   Scope as KnowRob's dictionary `dict{time: dict{since: S, until: U}}` (`dict{}` for any).
+scope_dict(any, dict{}) :- !.
+scope_dict(scope(S, U), dict{time: dict{since: S, until: U}}).

@@ -36,7 +36,7 @@ PROLOG_DIR = Path(__file__).resolve().parents[2] / "prolog"
 #: The Prolog modules under PROLOG_DIR, in load order (KnowRob's layout: lang/, model/; the
 #: odb extension in odb/); each is imported into ``user`` so a typed query sees its exports.
 MODULES = ("neem_store", "lang/triple", "lang/scope", "lang/query", "lang/holds", "lang/temporal",
-           "model/rdfs", "model/event", "model/object", "model/situation",
+           "model/rdfs", "model/event", "model/object", "model/situation", "model/action", "model/interval",
            "odb/names", "odb/calls", "odb/events", "odb/decisions", "odb/history", "answers")
 #: Rows per chunk handed to Prolog by one solution of py_match/2.
 CHUNK = 5000
