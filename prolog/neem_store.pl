@@ -138,13 +138,17 @@ mem_insert(Merge, triple(S, P, O, Since, Until)) :-
     ;   Merge == union
     ->  retractall_overlapping(S, P, O, Since, Until),
         pairs_keys_values(Overlaps, Ss, Us),
-        min_list([Since|Ss], Since1), max_list([Until|Us], Until1),
+        foldl(num_min, Ss, Since, Since1), foldl(num_max, Us, Until, Until1),
         assertz(mem_triple(S, P, O, Since1, Until1))
     ;   retractall_overlapping(S, P, O, Since, Until),
         forall(member(S1-U1, Overlaps),
-               ( Since1 is max(S1, Since), Until1 is min(U1, Until),
+               ( num_max(S1, Since, Since1), num_min(U1, Until, Until1),
                  assertz(mem_triple(S, P, O, Since1, Until1)) ))
     ).
+
+%   min/max by comparison: `is max(inf, inf)` raises float_overflow in SWI-Prolog.
+num_min(A, B, M) :- ( A =< B -> M = A ; M = B ).
+num_max(A, B, M) :- ( A >= B -> M = A ; M = B ).
 
 retractall_overlapping(S, P, O, Since, Until) :-
     forall(( clause(mem_triple(S, P, O, S1, U1), true, Ref), S1 =< Until, U1 >= Since ),

@@ -135,6 +135,10 @@ unfold([G|Gs], Mod, Scope, S0, S) :- !,      % a list of goals is their conjunct
     unfold(Gs, Mod, Scope, S1, S).
 unfold(call(G), Mod, Scope, S0, S) :- !,
     unfold(G, Mod, Scope, S0, S).
+unfold(call_with_context(G, Options), Mod, _, S0, S) :- !,   % mongolog: scope(Dict) option
+    must_be(list, Options),
+    (   memberchk(scope(D), Options) -> true ; D = dict{} ),
+    S0 = [scoped(context, Mod:G, D)|S].
 unfold(holds(Q), Mod, Scope, S0, S) :- !,
     query_triple(Q, Su, P, O),
     unfold(holds(Su, P, O), Mod, Scope, S0, S).
@@ -314,6 +318,9 @@ project((A, B), S, U, T0, T) :- !,
     project(A, S, U, T0, T1),
     project(B, S, U, T1, T).
 project([], _, _, T, T) :- !.
+project(true, _, _, T, T) :- !.
+project(ask(G), _, _, T, T) :- !,          % KnowRob's deprecated alias of kb_call/1
+    once(kb_call(G)).
 project([G|Gs], S, U, T0, T) :- !,
     project(G, S, U, T0, T1),
     project(Gs, S, U, T1, T).
@@ -330,7 +337,9 @@ project(until(G, U), _, _, T0, T) :- !,
     must_be(number, U),
     project(G, 0.0, U, T0, T).
 project(triple(S, P, O), Since, Until, [triple(S1, P1, O1, Since, Until)|T], T) :- !,
-    must_be(ground, triple(S, P, O)),
+    (   ground(triple(S, P, O)) -> true
+    ;   throw(error(instantiation_error, project(triple(S, P, O))))   % KnowRob's context
+    ),
     kb_iri(S, S1), kb_iri(P, P1), value_atomic(O, O1),
     must_be(atom, S1), must_be(atom, P1), must_be(atomic, O1).
 project(holds(Q), Since, Until, T0, T) :- !,

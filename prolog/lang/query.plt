@@ -94,4 +94,17 @@ test(unproject_python_is_an_error, [setup(store_reset), cleanup(store_reset),
                                     error(instantiation_error)]) :-
     kb_unproject(_).
 
+test(project_error_context, [setup(store_reset), cleanup(store_reset),
+                              error(instantiation_error, project(triple(a, b, _)))]) :-
+    kb_project(triple(a, b, _)).
+
+test(call_with_context, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project(triple(s, p, o), scope(10, 20)),
+    kb_call(call_with_context(triple(s, p, o), [scope(dict{time: dict{since: =<(15), until: >=(15)}})])),
+    \+ kb_call(call_with_context(triple(s, p, o), [scope(dict{time: dict{since: =<(25), until: >=(25)}})])).
+
+test(ask_in_projection, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project((ask(C = g), triple(e, f, C))),
+    kb_call(triple(e, f, g)).
+
 :- end_tests(kb_query).

@@ -47,18 +47,21 @@ scope_overlaps(scope(S, U), B, End) :-
 %!  runtime_scope(+Kind, +Argument, -Scope) is det.
 %   The question scope of `G during Argument` (Kind `during`: `[T0,T1]`, `[_,_]` for any
 %   time, or an event with an interval), `G since T` (true since T and still now; a free T
-%   is now) and `G until T` (true at T; a free T is any time).
+%   is now), `G until T` (true at T; a free T is any time) and mongolog's
+%   `call_with_context(G, [scope(Dict)])` (Kind `context`, see scope_term/2).
 runtime_scope(during, I, any) :-
     I = [T0, T1], var(T0), var(T1), !.
 runtime_scope(during, [T0, T1], scope(T0, T1)) :- !,
     must_be(number, T0), must_be(number, T1).
 runtime_scope(during, E, scope(B, End)) :-
-    must_be(atomic, E),
     kb_iri(E, E1),
+    must_be(atomic, E1),
     event_bounds(E1, B, End).
 runtime_scope(since, T, scope(T1, Now)) :-
     get_time(Now),
     ( number(T) -> T1 = T ; T1 = Now ).
+runtime_scope(context, D, Scope) :- !,
+    scope_term(D, Scope).
 runtime_scope(until, T, Scope) :-
     (   var(T) -> Scope = any ; must_be(number, T), Scope = scope(T, T) ).
 

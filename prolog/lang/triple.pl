@@ -94,10 +94,19 @@ subject_filter(Su, X, S0, S) :-
 subject_filter(_, _, S, S).
 
 %!  member_iri(-X, +List) is nondet.
-member_iri(X, L) :-
+member_iri(X, L0) :-
+    untyped(L0, L),
     must_be(list, L),
     member(X0, L),
-    kb_iri(X0, X).
+    untyped(X0, X1),
+    kb_iri(X1, X).
+
+%   KnowRob's typed values (`array(List)`, `string(X)`, `double(X)`, ...) as plain values.
+untyped(V, V) :- var(V), !.
+untyped(T, V) :-
+    compound(T), T =.. [F, V0], memberchk(F, [array, string, atom, double, float, int, integer, number]), !,
+    untyped(V0, V).
+untyped(V, V).
 
 operator_value(V) :- compound(V), V = (_ -> _), !.
 operator_value(V) :-
@@ -135,10 +144,10 @@ value_test(<, A, X) :- number(X), X < A.
 value_test(=<, A, X) :- number(X), X =< A.
 value_test(>, A, X) :- number(X), X > A.
 value_test(>=, A, X) :- number(X), X >= A.
-value_test(in, L, X) :- must_be(list, L), maplist(kb_iri, L, L1), memberchk(X, L1).
-value_test(nin, L, X) :- must_be(list, L), maplist(kb_iri, L, L1), \+ memberchk(X, L1).
+value_test(in, L, X) :- member_iri(Y, L), Y == X, !.
+value_test(nin, L, X) :- \+ value_test(in, L, X).
 value_test(=, A0, X) :-
-    kb_iri(A0, A),
+    untyped(A0, A1), kb_iri(A1, A),
     (   number(A), number(X) -> X =:= A ; X == A ).
 value_test(regex, Pattern, X) :-
     atomic(X), atom_string(X, Text), text_to_string(Pattern, Re),
@@ -150,9 +159,9 @@ value_test(regex, Pattern, X) :-
 
 %!  modified_triple(?S, +Property, ?O, +Scope) is nondet.
 %   triple/3 with a modified property (see the module comment). Each object once.
-modified_triple(S0, PM, O, Scope) :-
+modified_triple(S0, PM, O0, Scope) :-
     modifiers(PM, Mods, P0),
-    kb_iri(P0, P), kb_iri(S0, S),
+    kb_iri(P0, P), kb_iri(S0, S), kb_iri(O0, O),
     must_be(atom, P),
     (   memberchk(include_parents, Mods)
     ->  parents_triple(S, P, O, Scope)

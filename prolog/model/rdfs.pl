@@ -30,8 +30,9 @@ list; new_iri/1,2 make an IRI not used as a subject yet.
 kb_query:kb_rule(instance_of(A, B), triple(A, rdf:type, B)).
 kb_query:kb_rule(subclass_of(A, B), triple(A, rdfs:subClassOf, B)).
 kb_query:kb_rule(subproperty_of(A, B), triple(A, rdfs:subPropertyOf, B)).
-kb_query:kb_rule(is_resource(A), has_type(A, rdfs:'Resource')).
-kb_query:kb_rule(is_property(A), has_type(A, rdf:'Property')).
+kb_query:kb_rule(is_resource(A), ( member(C, [rdfs:'Resource', rdfs:'Class', owl:'Class']), has_type(A, C) )).
+kb_query:kb_rule(is_property(A), ( member(C, [rdf:'Property', owl:'ObjectProperty', owl:'DatatypeProperty',
+                                             owl:'AnnotationProperty']), has_type(A, C) )).
 kb_query:kb_rule(has_range(P, R), triple(P, rdfs:range, R)).
 kb_query:kb_rule(has_domain(P, D), triple(P, rdfs:domain, D)).
 
@@ -60,9 +61,12 @@ subproperty_of(A, B) :- kb_call(subproperty_of(A, B)).
 has_type(A, B) :- kb_call(has_type(A, B)).
 
 %!  is_resource(?Entity) is nondet.
-is_resource(A) :- kb_call(is_resource(A)).
+%   Typed rdfs:Resource, rdfs:Class or owl:Class (KnowRob reads these through the OWL
+%   vocabulary's own axioms, which a NEEM does not carry).
+is_resource(A) :- distinct(A, kb_call(is_resource(A))).
 %!  is_property(?Entity) is nondet.
-is_property(A) :- kb_call(is_property(A)).
+%   Typed rdf:Property or one of OWL's property classes.
+is_property(A) :- distinct(A, kb_call(is_property(A))).
 %!  has_range(?Property, ?Range) is nondet.
 has_range(P, R) :- kb_call(has_range(P, R)).
 %!  has_domain(?Property, ?Domain) is nondet.
@@ -80,7 +84,7 @@ rdf_list(L0, Xs) :-
     ;   true
     ),
     findall(X, kb_call(( triple(L, reflexive(transitive(rdf:rest)), Y), triple(Y, rdf:first, X) )), Ys),
-    maplist(kb_iri, Xs0, Ys), Xs = Xs0.
+    (   var(Xs) -> Xs = Ys ; maplist(kb_iri, Xs, Xs1), Xs1 == Ys ).
 
 %!  new_iri(-IRI) is det.
 %!  new_iri(-IRI, +Type) is det.

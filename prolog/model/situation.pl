@@ -5,7 +5,8 @@
       task_role/2,              % ?Task, ?Role
       plan_defines_task/2,      % ?Plan, ?Task
       is_setting_for/2,         % ?Situation, ?Entity
-      satisfies/2               % ?Situation, ?Description
+      satisfies/2,              % ?Situation, ?Description
+      is_diagnosis/1            % ?Description
     ]).
 /** <module> Tasks, plans and episodes (KnowRob 2.x src/model/DUL/Situation.pl, SOMA)
 
@@ -23,6 +24,7 @@ kb_query:kb_rule(task_role(T, R), holds(T, dul:isTaskOf, R)).
 kb_query:kb_rule(plan_defines_task(P, T), holds(P, soma:isPlanFor, T)).
 kb_query:kb_rule(is_setting_for(S, E), holds(S, dul:isSettingFor, E)).
 kb_query:kb_rule(satisfies(S, D), holds(S, dul:satisfies, D)).
+kb_query:kb_rule(is_diagnosis(D), has_type(D, dul:'Diagnosis')).
 
 %!  is_task(?Task) is nondet.
 is_task(A) :- kb_call(is_task(A)).
@@ -39,3 +41,5 @@ plan_defines_task(P, T) :- kb_call(plan_defines_task(P, T)).
 is_setting_for(S, E) :- kb_call(is_setting_for(S, E)).
 %!  satisfies(?Situation, ?Description) is nondet.
 satisfies(S, D) :- kb_call(satisfies(S, D)).
+%!  is_diagnosis(?Description) is nondet.
+is_diagnosis(D) :- kb_call(is_diagnosis(D)).
