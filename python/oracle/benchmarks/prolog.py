@@ -16,7 +16,7 @@ STEPWISE_ACTIONS = 1000
 
 
 def _neem(store, onto, n_actions: int, neem_id: str = "bench") -> None:
-    from oracle.logger import NeemLogger
+    from oracle.neem.writer import NeemLogger
 
     log = NeemLogger.create(store, onto, user="bench", neem_id=neem_id, commit_every=500)
     tasks = ["pick(apple)", "pour(thermos, green_mug)", "pick(banana)", "open(fridge)"]

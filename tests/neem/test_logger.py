@@ -16,7 +16,10 @@ import pytest
 
 from oracle.cli import main
 from oracle.errors import LoggingError
-from oracle.logger import NeemLogger, executed_actions, import_chains, persist, summarize
+from oracle.neem.importing import import_chains
+from oracle.neem.lifecycle import persist
+from oracle.neem.query import executed_actions, summarize_neem
+from oracle.neem.writer import NeemLogger
 from oracle.namespaces import DUL, OWL, SOMA
 from oracle.store import RDF_TYPE, TriplePattern, Var
 from oracle.store.model import HIERARCHY
@@ -190,8 +193,22 @@ def test_resumed_logger_keeps_time_order_and_idle(logger, store, onto):
     logger.action("pick(green_mug)", T0, T0 + timedelta(seconds=5))
     resumed = NeemLogger(store, onto, logger.neem_id)
     with pytest.raises(LoggingError, match="time goes backwards"):
-        resumed.action("place(green_mug)", T0 + timedelta(seconds=2))
+        resumed.action("place(green_mug)", T0 - timedelta(seconds=2))
     assert resumed.action("place(green_mug)", T0 + timedelta(seconds=60)).idle is not None
+
+
+def test_overlapping_actions_are_logged_as_knowrob_events_may_overlap(logger, store, onto):
+    """Two sensors firing at once: the second starts before the first ends. Starts stay ordered,
+    and the idle gap runs from the latest end, also after reopening the NEEM."""
+    logger.action("open(fridge)", T0, T0 + timedelta(seconds=40))
+    overlapping = logger.action("pick(green_mug)", T0 + timedelta(seconds=5), T0 + timedelta(seconds=8))
+    assert overlapping.idle is None
+    resumed = NeemLogger(store, onto, logger.neem_id)
+    with pytest.raises(LoggingError, match="time goes backwards"):
+        resumed.action("place(green_mug)", T0 + timedelta(seconds=4))
+    assert resumed.action("place(green_mug)", T0 + timedelta(seconds=50)).idle is None  # 10 s after the fridge closed
+    assert resumed.action("close(fridge)", T0 + timedelta(seconds=90)).idle is not None
+    assert [v.task_class.rsplit("#", 1)[1] for v in executed_actions(store, logger.neem_id)][:2] == ["open", "pick"]
 
 
 def test_sessions_are_temporary_until_persisted(store, onto, tbox_for):
@@ -204,7 +221,7 @@ def test_sessions_are_temporary_until_persisted(store, onto, tbox_for):
     persist(store, second.neem_id, "alice-monday")
     NeemLogger.start_session(store, onto, user="bob", tbox=tbox)
     kept = store.neem("alice-monday")
-    assert not kept.temporary and summarize(store, "alice-monday").actions == 1
+    assert not kept.temporary and summarize_neem(store, "alice-monday").actions == 1
     assert len(store.neems()) == 2
 
 
@@ -235,7 +252,7 @@ def write_jsonl(path: Path, rows) -> Path:
 def test_import_logs_one_neem_per_user(tmp_path, store, onto, tbox_for):
     report = import_chains(store, onto, write_jsonl(tmp_path / "c.jsonl", CHAINS), tbox=tbox_for)
     assert report == {"alice": 2, "bob": 1}
-    alice = summarize(store, "alice")
+    alice = summarize_neem(store, "alice")
     assert alice.user == "alice" and alice.actions == 3  # pour, idle (50 s), pick
     assert alice.begin == datetime(2024, 5, 6, 8, tzinfo=timezone.utc).timestamp()
 
@@ -247,7 +264,7 @@ def test_import_error_names_the_line_and_keeps_earlier_rows(tmp_path, store, ont
         import_chains(store, onto, write_jsonl(tmp_path / "c.jsonl", rows), report=report, commit_every=50,
                       tbox=tbox_for)
     assert report == {"alice": 2, "bob": 1}
-    assert summarize(store, "alice").actions == 3
+    assert summarize_neem(store, "alice").actions == 3
 
 
 def test_cli_import_neems_export_load_persist(tmp_path, capsys):
@@ -274,7 +291,7 @@ CRASH_SCRIPT = textwrap.dedent(
     """
     import sys, time
     from datetime import datetime, timedelta
-    from oracle.logger import NeemLogger
+    from oracle.neem.writer import NeemLogger
     from oracle.ontology import build_ontology
     from oracle.store.sqlite import SQLiteStore
     onto = build_ontology()
@@ -333,7 +350,7 @@ def test_a_logged_neem_survives_export_and_load(tmp_path, onto, small_tbox):
     other = make_store("mongomock", tmp_path)
     (loaded,) = load_dump(other, tmp_path / "dump")
     assert list(executed_actions(other, loaded)) == list(executed_actions(store, logger.neem_id))
-    assert summarize(other, loaded).actions == 3
+    assert summarize_neem(other, loaded).actions == 3
 
 
 def test_a_repeated_available_set_writes_only_the_new_mental_action(tmp_path, onto, small_tbox):
