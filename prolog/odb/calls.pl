@@ -117,8 +117,7 @@ call_tasks(Call, Tasks) :-
     call_classes(Call, TC, _),
     findall(T, kb_call(triple(T, rdf:type, TC), any), Ts0),
     sort(Ts0, Ts),
-    task_calls(Ts, Pairs),
-    findall(T, ( member(T-C, Pairs), C = Call ), Tasks).
+    findall(T, ( member(T, Ts), task_call(T, C), C = Call ), Tasks).
 
 %!  times_done(+Call, -Actions) is det.
 %   `action(Begin, End, Action)` for every action that executed Call, by begin.
