@@ -90,7 +90,7 @@ class NeemSession:
         #: The logger's clock: nothing may be logged before the end of the last action.
         self.last_end: float | None = max(ends) if ends else None
         #: Begin of the last logged action: a situation counts for the next action only when it
-        #: came after it (odb_model:situation_history's rule).
+        #: came after it (odb_history:situation_history's rule).
         self.prev_begin: float | None = max(begins) if begins else None
         self.pending: Situation | None = None
         self.latest: dict[str, Any] | None = None
