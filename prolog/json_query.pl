@@ -7,7 +7,8 @@
 The way rosprolog/json_prolog serve KnowRob queries, without their state: the client sends a
 query text, values for some of its variables, an offset and a limit, and gets a page of
 solutions. A query is read as a term (its text is never concatenated with values), checked against a
-whitelist so that it can only read: KnowRob's model predicates (knowrob_model), the odb model,
+whitelist so that it can only read: KnowRob's query language and model predicates (lang/,
+model/), the odb model (odb/),
 the robot's answers, control constructs and pure builtins; never halt, I/O, assert or a store
 write, also not hidden inside kb_call/1 (which would call an unknown goal as Prolog). It runs
 under a time limit. Every failure becomes `{"error": Message}`; nothing is thrown to the caller.
@@ -99,7 +100,7 @@ safe_query(Goal) :-
     var(Goal), !,
     instantiation_error(Goal).
 safe_query(Module:Goal) :- !,
-    (   model_module(Module), callable(Goal), functor(Goal, N, A), exported(Module, N/A)
+    (   atom(Module), model_module(Module), callable(Goal), functor(Goal, N, A), exported(Module, N/A)
     ->  safe_query(Goal)
     ;   permission_error(call, service_query, Module:Goal)
     ).
@@ -119,9 +120,21 @@ safe_query(Goal) :-
     ;   permission_error(call, service_query, Name/Arity)
     ).
 
-model_module(knowrob_model).
-model_module(odb_model).
-model_module(answers).
+%   The project's model modules: every module loaded from this folder's lang/, model/ and
+%   odb/ (KnowRob's layout) and the answers; never the store itself, this module or fixtures.
+:- dynamic prolog_dir/1.
+:- prolog_load_context(directory, Dir), atom_concat(Dir, '/', Prefix),
+   retractall(prolog_dir(_)), assertz(prolog_dir(Prefix)).
+
+model_module(Module) :-
+    prolog_dir(Prefix),
+    module_property(Module, file(File)),
+    atom_concat(Prefix, Relative, File),
+    (   sub_atom(Relative, 0, _, _, 'lang/')
+    ;   sub_atom(Relative, 0, _, _, 'model/')
+    ;   sub_atom(Relative, 0, _, _, 'odb/')
+    ;   Relative == 'answers.pl'
+    ).
 
 exported(Module, PI) :-
     module_property(Module, exports(List)),

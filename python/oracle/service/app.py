@@ -17,12 +17,11 @@ import time
 from contextlib import asynccontextmanager
 from dataclasses import dataclass, field
 from typing import Any
-from urllib.parse import urlsplit
+from urllib.parse import parse_qs, urlsplit
 
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse, Response
-from starlette.middleware.base import BaseHTTPMiddleware
 
 from oracle.errors import NeemOracleError
 from oracle.service.engine import Engine, EngineThread, NotFound
@@ -60,7 +59,7 @@ def create_app(ctx: Context) -> FastAPI:
     app.state.ctx = ctx
     app.include_router(router)
     _offline_docs(app)
-    app.add_middleware(BaseHTTPMiddleware, dispatch=_guard(ctx))
+    app.add_middleware(Guard, ctx=ctx)
 
     @app.exception_handler(NeemOracleError)
     async def domain_error(request: Request, error: NeemOracleError) -> JSONResponse:
@@ -87,35 +86,62 @@ def _error(status: int, message: str) -> JSONResponse:
 
 
 def _route(request: Request) -> str:
-    route = request.scope.get("route")
-    return getattr(route, "path", None) or "(no route)"
+    return getattr(request.scope.get("route"), "path", None) or "(no route)"
 
 
-def _guard(ctx: Context) -> Any:
-    async def dispatch(request: Request, call_next: Any) -> Response:
+class Guard:
+    """Pure ASGI middleware (cheaper than Starlette's BaseHTTPMiddleware on every request):
+    refuses other origins and missing tokens, and writes the id-only request log."""
+
+    def __init__(self, app: Any, ctx: Context) -> None:
+        self.app = app
+        self.ctx = ctx
+
+    async def __call__(self, scope: dict[str, Any], receive: Any, send: Any) -> None:
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)
+            return
         started = time.perf_counter()
-        path = request.url.path
-        origin = request.headers.get("origin")
-        if origin is not None and urlsplit(origin).netloc != request.headers.get("host"):
+        headers = {k.decode("latin-1"): v.decode("latin-1") for k, v in scope["headers"]}
+        refusal = self._refusal(scope, headers)
+        if refusal is not None:
+            await refusal(scope, receive, send)
+            return
+        status = [0]
+
+        async def record(message: dict[str, Any]) -> None:
+            if message["type"] == "http.response.start":
+                status[0] = message["status"]
+            await send(message)
+
+        try:
+            await self.app(scope, receive, record)
+        finally:
+            route = getattr(scope.get("route"), "path", None) or "(no route)"
+            neem = scope.get("path_params", {}).get("neem")
+            LOG.info("%s %s%s %d %.1f ms", scope["method"], route, f" neem={neem}" if neem else "", status[0],
+                     (time.perf_counter() - started) * 1000)
+
+    def _refusal(self, scope: dict[str, Any], headers: dict[str, str]) -> JSONResponse | None:
+        origin = headers.get("origin")
+        if origin is not None and urlsplit(origin).netloc != headers.get("host"):
             return _error(403, "cross-origin requests are refused")
-        if ctx.token is not None and path not in OPEN_PATHS and not path.startswith(STATIC_DOCS):
-            given = _presented(request)
-            if given is None or not hmac.compare_digest(given.encode(), ctx.token.encode()):
-                return _error(401, "this service needs its token: Authorization: Bearer <token>")
-        response = await call_next(request)
-        neem = request.scope.get("path_params", {}).get("neem")
-        LOG.info("%s %s%s %d %.1f ms", request.method, _route(request), f" neem={neem}" if neem else "",
-                 response.status_code, (time.perf_counter() - started) * 1000)
-        return response
-
-    return dispatch
+        path = scope["path"]
+        token = self.ctx.token
+        if token is None or path in OPEN_PATHS or path.startswith(STATIC_DOCS):
+            return None
+        given = _presented(headers, scope.get("query_string", b""))
+        if given is None or not hmac.compare_digest(given.encode(), token.encode()):
+            return _error(401, "this service needs its token: Authorization: Bearer <token>")
+        return None
 
 
-def _presented(request: Request) -> str | None:
-    header = request.headers.get("authorization", "")
+def _presented(headers: dict[str, str], query: bytes) -> str | None:
+    header = headers.get("authorization", "")
     if header.lower().startswith("bearer "):
         return header[7:].strip()
-    return request.query_params.get("token")
+    values = parse_qs(query.decode("latin-1")).get("token")
+    return values[0] if values else None
 
 
 def _offline_docs(app: FastAPI) -> None:

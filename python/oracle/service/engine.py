@@ -20,7 +20,8 @@ from oracle.algorithm.params import Hyperparameters
 from oracle.answers import something_else_sentence, what_next_sentence, why_not_sentence
 from oracle.bridge import PROLOG_DIR, Bridge
 from oracle.errors import LoggingError, NeemOracleError, StoreError
-from oracle.logger import Instant, NeemLogger
+from oracle.neem.writer import NeemLogger
+from oracle.timeline import Instant
 from oracle.ontology import OdbOntology
 from oracle.service.session import NeemSession, make_predictor, moment_of
 from oracle.store import Store

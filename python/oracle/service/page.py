@@ -38,10 +38,10 @@ li.top .task { background:var(--top); border-color:var(--top); color:#fff; min-h
 li.top .task .name { font-size:42px; }
 li.top .task .why-score { color:#dfe9f5; }
 .whynot { min-width:180px; min-height:96px; border:3px solid var(--line); background:#f1efe9; color:var(--ink); font-size:24px; }
-.chosen .task { outline:6px solid #2e7d32; }
-#workflow { width:100%; min-height:110px; margin:6px 0 26px; padding:16px 24px; text-align:left;
+.chosen .task, .chosen #workflow { outline:6px solid #2e7d32; outline-offset:3px; }
+li.flow { display:block; }
+#workflow { width:100%; min-height:110px; margin:0 0 12px; padding:16px 24px; text-align:left;
             border:3px dashed var(--top); background:#e9f1fa; color:var(--ink); }
-#workflow[hidden] { display:none; }
 #workflow .label { display:block; font-size:22px; color:#444; }
 #workflow .steps { font-size:32px; font-weight:600; }
 .empty { font-size:30px; color:#555; padding:30px 0; }
@@ -51,10 +51,10 @@ _SCRIPT = """
 (function () {
   var cfg = JSON.parse(document.getElementById('config').textContent);
   var list = document.getElementById('tasks'), status = document.getElementById('status');
-  var flow = document.getElementById('workflow'), when = document.getElementById('when');
+  var when = document.getElementById('when');
   var auth = cfg.token ? {'Authorization': 'Bearer ' + cfg.token} : {};
   function api(path) { return '/api/neems/' + encodeURIComponent(cfg.neem) + path; }
-  function say(text) { status.textContent = text; }
+  function say(text) { status.textContent = text; if (text) status.scrollIntoView({block: 'nearest'}); }
   function send(path, body) {
     var headers = Object.assign({'Content-Type': 'application/json'}, auth);
     return fetch(api(path), {method: 'POST', headers: headers, body: JSON.stringify(body)})
@@ -76,32 +76,36 @@ _SCRIPT = """
       .then(function (j) { say(j.sentence || j.error); })
       .catch(function (e) { say('No answer: ' + e.message); });
   }
+  function supportText(n) { return n ? (n === 1 ? 'like 1 past situation' : 'like ' + n + ' past situations') : 'new to me'; }
   function render(state) {
     list.textContent = '';
     if (!state || !state.ranking || !state.ranking.length) {
       list.appendChild(el('li', 'empty', 'Waiting for the robot to say what it can do.'));
-      flow.hidden = true; return;
+      return;
     }
+    var chain = state.chain || [];
     when.textContent = state.time_of_day + ', ' + new Date(state.at * 1000).toISOString().slice(11, 16) + ' UTC';
     state.ranking.forEach(function (t, i) {
       var li = el('li', i === 0 ? 'top' : '');
       var b = el('button', 'task'); b.type = 'button'; b.dataset.task = t.task;
       b.appendChild(el('span', 'rank', String(t.rank)));
       b.appendChild(el('span', 'name', t.task));
-      b.appendChild(el('span', 'why-score', t.support ? 'like ' + t.support + ' past choices' : 'new'));
+      b.appendChild(el('span', 'why-score', supportText(t.support)));
       b.setAttribute('aria-label', (i === 0 ? 'Suggested: ' : 'Option ' + t.rank + ': ') + t.task);
       b.addEventListener('click', function () { choose(t.task, null, li); });
       var w = el('button', 'whynot', 'Why not?'); w.type = 'button';
       w.setAttribute('aria-label', 'Why not ' + t.task + '?');
       w.addEventListener('click', function () { whyNot(t.task); });
       li.appendChild(b); li.appendChild(w); list.appendChild(li);
+      if (i === 0 && chain.length >= 2) {
+        var fl = el('li', 'flow'), fb = el('button', '', undefined); fb.type = 'button'; fb.id = 'workflow';
+        fb.appendChild(el('span', 'label', 'Or the whole workflow, one step after the other'));
+        fb.appendChild(el('span', 'steps', chain.join(' \\u2192 ')));
+        fb.setAttribute('aria-label', 'Workflow: ' + chain.join(', then '));
+        fb.addEventListener('click', function () { choose(chain[0], chain, fl); });
+        fl.appendChild(fb); list.appendChild(fl);
+      }
     });
-    var chain = state.chain || [];
-    flow.hidden = chain.length < 2;
-    if (chain.length >= 2) {
-      flow.querySelector('.steps').textContent = chain.join(' \\u2192 ');
-      flow.onclick = function () { choose(chain[0], chain, null); };
-    }
   }
   document.addEventListener('keydown', function (e) {
     if (e.key !== 'ArrowDown' && e.key !== 'ArrowUp') return;
@@ -127,14 +131,10 @@ def render_page(neem: str | None, state: dict[str, Any] | None, token: str | Non
                       " create one with POST /api/neems.</p>", "")
     config = json.dumps({"neem": neem, "state": state, "token": token}).replace("</", "<\\/")
     items = _items(state)
-    chain = (state or {}).get("chain") or []
-    flow_hidden = "" if len(chain) >= 2 else " hidden"
     body = f"""
 <p id="status" role="status" aria-live="polite"></p>
 <h1>What would you like now? <small id="when"></small></h1>
 <ol id="tasks" aria-label="Tasks the robot can do now, best first">{items}</ol>
-<button id="workflow" type="button"{flow_hidden}><span class="label">Do the whole workflow</span>
-<span class="steps">{escape(" → ".join(chain))}</span></button>
 <script type="application/json" id="config">{config}</script>
 <script>{_SCRIPT}</script>"""
     return _shell(neem, body, neem)
@@ -142,18 +142,24 @@ def render_page(neem: str | None, state: dict[str, Any] | None, token: str | Non
 
 def _items(state: dict[str, Any] | None) -> str:
     ranking = (state or {}).get("ranking") or []
+    chain = (state or {}).get("chain") or []
     if not ranking:
         return "<li class='empty'>Waiting for the robot to say what it can do.</li>"
     out = []
     for index, task in enumerate(ranking):
         name = escape(task["task"])
-        support = f"like {task['support']} past choices" if task["support"] else "new"
+        n = task["support"]
+        support = f"like {n} past situation{'s' if n != 1 else ''}" if n else "new to me"
         label = ("Suggested: " if index == 0 else f"Option {task['rank']}: ") + name
         out.append(
             f"<li class='{'top' if index == 0 else ''}'><button type='button' class='task' data-task='{name}'"
             f" aria-label='{label}'><span class='rank'>{task['rank']}</span><span class='name'>{name}</span>"
             f"<span class='why-score'>{support}</span></button>"
             f"<button type='button' class='whynot' aria-label='Why not {name}?'>Why not?</button></li>")
+        if index == 0 and len(chain) >= 2:
+            out.append("<li class='flow'><button id='workflow' type='button'><span class='label'>Or the whole"
+                       f" workflow, one step after the other</span><span class='steps'>{escape(' → '.join(chain))}"
+                       "</span></button></li>")
     return "".join(out)
 
 

@@ -5,10 +5,12 @@ Handlers only move JSON: each hands one job to the engine thread and publishes w
 
 from __future__ import annotations
 
+import threading
+import time
 from typing import Any, Literal
 
-from fastapi import APIRouter, Query, Request
-from fastapi.responses import HTMLResponse, StreamingResponse
+from fastapi import APIRouter, BackgroundTasks, Query, Request
+from fastapi.responses import HTMLResponse, Response, StreamingResponse
 from pydantic import BaseModel, Field
 
 from oracle.service.events import Event
@@ -68,6 +70,14 @@ def _ctx(request: Request) -> Any:
     return request.app.state.ctx
 
 
+@router.get("/api/health", tags=["neems"])
+async def health(request: Request) -> dict[str, Any]:
+    """A round trip through the engine thread doing nothing: the floor under every answer."""
+    ctx = _ctx(request)
+    sessions = await ctx.thread.run(lambda: len(ctx.engine.sessions))
+    return {"ok": True, "sessions": sessions, "subscribers": ctx.hub.subscribers}
+
+
 # -- NEEMs --------------------------------------------------------------------------------
 @router.get("/api/neems", tags=["neems"])
 async def list_neems(request: Request) -> list[dict[str, Any]]:
@@ -99,25 +109,47 @@ async def perception(neem: str, body: Perception, request: Request) -> dict[str,
 
 
 @router.post("/api/neems/{neem}/situation", tags=["robot"])
-async def situation(neem: str, body: SituationIn, request: Request) -> dict[str, Any]:
+async def situation(neem: str, body: SituationIn, request: Request, response: Response,
+                    background: BackgroundTasks) -> dict[str, Any]:
     """Log the available tasks as the imagined situation, rank them, write the ranking back as
     the imagined preference. The answer is sent as soon as the ranking is known; the NEEM write
-    is the next job on the engine thread, before any later request."""
+    is the next job on the engine thread, before any later request. The Server-Timing header
+    says how long the job waited for the engine thread and how long it ran (ms)."""
     ctx = _ctx(request)
+    queued = time.perf_counter()
 
-    def job() -> tuple[Any, Any, dict[str, Any]]:
+    def job() -> tuple[Any, Any, dict[str, Any], float, float]:
+        started = time.perf_counter()
         session = ctx.engine.session(neem)
         found, ranking, ms = session.situation(body.available, body.at)
-        return found, ranking, session.describe(found, ranking, ms)
+        return found, ranking, session.describe(found, ranking, ms), started, time.perf_counter()
 
-    found, ranking, answer = await ctx.thread.run(job)
+    found, ranking, answer, started, done = await ctx.thread.run(job)
+    response.headers["Server-Timing"] = f"queue;dur={(started - queued) * 1000:.3f}, engine;dur={(done - started) * 1000:.3f}"
     write = lambda: ctx.engine.session(neem).write_situation(found, ranking)  # noqa: E731
     if ctx.write_behind:
-        ctx.thread.submit(write)
+        # The write is queued now (so no later request overtakes it) but waits until the answer
+        # is on the wire: run at once, it holds the GIL while the event loop sends the answer.
+        sent = threading.Event()
+        ctx.thread.submit(_after, sent, write)
+
+        async def release() -> None:
+            sent.set()
+
+        background.add_task(release)
     else:
         await ctx.thread.run(write)
     ctx.hub.publish(Event("situation", neem, answer))
     return answer
+
+
+def _after(sent: threading.Event, write: Any) -> None:
+    sent.wait(RELEASE_S)
+    write()
+
+
+#: Longest a queued write waits for its answer to be sent (a client that vanished).
+RELEASE_S = 1.0
 
 
 @router.get("/api/neems/{neem}/situation", tags=["robot"])

@@ -9,19 +9,20 @@ from __future__ import annotations
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass
-from datetime import datetime, timezone
+from datetime import datetime
 from typing import Any
 
 from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import Hyperparameters
-from oracle.algorithm.situation import Ranking, Step
+from oracle.algorithm.records import Ranking, Step
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError
 from oracle.evaluation.replay import opening_tasks
-from oracle.logger import Instant, LoggedAction, NeemLogger
+from oracle.neem.writer import LoggedAction, NeemLogger
+from oracle.timeline import Instant, clock
 from oracle.ontology import OdbOntology
 from oracle.ranking import finite
-from oracle.situations import call_of, check_call, idle_step, option_of, steps_from_history
+from oracle.calls import call_of, check_call, idle_step, option_of, steps_from_history
 
 #: The forward tree is built for the top suggestion only: the page and the API offer its chain
 #: as the one workflow; the ranking itself does not depend on how many trees are built.
@@ -202,7 +203,7 @@ class NeemSession:
         logged = self.logger.action(call, start, stop, performed_by=performed_by)
         self.logger.flush()
         if logged.idle is not None and self.last_end is not None:
-            self.predictor.partial_fit(idle_step(self.ontology, datetime.fromtimestamp(self.last_end, timezone.utc)))
+            self.predictor.partial_fit(idle_step(self.ontology, clock(self.last_end)))
             self.prev_begin = self.last_end
         pending = self.pending
         counts = (pending is not None and pending.when.seconds <= logged.begin
