@@ -7,7 +7,7 @@ import os
 import stat
 from pathlib import Path
 
-from oracle.commands.common import add_ontology_options, ontology_from
+from oracle.commands.common import ONTOLOGY_OPTIONS, add_options, ontology_from
 from oracle.errors import NeemOracleError
 
 
@@ -23,7 +23,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         help="settings YAML, 'recommended' or a thesis Fig. 5.5 letter (default: recommended)")
     parser.add_argument("--sync-writes", action="store_true",
                         help="answer a situation only after its NEEM write (default: answer first, write next)")
-    add_ontology_options(parser)
+    add_options(parser, *ONTOLOGY_OPTIONS)
     parser.set_defaults(handler=run)
 
 
