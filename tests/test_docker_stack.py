@@ -527,7 +527,8 @@ def test_make_n_up_prints_the_compose_command():
     done = subprocess.run([MAKE, "-n", "up"], cwd=ROOT, capture_output=True, text=True, timeout=30)
     assert done.returncode == 0, done.stderr
     assert "docker compose -f docker/docker-compose.yml --env-file docker/.env up -d" in done.stdout
-    assert done.stdout.rstrip().endswith("run --rm --no-deps oracle neems")  # the NEEM list comes last
+    commands = [line for line in done.stdout.splitlines() if not line.startswith("make[")]  # under make: "Entering directory"
+    assert commands[-1].endswith("run --rm --no-deps oracle neems")  # the NEEM list comes last
     down = subprocess.run([MAKE, "-n", "down"], cwd=ROOT, capture_output=True, text=True, timeout=30)
     assert "docker compose -f docker/docker-compose.yml --env-file" in down.stdout and " down" in down.stdout
 
