@@ -158,7 +158,7 @@ class NeemSession:
             "neem": self.neem, "at": situation.when.seconds, "time_of_day": situation.when.part_of_day,
             "history": self.predictor.n_steps_,
             "ranking": [{"rank": t.rank, "task": call, "score": finite(t.score), "support": t.n_similar}
-                        for t, call in zip(ranking, calls)],
+                        for t, call in zip(ranking, calls, strict=True)],
             "chain": [str(call_of(self.ontology, o)) for o in ranking.chain()],
             "ms": round(ms, 3),
         }
