@@ -19,10 +19,10 @@ from oracle.errors import NeemOracleError
 COMMAND_MODULES = (
     "ontology",
     "store",
-    "logging",
+    "importing",
     "prolog",
     "rank",
-    "evaluation",
+    "datasets",
     "evaluate",
     "demo",
     "bench",
