@@ -7,7 +7,7 @@ import random
 from datetime import datetime, timedelta
 
 from oracle.bridge import Bridge
-from oracle.logger import NeemLogger
+from oracle.neem.writer import NeemLogger
 from oracle.paths import prolog_dir
 from oracle.store import open_store
 
