@@ -17,12 +17,11 @@ from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.records import Ranking, Step
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError
-from oracle.evaluation.replay import opening_tasks
 from oracle.neem.writer import LoggedAction, NeemLogger
 from oracle.timeline import Instant, clock
 from oracle.ontology import OdbOntology
 from oracle.ranking import finite
-from oracle.calls import call_of, check_call, idle_step, option_of, steps_from_history
+from oracle.calls import call_of, check_call, idle_step, opening_tasks, option_of, steps_from_history
 
 #: The forward tree is built for the top suggestion only: the page and the API offer its chain
 #: as the one workflow; the ranking itself does not depend on how many trees are built.
