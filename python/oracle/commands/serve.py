@@ -66,8 +66,9 @@ def run(args: argparse.Namespace) -> int:
     print(f"serving {location} on http://{args.host}:{args.port}/ (API docs at /docs); Ctrl-C stops", flush=True)
     os.umask(0o077)  # anything the service writes (a new SQLite file's journal) stays private
     try:
+        # an open event stream must not hold a stop (Ctrl-C, SIGTERM) for ever
         uvicorn.run(create_app(ctx), host=args.host, port=args.port, access_log=False, log_level="warning",
-                    server_header=False)
+                    server_header=False, timeout_graceful_shutdown=5)
     finally:
         ctx.thread.close()
     return 0

@@ -37,15 +37,19 @@ NEVER = 10**9
 class EngineThread:
     """The Prolog thread; ``await run(f, ...)`` runs f there and returns its result.
 
-    There is one per process and it never exits: pyswip attaches a Prolog engine to the thread
-    that first queries, and a thread that ends with an engine attached crashed the process
-    (segmentation fault) at the next Prolog call from a new thread."""
+    Its first job attaches a Prolog engine to it: pyswip attaches one at a thread's first query,
+    but a bridge makes atoms (``pyswip.Atom``, PL_new_atom) before its first query, and that on a
+    thread without an engine is a segmentation fault once another thread has used Prolog (seen
+    in the test suite). There is one such thread per process, and it lives as long as the
+    process, so the engine is attached once."""
 
     _shared: ThreadPoolExecutor | None = None
 
     def __init__(self) -> None:
         if EngineThread._shared is None:
-            EngineThread._shared = ThreadPoolExecutor(max_workers=1, thread_name_prefix="oracle-engine")
+            pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="oracle-engine")
+            pool.submit(_attach_prolog).result()
+            EngineThread._shared = pool
         self._pool: ThreadPoolExecutor = EngineThread._shared
 
     async def run(self, fn: Callable[..., T], *args: Any) -> T:
@@ -63,6 +67,12 @@ class EngineThread:
     def close(self) -> None:
         """Wait for the jobs queued so far (the thread itself stays, see the class docstring)."""
         self.call(lambda: None)
+
+
+def _attach_prolog() -> None:
+    from pyswip import Prolog
+
+    list(Prolog.query("true"))
 
 
 def _log_failure(future: Any) -> None:
