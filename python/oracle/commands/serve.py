@@ -7,13 +7,14 @@ import os
 import stat
 from pathlib import Path
 
-from oracle.commands.common import NEEM, ONTOLOGY_OPTIONS, SETTINGS, STORE, add_options, ontology_from
+from oracle.commands.common import ONTOLOGY_OPTIONS, SETTINGS, STORE, add_options, ontology_from
 from oracle.errors import NeemOracleError
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser("serve", help="run the robot's live service and the tablet page (HTTP, loopback)")
-    add_options(parser, STORE, NEEM)
+    STORE.add(parser)
+    parser.add_argument("--neem", metavar="ID", help="the page's NEEM and the default for /api/prolog (default: the newest)")
     parser.add_argument("--host", default="127.0.0.1", help="address to bind (default 127.0.0.1; any other needs a token)")
     parser.add_argument("--port", type=int, default=8765, help="TCP port (default 8765)")
     parser.add_argument("--token", help="token every request must present (needed to bind beyond loopback)")

@@ -37,19 +37,14 @@ NEVER = 10**9
 class EngineThread:
     """The Prolog thread; ``await run(f, ...)`` runs f there and returns its result.
 
-    Its first job attaches a Prolog engine to it: pyswip attaches one at a thread's first query,
-    but a bridge makes atoms (``pyswip.Atom``, PL_new_atom) before its first query, and that on a
-    thread without an engine is a segmentation fault once another thread has used Prolog (seen
-    in the test suite). There is one such thread per process, and it lives as long as the
-    process, so the engine is attached once."""
+    There is one per process and it lives as long as the process: the Prolog engine the bridge
+    attaches to it (``bridge._attach_engine``) is attached once and never left behind."""
 
     _shared: ThreadPoolExecutor | None = None
 
     def __init__(self) -> None:
         if EngineThread._shared is None:
-            pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="oracle-engine")
-            pool.submit(_attach_prolog).result()
-            EngineThread._shared = pool
+            EngineThread._shared = ThreadPoolExecutor(max_workers=1, thread_name_prefix="oracle-engine")
         self._pool: ThreadPoolExecutor = EngineThread._shared
 
     async def run(self, fn: Callable[..., T], *args: Any) -> T:
@@ -67,12 +62,6 @@ class EngineThread:
     def close(self) -> None:
         """Wait for the jobs queued so far (the thread itself stays, see the class docstring)."""
         self.call(lambda: None)
-
-
-def _attach_prolog() -> None:
-    from pyswip import Prolog
-
-    list(Prolog.query("true"))
 
 
 def _log_failure(future: Any) -> None:
