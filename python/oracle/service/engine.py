@@ -37,16 +37,15 @@ NEVER = 10**9
 class EngineThread:
     """The Prolog thread; ``await run(f, ...)`` runs f there and returns its result.
 
-    There is one per process and it never exits: pyswip attaches a Prolog engine to the thread
-    that first queries, and a thread that ends with an engine attached crashed the process
-    (segmentation fault) at the next Prolog call from a new thread."""
+    There is one per process and it lives as long as the process: the Prolog engine the bridge
+    attaches to it (``bridge._attach_engine``) is attached once and never left behind."""
 
-    _pool: ThreadPoolExecutor | None = None
+    _shared: ThreadPoolExecutor | None = None
 
     def __init__(self) -> None:
-        if EngineThread._pool is None:
-            EngineThread._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="oracle-engine")
-        self._pool = EngineThread._pool
+        if EngineThread._shared is None:
+            EngineThread._shared = ThreadPoolExecutor(max_workers=1, thread_name_prefix="oracle-engine")
+        self._pool: ThreadPoolExecutor = EngineThread._shared
 
     async def run(self, fn: Callable[..., T], *args: Any) -> T:
         return await asyncio.get_running_loop().run_in_executor(self._pool, fn, *args)

@@ -65,6 +65,7 @@ def drive(url: str, user: str, rows: list[Any], neem: str | None, token: str | N
                 timing = client.server_timing
                 if "engine" in timing:
                     result.latencies.setdefault("server", []).append(timing["engine"] + timing.get("queue", 0.0))
+                    result.latencies.setdefault("engine", []).append(timing["engine"])
                 end = row.end.isoformat() if row.end is not None else None
                 _, ms = client.request("POST", f"{base}/actions", {"call": str(row.action), "begin": at, "end": end})
                 result.latencies.setdefault("action", []).append(ms)
