@@ -24,7 +24,7 @@ class _Node:
 
 
 class LZ78:
-    """The LZ78 predictor (Langdon 1983; Begleiter, El-Yaniv & Yona 2004, sect. 3.1).
+    """The LZ78 predictor (Langdon 1983; as compared in Begleiter, El-Yaniv & Yona 2004).
 
     The history is parsed into LZ78 phrases (each the shortest string not yet in the dictionary).
     The next symbol is predicted from the phrase parsed so far, i.e. the current trie node v:
