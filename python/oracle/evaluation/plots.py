@@ -13,6 +13,12 @@ from oracle.evaluation.curves import half_window, learning_curves as curves_of  
 from oracle.evaluation.replay import KS, ReplayResult  # noqa: E402
 
 
+def _save(fig, path: Path) -> Path:
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return path
+
+
 def box_plots(summary: dict, out: Path) -> Path:
     methods = list(summary["methods"])
     fig, axes = plt.subplots(1, len(KS), figsize=(max(12, 0.45 * len(methods) * len(KS)), 4.5), sharey=True)
@@ -25,10 +31,7 @@ def box_plots(summary: dict, out: Path) -> Path:
     axes[0].set_ylabel("accuracy")
     axes[0].legend(loc="lower left")
     fig.tight_layout()
-    path = out / "per_user_box.png"
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return _save(fig, out / "per_user_box.png")
 
 
 def learning_curves(result: ReplayResult, out: Path, ks: tuple[int, ...] = (1, 3)) -> Path:
@@ -60,10 +63,7 @@ def learning_curves(result: ReplayResult, out: Path, ks: tuple[int, ...] = (1, 3
     handles, labels = axes[0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower center", fontsize=8, ncol=min(9, len(labels)), frameon=False)
     fig.tight_layout(rect=(0, 0.06 + 0.03 * (len(labels) // 9), 1, 1))
-    path = out / "learning_curve.png"
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return _save(fig, out / "learning_curve.png")
 
 
 def differences(summary: dict, out: Path) -> Path:
@@ -84,10 +84,7 @@ def differences(summary: dict, out: Path) -> Path:
     ax.set_xlabel(f"accuracy minus {paired['reference']} (percentage points, 95 % bootstrap interval)")
     ax.legend(loc="best", fontsize=8)
     fig.tight_layout()
-    path = out / "differences.png"
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return _save(fig, out / "differences.png")
 
 
 def ablation_plot(ablations: dict, out: Path) -> Path:
@@ -123,7 +120,4 @@ def ablation_plot(ablations: dict, out: Path) -> Path:
     bottom.legend(loc="lower right", fontsize=8)
     bottom.set_xticks(range(len(letters)), labels, fontsize=7)
     fig.tight_layout()
-    path = out / "ablations.png"
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return _save(fig, out / "ablations.png")
