@@ -40,6 +40,12 @@ def table(name: str, label: str) -> None:
     print(f"| chance | {c['top1']:.3f} | {c['top3']:.3f} | {c['top5']:.3f} | |" + (" | | |" if paired else "") + "\n")
     if paired:
         print(paired_caption(paired) + "\n")
+        strongest = []
+        for k in KS:
+            best = max(paired["methods"], key=lambda m: data["methods"][m][f"top{k}"])
+            strongest.append(f"Top-{k} `{best}` {data['methods'][best][f'top{k}']:.3f} "
+                             f"({paired_cell(paired['methods'][best][f'top{k}'])})")
+        print(f"Strongest method other than `{paired['reference']}`: " + "; ".join(strongest) + ".\n")
     if "ablations" in data:
         ablations = data["ablations"]
         rows = ablations["settings"]
