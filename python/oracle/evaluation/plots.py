@@ -34,13 +34,16 @@ def box_plots(summary: dict, out: Path) -> Path:
     return _save(fig, out / "per_user_box.png")
 
 
-def learning_curves(result: ReplayResult, out: Path, ks: tuple[int, ...] = (1, 3)) -> Path:
+def learning_curves(result: ReplayResult, out: Path, reference: str | None = None, *,
+                    ks: tuple[int, ...] = (1, 3)) -> Path:
     """Smoothed accuracy against position over the whole history, every method and chance, one panel per k.
 
-    The first method (the one every other is compared with) is drawn thick; the grey area is the
-    number of users that reach each position (right axis).
+    ``reference`` (default: the first method, the one every other is compared with) is drawn thick;
+    the grey area is the number of users that reach each position (right axis).
     """
     methods = result.methods()
+    if reference is not None and reference in methods:
+        methods = [reference] + [m for m in methods if m != reference]
     colours = plt.get_cmap("tab20")
     fig, axes = plt.subplots(1, len(ks), figsize=(7 * len(ks), 5.5), sharey=True)
     axes = list(axes) if len(ks) > 1 else [axes]
