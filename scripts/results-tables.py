@@ -18,26 +18,32 @@ ONLY = set(sys.argv[2:])  # names to print (default: all)
 KS = (1, 3, 5)
 
 
+def methods_table(methods: dict, paired: dict | None, chance: dict, timing: bool) -> None:
+    """Accuracy per method and, with ``paired``, its difference to the reference per k."""
+    head = "| method | Top-1 | Top-3 | Top-5 |" + (" ms/prediction |" if timing else "")
+    rule = "| --- | ---: | ---: | ---: |" + (" ---: |" if timing else "")
+    if paired:
+        head += "".join(f" Top-{k} vs {paired['reference']} |" for k in KS)
+        rule += " ---: | ---: | ---: |"
+    print(head + "\n" + rule)
+    for method, entry in methods.items():
+        line = f"| {method} | {entry['top1']:.3f} | {entry['top3']:.3f} | {entry['top5']:.3f} |"
+        line += f" {entry['ms_per_prediction']:.2f} |" if timing else ""
+        if paired:
+            versus = paired["methods"].get(method)
+            line += "".join(f" {paired_cell(versus[f'top{k}']) if versus else ''} |" for k in KS)
+        print(line)
+    blank = (" |" if timing else "") + (" | | |" if paired else "")
+    print(f"| chance | {chance['top1']:.3f} | {chance['top3']:.3f} | {chance['top5']:.3f} |{blank}\n")
+
+
 def table(name: str, label: str) -> None:
     data = json.loads((OUT / f"{name}.json").read_text())
     users = len(next(iter(data["methods"].values()))["per_user"])
     print(f"**{label}** ({data['n_predictions']} predictions, {users} users, "
           f"{data['mean_candidates']:.1f} candidates on average, replay {data['replay_seconds']:.0f} s)\n")
     paired = data.get("comparisons")
-    head = "| method | Top-1 | Top-3 | Top-5 | ms/prediction |"
-    rule = "| --- | ---: | ---: | ---: | ---: |"
-    if paired:
-        head += "".join(f" Top-{k} vs {paired['reference']} |" for k in KS)
-        rule += " ---: | ---: | ---: |"
-    print(head + "\n" + rule)
-    for method, entry in data["methods"].items():
-        line = f"| {method} | {entry['top1']:.3f} | {entry['top3']:.3f} | {entry['top5']:.3f} | {entry['ms_per_prediction']:.2f} |"
-        if paired:
-            versus = paired["methods"].get(method)
-            line += "".join(f" {paired_cell(versus[f'top{k}']) if versus else ''} |" for k in KS)
-        print(line)
-    c = data["chance"]
-    print(f"| chance | {c['top1']:.3f} | {c['top3']:.3f} | {c['top5']:.3f} | |" + (" | | |" if paired else "") + "\n")
+    methods_table(data["methods"], paired, data["chance"], timing=True)
     if paired:
         print(paired_caption(paired) + "\n")
         strongest = []
@@ -46,6 +52,11 @@ def table(name: str, label: str) -> None:
             strongest.append(f"Top-{k} `{best}` {data['methods'][best][f'top{k}']:.3f} "
                              f"({paired_cell(paired['methods'][best][f'top{k}'])})")
         print(f"Strongest method other than `{paired['reference']}`: " + "; ".join(strongest) + ".\n")
+    cold = data.get("cold_start")
+    if cold and cold.get("comparisons"):
+        print(f"Cold start, each user's first {cold['first_predictions']} predictions ({cold['n_predictions']} "
+              f"predictions; intervals over {cold['comparisons']['units']} units, {cold['comparisons']['unit']}):\n")
+        methods_table(cold["methods"], cold["comparisons"], cold["chance"], timing=False)
     if "ablations" in data:
         ablations = data["ablations"]
         rows = ablations["settings"]

@@ -98,10 +98,12 @@ def test_evaluate_command_writes_json_report_and_plots(tmp_path, capsys):
     assert paired["reference"] == reference and set(paired["methods"]) == set(summary["methods"]) - {reference}
     ngram = paired["methods"]["ngram"]["top1"]
     assert ngram["low"] <= ngram["difference"] <= ngram["high"] and 0 <= ngram["p"] <= ngram["p_holm"] <= 1
+    cold = summary["cold_start"]
+    assert cold["n_predictions"] == 12 and cold["comparisons"]["reference"] == reference
     ablations = summary["ablations"]["settings"]
     assert set(ablations) == set("ABCDEFGHIJKLMN") and "vs_A" in ablations["B"] and "vs_A" not in ablations["A"]
     report = (out / "r.md").read_text()
-    assert "| oracle |" in report and "Paired differences against" in report
+    assert "| oracle |" in report and "Paired differences against" in report and "## Cold start" in report
     assert "| ngram | " + f"{100 * ngram['difference']:+.1f} [" in report
     for name in ("per_user_box.png", "learning_curve.png", "differences.png", "ablations.png"):
         assert (out / name).stat().st_size > 1000

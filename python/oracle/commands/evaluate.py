@@ -62,9 +62,10 @@ def run_evaluate(args: argparse.Namespace) -> int:
     summary = summarize(result)
     names = result.methods()
     if len(names) > 1:
-        from oracle.evaluation.statistics import comparison_summary
+        from oracle.evaluation.statistics import cold_start_summary, comparison_summary
 
         summary["comparisons"] = comparison_summary(result.outcomes, names[0], names[1:], args.seed)
+        summary["cold_start"] = cold_start_summary(result, args.seed)
     summary["settings"] = settings.to_dict()
     summary["replay_seconds"] = time.perf_counter() - started
     command = "python -m oracle " + " ".join(shlex.quote(a) for a in sys.argv[1:]) if sys.argv[1:2] == ["evaluate"] else "python -m oracle evaluate"

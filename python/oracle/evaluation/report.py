@@ -43,6 +43,18 @@ def markdown(summary: dict, command: str, title: str = "Evaluation") -> str:
                   "| method | Top-1 | Top-3 | Top-5 |", "| --- | ---: | ---: | ---: |"]
         for name, entry in block["methods"].items():
             lines.append(f"| {name} | " + " | ".join(paired_cell(entry[f"top{k}"]) for k in (1, 3, 5)) + " |")
+    if summary.get("cold_start", {}).get("comparisons"):
+        cold = summary["cold_start"]
+        block = cold["comparisons"]
+        lines += ["", f"## Cold start: each user's first {cold['first_predictions']} predictions", "",
+                  f"{cold['n_predictions']} predictions. " + paired_caption(block), "",
+                  "| method | Top-1 % | Top-3 % | Top-5 % | Top-1 | Top-3 | Top-5 |",
+                  "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"]
+        for name, entry in cold["methods"].items():
+            versus = block["methods"].get(name)
+            cells = [paired_cell(versus[f"top{k}"]) if versus else "" for k in (1, 3, 5)]
+            lines.append(f"| {name} | {_pct(entry['top1'])} | {_pct(entry['top3'])} | {_pct(entry['top5'])} | "
+                         + " | ".join(cells) + " |")
     if summary.get("ablations"):
         ablations = summary["ablations"]
         rows = ablations["settings"]

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.stats import wilcoxon
 
-from oracle.evaluation.replay import KS, Outcome
+from oracle.evaluation.replay import KS, Outcome, ReplayResult, summarize
 
 #: With fewer users than this, one user's predictions are cut into blocks that are resampled instead.
 MIN_USERS = 10
@@ -26,6 +26,8 @@ MIN_USERS = 10
 BLOCK = 50
 RESAMPLES = 10_000
 LEVEL = 0.95
+#: Cold start: the first this many predictions of every user (issue 10's target).
+COLD_START = 30
 
 
 @dataclass(frozen=True)
@@ -138,5 +140,18 @@ def comparison_summary(outcomes: Sequence[Outcome], reference: str, others: Sequ
             "methods": methods}
 
 
-__all__ = ["BLOCK", "LEVEL", "MIN_USERS", "RESAMPLES", "Comparison", "Units", "bootstrap_interval", "compare",
+def cold_start_summary(result: ReplayResult, seed: int = 0, first: int = COLD_START) -> dict:
+    """Top-k of every method over each user's first ``first`` predictions, paired against the first method."""
+    early = [o for o in result.outcomes if o.index < first]
+    methods = result.methods()
+    summary = summarize(ReplayResult(early))
+    out: dict = {"first_predictions": first, "n_predictions": len(early),
+                 "methods": {m: {f"top{k}": summary["methods"][m][f"top{k}"] for k in KS} for m in methods},
+                 "chance": summary["chance"]}
+    if len(methods) > 1 and early:
+        out["comparisons"] = comparison_summary(early, methods[0], methods[1:], seed)
+    return out
+
+
+__all__ = ["BLOCK", "COLD_START", "cold_start_summary", "LEVEL", "MIN_USERS", "RESAMPLES", "Comparison", "Units", "bootstrap_interval", "compare",
            "comparison_summary", "holm", "units_of", "wilcoxon_p"]
