@@ -41,7 +41,8 @@ def main() -> None:
         start = time.perf_counter()
         mine = ours.probabilities([Step(c).option for c in candidates])
         spent["ours"] += time.perf_counter() - start
-        agree += max(range(len(candidates)), key=theirs.__getitem__) == max(range(len(candidates)), key=mine.__getitem__)
+        best = range(len(candidates))
+        agree += max(best, key=theirs.__getitem__) == max(best, key=mine.__getitem__)
         action = str(row.action)
         history.append(action)
         reference.counts.update([[tuple(history[-n:]) for n in range(1, ORDER + 1) if len(history) >= n]])

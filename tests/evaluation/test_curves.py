@@ -1,8 +1,10 @@
-from oracle.evaluation.curves import half_window, learning_curves, smooth
-from oracle.evaluation.replay import Outcome
+"""Learning curves: pooled smoothing, and a curve that covers the whole of the longest history."""
 
 import numpy as np
 import pytest
+
+from oracle.evaluation.curves import half_window, learning_curves, smooth
+from oracle.evaluation.replay import Outcome
 
 
 def test_smoothing_pools_hits_over_predictions():

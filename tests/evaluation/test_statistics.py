@@ -31,7 +31,8 @@ def test_bootstrap_of_two_equal_units_spans_both():
     assert (low, high) == pytest.approx((0.1, 0.3))
     # a constant difference has a zero-width interval, and the seed makes it reproducible
     assert bootstrap_interval(np.array([2.0] * 5), np.array([10.0] * 5), seed=3) == pytest.approx((0.2, 0.2))
-    assert bootstrap_interval(np.arange(6.0), np.full(6, 9.0), 5) == bootstrap_interval(np.arange(6.0), np.full(6, 9.0), 5)
+    diffs, sizes = np.arange(6.0), np.full(6, 9.0)
+    assert bootstrap_interval(diffs, sizes, 5) == bootstrap_interval(diffs, sizes, 5)
 
 
 def test_units_are_users_or_blocks_of_one_users_predictions():

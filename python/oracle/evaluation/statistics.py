@@ -61,7 +61,7 @@ def units_of(outcomes: Sequence[Outcome], methods: Sequence[str], ks: Sequence[i
     by_user = len(users) >= MIN_USERS
     index: dict[str, int] = {}
     unit_of: list[int] = []
-    for position, o in enumerate(outcomes):
+    for o in outcomes:
         label = o.user if by_user else f"{o.user}#{o.index // BLOCK}"
         unit_of.append(index.setdefault(label, len(index)))
     units = np.asarray(unit_of, dtype=np.int64)
@@ -153,5 +153,5 @@ def cold_start_summary(result: ReplayResult, seed: int = 0, first: int = COLD_ST
     return out
 
 
-__all__ = ["BLOCK", "COLD_START", "cold_start_summary", "LEVEL", "MIN_USERS", "RESAMPLES", "Comparison", "Units", "bootstrap_interval", "compare",
-           "comparison_summary", "holm", "units_of", "wilcoxon_p"]
+__all__ = ["BLOCK", "COLD_START", "LEVEL", "MIN_USERS", "RESAMPLES", "Comparison", "Units", "bootstrap_interval",
+           "cold_start_summary", "compare", "comparison_summary", "holm", "units_of", "wilcoxon_p"]
