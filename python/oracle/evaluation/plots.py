@@ -20,16 +20,18 @@ def _save(fig, path: Path) -> Path:
 
 
 def box_plots(summary: dict, out: Path) -> Path:
+    """Per-user Top-1/3/5 of every method, one row per k, chance dashed."""
     methods = list(summary["methods"])
-    fig, axes = plt.subplots(1, len(KS), figsize=(max(12, 0.45 * len(methods) * len(KS)), 4.5), sharey=True)
+    fig, axes = plt.subplots(len(KS), 1, figsize=(max(8.0, 0.55 * len(methods) + 2), 3 * len(KS)), sharex=True)
     for ax, k in zip(axes, KS):
         data = [[u[f"top{k}"] for u in summary["methods"][m]["per_user"].values()] for m in methods]
         ax.boxplot(data, tick_labels=methods)
         ax.axhline(summary["chance"][f"top{k}"], color="grey", linestyle="--", linewidth=1, label="chance")
-        ax.set_title(f"Top-{k} per user")
-        ax.tick_params(axis="x", rotation=60, labelsize=8)
-    axes[0].set_ylabel("accuracy")
+        ax.set_ylabel(f"Top-{k} per user")
+        ax.set_ylim(0, 1)
+    axes[0].set_title("Accuracy per user")
     axes[0].legend(loc="lower left")
+    axes[-1].tick_params(axis="x", rotation=60, labelsize=8)
     fig.tight_layout()
     return _save(fig, out / "per_user_box.png")
 
