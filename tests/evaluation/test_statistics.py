@@ -60,3 +60,16 @@ def test_a_method_better_on_every_user_has_an_interval_above_zero():
     assert top1.p < 0.01 and top1.p_holm == top1.p  # a family of one comparison
     top5 = next(c for c in found if c.k == 5)
     assert top5.difference == 0 and top5.p == 1.0
+
+
+def test_cold_start_uses_only_each_users_first_predictions():
+    from oracle.evaluation.replay import ReplayResult
+    from oracle.evaluation.statistics import cold_start_summary
+
+    # a is right only late in the history, b only early
+    outcomes = [outcome(f"u{i}", j, 1 if j >= 30 else 5, 1 if j < 30 else 5) for i in range(MIN_USERS) for j in range(40)]
+    cold = cold_start_summary(ReplayResult(outcomes))
+    assert cold["n_predictions"] == 30 * MIN_USERS
+    assert cold["methods"]["a"]["top1"] == 0.0 and cold["methods"]["b"]["top1"] == 1.0
+    paired = cold["comparisons"]["methods"]["b"]["top1"]
+    assert paired["difference"] == 1.0 and paired["low"] == paired["high"] == 1.0
