@@ -12,7 +12,7 @@ import time
 
 from nltk.lm import KneserNeyInterpolated
 
-from oracle.algorithm.situation import Step
+from oracle.algorithm.records import Step
 from oracle.evaluation.replay import load_users
 from oracle.evaluation.smoothing import KN_DISCOUNT, KneserNey
 

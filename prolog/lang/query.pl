@@ -4,6 +4,7 @@
       kb_call_stepwise/1,       % :Goal
       kb_call_stepwise/2,       % :Goal, +Scope
       kb_compile/3,             % +Goal, +Scope, -Plan
+      kb_findall/4,             % +Template, :Goal, +Scope, -List
       kb_project/1              % +Statement
     ]).
 /** <module> The query language: kb_call and kb_project (KnowRob 2.x src/lang/query.pl)
@@ -29,12 +30,13 @@ kb_project/1 asserts statements built from the same vocabulary (see kb_project/1
 :- use_module(library(error)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
-:- use_module('../neem_store', [store_match/2, store_insert/1]).
+:- use_module('../neem_store', [store_match/2, store_match/3, store_insert/1]).
 :- use_module(triple, [kb_iri/2, iri_term/1, triple_steps/6]).
 :- use_module(scope, [current_scope/1, scope_check/1, scope_overlaps/3, runtime_scope/3]).
 
 :- meta_predicate
-    kb_call(0), kb_call(0, +), kb_call_stepwise(0), kb_call_stepwise(0, +).
+    kb_call(0), kb_call(0, +), kb_call_stepwise(0), kb_call_stepwise(0, +),
+    kb_findall(?, 0, +, -).
 
 %!  kb_rule(?Head, ?Body) is nondet.
 %   Head is defined by Body, a conjunction of triple/3 goals, other model predicates and
@@ -61,6 +63,20 @@ kb_call_stepwise(Goal) :-
 kb_call_stepwise(Goal, Scope) :-
     kb_compile(Goal, Scope, stepwise, Plan),
     run_plan(Plan).
+
+%!  kb_findall(+Template, :Goal, +Scope, -List) is det.
+%   findall/3 of kb_call/2: when Goal compiles to one store query (and filters after it),
+%   the store sends back only the variables Template and the filters need, so collecting a
+%   few values of many rows does not pay for the others.
+kb_findall(Template, Goal, Scope, List) :-
+    kb_compile(Goal, Scope, compiled, Plan),
+    (   Plan = [match(Ts, S)|Rest],
+        \+ ( member(Step, Rest), Step \= call(_) )
+    ->  term_variables(Template-Rest, Keep),
+        maplist(expand_pattern, Ts, Ts1),
+        findall(Template, ( store_match(Ts1, S, [select(Keep)]), run_plan(Rest) ), List)
+    ;   findall(Template, run_plan(Plan), List)
+    ).
 
 %!  kb_compile(+Goal, +Scope, -Plan) is det.
 %   The plan kb_call/2 runs: a list of `match(Patterns, Scope)`, `call(Goal)`,

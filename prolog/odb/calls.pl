@@ -17,7 +17,8 @@ odb object classes. Its call is the chain term `pick(banana)` (odb_names).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
 :- use_module(library(pairs)).
-:- use_module('../lang/query', [kb_call/2]).
+:- use_module(library(assoc)).
+:- use_module('../lang/query', [kb_call/2, kb_findall/4]).
 :- use_module('../lang/triple', [kb_iri/2]).
 :- use_module('../model/rdfs', []).
 :- use_module('../model/event', []).
@@ -35,10 +36,17 @@ task_class(T, C) :-
 %   The chain term of a task individual, e.g. `pour(thermos, green_mug)`.
 task_call(T, Call) :-
     must_be(atom, T),
-    findall(C-R-RC-OC,
-            kb_call(( triple(T, rdf:type, C), task_role(T, R), has_role(O, R),
-                      triple(R, rdf:type, RC), triple(O, rdf:type, OC) ), any),
-            Rows0),
+    task_role_rows(T, C, R, RC, OC, Goal),
+    kb_findall(C-R-RC-OC, Goal, any, Rows0),
+    rows_call(T, Rows0, Call).
+
+%   The rows task_call/2 reads: the task's class, each role with its class and the class of
+%   the object it classifies.
+task_role_rows(T, C, R, RC, OC,
+               ( triple(T, rdf:type, C), task_role(T, R), has_role(O, R),
+                 triple(R, rdf:type, RC), triple(O, rdf:type, OC) )).
+
+rows_call(T, Rows0, Call) :-
     (   Rows0 == []
     ->  once(task_class(T, C)), Args = []
     ;   include(odb_row, Rows0, Rows),
@@ -88,11 +96,20 @@ action_call(A, Call, B, E) :-
     memberchk(T1-Call, Calls).
 
 %!  task_calls(+Tasks, -Pairs) is det.
-%   `Task-Call` for each distinct task individual (the logger reuses one individual per
-%   call, so this costs one store query per distinct task, not per action).
+%   `Task-Call` for each distinct task individual: one store query for the roles of every
+%   task (each task's rows in the order task_call/2 reads them, so the same calls), plus one
+%   per task without roles.
 task_calls(Ts, Pairs) :-
     sort(Ts, Distinct),
-    findall(T-C, ( member(T, Distinct), task_call(T, C) ), Pairs).
+    task_role_rows(T, C, R, RC, OC, Goal),
+    kb_findall(T-(C-R-RC-OC), Goal, any, Rows),
+    sort(1, @=<, Rows, ByTask),             % stable: each task's rows in the store's order
+    group_pairs_by_key(ByTask, Groups),
+    list_to_assoc(Groups, RowsOf),
+    findall(T-C, ( member(T, Distinct),
+                   ( get_assoc(T, RowsOf, Rows0) -> true ; Rows0 = [] ),
+                   rows_call(T, Rows0, C) ),
+            Pairs).
 
 %!  call_tasks(+Call, -Tasks) is det.
 %   The task individuals whose call is Call (the logger makes one per call).

@@ -3,6 +3,7 @@
 :- use_module(history).
 :- use_module('../neem_store').
 :- use_module('../fixtures/test_episode').
+:- use_module('../fixtures/history_reference').
 
 n(L, I) :- atom_concat('http://example.org/neem#', L, I).
 
@@ -20,5 +21,16 @@ test(situation_history_json, [nondet, setup(load_test_episode), cleanup(store_re
 test(latest_situation, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
     latest_situation(B, C), B =:= 200, C == [pick(apple)],
     latest_situation_json(J), sub_string(J, _, _, _, "\"begin\":200").
+
+test(one_pass_equals_reference, [cleanup(store_reset)]) :-
+    forall(member(Seed, [1, 2, 3, 4]),
+           ( load_generated_episode(300, Seed),
+             situation_history(New),
+             situation_history_reference(Old),
+             length(New, N), N >= 300,
+             assertion(New == Old) )).
+
+test(one_pass_equals_reference_small_episode, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
+    situation_history(New), situation_history_reference(Old), New == Old.
 
 :- end_tests(odb_history).

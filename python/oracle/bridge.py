@@ -30,14 +30,15 @@ from pathlib import Path
 from typing import Any
 
 from oracle.errors import PrologError, StoreError
+from oracle.paths import prolog_dir
 from oracle.store import Cmp, Scope, Store, TriplePattern, Triple, Var
 
-PROLOG_DIR = Path(__file__).resolve().parents[2] / "prolog"
+PROLOG_DIR = prolog_dir()
 #: The Prolog modules under PROLOG_DIR, in load order (KnowRob's layout: lang/, model/; the
 #: odb extension in odb/); each is imported into ``user`` so a typed query sees its exports.
 MODULES = ("neem_store", "lang/triple", "lang/scope", "lang/query", "lang/holds", "lang/temporal",
            "model/rdfs", "model/event", "model/object", "model/situation",
-           "odb/names", "odb/calls", "odb/events", "odb/decisions", "odb/history", "answers")
+           "odb/names", "odb/calls", "odb/events", "odb/decisions", "odb/history", "answers", "batch_toplevel")
 #: Rows per chunk handed to Prolog by one solution of py_match/2.
 CHUNK = 5000
 
@@ -63,6 +64,9 @@ def _plain(value: Any) -> Any:
 
 def quote_atom(text: str) -> str:
     """``text`` as a quoted Prolog atom in pure ASCII (every other character escaped)."""
+    if text.isascii() and text.isprintable():
+        # The common case (IRIs), per value of every row a query returns: no loop in Python.
+        return "'" + text.replace("\\", "\\\\").replace("'", "\\'") + "'"
     out = ["'"]
     for ch in text:
         code = ord(ch)
@@ -236,6 +240,15 @@ def _ensure_loaded() -> None:
     _STATE["loaded"] = True
 
 
+def _attach_engine() -> None:
+    """Give the calling thread a Prolog engine if it has none. Terms (atoms included) made on a
+    thread without one crash the process, and pyswip attaches only inside ``Prolog.query``."""
+    from pyswip.core import PL_thread_attach_engine, PL_thread_self
+
+    if PL_thread_self() == -1 and PL_thread_attach_engine(None) == -1:
+        raise PrologError("cannot attach a Prolog engine to this thread")
+
+
 def _run(query: str, maxresult: int = -1) -> list[dict[str, Any]]:
     from pyswip import Prolog
     from pyswip.prolog import PrologError as PySwipError
@@ -264,6 +277,7 @@ class Bridge:
         self.neem_id = neem_id
         store.neem(neem_id)  # StoreError when the NEEM does not exist
         with _LOCK:
+            _attach_engine()
             _ensure_loaded()
             _STATE["bridge"] = self
             self._with_request([Atom(neem_id)], "neem_store:py_request(R), R = [N], neem_store:store_use_python(N)")
@@ -298,6 +312,23 @@ class Bridge:
         with _LOCK:
             _STATE["bridge"] = self
             return [{k: _python_value(v) for k, v in row.items()} for row in _run(text, maxresult)]
+
+    def run_batch(self, max_answers: int | None = None) -> int:
+        """Answer the queries on standard input (a pipe or file) without asking for more; every
+        answer, or the first ``max_answers`` of each. Returns 1 when a query raised an error."""
+        limit = "inf" if max_answers is None else str(int(max_answers))
+        return int(self.query(f"batch_toplevel:batch_queries(user_input, {limit}, S)")[0]["S"])
+
+    def run_goal(self, text: str) -> int:
+        """Run a goal once as ``swipl -g`` does: 0 on success, 1 on failure, 2 on an error."""
+        rows = self._with_request([text], "neem_store:py_request(R), R = [G], batch_toplevel:batch_goal(G, S)")
+        return int(rows[0]["S"])
+
+    def ask(self, query: str, request: list[Any]) -> list[dict[str, Any]]:
+        """Solutions of ``query``, which reads its values with ``neem_store:py_request/1``:
+        values a client sent travel as terms and never become query text."""
+        with _LOCK:
+            return [{k: _python_value(v) for k, v in row.items()} for row in self._with_request(request, query)]
 
     def answer(self, request: list[Any]) -> dict[str, Any]:
         """answers:answer_json/1 on a request; values travel as terms."""

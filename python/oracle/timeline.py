@@ -28,9 +28,6 @@ TIME_OF_DAY_NAMES: tuple[str, ...] = ("Morning", "Midday", "Evening", "Night")
 #: transitions between tasks (thesis 3.4).
 IDLE_THRESHOLD_S = 20.0
 
-#: What callers may pass as a time: a datetime or unix seconds.
-Moment = datetime | float | int
-
 
 class TimeValueError(ValueError):
     """A value that is not a time; callers turn it into their domain's error."""
@@ -55,6 +52,11 @@ def time_of_day(moment: datetime | float | int) -> str:
     return name
 
 
+def first_hour(part: str) -> int:
+    """The hour a part of the day starts (Night: its evening start, 22)."""
+    return max(start for start, name in PARTS_OF_DAY if name == part)
+
+
 def clock(seconds: float) -> datetime:
     """The wall-clock time of unix seconds under the one rule (UTC, never the machine's zone)."""
     return datetime.fromtimestamp(seconds, timezone.utc)
@@ -71,18 +73,24 @@ def part_of_day_at(seconds: float) -> str:
     return time_of_day(clock(seconds))
 
 
-def parse_moment(text: str) -> float:
-    """Unix seconds of ``--at`` text: a number, or ISO-8601 (naive = wall clock, read as UTC).
+def parse_instant(text: str) -> Instant:
+    """``--at`` text as an Instant: unix seconds, or ISO-8601 (without a zone: UTC).
 
     Raises TimeValueError naming the text when it is neither."""
     try:
-        return float(text)
+        return Instant.of(float(text))
     except ValueError:
         pass
     try:
-        return seconds_of(datetime.fromisoformat(text.replace("Z", "+00:00")))
+        return Instant.of(datetime.fromisoformat(text.replace("Z", "+00:00")))
     except ValueError:
         raise TimeValueError(f"{text!r}: expected ISO-8601 (2024-05-01T08:30) or unix seconds") from None
+
+
+def now() -> Instant:
+    """This moment: its seconds, and the part of day of the machine's wall clock (a time with a
+    zone keeps its own wall clock; "now" is the one time whose zone is the machine's)."""
+    return Instant.of(datetime.now().astimezone())
 
 
 def format_clock(seconds: float, timespec: str = "seconds") -> str:
@@ -105,9 +113,18 @@ class Instant:
     @staticmethod
     def of(moment: Moment) -> Instant:
         """A datetime keeps its part of day as written; seconds get their UTC part of day."""
+        if isinstance(moment, Instant):
+            return moment
         if isinstance(moment, datetime):
             return Instant(seconds_of(moment), time_of_day(moment))
         if isinstance(moment, bool) or not isinstance(moment, (int, float)):
             raise TimeValueError(f"a time must be a datetime or unix seconds, got {moment!r}")
         seconds = float(moment)
-        return Instant(seconds, part_of_day_at(seconds))
+        try:
+            return Instant(seconds, part_of_day_at(seconds))
+        except (OverflowError, OSError, ValueError):  # NaN, infinities, years past 9999
+            raise TimeValueError(f"{moment!r} is not a time in unix seconds") from None
+
+
+#: What callers may pass as a time: a datetime, unix seconds, or an Instant already read.
+Moment = datetime | float | int | Instant

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 from hypothesis import strategies as st
 
-from oracle.algorithm.situation import Option, Step
+from oracle.algorithm.records import Option, Step
 from oracle.ontology.distance import DistanceMatrix
 from oracle.timeline import TIME_OF_DAY_NAMES
 

@@ -6,7 +6,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from oracle.algorithm.situation import Option, Step
+from oracle.algorithm.records import Option, Step
 from oracle.evaluation.baselines import BASELINES, NGram, PPMExclusion
 from oracle.evaluation.lempel_ziv import LZ78, ActiveLeZi
 from oracle.evaluation.smoothing import KneserNey

@@ -6,7 +6,7 @@ import pytest
 from nltk.lm import KneserNeyInterpolated, WittenBellInterpolated
 from nltk.util import everygrams
 
-from oracle.algorithm.situation import Option, Step
+from oracle.algorithm.records import Option, Step
 from oracle.evaluation.smoothing import KN_DISCOUNT, KneserNey, WittenBell
 
 

@@ -193,8 +193,22 @@ def test_resumed_logger_keeps_time_order_and_idle(logger, store, onto):
     logger.action("pick(green_mug)", T0, T0 + timedelta(seconds=5))
     resumed = NeemLogger(store, onto, logger.neem_id)
     with pytest.raises(LoggingError, match="time goes backwards"):
-        resumed.action("place(green_mug)", T0 + timedelta(seconds=2))
+        resumed.action("place(green_mug)", T0 - timedelta(seconds=2))
     assert resumed.action("place(green_mug)", T0 + timedelta(seconds=60)).idle is not None
+
+
+def test_overlapping_actions_are_logged_as_knowrob_events_may_overlap(logger, store, onto):
+    """Two sensors firing at once: the second starts before the first ends. Starts stay ordered,
+    and the idle gap runs from the latest end, also after reopening the NEEM."""
+    logger.action("open(fridge)", T0, T0 + timedelta(seconds=40))
+    overlapping = logger.action("pick(green_mug)", T0 + timedelta(seconds=5), T0 + timedelta(seconds=8))
+    assert overlapping.idle is None
+    resumed = NeemLogger(store, onto, logger.neem_id)
+    with pytest.raises(LoggingError, match="time goes backwards"):
+        resumed.action("place(green_mug)", T0 + timedelta(seconds=4))
+    assert resumed.action("place(green_mug)", T0 + timedelta(seconds=50)).idle is None  # 10 s after the fridge closed
+    assert resumed.action("close(fridge)", T0 + timedelta(seconds=90)).idle is not None
+    assert [v.task_class.rsplit("#", 1)[1] for v in executed_actions(store, logger.neem_id)][:2] == ["open", "pick"]
 
 
 def test_sessions_are_temporary_until_persisted(store, onto, tbox_for):

@@ -6,7 +6,7 @@
 from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import PRESETS, Hyperparameters, load_settings, preset, save_settings
 from oracle.algorithm.reference import ReferenceOracle
-from oracle.algorithm.situation import Option, RankedTask, Ranking, Situation, Step, TreeNode
+from oracle.algorithm.records import Option, RankedTask, Ranking, Situation, Step, TreeNode
 
 __all__ = ["PreferenceOracle", "ReferenceOracle", "Hyperparameters", "PRESETS", "preset", "load_settings",
            "save_settings", "Option", "Step", "Situation", "RankedTask", "Ranking", "TreeNode"]

@@ -18,7 +18,7 @@ import numpy as np
 from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import PRESETS
 from oracle.algorithm.reference import ReferenceOracle
-from oracle.algorithm.situation import Option, Step
+from oracle.algorithm.records import Option, Step
 from oracle.ontology.distance import DistanceMatrix
 from oracle.timeline import TIME_OF_DAY_NAMES
 

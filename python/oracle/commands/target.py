@@ -10,7 +10,7 @@ from oracle.commands.common import ontology_from
 from oracle.errors import StoreError
 
 #: The options that name an ontology; when none is given, the NEEM's own ontology is used.
-ONTOLOGY_OPTIONS = ("odb", "mapping", "soma", "ontology")
+ONTOLOGY_DESTS = ("odb", "mapping", "soma", "ontology")
 
 
 @dataclass(frozen=True)
@@ -29,7 +29,7 @@ def open_target(args: argparse.Namespace) -> Target:
     try:
         neem_id = args.neem if args.neem is not None else default_neem(store)
         info = store.neem(neem_id)
-        given = ontology_from(args) if any(getattr(args, name, None) is not None for name in ONTOLOGY_OPTIONS) else None
+        given = ontology_from(args) if any(getattr(args, name, None) is not None for name in ONTOLOGY_DESTS) else None
         onto = ontology_for(neem_id, info.meta, given, lambda: ontology_from(args))
     except BaseException:
         store.close()

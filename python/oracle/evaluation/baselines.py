@@ -20,7 +20,7 @@ from collections import Counter, defaultdict
 from collections.abc import Callable, Sequence
 from functools import partial
 
-from oracle.algorithm.situation import Option, Step
+from oracle.algorithm.records import Option, Step
 from oracle.evaluation.lempel_ziv import LZ78, ActiveLeZi
 from oracle.evaluation.smoothing import KneserNey, WittenBell
 from oracle.evaluation.tokens import IDLE_TOKEN, CountingMethod, token

@@ -10,7 +10,7 @@ from collections import deque
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
-from oracle.algorithm.situation import Option, Step
+from oracle.algorithm.records import Option, Step
 from oracle.evaluation.tokens import order_by_score, token
 
 

@@ -14,7 +14,7 @@ from __future__ import annotations
 from collections import Counter, defaultdict
 from collections.abc import Sequence
 
-from oracle.algorithm.situation import Option, Step
+from oracle.algorithm.records import Option, Step
 from oracle.evaluation.tokens import order_by_score, token
 
 #: Kneser & Ney (1995) and Chen & Goodman (1999) use one absolute discount near 0.75; nltk's default 0.1

@@ -9,7 +9,7 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Sequence
 
-from oracle.algorithm.situation import Option, Step
+from oracle.algorithm.records import Option, Step
 
 IDLE_TOKEN = "<idle>"
 

@@ -10,7 +10,9 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 
 from oracle.neem import terms as T
+from oracle.ontology.vocabulary import Vocabulary
 from oracle.store import RDF_TYPE, Store, TriplePattern, Var
+from oracle.timeline import TIME_OF_DAY_NAMES
 
 
 @dataclass(frozen=True)
@@ -83,3 +85,11 @@ def summarize_neem(store: Store, neem_id: str) -> NeemSummary:
         end=max(numbers(ends) or numbers(begins), default=None),
         temporary=info.temporary,
     )
+
+
+def recorded_part_of_day(store: Store, neem_id: str, vocab: Vocabulary, begin: float) -> str | None:
+    """The odb:TimeOfDay part an interval starting at ``begin`` was logged with (its wall clock
+    as written, oracle.timeline), or None when no such interval is typed with one."""
+    parts = {vocab.part_of_day(name): name for name in TIME_OF_DAY_NAMES}
+    rows = store.match(neem_id, [TriplePattern(Var("I"), T.BEGIN, begin), TriplePattern(Var("I"), RDF_TYPE, Var("C"))])
+    return next((parts[row["C"]] for row in rows if row["C"] in parts), None)

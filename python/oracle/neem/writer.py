@@ -107,8 +107,9 @@ class NeemLogger:
         # ObjectId's per-call lock and pid check.
         self._random = os.urandom(5).hex()
         self._counter = int.from_bytes(os.urandom(3), "big") >> 1  # 8M ids before it wraps
-        self._last_end: Instant | None = None
-        self._last_end = self._resume_last_end()
+        #: Latest begin and latest end of the executed actions: actions may overlap, as events
+        #: do in KnowRob (two sensors firing at once), but none may start before the one before.
+        self._last_begin, self._last_end = self._resume_clock()
 
     # -- creation ---------------------------------------------------------------------------
     @classmethod
@@ -282,25 +283,30 @@ class NeemLogger:
 
     # -- checks -----------------------------------------------------------------------------
     def _check_time(self, at: Instant, what: str) -> None:
-        if self._last_end is not None and at.seconds < self._last_end.seconds:
+        if self._last_begin is not None and at.seconds < self._last_begin.seconds:
             raise LoggingError(
-                f"time goes backwards: {what} at {at.seconds:.3f} is before the end of the last action"
-                f" ({self._last_end.seconds:.3f}) in NEEM {self.neem_id!r}"
+                f"time goes backwards: {what} at {at.seconds:.3f} is before the start of the last action"
+                f" ({self._last_begin.seconds:.3f}) in NEEM {self.neem_id!r}"
             )
 
-    def _resume_last_end(self) -> Instant | None:
-        """When logging continues into an existing NEEM: the end of its last executed action."""
+    def _resume_clock(self) -> tuple[Instant | None, Instant | None]:
+        """When logging continues into an existing NEEM: the latest begin and end of its actions."""
         executed = {doc["s"] for doc in self.store.find(self.neem_id, p=RDF_TYPE, o=T.ACTION, exact=True)}
         if not executed:
-            return None
-        latest: float | None = None
+            return None, None
+        begins: list[float] = []
+        ends: list[float] = []
         for row in self.store.match(
             self.neem_id,
-            [TriplePattern(Var("A"), T.HAS_INTERVAL, Var("I")), TriplePattern(Var("I"), T.END, Var("E"))],
-        ):
-            if row["A"] in executed and (latest is None or row["E"] > latest):
-                latest = row["E"]
-        return None if latest is None else _instant(latest)
+            [TriplePattern(Var("A"), T.HAS_INTERVAL, Var("I")), TriplePattern(Var("I"), T.BEGIN, Var("B")),
+             TriplePattern(Var("I"), T.END, Var("E"))],
+        ):  # fmt: skip
+            if row["A"] in executed:
+                begins.append(row["B"])
+                ends.append(row["E"])
+        if not begins:
+            return None, None
+        return _instant(max(begins)), _instant(max(ends))
 
     # -- public API -------------------------------------------------------------------------
     def perceive(self, obj: str, at: Moment) -> str:
@@ -375,7 +381,9 @@ class NeemLogger:
         out.append(Triple(iri, T.PERFORMED_BY, self._agent(performed_by, out)))
         out.append(Triple(iri, T.HAS_INTERVAL, self._interval(start, stop, out)))
         self._write(out)
-        self._last_end = stop
+        self._last_begin = start
+        if self._last_end is None or stop.seconds > self._last_end.seconds:
+            self._last_end = stop
         return LoggedAction(iri, call, start.seconds, stop.seconds, start.part_of_day, task, idle, imagining)
 
     def _idle(self, begin: Instant, end: Instant, out: _Out) -> str:

@@ -10,7 +10,7 @@ import os
 from pathlib import Path
 
 from oracle.errors import StoreError
-from oracle.store.base import KINDS, NeemInfo, Store, check_neem_id
+from oracle.store.base import COLLECTION_KINDS, NeemInfo, Store, check_neem_id
 from oracle.store.model import (
     INFINITY,
     RDF_TYPE,
@@ -92,7 +92,7 @@ def open_mongo(uri: str, *, number_format: NumberFormat = "decimal128", timeout_
 
 
 __all__ = [
-    "INFINITY", "KINDS", "MONGO_ENV", "RDF_TYPE", "SUBCLASS_OF", "SUBPROPERTY_OF", "TAXONOMIC",
+    "INFINITY", "COLLECTION_KINDS", "MONGO_ENV", "RDF_TYPE", "SUBCLASS_OF", "SUBPROPERTY_OF", "TAXONOMIC",
     "Annotation", "Cmp", "NeemInfo", "NumberFormat", "Scope", "Store", "Triple", "TriplePattern", "Var",
     "check_neem_id", "default_store_path", "open_mongo", "open_store",
 ]  # fmt: skip

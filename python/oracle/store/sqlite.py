@@ -28,7 +28,7 @@ from bson.int64 import Int64
 from bson.objectid import ObjectId
 
 from oracle.errors import StoreError
-from oracle.store.base import KINDS, Closed, NeemInfo, Store, check_neem_id, new_meta
+from oracle.store.base import COLLECTION_KINDS, Closed, NeemInfo, Store, check_neem_id, new_meta
 from oracle.store.model import (
     RDF_TYPE,
     SUBCLASS_OF,
@@ -264,7 +264,7 @@ class SQLiteStore(Store):
     def drop_neem(self, neem_id: str) -> None:
         self.neem(neem_id)
         with self.transaction():
-            for kind in KINDS:
+            for kind in COLLECTION_KINDS:
                 self._conn.execute(f"DROP TABLE IF EXISTS {_table(neem_id, kind)}")
             self._conn.execute("DELETE FROM neems WHERE id=?", (neem_id,))
         self._present.discard(neem_id)
@@ -276,7 +276,7 @@ class SQLiteStore(Store):
         if self.has_neem(new_id):
             raise StoreError(f"{self.location}: NEEM {new_id!r} already exists")
         with self.transaction():
-            for kind in KINDS:
+            for kind in COLLECTION_KINDS:
                 self._conn.execute(f"ALTER TABLE {_table(neem_id, kind)} RENAME TO {_table(new_id, kind)}")
             # Index names are database-wide and SQLite cannot rename them: left behind, they
             # would stop a new NEEM from taking the old id.
@@ -526,7 +526,7 @@ class SQLiteStore(Store):
 
     # -- reading ----------------------------------------------------------------------------
     def read_documents(self, neem_id: str, kind: str) -> Iterator[dict[str, Any]]:
-        if kind not in KINDS:
+        if kind not in COLLECTION_KINDS:
             raise StoreError(f"unknown collection kind {kind!r}")
         self._require(neem_id)
         if kind == "triples":

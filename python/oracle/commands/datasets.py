@@ -37,7 +37,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         description="Turn van Kasteren house A or EGTEA Gaze+ into chains.jsonl, odb/ and mapping.yaml.",
     )
     convert.add_argument("dataset", choices=sorted(CONVERTERS), help="which dataset")
-    convert.add_argument("path", type=Path, metavar="PATH", help="the dataset folder (e.g. ../shared/datasets/kasteren_house_a)")
+    convert.add_argument("path", type=Path, metavar="PATH", help="the downloaded dataset folder (e.g. datasets/kasteren_house_a)")
     convert.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
     convert.set_defaults(handler=run_convert)
 

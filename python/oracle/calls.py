@@ -10,9 +10,10 @@ from __future__ import annotations
 from collections.abc import Iterable
 from datetime import datetime
 
-from oracle.algorithm.situation import Option, Step
+from oracle.algorithm.records import Option, Step
 from oracle.chains import TaskCall
 from oracle.errors import OntologyError
+from oracle.namespaces import SOMA
 from oracle.ontology import OdbOntology
 from oracle.timeline import time_of_day
 
@@ -29,6 +30,11 @@ def option_of(ontology: OdbOntology, call: TaskCall) -> Option:
             return Option(task, reference=classes[0])
         return Option(task, target=classes[0])
     return Option(task)
+
+
+def opening_tasks(ontology: OdbOntology) -> frozenset[str]:
+    """Task classes under soma:Opening: their successors are not pruned (thesis Fig. 4.7)."""
+    return frozenset(t.iri for t in ontology.tasks.values() if ontology.taxonomy.is_subclass_of(t.iri, str(SOMA.Opening)))
 
 
 def call_of(ontology: OdbOntology, option: Option) -> TaskCall:

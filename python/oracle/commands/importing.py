@@ -5,8 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from oracle.commands.common import add_ontology_options, ontology_from
-from oracle.commands.store import add_store_argument
+from oracle.commands.common import NUMBERS, ONTOLOGY_OPTIONS, STORE, add_options, ontology_from
 from oracle.errors import NeemOracleError
 from oracle.store import open_store
 
@@ -14,8 +13,7 @@ from oracle.store import open_store
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser("import", help="log action chains (JSONL) as one NEEM per user")
     parser.add_argument("chains", type=Path, metavar="CHAINS.jsonl")
-    add_store_argument(parser)
-    add_ontology_options(parser)
+    add_options(parser, STORE, NUMBERS, *ONTOLOGY_OPTIONS)
     parser.add_argument("--replace", action="store_true", help="replace a user's NEEM instead of adding a new one")
     parser.add_argument("--session", action="store_true",
                         help="log into temporary NEEMs, wiping earlier temporary ones (keep them with 'persist')")
