@@ -213,17 +213,5 @@ def _rate(outcomes: Iterable[Outcome], name: str, k: int) -> float:
     return hits / len(outcomes) if outcomes else 0.0
 
 
-def learning_curve(result: ReplayResult, name: str, k: int, max_index: int | None = None) -> tuple[list[float], list[float], list[int]]:
-    """Accuracy by action index across users, chance at the same index, and the number of users."""
-    by_index: dict[int, list[Outcome]] = {}
-    for o in result.outcomes:
-        if max_index is None or o.index < max_index:
-            by_index.setdefault(o.index, []).append(o)
-    indices = sorted(by_index)
-    acc = [_rate(by_index[i], name, k) for i in indices]
-    chance = [sum(chance_hit(k, o.n_candidates, o.truth_offered) for o in by_index[i]) / len(by_index[i]) for i in indices]
-    return acc, chance, [len(by_index[i]) for i in indices]
-
-
-__all__ = ["KS", "Method", "OracleMethod", "Outcome", "ReplayResult", "check_users", "learning_curve",
+__all__ = ["KS", "Method", "OracleMethod", "Outcome", "ReplayResult", "check_users",
            "load_users", "make_methods", "opening_tasks", "replay", "stderr_progress", "summarize"]
