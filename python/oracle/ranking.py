@@ -1,7 +1,11 @@
 """The oracle in the system: history from the NEEM (through Prolog), ranking, write-back.
 
-NEEM -> ``odb_model:situation_history`` (one crossing) -> Steps -> PreferenceOracle -> ranking
+NEEM -> ``odb_model:situation_history`` (one crossing) -> Steps -> the chosen predictor -> ranking
 -> ``NeemLogger.preference`` (an imagined preference the Prolog answers read).
+
+The answers read the written rank (1 = best) and show the score; for every predictor the score is
+lower-is-better: the thesis oracle writes its eq. 4.12 distance, the routine predictor -log2 of its
+probability (docs/algorithm.md).
 """
 
 from __future__ import annotations
@@ -11,8 +15,8 @@ import time
 from dataclasses import dataclass
 from datetime import datetime
 
-from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import Hyperparameters
+from oracle.algorithm.predictors import DEFAULT, make_predictor
 from oracle.algorithm.situation import Ranking
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError, NeemOracleError
@@ -38,6 +42,7 @@ class NeemRanking:
     milliseconds: float
     written: str | None
     note: str | None
+    method: str = DEFAULT
 
 
 def finite(score: float) -> float:
@@ -51,6 +56,7 @@ def rank_neem(
     available: list[str] | None = None,
     at: float | None = None,
     write: bool = True,
+    method: str = DEFAULT,
 ) -> NeemRanking:
     """Rank ``available`` (chain syntax) at ``at``, or else the NEEM's latest imagined situation."""
     if available:
@@ -65,7 +71,7 @@ def rank_neem(
         calls = [parse_call(text) for text in latest["available"]]
         when = float(latest["begin"])
     steps = steps_from_history(ontology, [row for row in bridge.history() if float(row["begin"]) < when])
-    oracle = PreferenceOracle.from_settings(ontology.distances(), settings, opening_tasks(ontology)).fit(steps)
+    oracle = make_predictor(method, ontology.distances(), opening_tasks(ontology), settings).fit(steps)
     part = time_of_day(datetime.fromtimestamp(when))
     started = time.perf_counter()
     ranking = oracle.rank([option_of(ontology, c) for c in calls], part)
@@ -79,4 +85,4 @@ def rank_neem(
             note = f"ranking not written: {error}"
     return NeemRanking(bridge.neem_id, when, part, len(steps), ranking,
                        tuple(call_of(ontology, t.option) for t in ranking),
-                       tuple(call_of(ontology, o) for o in ranking.chain()), elapsed, written, note)
+                       tuple(call_of(ontology, o) for o in ranking.chain()), elapsed, written, note, method)

@@ -89,7 +89,8 @@ def test_evaluate_command_writes_json_report_and_plots(tmp_path, capsys):
                  "--plots", str(out)])
     assert code == 0
     summary = json.loads((out / "s.json").read_text())
-    assert set(summary["methods"]) == {"oracle", "most_frequent", "bigram", "ngram"}
+    assert set(summary["methods"]) == {"routine", "oracle", "most_frequent", "bigram", "ngram"}
+    assert summary["method"] == "routine"
     assert set(summary["chance"]) == {"top1", "top3", "top5"} and summary["n_predictions"] == 12
     assert summary["methods"]["oracle"]["per_user"]["cy"]["top5"] == 1.0
     assert "| oracle |" in (out / "r.md").read_text()

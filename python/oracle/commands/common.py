@@ -23,3 +23,21 @@ def ontology_from(args: argparse.Namespace):  # noqa: ANN201 - OdbOntology, impo
             raise NeemOracleError("give either --ontology or --odb/--mapping, not both")
         return load_ontology(args.ontology)
     return build_ontology(getattr(args, "odb", None), getattr(args, "mapping", None), getattr(args, "soma", None))
+
+
+def add_method_option(parser: argparse.ArgumentParser) -> None:
+    """``--method NAME``: which predictor ranks (oracle.algorithm.predictors)."""
+    from oracle.algorithm.predictors import DEFAULT, PREDICTORS
+
+    parser.add_argument("--method", default=DEFAULT, type=_method_name,
+                        help=f"predictor: {', '.join(PREDICTORS)} (default: {DEFAULT}; 'thesis' is the thesis oracle "
+                             "with --settings)")
+
+
+def _method_name(text: str) -> str:
+    from oracle.algorithm.predictors import predictor_spec
+
+    try:
+        return predictor_spec(text).name
+    except NeemOracleError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None

@@ -11,12 +11,15 @@ from __future__ import annotations
 import argparse
 import time
 
+from oracle.commands.common import add_method_option
+
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser("demo", help="log a simulated user, rank the next task, answer why-not (embedded store)")
     parser.add_argument("--store", help="store to use (default: the user's embedded SQLite store)")
     parser.add_argument("--days", type=int, default=5, help="days of history to simulate (default 5)")
     parser.add_argument("--seed", type=int, default=3, help="which simulated user (default 3)")
+    add_method_option(parser)
     parser.set_defaults(handler=run)
 
 
@@ -55,7 +58,7 @@ def run(args: argparse.Namespace) -> int:
     print(f"   ({persona.persona})")
 
     bridge = Bridge(store, "demo", onto)
-    result = rank_neem(bridge, onto, Hyperparameters())
+    result = rank_neem(bridge, onto, Hyperparameters(), method=args.method)
     print(f"3. what the user may want now (they went on to do {now.action}):")
     print_ranking(result, limit=5)
 

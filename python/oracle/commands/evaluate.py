@@ -12,16 +12,18 @@ from pathlib import Path
 from oracle.algorithm.params import Hyperparameters, load_settings, preset, save_settings
 from oracle.errors import NeemOracleError, SettingsError
 from oracle.evaluation.replay import check_users, load_users, make_methods, replay, stderr_progress, summarize
-from oracle.commands.common import add_ontology_options, ontology_from
+from oracle.commands.common import add_method_option, add_ontology_options, ontology_from
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     evaluate = subparsers.add_parser("evaluate", help="replay chains and score the oracle against baselines")
     evaluate.add_argument("chains", type=Path, help="chains JSONL file or a folder of them")
     add_ontology_options(evaluate)
+    add_method_option(evaluate)
     evaluate.add_argument("--settings", default="recommended",
-                          help="settings YAML, 'recommended', or a thesis Fig. 5.5 letter A-N (default: recommended)")
-    evaluate.add_argument("--baselines", action="store_true", help="also run most-frequent, bigram and n-gram")
+                          help="thesis oracle settings: YAML, 'recommended', or a Fig. 5.5 letter A-N (default: recommended)")
+    evaluate.add_argument("--baselines", action="store_true",
+                          help="also run the thesis oracle (unless it is --method) and every baseline")
     evaluate.add_argument("--ablations", action="store_true", help="also replay the thesis Fig. 5.5 settings A-N")
     evaluate.add_argument("--json", type=Path, metavar="OUT", help="write the summary JSON here")
     evaluate.add_argument("--report", type=Path, metavar="FILE.md", help="write a markdown report here")
@@ -57,8 +59,10 @@ def run_evaluate(args: argparse.Namespace) -> int:
     users = load_users(args.chains)
     check_users(ontology, users, str(args.chains))
     started = time.perf_counter()
-    result = replay(ontology, users, make_methods(ontology, settings, args.baselines), args.seed, stderr_progress)
+    methods = make_methods(ontology, settings, args.baselines, args.method)
+    result = replay(ontology, users, methods, args.seed, stderr_progress)
     summary = summarize(result)
+    summary["method"] = methods[0].name
     summary["settings"] = settings.to_dict()
     summary["replay_seconds"] = time.perf_counter() - started
     command = "python -m oracle " + " ".join(shlex.quote(a) for a in sys.argv[1:]) if sys.argv[1:2] == ["evaluate"] else "python -m oracle evaluate"
@@ -78,7 +82,7 @@ def run_evaluate(args: argparse.Namespace) -> int:
         from oracle.evaluation import plots
 
         args.plots.mkdir(parents=True, exist_ok=True)
-        made = [plots.box_plots(summary, args.plots), plots.learning_curves(result, args.plots)]
+        made = [plots.box_plots(summary, args.plots), plots.learning_curves(result, args.plots, methods[0].name)]
         if args.ablations:
             made.append(plots.ablation_plot(summary["ablations"], args.plots))
         print("plots: " + ", ".join(str(p) for p in made))
