@@ -219,9 +219,11 @@ class RoutineOracle:
 
     # -- ranking --------------------------------------------------------------------------
 
-    def _variant_probabilities(self, offered: Sequence[Option], now: str | None
+    def _variant_probabilities(self, offered: Sequence[Option], now: str | None,
+                               which: Sequence[int] | None = None
                                ) -> tuple[list[np.ndarray], list[Blend], np.ndarray]:
-        """Each variant's distribution over ``offered``, its blends, and the Algorithm 2 table."""
+        """The distribution over ``offered`` and the blend of each variant in ``which`` (default:
+        all), and the candidates' Algorithm 2 distances to every interned option."""
         ids = [self._ids.get(option, UNKNOWN) for option in offered]
         count = len(self.options_)
         if UNKNOWN in ids:
@@ -233,18 +235,19 @@ class RoutineOracle:
         then = self._tod.view[:, 0]
         differs = (then >= 0) & (then != now_code) if now_code >= 0 else np.zeros(then.size, dtype=bool)
         table = self._table[:count, :count]
+        chosen = [self.variants_[v] for v in (range(len(self.variants_)) if which is None else which)]
         context = {name: context_distance(table, s.recent(), s.before.view, self.penalty, self.context_decay)
-                   for name, s in self._streams.items()}
+                   for name, s in self._streams.items() if any(v[0] == name for v in chosen)}
         base: dict[tuple[str, float], np.ndarray] = {}
         blends: dict[tuple[str, int, float], Blend] = {}
         probabilities = []
-        for stream, order, tau in self.variants_:
+        for stream, order, tau in chosen:
             if (stream, tau) not in base:
                 base[stream, tau] = normalised(similarity_mass(cand, executed, context[stream], differs, tau,
                                                                self.time_of_day_penalty))
             blend = blends[stream, order, tau] = self._streams[stream].counts.blend(ids, base[stream, tau], order)
             probabilities.append(blend.probabilities)
-        return probabilities, [blends[v] for v in self.variants_], cand
+        return probabilities, [blends[v] for v in chosen], cand
 
     def rank(self, current: Step | Iterable[Option], time_of_day: str | None = None, *,
              tree_roots: int | None = 3, present_objects: Iterable[str] | None = None) -> Ranking:
@@ -254,16 +257,17 @@ class RoutineOracle:
         offered, now = offered_options(current, time_of_day)
         if not offered:
             return Ranking(())
-        probabilities, blends, cand = self._variant_probabilities(offered, now)
         weights = self.weights_.weights(self.tuning)
+        used = np.flatnonzero(weights > 0).tolist()  # the leader alone, unless mixing
+        probabilities, blends, cand = self._variant_probabilities(offered, now, used)
         mixed = np.zeros(len(offered))
-        for weight, p in zip(weights, probabilities):
+        for weight, p in zip(weights[used], probabilities):
             mixed += weight * p
         total = float(mixed.sum())
         mixed = mixed / total if total > 0 else np.full(len(offered), 1.0 / len(offered))  # P(c | offered)
-        lead = int(np.argmax(weights))
+        lead = int(np.argmax(weights[used]))
         explain = blends[lead]
-        stream = self._streams[self.variants_[lead][0]]
+        stream = self._streams[self.variants_[used[lead]][0]]
         order = sorted(range(len(offered)), key=lambda i: (-mixed[i], i))
         nearest = cand.min(axis=1) if cand.shape[1] else np.full(len(offered), math.inf)
         present = frozenset(present_objects) if present_objects is not None else frozenset(
