@@ -83,4 +83,4 @@ def test_rank_method_thesis_writes_the_thesis_ranking_and_names_the_method(store
     assert [r["score"] for r in routine["ranking"]] == sorted(r["score"] for r in routine["ranking"])
     with pytest.raises(SystemExit) as exited:
         main(["rank", "--store", str(store), "--method", "bayes"])
-    assert exited.value.code == 2 and "unknown method 'bayes' (known: routine, thesis)" in capsys.readouterr().err
+    assert exited.value.code == 2 and "unknown method 'bayes' (known: routine, routine-fixed, routine-mixture, thesis)" in capsys.readouterr().err

@@ -166,6 +166,7 @@ def test_parameters_follow_the_estimator_contract():
 def test_the_registry_names_the_default_and_the_exact_thesis_oracle():
     assert DEFAULT == "routine" and set(PREDICTORS) >= {"routine", "thesis"}
     assert isinstance(make_predictor("routine", kitchen()), RoutineOracle)
+    assert make_predictor("routine-fixed", kitchen()).tuning == "fixed"
     steps = synthetic_history(60, seed=3)
     matrix = random_matrix(3)
     for name in ("recommended", "L"):
@@ -173,5 +174,5 @@ def test_the_registry_names_the_default_and_the_exact_thesis_oracle():
         direct = PreferenceOracle.from_settings(matrix, PRESETS[name], frozenset({TASKS[3]})).fit(steps[:50])
         assert thesis.rank(steps[55]) == direct.rank(steps[55])
     assert predictor_spec(" Thesis ").name == "thesis"
-    with pytest.raises(SettingsError, match="known: routine, thesis"):
+    with pytest.raises(SettingsError, match="known: routine, routine-fixed, routine-mixture, thesis"):
         make_predictor("bayes", matrix)

@@ -1,6 +1,7 @@
 """Predictors by name: the CLI's ``--method``, the replay and the Python API all choose here.
 
-``routine`` (the default, ``routine.RoutineOracle``) and ``thesis`` (``fast.PreferenceOracle`` with
+``routine`` (the default, ``routine.RoutineOracle``; ``routine-fixed`` and ``routine-mixture`` are its
+self-tuning ablations) and ``thesis`` (``fast.PreferenceOracle`` with
 the given Table 4.2 settings, exactly as the thesis defines it). Every predictor has the same
 estimator interface: ``fit(history) -> self``, ``partial_fit(step) -> self`` and
 ``rank(options, time_of_day, tree_roots=..., present_objects=...) -> Ranking`` whose scores are
@@ -43,6 +44,12 @@ def _routine(distances: Any, opening: frozenset[str], settings: Hyperparameters)
     return RoutineOracle(distances, opening_tasks=opening)
 
 
+def _routine_tuned(tuning: str) -> Callable[[Any, frozenset[str], Hyperparameters], Predictor]:
+    def build(distances: Any, opening: frozenset[str], settings: Hyperparameters) -> Predictor:
+        return RoutineOracle(distances, opening_tasks=opening, tuning=tuning)
+    return build
+
+
 def _thesis(distances: Any, opening: frozenset[str], settings: Hyperparameters) -> Predictor:
     return PreferenceOracle.from_settings(distances, settings, opening)
 
@@ -50,6 +57,11 @@ def _thesis(distances: Any, opening: frozenset[str], settings: Hyperparameters) 
 PREDICTORS: dict[str, PredictorSpec] = {
     "routine": PredictorSpec("routine", "exact-context counts backed off to ontology similarity, self-tuned "
                              "(docs/algorithm.md, 'Routine predictor')", _routine),
+    # the self-tuning ablations of docs/results.md: the first variant alone, and the posterior mixture
+    "routine-fixed": PredictorSpec("routine-fixed", "the routine predictor without self-tuning (its first variant)",
+                                   _routine_tuned("fixed")),
+    "routine-mixture": PredictorSpec("routine-mixture", "the routine predictor, variants mixed by their likelihood",
+                                     _routine_tuned("mixture")),
     "thesis": PredictorSpec("thesis", "the thesis PreferenceOracle (chapter 4) with the given settings", _thesis),
 }
 DEFAULT = "routine"
