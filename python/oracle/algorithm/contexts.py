@@ -52,13 +52,13 @@ class ContextCounts:
             return ()
         return tuple(self.tokens[-n:]) if len(self.tokens) >= n else None
 
-    def blend(self, candidates: Sequence[int], base: np.ndarray, max_order: int) -> Blend:
+    def blend(self, candidates: Sequence[int], base: np.ndarray, max_order: int, min_order: int = 0) -> Blend:
         """``P_n(c) = (n(ctx_n, c) + u_n P_{n-1}(c)) / (N(ctx_n) + u_n)`` from ``P_{-1} = base`` up to
         ``max_order``; an unseen context leaves the distribution as it is (PPM-C, no exclusion)."""
         probs = base.astype(np.float64, copy=True)
         order = np.full(len(candidates), -1, dtype=np.int64)
         count = np.zeros(len(candidates), dtype=np.int64)
-        for n in range(0, min(max_order, self.max_order) + 1):
+        for n in range(min_order, min(max_order, self.max_order) + 1):
             context = self.context(n)
             if context is None:
                 break

@@ -73,12 +73,13 @@ class RoutineOracle:
     ("leader": the best so far, "mixture": posterior weights, "fixed": the first variant).
     """
 
-    _param_names = ("distances", "opening_tasks", "orders", "temperatures", "streams", "context_depth",
+    _param_names = ("distances", "opening_tasks", "orders", "temperatures", "lowest_orders", "streams", "context_depth",
                     "context_decay", "tuning", "task_factor", "object_factor", "penalty",
                     "time_of_day_penalty", "event_horizon_forward")
 
     def __init__(self, distances: Any = None, *, opening_tasks: frozenset[str] = frozenset(),
                  orders: tuple[int, ...] = (3, 5), temperatures: tuple[float, ...] = (0.5, 2.0),
+                 lowest_orders: tuple[int, ...] = (0, 1),
                  streams: tuple[str, ...] = ("idle",), context_depth: int = 3, context_decay: float = 0.5,
                  tuning: str = "leader", task_factor: float = 2.0, object_factor: float = 1.0,
                  penalty: float = 3.7, time_of_day_penalty: float = 1.18, event_horizon_forward: int = 3) -> None:
@@ -86,6 +87,7 @@ class RoutineOracle:
         self.opening_tasks = opening_tasks
         self.orders = orders
         self.temperatures = temperatures
+        self.lowest_orders = lowest_orders
         self.streams = streams
         self.context_depth = context_depth
         self.context_decay = context_decay
@@ -112,6 +114,9 @@ class RoutineOracle:
         name = type(self).__name__
         if not self.orders or any(isinstance(n, bool) or not isinstance(n, int) or n < 0 for n in self.orders):
             raise SettingsError(f"{name}: orders must be whole numbers >= 0, got {self.orders!r}")
+        if not self.lowest_orders or any(isinstance(n, bool) or not isinstance(n, int) or n not in (0, 1)
+                                         for n in self.lowest_orders):
+            raise SettingsError(f"{name}: lowest_orders must be 0 or 1, got {self.lowest_orders!r}")
         if not self.temperatures or any(not (isinstance(t, (int, float)) and math.isfinite(t) and t > 0)
                                         for t in self.temperatures):
             raise SettingsError(f"{name}: temperatures must be positive numbers, got {self.temperatures!r}")
@@ -130,7 +135,7 @@ class RoutineOracle:
     def fit(self, history: Iterable[Step]) -> RoutineOracle:
         self._validate()
         self._raw_params = tuple(self.get_params().values())
-        self.variants_ = tuple(product(self.streams, self.orders, self.temperatures))
+        self.variants_ = tuple(product(self.streams, self.orders, self.temperatures, self.lowest_orders))
         self.weights_ = VariantWeights(len(self.variants_))
         self._values = np.asarray(self.distances.values, dtype=np.float64)
         self.options_: list[Option] = []
@@ -239,13 +244,14 @@ class RoutineOracle:
         context = {name: context_distance(table, s.recent(), s.before.view, self.penalty, self.context_decay)
                    for name, s in self._streams.items() if any(v[0] == name for v in chosen)}
         base: dict[tuple[str, float], np.ndarray] = {}
-        blends: dict[tuple[str, int, float], Blend] = {}
+        blends: dict[tuple[str, int, float, int], Blend] = {}
         probabilities = []
-        for stream, order, tau in chosen:
+        for stream, order, tau, lowest in chosen:
             if (stream, tau) not in base:
                 base[stream, tau] = normalised(similarity_mass(cand, executed, context[stream], differs, tau,
                                                                self.time_of_day_penalty))
-            blend = blends[stream, order, tau] = self._streams[stream].counts.blend(ids, base[stream, tau], order)
+            blend = blends[stream, order, tau, lowest] = self._streams[stream].counts.blend(
+                ids, base[stream, tau], order, lowest)
             probabilities.append(blend.probabilities)
         return probabilities, [blends[v] for v in chosen], cand
 
