@@ -2,12 +2,12 @@
 SHELL := /bin/bash
 VENV ?= .venv
 PY := $(VENV)/bin/python
-PLT := $(wildcard prolog/*.plt)
+PLT := $(sort $(shell find prolog -name '*.plt'))
 
 .PHONY: setup test test-python test-prolog bench demo up down test-mongo clean help
 
 help:
-	@echo "make setup      install SWI-Prolog (Debian) if missing, create $(VENV), install the package"
+	@echo "make setup      install python3-venv and SWI-Prolog (Debian) if missing, create $(VENV), install the package"
 	@echo "make test       plunit suites, then pytest"
 	@echo "make bench      benchmarks (printed figures)"
 	@echo "make demo       the main job on the embedded default store"
@@ -15,13 +15,13 @@ help:
 	@echo "make test-mongo the whole suite against the MongoDB at NEEM_MONGO_URI"
 
 setup:
-	@if ! command -v swipl >/dev/null 2>&1; then \
-	  echo "installing swi-prolog-nox from Debian"; \
-	  SUDO=$$( [ "$$(id -u)" = 0 ] || echo sudo ); \
-	  $$SUDO apt-get update -qq && \
-	  DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends swi-prolog-nox; \
-	fi
+	@sh scripts/setup-prereqs.sh
 	@swipl --version
+	@if ! command -v chromium >/dev/null 2>&1 && [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	  echo "installing chromium from Debian (the tablet page's browser test)"; \
+	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends chromium \
+	    || echo "chromium not installed: the page's browser test will skip"; \
+	fi
 	@test -x $(PY) || python3 -m venv $(VENV)
 	$(PY) -m pip install -q --upgrade pip
 	$(PY) -m pip install -q -e '.[dev]'
@@ -50,6 +50,8 @@ up:
 	@test -f docker/.env || { echo "make up: docker/.env is missing; run: cp docker/.env.example docker/.env  and set its passwords" >&2; exit 1; }
 	@! grep -q '=change-me' docker/.env || { echo "make up: docker/.env still has change-me passwords; set real ones first" >&2; exit 1; }
 	docker compose -f docker/docker-compose.yml --env-file docker/.env up -d --build
+	@echo "NEEMs in the stack's MongoDB:"
+	@docker compose -f docker/docker-compose.yml --env-file docker/.env run --rm --no-deps oracle neems
 
 down:
 	@command -v docker >/dev/null 2>&1 || { echo "make down: docker not found" >&2; exit 1; }

@@ -1,6 +1,7 @@
 """One-shot loader of the compose stack: import the sample chains into an empty NEEM store.
 
-Run as ``python /app/load-samples.py CHAINS.jsonl`` with ``NEEM_MONGO_URI`` set. ``docker compose up``
+Run as ``python /app/load-samples.py [CHAINS.jsonl]`` with ``NEEM_MONGO_URI`` set (which ``import``
+then writes to: it is the default store). ``docker compose up``
 starts this container again on every run, so it imports only while the database holds no NEEM yet
 (a NEEM is a collection prefix: ``<neem>_triples``, KnowRob 2.x layout); otherwise it does nothing.
 """
@@ -23,10 +24,16 @@ def neem_collections(names: Iterable[str]) -> list[str]:
 
 def main(argv: Sequence[str] | None = None, client_factory=None) -> int:
     args = list(sys.argv[1:] if argv is None else argv)
-    if len(args) != 1:
-        print("usage: load-samples.py CHAINS.jsonl", file=sys.stderr)
+    if len(args) > 1:
+        print("usage: load-samples.py [CHAINS.jsonl]  (default: the sample chains shipped in the package)",
+              file=sys.stderr)
         return 2
-    chains = Path(args[0])
+    if args:
+        chains = Path(args[0])
+    else:
+        from oracle.paths import data_dir
+
+        chains = data_dir() / "sample-chains.jsonl"
     uri = os.environ.get("NEEM_MONGO_URI")
     if not uri:
         print("load-samples: NEEM_MONGO_URI is not set", file=sys.stderr)

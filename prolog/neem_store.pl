@@ -131,7 +131,10 @@ insert_row(triple(S,P,O,Since,Until), [S,P,O,Since,Until]).
 %!  store_match(+Patterns, +Scope) is nondet.
 %!  store_match(+Patterns, +Scope, +Options) is nondet.
 %   Solve the conjunction of `t(S,P,O)` patterns in ONE store query, binding their
-%   variables. Options: `limit(N)`. Terms must be variables or atomic values.
+%   variables. Options: `limit(N)`, `order(Keys)` and `select(Term)`: only the variables of
+%   Term are bound by a solution (the store does not send the others back; the memory
+%   backend binds them all), for callers that collect a few variables of many rows. Terms
+%   must be variables or atomic values.
 store_match(Patterns, Scope) :-
     store_match(Patterns, Scope, []).
 
@@ -191,16 +194,31 @@ match(memory, Patterns, Scope, Options) :-
     ;   mem_conj(Patterns, Scope)
     ).
 match(python(Neem), Patterns, Scope, Options) :-
-    term_variables(Patterns, Vars),
-    maplist(encode_pattern(Vars), Patterns, Encoded),
+    term_variables(Patterns, All),
+    selected_first(Options, All, Vars, Order0),
+    maplist(encode_pattern(Order0), Patterns, Encoded),
     encode_scope(Scope, S0, S1),
     (   option_limit(Options, N) -> true ; N = -1 ),
     option_order(Options, Keys),
-    maplist(encode_key(Vars), Keys, Order),
+    maplist(encode_key(Order0), Keys, Order),
     length(Vars, NVars),
     neem_store:py_match([Neem, S0, S1, N, NVars, Order|Encoded], Reply),
     reply_rows(Reply, Rows),
     member(Vars, Rows).
+
+%   select(Keep): only the variables of Keep come back (the bridge returns the first NVars
+%   variables of the numbering, so these are numbered first); the others are existential.
+selected_first(Options, All, Vars, Numbering) :-
+    (   memberchk(select(Keep), Options)
+    ->  term_variables(Keep, KeepVars),
+        include(occurs_in(All), KeepVars, Vars),
+        exclude(occurs_in(Vars), All, Rest),
+        append(Vars, Rest, Numbering)
+    ;   Vars = All,
+        Numbering = All
+    ).
+
+occurs_in(Vars, V) :- member(X, Vars), X == V, !.
 
 option_limit(Options, N) :-
     memberchk(limit(N), Options),

@@ -30,6 +30,9 @@ COMPOSE_FILE = DOCKER / "docker-compose.yml"
 ENV_EXAMPLE = DOCKER / ".env.example"
 DOCKERFILE = DOCKER / "Dockerfile"
 DOCS = ROOT / "docs" / "docker.md"
+#: At the build context's root, where the legacy builder reads it too (BuildKit also reads a
+#: docker/Dockerfile.dockerignore, the legacy builder never does).
+DOCKERIGNORE = ROOT / ".dockerignore"
 SERVICES = {"mongo", "load-samples", "oracle"}
 ORACLE_SERVICES = {"load-samples", "oracle"}
 VOLUME = "mongo-data"
@@ -77,13 +80,20 @@ def final_stage() -> list[tuple[str, str]]:
 def test_compose_names_the_services_volume_and_image(compose):
     services = compose["services"]
     assert set(services) == SERVICES
-    assert services["mongo"]["image"] == "mongo:7"
+    assert services["mongo"]["image"] == "${MONGO_IMAGE:-mongo:7}"
     assert f"{VOLUME}:/data/db" in services["mongo"]["volumes"]
     assert VOLUME in compose["volumes"]
     assert "./mongo-init:/docker-entrypoint-initdb.d:ro" in services["mongo"]["volumes"]
     for name in ORACLE_SERVICES:
-        assert services[name]["build"] == {"context": "..", "dockerfile": "docker/Dockerfile"}
         assert services[name]["image"] == "neem-oracle:dev"
+
+
+def test_one_image_build_serves_both_oracle_services(compose):
+    services = compose["services"]
+    builders = [name for name, spec in services.items() if "build" in spec]
+    assert builders == ["load-samples"]
+    assert services["load-samples"]["build"] == {"context": "..", "dockerfile": "docker/Dockerfile"}
+    assert services["oracle"]["pull_policy"] == "never"  # the image just built, never a registry's
 
 
 def test_mongo_has_auth_and_a_mongosh_ping_healthcheck(compose):
@@ -109,7 +119,7 @@ def test_startup_order_mongo_healthy_then_samples_then_oracle(compose):
     assert services["oracle"]["depends_on"]["load-samples"] == {"condition": "service_completed_successfully"}
     loader = services["load-samples"]
     assert loader["entrypoint"] == ["python", "/app/load-samples.py"]
-    assert loader["command"] == ["ontology/sample-chains.jsonl"]
+    assert loader["command"] == []  # the sample chains shipped in the package
     assert loader["restart"] == "no"
 
 
@@ -169,10 +179,68 @@ def test_env_example_holds_placeholders_only(env_example):
 
 
 def test_build_context_never_carries_env_files():
-    lines = [line.strip() for line in (DOCKER / "Dockerfile.dockerignore").read_text().splitlines()]
+    lines = [line.strip() for line in DOCKERIGNORE.read_text().splitlines()]
     patterns = [line for line in lines if line and not line.startswith("#")]
     assert patterns[0] == "*", "the build context must be an allow-list"
     assert not [p for p in patterns if p.startswith("!") and ".env" in p]
+
+
+def _ignored(path: str, patterns: list[str]) -> bool:
+    """Docker's .dockerignore rule: the last pattern matching the path or one of its parents wins."""
+    from fnmatch import fnmatchcase
+
+    parts = path.split("/")
+    prefixes = ["/".join(parts[: i + 1]) for i in range(len(parts))]
+    ignored = False
+    for pattern in patterns:
+        negated = pattern.startswith("!")
+        body = pattern[1:] if negated else pattern
+        body = body.rstrip("/").replace("**/", "*")
+        if any(fnmatchcase(prefix, body) for prefix in prefixes):
+            ignored = not negated
+    return ignored
+
+
+def test_legacy_builder_keeps_venv_git_and_env_out():
+    assert not (DOCKER / "Dockerfile.dockerignore").exists(), "BuildKit would prefer it; keep one file"
+    patterns = [l.strip() for l in DOCKERIGNORE.read_text().splitlines() if l.strip() and not l.startswith("#")]
+    for secret in (".venv/bin/python", ".git/HEAD", "docker/.env", "docker/.env.example", "build/lib/x.py"):
+        assert _ignored(secret, patterns), secret
+    for needed in ("pyproject.toml", "setup.py", "python/oracle/cli.py", "ontology/mapping.yaml",
+                   "prolog/neem_store.pl", "LICENSE", "docker/load-samples.py"):
+        assert not _ignored(needed, patterns), needed
+    assert _ignored("python/oracle/__pycache__/cli.cpython-311.pyc", patterns)
+
+
+def test_without_store_the_stack_commands_use_neem_mongo_uri(monkeypatch, tmp_path, capsys):
+    """What the loader and the oracle service run, natively: `import` then `neems` with only
+    NEEM_MONGO_URI set write to and read from that server (mongomock-ng), never a SQLite file."""
+    mongomock_ng = pytest.importorskip("mongomock_ng")
+    from oracle.cli import main
+    from oracle.paths import data_dir
+
+    client = mongomock_ng.MongoClient()
+    client.close = lambda: None  # each command closes its store; the double keeps its data
+    monkeypatch.setattr("pymongo.MongoClient", lambda *a, **kw: client)
+    monkeypatch.setenv("NEEM_MONGO_URI", "mongodb://neem:pw@mongo:27017/roslog?authSource=admin")
+    monkeypatch.setenv("XDG_DATA_HOME", str(tmp_path / "data"))
+    monkeypatch.setenv("HOME", str(tmp_path))
+    chains = tmp_path / "two.jsonl"
+    chains.write_text("".join((data_dir() / "sample-chains.jsonl").read_text().splitlines(True)[:2]))
+    assert main(["import", str(chains)]) == 0
+    capsys.readouterr()
+    assert main(["neems", "--json"]) == 0
+    (row,) = json.loads(capsys.readouterr().out)
+    assert row["actions"] >= 2 and "roslog" in client.list_database_names()
+    assert any(name.endswith("_triples") for name in client["roslog"].list_collection_names())
+    assert not (tmp_path / "data").exists()
+
+
+def test_loader_defaults_to_the_packaged_sample_chains(loader, capsys):
+    from oracle.paths import data_dir
+
+    assert loader.main([], client_factory=fake_client(["one"])) == 0
+    assert loader.calls == [[sys.executable, "-m", "oracle", "import", str(data_dir() / "sample-chains.jsonl")]]
 
 
 # --- Dockerfile ---------------------------------------------------------------------------------
@@ -192,14 +260,14 @@ def test_dockerfile_base_packages_and_entrypoint():
 
 def test_dockerfile_copies_exist_and_are_in_the_build_context():
     allowed = {
-        line[1:].rstrip("/") for line in (DOCKER / "Dockerfile.dockerignore").read_text().split() if line.startswith("!")
+        line[1:].rstrip("/") for line in DOCKERIGNORE.read_text().split() if line.startswith("!")
     }
     for word, args in dockerfile_instructions():
         if word != "COPY" or args.startswith("--from"):
             continue
         *sources, _dest = args.split()
         for source in sources:
-            assert source.rstrip("/") in allowed, f"{source} is excluded by Dockerfile.dockerignore"
+            assert source.rstrip("/") in allowed, f"{source} is excluded by .dockerignore"
             if source.rstrip("/") in {"ontology", "prolog"}:
                 continue  # data folders filled by other issues; may be empty in a fresh tree
             assert (ROOT / source).exists(), source
@@ -292,6 +360,24 @@ def test_init_script_creates_app_user_and_one_collection_once(tmp_path):
         ["insert", "roslog.one",
          {"v_scope": {"time": {"since": {"$numberDecimal": "0"}, "until": {"$numberDecimal": "Infinity"}}}}],
     ]
+
+
+def test_init_script_runs_in_the_legacy_mongo_shell_of_mongo_4_4(tmp_path):
+    """mongo:4.4 (CPUs without AVX) runs init scripts with the legacy shell: no process.env, but _getEnv."""
+    node = shutil.which("node")
+    if node is None:
+        pytest.skip("node is not installed here (mongosh scripts are JavaScript)")
+    legacy = FAKE_MONGOSH.replace("process: { env: JSON.parse(process.argv[3]) },",
+                                  "_getEnv: (k) => JSON.parse(process.argv[3])[k] || \"\",")
+    assert legacy != FAKE_MONGOSH
+    harness = tmp_path / "legacy.js"
+    harness.write_text(legacy)
+    env = {"NEEM_DB": "roslog", "NEEM_APP_USER": "neem", "NEEM_APP_PASSWORD": "pw"}
+    done = subprocess.run([node, str(harness), str(DOCKER / "mongo-init" / "10-neem-app.js"), json.dumps(env)],
+                          capture_output=True, text=True, timeout=30)
+    assert done.returncode == 0, done.stderr
+    assert json.loads(done.stdout)[0] == ["createUser", "admin", {"user": "neem", "pwd": "pw",
+                                                                  "roles": [{"role": "readWrite", "db": "roslog"}]}]
 
 
 def test_init_script_refuses_without_app_credentials(tmp_path):
@@ -441,6 +527,7 @@ def test_make_n_up_prints_the_compose_command():
     done = subprocess.run([MAKE, "-n", "up"], cwd=ROOT, capture_output=True, text=True, timeout=30)
     assert done.returncode == 0, done.stderr
     assert "docker compose -f docker/docker-compose.yml --env-file docker/.env up -d" in done.stdout
+    assert done.stdout.rstrip().endswith("run --rm --no-deps oracle neems")  # the NEEM list comes last
     down = subprocess.run([MAKE, "-n", "down"], cwd=ROOT, capture_output=True, text=True, timeout=30)
     assert "docker compose -f docker/docker-compose.yml --env-file" in down.stdout and " down" in down.stdout
 
@@ -475,3 +562,5 @@ def test_docs_name_what_the_stack_defines(compose, env_example):
         assert name in docs, name
     for target in ("make up", "make down", "make test-mongo", "cp docker/.env.example docker/.env"):
         assert target in docs, target
+    for note in ("MONGO_PORT=27018", "AVX", "MONGO_IMAGE=mongo:4.4"):
+        assert note in docs, note

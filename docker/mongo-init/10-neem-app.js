@@ -1,10 +1,14 @@
-// First start only (empty mongo-data volume): the image runs this with mongosh as the root user.
+// First start only (empty mongo-data volume): the image runs this with mongosh (mongo:4.4: mongo) as root.
 // 1. the account the oracle services use: readWrite on the NEEM database only (authSource admin);
 // 2. KnowRob 2.x's `one` collection: every mongolog query is an aggregate on it, and a read-only
 //    KnowRob does not create it. Same document as KnowRob's initialize_one_db (doubles are Decimal128).
-const dbName = process.env.NEEM_DB || "roslog";
-const appUser = process.env.NEEM_APP_USER;
-const appPassword = process.env.NEEM_APP_PASSWORD;
+// mongosh has process.env; the legacy `mongo` shell of mongo:4.4 (for CPUs without AVX) has _getEnv.
+const env = typeof process !== "undefined" && process.env
+  ? process.env
+  : { NEEM_DB: _getEnv("NEEM_DB"), NEEM_APP_USER: _getEnv("NEEM_APP_USER"), NEEM_APP_PASSWORD: _getEnv("NEEM_APP_PASSWORD") };
+const dbName = env.NEEM_DB || "roslog";
+const appUser = env.NEEM_APP_USER;
+const appPassword = env.NEEM_APP_PASSWORD;
 if (!appUser || !appPassword) {
   throw new Error("NEEM_APP_USER and NEEM_APP_PASSWORD must be set in docker/.env");
 }

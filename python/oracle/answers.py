@@ -3,14 +3,15 @@ prolog/answers.pl as the bridge hands them over (JSON dicts)."""
 
 from __future__ import annotations
 
-from datetime import datetime
 from typing import Any
+
+from oracle.timeline import clock
 
 
 def _when(seconds: float | None) -> str:
     if seconds is None:
         return "lately"
-    return datetime.fromtimestamp(seconds).strftime("%Y-%m-%d %H:%M")
+    return clock(seconds).strftime("%Y-%m-%d %H:%M")
 
 
 def _ranked(items: list[dict[str, Any]]) -> str:

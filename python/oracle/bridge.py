@@ -30,10 +30,15 @@ from pathlib import Path
 from typing import Any
 
 from oracle.errors import PrologError, StoreError
+from oracle.paths import prolog_dir
 from oracle.store import Cmp, Scope, Store, TriplePattern, Triple, Var
 
-PROLOG_DIR = Path(__file__).resolve().parents[2] / "prolog"
-MODULES = ("neem_store", "knowrob_model", "odb_model", "answers")
+PROLOG_DIR = prolog_dir()
+#: The Prolog modules under PROLOG_DIR, in load order (KnowRob's layout: lang/, model/; the
+#: odb extension in odb/); each is imported into ``user`` so a typed query sees its exports.
+MODULES = ("neem_store", "lang/triple", "lang/scope", "lang/query", "lang/holds", "lang/temporal",
+           "model/rdfs", "model/event", "model/object", "model/situation",
+           "odb/names", "odb/calls", "odb/events", "odb/decisions", "odb/history", "answers", "batch_toplevel")
 #: Rows per chunk handed to Prolog by one solution of py_match/2.
 CHUNK = 5000
 
@@ -59,6 +64,9 @@ def _plain(value: Any) -> Any:
 
 def quote_atom(text: str) -> str:
     """``text`` as a quoted Prolog atom in pure ASCII (every other character escaped)."""
+    if text.isascii() and text.isprintable():
+        # The common case (IRIs), per value of every row a query returns: no loop in Python.
+        return "'" + text.replace("\\", "\\\\").replace("'", "\\'") + "'"
     out = ["'"]
     for ch in text:
         code = ord(ch)
@@ -267,7 +275,7 @@ class Bridge:
                 self.set_ontology(ontology)
 
     def set_ontology(self, ontology: Any) -> None:
-        """Tell odb_model the ontology's namespace and which role of each task is which."""
+        """Tell odb_names the ontology's namespace and which role of each task is which."""
         from pyswip import Atom
 
         rows = [
@@ -276,8 +284,8 @@ class Bridge:
         ]
         with _LOCK:
             self._with_request([Atom(ontology.namespace), rows],
-                               "neem_store:py_request(Q), Q = [NS, Rows], odb_model:odb_set_namespace(NS),"
-                               " forall(member([T, Ta, R], Rows), odb_model:odb_set_task_roles(T, Ta, R))")
+                               "neem_store:py_request(Q), Q = [NS, Rows], odb_names:odb_set_namespace(NS),"
+                               " forall(member([T, Ta, R], Rows), odb_names:odb_set_task_roles(T, Ta, R))")
 
     def _with_request(self, request: list[Any], query: str) -> list[dict[str, Any]]:
         with _LOCK:
@@ -294,6 +302,23 @@ class Bridge:
         with _LOCK:
             _STATE["bridge"] = self
             return [{k: _python_value(v) for k, v in row.items()} for row in _run(text, maxresult)]
+
+    def run_batch(self, max_answers: int | None = None) -> int:
+        """Answer the queries on standard input (a pipe or file) without asking for more; every
+        answer, or the first ``max_answers`` of each. Returns 1 when a query raised an error."""
+        limit = "inf" if max_answers is None else str(int(max_answers))
+        return int(self.query(f"batch_toplevel:batch_queries(user_input, {limit}, S)")[0]["S"])
+
+    def run_goal(self, text: str) -> int:
+        """Run a goal once as ``swipl -g`` does: 0 on success, 1 on failure, 2 on an error."""
+        rows = self._with_request([text], "neem_store:py_request(R), R = [G], batch_toplevel:batch_goal(G, S)")
+        return int(rows[0]["S"])
+
+    def ask(self, query: str, request: list[Any]) -> list[dict[str, Any]]:
+        """Solutions of ``query``, which reads its values with ``neem_store:py_request/1``:
+        values a client sent travel as terms and never become query text."""
+        with _LOCK:
+            return [{k: _python_value(v) for k, v in row.items()} for row in self._with_request(request, query)]
 
     def answer(self, request: list[Any]) -> dict[str, Any]:
         """answers:answer_json/1 on a request; values travel as terms."""
@@ -327,13 +352,13 @@ class Bridge:
         return json.loads(text.decode("utf-8") if isinstance(text, bytes) else text)
 
     def history(self) -> list[dict[str, Any]]:
-        """odb_model:situation_history/1 in one crossing: every executed action in begin order
+        """odb_history:situation_history/1 in one crossing: every executed action in begin order
         as ``{"begin", "end", "call", "part", "available"}`` (calls in the chain syntax)."""
-        return self._json("odb_model:situation_history_json")
+        return self._json("odb_history:situation_history_json")
 
     def latest_situation(self) -> dict[str, Any] | None:
         """The latest imagined situation as ``{"begin", "available"}``, or None."""
-        return self._json("odb_model:latest_situation_json")
+        return self._json("odb_history:latest_situation_json")
 
     def solutions(self, goal: str, variables: Sequence[str], *, stepwise: bool = False) -> list[tuple[Any, ...]]:
         """All solutions of a kb_call goal (its text) as tuples of the named variables."""

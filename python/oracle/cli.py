@@ -19,13 +19,15 @@ from oracle.errors import NeemOracleError
 COMMAND_MODULES = (
     "ontology",
     "store",
-    "logging",
+    "importing",
     "prolog",
     "rank",
-    "evaluation",
+    "datasets",
     "evaluate",
     "demo",
     "bench",
+    "serve",
+    "simulate",
 )
 
 

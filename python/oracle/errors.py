@@ -11,6 +11,10 @@ class OntologyError(NeemOracleError):
     """A malformed odb, mapping or ontology file; the message names the file and entry."""
 
 
+class WorldError(NeemOracleError):
+    """A malformed kitchen world file (objects, tasks, rules); the message names the file and entry."""
+
+
 class StoreError(NeemOracleError):
     """A NEEM store cannot be opened, read or written as asked."""
 

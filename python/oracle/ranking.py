@@ -1,6 +1,6 @@
 """The oracle in the system: history from the NEEM (through Prolog), ranking, write-back.
 
-NEEM -> ``odb_model:situation_history`` (one crossing) -> Steps -> the chosen predictor -> ranking
+NEEM -> ``odb_history:situation_history`` (one crossing) -> Steps -> the chosen predictor -> ranking
 -> ``NeemLogger.preference`` (an imagined preference the Prolog answers read).
 
 The answers read the written rank (1 = best) and show the score; for every predictor the score is
@@ -13,18 +13,21 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from datetime import datetime
+from typing import TYPE_CHECKING
 
 from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.predictors import DEFAULT, make_predictor
-from oracle.algorithm.situation import Ranking
+from oracle.algorithm.records import Ranking
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError, NeemOracleError
-from oracle.evaluation.replay import opening_tasks
-from oracle.logger import NeemLogger
+from oracle.calls import call_of, check_call, opening_tasks, option_of, steps_from_history
+from oracle.neem.query import recorded_part_of_day
+from oracle.neem.writer import NeemLogger
 from oracle.ontology import OdbOntology
-from oracle.situations import call_of, check_call, option_of, steps_from_history
-from oracle.timeofday import time_of_day
+from oracle.timeline import Instant, now, part_of_day_at
+
+if TYPE_CHECKING:
+    from oracle.bridge import Bridge
 
 #: Score written for options without similar history (the store and JSON need a finite number).
 NO_HISTORY_SCORE = 1e9
@@ -50,29 +53,32 @@ def finite(score: float) -> float:
 
 
 def rank_neem(
-    bridge,  # oracle.bridge.Bridge  # noqa: ANN001
+    bridge: Bridge,
     ontology: OdbOntology,
     settings: Hyperparameters,
     available: list[str] | None = None,
-    at: float | None = None,
+    at: Instant | None = None,
     write: bool = True,
     method: str = DEFAULT,
 ) -> NeemRanking:
-    """Rank ``available`` (chain syntax) at ``at``, or else the NEEM's latest imagined situation."""
+    """Rank ``available`` (chain syntax) at ``at`` (default: now), or else the NEEM's latest
+    imagined situation, at the part of day recorded with it (oracle.timeline's rule)."""
     if available:
         calls = [parse_call(text) for text in available]
         for call in calls:
             check_call(ontology, call, "available")
-        when = at if at is not None else time.time()
+        instant = at if at is not None else now()
     else:
         latest = bridge.latest_situation()
         if latest is None:
             raise NeemOracleError(f"NEEM {bridge.neem_id!r} has no imagined situation to rank; give the available calls")
         calls = [parse_call(text) for text in latest["available"]]
-        when = float(latest["begin"])
+        begin = float(latest["begin"])
+        recorded = recorded_part_of_day(bridge.store, bridge.neem_id, ontology.vocab, begin)
+        instant = Instant(begin, recorded or part_of_day_at(begin))
+    when, part = instant.seconds, instant.part_of_day
     steps = steps_from_history(ontology, [row for row in bridge.history() if float(row["begin"]) < when])
     oracle = make_predictor(method, ontology.distances(), opening_tasks(ontology), settings).fit(steps)
-    part = time_of_day(datetime.fromtimestamp(when))
     started = time.perf_counter()
     ranking = oracle.rank([option_of(ontology, c) for c in calls], part)
     elapsed = (time.perf_counter() - started) * 1000
@@ -80,7 +86,7 @@ def rank_neem(
     if write:
         logger = NeemLogger(bridge.store, ontology, bridge.neem_id)
         try:
-            written = logger.preference([(call_of(ontology, t.option), finite(t.score)) for t in ranking], when)
+            written = logger.preference([(call_of(ontology, t.option), finite(t.score)) for t in ranking], instant)
         except LoggingError as error:
             note = f"ranking not written: {error}"
     return NeemRanking(bridge.neem_id, when, part, len(steps), ranking,

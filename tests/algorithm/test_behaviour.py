@@ -16,7 +16,7 @@ from oracle.algorithm.params import PRESETS, Hyperparameters
 from oracle.algorithm.reference import (
     ReferenceOracle, importance_weights, overall_distance, situation_distance,
 )
-from oracle.algorithm.situation import Option, Step, canonical_options
+from oracle.algorithm.records import Option, Step, canonical_options
 from oracle.algorithm.tree import occurrence_value, successor_tree
 from oracle.errors import OntologyError, SettingsError
 

@@ -16,7 +16,7 @@ from oracle.algorithm.predictors import DEFAULT, PREDICTORS, make_predictor, pre
 from oracle.algorithm.reference import overall_distance
 from oracle.algorithm.routine import RoutineOracle, RoutineTask
 from oracle.algorithm.similarity import class_rows, option_distances
-from oracle.algorithm.situation import Option, Step
+from oracle.algorithm.records import Option, Step
 from oracle.errors import SettingsError
 from oracle.ontology.distance import DistanceMatrix
 
@@ -138,8 +138,8 @@ def test_vectorised_algorithm_2_equals_the_reference(a, b):
 
 def test_self_tuning_follows_the_variant_that_predicted_the_user_best():
     steps = synthetic_history(200, seed=6)
-    model = RoutineOracle(random_matrix(6), orders=(0, 3), temperatures=(1.0,)).fit(steps)
-    assert model.variants_ == (("idle", 0, 1.0), ("idle", 3, 1.0))
+    model = RoutineOracle(random_matrix(6), orders=(0, 3), temperatures=(1.0,), lowest_orders=(0,)).fit(steps)
+    assert model.variants_ == (("idle", 0, 1.0, 0), ("idle", 3, 1.0, 0))
     assert model.weights_.hits[1] > model.weights_.hits[0]  # the routine is sequential
     assert model.weights_.weights("leader").tolist() == [0.0, 1.0]
     assert model.weights_.weights("fixed").tolist() == [1.0, 0.0]
@@ -152,7 +152,7 @@ def test_parameters_follow_the_estimator_contract():
     with pytest.raises(SettingsError, match="unknown parameter"):
         model.set_params(nope=1)
     for bad in ({"orders": ()}, {"temperatures": (0.0,)}, {"streams": ("sideways",)}, {"tuning": "best"},
-                {"penalty": -1.0}, {"context_depth": 1.5}):
+                {"penalty": -1.0}, {"context_depth": 1.5}, {"lowest_orders": (2,)}):
         with pytest.raises(SettingsError):
             RoutineOracle(kitchen(), **bad).fit([])
     fitted = RoutineOracle(kitchen()).fit([])

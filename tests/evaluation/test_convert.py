@@ -161,3 +161,39 @@ def test_cli_convert(tmp_path):
     bad = subprocess.run([sys.executable, "-m", "oracle", "convert", "egtea", str(tmp_path / "absent"), "--out", str(tmp_path)],
                          capture_output=True, text=True, timeout=120)
     assert bad.returncode == 1 and bad.stderr.startswith("error:")
+
+
+# --- converted chains import and evaluate ----------------------------------------------------------
+def _import_and_evaluate(out: Path, tmp_path: Path) -> tuple[int, str]:
+    from oracle.cli import main
+
+    onto = ["--odb", str(out / "odb"), "--mapping", str(out / "mapping.yaml")]
+    assert main(["import", str(out / "chains.jsonl"), "--store", str(tmp_path / "s.sqlite"), *onto]) == 0
+    assert main(["evaluate", str(out / "chains.jsonl"), *onto]) == 0
+    from oracle.neem.query import summarize_neem as summarize
+    from oracle.store import open_store
+
+    with open_store(tmp_path / "s.sqlite") as store:
+        (info,) = store.neems()
+        return summarize(store, info.id).actions, info.id
+
+
+def test_overlapping_kasteren_firings_import(tmp_path, capsys):
+    """Sensor firings overlap (the fridge is still open when the cups cupboard opens): the chains
+    keep them as they happened, and the logger takes overlapping actions."""
+    folder = fake_kasteren(tmp_path / "k")
+    path = folder / "original" / "kasterenSenseData.txt"
+    path.write_text(path.read_text(encoding="latin-1") + "25-Feb-2008 09:49:29\t25-Feb-2008 09:50:30\t7\t1\n",
+                    encoding="latin-1")
+    convert_kasteren.convert(folder, tmp_path / "out")
+    rows = check_output(tmp_path / "out")
+    assert rows[1].end > rows[2].time  # the overlap is in the chains, not smoothed away
+    actions, _ = _import_and_evaluate(tmp_path / "out", tmp_path)
+    assert actions >= 4
+
+
+@needs_kasteren
+def test_kasteren_house_a_imports_and_evaluates(tmp_path, capsys):
+    convert_kasteren.convert(KASTEREN, tmp_path / "out")
+    actions, neem = _import_and_evaluate(tmp_path / "out", tmp_path)
+    assert neem == "kasteren-house-a" and actions >= 1319  # every firing, plus idle actions

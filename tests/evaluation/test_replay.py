@@ -4,7 +4,7 @@ from datetime import datetime, timedelta
 import pytest
 
 from oracle.algorithm.params import Hyperparameters
-from oracle.algorithm.situation import Option, Step
+from oracle.algorithm.records import Option, Step
 from oracle.cli import main
 from oracle.errors import OntologyError
 from oracle.evaluation.baselines import Bigram, MostFrequent, NGram, chance_hit

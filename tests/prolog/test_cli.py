@@ -46,3 +46,27 @@ def test_toplevel_with_piped_stdin(tmp_path, onto):
                          capture_output=True, text=True, timeout=60)
     assert out.returncode == 0, out.stderr
     assert "N = " in out.stdout and "X = 'it\\'s'" in out.stdout
+
+
+def _prolog(path, *args, stdin=""):
+    return subprocess.run([sys.executable, "-m", "oracle", "prolog", "--store", path, *args], input=stdin,
+                          capture_output=True, text=True, timeout=60)
+
+
+def test_piped_queries_print_every_answer_and_errors_exit_non_zero(tmp_path, onto):
+    path = _store(tmp_path, onto)
+    out = _prolog(path, stdin="member(X, [a, b, c]).\nY = 1.\n")
+    assert out.returncode == 0, out.stderr
+    assert "X = a ;\nX = b ;\nX = c.\nY = 1.\n" in out.stdout and "Unknown action" not in out.stdout + out.stderr
+    limited = _prolog(path, "--answers", "1", "-q", stdin="member(X, [a, b, c]).\n")
+    assert limited.stdout == "X = a.\n" and limited.stderr == ""
+    bad = _prolog(path, "-q", stdin="no_such_predicate(1).\nZ = 2.\n")
+    assert bad.returncode == 1 and "no_such_predicate/1" in bad.stderr and "Z = 2." in bad.stdout
+
+
+def test_prolog_g_runs_goals_like_swipl(tmp_path, onto):
+    path = _store(tmp_path, onto)
+    ok = _prolog(path, "-q", "-g", "aggregate_all(count, is_action(_), N), format('~w actions~n', [N])")
+    assert ok.returncode == 0 and ok.stdout.strip().endswith("actions") and ok.stderr == ""
+    assert _prolog(path, "-q", "-g", "fail").returncode == 1
+    assert _prolog(path, "-q", "-g", "throw(oops)").returncode == 2

@@ -5,7 +5,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from oracle.chains import TaskCall, parse_call
-from oracle.errors import ChainSyntaxError, NeemOracleError, OntologyError
+from oracle.errors import ChainSyntaxError, NeemOracleError, WorldError
 from oracle.world.rules import default_world, load_world
 from oracle.world.state import HAND
 
@@ -116,9 +116,9 @@ def test_appliances_toggle(world):
 
 
 def test_unknown_names_and_arity_are_rejected(world):
-    with pytest.raises(OntologyError, match="no object 'purple_mug'"):
+    with pytest.raises(WorldError, match="no object 'purple_mug'"):
         world.apply(world.initial_state(), parse_call("pick(purple_mug)"))
-    with pytest.raises(OntologyError, match="no task 'juggle'"):
+    with pytest.raises(WorldError, match="no task 'juggle'"):
         world.apply(world.initial_state(), parse_call("juggle(apple)"))
     with pytest.raises(ChainSyntaxError, match="takes 2"):
         world.apply(world.initial_state(), parse_call("place(apple)"))
@@ -208,13 +208,13 @@ BAD = [
 def test_bad_world_files_name_the_file_and_entry(tmp_path, text, message):
     path = tmp_path / "w.yaml"
     path.write_text(text)
-    with pytest.raises(OntologyError, match=message) as info:
+    with pytest.raises(WorldError, match=message) as info:
         load_world(path)
     assert str(path) in str(info.value)
 
 
 def test_missing_world_file(tmp_path):
-    with pytest.raises(OntologyError, match="cannot read"):
+    with pytest.raises(WorldError, match="cannot read"):
         load_world(tmp_path / "absent.yaml")
 
 

@@ -10,7 +10,7 @@ from oracle.algorithm.params import PRESETS, Hyperparameters, load_settings, pre
 from oracle.algorithm.predictors import DEFAULT, PREDICTORS, THESIS, make_predictor
 from oracle.algorithm.reference import ReferenceOracle
 from oracle.algorithm.routine import RoutineOracle, RoutineTask
-from oracle.algorithm.situation import Option, RankedTask, Ranking, Situation, Step, TreeNode
+from oracle.algorithm.records import Option, RankedTask, Ranking, Situation, Step, TreeNode
 
 __all__ = ["PreferenceOracle", "ReferenceOracle", "RoutineOracle", "RoutineTask", "make_predictor", "PREDICTORS",
            "DEFAULT", "THESIS", "Hyperparameters", "PRESETS", "preset", "load_settings",

@@ -26,9 +26,9 @@ from oracle.algorithm.params import NAMES, Hyperparameters, OracleParams
 from oracle.algorithm.reference import (
     Candidate, assemble_ranking, class_row, importance_weights, offered_options,
 )
-from oracle.algorithm.situation import Option, Ranking, Step, option_key
+from oracle.algorithm.records import Option, Ranking, Step, option_key
 from oracle.errors import SettingsError
-from oracle.timeofday import TIME_OF_DAY_NAMES
+from oracle.timeline import TIME_OF_DAY_NAMES
 
 _TOD = {name: code for code, name in enumerate(TIME_OF_DAY_NAMES)}
 

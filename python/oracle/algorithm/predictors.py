@@ -17,7 +17,7 @@ from typing import Any, Protocol
 from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.routine import RoutineOracle
-from oracle.algorithm.situation import Option, Ranking, Step
+from oracle.algorithm.records import Option, Ranking, Step
 from oracle.errors import SettingsError
 
 

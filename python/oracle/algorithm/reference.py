@@ -15,7 +15,7 @@ from collections.abc import Callable, Iterable, Sequence
 import numpy as np
 
 from oracle.algorithm.params import Hyperparameters, OracleParams
-from oracle.algorithm.situation import (
+from oracle.algorithm.records import (
     Option, RankedTask, Ranking, Step, canonical_options,
 )
 from oracle.algorithm.tree import occurrence_value, successor_tree

@@ -22,10 +22,10 @@ from oracle.algorithm.kernel import START, Rows, context_distance, normalised, s
 from oracle.algorithm.reference import offered_options
 from oracle.algorithm.selftune import VariantWeights
 from oracle.algorithm.similarity import class_rows, option_distances
-from oracle.algorithm.situation import Option, RankedTask, Ranking, Step
+from oracle.algorithm.records import Option, RankedTask, Ranking, Step
 from oracle.algorithm.tree import successor_tree
 from oracle.errors import SettingsError
-from oracle.timeofday import TIME_OF_DAY_NAMES
+from oracle.timeline import TIME_OF_DAY_NAMES
 
 _TOD = {name: code for code, name in enumerate(TIME_OF_DAY_NAMES)}
 STREAMS = ("idle", "through")   # idle steps as tokens / contexts that run across idle steps

@@ -13,7 +13,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from oracle.algorithm.reference import class_row
-from oracle.algorithm.situation import Option
+from oracle.algorithm.records import Option
 
 
 def class_rows(matrix, options: Sequence[Option]) -> np.ndarray:

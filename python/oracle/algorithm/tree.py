@@ -13,7 +13,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from oracle.algorithm.situation import Option, TreeNode
+from oracle.algorithm.records import Option, TreeNode
 
 
 def occurrence_value(total: float, count: int, factor: float) -> float:

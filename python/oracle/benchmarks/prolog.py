@@ -1,4 +1,5 @@
-"""Prolog figures: crossing cost, a 5-goal conjunction compiled vs goal-by-goal, why_not latency."""
+"""Prolog figures: crossing cost, a 5-goal conjunction compiled vs goal-by-goal, why_not latency,
+and the history read / ``rank`` / why_not at 1,000-50,000 actions against a plain SQL floor."""
 
 from __future__ import annotations
 
@@ -14,7 +15,7 @@ STEPWISE_ACTIONS = 1000
 
 
 def _neem(store, onto, n_actions: int, neem_id: str = "bench") -> None:
-    from oracle.logger import NeemLogger
+    from oracle.neem.writer import NeemLogger
 
     log = NeemLogger.create(store, onto, user="bench", neem_id=neem_id, commit_every=500)
     tasks = ["pick(apple)", "pour(thermos, green_mug)", "pick(banana)", "open(fridge)"]
@@ -83,11 +84,192 @@ def run(quick: bool = False) -> list[dict]:
                          "solutions": result[-1], "actions": size})
         bridge = Bridge(store, "bench", onto)
 
-        latest = bridge.query("aggregate_all(max(B), odb_model:decision(situation, _, B), M)")[0]["M"]
+        latest = bridge.query("aggregate_all(max(B), odb_decisions:decision(situation, _, B), M)")[0]["M"]
         for label, at in (("lately", None), ("at a time", latest - 1000)):
             t = _time(lambda: bridge.why_not("pick", ["banana"], at), 3)
             print(f"why_not(pick(banana)) {label:10s}: {t * 1000:8.1f} ms (target < 100 ms)")
             rows.append({"area": "prolog", "name": f"why_not {label}", "ms": t * 1000, "actions": n})
         bridge.close()
+        store.close()
+    rows.extend(history_figures(quick))
+    return rows
+
+
+# -- the history read and rank at NEEM sizes a user meets (issue 15) ---------------------------
+#: NEEM sizes (executed actions) of the history figures; quick runs stop at the first two.
+HISTORY_SIZES = (1000, 10000, 50000)
+
+
+def _spread(samples: list[float]) -> dict[str, float]:
+    ordered = sorted(samples)
+    return {"min": ordered[0], "median": ordered[len(ordered) // 2], "max": ordered[-1]}
+
+
+def _fmt(spread: dict[str, float], unit: float = 1.0, digits: int = 3) -> str:
+    return "/".join(f"{spread[k] * unit:.{digits}f}" for k in ("min", "median", "max"))
+
+
+def _exponent(sizes: list[int], values: list[float]) -> float | None:
+    """The growth exponent k of value ~ size^k between the two largest sizes."""
+    import math
+
+    if len(sizes) < 2 or values[-2] <= 0 or values[-1] <= 0:
+        return None
+    return math.log(values[-1] / values[-2]) / math.log(sizes[-1] / sizes[-2])
+
+
+def _chains_store(tmp: Path, sizes: list[int]) -> Path:
+    """A store with one imported NEEM ``u<N>`` per size: the first N rows of one simulated
+    persona (the world generator's chains, ~20 available tasks per decision), imported through
+    the CLI as a user would."""
+    import subprocess
+    import sys
+
+    days = max(sizes) // 35 + 30
+    gen = tmp / "gen"
+    subprocess.run([sys.executable, "-m", "oracle", "generate", "--personas", "1", "--days", str(days),
+                    "--seed", "3", "--out", str(gen)], check=True, capture_output=True)
+    rows = [line for name in ("tune.jsonl", "test.jsonl") for line in (gen / name).read_text().splitlines() if line]
+    store = tmp / "history.sqlite"
+    for n in sizes:
+        if len(rows) < n:
+            raise RuntimeError(f"the simulation gave {len(rows)} actions, fewer than {n}")
+        path = tmp / f"u{n}.jsonl"
+        with path.open("w") as out:
+            for line in rows[:n]:
+                out.write(line.replace(line[line.index('"user"'):line.index(',', line.index('"user"'))],
+                                       f'"user": "u{n}"') + "\n")
+        subprocess.run([sys.executable, "-m", "oracle", "import", str(path), "--store", str(store),
+                        "--commit-every", "1000"], check=True, capture_output=True)
+    return store
+
+
+def _sql_floor(path: Path, neem: str) -> int:
+    """The rows the history read needs, read with plain SQL (exact properties, no closures, no
+    Prolog): actions with task, type and interval; interval types; imaginings with begin and
+    imagined tasks. Returns the number of rows."""
+    import sqlite3
+
+    conn = sqlite3.connect(path)
+    terms = dict(conn.execute("SELECT value, id FROM terms"))
+    names = {v: k for k, v in terms.items()}
+    iri = {
+        "exec": "http://www.ontologydesignpatterns.org/ont/dul/DUL.owl#executesTask",
+        "hti": "http://www.ontologydesignpatterns.org/ont/dul/DUL.owl#hasTimeInterval",
+        "begin": "http://www.ease-crc.org/ont/SOMA.owl#hasIntervalBegin",
+        "end": "http://www.ease-crc.org/ont/SOMA.owl#hasIntervalEnd",
+        "type": "http://www.w3.org/1999/02/22-rdf-syntax-ns#type",
+        "imag": "https://ontology.dlr.de/soma/odb#imagines_situation",
+        "plan": "http://www.ease-crc.org/ont/SOMA.owl#isPlanFor",
+    }
+    ids = {k: terms.get(v, -1) for k, v in iri.items()}
+    t = f'"{neem}_triples"'
+
+    def drive(alias: str, key: str) -> str:
+        """The driving pattern through the property-closure index, as the store's compiler does."""
+        return f"{alias}.pstar IN (SELECT cid FROM closure_member WHERE value=:{key}) AND {alias}.p NOT IN (1, 2, 3)"
+    queries = [
+        f"SELECT a.s, a.o, ty.o, b.o, e.o FROM {t} a JOIN {t} ty ON ty.s=a.o AND ty.p=:type "
+        f"JOIN {t} i ON i.s=a.s AND i.p=:hti JOIN {t} b ON b.s=i.o AND b.p=:begin "
+        f"JOIN {t} e ON e.s=i.o AND e.p=:end WHERE a.p=:exec AND {drive('a', 'exec')}",
+        f"SELECT i.s, ty.o FROM {t} i JOIN {t} ty ON ty.s=i.o AND ty.p=:type WHERE i.p=:hti AND {drive('i', 'hti')}",
+        f"SELECT b.o, pt.o FROM {t} m JOIN {t} i ON i.s=m.s AND i.p=:hti JOIN {t} b ON b.s=i.o AND b.p=:begin "
+        f"JOIN {t} pl ON pl.s=m.s AND pl.p=:imag JOIN {t} pt ON pt.s=pl.o AND pt.p=:plan"
+        f" WHERE m.p=:hti AND {drive('m', 'hti')}",
+    ]
+    count = 0
+    for sql in queries:
+        for row in conn.execute(sql, ids):
+            [names.get(v, v) for v in row]
+            count += 1
+    conn.close()
+    return count
+
+
+def _timed(fn, repeat: int = 3) -> tuple[dict[str, float], dict[str, float]]:
+    """Wall and CPU seconds of ``repeat`` calls (CPU: this process, Prolog included)."""
+    walls, cpus = [], []
+    for _ in range(repeat):
+        w, c = time.perf_counter(), time.process_time()
+        fn()
+        walls.append(time.perf_counter() - w)
+        cpus.append(time.process_time() - c)
+    return _spread(walls), _spread(cpus)
+
+
+def _rank_cli(store: Path, neem: str, repeat: int = 3) -> tuple[dict[str, float], dict[str, float]]:
+    """``python -m oracle rank`` from start to exit (wall, and the child's CPU seconds)."""
+    import resource
+    import subprocess
+    import sys
+
+    walls, cpus = [], []
+    for _ in range(repeat):
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        start = time.perf_counter()
+        subprocess.run([sys.executable, "-m", "oracle", "rank", "--store", str(store), "--neem", neem,
+                        "--no-write"], check=True, capture_output=True)
+        walls.append(time.perf_counter() - start)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpus.append(after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
+    return _spread(walls), _spread(cpus)
+
+
+def history_figures(quick: bool = False) -> list[dict]:
+    """History read (in process), its SQL floor, ``rank`` start to exit and why_not, per size;
+    the growth exponents; and at 10,000 actions whether the read equals the first
+    implementation's (prolog/fixtures/history_reference.pl)."""
+    from oracle.bridge import Bridge
+    from oracle.ontology import build_ontology
+    from oracle.paths import prolog_dir
+    from oracle.store import open_store
+
+    sizes = list(HISTORY_SIZES[:2] if quick else HISTORY_SIZES)
+    if quick:
+        sizes = [1000, 4000]
+    rows: list[dict] = []
+    onto = build_ontology()
+    medians: dict[str, list[float]] = {"history_cpu": [], "rank_wall": [], "floor": []}
+    with tempfile.TemporaryDirectory() as tmp:
+        start = time.perf_counter()
+        path = _chains_store(Path(tmp), sizes)
+        print(f"imported NEEMs of {', '.join(map(str, sizes))} actions in {time.perf_counter() - start:.0f} s")
+        store = open_store(path)
+        for n in sizes:
+            neem = f"u{n}"
+            bridge = Bridge(store, neem, onto)
+            history: list = []
+            wall, cpu = _timed(lambda: history.append(len(bridge.history())))
+            _, floor = _timed(lambda: _sql_floor(path, neem))
+            ratio = cpu["median"] / floor["median"]
+            print(f"history read, {n:>6,} actions ({history[-1]} rows): wall {_fmt(wall)} s, cpu {_fmt(cpu)} s"
+                  f" (min/median/max); SQL floor cpu {_fmt(floor)} s; cpu/floor {ratio:.1f}x")
+            why_wall, _ = _timed(lambda: bridge.why_not("pick", ["banana"]))
+            print(f"why_not(pick(banana)) in process, {n:>6,} actions: {_fmt(why_wall, 1000, 1)} ms"
+                  f" (target <= {50 if n <= 10000 else 200} ms)")
+            rank_wall, rank_cpu = _rank_cli(path, neem)
+            print(f"rank start to exit, {n:>6,} actions: wall {_fmt(rank_wall)} s, cpu {_fmt(rank_cpu)} s"
+                  f" (target < {1 if n <= 10000 else 4} s)")
+            medians["history_cpu"].append(cpu["median"])
+            medians["rank_wall"].append(rank_wall["median"])
+            medians["floor"].append(floor["median"])
+            rows.append({"area": "prolog", "name": "history read", "actions": n, "rows": history[-1],
+                         "wall_s": wall, "cpu_s": cpu, "sql_floor_s": floor, "floor_ratio": ratio,
+                         "why_not_ms": {k: v * 1000 for k, v in why_wall.items()},
+                         "rank_wall_s": rank_wall, "rank_cpu_s": rank_cpu})
+            if n == 10000:
+                fixture = prolog_dir() / "fixtures" / "history_reference.pl"
+                same = bridge.query(f"use_module('{fixture}'), odb_history:situation_history(New),"
+                                    " history_reference:situation_history_reference(Old),"
+                                    " ( New == Old -> S = true ; S = false )")[0]["S"]
+                print(f"history read at 10,000 actions equals the first implementation's: {same}")
+                rows.append({"area": "prolog", "name": "history equals reference", "actions": n, "equal": same == "true"})
+            bridge.close()
+        for key, label in (("history_cpu", "history read cpu"), ("rank_wall", "rank wall"), ("floor", "SQL floor")):
+            k = _exponent(sizes, medians[key])
+            if k is not None:
+                print(f"growth exponent, {label}, {sizes[-2]:,} -> {sizes[-1]:,}: {k:.2f} (n log n ~ 1.1)")
+                rows.append({"area": "prolog", "name": f"growth {label}", "exponent": k,
+                             "sizes": sizes[-2:]})
         store.close()
     return rows

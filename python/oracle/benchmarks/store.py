@@ -24,15 +24,15 @@ def _calls(onto, rng: random.Random, n: int) -> list[TaskCall]:
     return calls
 
 
-Step = tuple[TaskCall, datetime, datetime, list[TaskCall]]
+WorkItem = tuple[TaskCall, datetime, datetime, list[TaskCall]]
 
 
-def _workload(rng: random.Random, pool: list[TaskCall], count: int) -> list[Step]:
+def _workload(rng: random.Random, pool: list[TaskCall], count: int) -> list[WorkItem]:
     """Actions to log, drawn before the clock starts: (call, begin, end, 20 available calls).
 
     Gaps of 2, 5 or 30 s, so a third of the actions also write an idle action."""
     moment = datetime(2024, 3, 1, 7, 0, tzinfo=timezone.utc)
-    steps: list[Step] = []
+    steps: list[WorkItem] = []
     for _ in range(count):
         end = moment + timedelta(seconds=rng.uniform(3, 15))
         steps.append((rng.choice(pool), moment, end, rng.sample(pool, 20)))
@@ -40,7 +40,7 @@ def _workload(rng: random.Random, pool: list[TaskCall], count: int) -> list[Step
     return steps
 
 
-def _log(logger, steps: list[Step]) -> float:
+def _log(logger, steps: list[WorkItem]) -> float:
     t0 = time.perf_counter()
     for call, begin, end, available in steps:
         logger.action(call, begin, end, available=available)
@@ -48,10 +48,10 @@ def _log(logger, steps: list[Step]) -> float:
     return time.perf_counter() - t0
 
 
-def _python_share(store, onto, tbox, steps: list[Step]) -> float:
+def _python_share(store, onto, tbox, steps: list[WorkItem]) -> float:
     """Microseconds of CPU per action spent outside SQLite's row insert (logger, closures,
     commits of nothing): what the logger and the shared insert path cost, whatever the disk."""
-    from oracle.logger import NeemLogger
+    from oracle.neem.writer import NeemLogger
 
     logger = NeemLogger.create(store, onto, user="bench-python", tbox=tbox, commit_every=100)
     store._insert_triples = lambda *args: None  # this store is not used for anything else
@@ -70,7 +70,7 @@ SETTINGS = (
 
 
 def run(quick: bool = False) -> list[dict]:
-    from oracle.logger import NeemLogger
+    from oracle.neem.writer import NeemLogger
     from oracle.ontology import build_ontology
     from oracle.store.dump import export_neem, load_dump
     from oracle.store.sqlite import SQLiteStore

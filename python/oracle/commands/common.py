@@ -1,21 +1,75 @@
-"""Options several commands share: which ontology to use."""
+"""Options several commands share, each declared once with one help text, and what they resolve to.
+
+A command lists the options it takes (``add_options(parser, STORE, NEEM, JSON)``) and turns the
+parsed values into objects with the helpers below (``ontology_from``, ``connect``,
+``settings_from``, ``moment_from``), so no command imports another command's helpers.
+"""
 
 from __future__ import annotations
 
 import argparse
+from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
-from oracle.errors import NeemOracleError
+from oracle.errors import NeemOracleError, SettingsError, StoreError
+
+if TYPE_CHECKING:  # imported lazily at run time, so that --help stays fast
+    from oracle.algorithm.params import Hyperparameters
+    from oracle.bridge import Bridge
+    from oracle.ontology import OdbOntology
+    from oracle.timeline import Instant
 
 
-def add_ontology_options(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--odb", type=Path, help="odb folder (default: the sample kitchen)")
-    parser.add_argument("--mapping", type=Path, help="mapping YAML (default: the sample kitchen's)")
-    parser.add_argument("--soma", type=Path, help="official SOMA/DUL folder (default: core TBox)")
-    parser.add_argument("--ontology", type=Path, help="OWL file written by 'ontology build' (instead of --odb/--mapping)")
+@dataclass(frozen=True)
+class Option:
+    """One command-line option: its flags and the keyword arguments of ``add_argument``."""
+
+    flags: tuple[str, ...]
+    settings: dict[str, Any] = field(default_factory=dict)
+
+    def add(self, parser: argparse.ArgumentParser) -> None:
+        parser.add_argument(*self.flags, **self.settings)
 
 
-def ontology_from(args: argparse.Namespace):  # noqa: ANN201 - OdbOntology, imported lazily for a fast --help
+STORE = Option(("--store",), {
+    "metavar": "S",
+    "help": "PATH or sqlite:///PATH (embedded, the default lives in the user data dir), "
+            "mongodb://HOST[:PORT][/DB], or 'mongodb' for $NEEM_MONGO_URI",
+})
+NUMBERS = Option(("--numbers",), {
+    "choices": ("decimal128", "double"), "default": "decimal128",
+    "help": "how new numbers are written: Decimal128 (KnowRob 2.x, default) or double (KnowRob 3)",
+})
+NEEM = Option(("--neem",), {"metavar": "ID", "help": "NEEM id (default: the newest NEEM in the store)"})
+JSON = Option(("--json",), {"action": "store_true", "help": "print the result as JSON"})
+AT = Option(("--at",), {
+    "help": "time of the decision: unix seconds or ISO-8601, a time without zone read as UTC "
+            "(default: the latest decision; for rank --available: now)",
+})
+SETTINGS = Option(("--settings",), {
+    "default": "recommended",
+    "help": "settings YAML, 'recommended', or a thesis Fig. 5.5 letter A-N (default: recommended)",
+})
+ODB = Option(("--odb",), {"type": Path, "help": "odb folder (default: the sample kitchen shipped in ontology/)"})
+MAPPING = Option(("--mapping",), {"type": Path, "help": "mapping YAML (default: the sample kitchen's, shipped in ontology/)"})
+SOMA = Option(("--soma",), {"type": Path, "help": "folder with the official SOMA.owl/SOMA-HOME.owl/DUL.owl (default: the core TBox)"})
+ONTOLOGY = Option(("--ontology",), {"type": Path, "help": "OWL file written by 'ontology build' (instead of --odb/--mapping)"})
+METHOD = Option(("--method",), {
+    "metavar": "NAME",
+    "help": "predictor (oracle.algorithm.predictors): routine (the default: exact contexts backed off to ontology "
+            "similarity, self-tuned), routine-fixed, routine-mixture, or thesis (the thesis oracle with --settings)",
+})
+#: The options naming the ontology a command works with (see ``ontology_from``).
+ONTOLOGY_OPTIONS = (ODB, MAPPING, SOMA, ONTOLOGY)
+
+
+def add_options(parser: argparse.ArgumentParser, *options: Option) -> None:
+    for option in options:
+        option.add(parser)
+
+
+def ontology_from(args: argparse.Namespace) -> OdbOntology:
     from oracle.ontology import build_ontology, load_ontology
 
     if getattr(args, "ontology", None) is not None:
@@ -25,19 +79,43 @@ def ontology_from(args: argparse.Namespace):  # noqa: ANN201 - OdbOntology, impo
     return build_ontology(getattr(args, "odb", None), getattr(args, "mapping", None), getattr(args, "soma", None))
 
 
-def add_method_option(parser: argparse.ArgumentParser) -> None:
-    """``--method NAME``: which predictor ranks (oracle.algorithm.predictors)."""
-    from oracle.algorithm.predictors import DEFAULT, PREDICTORS
+def connect(args: argparse.Namespace) -> tuple[Bridge, OdbOntology]:
+    """The Prolog bridge over the NEEM a reading command works on and the ontology it was logged
+    with (``commands.target``: the store is never created, several NEEMs need ``--neem``)."""
+    from oracle.bridge import Bridge
+    from oracle.commands.target import open_target
 
-    parser.add_argument("--method", default=DEFAULT, type=_method_name,
-                        help=f"predictor: {', '.join(PREDICTORS)} (default: {DEFAULT}; 'thesis' is the thesis oracle "
-                             "with --settings)")
+    target = open_target(args)
+    return Bridge(target.store, target.neem_id, target.onto), target.onto
 
 
-def _method_name(text: str) -> str:
-    from oracle.algorithm.predictors import predictor_spec
+def settings_from(text: str) -> Hyperparameters:
+    """A settings YAML path, a preset name, or a Fig. 5.5 letter."""
+    from oracle.algorithm.params import load_settings, preset
 
+    path = Path(text)
+    if path.suffix in (".yaml", ".yml") or path.exists():
+        return load_settings(path)
     try:
-        return predictor_spec(text).name
-    except NeemOracleError as error:
-        raise argparse.ArgumentTypeError(str(error)) from None
+        return preset(text)
+    except SettingsError:
+        raise SettingsError(f"--settings {text!r}: not a YAML file, 'recommended' or a letter A-N") from None
+
+
+def moment_from(text: str | None) -> Instant | None:
+    """``--at`` as an Instant (oracle.timeline's rule for times without a zone), or None."""
+    from oracle.timeline import TimeValueError, parse_instant
+
+    if text is None:
+        return None
+    try:
+        return parse_instant(text)
+    except TimeValueError as error:
+        raise NeemOracleError(f"--at {error}") from None
+
+
+def method_from(args: argparse.Namespace) -> str:
+    """The predictor name of ``--method`` (default: the registry's); one-line error when unknown."""
+    from oracle.algorithm.predictors import DEFAULT, predictor_spec
+
+    return predictor_spec(getattr(args, "method", None) or DEFAULT).name

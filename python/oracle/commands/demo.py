@@ -11,7 +11,7 @@ from __future__ import annotations
 import argparse
 import time
 
-from oracle.commands.common import add_method_option
+from oracle.commands.common import METHOD, add_options, method_from
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -19,7 +19,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--store", help="store to use (default: the user's embedded SQLite store)")
     parser.add_argument("--days", type=int, default=5, help="days of history to simulate (default 5)")
     parser.add_argument("--seed", type=int, default=3, help="which simulated user (default 3)")
-    add_method_option(parser)
+    add_options(parser, METHOD)
     parser.set_defaults(handler=run)
 
 
@@ -29,7 +29,7 @@ def run(args: argparse.Namespace) -> int:
     from oracle.bridge import Bridge
     from oracle.commands.rank import print_ranking
     from oracle.errors import NeemOracleError
-    from oracle.logger import NeemLogger
+    from oracle.neem.writer import NeemLogger
     from oracle.ontology import build_with_report
     from oracle.ranking import rank_neem
     from oracle.store import open_store
@@ -37,6 +37,7 @@ def run(args: argparse.Namespace) -> int:
     from oracle.world.personas import make_persona
     from oracle.world.rules import load_world
 
+    method = method_from(args)
     if args.days < 1:
         raise NeemOracleError("--days must be at least 1")
     started = time.perf_counter()
@@ -58,7 +59,7 @@ def run(args: argparse.Namespace) -> int:
     print(f"   ({persona.persona})")
 
     bridge = Bridge(store, "demo", onto)
-    result = rank_neem(bridge, onto, Hyperparameters(), method=args.method)
+    result = rank_neem(bridge, onto, Hyperparameters(), method=method)
     print(f"3. what the user may want now (they went on to do {now.action}):")
     print_ranking(result, limit=5)
 

@@ -9,19 +9,18 @@ import sys
 import time
 from pathlib import Path
 
-from oracle.algorithm.params import Hyperparameters, load_settings, preset, save_settings
-from oracle.errors import NeemOracleError, SettingsError
+from oracle.algorithm.params import save_settings
+from oracle.commands.common import (
+    METHOD, ONTOLOGY_OPTIONS, SETTINGS, add_options, method_from, ontology_from, settings_from,
+)
+from oracle.errors import NeemOracleError
 from oracle.evaluation.replay import check_users, load_users, make_methods, replay, stderr_progress, summarize
-from oracle.commands.common import add_method_option, add_ontology_options, ontology_from
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     evaluate = subparsers.add_parser("evaluate", help="replay chains and score the oracle against baselines")
     evaluate.add_argument("chains", type=Path, help="chains JSONL file or a folder of them")
-    add_ontology_options(evaluate)
-    add_method_option(evaluate)
-    evaluate.add_argument("--settings", default="recommended",
-                          help="thesis oracle settings: YAML, 'recommended', or a Fig. 5.5 letter A-N (default: recommended)")
+    add_options(evaluate, *ONTOLOGY_OPTIONS, METHOD, SETTINGS)
     evaluate.add_argument("--baselines", action="store_true",
                           help="also run the thesis oracle (unless it is --method) and every baseline")
     evaluate.add_argument("--ablations", action="store_true", help="also replay the thesis Fig. 5.5 settings A-N")
@@ -33,7 +32,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
     tune = subparsers.add_parser("tune", help="tune the hyperparameters by coordinate search (thesis 4.5)")
     tune.add_argument("chains", type=Path, help="tuning chains JSONL file or folder")
-    add_ontology_options(tune)
+    add_options(tune, *ONTOLOGY_OPTIONS)
     tune.add_argument("--metric", choices=("top1", "top3", "top5"), default="top5")
     tune.add_argument("--budget", type=int, default=40, help="number of replays to spend (default 40)")
     tune.add_argument("--start", default="recommended", help="settings YAML or preset to start from")
@@ -42,24 +41,14 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     tune.set_defaults(handler=run_tune)
 
 
-def settings_from(text: str) -> Hyperparameters:
-    """A settings YAML path, a preset name, or a Fig. 5.5 letter."""
-    path = Path(text)
-    if path.suffix in (".yaml", ".yml") or path.exists():
-        return load_settings(path)
-    try:
-        return preset(text)
-    except SettingsError:
-        raise SettingsError(f"--settings {text!r}: not a YAML file, 'recommended' or a letter A-N") from None
-
-
 def run_evaluate(args: argparse.Namespace) -> int:
+    method = method_from(args)
     ontology = ontology_from(args)
     settings = settings_from(args.settings)
     users = load_users(args.chains)
     check_users(ontology, users, str(args.chains))
     started = time.perf_counter()
-    methods = make_methods(ontology, settings, args.baselines, args.method)
+    methods = make_methods(ontology, settings, args.baselines, method)
     result = replay(ontology, users, methods, args.seed, stderr_progress)
     summary = summarize(result)
     summary["method"] = methods[0].name

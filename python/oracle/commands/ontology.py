@@ -8,7 +8,7 @@ from pathlib import Path
 
 from oracle.errors import OntologyError
 from oracle.ontology import OdbOntology, build_with_report, load_ontology, owl_distance, write_ontology
-from oracle.ontology.builder import DEFAULT_MAPPING, DEFAULT_ODB
+from oracle.commands.common import JSON, MAPPING, ODB, ONTOLOGY, SOMA, add_options
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -16,25 +16,17 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     sub = parser.add_subparsers(dest="ontology_command", metavar="SUBCOMMAND", required=True)
 
     build = sub.add_parser("build", help="odb folder + mapping YAML -> OWL ontology under SOMA/DUL")
-    _source_options(build)
+    add_options(build, ODB, MAPPING, SOMA)
     build.add_argument("--out", type=Path, default=Path("odb.owl"),
                        help="output file; .ttl writes Turtle, anything else RDF/XML (default: odb.owl)")
-    build.add_argument("--json", action="store_true", help="print the summary as JSON")
+    JSON.add(build)
     build.set_defaults(handler=run_build)
 
     distance = sub.add_parser("distance", help="distance between two classes (thesis Algorithm 1)")
     distance.add_argument("a", help="odb name (thermos, pick) or full class IRI")
     distance.add_argument("b", help="odb name or full class IRI")
-    distance.add_argument("--ontology", type=Path, help="OWL file written by 'ontology build' (default: build the sample kitchen)")
-    _source_options(distance)
-    distance.add_argument("--json", action="store_true", help="print the result as JSON")
+    add_options(distance, ONTOLOGY, ODB, MAPPING, SOMA, JSON)
     distance.set_defaults(handler=run_distance)
-
-
-def _source_options(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--odb", type=Path, default=None, help=f"odb folder (default: {DEFAULT_ODB.name} shipped in ontology/)")
-    parser.add_argument("--mapping", type=Path, default=None, help=f"mapping YAML (default: {DEFAULT_MAPPING.name} shipped in ontology/)")
-    parser.add_argument("--soma", type=Path, default=None, help="folder with the official SOMA.owl/SOMA-HOME.owl/DUL.owl (default: the core TBox)")
 
 
 def run_build(args: argparse.Namespace) -> int:

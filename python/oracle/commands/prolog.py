@@ -4,20 +4,31 @@ from __future__ import annotations
 
 import argparse
 import json
-from datetime import datetime
+import sys
+from typing import TYPE_CHECKING
 
-from oracle.commands.common import add_ontology_options, ontology_from
-from oracle.errors import NeemOracleError, StoreError
+from oracle.commands.common import AT, JSON, NEEM, ONTOLOGY_OPTIONS, STORE, add_options, connect, moment_from
+from oracle.errors import NeemOracleError
+
+if TYPE_CHECKING:
+    from oracle.ontology import OdbOntology
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
-    top = subparsers.add_parser("prolog", help="interactive SWI-Prolog toplevel with the NEEM store connected")
+    top = subparsers.add_parser(
+        "prolog", help="SWI-Prolog toplevel with the NEEM store connected (piped queries: every answer)",
+        description="Interactive toplevel on a terminal. Queries piped in are answered one by one with every "
+        "answer (or --answers N), and the exit status is 1 when one raised an error. -g GOAL runs goals as "
+        "'swipl -g GOAL -t halt' does (status 1: a goal failed, 2: it raised an error).")
+    top.add_argument("-g", dest="goals", action="append", metavar="GOAL", help="run GOAL once, then exit (repeatable)")
+    top.add_argument("-q", "--quiet", action="store_true", help="no banner")
+    top.add_argument("--answers", type=int, metavar="N", help="piped queries: print at most N answers each")
     _common(top)
     top.set_defaults(handler=run_toplevel)
 
     why = subparsers.add_parser("why-not", help="why the robot did not do a task (thesis 4.6)")
     why.add_argument("task", help="task call in chain syntax, e.g. 'pick(banana)'")
-    why.add_argument("--at", help="time asked about: ISO-8601 or unix seconds (default: the latest decision)")
+    AT.add(why)
     _common(why)
     why.set_defaults(handler=run_why_not)
 
@@ -32,30 +43,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def _common(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--store", help="store: a SQLite path, sqlite:///PATH or mongodb://... (default: the user's store)")
-    parser.add_argument("--neem", help="NEEM id (default: the newest NEEM in the store)")
-    parser.add_argument("--json", action="store_true", help="print the answer as JSON")
-    add_ontology_options(parser)
+    add_options(parser, STORE, NEEM, JSON, *ONTOLOGY_OPTIONS)
 
 
-def _connect(args: argparse.Namespace, with_ontology: bool = True):  # noqa: ANN202
-    from oracle.bridge import Bridge
-    from oracle.store import open_store
-
-    store = open_store(args.store)
-    neem = args.neem
-    if neem is None:
-        infos = store.neems()
-        if not infos:
-            raise StoreError(f"{store.location}: the store holds no NEEM; log one first")
-        neem = max(infos, key=lambda info: (info.created_at or "", info.id)).id
-    onto = None
-    if with_ontology:
-        onto = ontology_from(args)
-    return Bridge(store, neem, onto), onto
-
-
-def _parse_task(text: str, onto) -> tuple[str, list[str]]:  # noqa: ANN001
+def _parse_task(text: str, onto: OdbOntology) -> tuple[str, list[str]]:
     from oracle.chains import parse_call
 
     call = parse_call(text)
@@ -65,22 +56,23 @@ def _parse_task(text: str, onto) -> tuple[str, list[str]]:  # noqa: ANN001
     return call.task, list(call.args)
 
 
-def _parse_time(text: str | None) -> float | None:
-    if text is None:
-        return None
-    try:
-        return float(text)
-    except ValueError:
-        pass
-    try:
-        return datetime.fromisoformat(text.replace("Z", "+00:00")).timestamp()
-    except ValueError:
-        raise NeemOracleError(f"--at {text!r}: expected ISO-8601 (2024-05-01T08:30) or unix seconds") from None
-
-
 def run_toplevel(args: argparse.Namespace) -> int:
-    bridge, _ = _connect(args)
-    print(f"% NEEM {bridge.neem_id} of {bridge.store.location}; KnowRob predicates loaded (halt. or EOF to leave)")
+    if args.answers is not None and args.answers < 1:
+        raise NeemOracleError("--answers must be at least 1")
+    bridge, _ = connect(args)
+    interactive = not args.goals and sys.stdin.isatty()
+    if not args.quiet:
+        banner = f"% NEEM {bridge.neem_id} of {bridge.store.location}; KnowRob predicates loaded"
+        print(banner + " (halt. or EOF to leave)" if interactive else banner, file=sys.stdout if interactive else sys.stderr)
+    sys.stdout.flush()  # Prolog writes to the same file descriptor
+    if args.goals:
+        for goal in args.goals:
+            status = bridge.run_goal(goal)
+            if status:
+                return status
+        return 0
+    if not interactive:
+        return bridge.run_batch(args.answers)
     bridge.query("prolog")
     return 0
 
@@ -88,9 +80,10 @@ def run_toplevel(args: argparse.Namespace) -> int:
 def run_why_not(args: argparse.Namespace) -> int:
     from oracle.answers import why_not_sentence
 
-    bridge, onto = _connect(args)
+    bridge, onto = connect(args)
     task, objs = _parse_task(args.task, onto)
-    answer = bridge.why_not(task, objs, _parse_time(args.at))
+    at = moment_from(args.at)
+    answer = bridge.why_not(task, objs, None if at is None else at.seconds)
     print(json.dumps(answer, indent=2) if args.json else why_not_sentence(answer))
     return 0
 
@@ -98,7 +91,7 @@ def run_why_not(args: argparse.Namespace) -> int:
 def run_what_next(args: argparse.Namespace) -> int:
     from oracle.answers import what_next_sentence
 
-    bridge, _ = _connect(args)
+    bridge, _ = connect(args)
     answer = bridge.what_next()
     print(json.dumps(answer, indent=2) if args.json else what_next_sentence(answer))
     return 0
@@ -107,7 +100,7 @@ def run_what_next(args: argparse.Namespace) -> int:
 def run_something_else(args: argparse.Namespace) -> int:
     from oracle.answers import something_else_sentence
 
-    bridge, onto = _connect(args)
+    bridge, onto = connect(args)
     if args.task:
         task, objs = _parse_task(args.task, onto)
         answer = bridge.something_else(task, objs)

@@ -5,36 +5,30 @@ from __future__ import annotations
 import argparse
 import json
 import math
-from datetime import datetime
-
-from oracle.commands.common import add_method_option, add_ontology_options
+from oracle.commands.common import AT, JSON, METHOD, NEEM, ONTOLOGY_OPTIONS, SETTINGS, STORE, add_options
+from oracle.timeline import format_clock
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser("rank", help="rank the available tasks and predict the chain (writes the ranking back)")
-    parser.add_argument("--store", help="store: a SQLite path, sqlite:///PATH or mongodb://... (default: the user's store)")
-    parser.add_argument("--neem", help="NEEM id (default: the newest NEEM in the store)")
+    add_options(parser, STORE, NEEM)
     parser.add_argument("--available", nargs="+", metavar="CALL",
                         help="rank these calls (e.g. 'pick(red_mug)') instead of the latest imagined situation")
-    parser.add_argument("--at", help="time of the decision for --available: ISO-8601 or unix seconds (default: now)")
-    add_method_option(parser)
-    parser.add_argument("--settings", default="recommended",
-                        help="thesis oracle settings: YAML, 'recommended' or a Fig. 5.5 letter (default: recommended)")
+    add_options(parser, AT, METHOD, SETTINGS)
     parser.add_argument("--no-write", action="store_true", help="do not write the ranking back into the NEEM")
-    parser.add_argument("--json", action="store_true", help="print the ranking as JSON")
-    add_ontology_options(parser)
+    add_options(parser, JSON, *ONTOLOGY_OPTIONS)
     parser.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    from oracle.commands.evaluate import settings_from
-    from oracle.commands.prolog import _connect, _parse_time
+    from oracle.commands.common import connect, method_from, moment_from, settings_from
     from oracle.ranking import finite, rank_neem
 
     settings = settings_from(args.settings)
-    bridge, onto = _connect(args)
-    at = _parse_time(args.at) if args.at is not None else None
-    result = rank_neem(bridge, onto, settings, args.available, at, write=not args.no_write, method=args.method)
+    method = method_from(args)
+    bridge, onto = connect(args)
+    at = moment_from(args.at)
+    result = rank_neem(bridge, onto, settings, args.available, at, write=not args.no_write, method=method)
     if args.json:
         print(json.dumps({
             "neem": result.neem, "method": result.method, "at": result.at, "time_of_day": result.time_of_day,
@@ -75,7 +69,7 @@ def describe(task) -> str:  # noqa: ANN001 - a RankedTask
 
 
 def print_ranking(result, limit: int | None = None) -> None:  # noqa: ANN001
-    when = datetime.fromtimestamp(result.at).isoformat(timespec="seconds")
+    when = format_clock(result.at)
     print(f"NEEM {result.neem}: {result.history} past actions, decision at {when} ({result.time_of_day}); "
           f"{result.method} ranked {len(result.calls)} options in {result.milliseconds:.2f} ms")
     shown = list(zip(result.ranking, result.calls))[:limit]

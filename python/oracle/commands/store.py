@@ -4,57 +4,42 @@ from __future__ import annotations
 
 import argparse
 import json
-from datetime import datetime, timezone
 from pathlib import Path
 
-from oracle.logger import summarize
+from oracle.commands.common import JSON, NUMBERS, STORE, add_options
+from oracle.neem.query import summarize_neem
 from oracle.store import open_store
+from oracle.timeline import format_clock
 from oracle.store.dump import export_all, export_neem, load_dump
-
-
-def add_store_argument(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument(
-        "--store",
-        metavar="S",
-        help="PATH or sqlite:///PATH (embedded, the default lives in the user data dir), "
-        "mongodb://HOST[:PORT][/DB], or 'mongodb' for $NEEM_MONGO_URI",
-    )
-    parser.add_argument(
-        "--numbers",
-        choices=("decimal128", "double"),
-        default="decimal128",
-        help="how new numbers are written: Decimal128 (KnowRob 2.x, default) or double (KnowRob 3)",
-    )
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     export = subparsers.add_parser("export", help="write NEEMs in the mongodump layout KnowRob's remember/1 reads")
-    add_store_argument(export)
+    add_options(export, STORE, NUMBERS)
     export.add_argument("--neem", metavar="ID", help="the NEEM to export (default: every NEEM, one folder each)")
     export.add_argument("--out", type=Path, required=True, metavar="DIR")
     export.set_defaults(handler=run_export)
 
     load = subparsers.add_parser("load", help="load NEEM dumps (ours or openEASE/KnowRob ones) into the store")
-    add_store_argument(load)
+    add_options(load, STORE, NUMBERS)
     load.add_argument("dir", type=Path, metavar="DIR")
     load.add_argument("--neem", metavar="ID", help="id to load a single NEEM under")
     load.add_argument("--replace", action="store_true", help="replace NEEMs that already exist")
     load.set_defaults(handler=run_load)
 
     neems = subparsers.add_parser("neems", help="list the NEEMs of a store with user, actions and time span")
-    add_store_argument(neems)
-    neems.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    add_options(neems, STORE, NUMBERS, JSON)
     neems.set_defaults(handler=run_neems)
 
     persist = subparsers.add_parser("persist", help="keep a temporary session NEEM under a name")
-    add_store_argument(persist)
+    add_options(persist, STORE, NUMBERS)
     persist.add_argument("--neem", required=True, metavar="ID")
     persist.add_argument("--as", dest="name", required=True, metavar="NAME")
     persist.set_defaults(handler=run_persist)
 
 
 def run_export(args: argparse.Namespace) -> int:
-    with open_store(args.store, number_format=args.numbers) as store:
+    with open_store(args.store, number_format=args.numbers, create=False) as store:
         if args.neem is not None:
             counts = export_neem(store, args.neem, args.out)
             print(f"{args.neem}: {counts['triples']} triples -> {args.out}")
@@ -72,12 +57,12 @@ def run_load(args: argparse.Namespace) -> int:
 
 
 def _iso(seconds: float | None) -> str | None:
-    return None if seconds is None else datetime.fromtimestamp(seconds, timezone.utc).isoformat(timespec="seconds")
+    return None if seconds is None else format_clock(seconds)
 
 
 def run_neems(args: argparse.Namespace) -> int:
-    with open_store(args.store, number_format=args.numbers) as store:
-        rows = [summarize(store, info.id) for info in store.neems()]
+    with open_store(args.store, number_format=args.numbers, create=False) as store:
+        rows = [summarize_neem(store, info.id) for info in store.neems()]
     if args.json:
         print(json.dumps([{**row.__dict__, "begin": _iso(row.begin), "end": _iso(row.end)} for row in rows], indent=2))
         return 0
@@ -93,8 +78,8 @@ def run_neems(args: argparse.Namespace) -> int:
 
 
 def run_persist(args: argparse.Namespace) -> int:
-    with open_store(args.store, number_format=args.numbers) as store:
-        from oracle.logger import persist
+    with open_store(args.store, number_format=args.numbers, create=False) as store:
+        from oracle.neem.lifecycle import persist
 
         info = persist(store, args.neem, args.name)
     print(info.id)

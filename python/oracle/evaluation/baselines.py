@@ -15,7 +15,7 @@ from __future__ import annotations
 from collections import Counter, defaultdict
 from collections.abc import Sequence
 
-from oracle.algorithm.situation import Option, Step
+from oracle.algorithm.records import Option, Step
 
 IDLE_TOKEN = "<idle>"
 

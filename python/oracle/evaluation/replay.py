@@ -3,7 +3,7 @@ the user's earlier actions (thesis 5.3); then the action joins the history.
 
 Rows without an ``available`` set get as candidates every distinct action of that user in the
 input. Candidate sets are shuffled with a generator seeded by user and position, identically for
-every method. A gap of ``IDLE_THRESHOLD_S`` or more between one action's end (its start when the
+every method. A gap of ``oracle.timeline.IDLE_THRESHOLD_S`` or more between one action's end (its start when the
 row has no end) and the next start inserts an odb:IdleTask step into the history (it is a chain delimiter, never a prediction target).
 """
 
@@ -21,15 +21,13 @@ from typing import Protocol
 
 from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.predictors import DEFAULT, THESIS, make_predictor
-from oracle.algorithm.situation import Option, Step
+from oracle.algorithm.records import Option, Step
 from oracle.chains import ChainRow, read_chains
 from oracle.errors import ChainSyntaxError
 from oracle.evaluation.baselines import BASELINES, chance_hit
-from oracle.namespaces import SOMA
 from oracle.ontology import OdbOntology
-from oracle.ontology.vocabulary import IDLE_THRESHOLD_S
-from oracle.situations import check_call, idle_step, option_of
-from oracle.timeofday import time_of_day
+from oracle.calls import check_call, idle_step, opening_tasks, option_of
+from oracle.timeline import is_idle_gap, seconds_of, time_of_day
 
 KS = (1, 3, 5)
 
@@ -42,11 +40,6 @@ class Method(Protocol):
     def rank(self, candidates: Sequence[Option], time_of_day: str | None = None) -> list[Option]: ...
 
     def observe(self, step: Step) -> None: ...
-
-
-def opening_tasks(ontology: OdbOntology) -> frozenset[str]:
-    """Task classes under soma:Opening: their successors are not pruned (thesis Fig. 4.7)."""
-    return frozenset(t.iri for t in ontology.tasks.values() if ontology.taxonomy.is_subclass_of(t.iri, str(SOMA.Opening)))
 
 
 class OracleMethod:
@@ -145,15 +138,14 @@ def replay(
         fallback = list(OrderedDict.fromkeys(option_of(ontology, row.action) for row in rows))
         for method in methods:
             method.reset()
-        previous_time = None
+        previous_end: float | None = None
         for index, row in enumerate(rows):
-            if (row.time is not None and previous_time is not None
-                    and (row.time - previous_time).total_seconds() >= IDLE_THRESHOLD_S):
+            if row.time is not None and is_idle_gap(previous_end, seconds_of(row.time)):
                 idle = idle_step(ontology, row.time)
                 for method in methods:
                     method.observe(idle)
             if row.time is not None:
-                previous_time = row.end if row.end is not None else row.time
+                previous_end = seconds_of(row.end if row.end is not None else row.time)
             truth = convert(row.action)
             if row.available is not None:
                 candidates = list(OrderedDict.fromkeys(convert(call) for call in row.available))

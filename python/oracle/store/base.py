@@ -32,7 +32,7 @@ from oracle.store.model import (
 )
 
 #: The logical collections of a NEEM, in KnowRob's order (``mng_client:collection_names``).
-KINDS: tuple[str, ...] = ("triples", "annotations", "tf", "inferred")
+COLLECTION_KINDS: tuple[str, ...] = ("triples", "annotations", "tf", "inferred")
 
 #: A triple with its ``p*`` and ``o*``, ready to store.
 Closed = tuple[Triple, tuple[Any, ...], tuple[Any, ...]]
@@ -208,8 +208,8 @@ class Store(ABC):
 
     def write_documents(self, neem_id: str, kind: str, docs: Iterable[Mapping[str, Any]]) -> int:
         """Store documents exactly as given (a NEEM being loaded keeps its own closures)."""
-        if kind not in KINDS:
-            raise StoreError(f"unknown collection kind {kind!r}; expected one of {', '.join(KINDS)}")
+        if kind not in COLLECTION_KINDS:
+            raise StoreError(f"unknown collection kind {kind!r}; expected one of {', '.join(COLLECTION_KINDS)}")
         batch: list[dict[str, Any]] = []
         count = 0
         with self.transaction():
@@ -257,7 +257,7 @@ class Store(ABC):
 
     def count(self, neem_id: str, kind: str = "triples") -> int:
         """How many documents one collection of a NEEM holds."""
-        if kind not in KINDS:
+        if kind not in COLLECTION_KINDS:
             raise StoreError(f"unknown collection kind {kind!r}")
         return self._count(neem_id, kind)
 
@@ -292,7 +292,6 @@ class Store(ABC):
         self, neem_id: str, pattern: TriplePattern, scope: Scope | None, limit: int | None, exact: bool
     ) -> Iterator[dict[str, Any]]: ...
 
-    @abstractmethod
     def match(
         self,
         neem_id: str,
@@ -310,6 +309,18 @@ class Store(ABC):
         ``order`` is ``[(variable, descending), ...]`` over numeric variables, applied before
         ``limit`` by the database ("the latest decision before T" is one row, not a scan).
         """
+        validate_patterns(patterns)
+        return self._match(neem_id, patterns, scope, limit, validate_order(patterns, order))
+
+    @abstractmethod
+    def _match(
+        self,
+        neem_id: str,
+        patterns: Sequence[TriplePattern],
+        scope: Scope | None,
+        limit: int | None,
+        order: Sequence[tuple[str, bool]],
+    ) -> Iterator[dict[str, Any]]: ...
 
     def annotations(self, neem_id: str, s: str | None = None, p: str | None = None) -> Iterator[Annotation]:
         for doc in self.read_documents(neem_id, "annotations"):

@@ -19,7 +19,7 @@ from bson import json_util
 from bson.codec_options import DEFAULT_CODEC_OPTIONS, DatetimeConversion
 
 from oracle.errors import StoreError
-from oracle.store.base import KINDS, Store, check_neem_id
+from oracle.store.base import COLLECTION_KINDS, Store, check_neem_id
 from oracle.store.mongo import DEFAULT_DB, INDEXES
 
 META_FILE = "meta.json"
@@ -61,7 +61,7 @@ def write_dump(
     out = Path(out)
     counts: dict[str, int] = {}
     try:
-        for kind in KINDS:
+        for kind in COLLECTION_KINDS:
             collection = f"{prefix}_{kind}" if prefix else kind
             folder = out / kind / db_name
             _mkdir(folder)
@@ -86,7 +86,7 @@ def export_neem(store: Store, neem_id: str, out: Path | str, *, db_name: str = D
     info = store.neem(neem_id)
     meta = {k: v for k, v in info.meta.items() if k != "temporary"}
     meta["id"] = neem_id
-    docs = {kind: store.read_documents(neem_id, kind) for kind in KINDS}
+    docs = {kind: store.read_documents(neem_id, kind) for kind in COLLECTION_KINDS}
     return write_dump(out, docs, meta, db_name)
 
 
@@ -139,7 +139,7 @@ def _neem_groups(root: Path) -> dict[tuple[Path, str | None], dict[str, Path]]:
     groups: dict[tuple[Path, str | None], dict[str, Path]] = {}
     for path in sorted(root.rglob("*.bson")):
         stem = path.name[: -len(".bson")]
-        kind = next((k for k in KINDS if stem == k or stem.endswith(f"_{k}")), None)
+        kind = next((k for k in COLLECTION_KINDS if stem == k or stem.endswith(f"_{k}")), None)
         if kind is None:
             continue
         prefix = stem[: -len(kind) - 1] if stem != kind else None
@@ -176,7 +176,7 @@ def load_dump(store: Store, path: Path | str, *, neem_id: str | None = None, rep
         meta["temporary"] = False
         store.create_neem(target, user=meta.get("created_by"), meta=meta)
         try:
-            for kind in KINDS:
+            for kind in COLLECTION_KINDS:
                 if kind in files:
                     store.write_documents(target, kind, iter_bson(files[kind]))
         except BaseException:

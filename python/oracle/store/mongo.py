@@ -16,7 +16,7 @@ from typing import Any
 from bson.decimal128 import Decimal128
 
 from oracle.errors import StoreError
-from oracle.store.base import KINDS, NeemInfo, Store, check_neem_id, new_meta, validate_order, validate_patterns
+from oracle.store.base import COLLECTION_KINDS, NeemInfo, Store, check_neem_id, new_meta
 from oracle.store.model import (
     HIERARCHY,
     TAXONOMIC,
@@ -108,7 +108,7 @@ class MongoStore(Store):
         if self.has_neem(neem_id):
             raise StoreError(f"{self.location}: NEEM {neem_id!r} already exists")
         record = new_meta(user, temporary, meta)
-        for kind in KINDS:
+        for kind in COLLECTION_KINDS:
             coll = self.db.create_collection(f"{neem_id}_{kind}")
             for keys in INDEXES[kind]:
                 coll.create_index([(key, 1) for key in keys])
@@ -118,7 +118,7 @@ class MongoStore(Store):
 
     def drop_neem(self, neem_id: str) -> None:
         self.neem(neem_id)
-        for kind in KINDS:
+        for kind in COLLECTION_KINDS:
             self._coll(neem_id, kind).drop()
         self.db[META].delete_one({"_id": neem_id})
         self._present.discard(neem_id)
@@ -130,7 +130,7 @@ class MongoStore(Store):
         if self.has_neem(new_id):
             raise StoreError(f"{self.location}: NEEM {new_id!r} already exists")
         names = set(self.db.list_collection_names())
-        for kind in KINDS:
+        for kind in COLLECTION_KINDS:
             if f"{neem_id}_{kind}" in names:
                 self._coll(neem_id, kind).rename(f"{new_id}_{kind}")
         self.db[META].delete_one({"_id": neem_id})
@@ -176,7 +176,7 @@ class MongoStore(Store):
 
     # -- reading ----------------------------------------------------------------------------
     def read_documents(self, neem_id: str, kind: str) -> Iterator[dict[str, Any]]:
-        if kind not in KINDS:
+        if kind not in COLLECTION_KINDS:
             raise StoreError(f"unknown collection kind {kind!r}")
         self.neem(neem_id)
         yield from self._coll(neem_id, kind).find({})
@@ -203,17 +203,14 @@ class MongoStore(Store):
             cursor = cursor.limit(int(limit))
         yield from cursor
 
-    def match(
+    def _match(
         self,
         neem_id: str,
         patterns: Sequence[TriplePattern],
-        *,
-        scope: Scope | None = None,
-        limit: int | None = None,
-        order: Sequence[tuple[str, bool]] = (),
+        scope: Scope | None,
+        limit: int | None,
+        order: Sequence[tuple[str, bool]],
     ) -> Iterator[dict[str, Any]]:
-        validate_patterns(patterns)
-        order = validate_order(patterns, order)
         if not self.has_neem(neem_id):
             raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
         pipeline = compile_pipeline(f"{neem_id}_triples", patterns, scope, limit, self.number_format, order)

@@ -18,11 +18,13 @@ import yaml
 
 from oracle.chains import ChainRow, TaskCall, parse_call, write_chains
 from oracle.errors import NeemOracleError
+from oracle.timeline import first_hour
 from oracle.world.personas import MUGS, Persona, RoutineEntry, make_personas
 from oracle.world.rules import World, load_world
 from oracle.world.state import State
 
-#: Day 1 of every simulated week (a Monday); times are naive local clock times.
+#: Day 1 of every simulated week (a Monday); times are wall-clock times without a zone
+#: (read as UTC, oracle.timeline).
 FIRST_DAY = datetime(2025, 3, 3)
 #: An action takes 3-45 s; the next starts 1-10 s after it ended, so within a routine the robot
 #: never idles (an idle period is 20 s or more, thesis 3.4) and between routines it always does.
@@ -30,7 +32,7 @@ ACTION_SECONDS = (3.0, 45.0)
 TRANSITION_SECONDS = (1.0, 10.0)
 
 #: A script step: an action text, or a directive evaluated against the state when it is reached.
-Step = str | tuple[str, ...]
+ScriptStep = str | tuple[str, ...]
 
 
 @dataclass
@@ -43,14 +45,14 @@ class _Day:
     def prefs(self):
         return self.persona.preferences
 
-    def ordered(self, key: str, first: list[Step], second: list[Step]) -> list[Step]:
+    def ordered(self, key: str, first: list[ScriptStep], second: list[ScriptStep]) -> list[ScriptStep]:
         """Two interchangeable blocks in the persona's habitual order, shuffled on some days."""
         swap = self.prefs.orders.get(key, False)
         if self.rng.random() < self.prefs.order_noise:
             swap = self.rng.random() < 0.5
         return second + first if swap else first + second
 
-    def back(self, obj: str) -> Step:
+    def back(self, obj: str) -> ScriptStep:
         """Where a used object goes: home (drawer, fridge) for tidy persons, else the table."""
         return ("putback", obj)
 
@@ -58,26 +60,26 @@ class _Day:
         return max(1, self.prefs.sips + self.rng.choice((-1, 0, 0, 0, 1)))
 
 
-def _fetch(obj: str, destination: str) -> Step:
+def _fetch(obj: str, destination: str) -> ScriptStep:
     return ("fetch", obj, destination)
 
 
-def _use(obj: str, target: str, day: _Day) -> list[Step]:
+def _use(obj: str, target: str, day: _Day) -> list[ScriptStep]:
     return [f"pick({obj})", f"pour({obj}, {target})", day.back(obj)]
 
 
-def _drink(vessel: str, day: _Day) -> list[Step]:
+def _drink(vessel: str, day: _Day) -> list[ScriptStep]:
     return [f"pick({vessel})"] + [f"drink_from({vessel})"] * day.sips() + [f"place({vessel}, {day.prefs.table})"]
 
 
 # --- intentions -----------------------------------------------------------------------------------
-def hot_drink(day: _Day, state: State, kind: str | None = None, mug: str | None = None, drink: bool = True) -> list[Step]:
+def hot_drink(day: _Day, state: State, kind: str | None = None, mug: str | None = None, drink: bool = True) -> list[ScriptStep]:
     p, t = day.prefs, day.prefs.table
     kind = kind or (p.hot_drink if p.hot_drink != "none" else "tea")
-    mug = mug or (p.evening_mug if day.hour >= 17 else p.mug)
+    mug = mug or (p.evening_mug if day.hour >= first_hour("Evening") else p.mug)
     if kind == "coffee" and p.coffee == "espresso" and mug in (p.mug, p.evening_mug):
         mug = "espresso_cup"
-    steps: list[Step] = [_fetch(mug, t)]
+    steps: list[ScriptStep] = [_fetch(mug, t)]
     if kind == "tea":
         bag = [f"pick({p.tea})", f"place({p.tea}, {mug})"]
         steps += day.ordered("tea", bag, _use("thermos", mug, day))
@@ -94,7 +96,7 @@ def hot_drink(day: _Day, state: State, kind: str | None = None, mug: str | None 
     return steps
 
 
-def cold_drink(day: _Day, state: State, drink: str | None = None) -> list[Step]:
+def cold_drink(day: _Day, state: State, drink: str | None = None) -> list[ScriptStep]:
     p, t = day.prefs, day.prefs.table
     drink = drink or p.cold_drink
     if drink == "tap_water":
@@ -108,13 +110,13 @@ def _fruit(day: _Day) -> str:
     return day.rng.choices(day.prefs.snacks, weights=(0.65, 0.25, 0.1))[0]
 
 
-def snack(day: _Day, state: State) -> list[Step]:
+def snack(day: _Day, state: State) -> list[ScriptStep]:
     fruit = _fruit(day)
     bites = [f"eat({fruit})"] * day.sips()
     return [f"pick({fruit})"] + bites + [day.back(fruit)]
 
 
-def breakfast(day: _Day, state: State) -> list[Step]:
+def breakfast(day: _Day, state: State) -> list[ScriptStep]:
     p, t = day.prefs, day.prefs.table
     kind = p.breakfast
     if kind == "cereal":
@@ -135,7 +137,7 @@ def breakfast(day: _Day, state: State) -> list[Step]:
     return day.ordered("breakfast", food, drink)
 
 
-def meal(day: _Day, state: State) -> list[Step]:
+def meal(day: _Day, state: State) -> list[ScriptStep]:
     p, t = day.prefs, day.prefs.table
     if p.meal == "salad":
         steps = [_fetch("plate", t)] + day.ordered("meal", [_fetch("cucumber", "plate")], [_fetch("avocado", "plate")])
@@ -156,14 +158,14 @@ def meal(day: _Day, state: State) -> list[Step]:
     return steps
 
 
-def dinner(day: _Day, state: State) -> list[Step]:
+def dinner(day: _Day, state: State) -> list[ScriptStep]:
     steps = meal(day, state)
     if day.rng.random() < 0.3:
         steps += cold_drink(day, state)
     return steps
 
 
-def evening(day: _Day, state: State) -> list[Step]:
+def evening(day: _Day, state: State) -> list[ScriptStep]:
     p = day.prefs
     if p.hot_drink != "none" and p.cold_drink != "beer_bottle":
         steps = hot_drink(day, state)
@@ -174,39 +176,39 @@ def evening(day: _Day, state: State) -> list[Step]:
     return steps
 
 
-def cleanup(day: _Day, state: State) -> list[Step]:
+def cleanup(day: _Day, state: State) -> list[ScriptStep]:
     dishes = [name for name in ("plate", "cereal_bowl", "knife", "fork", "spoon", "drinking_glass", "espresso_cup", *MUGS)
               if state.location.get(name) in ("kitchen_table", "counter_top")]
     if day.prefs.orders.get("cleanup"):
         dishes.reverse()
-    steps: list[Step] = [_fetch(name, "dish_washer") for name in dishes]
+    steps: list[ScriptStep] = [_fetch(name, "dish_washer") for name in dishes]
     return steps + ["turn_on(dish_washer)"] if dishes else steps
 
 
-def other_hot_drink(day: _Day, state: State) -> list[Step]:
+def other_hot_drink(day: _Day, state: State) -> list[ScriptStep]:
     usual = day.prefs.hot_drink
     return hot_drink(day, state, kind="coffee" if usual == "tea" else "tea")
 
 
-def doctor(day: _Day, state: State) -> list[Step]:
+def doctor(day: _Day, state: State) -> list[ScriptStep]:
     return cold_drink(day, state, drink=day.rng.choice(("tap_water", "water_bottle")))
 
 
-def late_food(day: _Day, state: State) -> list[Step]:
+def late_food(day: _Day, state: State) -> list[ScriptStep]:
     return ["pick(bread)", "eat(bread)", "place(bread, counter_top)"] + snack(day, state)
 
 
-def guest(day: _Day, state: State) -> list[Step]:
+def guest(day: _Day, state: State) -> list[ScriptStep]:
     p = day.prefs
     other = next(m for m in MUGS if m not in (p.mug, p.evening_mug))
     return hot_drink(day, state, mug=other, drink=False) + hot_drink(day, state)
 
 
-def quick_breakfast(day: _Day, state: State) -> list[Step]:
+def quick_breakfast(day: _Day, state: State) -> list[ScriptStep]:
     return snack(day, state) + cold_drink(day, state)
 
 
-INTENTIONS: dict[str, Callable[[_Day, State], list[Step]]] = {
+INTENTIONS: dict[str, Callable[[_Day, State], list[ScriptStep]]] = {
     "breakfast": breakfast,
     "hot_drink": hot_drink,
     "cold_drink": cold_drink,
@@ -275,10 +277,10 @@ class _Simulator:
             entries.append(rng.choice(self.persona.variations))
         return sorted(entries, key=lambda e: e.time)
 
-    def _closing(self, day: _Day) -> list[Step]:
+    def _closing(self, day: _Day) -> list[ScriptStep]:
         return [("close_if_tidy", name) for name in ("fridge", "small_drawer", "big_drawer")]
 
-    def _expand(self, day: _Day, step: Step, state: State) -> list[TaskCall]:
+    def _expand(self, day: _Day, step: ScriptStep, state: State) -> list[TaskCall]:
         if isinstance(step, str):
             return [parse_call(step)]
         kind, obj = step[0], step[1]
@@ -297,7 +299,7 @@ class _Simulator:
             return []
         raise AssertionError(f"unknown script directive {kind}")
 
-    def _execute(self, day: _Day, steps: list[Step], state: State, clock: datetime):
+    def _execute(self, day: _Day, steps: list[ScriptStep], state: State, clock: datetime):
         user = self.persona.file_name
         world, prefs = self.world, day.prefs
         for step in steps:

@@ -14,7 +14,7 @@ from types import MappingProxyType
 #: The location of the object the arm holds.
 HAND = "<hand>"
 
-KINDS = ("item", "surface", "container", "receptacle", "appliance")
+OBJECT_KINDS = ("item", "surface", "container", "receptacle", "appliance")
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,62 @@
+:- begin_tests(json_query).
+
+:- use_module(json_query).
+:- use_module(answers).
+
+:- use_module(neem_store).
+:- use_module(fixtures/test_episode).
+:- use_module(library(http/json)).
+:- use_module(user:lang/query).  % service queries run in user, where the bridge loads the modules
+:- use_module(user:model/event).
+
+reply(Text, Bindings, Offset, Limit, Dict) :-
+    json_query([Text, Bindings, Offset, Limit, 5.0], JSON),
+    atom_json_dict(JSON, Dict, []).
+
+%   The solutions as sorted Key-Value lists (dict tags are fresh variables).
+rows(Dict, Rows) :- findall(P, ( member(S, Dict.solutions), dict_pairs(S, _, P) ), Rows).
+
+contains(String, Part) :- once(sub_string(String, _, _, _, Part)).
+
+test(pages_with_more_flag) :-
+    reply("member(X, [a, b, c])", [], 0, 2, D1),
+    rows(D1, R1), R1 == [['X'-"a"], ['X'-"b"]], D1.more == true,
+    reply("member(X, [a, b, c])", [], 2, 2, D2),
+    rows(D2, R2), R2 == [['X'-"c"]], D2.more == false.
+
+test(bindings_are_terms_not_text) :-
+    Tricky = 'a\'), halt, (\'',
+    reply("atom_length(X, N)", [['X', Tricky]], 0, 10, D),
+    atom_length(Tricky, L),
+    atom_string(Tricky, S),
+    rows(D, R), R == [['N'-L, 'X'-S]].
+
+test(halt_refused_also_inside_kb_call) :-
+    reply("halt", [], 0, 1, D1), contains(D1.error, "halt/0 is not allowed"),
+    reply("kb_call(halt)", [], 0, 1, D2), contains(D2.error, "halt/0 is not allowed"),
+    reply("X = halt, call(X)", [], 0, 1, D3), contains(D3.error, "call/1 is not allowed").
+
+test(writes_refused) :-
+    reply("kb_project(triple(a, b, c))", [], 0, 1, D1), contains(D1.error, "kb_project/1"),
+    reply("kb_query:kb_project(triple(a, b, c))", [], 0, 1, D2), contains(D2.error, "kb_project/1"),
+    reply("assertz(foo)", [], 0, 1, D3), contains(D3.error, "assertz/1").
+
+test(variable_goal_refused) :-
+    reply("G = true, findall(x, G, _)", [], 0, 1, D), contains(D.error, "instantiation").
+
+test(syntax_error_is_one_message) :-
+    reply("member(X, [a", [], 0, 1, D), string_concat("syntax error", _, D.error).
+
+test(unknown_binding_name) :-
+    reply("X = 1", [['Y', 2]], 0, 1, D), contains(D.error, "no variable of that name").
+
+test(model_query_over_the_store, [setup(load_test_episode), cleanup(store_reset)]) :-
+    reply("kb_call(executes_task(A, T))", [], 0, 100, D),
+    D.solutions \== [],
+    forall(member(S, D.solutions), ( string(S.'A'), string(S.'T') )).
+
+test(values_as_json) :-
+    reply("X = f(y), Y = [1, 2.5], Z = \"s\", W = _", [], 0, 1, D),
+    rows(D, R), R == [['W'-null, 'X'-"f(y)", 'Y'-[1, 2.5], 'Z'-"s"]].
+
+:- end_tests(json_query).

@@ -1,0 +1,127 @@
+:- module(odb_history,
+    [ situation_history/1,        % -Situations
+      situation_history_json/1,   % -JSONString
+      latest_situation/2,         % -Begin, -Calls
+      latest_situation_json/1     % -JSONString
+    ]).
+/** <module> odb history: the oracle's view of a NEEM (thesis 4.2)
+
+Every executed action with its call, its time of day and the tasks imagined available
+before it, read in a fixed number of compiled store queries; and the latest imagined
+situation, the one the next ranking is for.
+*/
+
+:- use_module(library(error)).
+:- use_module(library(lists)).
+:- use_module(library(apply)).
+:- use_module(library(pairs)).
+:- use_module(library(assoc)).
+:- use_module(library(http/json)).
+:- use_module('../lang/query', [kb_call/2, kb_findall/4]).
+:- use_module('../lang/triple', [kb_iri/2]).
+:- use_module('../model/rdfs', []).
+:- use_module('../model/event', []).
+:- use_module('../model/object', []).
+:- use_module('../model/situation', []).
+:- use_module(names, [odb_iri/2]).
+:- use_module(calls, [task_calls/2]).
+:- use_module(decisions, [latest_decision/4, imagined_available/2]).
+
+%!  situation_history(-Situations) is det.
+%   Every executed action of the NEEM in begin order, as
+%   `situation(Begin, End, Call, Part, Available)`: Call is the task call (`idle` for an
+%   odb:IdleTask action), Part the time of day (`none` if not logged), Available the calls of
+%   the latest imagining that began after the previous action and not after this one (`none`
+%   if there was none). This is the oracle's history: a fixed number of compiled store
+%   queries, however long the NEEM, one task_call per distinct task individual, and one
+%   pass over the actions in begin order that merges the imaginings (also in begin order)
+%   and looks parts of day and calls up in AVL trees: O(n log n) in the rows read.
+situation_history(Situations) :-
+    odb_iri('IdleTask', Idle),
+    kb_findall(B-A-T-E-C, ( executes_task(A, T), triple(T, rdf:type, C), event_interval(A, B, E) ),
+               any, Typed),
+    include(odb_or_idle(Idle), Typed, Actions0),
+    sort(Actions0, Actions),
+    kb_findall(A-PC, ( has_time_interval(A, I), triple(I, rdf:type, PC) ), any, IntervalTypes),
+    findall(A-P, ( member(A-PC, IntervalTypes),
+                   member(P, ['Morning', 'Midday', 'Evening', 'Night']), odb_iri(P, PC) ), Parts),
+    kb_findall(B-T, ( executes_task(M, MT), instance_of(MT, soma:'Imagining'),
+                      event_interval(M, B, _), holds(M, odb:imagines_situation, Plan),
+                      plan_defines_task(Plan, T) ), any, Imagined0),
+    sort(Imagined0, Imagined),
+    findall(T, ( member(_-_-T-_-C, Actions), C \== Idle ), Ts0),
+    findall(T, member(_-T, Imagined), Ts1),
+    append(Ts0, Ts1, Ts),
+    task_calls(Ts, CallPairs),
+    list_to_assoc(CallPairs, Calls),
+    first_values(Parts, PartOf),
+    group_pairs_by_key(Imagined, ByBegin),
+    history_rows(Actions, inf, Idle, PartOf, ByBegin, none, Calls, Situations).
+
+odb_or_idle(Idle, _-_-_-_-C) :-
+    (   C == Idle -> true ; odb_iri(_, C) ).
+
+%   Key-Value pairs as an AVL tree keeping the first value of a key (memberchk/2's answer).
+first_values(Pairs, Assoc) :-
+    empty_assoc(Empty),
+    foldl(put_first, Pairs, Empty, Assoc).
+
+put_first(K-V, A0, A) :-
+    (   get_assoc(K, A0, _) -> A = A0 ; put_assoc(K, A0, V, A) ).
+
+%   history_rows(+Actions, +PrevBegin, +Idle, +PartOf, +Imaginings, +Latest, +Calls, -Rows):
+%   Imaginings are the groups not yet passed (ascending begin), Latest the last group that
+%   began at or before the previous action (`none` before the first one).
+history_rows([], _, _, _, _, _, _, []).
+history_rows([B-A-T-E-C|Actions], Prev, Idle, PartOf, Groups0, Latest0, Calls,
+             [situation(B, E, Call, Part, Avail)|Rows]) :-
+    (   C == Idle -> Call = idle ; get_assoc(T, Calls, Call) ),
+    (   get_assoc(A, PartOf, Part0) -> Part = Part0 ; Part = none ),
+    advance(Groups0, B, Latest0, Groups, Latest),
+    (   C \== Idle,
+        Latest = Bi-AvTs,
+        ( Prev == inf ; Bi > Prev )
+    ->  findall(AC, ( member(AT, AvTs), get_assoc(AT, Calls, AC) ), Avail0),
+        sort(Avail0, Avail)
+    ;   Avail = none
+    ),
+    history_rows(Actions, B, Idle, PartOf, Groups, Latest, Calls, Rows).
+
+%   Pass the imagining groups that began at or before B; the last one passed is the latest.
+advance([Bi-Ts|Groups0], B, _, Groups, Latest) :-
+    Bi =< B, !,
+    advance(Groups0, B, Bi-Ts, Groups, Latest).
+advance(Groups, _, Latest, Groups, Latest).
+
+%!  situation_history_json(-JSON) is det.
+%   situation_history/1 as a JSON array of `{"begin", "end", "call", "part", "available"}`
+%   objects, calls written in the chain syntax `pour(thermos,green_mug)`; one crossing for
+%   the Python side.
+situation_history_json(JSON) :-
+    situation_history(Situations),
+    maplist(situation_dict, Situations, Dicts),
+    with_output_to(string(JSON), json_write_dict(current_output, Dicts, [width(0)])).
+
+situation_dict(situation(B, E, Call, Part, Avail), _{begin:B, end:E, call:CallText, part:Part, available:AvailJ}) :-
+    format(atom(CallText), '~w', [Call]),
+    (   Avail == none
+    ->  AvailJ = null
+    ;   findall(X, ( member(C, Avail), format(atom(X), '~w', [C]) ), AvailJ)
+    ).
+
+%!  latest_situation(-Begin, -Calls) is semidet.
+%   The latest imagined situation of the NEEM: when it began and the calls it found
+%   available (sorted). Fails when nothing was ever imagined.
+latest_situation(B, Calls) :-
+    latest_decision(situation, any, M, B),
+    imagined_available(M, Calls).
+
+%!  latest_situation_json(-JSON) is det.
+%   latest_situation/2 as `{"begin": B, "available": [...]}`, or `null` when there is none.
+latest_situation_json(JSON) :-
+    (   latest_situation(B, Calls)
+    ->  findall(X, ( member(C, Calls), format(atom(X), '~w', [C]) ), Xs),
+        Dict = _{begin:B, available:Xs}
+    ;   Dict = null
+    ),
+    with_output_to(string(JSON), json_write_dict(current_output, Dict, [width(0)])).

@@ -1,0 +1,145 @@
+"""Records of the PreferenceOracle: options, executed steps (situations), rankings and the forward tree.
+
+Every class and task is a full IRI; ``label`` is for display only. See docs/algorithm.md.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+
+from oracle.timeline import TIME_OF_DAY_NAMES
+
+
+@dataclass(frozen=True)
+class Option:
+    """A task that can be executed, with the object class in each role slot (or None)."""
+
+    task: str
+    target: str | None = None
+    reference: str | None = None
+
+    def objects(self) -> tuple[str, ...]:
+        """The object classes the option uses, target first."""
+        return tuple(obj for obj in (self.target, self.reference) if obj is not None)
+
+    def __str__(self) -> str:
+        names = [_local(obj) for obj in (self.reference, self.target) if obj is not None]
+        return f"{_local(self.task)}({', '.join(names)})" if names else _local(self.task)
+
+
+def option_key(option: Option) -> tuple[str, str, str]:
+    """Total order on options (None sorts first); fixes the iteration order of an option set."""
+    return (option.task, option.target or "", option.reference or "")
+
+
+def canonical_options(options: Iterable[Option]) -> tuple[Option, ...]:
+    """An available-option *set*: duplicates removed, in ``option_key`` order.
+
+    Algorithm 3 averages over a set; fixing its order makes the floating-point sum reproducible,
+    which is what lets ``fast`` return bit-identical scores.
+    """
+    return tuple(sorted(set(options), key=option_key))
+
+
+@dataclass(frozen=True)
+class Step:
+    """One executed situation: the task and its objects, what else was available, when, and whether idle.
+
+    ``idle`` marks an odb:IdleTask, which delimits task chains (thesis 4.4, "Looking Further Back").
+    """
+
+    task: str
+    target: str | None = None
+    reference: str | None = None
+    options: tuple[Option, ...] = ()
+    time_of_day: str | None = None
+    idle: bool = False
+    label: str = ""
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.options, tuple):
+            object.__setattr__(self, "options", tuple(self.options))
+        for option in self.options:
+            if not isinstance(option, Option):
+                raise TypeError(f"step {self.label or self.task}: options must be Option records, got {option!r}")
+        if self.time_of_day is not None and self.time_of_day not in TIME_OF_DAY_NAMES:
+            raise ValueError(f"step {self.label or self.task}: time of day {self.time_of_day!r} "
+                             f"is not one of {', '.join(TIME_OF_DAY_NAMES)}")
+
+    @property
+    def option(self) -> Option:
+        """The executed task with its objects, as an option."""
+        return Option(self.task, self.target, self.reference)
+
+
+#: The thesis calls an executed step a situation.
+Situation = Step
+
+
+@dataclass(frozen=True)
+class TreeNode:
+    """A predicted successor in the forward preference tree (thesis Fig. 4.6, eq. 4.13).
+
+    ``score`` is eq. 4.12 over the distances of the similar historic situations whose successor
+    chains pass through this node (lower is better); ``support`` is how many there are.
+    """
+
+    option: Option
+    score: float
+    support: int
+    children: tuple[TreeNode, ...] = ()
+
+
+@dataclass(frozen=True)
+class RankedTask:
+    """One available option with its rank (1 = best) and eq. 4.12 value (lower is better).
+
+    ``n_similar`` is ``|H(s_o)|``; when it is 0 the score is ``inf`` and the option is ranked after
+    all options with similar history, by ``nearest`` (the smallest Algorithm 2 distance to any
+    executed step; ``inf`` with an empty history), then in the order offered.
+    """
+
+    rank: int
+    score: float
+    option: Option
+    n_similar: int
+    nearest: float
+    successors: tuple[TreeNode, ...] = field(default=(), compare=True)
+
+
+@dataclass(frozen=True)
+class Ranking:
+    """The ranked options, best first, each with its forward tree (possibly empty)."""
+
+    tasks: tuple[RankedTask, ...]
+
+    def __iter__(self):
+        return iter(self.tasks)
+
+    def __len__(self) -> int:
+        return len(self.tasks)
+
+    def __getitem__(self, index: int) -> RankedTask:
+        return self.tasks[index]
+
+    def options(self) -> tuple[Option, ...]:
+        return tuple(task.option for task in self.tasks)
+
+    def chain(self) -> tuple[Option, ...]:
+        """The predicted chain: the best option, then the best successor at each depth."""
+        if not self.tasks:
+            return ()
+        chain = [self.tasks[0].option]
+        nodes = self.tasks[0].successors
+        while nodes:
+            chain.append(nodes[0].option)
+            nodes = nodes[0].children
+        return tuple(chain)
+
+
+def _local(iri: str) -> str:
+    for sep in ("#", "/"):
+        if sep in iri:
+            iri = iri.rsplit(sep, 1)[1]
+    return iri

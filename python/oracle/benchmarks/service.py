@@ -1,0 +1,158 @@
+"""The live service under load: N simulated robots posting situations to a real server process
+on a free loopback port, each into its own NEEM of 1,000 logged actions. Bounded by request
+counts and a wall-clock cap; it stops by itself.
+
+Printed per phase: round-trip p50/p99 (client side, over HTTP), the server's own ranking time,
+and the floor measured in the same run: GET /api/health, a round trip through the HTTP stack and
+the engine thread doing nothing.
+"""
+
+from __future__ import annotations
+
+import os
+import socket
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+import urllib.request
+from pathlib import Path
+
+from oracle.service.robot import Drive, drive, percentile, persona_rows
+
+#: The robots stop after this long even if their steps are not all posted (the load is bounded).
+CAP_S = 300.0
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+def _prepare(store: Path, robots: int, actions: int, steps: int) -> list[tuple[str, str, list]]:
+    """One NEEM per robot holding ``actions`` logged actions; the next ``steps`` rows to post."""
+    from oracle.neem.writer import NeemLogger
+    from oracle.ontology import build_ontology
+    from oracle.store import open_store
+
+    onto = build_ontology()
+    db = open_store(store)
+    plans = []
+    for robot in range(robots):
+        days = 2 + (actions + steps) // 30
+        user, rows = persona_rows(robot, 3, days)
+        while len(rows) < actions + steps:  # personas differ in how much they do a day
+            days = days * 3 // 2
+            user, rows = persona_rows(robot, 3, days)
+        logger = NeemLogger.create(db, onto, user=user, neem_id=f"bench-{robot}", commit_every=500)
+        for row in rows[:actions]:
+            logger.action(row.action, row.time, row.end, available=row.available)
+        logger.flush()
+        plans.append((f"bench-{robot}", user, rows[actions:actions + steps]))
+    db.close()
+    return plans
+
+
+def _serve(store: Path) -> tuple[subprocess.Popen, str]:
+    port = _free_port()
+    process = subprocess.Popen([sys.executable, "-m", "oracle", "serve", "--store", str(store), "--port", str(port)],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    url = f"http://127.0.0.1:{port}"
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline:
+        try:
+            urllib.request.urlopen(url + "/api/health", timeout=2).read()
+            return process, url
+        except OSError:
+            if process.poll() is not None:
+                break
+            time.sleep(0.3)
+    process.kill()
+    raise RuntimeError("the service did not start")
+
+
+def _floor(url: str, n: int) -> list[float]:
+    from oracle.service.client import Client
+
+    client = Client(url)
+    try:
+        return sorted(client.request("GET", "/api/health")[1] for _ in range(n))
+    finally:
+        client.close()
+
+
+def _row(phase: str, kind: str, values: list[float], robots: int, errors: int) -> dict:
+    values = sorted(values)
+    row = {"area": "service", "name": f"{phase} {kind}", "robots": robots, "n": len(values), "errors": errors,
+           "p50_ms": round(percentile(values, 50), 3), "p99_ms": round(percentile(values, 99), 3)}
+    print(f"  {phase:22s} {kind:10s} n={len(values):5d} p50 {row['p50_ms']:7.2f} ms  p99 {row['p99_ms']:7.2f} ms"
+          f"  errors {errors}", flush=True)
+    return row
+
+
+def _open_sessions(url: str, plans: list[tuple[str, str, list]]) -> float:
+    """First request per NEEM: one history read through Prolog and one fit (reported apart)."""
+    from oracle.service.client import Client
+
+    client = Client(url, timeout=600)
+    started = time.perf_counter()
+    for neem, _, _ in plans:
+        client.get(f"/api/neems/{neem}/situation")
+    client.close()
+    return (time.perf_counter() - started) * 1000 / len(plans)
+
+
+def run(quick: bool = False) -> list[dict]:
+    actions, steps, robots = (200, 30, 2) if quick else (1000, 150, 3)
+    rows: list[dict] = []
+    print(f"  load average before: {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores (other work inflates every figure)",
+          flush=True)
+    with tempfile.TemporaryDirectory(prefix="neem-bench-service-") as folder:
+        store = Path(folder) / "bench.sqlite"
+        plans = _prepare(store, robots, actions, steps * 2)
+        process, url = _serve(store)
+        stop = threading.Event()
+        timer = threading.Timer(CAP_S, stop.set)
+        try:
+            opened = _open_sessions(url, plans)
+            print(f"  session open (history read + fit at {actions} actions): {opened:.0f} ms per NEEM", flush=True)
+            timer.start()  # the cap bounds the load, not the preparation
+            rows.append({"area": "service", "name": "session open", "ms": round(opened, 1), "actions": actions})
+            rows.append(_row("floor (GET /api/health)", "round trip", _floor(url, 300), 1, 0))
+
+            neem, user, todo = plans[0]
+            alone = drive(url, user, todo[:steps], neem, stop=stop)
+            for kind in ("situation", "server", "rank", "action"):
+                rows.append(_row("1 robot", kind, alone.latencies.get(kind, []), 1, len(alone.errors)))
+
+            results: list[Drive] = [Drive() for _ in plans]
+
+            def one(index: int) -> None:
+                neem_i, user_i, todo_i = plans[index]
+                start = steps if index == 0 else 0
+                results[index] = drive(url, user_i, todo_i[start:start + steps], neem_i, stop=stop)
+
+            threads = [threading.Thread(target=one, args=(i,)) for i in range(len(plans))]
+            started = time.perf_counter()
+            for thread in threads:
+                thread.start()
+            for thread in threads:
+                thread.join()
+            seconds = time.perf_counter() - started
+            errors = sum(len(r.errors) for r in results)
+            for kind in ("situation", "server", "rank", "action"):
+                values = [v for r in results for v in r.latencies.get(kind, [])]
+                rows.append(_row(f"{len(plans)} robots at once", kind, values, len(plans), errors))
+            posted = sum(len(r.latencies.get("situation", [])) + len(r.latencies.get("action", [])) for r in results)
+            print(f"  {len(plans)} robots: {posted} requests in {seconds:.1f} s ({posted / seconds:.0f}/s)"
+                  f"{'; stopped by the time cap' if stop.is_set() else ''}", flush=True)
+        finally:
+            timer.cancel()
+            process.terminate()
+            try:
+                process.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                process.kill()
+    return rows

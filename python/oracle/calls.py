@@ -1,0 +1,88 @@
+"""Chain calls (``pour(thermos, green_mug)``) as the oracle's records, using the ontology.
+
+The one place where odb names in a chain become task and object class IRIs in role slots:
+``task(a, b)`` puts ``a`` in the reference slot and ``b`` in the target slot; ``task(a)`` puts
+``a`` in the target slot unless the task has no target role (``OdbOntology.task_roles``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from datetime import datetime
+
+from oracle.algorithm.records import Option, Step
+from oracle.chains import TaskCall
+from oracle.errors import OntologyError
+from oracle.namespaces import SOMA
+from oracle.ontology import OdbOntology
+from oracle.timeline import time_of_day
+
+
+def option_of(ontology: OdbOntology, call: TaskCall) -> Option:
+    """The Option for a call; unknown tasks or objects raise OntologyError naming them."""
+    task = ontology.task_iri(call.task)
+    classes = [ontology.object_iri(name) for name in call.args]
+    if len(classes) == 2:
+        return Option(task, target=classes[1], reference=classes[0])
+    if len(classes) == 1:
+        info = ontology.tasks[call.task]
+        if info.target_role is None and info.ref_role is not None:
+            return Option(task, reference=classes[0])
+        return Option(task, target=classes[0])
+    return Option(task)
+
+
+def opening_tasks(ontology: OdbOntology) -> frozenset[str]:
+    """Task classes under soma:Opening: their successors are not pruned (thesis Fig. 4.7)."""
+    return frozenset(t.iri for t in ontology.tasks.values() if ontology.taxonomy.is_subclass_of(t.iri, str(SOMA.Opening)))
+
+
+def call_of(ontology: OdbOntology, option: Option) -> TaskCall:
+    """The inverse of ``option_of`` for display and for the chain format."""
+    args = tuple(ontology.name(c) for c in (option.reference, option.target) if c is not None)
+    return TaskCall(ontology.name(option.task), args)
+
+
+def step_of(
+    ontology: OdbOntology,
+    call: TaskCall,
+    available: Iterable[TaskCall] = (),
+    when: datetime | None = None,
+    idle: bool = False,
+) -> Step:
+    option = option_of(ontology, call)
+    options = tuple(option_of(ontology, c) for c in available)
+    return Step(option.task, option.target, option.reference, options,
+                time_of_day(when) if when is not None else None, idle, str(call))
+
+
+def idle_step(ontology: OdbOntology, when: datetime | None = None) -> Step:
+    """An odb:IdleTask step: the delimiter of task chains."""
+    return Step(ontology.vocab.idle_task, time_of_day=time_of_day(when) if when is not None else None,
+                idle=True, label="idle")
+
+
+def check_call(ontology: OdbOntology, call: TaskCall, where: str) -> None:
+    """Raise OntologyError naming ``where`` when the call uses unknown names."""
+    try:
+        option_of(ontology, call)
+    except OntologyError as error:
+        raise OntologyError(f"{where}: {error}") from None
+
+
+def steps_from_history(ontology: OdbOntology, rows: Iterable[dict]) -> list[Step]:
+    """The oracle's history from the Prolog bridge's ``situation_history`` rows (begin order)."""
+    from oracle.chains import parse_call
+
+    steps: list[Step] = []
+    for row in rows:
+        part = row.get("part")
+        part = part if part not in (None, "none") else None
+        if row["call"] == "idle":
+            steps.append(Step(ontology.vocab.idle_task, time_of_day=part, idle=True, label="idle"))
+            continue
+        call = parse_call(row["call"])
+        option = option_of(ontology, call)
+        options = tuple(option_of(ontology, parse_call(c)) for c in row.get("available") or ())
+        steps.append(Step(option.task, option.target, option.reference, options, part, False, str(call)))
+    return steps

@@ -1,0 +1,457 @@
+"""Writing a NEEM (thesis 3.4-3.5): what the robot perceived, could do, did and predicted, as triples.
+
+One NEEM per user. Every public call validates first and then writes one transaction, so bad
+input raises before anything is written and a killed process loses at most the call in flight.
+Task, role, plan and object individuals are descriptions shared by every event of the NEEM that
+uses them (DUL concepts), so the task an action executes is the very task its plan imagined and
+its preference ranked; events (actions, intervals) get fresh individuals. See docs/store.md.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import time
+import uuid
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from datetime import datetime, timezone
+
+from oracle.chains import TaskCall, parse_call
+from oracle.errors import ChainSyntaxError, LoggingError, OntologyError, StoreError
+from oracle.neem import terms as T
+from oracle.neem.lifecycle import wipe_temporary_neems
+from oracle.ontology.model import OdbOntology
+from oracle.store import RDF_TYPE, Store, Triple, TriplePattern, Var
+from oracle.store.tbox import TBox, load_tbox, tbox_from_graph
+from oracle.timeline import IDLE_THRESHOLD_S, Instant, Moment, TimeValueError, is_idle_gap
+from oracle.ontology.provenance import META_KEY as ONTOLOGY_KEY, check_logged_with, record_of
+
+_SLUG = re.compile(r"[^A-Za-z0-9_\-]+")
+#: NEEM ids are collection prefixes: no underscores (see store.base.check_neem_id).
+_NEEM_SLUG = re.compile(r"[^A-Za-z0-9\-]+")
+
+
+def _instant(moment: Moment) -> Instant:
+    try:
+        return Instant.of(moment)
+    except TimeValueError as error:
+        raise LoggingError(str(error)) from None
+
+
+@dataclass(frozen=True)
+class LoggedAction:
+    """What ``NeemLogger.action`` wrote: the action, and the idle action it inserted before it."""
+
+    iri: str
+    call: TaskCall
+    begin: float
+    end: float
+    part_of_day: str
+    task: str
+    idle: str | None = None
+    imagining: str | None = None
+
+
+class _Out(list[Triple]):
+    """Triples of one call, before they are written, and the individuals they create."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.created: set[str] = set()
+
+
+def _slug(text: str) -> str:
+    return _SLUG.sub("-", text).strip("-") or "x"
+
+
+class NeemLogger:
+    """Writes one user's episode into one NEEM of a store."""
+
+    def __init__(
+        self,
+        store: Store,
+        onto: OdbOntology,
+        neem_id: str,
+        *,
+        idle_threshold: float = IDLE_THRESHOLD_S,
+        commit_every: int = 1,
+    ) -> None:
+        """``commit_every`` > 1 groups that many calls into one transaction (much faster on slow
+        disks); only calls counted in ``committed`` are then guaranteed to survive a crash."""
+        if commit_every < 1:
+            raise LoggingError(f"commit_every must be at least 1, got {commit_every}")
+        self.store = store
+        self.commit_every = commit_every
+        #: How many calls (actions, perceptions, ...) are durably in the store.
+        self.committed = 0
+        self._buffer: list[Triple] = []
+        self._buffered_calls = 0
+        self.onto = onto
+        self.neem_id = neem_id
+        self.idle_threshold = idle_threshold
+        self.ns: str = onto.namespace
+        self.vocab = onto.vocab
+        info = store.neem(neem_id)
+        check_logged_with(neem_id, info.meta, onto)
+        self.user: str = info.user or "user"
+        #: Individuals known to be stored (or buffered): no store query needed for them.
+        self._known: set[str] = set()
+        self._keys: dict[TaskCall, str] = {}
+        #: Calls already checked, and plans of calls already in ``_known``: an available set of
+        #: 20 plans that were logged before costs 20 dictionary look-ups, not 20 checks.
+        self._resolved: dict[TaskCall | str, TaskCall] = {}
+        self._plans: dict[TaskCall, str] = {}
+        self._imagines = self.vocab.imagines_situation
+        # Event ids in ObjectId's layout (seconds, 5 random bytes, counter), made without
+        # ObjectId's per-call lock and pid check.
+        self._random = os.urandom(5).hex()
+        self._counter = int.from_bytes(os.urandom(3), "big") >> 1  # 8M ids before it wraps
+        #: Latest begin and latest end of the executed actions: actions may overlap, as events
+        #: do in KnowRob (two sensors firing at once), but none may start before the one before.
+        self._last_begin, self._last_end = self._resume_clock()
+
+    # -- creation ---------------------------------------------------------------------------
+    @classmethod
+    def create(
+        cls,
+        store: Store,
+        onto: OdbOntology,
+        *,
+        user: str,
+        neem_id: str | None = None,
+        temporary: bool = False,
+        replace: bool = False,
+        tbox: TBox | None = None,
+        idle_threshold: float = IDLE_THRESHOLD_S,
+        commit_every: int = 1,
+    ) -> NeemLogger:
+        """A new NEEM for ``user`` holding the ontology's TBox (id: the user's name, made unique)."""
+        if not isinstance(user, str) or not user.strip():
+            raise LoggingError("a NEEM needs a user name")
+        if neem_id is None:
+            base = _NEEM_SLUG.sub("-", user).strip("-")[:48] or "user"
+            neem_id, n = base, 1
+            while store.has_neem(neem_id) and not replace:
+                n += 1
+                neem_id = f"{base}-{n}"
+        if replace and store.has_neem(neem_id):
+            store.drop_neem(neem_id)
+        recorded = record_of(onto)  # readers use the same ontology by default
+        extra = {"name": neem_id} if recorded is None else {"name": neem_id, ONTOLOGY_KEY: recorded.to_meta()}
+        store.create_neem(neem_id, user=user, temporary=temporary, meta=extra)
+        try:
+            load_tbox(store, neem_id, tbox if tbox is not None else tbox_from_graph(onto.graph))
+        except BaseException:
+            store.drop_neem(neem_id)  # a NEEM without its TBox would give wrong closures
+            raise
+        return cls(store, onto, neem_id, idle_threshold=idle_threshold, commit_every=commit_every)
+
+    @classmethod
+    def start_session(
+        cls, store: Store, onto: OdbOntology, *, user: str, tbox: TBox | None = None, idle_threshold: float = IDLE_THRESHOLD_S
+    ) -> NeemLogger:
+        """Privacy (thesis 3.5): wipe every temporary NEEM, then log into a fresh temporary one."""
+        wipe_temporary_neems(store)
+        stamp = datetime.now(timezone.utc).strftime("%Y%m%dT%H%M%S")
+        neem_id = f"session-{stamp}-{uuid.uuid4().hex[:6]}"
+        return cls.create(store, onto, user=user, neem_id=neem_id, temporary=True, tbox=tbox,
+                          idle_threshold=idle_threshold)  # fmt: skip
+
+    # -- individuals ------------------------------------------------------------------------
+    def _event(self, kind: str) -> str:
+        # ObjectId-like ids grow with time, so new IRIs land at the end of the indexes (few
+        # dirty pages per commit) and stay unique across processes (random part per logger).
+        self._counter = counter = (self._counter + 1) & 0xFFFFFF
+        return f"{self.ns}{kind}_{int(time.time()):08x}{self._random}{counter:06x}"
+
+    def _exists(self, iri: str) -> bool:
+        if iri in self._known:
+            return True
+        if next(self.store.find(self.neem_id, s=iri, limit=1, exact=True), None) is not None:
+            self._known.add(iri)
+            return True
+        return False
+
+    def _new(self, iri: str, out: _Out) -> bool:
+        """True the first time an individual is met (then the caller writes its triples)."""
+        if iri in out.created or self._exists(iri):
+            return False
+        out.created.add(iri)
+        return True
+
+    def _individual(self, iri: str, cls_iri: str, out: _Out, since: float = 0.0) -> str:
+        if self._new(iri, out):
+            out.append(Triple(iri, RDF_TYPE, cls_iri, since=since))
+            out.append(Triple(iri, RDF_TYPE, T.NAMED_INDIVIDUAL, since=since))
+        return iri
+
+    def object_iri(self, name: str) -> str:
+        return f"{self.ns}Object_{_slug(name)}"
+
+    def _object(self, name: str, out: _Out, since: float) -> str:
+        try:
+            cls_iri = self.onto.object_iri(name)
+        except OntologyError as error:
+            raise LoggingError(str(error)) from None
+        return self._individual(self.object_iri(name), cls_iri, out, since)
+
+    def _agent(self, who: str, out: _Out) -> str:
+        if who == "robot":
+            return self._individual(f"{self.ns}Agent_robot", T.ROBOT_CLASS, out)
+        if who == "user":
+            return self._individual(f"{self.ns}Agent_{_slug(self.user)}", T.PERSON_CLASS, out)
+        raise LoggingError(f"performed_by must be 'robot' or 'user', got {who!r}")
+
+    def _resolve(self, call: TaskCall | str) -> TaskCall:
+        resolved = self._resolved.get(call)
+        if resolved is not None:
+            return resolved
+        original = call
+        if isinstance(call, str):
+            try:
+                call = parse_call(call)
+            except ChainSyntaxError as error:
+                raise LoggingError(str(error)) from None
+        if call.task not in self.onto.tasks:
+            raise LoggingError(f"unknown task {call.task!r} in {call}; known tasks: {', '.join(sorted(self.onto.tasks))}")
+        for arg in call.args:
+            if arg not in self.onto.objects:
+                raise LoggingError(f"unknown object {arg!r} in {call}")
+        if len(self._resolved) < 100_000:
+            self._resolved[original] = call
+        return call
+
+    def _task(self, call: TaskCall, out: _Out, since: float) -> str:
+        """The task individual of a call with its roles (``Role dul:classifies Object``)."""
+        key = self._keys.get(call)
+        if key is None:
+            key = self._keys[call] = _slug(str(call).replace(", ", "__").replace("(", "__").replace(")", ""))
+        task = f"{self.ns}Task_{key}"
+        if task in self._known or not self._new(task, out):
+            return task
+        out.append(Triple(task, RDF_TYPE, self.onto.task_iri(call.task)))
+        out.append(Triple(task, RDF_TYPE, T.NAMED_INDIVIDUAL))
+        try:
+            roles = self.onto.task_roles(call.task, len(call.args))
+        except OntologyError as error:
+            raise LoggingError(str(error)) from None
+        for index, (arg, role_class) in enumerate(zip(call.args, roles)):
+            obj = self._object(arg, out, since)
+            if role_class is None:
+                continue
+            role = f"{self.ns}Role_{key}__{index}"
+            out.append(Triple(role, RDF_TYPE, role_class))
+            out.append(Triple(role, RDF_TYPE, T.NAMED_INDIVIDUAL))
+            out.append(Triple(task, T.IS_TASK_OF, role))
+            out.append(Triple(role, T.CLASSIFIES, obj))
+        return task
+
+    def _plan(self, call: TaskCall, out: _Out, since: float) -> str:
+        plan = self._plans.get(call)
+        if plan is not None:
+            return plan
+        key = self._keys.get(call)
+        if key is not None and f"{self.ns}Plan_{key}" in self._known:
+            plan = self._plans[call] = f"{self.ns}Plan_{key}"
+            return plan
+        task = self._task(call, out, since)
+        plan = f"{self.ns}Plan_{task[len(self.ns) + len('Task_'):]}"
+        if self._new(plan, out):
+            out.append(Triple(plan, RDF_TYPE, T.PLAN))
+            out.append(Triple(plan, RDF_TYPE, T.NAMED_INDIVIDUAL))
+            out.append(Triple(plan, T.PLAN_FOR, task))
+        return plan
+
+    def _interval(self, begin: Instant, end: Instant, out: _Out) -> str:
+        """A dul:TimeInterval also typed with its odb:TimeOfDay part (that is how it is recorded)."""
+        interval = self._event("TimeInterval")
+        out.append(Triple(interval, RDF_TYPE, T.TIME_INTERVAL))
+        out.append(Triple(interval, RDF_TYPE, self.vocab.part_of_day(begin.part_of_day)))
+        out.append(Triple(interval, T.BEGIN, begin.seconds))
+        out.append(Triple(interval, T.END, end.seconds))
+        return interval
+
+    def _mental(self, task_class: str, task_key: str, at: Instant, out: _Out) -> str:
+        action = self._event("MentalAction")
+        task = self._individual(f"{self.ns}Task_{task_key}", task_class, out)
+        out.append(Triple(action, RDF_TYPE, T.MENTAL_ACTION))
+        out.append(Triple(action, T.EXECUTES, task))
+        out.append(Triple(action, T.PERFORMED_BY, self._agent("robot", out)))
+        out.append(Triple(action, T.HAS_INTERVAL, self._interval(at, at, out)))
+        return action
+
+    # -- checks -----------------------------------------------------------------------------
+    def _check_time(self, at: Instant, what: str) -> None:
+        if self._last_begin is not None and at.seconds < self._last_begin.seconds:
+            raise LoggingError(
+                f"time goes backwards: {what} at {at.seconds:.3f} is before the start of the last action"
+                f" ({self._last_begin.seconds:.3f}) in NEEM {self.neem_id!r}"
+            )
+
+    def _resume_clock(self) -> tuple[Instant | None, Instant | None]:
+        """When logging continues into an existing NEEM: the latest begin and end of its actions."""
+        executed = {doc["s"] for doc in self.store.find(self.neem_id, p=RDF_TYPE, o=T.ACTION, exact=True)}
+        if not executed:
+            return None, None
+        begins: list[float] = []
+        ends: list[float] = []
+        for row in self.store.match(
+            self.neem_id,
+            [TriplePattern(Var("A"), T.HAS_INTERVAL, Var("I")), TriplePattern(Var("I"), T.BEGIN, Var("B")),
+             TriplePattern(Var("I"), T.END, Var("E"))],
+        ):  # fmt: skip
+            if row["A"] in executed:
+                begins.append(row["B"])
+                ends.append(row["E"])
+        if not begins:
+            return None, None
+        return _instant(max(begins)), _instant(max(ends))
+
+    # -- public API -------------------------------------------------------------------------
+    def perceive(self, obj: str, at: Moment) -> str:
+        """The robot perceives an odb object; its type triple is scoped from the first perception."""
+        when = _instant(at)
+        self._check_time(when, f"perception of {obj!r}")
+        out = _Out()
+        iri = self._object(obj, out, when.seconds)
+        self._write(out)
+        return iri
+
+    def available(self, calls: Iterable[TaskCall | str], at: Moment) -> str:
+        """The tasks available at a moment: a MentalAction executing Imagining that
+        odb:imagines_situation one ActionExecutionPlan per task (thesis 3.4)."""
+        when = _instant(at)
+        resolved = [self._resolve(call) for call in calls]
+        self._check_time(when, "available tasks")
+        out = _Out()
+        action = self._imagining(resolved, when, out)
+        self._write(out)
+        return action
+
+    def _imagining(self, calls: Sequence[TaskCall], when: Instant, out: _Out) -> str:
+        action = self._mental(T.IMAGINING, "imagining", when, out)
+        imagines, plans = self._imagines, self._plans
+        for call in calls:
+            plan = plans.get(call)
+            if plan is None:
+                plan = self._plan(call, out, when.seconds)
+            out.append(Triple(action, imagines, plan))
+        return action
+
+    def action(
+        self,
+        call: TaskCall | str,
+        begin: Moment,
+        end: Moment | None = None,
+        *,
+        performed_by: str = "robot",
+        action_id: str | None = None,
+        available: Iterable[TaskCall | str] | None = None,
+    ) -> LoggedAction:
+        """Log an executed action (and, in the same transaction, the tasks available when it
+        started and the idle action filling a gap of ``idle_threshold`` seconds or more)."""
+        call = self._resolve(call)
+        start = _instant(begin)
+        stop = start if end is None else _instant(end)
+        if stop.seconds < start.seconds:
+            raise LoggingError(f"{call}: ends ({stop.seconds:.3f}) before it starts ({start.seconds:.3f})")
+        self._check_time(start, f"action {call}")
+        options = None
+        if available is not None:
+            known = self._resolved.get  # most options were checked before: skip the call
+            options = [known(c) or self._resolve(c) for c in available]
+        if action_id is not None:
+            iri = f"{self.ns}Action_{_slug(action_id)}"
+            if self._exists(iri):
+                raise LoggingError(f"duplicate action id {action_id!r} in NEEM {self.neem_id!r}")
+        else:
+            iri = self._event("Action")
+        out = _Out()
+        idle = None
+        if self._last_end is not None and is_idle_gap(self._last_end.seconds, start.seconds, self.idle_threshold):
+            idle = self._idle(self._last_end, start, out)
+        imagining = self._imagining(options, start, out) if options is not None else None
+        task = self._task(call, out, start.seconds)
+        out.append(Triple(iri, RDF_TYPE, T.ACTION))
+        out.append(Triple(iri, RDF_TYPE, T.NAMED_INDIVIDUAL))
+        out.append(Triple(iri, T.EXECUTES, task))
+        for arg in call.args:
+            out.append(Triple(iri, T.PARTICIPANT, self._object(arg, out, start.seconds)))
+        out.append(Triple(iri, T.PERFORMED_BY, self._agent(performed_by, out)))
+        out.append(Triple(iri, T.HAS_INTERVAL, self._interval(start, stop, out)))
+        self._write(out)
+        self._last_begin = start
+        if self._last_end is None or stop.seconds > self._last_end.seconds:
+            self._last_end = stop
+        return LoggedAction(iri, call, start.seconds, stop.seconds, start.part_of_day, task, idle, imagining)
+
+    def _idle(self, begin: Instant, end: Instant, out: _Out) -> str:
+        idle = self._event("Action")
+        task = self._individual(f"{self.ns}Task_idle", self.vocab.idle_task, out)
+        out.append(Triple(idle, RDF_TYPE, T.ACTION))
+        out.append(Triple(idle, RDF_TYPE, T.NAMED_INDIVIDUAL))
+        out.append(Triple(idle, T.EXECUTES, task))
+        out.append(Triple(idle, T.PERFORMED_BY, self._agent("robot", out)))
+        out.append(Triple(idle, T.HAS_INTERVAL, self._interval(begin, end, out)))
+        return idle
+
+    def preference(self, ranking: Sequence[tuple[TaskCall | str, float]], at: Moment) -> str:
+        """A predicted preference (written by the oracle): a MentalAction executing Reasoning
+        that odb:imagines_preference a PreferenceOrder (also typed soma:Order) which soma:orders
+        one OrderedElement per task, each soma:encapsulates the task's plan and carries
+        odb:hasPreferenceRank (1 = most preferred, the order given) and odb:hasPreferenceScore.
+        Returns the PreferenceOrder's IRI.
+
+        ``at`` is the time of the decision ranked; it may lie before actions already logged (a
+        recorded NEEM ranked afterwards), so it is not checked against the last action's end and
+        does not move the logger's clock."""
+        when = _instant(at)
+        resolved = [(self._resolve(call), float(score)) for call, score in ranking]
+        out = _Out()
+        action = self._mental(T.REASONING, "reasoning", when, out)
+        order = self._event("PreferenceOrder")
+        out.append(Triple(action, self.vocab.imagines_preference, order))
+        out.append(Triple(order, RDF_TYPE, T.PREFERENCE_ORDER))
+        out.append(Triple(order, RDF_TYPE, T.ORDER))
+        for rank, (call, score) in enumerate(resolved, start=1):
+            element = f"{order}_{rank}"
+            out.append(Triple(element, RDF_TYPE, T.ORDERED_ELEMENT))
+            out.append(Triple(order, T.ORDERS, element))
+            out.append(Triple(element, T.ENCAPSULATES, self._plan(call, out, when.seconds)))
+            out.append(Triple(element, self.vocab.has_rank, rank))
+            out.append(Triple(element, self.vocab.has_score, score))
+        self._write(out)
+        return order
+
+    def _write(self, out: _Out) -> None:
+        self._buffer.extend(out)
+        self._buffered_calls += 1
+        self._known.update(out.created)
+        if self._buffered_calls >= self.commit_every:
+            self.flush()
+
+    def flush(self) -> int:
+        """Commit what is buffered as one transaction; return how many calls are committed."""
+        if self._buffer:
+            try:
+                self.store.insert(self.neem_id, self._buffer)
+            except StoreError as error:
+                # The in-memory view may now name individuals that were never stored.
+                self._known.clear()
+                self._plans.clear()
+                raise LoggingError(f"NEEM {self.neem_id!r}: {error}") from None
+            finally:
+                self._buffer = []
+        self.committed += self._buffered_calls
+        self._buffered_calls = 0
+        return self.committed
+
+    def close(self) -> None:
+        self.flush()
+
+    def __enter__(self) -> NeemLogger:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()

@@ -1,0 +1,50 @@
+"""The robot's live service (``python -m oracle serve``): one process holding the store, the
+Prolog engine and a fitted predictor per NEEM, answering the robot framework over JSON/HTTP
+and the user on the tablet page. See docs/service.md."""
+
+from __future__ import annotations
+
+import ipaddress
+import socket
+from typing import Any
+
+from oracle.errors import NeemOracleError
+
+
+def is_loopback(host: str) -> bool:
+    """True for 127.0.0.0/8, ::1 and names that resolve only to them (localhost)."""
+    try:
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        pass
+    try:
+        addresses = {info[4][0] for info in socket.getaddrinfo(host, None)}
+    except OSError:
+        return False
+    return bool(addresses) and all(ipaddress.ip_address(a.split("%")[0]).is_loopback for a in addresses)
+
+
+def build_context(store_spec: str | None, ontology: Any, settings: Any, neem: str | None = None,
+                  token: str | None = None, write_behind: bool = True) -> Any:
+    """Open the store on the engine thread (its connection belongs there) and check ``neem``."""
+    from oracle.service.app import Context
+    from oracle.service.engine import Engine, EngineThread
+    from oracle.store import open_store
+
+    thread = EngineThread()
+
+    def start() -> Engine:
+        engine = Engine(open_store(store_spec), ontology, settings)
+        if neem is not None:
+            engine.session(neem)  # NotFound now rather than on the first request
+        return engine
+
+    try:
+        engine = thread.call(start)
+    except NeemOracleError:
+        thread.close()
+        raise
+    return Context(engine=engine, thread=thread, default_neem=neem, token=token, write_behind=write_behind)
+
+
+__all__ = ["build_context", "is_loopback"]

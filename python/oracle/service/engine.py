@@ -1,0 +1,186 @@
+"""The service's engine: the store, the ontology, the one Prolog bridge and the live NEEM
+sessions, all owned by one dedicated thread.
+
+pyswip is not thread-safe and a SQLite connection belongs to the thread that opened it
+(toolchain-facts §2), so every request's work is a job on ``EngineThread``; the event loop
+only parses HTTP and waits. Jobs run in arrival order, which is also what makes the
+write-behind of a situation safe: its write is queued before any later request.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import logging
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
+from typing import Any, TypeVar
+
+from oracle.algorithm.params import Hyperparameters
+from oracle.answers import something_else_sentence, what_next_sentence, why_not_sentence
+from oracle.bridge import PROLOG_DIR, Bridge
+from oracle.errors import LoggingError, NeemOracleError, StoreError
+from oracle.neem.writer import NeemLogger
+from oracle.timeline import Instant
+from oracle.ontology import OdbOntology
+from oracle.service.session import NeemSession, make_predictor, moment_of
+from oracle.store import Store
+
+T = TypeVar("T")
+LOG = logging.getLogger("oracle.service")
+#: The service's Prolog query module (json_query/2): loaded once into the bridge's engine.
+QUERY_MODULE = PROLOG_DIR / "json_query.pl"
+#: A whole request is one transaction: the logger never commits on its own.
+NEVER = 10**9
+
+
+class EngineThread:
+    """The Prolog thread; ``await run(f, ...)`` runs f there and returns its result.
+
+    There is one per process and it never exits: pyswip attaches a Prolog engine to the thread
+    that first queries, and a thread that ends with an engine attached crashed the process
+    (segmentation fault) at the next Prolog call from a new thread."""
+
+    _pool: ThreadPoolExecutor | None = None
+
+    def __init__(self) -> None:
+        if EngineThread._pool is None:
+            EngineThread._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="oracle-engine")
+        self._pool = EngineThread._pool
+
+    async def run(self, fn: Callable[..., T], *args: Any) -> T:
+        return await asyncio.get_running_loop().run_in_executor(self._pool, fn, *args)
+
+    def submit(self, fn: Callable[..., Any], *args: Any) -> None:
+        """Queue fn without waiting (its errors are logged, never raised into a request)."""
+        future = self._pool.submit(fn, *args)
+        future.add_done_callback(_log_failure)
+
+    def call(self, fn: Callable[..., T], *args: Any) -> T:
+        """Run fn on the engine thread from another, non-async thread (startup, tests)."""
+        return self._pool.submit(fn, *args).result()
+
+    def close(self) -> None:
+        """Wait for the jobs queued so far (the thread itself stays, see the class docstring)."""
+        self.call(lambda: None)
+
+
+def _log_failure(future: Any) -> None:
+    error = future.exception()
+    if error is not None:
+        LOG.error("background write failed: %s", str(error).splitlines()[0] if str(error) else type(error).__name__)
+
+
+class Engine:
+    """The live model of the store. Call its methods on the engine thread only."""
+
+    def __init__(self, store: Store, ontology: OdbOntology, settings: Hyperparameters) -> None:
+        self.store = store
+        self.ontology = ontology
+        self.settings = settings
+        self.sessions: dict[str, NeemSession] = {}
+        self._bridge: Bridge | None = None
+        self._query_loaded = False
+
+    # -- NEEMs --------------------------------------------------------------------------------
+    def neems(self) -> list[dict[str, Any]]:
+        return [{"id": info.id, "user": info.user, "created_at": info.created_at, "temporary": info.temporary}
+                for info in self.store.neems()]
+
+    def newest(self) -> str | None:
+        """The newest NEEM (the page's default when the service was given none)."""
+        infos = self.store.neems()
+        return max(infos, key=lambda info: (info.created_at or "", info.id)).id if infos else None
+
+    def create(self, user: str, neem: str | None) -> dict[str, Any]:
+        if neem is not None and self.store.has_neem(neem):
+            raise LoggingError(f"NEEM {neem!r} already exists")
+        logger = NeemLogger.create(self.store, self.ontology, user=user, neem_id=neem, commit_every=NEVER)
+        self.sessions[logger.neem_id] = NeemSession(logger.neem_id, logger, self.ontology,
+                                                    make_predictor(self.ontology, self.settings), [])
+        return {"id": logger.neem_id, "user": user}
+
+    def bridge(self, neem: str) -> Bridge:
+        """The one bridge, pointed at ``neem`` (Prolog reads one NEEM at a time)."""
+        if self._bridge is None or self._bridge.neem_id != neem:
+            self._bridge = Bridge(self.store, neem, self.ontology)
+        return self._bridge
+
+    def session(self, neem: str) -> NeemSession:
+        """The NEEM's live session, opened on first use: one history read, one fit."""
+        session = self.sessions.get(neem)
+        if session is None:
+            if not self.store.has_neem(neem):
+                raise NotFound(f"no NEEM {neem!r} in the store")
+            history = self.bridge(neem).history()
+            logger = NeemLogger(self.store, self.ontology, neem, commit_every=NEVER)
+            session = NeemSession(neem, logger, self.ontology, make_predictor(self.ontology, self.settings), history)
+            self.sessions[neem] = session
+        return session
+
+    # -- answers ------------------------------------------------------------------------------
+    def why_not(self, neem: str, task: str, at: Any) -> dict[str, Any]:
+        session = self.session(neem)
+        call = session.calls([task], "task")[0]
+        when = None if at is None else Instant.of(moment_of(at, "at")).seconds
+        answer = self.bridge(neem).why_not(call.task, list(call.args), when)
+        return {"sentence": why_not_sentence(answer), "answer": answer}
+
+    def what_next(self, neem: str) -> dict[str, Any]:
+        self.session(neem)
+        answer = self.bridge(neem).what_next()
+        return {"sentence": what_next_sentence(answer), "answer": answer}
+
+    def something_else(self, neem: str, task: str | None) -> dict[str, Any]:
+        session = self.session(neem)
+        bridge = self.bridge(neem)
+        if task:
+            call = session.calls([task], "task")[0]
+            answer = bridge.something_else(call.task, list(call.args))
+        else:
+            answer = bridge.something_else()
+        return {"sentence": something_else_sentence(answer), "answer": answer}
+
+    # -- Prolog -------------------------------------------------------------------------------
+    def prolog(self, neem: str, query: str, bindings: dict[str, Any], offset: int, limit: int,
+               seconds: float) -> dict[str, Any]:
+        from pyswip import Atom
+
+        self.session(neem)  # a NotFound error for a missing NEEM
+        bridge = self.bridge(neem)
+        if not self._query_loaded:
+            bridge.ask("neem_store:py_request(R), R = [F], use_module(user:F)", [Atom(str(QUERY_MODULE))])
+            self._query_loaded = True
+        pairs = [[Atom(name), _term_value(name, value)] for name, value in bindings.items()]
+        rows = bridge.ask("neem_store:py_request(R), json_query:json_query(R, J)",
+                          [query, pairs, offset, limit, float(seconds)])
+        text = rows[0]["J"]
+        reply = json.loads(text.decode("utf-8") if isinstance(text, bytes) else text)
+        if "error" in reply:
+            raise PrologQueryError(reply["error"])
+        return reply
+
+
+class NotFound(StoreError):
+    """The NEEM a request names is not in the store."""
+
+
+class PrologQueryError(NeemOracleError):
+    """The query a client sent cannot be run (syntax, unsafe goal, an error it raised)."""
+
+
+def _term_value(name: str, value: Any) -> Any:
+    from pyswip import Atom
+
+    if isinstance(value, bool) or value is None:
+        raise PrologQueryError(f"binding {name}: expected a string (atom) or a number, got {value!r}")
+    if isinstance(value, (int, float)):
+        return value
+    if isinstance(value, str):
+        return Atom(value)
+    if isinstance(value, list):
+        return [_term_value(name, v) for v in value]
+    raise PrologQueryError(f"binding {name}: expected a string (atom), a number or a list, got {type(value).__name__}")
+
+
+__all__ = ["Engine", "EngineThread", "NotFound", "PrologQueryError", "QUERY_MODULE"]

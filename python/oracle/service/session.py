@@ -1,0 +1,218 @@
+"""One user's NEEM as the live service holds it: the logger writing it, the predictor fitted
+on its history and updated per action, and what the robot announced since the last action.
+
+Everything here runs on the service's one engine thread (engine.py); nothing is locked.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass
+from datetime import datetime
+from typing import Any
+
+from oracle.algorithm.fast import PreferenceOracle
+from oracle.algorithm.params import Hyperparameters
+from oracle.algorithm.records import Ranking, Step
+from oracle.chains import TaskCall, parse_call
+from oracle.errors import LoggingError
+from oracle.evaluation.replay import opening_tasks
+from oracle.neem.writer import LoggedAction, NeemLogger
+from oracle.timeline import Instant, clock
+from oracle.ontology import OdbOntology
+from oracle.ranking import finite
+from oracle.calls import call_of, check_call, idle_step, option_of, steps_from_history
+
+#: The forward tree is built for the top suggestion only: the page and the API offer its chain
+#: as the one workflow; the ranking itself does not depend on how many trees are built.
+TREE_ROOTS = 1
+
+Moment = datetime | float
+
+
+@dataclass(frozen=True)
+class Situation:
+    """Tasks the robot announced as available, validated, with the time they hold."""
+
+    calls: tuple[TaskCall, ...]
+    when: Instant
+    moment: Moment
+
+
+@dataclass(frozen=True)
+class OpenAction:
+    """An action whose begin was posted and whose end was not (kept in memory until its end)."""
+
+    key: str
+    call: TaskCall
+    begin: Moment
+    performed_by: str
+
+
+class OutOfOrder(LoggingError):
+    """A time before the end of the NEEM's last action: the NEEM's clock only goes forward."""
+
+
+def make_predictor(ontology: OdbOntology, settings: Hyperparameters) -> PreferenceOracle:
+    """The predictor a session fits; one place to change which one the service uses."""
+    return PreferenceOracle.from_settings(ontology.distances(), settings, opening_tasks(ontology))
+
+
+def moment_of(value: Any, what: str) -> Moment:
+    """A time the API received: unix seconds, or ISO-8601 (naive: the logger's rule, UTC)."""
+    if value is None:
+        return time.time()
+    if isinstance(value, bool):
+        raise LoggingError(f"{what}: expected unix seconds or ISO-8601, got {value!r}")
+    if isinstance(value, (int, float)):
+        return float(value)
+    if isinstance(value, str):
+        try:
+            return datetime.fromisoformat(value.replace("Z", "+00:00"))
+        except ValueError:
+            pass
+    raise LoggingError(f"{what}: expected unix seconds or ISO-8601 (2024-05-01T08:30), got {value!r}")
+
+
+class NeemSession:
+    """The live state of one NEEM. Validation happens before any write, so a refused request
+    leaves both the NEEM and this object as they were."""
+
+    def __init__(self, neem: str, logger: NeemLogger, ontology: OdbOntology, predictor: PreferenceOracle,
+                 history: Sequence[dict[str, Any]]) -> None:
+        self.neem = neem
+        self.logger = logger
+        self.ontology = ontology
+        self.predictor = predictor.fit(steps_from_history(ontology, history))
+        ends = [float(row["end"]) for row in history]
+        begins = [float(row["begin"]) for row in history]
+        #: The logger's clock: nothing may be logged before the end of the last action.
+        self.last_end: float | None = max(ends) if ends else None
+        #: Begin of the last logged action: a situation counts for the next action only when it
+        #: came after it (odb_model:situation_history's rule).
+        self.prev_begin: float | None = max(begins) if begins else None
+        self.pending: Situation | None = None
+        self.latest: dict[str, Any] | None = None
+        self.open: dict[str, OpenAction] = {}
+        self.poses: dict[str, list[float]] = {}
+        self.choice: dict[str, Any] | None = None
+        self._keys = 0
+
+    # -- validation ---------------------------------------------------------------------------
+    def calls(self, texts: Sequence[str], where: str) -> tuple[TaskCall, ...]:
+        calls = []
+        for text in texts:
+            call = parse_call(text)
+            check_call(self.ontology, call, where)
+            calls.append(call)
+        return tuple(calls)
+
+    def _check_time(self, when: Instant, what: str) -> None:
+        if self.last_end is not None and when.seconds < self.last_end:
+            raise OutOfOrder(f"time goes backwards: {what} at {when.seconds:.3f} is before the end of the"
+                               f" last action ({self.last_end:.3f}) in NEEM {self.neem!r}")
+
+    # -- perception -------------------------------------------------------------------------
+    def perceive(self, objects: Sequence[tuple[str, list[float] | None]], at: Any) -> list[str]:
+        moment = moment_of(at, "at")
+        when = Instant.of(moment)
+        self._check_time(when, "perception")
+        for name, _ in objects:
+            if name not in self.ontology.objects:
+                raise LoggingError(f"unknown object {name!r}")
+        iris = [self.logger.perceive(name, moment) for name, _ in objects]
+        self.logger.flush()
+        for name, pose in objects:
+            if pose is not None:
+                self.poses[name] = pose
+        return iris
+
+    # -- situations ---------------------------------------------------------------------------
+    def situation(self, available: Sequence[str], at: Any) -> tuple[Situation, Ranking, float]:
+        """Validate and rank (no write): the ranking and how long ranking took (ms)."""
+        if not available:
+            raise LoggingError("available must name at least one task, e.g. [\"pick(red_mug)\"]")
+        calls = self.calls(available, "available")
+        moment = moment_of(at, "at")
+        when = Instant.of(moment)
+        self._check_time(when, "situation")
+        started = time.perf_counter()
+        ranking = self.predictor.rank([option_of(self.ontology, c) for c in calls], when.part_of_day,
+                                      tree_roots=TREE_ROOTS)
+        return Situation(calls, when, moment), ranking, (time.perf_counter() - started) * 1000
+
+    def write_situation(self, situation: Situation, ranking: Ranking) -> str:
+        """Log the situation as the imagined one and the ranking as the imagined preference,
+        in one transaction; the returned IRI is the preference's."""
+        self.logger.available(situation.calls, situation.moment)
+        order = self.logger.preference(
+            [(call_of(self.ontology, t.option), finite(t.score)) for t in ranking], situation.moment)
+        self.logger.flush()
+        self.pending = situation
+        return order
+
+    def describe(self, situation: Situation, ranking: Ranking, ms: float) -> dict[str, Any]:
+        calls = [str(call_of(self.ontology, t.option)) for t in ranking]
+        self.latest = {
+            "neem": self.neem, "at": situation.when.seconds, "time_of_day": situation.when.part_of_day,
+            "history": self.predictor.n_steps_,
+            "ranking": [{"rank": t.rank, "task": call, "score": finite(t.score), "support": t.n_similar}
+                        for t, call in zip(ranking, calls)],
+            "chain": [str(call_of(self.ontology, o)) for o in ranking.chain()],
+            "ms": round(ms, 3),
+        }
+        return self.latest
+
+    # -- actions ------------------------------------------------------------------------------
+    def begin(self, call_text: str, at: Any, performed_by: str, key: str | None) -> OpenAction:
+        call = self.calls([call_text], "call")[0]
+        moment = moment_of(at, "at")
+        self._check_time(Instant.of(moment), f"action {call}")
+        if performed_by not in ("robot", "user"):
+            raise LoggingError(f"performed_by must be 'robot' or 'user', got {performed_by!r}")
+        if key is None:
+            self._keys += 1
+            key = f"a{self._keys}"
+        if key in self.open:
+            raise LoggingError(f"action {key!r} has already begun in NEEM {self.neem!r}")
+        action = OpenAction(key, call, moment, performed_by)
+        self.open[key] = action
+        return action
+
+    def end(self, key: str | None, call_text: str | None, at: Any) -> LoggedAction:
+        if key is None:
+            matches = [a for a in self.open.values() if call_text is not None and str(a.call) == str(parse_call(call_text))]
+            if len(matches) != 1:
+                raise LoggingError(f"no single open action {call_text!r} to end; give its id")
+            key = matches[0].key
+        action = self.open.get(key)
+        if action is None:
+            raise LoggingError(f"no open action {key!r} in NEEM {self.neem!r}")
+        logged = self.log(str(action.call), action.begin, at, action.performed_by)
+        del self.open[key]
+        return logged
+
+    def log(self, call_text: str, begin: Any, end: Any, performed_by: str = "robot") -> LoggedAction:
+        """Log an executed action (the logger inserts the idle action before a long gap) and
+        teach the predictor the same steps the NEEM's history will show."""
+        call = self.calls([call_text], "call")[0]
+        start = moment_of(begin, "begin")
+        stop = moment_of(end, "end") if end is not None else start
+        self._check_time(Instant.of(start), f"action {call}")
+        logged = self.logger.action(call, start, stop, performed_by=performed_by)
+        self.logger.flush()
+        if logged.idle is not None and self.last_end is not None:
+            self.predictor.partial_fit(idle_step(self.ontology, clock(self.last_end)))
+            self.prev_begin = self.last_end
+        pending = self.pending
+        counts = (pending is not None and pending.when.seconds <= logged.begin
+                  and (self.prev_begin is None or pending.when.seconds > self.prev_begin))
+        options = tuple(option_of(self.ontology, c) for c in sorted(set(pending.calls), key=str)) if counts and pending else ()
+        option = option_of(self.ontology, call)
+        self.predictor.partial_fit(Step(option.task, option.target, option.reference, options,
+                                        logged.part_of_day, False, str(call)))
+        self.last_end = logged.end
+        self.prev_begin = logged.begin
+        self.pending = None
+        return logged

@@ -1,0 +1,26 @@
+"""Importing chains: an action's end decides whether the pause after it is an odb:IdleTask."""
+
+import json
+
+from oracle.neem.importing import import_chains
+from oracle.neem.query import executed_actions
+from oracle.ontology import build_ontology
+from oracle.store import open_store
+
+
+def test_idle_follows_ends_not_starts(tmp_path):
+    rows = [
+        {"user": "u", "time": "2026-01-01T08:00:00", "duration": 40, "action": "pick(red_mug)"},
+        {"user": "u", "time": "2026-01-01T08:00:45", "duration": 5, "action": "place(red_mug, counter_top)"},
+        {"user": "u", "time": "2026-01-01T08:05:00", "action": "pick(apple)"},
+    ]
+    chains = tmp_path / "c.jsonl"
+    chains.write_text("".join(json.dumps(r) + "\n" for r in rows))
+    store = open_store(tmp_path / "s.sqlite")
+    onto = build_ontology()
+    report = import_chains(store, onto, chains)
+    (neem,) = report
+    idle = [a for a in executed_actions(store, neem) if a.task_class == onto.vocab.idle_task]
+    # 45 s between the starts of the first two, but only 5 s of pause: one idle period, before pick(apple)
+    assert len(idle) == 1
+    assert idle[0].end - idle[0].begin == 250.0  # from the end of place (08:00:50) to 08:05:00

@@ -1,0 +1,163 @@
+"""The robot API in-process: the thesis loop online, answers, Prolog, and refusals that change nothing."""
+
+from __future__ import annotations
+
+import pytest
+
+from oracle.service.app import create_app
+from tests.service.conftest import AVAILABLE, ROUTINE, at, drive
+
+pytestmark = pytest.mark.usefixtures("onto")
+
+
+@pytest.fixture()
+def neem(client) -> str:
+    response = client.post("/api/neems", json={"user": "ada", "neem": "ada"})
+    assert response.status_code == 201, response.text
+    return "ada"
+
+
+def test_situation_answers_ranking_and_chain_and_writes_the_preference(client, neem):
+    drive(client, neem)
+    answer = client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(2, 0)}).json()
+    assert answer["history"] == 2 * len(ROUTINE) + 1  # the night between is an idle action
+    assert [r["rank"] for r in answer["ranking"]] == list(range(1, len(AVAILABLE) + 1))
+    assert sorted(r["task"] for r in answer["ranking"]) == AVAILABLE
+    top = answer["ranking"][0]["task"]
+    assert top in ROUTINE and answer["chain"][0] == top
+    assert set(answer["chain"]) <= set(ROUTINE)  # the chain follows the routine, never the banana
+    assert all(r["support"] >= 0 for r in answer["ranking"])
+    # the preference is in the NEEM: Prolog's what-next reads it back
+    nxt = client.get(f"/api/neems/{neem}/what-next").json()
+    assert nxt["answer"]["chain"][0]["task"] == top
+    assert nxt["sentence"].startswith(f"Next I expect {top}")
+
+
+def test_incremental_predictor_ranks_like_a_fresh_fit_of_the_neem(client, neem, ctx, onto):
+    """partial_fit per action must give what ranking.rank_neem gives from the stored history."""
+    from oracle.algorithm.params import Hyperparameters
+    from oracle.ranking import rank_neem
+
+    drive(client, neem)
+    live = client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(2, 0)}).json()
+
+    def refit():
+        bridge = ctx.engine.bridge(neem)
+        return rank_neem(bridge, onto, Hyperparameters(), AVAILABLE, at(2, 0), write=False)
+
+    fresh = ctx.thread.call(refit)
+    assert fresh.history == live["history"]
+    assert [str(c) for c in fresh.calls] == [r["task"] for r in live["ranking"]]
+    assert [round(min(t.score, 1e9), 9) for t in fresh.ranking] == [round(r["score"], 9) for r in live["ranking"]]
+
+
+def test_why_not_and_something_else_in_english_and_structured(client, neem):
+    drive(client, neem)
+    client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(2, 0)})
+    why = client.get(f"/api/neems/{neem}/why-not", params={"task": "pick(banana)"}).json()
+    assert "pick(banana)" in why["sentence"]
+    assert why["answer"]["reasons"][0]["reason"] == "ranked_lower"
+    other = client.get(f"/api/neems/{neem}/something-else", params={"task": "open(small_drawer)"}).json()
+    assert other["sentence"].startswith("Instead of open(small_drawer) I would do")
+
+
+def test_action_begin_then_end_and_idle_detection(client, neem):
+    opened = client.post(f"/api/neems/{neem}/actions", json={"call": "pick(red_mug)", "phase": "begin", "at": at(0, 0)}).json()
+    assert opened["open"] is True
+    done = client.post(f"/api/neems/{neem}/actions", json={"phase": "end", "id": opened["id"], "at": at(0, 4)}).json()
+    assert (done["begin"], done["end"], done["idle"]) == (at(0, 0), at(0, 4), None)
+    later = client.post(f"/api/neems/{neem}/actions", json={"call": "pick(thermos)", "begin": at(0, 60)}).json()
+    assert later["idle"] is not None  # 56 s of nothing is an odb:IdleTask action
+    assert later["history"] == 3
+
+
+def test_perception_is_logged_and_unknown_objects_refused(client, neem):
+    ok = client.post(f"/api/neems/{neem}/perception", json={"objects": [{"name": "banana", "pose": [0.1, 0.2, 0.9]}], "at": at(0, 0)})
+    assert ok.status_code == 200 and ok.json()["logged"][0].endswith("Object_banana")
+    bad = client.post(f"/api/neems/{neem}/perception", json={"objects": [{"name": "apple"}, {"name": "unicorn"}], "at": at(0, 1)})
+    assert bad.status_code == 400 and "unicorn" in bad.json()["error"]
+
+
+@pytest.mark.parametrize("path,body,status,needle", [
+    ("/api/neems/ada/situation", {"available": ["fly(red_mug)"]}, 400, "fly"),
+    ("/api/neems/ada/situation", {"available": ["pick(red_mug"]}, 400, "malformed"),
+    ("/api/neems/ada/situation", {"available": []}, 422, "available"),
+    ("/api/neems/ada/situation", {"available": ["pick(red_mug)"], "at": "yesterday"}, 400, "ISO-8601"),
+    ("/api/neems/ada/situation", {"available": ["pick(red_mug)"], "at": 1.0}, 409, "backwards"),
+    ("/api/neems/nobody/situation", {"available": ["pick(red_mug)"]}, 404, "nobody"),
+    ("/api/neems/ada/actions", {"phase": "end", "id": "a9"}, 400, "no open action"),
+    ("/api/neems/ada/actions", {"call": "pick(red_mug)", "begin": at(0, 9), "end": at(0, 1)}, 400, "before it starts"),
+    ("/api/neems/ada/choice", {"task": "fly(away)"}, 400, "fly"),
+    ("/api/prolog", {"query": "halt", "neem": "ada"}, 400, "not allowed"),
+    ("/api/prolog", {"query": "kb_call(halt)", "neem": "ada"}, 400, "not allowed"),
+    ("/api/prolog", {"query": "member(X, [a", "neem": "ada"}, 400, "syntax"),
+])
+def test_bad_input_is_a_one_line_4xx_and_changes_nothing(client, neem, ctx, path, body, status, needle):
+    client.post(f"/api/neems/{neem}/actions", json={"call": "pick(apple)", "begin": at(0, 0), "end": at(0, 2)})
+    count = ctx.thread.call(lambda: ctx.engine.store.count(neem))
+    response = client.post(path, json=body)
+    assert response.status_code == status, response.text
+    error = response.json()["error"]
+    assert needle in error and "\n" not in error
+    assert ctx.thread.call(lambda: ctx.engine.store.count(neem)) == count
+    assert client.get("/api/neems").status_code == 200  # still serving
+
+
+def test_prolog_pages_solutions_and_binds_values_as_terms(client, neem):
+    drive(client, neem, days=1)
+    query = {"query": "kb_call(executes_task(A, T))", "neem": neem, "limit": 3}
+    first = client.post("/api/prolog", json=query).json()
+    assert len(first["solutions"]) == 3 and first["more"] is True
+    rest = client.post("/api/prolog", json={**query, "offset": 3, "limit": 100}).json()
+    assert rest["more"] is False and len(first["solutions"]) + len(rest["solutions"]) == 3 * len(ROUTINE)
+    # (each step: the action, and the imagining and the reasoning of its situation)
+    # a value with quotes and a comma stays one atom: it is bound, never spliced into the text
+    tricky = "x'), halt, ('"
+    bound = client.post("/api/prolog", json={"query": "atom_length(X, N)", "bindings": {"X": tricky}, "neem": neem}).json()
+    assert bound["solutions"] == [{"X": tricky, "N": len(tricky)}]
+
+
+def test_choice_is_published_to_the_robot(client, neem):
+    made = client.post(f"/api/neems/{neem}/choice", json={"task": "pick(red_mug)",
+                                                           "workflow": ["pick(red_mug)", "place(red_mug, counter_top)"]})
+    assert made.status_code == 200
+    assert client.get(f"/api/neems/{neem}/choice").json()["workflow"] == ["pick(red_mug)", "place(red_mug, counter_top)"]
+
+
+def test_token_is_checked_on_every_api_call_and_the_stream(ctx):
+    from fastapi.testclient import TestClient
+
+    ctx.token = "s3cret-token-123"
+    with TestClient(create_app(ctx)) as client:
+        assert client.get("/api/neems").status_code == 401
+        assert client.get("/api/events").status_code == 401
+        assert client.get("/").status_code == 401
+        assert client.get("/api/neems", headers={"Authorization": "Bearer wrong-token-000"}).status_code == 401
+        assert client.get("/api/neems", headers={"Authorization": "Bearer s3cret-token-123"}).status_code == 200
+        assert client.get("/api/neems", params={"token": "s3cret-token-123"}).status_code == 200
+        assert client.get("/openapi.json").status_code == 200  # the schema holds no user data
+
+
+def test_no_cors_and_cross_origin_refused(client, neem):
+    response = client.get("/api/neems", headers={"Origin": "http://evil.example"})
+    assert response.status_code == 403
+    assert "access-control-allow-origin" not in {k.lower() for k in response.headers}
+
+
+def test_openapi_and_offline_docs(client):
+    schema = client.get("/openapi.json").json()
+    assert "/api/neems/{neem}/situation" in schema["paths"]
+    docs = client.get("/docs").text
+    assert "/docs/static/swagger-ui-bundle.js" in docs and "cdn" not in docs
+    assert client.get("/docs/static/swagger-ui-bundle.js").status_code == 200
+
+
+def test_page_renders_the_latest_ranking_without_external_resources(client, neem):
+    drive(client, neem, days=1)
+    client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(1, 0)})
+    page = client.get("/", params={"neem": neem})
+    assert page.status_code == 200
+    html = page.text
+    assert "open(small_drawer)" in html and "Why not?" in html
+    assert "http://" not in html.replace("http://www.w3", "") and "https://" not in html
+    assert "default-src 'none'" in page.headers["content-security-policy"]
