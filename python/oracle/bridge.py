@@ -240,6 +240,15 @@ def _ensure_loaded() -> None:
     _STATE["loaded"] = True
 
 
+def _attach_engine() -> None:
+    """Give the calling thread a Prolog engine if it has none. Terms (atoms included) made on a
+    thread without one crash the process, and pyswip attaches only inside ``Prolog.query``."""
+    from pyswip.core import PL_thread_attach_engine, PL_thread_self
+
+    if PL_thread_self() == -1 and PL_thread_attach_engine(None) == -1:
+        raise PrologError("cannot attach a Prolog engine to this thread")
+
+
 def _run(query: str, maxresult: int = -1) -> list[dict[str, Any]]:
     from pyswip import Prolog
     from pyswip.prolog import PrologError as PySwipError
@@ -268,6 +277,7 @@ class Bridge:
         self.neem_id = neem_id
         store.neem(neem_id)  # StoreError when the NEEM does not exist
         with _LOCK:
+            _attach_engine()
             _ensure_loaded()
             _STATE["bridge"] = self
             self._with_request([Atom(neem_id)], "neem_store:py_request(R), R = [N], neem_store:store_use_python(N)")

@@ -37,13 +37,14 @@ def test_incremental_predictor_ranks_like_a_fresh_fit_of_the_neem(client, neem, 
     """partial_fit per action must give what ranking.rank_neem gives from the stored history."""
     from oracle.algorithm.params import Hyperparameters
     from oracle.ranking import rank_neem
+    from oracle.timeline import Instant
 
     drive(client, neem)
     live = client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(2, 0)}).json()
 
     def refit():
         bridge = ctx.engine.bridge(neem)
-        return rank_neem(bridge, onto, Hyperparameters(), AVAILABLE, at(2, 0), write=False)
+        return rank_neem(bridge, onto, Hyperparameters(), AVAILABLE, Instant.of(at(2, 0)), write=False)
 
     fresh = ctx.thread.call(refit)
     assert fresh.history == live["history"]

@@ -7,13 +7,13 @@ import os
 import stat
 from pathlib import Path
 
-from oracle.commands.common import add_ontology_options, ontology_from
+from oracle.commands.common import ONTOLOGY_OPTIONS, STORE, add_options, ontology_from
 from oracle.errors import NeemOracleError
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser("serve", help="run the robot's live service and the tablet page (HTTP, loopback)")
-    parser.add_argument("--store", help="store: a SQLite path, sqlite:///PATH or mongodb://... (default: the user's store)")
+    STORE.add(parser)
     parser.add_argument("--neem", help="the page's NEEM and the default for /api/prolog (default: the newest)")
     parser.add_argument("--host", default="127.0.0.1", help="address to bind (default 127.0.0.1; any other needs a token)")
     parser.add_argument("--port", type=int, default=8765, help="TCP port (default 8765; 0: any free port)")
@@ -23,7 +23,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                         help="settings YAML, 'recommended' or a thesis Fig. 5.5 letter (default: recommended)")
     parser.add_argument("--sync-writes", action="store_true",
                         help="answer a situation only after its NEEM write (default: answer first, write next)")
-    add_ontology_options(parser)
+    add_options(parser, *ONTOLOGY_OPTIONS)
     parser.set_defaults(handler=run)
 
 
