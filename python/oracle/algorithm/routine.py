@@ -196,7 +196,7 @@ class RoutineOracle:
     def _add(self, step: Step, score: bool) -> None:
         if not isinstance(step, Step):
             raise TypeError(f"history entries must be Step records, got {type(step).__name__}")
-        if score and not step.idle and step.options:
+        if score and self.tuning != "fixed" and not step.idle and step.options:  # "fixed" needs no scores
             offered, _ = offered_options(step, None)
             if step.option in offered:
                 truth = offered.index(step.option)
