@@ -55,6 +55,11 @@ ODB = Option(("--odb",), {"type": Path, "help": "odb folder (default: the sample
 MAPPING = Option(("--mapping",), {"type": Path, "help": "mapping YAML (default: the sample kitchen's, shipped in ontology/)"})
 SOMA = Option(("--soma",), {"type": Path, "help": "folder with the official SOMA.owl/SOMA-HOME.owl/DUL.owl (default: the core TBox)"})
 ONTOLOGY = Option(("--ontology",), {"type": Path, "help": "OWL file written by 'ontology build' (instead of --odb/--mapping)"})
+METHOD = Option(("--method",), {
+    "metavar": "NAME",
+    "help": "predictor (oracle.algorithm.predictors): routine (the default: exact contexts backed off to ontology "
+            "similarity, self-tuned), routine-fixed, routine-mixture, or thesis (the thesis oracle with --settings)",
+})
 #: The options naming the ontology a command works with (see ``ontology_from``).
 ONTOLOGY_OPTIONS = (ODB, MAPPING, SOMA, ONTOLOGY)
 
@@ -107,3 +112,10 @@ def moment_from(text: str | None) -> Instant | None:
         return parse_instant(text)
     except TimeValueError as error:
         raise NeemOracleError(f"--at {error}") from None
+
+
+def method_from(args: argparse.Namespace) -> str:
+    """The predictor name of ``--method`` (default: the registry's); one-line error when unknown."""
+    from oracle.algorithm.predictors import DEFAULT, predictor_spec
+
+    return predictor_spec(getattr(args, "method", None) or DEFAULT).name

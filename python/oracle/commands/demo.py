@@ -18,12 +18,15 @@ from oracle.errors import NeemOracleError
 if TYPE_CHECKING:
     from oracle.chains import ChainRow
 
+from oracle.commands.common import METHOD, add_options, method_from
+
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser("demo", help="log a simulated user, rank the next task, answer why-not (embedded store)")
     parser.add_argument("--store", help="store to use (default: the user's embedded SQLite store)")
     parser.add_argument("--days", type=int, default=5, help="days of history to simulate (default 5)")
     parser.add_argument("--seed", type=int, default=3, help="which simulated user (default 3)")
+    add_options(parser, METHOD)
     parser.set_defaults(handler=run)
 
 
@@ -41,6 +44,7 @@ def run(args: argparse.Namespace) -> int:
     from oracle.world.personas import make_persona
     from oracle.world.worldfile import load_world
 
+    method = method_from(args)
     if args.days < 1:
         raise NeemOracleError("--days must be at least 1")
     started = time.perf_counter()
@@ -62,7 +66,7 @@ def run(args: argparse.Namespace) -> int:
     print(f"   ({persona.persona})")
 
     bridge = Bridge(store, "demo", onto)
-    result = rank_neem(bridge, onto, Hyperparameters())
+    result = rank_neem(bridge, onto, Hyperparameters(), method=method)
     print(f"3. what the user may want now (they went on to do {now.action}):")
     print_ranking(result, limit=5)
 
