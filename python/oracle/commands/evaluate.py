@@ -9,10 +9,8 @@ import sys
 import time
 from pathlib import Path
 
-from oracle.algorithm.params import save_settings
 from oracle.commands.common import ONTOLOGY_OPTIONS, SETTINGS, add_options, ontology_from, settings_from
 from oracle.errors import NeemOracleError
-from oracle.evaluation.replay import check_users, load_users, make_methods, replay, stderr_progress, summarize
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -39,6 +37,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_evaluate(args: argparse.Namespace) -> int:
+    from oracle.evaluation.replay import check_users, load_users, make_methods, replay, stderr_progress, summarize
+
     ontology = ontology_from(args)
     settings = settings_from(args.settings)
     users = load_users(args.chains)
@@ -93,6 +93,8 @@ def _write(path: Path, text: str) -> None:
 
 
 def run_tune(args: argparse.Namespace) -> int:
+    from oracle.algorithm.params import save_settings
+    from oracle.evaluation.replay import check_users, load_users
     from oracle.evaluation.tuning import tune
 
     ontology = ontology_from(args)

@@ -6,7 +6,6 @@ import argparse
 import json
 import math
 from oracle.commands.common import AT, JSON, NEEM, ONTOLOGY_OPTIONS, SETTINGS, STORE, add_options
-from oracle.timeline import format_clock
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -42,6 +41,8 @@ def run(args: argparse.Namespace) -> int:
 
 
 def print_ranking(result, limit: int | None = None) -> None:  # noqa: ANN001
+    from oracle.timeline import format_clock
+
     when = format_clock(result.at)
     print(f"NEEM {result.neem}: {result.history} past actions, decision at {when} ({result.time_of_day}); "
           f"ranked {len(result.calls)} options in {result.milliseconds:.2f} ms")
