@@ -54,3 +54,14 @@ def test_a_misspelt_command_is_refused_with_the_list_of_commands(capsys: pytest.
         main(["nems"])
     assert stop.value.code == 2
     assert "'neems'" in capsys.readouterr().err
+
+
+def test_reading_a_store_imports_no_graph_library() -> None:
+    """``neems`` and the store need IRIs as strings, never rdflib's graphs or numpy."""
+    script = (
+        "import sys\n"
+        "import oracle.neem.query, oracle.store.sqlite, oracle.commands.store\n"
+        "print([m for m in ('rdflib', 'numpy', 'pyswip', 'yaml', 'oracle.ontology') if m in sys.modules])\n"
+    )
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True)
+    assert done.stdout.strip() == "[]"

@@ -8,14 +8,16 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from oracle.neem import terms as T
-from oracle.ontology.vocabulary import Vocabulary
 from oracle.errors import StoreError
 from oracle.store import RDF_TYPE, NeemInfo, Store, Triple, TriplePattern, Var
 from oracle.store.base import SUMMARY_KEY
 from oracle.timeline import TIME_OF_DAY_NAMES
+
+if TYPE_CHECKING:  # the ontology package imports rdflib and numpy, which a listing never needs
+    from oracle.ontology.vocabulary import Vocabulary
 
 
 @dataclass(frozen=True)
