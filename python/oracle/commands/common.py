@@ -8,9 +8,8 @@ parsed values into objects with the helpers below (``ontology_from``, ``connect`
 from __future__ import annotations
 
 import argparse
-from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 from oracle.errors import NeemOracleError, SettingsError
 
@@ -21,12 +20,12 @@ if TYPE_CHECKING:  # imported lazily at run time, so that --help stays fast
     from oracle.timeline import Instant
 
 
-@dataclass(frozen=True)
-class Option:
-    """One command-line option: its flags and the keyword arguments of ``add_argument``."""
+class Option(NamedTuple):
+    """One command-line option: its flags and the keyword arguments of ``add_argument``
+    (a named tuple, not a dataclass: ``dataclasses`` costs every call ~10 ms of imports)."""
 
     flags: tuple[str, ...]
-    settings: dict[str, Any] = field(default_factory=dict)
+    settings: dict[str, Any]
 
     def add(self, parser: argparse.ArgumentParser) -> None:
         parser.add_argument(*self.flags, **self.settings)

@@ -9,12 +9,10 @@ import sys
 import time
 from pathlib import Path
 
-from oracle.algorithm.params import save_settings
 from oracle.commands.common import (
     METHOD, ONTOLOGY_OPTIONS, SETTINGS, add_options, method_from, ontology_from, settings_from,
 )
 from oracle.errors import NeemOracleError
-from oracle.evaluation.replay import check_users, load_users, make_methods, replay, stderr_progress, summarize
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -43,6 +41,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_evaluate(args: argparse.Namespace) -> int:
+    from oracle.evaluation.replay import check_users, load_users, make_methods, replay, stderr_progress, summarize
+
     method = method_from(args)
     ontology = ontology_from(args)
     settings = settings_from(args.settings)
@@ -119,6 +119,8 @@ def _write(path: Path, text: str) -> None:
 
 
 def run_tune(args: argparse.Namespace) -> int:
+    from oracle.algorithm.params import save_settings
+    from oracle.evaluation.replay import check_users, load_users
     from oracle.evaluation.tuning import tune
 
     ontology = ontology_from(args)

@@ -8,7 +8,6 @@ import math
 from typing import TYPE_CHECKING
 
 from oracle.commands.common import AT, JSON, METHOD, NEEM, ONTOLOGY_OPTIONS, SETTINGS, STORE, add_options
-from oracle.timeline import format_clock
 
 if TYPE_CHECKING:
     from oracle.ranking import NeemRanking
@@ -74,6 +73,8 @@ def describe(task) -> str:  # noqa: ANN001 - a RankedTask
 
 
 def print_ranking(result: NeemRanking, limit: int | None = None) -> None:
+    from oracle.timeline import format_clock
+
     when = format_clock(result.at)
     print(f"NEEM {result.neem}: {result.history} past actions, decision at {when} ({result.time_of_day}); "
           f"{result.method} ranked {len(result.calls)} options in {result.milliseconds:.2f} ms")

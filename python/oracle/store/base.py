@@ -73,6 +73,10 @@ class NeemInfo:
         )
 
 
+#: Registry key of the summary ``neems`` lists (oracle.neem.query keeps it); never exported.
+SUMMARY_KEY = "summary"
+
+
 def new_meta(user: str | None, temporary: bool, extra: Mapping[str, Any] | None = None) -> dict[str, Any]:
     meta: dict[str, Any] = {
         "created_by": user,
@@ -285,6 +289,11 @@ class Store(ABC):
 
     @abstractmethod
     def _count(self, neem_id: str, kind: str) -> int: ...
+
+    def write_mark(self, neem_id: str) -> int:
+        """A number that changes whenever triples are added to a NEEM (what a kept summary is
+        checked against); backends override it with one that costs the same at every size."""
+        return self.count(neem_id)
 
     def find(
         self,

@@ -17,11 +17,11 @@ from bson.decimal128 import Decimal128
 from bson.int64 import Int64
 from bson.objectid import ObjectId
 
-from oracle.namespaces import RDF, RDFS
+from oracle.namespaces import RDF_IRI, RDFS_IRI
 
-RDF_TYPE = str(RDF.type)
-SUBCLASS_OF = str(RDFS.subClassOf)
-SUBPROPERTY_OF = str(RDFS.subPropertyOf)
+RDF_TYPE = RDF_IRI + "type"
+SUBCLASS_OF = RDFS_IRI + "subClassOf"
+SUBPROPERTY_OF = RDFS_IRI + "subPropertyOf"
 #: Properties whose object is closed over the class/property taxonomy (``o*``) instead of ``p*``.
 TAXONOMIC: frozenset[str] = frozenset({RDF_TYPE, SUBCLASS_OF, SUBPROPERTY_OF})
 #: The two properties whose assertion changes the taxonomy and so the closures of other documents.

@@ -540,6 +540,12 @@ class SQLiteStore(Store):
         self._require(neem_id)
         return int(self._conn.execute(f"SELECT count(*) FROM {_table(neem_id, kind)}").fetchone()[0])
 
+    def write_mark(self, neem_id: str) -> int:
+        # Triple rows are never deleted, only a whole NEEM: the last rowid grows with every
+        # insert and is read from the end of the table's b-tree, not by counting.
+        self._require(neem_id)
+        return self._conn.execute(f"SELECT coalesce(max(id), 0) FROM {_table(neem_id, 'triples')}").fetchone()[0]
+
     def _find(
         self, neem_id: str, pattern: TriplePattern, scope: Scope | None, limit: int | None, exact: bool
     ) -> Iterator[dict[str, Any]]:
