@@ -203,7 +203,7 @@ def _ignored(path: str, patterns: list[str]) -> bool:
 
 def test_legacy_builder_keeps_venv_git_and_env_out():
     assert not (DOCKER / "Dockerfile.dockerignore").exists(), "BuildKit would prefer it; keep one file"
-    patterns = [l.strip() for l in DOCKERIGNORE.read_text().splitlines() if l.strip() and not l.startswith("#")]
+    patterns = [line.strip() for line in DOCKERIGNORE.read_text().splitlines() if line.strip() and not line.startswith("#")]
     for secret in (".venv/bin/python", ".git/HEAD", "docker/.env", "docker/.env.example", "build/lib/x.py"):
         assert _ignored(secret, patterns), secret
     for needed in ("pyproject.toml", "setup.py", "python/oracle/cli.py", "ontology/mapping.yaml",

@@ -10,6 +10,7 @@ action never done still gets mass through the actions it resembles.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -24,7 +25,7 @@ class Rows:
         self.width = width
         self.size = 0
 
-    def append(self, row) -> None:
+    def append(self, row: float | Sequence[float] | np.ndarray) -> None:
         if self.size == self._data.shape[0]:
             self._data = np.concatenate([self._data, np.empty_like(self._data)])
         self._data[self.size, : self.width] = row

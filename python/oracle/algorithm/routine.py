@@ -22,8 +22,8 @@ from oracle.algorithm.kernel import START, Rows, context_distance, normalised, s
 from oracle.algorithm.reference import offered_options
 from oracle.algorithm.selftune import VariantWeights
 from oracle.algorithm.similarity import class_rows, option_distances
-from oracle.algorithm.records import Option, RankedTask, Ranking, Step
-from oracle.algorithm.tree import successor_tree
+from oracle.algorithm.records import Option, RankedTask, Ranking, Step, TreeNode
+from oracle.algorithm.tree import Successions, TreeShape, successor_tree
 from oracle.errors import SettingsError
 from oracle.timeline import TIME_OF_DAY_NAMES
 
@@ -213,7 +213,7 @@ class RoutineOracle:
             for stream in self._streams.values():
                 stream.before.append(stream.recent())
             self._executed.append(token)
-            self._tod.append(_TOD.get(step.time_of_day, -1))
+            self._tod.append(_TOD.get(step.time_of_day or "", -1))
             self._position.append(position)
         for name, stream in self._streams.items():
             if name == "idle" or token != IDLE:
@@ -283,17 +283,18 @@ class RoutineOracle:
             option, n = offered[i], int(explain.order[i])
             context = stream.counts.context(n) if n > 0 else ()
             situations = self._support(stream, self._ids.get(option, UNKNOWN), context or (), n)
-            successors = ()
+            successors: tuple[TreeNode, ...] = ()
             if situations and (tree_roots is None or rank <= tree_roots):
                 successors = successor_tree(
-                    np.array(situations, dtype=np.int64), np.ones(len(situations)), self._next.view[:, 0],
-                    np.maximum(self._step_ids.view[:, 0], 0), self.options_, self.event_horizon_forward, 1.0,
-                    present, frozenset(self.opening_tasks), option.task not in self.opening_tasks)
+                    np.array(situations, dtype=np.int64), np.ones(len(situations)),
+                    Successions(self._next.view[:, 0], np.maximum(self._step_ids.view[:, 0], 0), self.options_),
+                    TreeShape(self.event_horizon_forward, 1.0, present, frozenset(self.opening_tasks)),
+                    option.task not in self.opening_tasks)
             probability = float(mixed[i])
             tasks.append(RoutineTask(
                 rank, -math.log2(probability) if probability > 0 else math.inf, option,
                 int(explain.count[i]) if n >= 0 else 0, float(nearest[i]), successors, probability, n,
-                tuple(self._label(t) for t in context), tuple(situations[-5:]) if n >= 0 else ()))
+                tuple(self._label(t) for t in context or ()), tuple(situations[-5:]) if n >= 0 else ()))
         return Ranking(tuple(tasks))
 
     def _support(self, stream: _Stream, option_id: int, context: tuple[int, ...], n: int) -> list[int]:
@@ -311,7 +312,8 @@ class RoutineOracle:
             for k in range(before.shape[1], n):
                 at = where - 1 - k
                 hit &= (at >= 0) & (tokens[np.maximum(at, 0)] == context[-1 - k])
-        return self._position.view[hit, 0].tolist()
+        positions: list[int] = self._position.view[hit, 0].tolist()
+        return positions
 
     def _stream_index(self, stream: _Stream) -> np.ndarray:
         """The index of every past action in ``stream``'s token list."""

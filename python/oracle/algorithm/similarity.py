@@ -13,10 +13,10 @@ from collections.abc import Sequence
 import numpy as np
 
 from oracle.algorithm.reference import class_row
-from oracle.algorithm.records import Option
+from oracle.algorithm.records import DistanceTable, Option
 
 
-def class_rows(matrix, options: Sequence[Option]) -> np.ndarray:
+def class_rows(matrix: DistanceTable, options: Sequence[Option]) -> np.ndarray:
     """The (k, 3) class indices of ``options`` in the distance matrix; -1 for an empty role slot."""
     rows = np.empty((len(options), 3), dtype=np.int64)
     for i, option in enumerate(options):
@@ -44,4 +44,5 @@ def option_distances(values: np.ndarray, a: np.ndarray, b: np.ndarray, task_fact
         total = total + np.where(one, penalty, 0.0)
         count += both | one
     average = np.divide(total, count, out=np.zeros(task.shape), where=count > 0)
-    return task_factor * task + object_factor * average
+    result: np.ndarray = task_factor * task + object_factor * average
+    return result

@@ -18,7 +18,8 @@ from typing import Any, TypeVar
 
 from oracle.algorithm.params import Hyperparameters
 from oracle.answers import something_else_sentence, what_next_sentence, why_not_sentence
-from oracle.bridge import PROLOG_DIR, Bridge
+from oracle.bridge import Bridge
+from oracle.paths import prolog_dir
 from oracle.errors import LoggingError, NeemOracleError, StoreError
 from oracle.neem.writer import NeemLogger
 from oracle.timeline import Instant
@@ -29,7 +30,7 @@ from oracle.store import Store
 T = TypeVar("T")
 LOG = logging.getLogger("oracle.service")
 #: The service's Prolog query module (json_query/2): loaded once into the bridge's engine.
-QUERY_MODULE = PROLOG_DIR / "json_query.pl"
+QUERY_MODULE = prolog_dir() / "json_query.pl"
 #: A whole request is one transaction: the logger never commits on its own.
 NEVER = 10**9
 

@@ -24,7 +24,7 @@ def persona_rows(persona: int, seed: int, days: int) -> tuple[str, list[Any]]:
     """The persona's file name and the ChainRows of its simulated days."""
     from oracle.world.generate import simulate
     from oracle.world.personas import make_persona
-    from oracle.world.rules import load_world
+    from oracle.world.worldfile import load_world
 
     who = make_persona(seed, persona)
     return who.file_name, simulate(who, load_world(), days, seed)[0]

@@ -179,7 +179,7 @@ class MongoStore(Store):
     def write_mark(self, neem_id: str) -> int:
         # The collection's document count from its metadata: triples are never deleted one
         # by one, so it grows with every insert; count_documents would scan.
-        return self._coll(neem_id, "triples").estimated_document_count()
+        return int(self._coll(neem_id, "triples").estimated_document_count())
 
     def _find(
         self, neem_id: str, pattern: TriplePattern, scope: Scope | None, limit: int | None, exact: bool

@@ -544,7 +544,7 @@ class SQLiteStore(Store):
         # Triple rows are never deleted, only a whole NEEM: the last rowid grows with every
         # insert and is read from the end of the table's b-tree, not by counting.
         self._require(neem_id)
-        return self._conn.execute(f"SELECT coalesce(max(id), 0) FROM {_table(neem_id, 'triples')}").fetchone()[0]
+        return int(self._conn.execute(f"SELECT coalesce(max(id), 0) FROM {_table(neem_id, 'triples')}").fetchone()[0])
 
     def _find(
         self, neem_id: str, pattern: TriplePattern, scope: Scope | None, limit: int | None, exact: bool
