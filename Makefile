@@ -2,7 +2,7 @@
 SHELL := /bin/bash
 VENV ?= .venv
 PY := $(VENV)/bin/python
-PLT := $(wildcard prolog/*.plt)
+PLT := $(sort $(shell find prolog -name '*.plt'))
 
 .PHONY: setup test test-python test-prolog bench demo up down test-mongo clean help
 

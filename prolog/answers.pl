@@ -13,7 +13,7 @@
 
 "Why didn't you do X?", "What do you want to do next?" and "Do something else!",
 answered from the history of imagined situations, imagined preferences and executed
-actions in the NEEM (odb_model). Calls are chain terms such as `pick(banana)`.
+actions in the NEEM (the odb modules). Calls are chain terms such as `pick(banana)`.
 
 Reason terms of why_not/2,3 (each a separate solution, most telling first):
 
@@ -34,8 +34,15 @@ Reason terms of why_not/2,3 (each a separate solution, most telling first):
 :- use_module(library(apply)).
 :- use_module(library(http/json)).
 :- use_module(neem_store).
-:- use_module(knowrob_model).
-:- use_module(odb_model).
+:- use_module(lang/query, [kb_call/2]).
+:- use_module(lang/triple, [kb_iri/2]).
+:- use_module(model/rdfs, []).
+:- use_module(model/event, []).
+:- use_module(odb/names, [odb_iri/2]).
+:- use_module(odb/calls, [task_call/2, call_tasks/2, times_done/2]).
+:- use_module(odb/events, [perceived_at/2]).
+:- use_module(odb/decisions, [decision_at/3, imagined_available/2, latest_decision/4, preference_at/3,
+                              latest_preference/3, action_time/5]).
 
 %!  why_not(+Call, -Reason) is nondet.
 %   Why Call was not done lately: at the latest decision the robot made.

@@ -2,7 +2,7 @@
 
 :- use_module(answers).
 :- use_module(neem_store).
-:- use_module(test_episode).
+:- use_module(fixtures/test_episode).
 
 test(why_not_ranked_lower, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
     findall(R, why_not(pick(apple), 105, R), Rs),

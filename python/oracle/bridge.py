@@ -33,7 +33,11 @@ from oracle.errors import PrologError, StoreError
 from oracle.store import Cmp, Scope, Store, TriplePattern, Triple, Var
 
 PROLOG_DIR = Path(__file__).resolve().parents[2] / "prolog"
-MODULES = ("neem_store", "knowrob_model", "odb_model", "answers")
+#: The Prolog modules under PROLOG_DIR, in load order (KnowRob's layout: lang/, model/; the
+#: odb extension in odb/); each is imported into ``user`` so a typed query sees its exports.
+MODULES = ("neem_store", "lang/triple", "lang/scope", "lang/query", "lang/holds", "lang/temporal",
+           "model/rdfs", "model/event", "model/object", "model/situation",
+           "odb/names", "odb/calls", "odb/events", "odb/decisions", "odb/history", "answers")
 #: Rows per chunk handed to Prolog by one solution of py_match/2.
 CHUNK = 5000
 
@@ -267,7 +271,7 @@ class Bridge:
                 self.set_ontology(ontology)
 
     def set_ontology(self, ontology: Any) -> None:
-        """Tell odb_model the ontology's namespace and which role of each task is which."""
+        """Tell odb_names the ontology's namespace and which role of each task is which."""
         from pyswip import Atom
 
         rows = [
@@ -276,8 +280,8 @@ class Bridge:
         ]
         with _LOCK:
             self._with_request([Atom(ontology.namespace), rows],
-                               "neem_store:py_request(Q), Q = [NS, Rows], odb_model:odb_set_namespace(NS),"
-                               " forall(member([T, Ta, R], Rows), odb_model:odb_set_task_roles(T, Ta, R))")
+                               "neem_store:py_request(Q), Q = [NS, Rows], odb_names:odb_set_namespace(NS),"
+                               " forall(member([T, Ta, R], Rows), odb_names:odb_set_task_roles(T, Ta, R))")
 
     def _with_request(self, request: list[Any], query: str) -> list[dict[str, Any]]:
         with _LOCK:
@@ -327,13 +331,13 @@ class Bridge:
         return json.loads(text.decode("utf-8") if isinstance(text, bytes) else text)
 
     def history(self) -> list[dict[str, Any]]:
-        """odb_model:situation_history/1 in one crossing: every executed action in begin order
+        """odb_history:situation_history/1 in one crossing: every executed action in begin order
         as ``{"begin", "end", "call", "part", "available"}`` (calls in the chain syntax)."""
-        return self._json("odb_model:situation_history_json")
+        return self._json("odb_history:situation_history_json")
 
     def latest_situation(self) -> dict[str, Any] | None:
         """The latest imagined situation as ``{"begin", "available"}``, or None."""
-        return self._json("odb_model:latest_situation_json")
+        return self._json("odb_history:latest_situation_json")
 
     def solutions(self, goal: str, variables: Sequence[str], *, stepwise: bool = False) -> list[tuple[Any, ...]]:
         """All solutions of a kb_call goal (its text) as tuples of the named variables."""

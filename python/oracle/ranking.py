@@ -1,6 +1,6 @@
 """The oracle in the system: history from the NEEM (through Prolog), ranking, write-back.
 
-NEEM -> ``odb_model:situation_history`` (one crossing) -> Steps -> PreferenceOracle -> ranking
+NEEM -> ``odb_history:situation_history`` (one crossing) -> Steps -> PreferenceOracle -> ranking
 -> ``NeemLogger.preference`` (an imagined preference the Prolog answers read).
 """
 
@@ -17,10 +17,10 @@ from oracle.algorithm.situation import Ranking
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError, NeemOracleError
 from oracle.evaluation.replay import opening_tasks
-from oracle.logger import NeemLogger
+from oracle.neem.writer import NeemLogger
 from oracle.ontology import OdbOntology
 from oracle.situations import call_of, check_call, option_of, steps_from_history
-from oracle.timeofday import time_of_day
+from oracle.timeline import time_of_day
 
 #: Score written for options without similar history (the store and JSON need a finite number).
 NO_HISTORY_SCORE = 1e9

@@ -14,7 +14,7 @@ from oracle.algorithm.situation import Option, Step
 from oracle.chains import TaskCall
 from oracle.errors import OntologyError
 from oracle.ontology import OdbOntology
-from oracle.timeofday import time_of_day
+from oracle.timeline import time_of_day
 
 
 def option_of(ontology: OdbOntology, call: TaskCall) -> Option:

@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 
 from oracle.algorithm.situation import Option, Step
 from oracle.ontology.distance import DistanceMatrix
-from oracle.timeofday import TIME_OF_DAY_NAMES
+from oracle.timeline import TIME_OF_DAY_NAMES
 
 ODB = "https://ontology.dlr.de/soma/odb#"
 TASKS = tuple(f"{ODB}{name}" for name in ("Pick", "Place", "Pour", "Open", "Close", "Drink"))

@@ -10,7 +10,7 @@ from algoworld import OPEN, histories, options_strategy, random_matrix, syntheti
 from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import PRESETS
 from oracle.algorithm.reference import ReferenceOracle
-from oracle.timeofday import TIME_OF_DAY_NAMES
+from oracle.timeline import TIME_OF_DAY_NAMES
 
 PRESET_NAMES = "ABCDEFGHIJKLMN"
 

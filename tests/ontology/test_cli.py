@@ -28,3 +28,16 @@ def test_bad_input_gives_one_line_and_exit_1(tmp_path):
     assert proc.stderr.count("\n") == 1 and "no */manifest.xml found" in proc.stderr
     proc = subprocess.run([sys.executable, "-m", "oracle", "ontology", "distance", "red_mug", "unicorn"], capture_output=True, text=True)
     assert proc.returncode == 1 and "unknown class 'unicorn'" in proc.stderr
+
+
+def test_distance_takes_prefixed_names_from_a_written_file(tmp_path, capsys):
+    """soma:/dul: CURIEs resolve as in the mapping, also for an ontology read back from RDF/XML."""
+    out = tmp_path / "kitchen.owl"
+    assert main(["ontology", "build", "--out", str(out)]) == 0
+    capsys.readouterr()
+    for extra in ([], ["--ontology", str(out)]):
+        assert main(["ontology", "distance", "pick", "soma:Pouring", "--json", *extra]) == 0
+        result = json.loads(capsys.readouterr().out)
+        assert result["b"] == "http://www.ease-crc.org/ont/SOMA.owl#Pouring" and result["distance"] > 0
+    assert main(["ontology", "distance", "pick", "soma:NoSuchTask", "--ontology", str(out)]) == 1
+    assert "unknown class soma:NoSuchTask" in capsys.readouterr().err

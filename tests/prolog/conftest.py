@@ -7,7 +7,7 @@ from datetime import datetime
 import pytest
 
 from oracle.bridge import Bridge
-from oracle.logger import NeemLogger
+from oracle.neem.writer import NeemLogger
 from oracle.ontology import build_ontology
 from oracle.store import open_store
 

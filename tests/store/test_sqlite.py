@@ -9,7 +9,8 @@ import pytest
 
 from oracle.errors import StoreError
 from oracle.store import RDF_TYPE, SUBCLASS_OF, Triple, TriplePattern, open_store
-from oracle.store.sqlite import SQLiteStore, _Compiler
+from oracle.store.sql import SqlCompiler
+from oracle.store.sqlite import SQLiteStore
 
 X = "http://example.org/x#"
 
@@ -39,7 +40,7 @@ def test_pattern_queries_use_an_index(tmp_path, pattern):
     store.create_neem("n1")
     store.insert("n1", [Triple(X + "Cup", SUBCLASS_OF, X + "Item"), Triple(X + "c", RDF_TYPE, X + "Cup"),
                         Triple(X + "a", X + "hasPart", X + "c")])  # fmt: skip
-    query = _Compiler(store, '"n1_triples"', None)
+    query = SqlCompiler(store, '"n1_triples"', None)
     query.add(pattern)
     plan = store._conn.execute(
         f"EXPLAIN QUERY PLAN SELECT t0.id FROM {query.from_clause()} WHERE {query.where()}", query.params
@@ -57,6 +58,7 @@ def test_unknown_store_specs_are_errors(monkeypatch):
 
 
 def test_default_store_lives_in_the_user_data_dir(monkeypatch, tmp_path):
+    monkeypatch.delenv("NEEM_MONGO_URI", raising=False)
     monkeypatch.setenv("XDG_DATA_HOME", str(tmp_path))
     monkeypatch.setenv("HOME", str(tmp_path))
     with open_store(None) as store:

@@ -28,7 +28,7 @@ from oracle.algorithm.reference import (
 )
 from oracle.algorithm.situation import Option, Ranking, Step, option_key
 from oracle.errors import SettingsError
-from oracle.timeofday import TIME_OF_DAY_NAMES
+from oracle.timeline import TIME_OF_DAY_NAMES
 
 _TOD = {name: code for code, name in enumerate(TIME_OF_DAY_NAMES)}
 

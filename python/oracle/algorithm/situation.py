@@ -8,7 +8,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
-from oracle.timeofday import TIME_OF_DAY_NAMES
+from oracle.timeline import TIME_OF_DAY_NAMES
 
 
 @dataclass(frozen=True)

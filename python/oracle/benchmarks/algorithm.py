@@ -20,7 +20,7 @@ from oracle.algorithm.params import PRESETS
 from oracle.algorithm.reference import ReferenceOracle
 from oracle.algorithm.situation import Option, Step
 from oracle.ontology.distance import DistanceMatrix
-from oracle.timeofday import TIME_OF_DAY_NAMES
+from oracle.timeline import TIME_OF_DAY_NAMES
 
 NS = "https://example.org/bench#"
 SETTINGS = ("recommended", "no_situations")

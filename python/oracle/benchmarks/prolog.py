@@ -14,7 +14,7 @@ STEPWISE_ACTIONS = 1000
 
 
 def _neem(store, onto, n_actions: int, neem_id: str = "bench") -> None:
-    from oracle.logger import NeemLogger
+    from oracle.neem.writer import NeemLogger
 
     log = NeemLogger.create(store, onto, user="bench", neem_id=neem_id, commit_every=500)
     tasks = ["pick(apple)", "pour(thermos, green_mug)", "pick(banana)", "open(fridge)"]
@@ -83,7 +83,7 @@ def run(quick: bool = False) -> list[dict]:
                          "solutions": result[-1], "actions": size})
         bridge = Bridge(store, "bench", onto)
 
-        latest = bridge.query("aggregate_all(max(B), odb_model:decision(situation, _, B), M)")[0]["M"]
+        latest = bridge.query("aggregate_all(max(B), odb_decisions:decision(situation, _, B), M)")[0]["M"]
         for label, at in (("lately", None), ("at a time", latest - 1000)):
             t = _time(lambda: bridge.why_not("pick", ["banana"], at), 3)
             print(f"why_not(pick(banana)) {label:10s}: {t * 1000:8.1f} ms (target < 100 ms)")

@@ -51,7 +51,7 @@ def _log(logger, steps: list[Step]) -> float:
 def _python_share(store, onto, tbox, steps: list[Step]) -> float:
     """Microseconds of CPU per action spent outside SQLite's row insert (logger, closures,
     commits of nothing): what the logger and the shared insert path cost, whatever the disk."""
-    from oracle.logger import NeemLogger
+    from oracle.neem.writer import NeemLogger
 
     logger = NeemLogger.create(store, onto, user="bench-python", tbox=tbox, commit_every=100)
     store._insert_triples = lambda *args: None  # this store is not used for anything else
@@ -70,7 +70,7 @@ SETTINGS = (
 
 
 def run(quick: bool = False) -> list[dict]:
-    from oracle.logger import NeemLogger
+    from oracle.neem.writer import NeemLogger
     from oracle.ontology import build_ontology
     from oracle.store.dump import export_neem, load_dump
     from oracle.store.sqlite import SQLiteStore

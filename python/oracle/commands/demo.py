@@ -26,7 +26,7 @@ def run(args: argparse.Namespace) -> int:
     from oracle.bridge import Bridge
     from oracle.commands.rank import print_ranking
     from oracle.errors import NeemOracleError
-    from oracle.logger import NeemLogger
+    from oracle.neem.writer import NeemLogger
     from oracle.ontology import build_with_report
     from oracle.ranking import rank_neem
     from oracle.store import open_store

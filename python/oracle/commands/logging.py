@@ -25,7 +25,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from oracle.logger import import_chains
+    from oracle.neem.importing import import_chains
 
     onto = ontology_from(args)
     with open_store(args.store, number_format=args.numbers) as store:

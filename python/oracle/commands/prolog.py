@@ -6,8 +6,8 @@ import argparse
 import json
 from datetime import datetime
 
-from oracle.commands.common import add_ontology_options, ontology_from
-from oracle.errors import NeemOracleError, StoreError
+from oracle.commands.common import add_ontology_options
+from oracle.errors import NeemOracleError
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -33,26 +33,17 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def _common(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--store", help="store: a SQLite path, sqlite:///PATH or mongodb://... (default: the user's store)")
-    parser.add_argument("--neem", help="NEEM id (default: the newest NEEM in the store)")
+    parser.add_argument("--neem", help="NEEM id (needed when the store holds several)")
     parser.add_argument("--json", action="store_true", help="print the answer as JSON")
     add_ontology_options(parser)
 
 
-def _connect(args: argparse.Namespace, with_ontology: bool = True):  # noqa: ANN202
+def _connect(args: argparse.Namespace):  # noqa: ANN202
     from oracle.bridge import Bridge
-    from oracle.store import open_store
+    from oracle.commands.target import open_target
 
-    store = open_store(args.store)
-    neem = args.neem
-    if neem is None:
-        infos = store.neems()
-        if not infos:
-            raise StoreError(f"{store.location}: the store holds no NEEM; log one first")
-        neem = max(infos, key=lambda info: (info.created_at or "", info.id)).id
-    onto = None
-    if with_ontology:
-        onto = ontology_from(args)
-    return Bridge(store, neem, onto), onto
+    target = open_target(args)
+    return Bridge(target.store, target.neem_id, target.onto), target.onto
 
 
 def _parse_task(text: str, onto) -> tuple[str, list[str]]:  # noqa: ANN001

@@ -13,7 +13,7 @@ from oracle.commands.common import add_ontology_options
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser("rank", help="rank the available tasks and predict the chain (writes the ranking back)")
     parser.add_argument("--store", help="store: a SQLite path, sqlite:///PATH or mongodb://... (default: the user's store)")
-    parser.add_argument("--neem", help="NEEM id (default: the newest NEEM in the store)")
+    parser.add_argument("--neem", help="NEEM id (needed when the store holds several)")
     parser.add_argument("--available", nargs="+", metavar="CALL",
                         help="rank these calls (e.g. 'pick(red_mug)') instead of the latest imagined situation")
     parser.add_argument("--at", help="time of the decision for --available: ISO-8601 or unix seconds (default: now)")

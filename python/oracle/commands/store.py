@@ -7,7 +7,7 @@ import json
 from datetime import datetime, timezone
 from pathlib import Path
 
-from oracle.logger import summarize
+from oracle.neem.query import summarize_neem
 from oracle.store import open_store
 from oracle.store.dump import export_all, export_neem, load_dump
 
@@ -54,7 +54,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_export(args: argparse.Namespace) -> int:
-    with open_store(args.store, number_format=args.numbers) as store:
+    with open_store(args.store, number_format=args.numbers, create=False) as store:
         if args.neem is not None:
             counts = export_neem(store, args.neem, args.out)
             print(f"{args.neem}: {counts['triples']} triples -> {args.out}")
@@ -76,8 +76,8 @@ def _iso(seconds: float | None) -> str | None:
 
 
 def run_neems(args: argparse.Namespace) -> int:
-    with open_store(args.store, number_format=args.numbers) as store:
-        rows = [summarize(store, info.id) for info in store.neems()]
+    with open_store(args.store, number_format=args.numbers, create=False) as store:
+        rows = [summarize_neem(store, info.id) for info in store.neems()]
     if args.json:
         print(json.dumps([{**row.__dict__, "begin": _iso(row.begin), "end": _iso(row.end)} for row in rows], indent=2))
         return 0
@@ -93,8 +93,8 @@ def run_neems(args: argparse.Namespace) -> int:
 
 
 def run_persist(args: argparse.Namespace) -> int:
-    with open_store(args.store, number_format=args.numbers) as store:
-        from oracle.logger import persist
+    with open_store(args.store, number_format=args.numbers, create=False) as store:
+        from oracle.neem.lifecycle import persist
 
         info = persist(store, args.neem, args.name)
     print(info.id)

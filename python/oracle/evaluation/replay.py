@@ -27,9 +27,9 @@ from oracle.errors import ChainSyntaxError
 from oracle.evaluation.baselines import BASELINES, chance_hit
 from oracle.namespaces import SOMA
 from oracle.ontology import OdbOntology
-from oracle.ontology.vocabulary import IDLE_THRESHOLD_S
+from oracle.timeline import IDLE_THRESHOLD_S
 from oracle.situations import check_call, idle_step, option_of
-from oracle.timeofday import time_of_day
+from oracle.timeline import time_of_day
 
 KS = (1, 3, 5)
 

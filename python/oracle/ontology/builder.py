@@ -20,6 +20,7 @@ from oracle.namespaces import DUL, SOMA
 from oracle.ontology.mapping import ActionMapping, Mapping, load_mapping
 from oracle.ontology.model import GENERATED_MARK, VANN_NAMESPACE, OdbOntology
 from oracle.ontology.odb import OdbObject, read_odb
+from oracle.ontology.provenance import OntologySource
 from oracle.ontology.upper import DATA_DIR, declared_entities, load_upper
 from oracle.ontology.vocabulary import Vocabulary
 
@@ -61,7 +62,9 @@ def build_with_report(
     upper = load_upper(soma_dir)
     _check_upper_iris(maps, upper, "the official SOMA/DUL files" if soma_dir else "the core TBox (pass --soma DIR for the official files)")
     graph, report = _generate(objects, maps, upper)
-    return OdbOntology.from_graph(graph, maps.namespace, cache_dir), report
+    onto = OdbOntology.from_graph(graph, maps.namespace, cache_dir)
+    onto.source = OntologySource.built(odb_dir, mapping, soma_dir)
+    return onto, report
 
 
 def _check_upper_iris(maps: Mapping, upper: Graph, what: str) -> None:

@@ -9,13 +9,15 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
+from typing import Any
 
 from rdflib import Graph, Literal, URIRef
 from rdflib.namespace import OWL, RDF, RDFS
 
 from oracle.errors import OntologyError
-from oracle.namespaces import DUL, SOMA
+from oracle.namespaces import DUL, SOMA, STANDARD_PREFIXES
 from oracle.ontology.distance import DistanceMatrix
+from oracle.ontology.provenance import OntologySource
 from oracle.ontology.taxonomy import Taxonomy
 from oracle.ontology.vocabulary import Vocabulary
 
@@ -51,6 +53,8 @@ class OdbOntology:
     objects: dict[str, ObjectClass]
     tasks: dict[str, TaskClass]
     cache_dir: Path | None = field(default=None, repr=False)
+    #: Where it came from (an ``OntologySource``), recorded by the NEEMs logged with it.
+    source: Any = field(default=None, repr=False)
 
     @property
     def vocab(self) -> Vocabulary:
@@ -105,6 +109,7 @@ class OdbOntology:
     @classmethod
     def from_graph(cls, graph: Graph, namespace: str | None = None, cache_dir: Path | None = None) -> "OdbOntology":
         namespace = namespace or find_namespace(graph)
+        _bind_standard_prefixes(graph)
         vocab = Vocabulary(namespace)
         taxonomy = Taxonomy.from_graph(graph)
         own = [c for c in taxonomy.classes if c.startswith(namespace) and c[len(namespace):] not in vocab.locals]
@@ -148,6 +153,16 @@ class OdbOntology:
         return cls(namespace, graph, objects, tasks, cache_dir)
 
 
+def _bind_standard_prefixes(graph: Graph) -> None:
+    """RDF/XML keeps only the prefixes its element names use, so an ontology read back from a
+    file would lose ``soma:`` and ``dul:``; bind the ones every mapping may use, where free."""
+    bound = {prefix for prefix, _ in graph.namespaces()}
+    spaces = {str(ns) for _, ns in graph.namespaces()}
+    for prefix, iri in STANDARD_PREFIXES.items():
+        if prefix not in bound and iri not in spaces:
+            graph.bind(prefix, iri)
+
+
 def find_namespace(graph: Graph) -> str:
     for node in graph.subjects(RDF.type, OWL.Ontology):
         if (node, RDFS.comment, Literal(GENERATED_MARK)) in graph:
@@ -168,6 +183,8 @@ def load_ontology(path: Path | str, cache_dir: Path | None = None) -> OdbOntolog
     except Exception as error:  # rdflib raises parser-specific types
         raise OntologyError(f"{path}: cannot parse as {fmt} ({error})") from None
     try:
-        return OdbOntology.from_graph(graph, cache_dir=cache_dir)
+        onto = OdbOntology.from_graph(graph, cache_dir=cache_dir)
     except OntologyError as error:
         raise OntologyError(f"{path}: {error}") from None
+    onto.source = OntologySource.loaded(path)
+    return onto

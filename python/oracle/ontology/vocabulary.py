@@ -10,11 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from oracle.timeofday import TIME_OF_DAY_NAMES
-
-#: Shared grasping (no task) for this long or longer is an odb:IdleTask; shorter gaps are
-#: transitions between tasks (thesis 3.4).
-IDLE_THRESHOLD_S = 20.0
+from oracle.timeline import TIME_OF_DAY_NAMES
 
 
 @dataclass(frozen=True)

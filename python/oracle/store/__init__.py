@@ -37,17 +37,24 @@ def default_store_path() -> Path:
     return Path(user_data_dir("neem-oracle", appauthor=False)) / "default.sqlite"
 
 
-def open_store(spec: str | os.PathLike[str] | None = None, *, number_format: NumberFormat = "decimal128") -> Store:
+def open_store(
+    spec: str | os.PathLike[str] | None = None, *, number_format: NumberFormat = "decimal128", create: bool = True
+) -> Store:
     """Open the store a ``--store`` value names.
 
-    None: the default SQLite file; ``mongodb://...``: that server (database from the URI path,
-    else ``roslog``); ``mongodb``: the server at $NEEM_MONGO_URI; ``sqlite:///PATH`` or a
-    plain path: a SQLite file, created 0600 if missing.
+    None: the server at $NEEM_MONGO_URI when it is set, else the default SQLite file;
+    ``mongodb://...``: that server (database from the URI path, else ``roslog``); ``mongodb``:
+    the server at $NEEM_MONGO_URI; ``sqlite:///PATH`` or a plain path: a SQLite file, created
+    0600 if missing unless ``create`` is False (commands that only read pass False, so a typo'd
+    path is an error instead of a new empty store).
     """
     if spec is None:
+        uri = os.environ.get(MONGO_ENV)
+        if uri:
+            return open_mongo(uri, number_format=number_format)
         from oracle.store.sqlite import SQLiteStore
 
-        return SQLiteStore(default_store_path(), number_format)
+        return SQLiteStore(default_store_path(), number_format, create=create)
     text = os.fspath(spec)
     if text in ("mongodb", "mongo"):
         uri = os.environ.get(MONGO_ENV)
@@ -64,7 +71,7 @@ def open_store(spec: str | os.PathLike[str] | None = None, *, number_format: Num
         raise StoreError(f"unknown store {text!r}: expected a path, sqlite:///PATH or mongodb://HOST")
     from oracle.store.sqlite import SQLiteStore
 
-    return SQLiteStore(text, number_format)
+    return SQLiteStore(text, number_format, create=create)
 
 
 def open_mongo(uri: str, *, number_format: NumberFormat = "decimal128", timeout_ms: int = 3000) -> Store:

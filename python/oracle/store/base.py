@@ -292,7 +292,6 @@ class Store(ABC):
         self, neem_id: str, pattern: TriplePattern, scope: Scope | None, limit: int | None, exact: bool
     ) -> Iterator[dict[str, Any]]: ...
 
-    @abstractmethod
     def match(
         self,
         neem_id: str,
@@ -310,6 +309,18 @@ class Store(ABC):
         ``order`` is ``[(variable, descending), ...]`` over numeric variables, applied before
         ``limit`` by the database ("the latest decision before T" is one row, not a scan).
         """
+        validate_patterns(patterns)
+        return self._match(neem_id, patterns, scope, limit, validate_order(patterns, order))
+
+    @abstractmethod
+    def _match(
+        self,
+        neem_id: str,
+        patterns: Sequence[TriplePattern],
+        scope: Scope | None,
+        limit: int | None,
+        order: Sequence[tuple[str, bool]],
+    ) -> Iterator[dict[str, Any]]: ...
 
     def annotations(self, neem_id: str, s: str | None = None, p: str | None = None) -> Iterator[Annotation]:
         for doc in self.read_documents(neem_id, "annotations"):

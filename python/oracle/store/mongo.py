@@ -16,7 +16,7 @@ from typing import Any
 from bson.decimal128 import Decimal128
 
 from oracle.errors import StoreError
-from oracle.store.base import KINDS, NeemInfo, Store, check_neem_id, new_meta, validate_order, validate_patterns
+from oracle.store.base import KINDS, NeemInfo, Store, check_neem_id, new_meta
 from oracle.store.model import (
     HIERARCHY,
     TAXONOMIC,
@@ -203,17 +203,14 @@ class MongoStore(Store):
             cursor = cursor.limit(int(limit))
         yield from cursor
 
-    def match(
+    def _match(
         self,
         neem_id: str,
         patterns: Sequence[TriplePattern],
-        *,
-        scope: Scope | None = None,
-        limit: int | None = None,
-        order: Sequence[tuple[str, bool]] = (),
+        scope: Scope | None,
+        limit: int | None,
+        order: Sequence[tuple[str, bool]],
     ) -> Iterator[dict[str, Any]]:
-        validate_patterns(patterns)
-        order = validate_order(patterns, order)
         if not self.has_neem(neem_id):
             raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
         pipeline = compile_pipeline(f"{neem_id}_triples", patterns, scope, limit, self.number_format, order)

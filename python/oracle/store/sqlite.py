@@ -28,54 +28,36 @@ from bson.int64 import Int64
 from bson.objectid import ObjectId
 
 from oracle.errors import StoreError
-from oracle.store.base import KINDS, Closed, NeemInfo, Store, check_neem_id, new_meta, validate_order, validate_patterns
+from oracle.store.base import KINDS, Closed, NeemInfo, Store, check_neem_id, new_meta
 from oracle.store.model import (
     RDF_TYPE,
     SUBCLASS_OF,
     SUBPROPERTY_OF,
     TAXONOMIC,
     Annotation,
-    Cmp,
     DocumentBuilder,
     NumberFormat,
     Scope,
-    Term,
     TriplePattern,
-    Var,
     encode_number,
     encode_value,
     extend_closure,
     unix_seconds,
 )
+from oracle.store.sql import (
+    K_BOOL,
+    K_DATE,
+    K_DECIMAL,
+    K_DOUBLE,
+    K_LONG,
+    K_STR,
+    TAXONOMIC_SQL,
+    SqlCompiler,
+    join_order,
+    sql_value,
+)
 
 SCHEMA_VERSION = "3"
-
-# Kinds of the ``o`` column, so a value reads back with its BSON type.
-K_STR, K_DOUBLE, K_DECIMAL, K_INT, K_LONG, K_BOOL, K_DATE, K_OTHER = range(8)
-_NUMERIC_KINDS = (K_DOUBLE, K_DECIMAL, K_INT, K_LONG)
-#: Kinds a comparison (``Cmp``) sees as numbers: Prolog receives Dates as unix seconds too.
-_COMPARABLE_SQL = f"({K_DOUBLE}, {K_DECIMAL}, {K_INT}, {K_LONG}, {K_DATE})"
-_SQL_OPS = {"<": "<", "=<": "<=", ">": ">", ">=": ">="}
-
-
-def _sql_value(value: Any) -> tuple[Any, int]:
-    """A BSON value as (SQLite value, kind)."""
-    if isinstance(value, str):
-        return value, K_STR
-    if isinstance(value, bool):
-        return int(value), K_BOOL
-    if isinstance(value, Int64):
-        return int(value), K_LONG
-    if isinstance(value, int):
-        return value, K_INT
-    if isinstance(value, float):
-        return value, K_DOUBLE
-    if isinstance(value, Decimal128):
-        return float(value.to_decimal()), K_DECIMAL
-    if isinstance(value, datetime):
-        return unix_seconds(value), K_DATE
-    return None, K_OTHER
-
 
 def _python_value(value: Any, kind: int) -> Any:
     if kind == K_BOOL:
@@ -111,13 +93,20 @@ _RESERVED_TERMS = ((1, RDF_TYPE), (2, SUBCLASS_OF), (3, SUBPROPERTY_OF))
 _HIERARCHY_SQL = "(2, 3)"
 # Partial indexes: the o* index only holds taxonomic rows and the p* index only the others,
 # so each row updates three indexes; queries repeat the WHERE term so SQLite may use them.
-_TAXONOMIC_SQL = "(1, 2, 3)"
 _TRIPLE_INDEXES = (
     ("sp", "s, p", ""),
     ("op", "o, p", ""),
     ("postar", "p, ostar", " WHERE ostar > 0"),
-    ("pstaro", "pstar, o", f" WHERE p NOT IN {_TAXONOMIC_SQL}"),
+    ("pstaro", "pstar, o", f" WHERE p NOT IN {TAXONOMIC_SQL}"),
 )
+
+
+def _indexes(neem_id: str) -> list[tuple[str, str]]:
+    """(name, CREATE INDEX statement) of every index of a NEEM's tables."""
+    t = lambda kind: _table(neem_id, kind)  # noqa: E731
+    made = [(f"{neem_id}_triples_{name}", f"ON {t('triples')}({cols}){where}") for name, cols, where in _TRIPLE_INDEXES]
+    made += [(f"{neem_id}_annotations_sp", f"ON {t('annotations')}(s, p)"), (f"{neem_id}_tf_cs", f"ON {t('tf')}(child, stamp)")]
+    return [(name, f"CREATE INDEX {_quote(name)} {target}") for name, target in made]
 
 
 class _Connection:
@@ -147,10 +136,14 @@ class SQLiteStore(Store):
     """A NEEM store in one SQLite file (WAL, synchronous=NORMAL: an action committed survives
     a killed process, which is the crash model of issue 3)."""
 
-    def __init__(self, path: str | os.PathLike[str], number_format: NumberFormat = "decimal128") -> None:
+    def __init__(
+        self, path: str | os.PathLike[str], number_format: NumberFormat = "decimal128", *, create: bool = True
+    ) -> None:
         super().__init__(number_format)
         self.path = Path(path).expanduser()
         self.location = str(self.path)
+        if not create and not self.path.is_file():
+            raise StoreError(f"{self.path}: no NEEM store there (check --store; 'import' or 'load' creates one)")
         self._conn = _Connection(self._connect(), self.location)
         self._depth = 0
         self._cids: dict[Any, int] = {}
@@ -258,17 +251,13 @@ class SQLiteStore(Store):
                 f"CREATE TABLE {t('triples')}(id INTEGER PRIMARY KEY, oid BLOB NOT NULL, s, p, o, ok INTEGER,"
                 " pstar INTEGER, ostar INTEGER, graph, since REAL, until REAL, sk INTEGER, raw BLOB)"
             )
-            for name, cols, where in _TRIPLE_INDEXES:
-                self._conn.execute(
-                    f"CREATE INDEX {_quote(f'{neem_id}_triples_{name}')} ON {t('triples')}({cols}){where}"
-                )
             self._conn.execute(f"CREATE TABLE {t('annotations')}(id INTEGER PRIMARY KEY, s, p, doc BLOB NOT NULL)")
-            self._conn.execute(f"CREATE INDEX {_quote(f'{neem_id}_annotations_sp')} ON {t('annotations')}(s, p)")
             self._conn.execute(
                 f"CREATE TABLE {t('tf')}(id INTEGER PRIMARY KEY, child, stamp REAL, doc BLOB NOT NULL)"
             )
-            self._conn.execute(f"CREATE INDEX {_quote(f'{neem_id}_tf_cs')} ON {t('tf')}(child, stamp)")
             self._conn.execute(f"CREATE TABLE {t('inferred')}(id INTEGER PRIMARY KEY, doc BLOB NOT NULL)")
+            for _, sql in _indexes(neem_id):
+                self._conn.execute(sql)
         self._hierarchies.pop(neem_id, None)
         return NeemInfo.from_meta(neem_id, record)
 
@@ -289,6 +278,12 @@ class SQLiteStore(Store):
         with self.transaction():
             for kind in KINDS:
                 self._conn.execute(f"ALTER TABLE {_table(neem_id, kind)} RENAME TO {_table(new_id, kind)}")
+            # Index names are database-wide and SQLite cannot rename them: left behind, they
+            # would stop a new NEEM from taking the old id.
+            for name, _ in _indexes(neem_id):
+                self._conn.execute(f"DROP INDEX IF EXISTS {_quote(name)}")
+            for _, sql in _indexes(new_id):
+                self._conn.execute(sql)
             self._conn.execute("UPDATE neems SET id=? WHERE id=?", (new_id, neem_id))
         del info
         self._present.discard(neem_id)
@@ -315,7 +310,7 @@ class SQLiteStore(Store):
             self._tvals[tid] = value  # type: ignore[index]
         return tid  # type: ignore[return-value]
 
-    def _known_tid(self, value: str) -> int:
+    def known_term_id(self, value: str) -> int:
         """The id of a term for a query; -1 (matching nothing) when the store never saw it."""
         tid = self._tids.get(value)
         if tid is None:
@@ -325,6 +320,11 @@ class SQLiteStore(Store):
             tid = self._tids[value] = row[0]
             self._tvals[tid] = value
         return tid
+
+    def closures_containing(self, term_id: int) -> list[int]:
+        """Ids of the closures holding a term (what ``SqlCompiler`` inlines into ordered queries)."""
+        rows = self._conn.execute("SELECT DISTINCT cid FROM closure_member WHERE value=?", (term_id,))
+        return [cid for (cid,) in rows]
 
     def _tval(self, tid: int) -> str:
         value = self._tvals.get(tid)
@@ -345,7 +345,7 @@ class SQLiteStore(Store):
         """A BSON value as (column value, kind) with strings interned."""
         if type(value) is str:
             return self._tid(value), K_STR
-        return _sql_value(value)
+        return sql_value(value)
 
     def _out(self, value: Any, kind: int) -> Any:
         return self._tval(value) if kind == K_STR and value is not None else _python_value(value, kind)
@@ -486,18 +486,18 @@ class SQLiteStore(Store):
 
     def _propagate(self, neem_id: str, subject: str, gained: tuple[Any, ...]) -> None:
         table = _table(neem_id, "triples")
-        subject_id = self._known_tid(subject)
+        subject_id = self.known_term_id(subject)
         cids = [row[0] for row in self._conn.execute("SELECT DISTINCT cid FROM closure_member WHERE value=?", (subject_id,))]
         for cid in cids:
             new_cid = self._cid(extend_closure(self._closure(cid), gained))
             for column, field, taxonomic in (("ostar", "o*", True), ("pstar", "p*", False)):
                 op = "IN" if taxonomic else "NOT IN"
                 self._conn.execute(
-                    f"UPDATE {table} SET {column}=? WHERE {column}=? AND raw IS NULL AND p {op} {_TAXONOMIC_SQL}",
+                    f"UPDATE {table} SET {column}=? WHERE {column}=? AND raw IS NULL AND p {op} {TAXONOMIC_SQL}",
                     (new_cid, cid),
                 )
                 rows = self._conn.execute(
-                    f"SELECT id, raw FROM {table} WHERE {column}=? AND raw IS NOT NULL AND p {op} {_TAXONOMIC_SQL}",
+                    f"SELECT id, raw FROM {table} WHERE {column}=? AND raw IS NOT NULL AND p {op} {TAXONOMIC_SQL}",
                     (cid,),
                 ).fetchall()
                 updates = []
@@ -545,7 +545,7 @@ class SQLiteStore(Store):
     def _find(
         self, neem_id: str, pattern: TriplePattern, scope: Scope | None, limit: int | None, exact: bool
     ) -> Iterator[dict[str, Any]]:
-        query = _Compiler(self, _table(neem_id, "triples"), scope)
+        query = SqlCompiler(self, _table(neem_id, "triples"), scope)
         query.add(pattern, exact=exact)
         self._require(neem_id)
         sql = f"SELECT {_DOC_COLUMNS} FROM {query.from_clause()} WHERE {query.where()} ORDER BY t0.id"
@@ -590,20 +590,17 @@ class SQLiteStore(Store):
             "scope": self._scope_doc(since, until, sk),
         }
 
-    def match(
+    def _match(
         self,
         neem_id: str,
         patterns: Sequence[TriplePattern],
-        *,
-        scope: Scope | None = None,
-        limit: int | None = None,
-        order: Sequence[tuple[str, bool]] = (),
+        scope: Scope | None,
+        limit: int | None,
+        order: Sequence[tuple[str, bool]],
     ) -> Iterator[dict[str, Any]]:
-        validate_patterns(patterns)
-        order = validate_order(patterns, order)
         self._require(neem_id)
-        query = _Compiler(self, _table(neem_id, "triples"), scope)
-        plan, joined = _join_order(patterns, order[0][0]) if order else ([], set())
+        query = SqlCompiler(self, _table(neem_id, "triples"), scope)
+        plan, joined = join_order(patterns, order[0][0]) if order else ([], set())
         first = plan[0] if plan else -1
         for i, pattern in enumerate(patterns):
             query.inline_closures = i == first
@@ -637,174 +634,3 @@ class SQLiteStore(Store):
         for (blob,) in self._conn.execute(sql, params):
             doc = bson.decode(blob)
             yield Annotation(doc["s"], doc["p"], doc.get("v"))
-
-
-def _join_order(patterns: Sequence[TriplePattern], first: str) -> tuple[list[int], set[int]]:
-    """A join order for "the first rows by ``first``", and the patterns in it joined to one
-    before. It starts at the pattern binding ``first`` (its index scan yields rows in that
-    order, so LIMIT stops early instead of joining everything and sorting), then takes each
-    pattern sharing a variable with those before (a pattern sharing none comes last)."""
-    names = [set(pattern.variables()) for pattern in patterns]
-    start = next(i for i, vs in enumerate(names) if first in vs)
-    chosen, bound, joined = [start], set(names[start]), set()
-    while len(chosen) < len(patterns):
-        rest = [i for i in range(len(patterns)) if i not in chosen]
-        nxt = next((i for i in rest if names[i] & bound), None)
-        if nxt is None:
-            nxt = rest[0]
-        else:
-            joined.add(nxt)
-        chosen.append(nxt)
-        bound |= names[nxt]
-    return chosen, joined
-
-
-class _Compiler:
-    """Turns triple patterns into one SQL join with KnowRob's p*/o* semantics."""
-
-    def __init__(self, store: SQLiteStore, table: str, scope: Scope | None) -> None:
-        self.store = store
-        self.table = table
-        self.scope = scope
-        self.aliases: list[str] = []
-        self.inline_closures = False
-        #: The pattern being added is reached from an earlier one in a forced join order:
-        #: its closure tests must not drive an index (``+column``), so SQLite looks it up by
-        #: the joined subject or object instead of scanning the closure's whole range (an
-        #: ordered "latest decision" query fell from ~90 ms to ~0.1 ms on 10,000 actions).
-        self.joined = False
-        #: Likewise for a pattern with a known subject: the (s, p) index finds its few rows,
-        #: where SQLite (no statistics) would scan the (p, ostar) range of every type triple.
-        self.constant_subject = False
-        self.conds: list[str] = []
-        self.params: list[Any] = []
-        #: variable -> (SQL expression of its value, SQL expression of its kind; None for a term id)
-        self.bound: dict[str, tuple[str, str | None]] = {}
-
-    def from_clause(self) -> str:
-        return ", ".join(f"{self.table} AS {alias}" for alias in self.aliases)
-
-    def ordered_from_clause(self, plan: Sequence[int]) -> str:
-        """The patterns joined in ``plan`` order (``_join_order``); CROSS JOIN makes SQLite
-        keep it."""
-        return " CROSS JOIN ".join(f"{self.table} AS {self.aliases[i]}" for i in plan)
-
-    def where(self) -> str:
-        return " AND ".join(self.conds) if self.conds else "1"
-
-    def _iri(self, value: Any) -> int:
-        return self.store._known_tid(value) if isinstance(value, str) else -1
-
-    def _constant(self, column: str, kind_column: str | None, value: Any) -> None:
-        if kind_column is None:  # s or p: always a term
-            self.conds.append(f"{column}=?")
-            self.params.append(self._iri(value))
-            return
-        if isinstance(value, str):
-            self.conds.append(f"{column}=? AND {kind_column}={K_STR}")
-            self.params.append(self._iri(value))
-            return
-        sql, kind = _sql_value(value)
-        if kind == K_OTHER:
-            raise StoreError(f"cannot query for a {type(value).__name__} value: {value!r}")
-        self.conds.append(f"{column}=?")
-        self.params.append(sql)
-        if kind in _NUMERIC_KINDS:
-            self.conds.append(f"{kind_column} IN (1, 2, 3, 4)")
-        else:
-            self.conds.append(f"{kind_column}={kind}")
-
-    def _closure_test(self, column: str, var: str | None, value: Any = None) -> None:
-        """``column`` names a closure containing the term (a bound variable or a constant)."""
-        if self.joined or self.constant_subject:
-            column = "+" + column
-        if var is None and self.inline_closures:
-            # The closure ids as literals: an ordered query can then scan the (pstar, o)
-            # index by o, where a subquery makes SQLite fall back to the (o, p) index.
-            cids = [cid for (cid,) in self.store._conn.execute(
-                "SELECT DISTINCT cid FROM closure_member WHERE value=?", (self._iri(value),))]  # fmt: skip
-            if len(cids) == 1:
-                self.conds.append(f"{column}=? AND {column} > 0")
-            else:
-                self.conds.append(f"{column} IN ({', '.join('?' * len(cids))}) AND {column} > 0")
-            self.params.extend(cids)
-            return
-        if var is None:
-            self.conds.append(f"{column} IN (SELECT cid FROM closure_member WHERE value=?) AND {column} > 0")
-            self.params.append(self._iri(value))
-            return
-        expr, kind = self.bound[var]
-        self.conds.append(f"{column} IN (SELECT cid FROM closure_member WHERE value={expr}) AND {column} > 0")
-        if kind is not None:
-            self.conds.append(f"{kind}={K_STR}")
-
-    def add(self, pattern: TriplePattern, exact: bool = False) -> None:
-        a = f"t{len(self.aliases)}"
-        self.aliases.append(a)
-        p = pattern.p
-        if exact:
-            self._term(pattern.s, f"{a}.s", None)
-            self._term(p, f"{a}.p", None)
-            self._object(pattern.o, a)
-            self._filters(a, pattern)
-            return
-        taxonomic = isinstance(p, str) and p in TAXONOMIC
-        self.constant_subject = pattern.s is not None and not isinstance(pattern.s, Var)
-        # Only a variable bound by an earlier pattern is "bound" for o* (mongolog binds per goal).
-        earlier = set(self.bound)
-        self._term(pattern.s, f"{a}.s", None)
-        if isinstance(p, Var):
-            self._term(p, f"{a}.p", None)
-        elif p is not None:
-            if not isinstance(p, str):
-                raise StoreError(f"a property must be an IRI, got {p!r}")
-            if taxonomic:
-                self.conds.append(f"{a}.p=?")
-                self.params.append(self._iri(p))
-            else:
-                self._closure_test(f"{a}.pstar", None, p)
-                self.conds.append(f"{a}.p NOT IN {_TAXONOMIC_SQL}")
-        o = pattern.o
-        if taxonomic and isinstance(o, Var) and o.name in earlier:
-            self._closure_test(f"{a}.ostar", o.name)
-        elif taxonomic and o is not None and not isinstance(o, Var):
-            self._closure_test(f"{a}.ostar", None, o)
-        else:
-            self._object(o, a)
-        self._filters(a, pattern)
-
-    def _object(self, o: Any, a: str) -> None:
-        if not isinstance(o, Cmp):
-            self._term(o, f"{a}.o", f"{a}.ok")
-            return
-        self._term(o.var, f"{a}.o", f"{a}.ok")
-        # NaN is stored as NULL, so it never compares, as in Prolog.
-        self.conds.append(f"{a}.ok IN {_COMPARABLE_SQL} AND {a}.o {_SQL_OPS[o.op]} ?")
-        self.params.append(float(o.value))
-
-    def _filters(self, a: str, pattern: TriplePattern) -> None:
-        if pattern.graph is not None:
-            self.conds.append(f"{a}.graph=?")
-            self.params.append(pattern.graph)
-        if self.scope is not None:
-            self.conds.append(f"({a}.since IS NULL OR {a}.since<=?) AND ({a}.until IS NULL OR {a}.until>=?)")
-            self.params.extend([self.scope.until, self.scope.since])
-
-    def _term(self, term: Term, column: str, kind_column: str | None) -> None:
-        if term is None:
-            return
-        if not isinstance(term, Var):
-            self._constant(column, kind_column, term)
-            return
-        if term.name not in self.bound:
-            self.bound[term.name] = (column, kind_column)
-            return
-        expr, kind = self.bound[term.name]
-        self.conds.append(f"{column}={expr}")
-        # Term ids and literal numbers share the column types: compare like with like.
-        if kind_column is None and kind is not None:
-            self.conds.append(f"{kind}={K_STR}")
-        elif kind_column is not None and kind is None:
-            self.conds.append(f"{kind_column}={K_STR}")
-        elif kind_column is not None and kind is not None:
-            self.conds.append(f"({kind_column}={K_STR})=({kind}={K_STR})")

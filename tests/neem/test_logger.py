@@ -16,7 +16,10 @@ import pytest
 
 from oracle.cli import main
 from oracle.errors import LoggingError
-from oracle.logger import NeemLogger, executed_actions, import_chains, persist, summarize
+from oracle.neem.importing import import_chains
+from oracle.neem.lifecycle import persist
+from oracle.neem.query import executed_actions, summarize_neem
+from oracle.neem.writer import NeemLogger
 from oracle.namespaces import DUL, OWL, SOMA
 from oracle.store import RDF_TYPE, TriplePattern, Var
 from oracle.store.model import HIERARCHY
@@ -204,7 +207,7 @@ def test_sessions_are_temporary_until_persisted(store, onto, tbox_for):
     persist(store, second.neem_id, "alice-monday")
     NeemLogger.start_session(store, onto, user="bob", tbox=tbox)
     kept = store.neem("alice-monday")
-    assert not kept.temporary and summarize(store, "alice-monday").actions == 1
+    assert not kept.temporary and summarize_neem(store, "alice-monday").actions == 1
     assert len(store.neems()) == 2
 
 
@@ -235,7 +238,7 @@ def write_jsonl(path: Path, rows) -> Path:
 def test_import_logs_one_neem_per_user(tmp_path, store, onto, tbox_for):
     report = import_chains(store, onto, write_jsonl(tmp_path / "c.jsonl", CHAINS), tbox=tbox_for)
     assert report == {"alice": 2, "bob": 1}
-    alice = summarize(store, "alice")
+    alice = summarize_neem(store, "alice")
     assert alice.user == "alice" and alice.actions == 3  # pour, idle (50 s), pick
     assert alice.begin == datetime(2024, 5, 6, 8, tzinfo=timezone.utc).timestamp()
 
@@ -247,7 +250,7 @@ def test_import_error_names_the_line_and_keeps_earlier_rows(tmp_path, store, ont
         import_chains(store, onto, write_jsonl(tmp_path / "c.jsonl", rows), report=report, commit_every=50,
                       tbox=tbox_for)
     assert report == {"alice": 2, "bob": 1}
-    assert summarize(store, "alice").actions == 3
+    assert summarize_neem(store, "alice").actions == 3
 
 
 def test_cli_import_neems_export_load_persist(tmp_path, capsys):
@@ -274,7 +277,7 @@ CRASH_SCRIPT = textwrap.dedent(
     """
     import sys, time
     from datetime import datetime, timedelta
-    from oracle.logger import NeemLogger
+    from oracle.neem.writer import NeemLogger
     from oracle.ontology import build_ontology
     from oracle.store.sqlite import SQLiteStore
     onto = build_ontology()
@@ -333,7 +336,7 @@ def test_a_logged_neem_survives_export_and_load(tmp_path, onto, small_tbox):
     other = make_store("mongomock", tmp_path)
     (loaded,) = load_dump(other, tmp_path / "dump")
     assert list(executed_actions(other, loaded)) == list(executed_actions(store, logger.neem_id))
-    assert summarize(other, loaded).actions == 3
+    assert summarize_neem(other, loaded).actions == 3
 
 
 def test_a_repeated_available_set_writes_only_the_new_mental_action(tmp_path, onto, small_tbox):

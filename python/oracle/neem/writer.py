@@ -1,4 +1,4 @@
-"""NEEM logger (thesis 3.4-3.5): what the robot perceived, could do, did and predicted, as triples.
+"""Writing a NEEM (thesis 3.4-3.5): what the robot perceived, could do, did and predicted, as triples.
 
 One NEEM per user. Every public call validates first and then writes one transaction, so bad
 input raises before anything is written and a killed process loses at most the call in flight.
@@ -13,71 +13,30 @@ import os
 import re
 import time
 import uuid
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from datetime import datetime, timezone
-from typing import Any
 
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import ChainSyntaxError, LoggingError, OntologyError, StoreError
-from oracle.namespaces import DUL, OWL, SOMA
+from oracle.neem import terms as T
+from oracle.neem.lifecycle import wipe_temporary_neems
+from oracle.ontology.model import OdbOntology
 from oracle.store import RDF_TYPE, Store, Triple, TriplePattern, Var
 from oracle.store.tbox import TBox, load_tbox, tbox_from_graph
-from oracle.ontology.vocabulary import IDLE_THRESHOLD_S
-from oracle.timeofday import time_of_day
-
-#: Shared grasping of at least this many seconds is an odb:IdleTask action (thesis 3.4).
-IDLE_THRESHOLD = IDLE_THRESHOLD_S
-NAMED_INDIVIDUAL = str(OWL.NamedIndividual)
-
-_ACTION = str(DUL.Action)
-_MENTAL_ACTION = str(SOMA.MentalAction)
-_EXECUTES = str(DUL.executesTask)
-_PARTICIPANT = str(DUL.hasParticipant)
-_PERFORMED_BY = str(SOMA.isPerformedBy)
-_HAS_INTERVAL = str(DUL.hasTimeInterval)
-_TIME_INTERVAL = str(DUL.TimeInterval)
-_BEGIN = str(SOMA.hasIntervalBegin)
-_END = str(SOMA.hasIntervalEnd)
-_IS_TASK_OF = str(DUL.isTaskOf)
-_CLASSIFIES = str(DUL.classifies)
-_PLAN = str(SOMA.ActionExecutionPlan)
-_PLAN_FOR = str(SOMA.isPlanFor)
-_IMAGINING = str(SOMA.Imagining)
-_REASONING = str(SOMA.Reasoning)
-_PREFERENCE_ORDER = str(SOMA.PreferenceOrder)
-_ORDER = str(SOMA.Order)
-_ORDERS = str(SOMA.orders)
-_ORDERED_ELEMENT = str(SOMA.OrderedElement)
-_ENCAPSULATES = str(SOMA.encapsulates)
-_ROBOT_CLASS = str(DUL.PhysicalAgent)
-_PERSON_CLASS = str(DUL.NaturalPerson)
+from oracle.timeline import IDLE_THRESHOLD_S, Instant, Moment, TimeValueError, is_idle_gap
+from oracle.ontology.provenance import META_KEY as ONTOLOGY_KEY, check_logged_with, record_of
 
 _SLUG = re.compile(r"[^A-Za-z0-9_\-]+")
 #: NEEM ids are collection prefixes: no underscores (see store.base.check_neem_id).
 _NEEM_SLUG = re.compile(r"[^A-Za-z0-9\-]+")
 
-Moment = datetime | float | int
 
-
-@dataclass(frozen=True)
-class Instant:
-    """A logged time: unix seconds for the interval, wall-clock part of day for odb:TimeOfDay."""
-
-    seconds: float
-    part_of_day: str
-
-    @staticmethod
-    def of(moment: Moment) -> Instant:
-        """Naive datetimes are taken as UTC for the seconds; the part of day always comes from
-        the clock time as written (the user's local time), never from the machine's zone."""
-        if isinstance(moment, datetime):
-            aware = moment if moment.tzinfo else moment.replace(tzinfo=timezone.utc)
-            return Instant(aware.timestamp(), time_of_day(moment))
-        if isinstance(moment, bool) or not isinstance(moment, (int, float)):
-            raise LoggingError(f"a time must be a datetime or unix seconds, got {moment!r}")
-        seconds = float(moment)
-        return Instant(seconds, time_of_day(datetime.fromtimestamp(seconds, timezone.utc)))
+def _instant(moment: Moment) -> Instant:
+    try:
+        return Instant.of(moment)
+    except TimeValueError as error:
+        raise LoggingError(str(error)) from None
 
 
 @dataclass(frozen=True)
@@ -112,10 +71,10 @@ class NeemLogger:
     def __init__(
         self,
         store: Store,
-        onto: Any,
+        onto: OdbOntology,
         neem_id: str,
         *,
-        idle_threshold: float = IDLE_THRESHOLD,
+        idle_threshold: float = IDLE_THRESHOLD_S,
         commit_every: int = 1,
     ) -> None:
         """``commit_every`` > 1 groups that many calls into one transaction (much faster on slow
@@ -134,6 +93,7 @@ class NeemLogger:
         self.ns: str = onto.namespace
         self.vocab = onto.vocab
         info = store.neem(neem_id)
+        check_logged_with(neem_id, info.meta, onto)
         self.user: str = info.user or "user"
         #: Individuals known to be stored (or buffered): no store query needed for them.
         self._known: set[str] = set()
@@ -155,14 +115,14 @@ class NeemLogger:
     def create(
         cls,
         store: Store,
-        onto: Any,
+        onto: OdbOntology,
         *,
         user: str,
         neem_id: str | None = None,
         temporary: bool = False,
         replace: bool = False,
         tbox: TBox | None = None,
-        idle_threshold: float = IDLE_THRESHOLD,
+        idle_threshold: float = IDLE_THRESHOLD_S,
         commit_every: int = 1,
     ) -> NeemLogger:
         """A new NEEM for ``user`` holding the ontology's TBox (id: the user's name, made unique)."""
@@ -176,7 +136,9 @@ class NeemLogger:
                 neem_id = f"{base}-{n}"
         if replace and store.has_neem(neem_id):
             store.drop_neem(neem_id)
-        store.create_neem(neem_id, user=user, temporary=temporary, meta={"name": neem_id})
+        recorded = record_of(onto)  # readers use the same ontology by default
+        extra = {"name": neem_id} if recorded is None else {"name": neem_id, ONTOLOGY_KEY: recorded.to_meta()}
+        store.create_neem(neem_id, user=user, temporary=temporary, meta=extra)
         try:
             load_tbox(store, neem_id, tbox if tbox is not None else tbox_from_graph(onto.graph))
         except BaseException:
@@ -186,7 +148,7 @@ class NeemLogger:
 
     @classmethod
     def start_session(
-        cls, store: Store, onto: Any, *, user: str, tbox: TBox | None = None, idle_threshold: float = IDLE_THRESHOLD
+        cls, store: Store, onto: OdbOntology, *, user: str, tbox: TBox | None = None, idle_threshold: float = IDLE_THRESHOLD_S
     ) -> NeemLogger:
         """Privacy (thesis 3.5): wipe every temporary NEEM, then log into a fresh temporary one."""
         wipe_temporary_neems(store)
@@ -220,7 +182,7 @@ class NeemLogger:
     def _individual(self, iri: str, cls_iri: str, out: _Out, since: float = 0.0) -> str:
         if self._new(iri, out):
             out.append(Triple(iri, RDF_TYPE, cls_iri, since=since))
-            out.append(Triple(iri, RDF_TYPE, NAMED_INDIVIDUAL, since=since))
+            out.append(Triple(iri, RDF_TYPE, T.NAMED_INDIVIDUAL, since=since))
         return iri
 
     def object_iri(self, name: str) -> str:
@@ -235,9 +197,9 @@ class NeemLogger:
 
     def _agent(self, who: str, out: _Out) -> str:
         if who == "robot":
-            return self._individual(f"{self.ns}Agent_robot", _ROBOT_CLASS, out)
+            return self._individual(f"{self.ns}Agent_robot", T.ROBOT_CLASS, out)
         if who == "user":
-            return self._individual(f"{self.ns}Agent_{_slug(self.user)}", _PERSON_CLASS, out)
+            return self._individual(f"{self.ns}Agent_{_slug(self.user)}", T.PERSON_CLASS, out)
         raise LoggingError(f"performed_by must be 'robot' or 'user', got {who!r}")
 
     def _resolve(self, call: TaskCall | str) -> TaskCall:
@@ -268,7 +230,7 @@ class NeemLogger:
         if task in self._known or not self._new(task, out):
             return task
         out.append(Triple(task, RDF_TYPE, self.onto.task_iri(call.task)))
-        out.append(Triple(task, RDF_TYPE, NAMED_INDIVIDUAL))
+        out.append(Triple(task, RDF_TYPE, T.NAMED_INDIVIDUAL))
         try:
             roles = self.onto.task_roles(call.task, len(call.args))
         except OntologyError as error:
@@ -279,9 +241,9 @@ class NeemLogger:
                 continue
             role = f"{self.ns}Role_{key}__{index}"
             out.append(Triple(role, RDF_TYPE, role_class))
-            out.append(Triple(role, RDF_TYPE, NAMED_INDIVIDUAL))
-            out.append(Triple(task, _IS_TASK_OF, role))
-            out.append(Triple(role, _CLASSIFIES, obj))
+            out.append(Triple(role, RDF_TYPE, T.NAMED_INDIVIDUAL))
+            out.append(Triple(task, T.IS_TASK_OF, role))
+            out.append(Triple(role, T.CLASSIFIES, obj))
         return task
 
     def _plan(self, call: TaskCall, out: _Out, since: float) -> str:
@@ -295,27 +257,27 @@ class NeemLogger:
         task = self._task(call, out, since)
         plan = f"{self.ns}Plan_{task[len(self.ns) + len('Task_'):]}"
         if self._new(plan, out):
-            out.append(Triple(plan, RDF_TYPE, _PLAN))
-            out.append(Triple(plan, RDF_TYPE, NAMED_INDIVIDUAL))
-            out.append(Triple(plan, _PLAN_FOR, task))
+            out.append(Triple(plan, RDF_TYPE, T.PLAN))
+            out.append(Triple(plan, RDF_TYPE, T.NAMED_INDIVIDUAL))
+            out.append(Triple(plan, T.PLAN_FOR, task))
         return plan
 
     def _interval(self, begin: Instant, end: Instant, out: _Out) -> str:
         """A dul:TimeInterval also typed with its odb:TimeOfDay part (that is how it is recorded)."""
         interval = self._event("TimeInterval")
-        out.append(Triple(interval, RDF_TYPE, _TIME_INTERVAL))
+        out.append(Triple(interval, RDF_TYPE, T.TIME_INTERVAL))
         out.append(Triple(interval, RDF_TYPE, self.vocab.part_of_day(begin.part_of_day)))
-        out.append(Triple(interval, _BEGIN, begin.seconds))
-        out.append(Triple(interval, _END, end.seconds))
+        out.append(Triple(interval, T.BEGIN, begin.seconds))
+        out.append(Triple(interval, T.END, end.seconds))
         return interval
 
     def _mental(self, task_class: str, task_key: str, at: Instant, out: _Out) -> str:
         action = self._event("MentalAction")
         task = self._individual(f"{self.ns}Task_{task_key}", task_class, out)
-        out.append(Triple(action, RDF_TYPE, _MENTAL_ACTION))
-        out.append(Triple(action, _EXECUTES, task))
-        out.append(Triple(action, _PERFORMED_BY, self._agent("robot", out)))
-        out.append(Triple(action, _HAS_INTERVAL, self._interval(at, at, out)))
+        out.append(Triple(action, RDF_TYPE, T.MENTAL_ACTION))
+        out.append(Triple(action, T.EXECUTES, task))
+        out.append(Triple(action, T.PERFORMED_BY, self._agent("robot", out)))
+        out.append(Triple(action, T.HAS_INTERVAL, self._interval(at, at, out)))
         return action
 
     # -- checks -----------------------------------------------------------------------------
@@ -328,22 +290,22 @@ class NeemLogger:
 
     def _resume_last_end(self) -> Instant | None:
         """When logging continues into an existing NEEM: the end of its last executed action."""
-        executed = {doc["s"] for doc in self.store.find(self.neem_id, p=RDF_TYPE, o=_ACTION, exact=True)}
+        executed = {doc["s"] for doc in self.store.find(self.neem_id, p=RDF_TYPE, o=T.ACTION, exact=True)}
         if not executed:
             return None
         latest: float | None = None
         for row in self.store.match(
             self.neem_id,
-            [TriplePattern(Var("A"), _HAS_INTERVAL, Var("I")), TriplePattern(Var("I"), _END, Var("E"))],
+            [TriplePattern(Var("A"), T.HAS_INTERVAL, Var("I")), TriplePattern(Var("I"), T.END, Var("E"))],
         ):
             if row["A"] in executed and (latest is None or row["E"] > latest):
                 latest = row["E"]
-        return None if latest is None else Instant.of(latest)
+        return None if latest is None else _instant(latest)
 
     # -- public API -------------------------------------------------------------------------
     def perceive(self, obj: str, at: Moment) -> str:
         """The robot perceives an odb object; its type triple is scoped from the first perception."""
-        when = Instant.of(at)
+        when = _instant(at)
         self._check_time(when, f"perception of {obj!r}")
         out = _Out()
         iri = self._object(obj, out, when.seconds)
@@ -353,7 +315,7 @@ class NeemLogger:
     def available(self, calls: Iterable[TaskCall | str], at: Moment) -> str:
         """The tasks available at a moment: a MentalAction executing Imagining that
         odb:imagines_situation one ActionExecutionPlan per task (thesis 3.4)."""
-        when = Instant.of(at)
+        when = _instant(at)
         resolved = [self._resolve(call) for call in calls]
         self._check_time(when, "available tasks")
         out = _Out()
@@ -362,7 +324,7 @@ class NeemLogger:
         return action
 
     def _imagining(self, calls: Sequence[TaskCall], when: Instant, out: _Out) -> str:
-        action = self._mental(_IMAGINING, "imagining", when, out)
+        action = self._mental(T.IMAGINING, "imagining", when, out)
         imagines, plans = self._imagines, self._plans
         for call in calls:
             plan = plans.get(call)
@@ -384,8 +346,8 @@ class NeemLogger:
         """Log an executed action (and, in the same transaction, the tasks available when it
         started and the idle action filling a gap of ``idle_threshold`` seconds or more)."""
         call = self._resolve(call)
-        start = Instant.of(begin)
-        stop = start if end is None else Instant.of(end)
+        start = _instant(begin)
+        stop = start if end is None else _instant(end)
         if stop.seconds < start.seconds:
             raise LoggingError(f"{call}: ends ({stop.seconds:.3f}) before it starts ({start.seconds:.3f})")
         self._check_time(start, f"action {call}")
@@ -401,17 +363,17 @@ class NeemLogger:
             iri = self._event("Action")
         out = _Out()
         idle = None
-        if self._last_end is not None and start.seconds - self._last_end.seconds >= self.idle_threshold:
+        if self._last_end is not None and is_idle_gap(self._last_end.seconds, start.seconds, self.idle_threshold):
             idle = self._idle(self._last_end, start, out)
         imagining = self._imagining(options, start, out) if options is not None else None
         task = self._task(call, out, start.seconds)
-        out.append(Triple(iri, RDF_TYPE, _ACTION))
-        out.append(Triple(iri, RDF_TYPE, NAMED_INDIVIDUAL))
-        out.append(Triple(iri, _EXECUTES, task))
+        out.append(Triple(iri, RDF_TYPE, T.ACTION))
+        out.append(Triple(iri, RDF_TYPE, T.NAMED_INDIVIDUAL))
+        out.append(Triple(iri, T.EXECUTES, task))
         for arg in call.args:
-            out.append(Triple(iri, _PARTICIPANT, self._object(arg, out, start.seconds)))
-        out.append(Triple(iri, _PERFORMED_BY, self._agent(performed_by, out)))
-        out.append(Triple(iri, _HAS_INTERVAL, self._interval(start, stop, out)))
+            out.append(Triple(iri, T.PARTICIPANT, self._object(arg, out, start.seconds)))
+        out.append(Triple(iri, T.PERFORMED_BY, self._agent(performed_by, out)))
+        out.append(Triple(iri, T.HAS_INTERVAL, self._interval(start, stop, out)))
         self._write(out)
         self._last_end = stop
         return LoggedAction(iri, call, start.seconds, stop.seconds, start.part_of_day, task, idle, imagining)
@@ -419,11 +381,11 @@ class NeemLogger:
     def _idle(self, begin: Instant, end: Instant, out: _Out) -> str:
         idle = self._event("Action")
         task = self._individual(f"{self.ns}Task_idle", self.vocab.idle_task, out)
-        out.append(Triple(idle, RDF_TYPE, _ACTION))
-        out.append(Triple(idle, RDF_TYPE, NAMED_INDIVIDUAL))
-        out.append(Triple(idle, _EXECUTES, task))
-        out.append(Triple(idle, _PERFORMED_BY, self._agent("robot", out)))
-        out.append(Triple(idle, _HAS_INTERVAL, self._interval(begin, end, out)))
+        out.append(Triple(idle, RDF_TYPE, T.ACTION))
+        out.append(Triple(idle, RDF_TYPE, T.NAMED_INDIVIDUAL))
+        out.append(Triple(idle, T.EXECUTES, task))
+        out.append(Triple(idle, T.PERFORMED_BY, self._agent("robot", out)))
+        out.append(Triple(idle, T.HAS_INTERVAL, self._interval(begin, end, out)))
         return idle
 
     def preference(self, ranking: Sequence[tuple[TaskCall | str, float]], at: Moment) -> str:
@@ -436,19 +398,19 @@ class NeemLogger:
         ``at`` is the time of the decision ranked; it may lie before actions already logged (a
         recorded NEEM ranked afterwards), so it is not checked against the last action's end and
         does not move the logger's clock."""
-        when = Instant.of(at)
+        when = _instant(at)
         resolved = [(self._resolve(call), float(score)) for call, score in ranking]
         out = _Out()
-        action = self._mental(_REASONING, "reasoning", when, out)
+        action = self._mental(T.REASONING, "reasoning", when, out)
         order = self._event("PreferenceOrder")
         out.append(Triple(action, self.vocab.imagines_preference, order))
-        out.append(Triple(order, RDF_TYPE, _PREFERENCE_ORDER))
-        out.append(Triple(order, RDF_TYPE, _ORDER))
+        out.append(Triple(order, RDF_TYPE, T.PREFERENCE_ORDER))
+        out.append(Triple(order, RDF_TYPE, T.ORDER))
         for rank, (call, score) in enumerate(resolved, start=1):
             element = f"{order}_{rank}"
-            out.append(Triple(element, RDF_TYPE, _ORDERED_ELEMENT))
-            out.append(Triple(order, _ORDERS, element))
-            out.append(Triple(element, _ENCAPSULATES, self._plan(call, out, when.seconds)))
+            out.append(Triple(element, RDF_TYPE, T.ORDERED_ELEMENT))
+            out.append(Triple(order, T.ORDERS, element))
+            out.append(Triple(element, T.ENCAPSULATES, self._plan(call, out, when.seconds)))
             out.append(Triple(element, self.vocab.has_rank, rank))
             out.append(Triple(element, self.vocab.has_score, score))
         self._write(out)
@@ -485,152 +447,3 @@ class NeemLogger:
 
     def __exit__(self, *exc: object) -> None:
         self.close()
-
-
-# -- reading back -------------------------------------------------------------------------------
-@dataclass(frozen=True)
-class ActionView:
-    """An executed action as read from a NEEM (for the oracle and for listings)."""
-
-    iri: str
-    task_class: str
-    begin: float
-    end: float
-    participants: tuple[str, ...]
-
-
-def executed_actions(store: Store, neem_id: str) -> Iterator[ActionView]:
-    """Executed (non-mental) actions in time order, each with its task class and participants."""
-    executed = {doc["s"] for doc in store.find(neem_id, p=RDF_TYPE, o=_ACTION, exact=True)}
-    rows = store.match(
-        neem_id,
-        [
-            TriplePattern(Var("A"), _EXECUTES, Var("T")),
-            TriplePattern(Var("T"), RDF_TYPE, Var("C")),
-            TriplePattern(Var("A"), _HAS_INTERVAL, Var("I")),
-            TriplePattern(Var("I"), _BEGIN, Var("B")),
-            TriplePattern(Var("I"), _END, Var("E")),
-        ],
-    )
-    found: dict[str, tuple[str, float, float]] = {}
-    for row in rows:
-        if row["A"] in executed and row["C"] != NAMED_INDIVIDUAL:
-            found[row["A"]] = (row["C"], row["B"], row["E"])
-    performers = {(row["A"], row["X"]) for row in store.match(neem_id, [TriplePattern(Var("A"), _PERFORMED_BY, Var("X"))])}
-    participants: dict[str, list[str]] = {}
-    for row in store.match(neem_id, [TriplePattern(Var("A"), _PARTICIPANT, Var("O"))]):
-        if (row["A"], row["O"]) in performers:
-            continue
-        if row["A"] in found and row["O"] not in participants.setdefault(row["A"], []):
-            participants[row["A"]].append(row["O"])
-    for iri, (cls_iri, begin, end) in sorted(found.items(), key=lambda item: (item[1][1], item[0])):
-        yield ActionView(iri, cls_iri, begin, end, tuple(participants.get(iri, ())))
-
-
-@dataclass(frozen=True)
-class NeemSummary:
-    """One line of ``python -m oracle neems``."""
-
-    id: str
-    user: str | None
-    actions: int
-    begin: float | None
-    end: float | None
-    temporary: bool
-
-
-def summarize(store: Store, neem_id: str) -> NeemSummary:
-    """User, number of executed actions and time span of a NEEM (ours or a loaded one)."""
-    info = store.neem(neem_id)
-    actions = {
-        doc["s"]
-        for doc in store.find(neem_id, p=RDF_TYPE, o=_ACTION)
-        if _MENTAL_ACTION not in (doc.get("o*") or ()) and doc.get("o") != _MENTAL_ACTION
-    }
-    begins = [row["B"] for row in store.match(neem_id, [TriplePattern(Var("I"), _BEGIN, Var("B"))])]
-    ends = [row["E"] for row in store.match(neem_id, [TriplePattern(Var("I"), _END, Var("E"))])]
-    numbers = lambda values: [v for v in values if isinstance(v, (int, float))]  # noqa: E731
-    return NeemSummary(
-        id=neem_id,
-        user=info.user,
-        actions=len(actions),
-        begin=min(numbers(begins), default=None),
-        end=max(numbers(ends) or numbers(begins), default=None),
-        temporary=info.temporary,
-    )
-
-
-def persist(store: Store, neem_id: str, name: str) -> Any:
-    """Keep a NEEM (thesis 3.5): it gets the id ``name`` and survives the next session start."""
-    store.rename_neem(neem_id, name)
-    return store.update_meta(name, temporary=False, name=name)
-
-
-def wipe_temporary_neems(store: Store) -> list[str]:
-    """Privacy (thesis 3.5): drop every NEEM still marked temporary (a session never persisted)."""
-    dropped = [info.id for info in store.neems() if info.temporary]
-    for neem_id in dropped:
-        store.drop_neem(neem_id)
-    return dropped
-
-
-def import_chains(
-    store: Store,
-    onto: Any,
-    path: str | Any,
-    *,
-    replace: bool = False,
-    report: dict[str, int] | None = None,
-    idle_threshold: float = IDLE_THRESHOLD,
-    commit_every: int = 1,
-    tbox: TBox | None = None,
-    session: bool = False,
-) -> dict[str, int]:
-    """Log a chains JSONL file, one NEEM per user; return {NEEM id: actions committed}.
-
-    With ``session`` the NEEMs are temporary (thesis 3.5): earlier temporary NEEMs are wiped
-    first, and these are wiped by the next session unless ``persist`` keeps them.
-
-    Rows may carry ``id`` and ``performed_by`` besides the chain fields (``end``/``duration``
-    are chain fields, see oracle.chains). Rows are committed as they are logged (in groups of
-    ``commit_every``); an error on line n commits every good line before it, then raises an
-    error naming the file and line.
-    """
-    from oracle.chains import read_chains
-
-    report = {} if report is None else report
-    loggers: dict[str, NeemLogger] = {}
-    tbox = tbox if tbox is not None else tbox_from_graph(onto.graph)
-    where = str(path)
-    try:
-        for row in read_chains(path):
-            where = f"{path}:{row.line}"
-            if row.time is None:
-                raise LoggingError("'time' is required to log an action")
-            end = row.end
-            logger = loggers.get(row.user)
-            if logger is None:
-                if session and not loggers:
-                    wipe_temporary_neems(store)
-                logger = NeemLogger.create(store, onto, user=row.user, replace=replace, tbox=tbox, temporary=session,
-                                           idle_threshold=idle_threshold, commit_every=commit_every)  # fmt: skip
-                loggers[row.user] = logger
-                report[logger.neem_id] = 0
-            action_id = row.extra.get("id")
-            logger.action(
-                row.action,
-                row.time,
-                end,
-                performed_by=str(row.extra.get("performed_by", "robot")),
-                action_id=None if action_id is None else str(action_id),
-                available=row.available,
-            )
-            report[logger.neem_id] = logger.committed
-    except LoggingError as error:
-        raise LoggingError(f"{where}: {error}") from None
-    finally:
-        for logger in loggers.values():
-            report[logger.neem_id] = logger.flush()
-    return report
-
-

@@ -2,7 +2,8 @@
 
 import json
 
-from oracle.logger import executed_actions, import_chains
+from oracle.neem.importing import import_chains
+from oracle.neem.query import executed_actions
 from oracle.ontology import build_ontology
 from oracle.store import open_store
 

@@ -1,0 +1,134 @@
+:- module(odb_calls,
+    [ task_class/2,               % ?TaskIndividual, ?Class
+      task_call/2,                % +TaskIndividual, -Call
+      task_calls/2,               % +Tasks, -Pairs
+      call_tasks/2,               % +Call, -TaskIndividuals
+      action_call/4,              % ?Action, ?Call, ?Begin, ?End
+      times_done/2,               % +Call, -Actions
+      chain_before/3              % +Action, +N, -Calls
+    ]).
+/** <module> odb task calls: task individuals as chain terms, and the actions that executed them
+
+A task individual is typed with its odb task class; its roles classify objects typed with
+odb object classes. Its call is the chain term `pick(banana)` (odb_names).
+*/
+
+:- use_module(library(error)).
+:- use_module(library(lists)).
+:- use_module(library(apply)).
+:- use_module(library(pairs)).
+:- use_module('../lang/query', [kb_call/2]).
+:- use_module('../lang/triple', [kb_iri/2]).
+:- use_module('../model/rdfs', []).
+:- use_module('../model/event', []).
+:- use_module('../model/object', []).
+:- use_module('../model/situation', []).
+:- use_module(names, [odb_iri/2, odb_task_roles/3, call_classes/3]).
+
+%!  task_class(?Task, ?Class) is nondet.
+%   Class is an odb class the task individual is asserted to be an instance of.
+task_class(T, C) :-
+    kb_call(triple(T, rdf:type, C), any),
+    odb_iri(_, C).
+
+%!  task_call(+Task, -Call) is semidet.
+%   The chain term of a task individual, e.g. `pour(thermos, green_mug)`.
+task_call(T, Call) :-
+    must_be(atom, T),
+    findall(C-R-RC-OC,
+            kb_call(( triple(T, rdf:type, C), task_role(T, R), has_role(O, R),
+                      triple(R, rdf:type, RC), triple(O, rdf:type, OC) ), any),
+            Rows0),
+    (   Rows0 == []
+    ->  once(task_class(T, C)), Args = []
+    ;   include(odb_row, Rows0, Rows),
+        Rows = [C-_-_-_|_],
+        findall(R-RC-OC, member(C-R-RC-OC, Rows), RoleRows),
+        role_args(C, RoleRows, Args)
+    ),
+    odb_iri(Name, C),
+    Call =.. [Name|Args].
+
+odb_row(C-_-_-OC) :- odb_iri(_, C), odb_iri(_, OC).
+
+%   One object name per role; the reference role's object first.
+role_args(C, RoleRows, Args) :-
+    findall(R-RC, member(R-RC-_, RoleRows), RPairs0),
+    sort(RPairs0, RPairs1),
+    pairs_keys(RPairs1, Roles0), sort(Roles0, Roles),
+    findall(Rank-Name,
+            ( member(R, Roles),
+              once(member(R-_-OC, RoleRows)),
+              odb_iri(Name, OC),
+              findall(RC, member(R-RC, RPairs1), RCs),
+              role_rank(C, RCs, Rank) ),
+            Ranked),
+    keysort(Ranked, Sorted),
+    pairs_values(Sorted, Args).
+
+role_rank(C, RCs, 0) :- odb_task_roles(C, _, Ref), memberchk(Ref, RCs), !.
+role_rank(C, RCs, 2) :- odb_task_roles(C, Target, _), memberchk(Target, RCs), !.
+role_rank(_, _, 1).
+
+%!  action_call(?Action, ?Call, ?Begin, ?End) is nondet.
+%   Action executed the task Call during [Begin, End] (physical actions, idle included).
+action_call(A, Call, B, E) :-
+    (   nonvar(Call)
+    ->  call_classes(Call, TC, _)
+    ;   true
+    ),
+    findall(A0-T-B0-E0,
+            ( kb_call(( executes_task(A0, T), triple(T, rdf:type, TC),
+                        event_interval(A0, B0, E0) ), any),
+              odb_iri(_, TC) ),
+            Rows),
+    findall(T, member(_-T-_-_, Rows), Ts),
+    task_calls(Ts, Calls),
+    member(A-T1-B-E, Rows),
+    memberchk(T1-Call, Calls).
+
+%!  task_calls(+Tasks, -Pairs) is det.
+%   `Task-Call` for each distinct task individual (the logger reuses one individual per
+%   call, so this costs one store query per distinct task, not per action).
+task_calls(Ts, Pairs) :-
+    sort(Ts, Distinct),
+    findall(T-C, ( member(T, Distinct), task_call(T, C) ), Pairs).
+
+%!  call_tasks(+Call, -Tasks) is det.
+%   The task individuals whose call is Call (the logger makes one per call).
+call_tasks(Call, Tasks) :-
+    call_classes(Call, TC, _),
+    findall(T, kb_call(triple(T, rdf:type, TC), any), Ts0),
+    sort(Ts0, Ts),
+    findall(T, ( member(T, Ts), task_call(T, C), C = Call ), Tasks).
+
+%!  times_done(+Call, -Actions) is det.
+%   `action(Begin, End, Action)` for every action that executed Call, by begin.
+times_done(Call, Actions) :-
+    findall(action(B, E, A), action_call(A, Call, B, E), As),
+    sort(As, Actions).
+
+%!  chain_before(+Action, +N, -Calls) is det.
+%   The calls of the (at most N) non-idle actions that ended before Action began, oldest
+%   first.
+chain_before(A, N, Calls) :-
+    must_be(atom, A), must_be(nonneg, N),
+    once(kb_call(event_interval(A, B0, _), any)),
+    odb_iri('IdleTask', Idle),
+    findall(B-T, kb_call(( executes_task(A1, T), has_time_interval(A1, I),
+                           has_interval_begin(I, B) ), any),
+            Pairs0),
+    findall(B-T, ( member(B-T, Pairs0), B < B0 ), Pairs1),
+    sort(0, @>, Pairs1, Desc),
+    take_calls(Desc, Idle, N, Rev),
+    reverse(Rev, Calls).
+
+take_calls(_, _, 0, []) :- !.
+take_calls([], _, _, []).
+take_calls([_-T|Ps], Idle, N, Calls) :-
+    (   \+ kb_call(instance_of(T, Idle), any),
+        task_call(T, Call)
+    ->  Calls = [Call|Rest], N1 is N-1
+    ;   Calls = Rest, N1 = N
+    ),
+    take_calls(Ps, Idle, N1, Rest).

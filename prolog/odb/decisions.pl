@@ -1,0 +1,171 @@
+:- module(odb_decisions,
+    [ decision/3,                 % ?Kind, ?MentalAction, ?Begin
+      decision_at/3,              % +Kind, +Time, -MentalAction
+      latest_decision/4,          % +Kind, +Test, -MentalAction, -Begin
+      imagined_available/2,       % +Imagining, -Calls
+      available_tasks_at/2,       % +Time, -Calls
+      imagined_preference/2,      % +Reasoning, -Ranked
+      preference_at/3,            % +Time, -Reasoning, -Ranked
+      latest_preference/3,        % -Reasoning, -Begin, -Ranked
+      times_available/2,          % +Call, -Begins
+      action_time/5               % +Tasks, ?BeginTest, ?EndTest, +Dir, -Begin
+    ]).
+/** <module> odb decisions: what the robot imagined available and preferred (thesis 3.4)
+
+Decisions are the soma:Imagining mental actions that odb:imagines_situation the available
+tasks (soma:ActionExecutionPlan soma:isPlanFor task), and the soma:Reasoning mental
+actions that odb:imagines_preference a soma:PreferenceOrder whose soma:orders elements
+carry odb:hasPreferenceRank and odb:hasPreferenceScore and soma:encapsulates the plan.
+Times are unix seconds; the lookups by time ask the store for the one row they need.
+*/
+
+:- use_module(library(error)).
+:- use_module(library(lists)).
+:- use_module(library(apply)).
+:- use_module(library(pairs)).
+:- use_module('../neem_store', [store_match/2, store_match/3]).
+:- use_module('../lang/query', [kb_call/2]).
+:- use_module('../lang/triple', [kb_iri/2]).
+:- use_module('../model/rdfs', []).
+:- use_module('../model/event', []).
+:- use_module('../model/object', []).
+:- use_module('../model/situation', []).
+:- use_module(names, [odb_iri/2, call_classes/3]).
+:- use_module(calls, [task_call/2, task_calls/2]).
+
+%!  decision(?Kind, ?MentalAction, ?Begin) is nondet.
+%   Kind `situation`: an imagining of the available tasks; `preference`: a reasoning
+%   that imagined a preference order.
+decision(situation, M, B) :-
+    kb_call(( executes_task(M, T), instance_of(T, soma:'Imagining'),
+              event_interval(M, B, _) ), any).
+decision(preference, M, B) :-
+    kb_call(( executes_task(M, T), instance_of(T, soma:'Reasoning'),
+              event_interval(M, B, _) ), any).
+
+%!  decision_at(+Kind, +Time, -MentalAction) is semidet.
+%   The latest decision of Kind that began at or before Time.
+decision_at(Kind, Time, M) :-
+    must_be(number, Time),
+    latest_decision(Kind, =<(Time), M, _).
+
+%!  latest_decision(+Kind, +Test, -MentalAction, -Begin) is semidet.
+%   The latest decision of Kind whose begin passes Test (`=<(Time)`, or `any`): one store
+%   query ordered by begin, limited to a few rows, which holds every decision that began
+%   at the latest begin unless they fill it (then it is asked again with a larger limit);
+%   the greatest in the standard order of terms when several began then, as max_member/2.
+latest_decision(Kind, Test, M, B) :-
+    latest_decision_(Kind, Test, 4, M, B).
+
+latest_decision_(Kind, Test, N, M, B) :-
+    (   Test = =<(Time) -> BO = cmp(=<, Time, B0) ; BO = B0 ),
+    decision_patterns(Kind, M0, BO, Ps),
+    findall(B0-M0, store_match(Ps, any, [order([desc(B0)]), limit(N)]), Rows),
+    Rows = [B1-_|_],
+    findall(Bx-Mx, ( member(Bx-Mx, Rows), Bx =:= B1 ), Latest),
+    length(Latest, NLatest),
+    (   NLatest < N
+    ->  max_member(_-M, Latest),
+        B = B1
+    ;   N1 is N*4,
+        latest_decision_(Kind, Test, N1, M, B)
+    ).
+
+%   decision/3 as store patterns (what kb_call compiles it to).
+decision_patterns(Kind, M, BO, [t(M, Ex, T), t(T, Type, C), t(M, HI, I), t(I, Begin, BO), t(I, End, _)]) :-
+    decision_class(Kind, C0),
+    maplist(kb_iri, [dul:executesTask, rdf:type, C0, dul:hasTimeInterval, soma:hasIntervalBegin, soma:hasIntervalEnd],
+            [Ex, Type, C, HI, Begin, End]).
+
+decision_class(situation, soma:'Imagining').
+decision_class(preference, soma:'Reasoning').
+
+%!  action_time(+Tasks, ?BeginTest, ?EndTest, +Dir, -Begin) is semidet.
+%   The least (Dir `asc` or `min`) or greatest (`desc`) begin of an action executing one of
+%   Tasks whose begin and end pass the tests (`>(T)`, `=<(T)`, ...; unbound: any): one store
+%   query per task, compared by the database. `asc`/`desc` also order and limit there (the
+%   scan starts at the test's bound); `min` lets the database plan from the task, for tests
+%   that bound the begin from above only and so would scan every earlier action.
+action_time(Tasks, BTest, ETest, Dir, B) :-
+    maplist(kb_iri, [dul:executesTask, dul:hasTimeInterval, soma:hasIntervalBegin, soma:hasIntervalEnd],
+            [Ex, HI, Begin, End]),
+    findall(B0, ( member(T, Tasks),
+                  test_object(BTest, B0, BO), test_object(ETest, _, EO),
+                  Ps = [t(A, Ex, T), t(A, HI, I), t(I, Begin, BO), t(I, End, EO)],
+                  (   Dir == min
+                  ->  store_match(Ps, any)
+                  ;   Key =.. [Dir, B0],
+                      once(store_match(Ps, any, [order([Key]), limit(1)]))
+                  ) ),
+            Bs),
+    Bs \== [],
+    (   Dir == desc -> max_list(Bs, B) ; min_list(Bs, B) ).
+
+test_object(Test, V, cmp(Op, Arg, V)) :-
+    nonvar(Test), Test =.. [Op, Arg], !.
+test_object(_, V, V).
+
+%!  imagined_available(+Imagining, -Calls) is det.
+%   The task calls an imagining found available, sorted.
+imagined_available(M, Calls) :-
+    must_be(atom, M),
+    findall(T, kb_call(( holds(M, odb:imagines_situation, P),
+                         plan_defines_task(P, T) ), any), Ts),
+    findall(C, ( member(T, Ts), task_call(T, C) ), Calls0),
+    sort(Calls0, Calls).
+
+%!  available_tasks_at(+Time, -Calls) is semidet.
+%   The tasks imagined as available at the latest imagining before Time.
+available_tasks_at(Time, Calls) :-
+    decision_at(situation, Time, M),
+    imagined_available(M, Calls).
+
+%!  imagined_preference(+Reasoning, -Ranked) is det.
+%   The preference order a reasoning imagined: `ranked(Call, Rank, Score)` by rank.
+imagined_preference(M, Ranked) :-
+    must_be(atom, M),
+    odb_iri(hasPreferenceRank, RankP),
+    odb_iri(hasPreferenceScore, ScoreP),
+    findall(R-ranked(E, R, S),
+            kb_call(( holds(M, odb:imagines_preference, PO), holds(PO, soma:orders, E),
+                      triple(E, RankP, R), triple(E, ScoreP, S) ), any),
+            Pairs0),
+    keysort(Pairs0, Pairs),
+    findall(ranked(Call, R, S),
+            ( member(_-ranked(E, R, S), Pairs), element_call(E, Call) ),
+            Ranked).
+
+%   An ordered element soma:encapsulates the plan for the task (the logger's shape), is the
+%   task individual itself, or points at one.
+element_call(E, Call) :-
+    kb_call(( holds(E, soma:encapsulates, P), plan_defines_task(P, T) ), any),
+    task_call(T, Call), !.
+element_call(E, Call) :-
+    task_call(E, Call), !.
+element_call(E, Call) :-
+    kb_call(triple(E, P, T), any),
+    atom(T), P \== 'http://www.w3.org/1999/02/22-rdf-syntax-ns#type',
+    task_call(T, Call), !.
+
+%!  preference_at(+Time, -Reasoning, -Ranked) is semidet.
+%   The preference imagined by the latest reasoning before Time.
+preference_at(Time, M, Ranked) :-
+    decision_at(preference, Time, M),
+    imagined_preference(M, Ranked).
+
+%!  latest_preference(-Reasoning, -Begin, -Ranked) is semidet.
+latest_preference(M, B, Ranked) :-
+    latest_decision(preference, any, M, B),
+    imagined_preference(M, Ranked).
+
+%!  times_available(+Call, -Begins) is det.
+%   Begin times of the imaginings that found Call available, ascending.
+times_available(Call, Begins) :-
+    call_classes(Call, TC, _),
+    findall(B-T, kb_call(( triple(T, rdf:type, TC), plan_defines_task(P, T),
+                           holds(M, odb:imagines_situation, P),
+                           event_interval(M, B, _) ), any), Pairs),
+    findall(T, member(_-T, Pairs), Ts),
+    task_calls(Ts, Calls),
+    findall(B, ( member(B-T, Pairs), memberchk(T-Call, Calls) ), Bs),
+    sort(Bs, Begins).

@@ -1,0 +1,49 @@
+"""The NEEM a reading command works on: its store (never created), its id, its ontology."""
+
+from __future__ import annotations
+
+import argparse
+from dataclasses import dataclass
+from typing import Any
+
+from oracle.commands.common import ontology_from
+from oracle.errors import StoreError
+
+#: The options that name an ontology; when none is given, the NEEM's own ontology is used.
+ONTOLOGY_OPTIONS = ("odb", "mapping", "soma", "ontology")
+
+
+@dataclass(frozen=True)
+class Target:
+    store: Any
+    neem_id: str
+    onto: Any
+
+
+def open_target(args: argparse.Namespace) -> Target:
+    """Open ``--store`` for reading, pick ``--neem`` and the ontology the NEEM was logged with."""
+    from oracle.ontology.provenance import ontology_for
+    from oracle.store import open_store
+
+    store = open_store(args.store, create=False)
+    try:
+        neem_id = args.neem if args.neem is not None else default_neem(store)
+        info = store.neem(neem_id)
+        given = ontology_from(args) if any(getattr(args, name, None) is not None for name in ONTOLOGY_OPTIONS) else None
+        onto = ontology_for(neem_id, info.meta, given, lambda: ontology_from(args))
+    except BaseException:
+        store.close()
+        raise
+    return Target(store, neem_id, onto)
+
+
+def default_neem(store: Any) -> str:
+    """The store's only NEEM. With several, guessing (say, the newest) would answer about the
+    wrong user without a word, so the user is asked to choose."""
+    ids = [info.id for info in store.neems()]
+    if not ids:
+        raise StoreError(f"{store.location}: the store holds no NEEM; log one first")
+    if len(ids) > 1:
+        shown = ", ".join(ids[:6]) + (", ..." if len(ids) > 6 else "")
+        raise StoreError(f"{store.location} holds {len(ids)} NEEMs ({shown}); choose one with --neem")
+    return ids[0]

@@ -1,0 +1,223 @@
+"""The SQLite backend's query compiler: triple patterns -> one SQL join with KnowRob's p*/o*
+semantics (the SQL counterpart of ``mongo.compile_pipeline``), and the value kinds it compares."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from datetime import datetime
+from typing import Any, Protocol
+
+from bson.decimal128 import Decimal128
+from bson.int64 import Int64
+
+from oracle.errors import StoreError
+from oracle.store.model import TAXONOMIC, Cmp, Scope, Term, TriplePattern, Var, unix_seconds
+
+# Kinds of the ``o`` column, so a value reads back with its BSON type.
+K_STR, K_DOUBLE, K_DECIMAL, K_INT, K_LONG, K_BOOL, K_DATE, K_OTHER = range(8)
+_NUMERIC_KINDS = (K_DOUBLE, K_DECIMAL, K_INT, K_LONG)
+#: Kinds a comparison (``Cmp``) sees as numbers: Prolog receives Dates as unix seconds too.
+_COMPARABLE_SQL = f"({K_DOUBLE}, {K_DECIMAL}, {K_INT}, {K_LONG}, {K_DATE})"
+_SQL_OPS = {"<": "<", "=<": "<=", ">": ">", ">=": ">="}
+
+
+def sql_value(value: Any) -> tuple[Any, int]:
+    """A BSON value as (SQLite value, kind)."""
+    if isinstance(value, str):
+        return value, K_STR
+    if isinstance(value, bool):
+        return int(value), K_BOOL
+    if isinstance(value, Int64):
+        return int(value), K_LONG
+    if isinstance(value, int):
+        return value, K_INT
+    if isinstance(value, float):
+        return value, K_DOUBLE
+    if isinstance(value, Decimal128):
+        return float(value.to_decimal()), K_DECIMAL
+    if isinstance(value, datetime):
+        return unix_seconds(value), K_DATE
+    return None, K_OTHER
+
+#: Term ids of rdf:type, rdfs:subClassOf and rdfs:subPropertyOf (fixed by the SQLite schema).
+TAXONOMIC_SQL = "(1, 2, 3)"
+
+
+class TermIds(Protocol):
+    """What the compiler needs from the store: interned term ids and closure membership."""
+
+    def known_term_id(self, value: str) -> int:
+        """The id of a stored term, or an id no row holds."""
+
+    def closures_containing(self, term_id: int) -> list[int]:
+        """Ids of the closures holding a term."""
+
+
+def join_order(patterns: Sequence[TriplePattern], first: str) -> tuple[list[int], set[int]]:
+    """A join order for "the first rows by ``first``", and the patterns in it joined to one
+    before. It starts at the pattern binding ``first`` (its index scan yields rows in that
+    order, so LIMIT stops early instead of joining everything and sorting), then takes each
+    pattern sharing a variable with those before (a pattern sharing none comes last)."""
+    names = [set(pattern.variables()) for pattern in patterns]
+    start = next(i for i, vs in enumerate(names) if first in vs)
+    chosen, bound, joined = [start], set(names[start]), set()
+    while len(chosen) < len(patterns):
+        rest = [i for i in range(len(patterns)) if i not in chosen]
+        nxt = next((i for i in rest if names[i] & bound), None)
+        if nxt is None:
+            nxt = rest[0]
+        else:
+            joined.add(nxt)
+        chosen.append(nxt)
+        bound |= names[nxt]
+    return chosen, joined
+
+
+class SqlCompiler:
+    """Turns triple patterns into one SQL join with KnowRob's p*/o* semantics."""
+
+    def __init__(self, store: TermIds, table: str, scope: Scope | None) -> None:
+        self.store = store
+        self.table = table
+        self.scope = scope
+        self.aliases: list[str] = []
+        self.inline_closures = False
+        #: The pattern being added is reached from an earlier one in a forced join order:
+        #: its closure tests must not drive an index (``+column``), so SQLite looks it up by
+        #: the joined subject or object instead of scanning the closure's whole range (an
+        #: ordered "latest decision" query fell from ~90 ms to ~0.1 ms on 10,000 actions).
+        self.joined = False
+        #: Likewise for a pattern with a known subject: the (s, p) index finds its few rows,
+        #: where SQLite (no statistics) would scan the (p, ostar) range of every type triple.
+        self.constant_subject = False
+        self.conds: list[str] = []
+        self.params: list[Any] = []
+        #: variable -> (SQL expression of its value, SQL expression of its kind; None for a term id)
+        self.bound: dict[str, tuple[str, str | None]] = {}
+
+    def from_clause(self) -> str:
+        return ", ".join(f"{self.table} AS {alias}" for alias in self.aliases)
+
+    def ordered_from_clause(self, plan: Sequence[int]) -> str:
+        """The patterns joined in ``plan`` order (``join_order``); CROSS JOIN makes SQLite
+        keep it."""
+        return " CROSS JOIN ".join(f"{self.table} AS {self.aliases[i]}" for i in plan)
+
+    def where(self) -> str:
+        return " AND ".join(self.conds) if self.conds else "1"
+
+    def _iri(self, value: Any) -> int:
+        return self.store.known_term_id(value) if isinstance(value, str) else -1
+
+    def _constant(self, column: str, kind_column: str | None, value: Any) -> None:
+        if kind_column is None:  # s or p: always a term
+            self.conds.append(f"{column}=?")
+            self.params.append(self._iri(value))
+            return
+        if isinstance(value, str):
+            self.conds.append(f"{column}=? AND {kind_column}={K_STR}")
+            self.params.append(self._iri(value))
+            return
+        sql, kind = sql_value(value)
+        if kind == K_OTHER:
+            raise StoreError(f"cannot query for a {type(value).__name__} value: {value!r}")
+        self.conds.append(f"{column}=?")
+        self.params.append(sql)
+        if kind in _NUMERIC_KINDS:
+            self.conds.append(f"{kind_column} IN (1, 2, 3, 4)")
+        else:
+            self.conds.append(f"{kind_column}={kind}")
+
+    def _closure_test(self, column: str, var: str | None, value: Any = None) -> None:
+        """``column`` names a closure containing the term (a bound variable or a constant)."""
+        if self.joined or self.constant_subject:
+            column = "+" + column
+        if var is None and self.inline_closures:
+            # The closure ids as literals: an ordered query can then scan the (pstar, o)
+            # index by o, where a subquery makes SQLite fall back to the (o, p) index.
+            cids = self.store.closures_containing(self._iri(value))
+            if len(cids) == 1:
+                self.conds.append(f"{column}=? AND {column} > 0")
+            else:
+                self.conds.append(f"{column} IN ({', '.join('?' * len(cids))}) AND {column} > 0")
+            self.params.extend(cids)
+            return
+        if var is None:
+            self.conds.append(f"{column} IN (SELECT cid FROM closure_member WHERE value=?) AND {column} > 0")
+            self.params.append(self._iri(value))
+            return
+        expr, kind = self.bound[var]
+        self.conds.append(f"{column} IN (SELECT cid FROM closure_member WHERE value={expr}) AND {column} > 0")
+        if kind is not None:
+            self.conds.append(f"{kind}={K_STR}")
+
+    def add(self, pattern: TriplePattern, exact: bool = False) -> None:
+        a = f"t{len(self.aliases)}"
+        self.aliases.append(a)
+        p = pattern.p
+        if exact:
+            self._term(pattern.s, f"{a}.s", None)
+            self._term(p, f"{a}.p", None)
+            self._object(pattern.o, a)
+            self._filters(a, pattern)
+            return
+        taxonomic = isinstance(p, str) and p in TAXONOMIC
+        self.constant_subject = pattern.s is not None and not isinstance(pattern.s, Var)
+        # Only a variable bound by an earlier pattern is "bound" for o* (mongolog binds per goal).
+        earlier = set(self.bound)
+        self._term(pattern.s, f"{a}.s", None)
+        if isinstance(p, Var):
+            self._term(p, f"{a}.p", None)
+        elif p is not None:
+            if not isinstance(p, str):
+                raise StoreError(f"a property must be an IRI, got {p!r}")
+            if taxonomic:
+                self.conds.append(f"{a}.p=?")
+                self.params.append(self._iri(p))
+            else:
+                self._closure_test(f"{a}.pstar", None, p)
+                self.conds.append(f"{a}.p NOT IN {TAXONOMIC_SQL}")
+        o = pattern.o
+        if taxonomic and isinstance(o, Var) and o.name in earlier:
+            self._closure_test(f"{a}.ostar", o.name)
+        elif taxonomic and o is not None and not isinstance(o, Var):
+            self._closure_test(f"{a}.ostar", None, o)
+        else:
+            self._object(o, a)
+        self._filters(a, pattern)
+
+    def _object(self, o: Any, a: str) -> None:
+        if not isinstance(o, Cmp):
+            self._term(o, f"{a}.o", f"{a}.ok")
+            return
+        self._term(o.var, f"{a}.o", f"{a}.ok")
+        # NaN is stored as NULL, so it never compares, as in Prolog.
+        self.conds.append(f"{a}.ok IN {_COMPARABLE_SQL} AND {a}.o {_SQL_OPS[o.op]} ?")
+        self.params.append(float(o.value))
+
+    def _filters(self, a: str, pattern: TriplePattern) -> None:
+        if pattern.graph is not None:
+            self.conds.append(f"{a}.graph=?")
+            self.params.append(pattern.graph)
+        if self.scope is not None:
+            self.conds.append(f"({a}.since IS NULL OR {a}.since<=?) AND ({a}.until IS NULL OR {a}.until>=?)")
+            self.params.extend([self.scope.until, self.scope.since])
+
+    def _term(self, term: Term, column: str, kind_column: str | None) -> None:
+        if term is None:
+            return
+        if not isinstance(term, Var):
+            self._constant(column, kind_column, term)
+            return
+        if term.name not in self.bound:
+            self.bound[term.name] = (column, kind_column)
+            return
+        expr, kind = self.bound[term.name]
+        self.conds.append(f"{column}={expr}")
+        # Term ids and literal numbers share the column types: compare like with like.
+        if kind_column is None and kind is not None:
+            self.conds.append(f"{kind}={K_STR}")
+        elif kind_column is not None and kind is None:
+            self.conds.append(f"{kind_column}={K_STR}")
+        elif kind_column is not None and kind is not None:
+            self.conds.append(f"({kind_column}={K_STR})=({kind}={K_STR})")

@@ -1,0 +1,113 @@
+"""Time, in one home: how a time is read, its part of the day and the idle gap (thesis 3.4).
+
+The one rule (docs/time.md): a time without a zone ("naive") is the robot's wall clock and is
+read as UTC, and seconds become a clock time in UTC too, so the machine's ``TZ`` never changes
+an answer. A time with a zone keeps its instant (its seconds) and its part of the day comes from
+its own wall clock as written. The thesis names the four parts of the day but not their hours;
+the boundaries below are this project's choice (docs/ontology.md).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from datetime import datetime, timezone
+
+#: (first hour, local name) in day order; a part lasts until the next one starts.
+PARTS_OF_DAY: tuple[tuple[int, str], ...] = (
+    (0, "Night"),
+    (5, "Morning"),
+    (11, "Midday"),
+    (17, "Evening"),
+    (22, "Night"),
+)
+
+#: The class names, each once, in the order they are introduced in the ontology.
+TIME_OF_DAY_NAMES: tuple[str, ...] = ("Morning", "Midday", "Evening", "Night")
+
+#: Shared grasping (no task) for this long or longer is an odb:IdleTask; shorter gaps are
+#: transitions between tasks (thesis 3.4).
+IDLE_THRESHOLD_S = 20.0
+
+#: What callers may pass as a time: a datetime or unix seconds.
+Moment = datetime | float | int
+
+
+class TimeValueError(ValueError):
+    """A value that is not a time; callers turn it into their domain's error."""
+
+
+def time_of_day(moment: datetime | float | int) -> str:
+    """Return the local name of the odb:TimeOfDay subclass for a clock time.
+
+    A number is taken as the hour of the day (0 <= h < 24, fractions allowed); a datetime
+    uses its own hour and minute as written (its wall clock).
+    """
+    if isinstance(moment, datetime):
+        hour = moment.hour + moment.minute / 60.0
+    else:
+        hour = float(moment)
+    if not 0.0 <= hour < 24.0:
+        raise ValueError(f"hour of day must be in [0, 24), got {hour}")
+    name = PARTS_OF_DAY[0][1]
+    for start, part in PARTS_OF_DAY:
+        if hour >= start:
+            name = part
+    return name
+
+
+def clock(seconds: float) -> datetime:
+    """The wall-clock time of unix seconds under the one rule (UTC, never the machine's zone)."""
+    return datetime.fromtimestamp(seconds, timezone.utc)
+
+
+def seconds_of(moment: datetime) -> float:
+    """Unix seconds of a datetime; a naive one is the wall clock, read as UTC."""
+    aware = moment if moment.tzinfo is not None else moment.replace(tzinfo=timezone.utc)
+    return aware.timestamp()
+
+
+def part_of_day_at(seconds: float) -> str:
+    """The part of the day of unix seconds (their UTC wall clock)."""
+    return time_of_day(clock(seconds))
+
+
+def parse_moment(text: str) -> float:
+    """Unix seconds of ``--at`` text: a number, or ISO-8601 (naive = wall clock, read as UTC).
+
+    Raises TimeValueError naming the text when it is neither."""
+    try:
+        return float(text)
+    except ValueError:
+        pass
+    try:
+        return seconds_of(datetime.fromisoformat(text.replace("Z", "+00:00")))
+    except ValueError:
+        raise TimeValueError(f"{text!r}: expected ISO-8601 (2024-05-01T08:30) or unix seconds") from None
+
+
+def format_clock(seconds: float, timespec: str = "seconds") -> str:
+    """ISO text of unix seconds in the one rule's clock (UTC, written with its +00:00)."""
+    return clock(seconds).isoformat(timespec=timespec)
+
+
+def is_idle_gap(previous_end: float | None, start: float, threshold: float = IDLE_THRESHOLD_S) -> bool:
+    """True when the pause from the last action's end to ``start`` is an odb:IdleTask."""
+    return previous_end is not None and start - previous_end >= threshold
+
+
+@dataclass(frozen=True)
+class Instant:
+    """A logged time: unix seconds for the interval, wall-clock part of day for odb:TimeOfDay."""
+
+    seconds: float
+    part_of_day: str
+
+    @staticmethod
+    def of(moment: Moment) -> Instant:
+        """A datetime keeps its part of day as written; seconds get their UTC part of day."""
+        if isinstance(moment, datetime):
+            return Instant(seconds_of(moment), time_of_day(moment))
+        if isinstance(moment, bool) or not isinstance(moment, (int, float)):
+            raise TimeValueError(f"a time must be a datetime or unix seconds, got {moment!r}")
+        seconds = float(moment)
+        return Instant(seconds, part_of_day_at(seconds))
