@@ -11,9 +11,11 @@ import importlib
 import importlib.util
 import sys
 from collections.abc import Sequence
+from typing import NoReturn
 
 from oracle import __version__
 from oracle.errors import NeemOracleError
+from oracle.store.uri import mask_credentials
 
 #: Command modules in the order their sub-commands appear in ``--help``.
 COMMAND_MODULES = (
@@ -29,8 +31,15 @@ COMMAND_MODULES = (
 )
 
 
+class _Parser(argparse.ArgumentParser):
+    """Usage errors as one line on stderr (exit 2), like every other error of the tool."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(2, f"error: {self.prog}: {message} (see {self.prog} --help)\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="python -m oracle",
         description="KnowRob-compatible NEEM store, Prolog bridge and PreferenceOracle.",
     )
@@ -49,12 +58,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(argv)
     handler = getattr(args, "handler", None)
     if handler is None:
-        parser.print_help(sys.stderr)
+        print(f"error: {parser.prog}: give a command (see {parser.prog} --help)", file=sys.stderr)
         return 2
     try:
         return int(handler(args) or 0)
     except NeemOracleError as error:
-        print(f"error: {error}", file=sys.stderr)
+        # One line, and never a password (a message may quote a --store URI).
+        text = " ".join(str(error).split()) or type(error).__name__
+        print(f"error: {mask_credentials(text)}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)

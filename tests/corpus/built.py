@@ -41,7 +41,7 @@ def _long_line(tmp: Path) -> tuple[list[str], str]:
 def _long_tail(tmp: Path) -> tuple[list[str], str]:
     path = tmp / "tail.jsonl"
     path.write_text(GOOD_ROW + "\n" + "y" * 1_200_000)
-    return ["import", str(path), "--store", "{store}"], "line 2"
+    return ["import", str(path), "--store", "{store}"], ":2: "
 
 
 @built("import-fifo-is-not-a-file")
@@ -49,15 +49,36 @@ def _folder(tmp: Path) -> tuple[list[str], str]:
     return ["import", str(tmp), "--store", "{store}"], "cannot read"
 
 
-@built("odb-derive-chain-1200")
-def _deep_odb(tmp: Path) -> tuple[list[str], str]:
+def _derive_chain(tmp: Path, last_parent: str) -> Path:
+    odb = tmp / "odb"
+    for i in range(1200):
+        folder = odb / f"o{i}"
+        folder.mkdir(parents=True)
+        parent = f"o{i + 1}" if i < 1199 else last_parent
+        (folder / "manifest.xml").write_text(f"<object><name>o{i}</name><derive>{parent}</derive></object>")
+    return odb
+
+
+@built("odb-derive-chain-1200-cycle")
+def _deep_cycle(tmp: Path) -> tuple[list[str], str]:
+    return ["import", "{good}", "--store", "{store}", "--odb", str(_derive_chain(tmp, "o0"))], "cyclic derive"
+
+
+@built("odb-derive-chain-1200-unknown-root")
+def _deep_unknown(tmp: Path) -> tuple[list[str], str]:
+    return ["import", "{good}", "--store", "{store}", "--odb", str(_derive_chain(tmp, "nowhere"))], "unknown object 'nowhere'"
+
+
+@built("odb-derive-chain-1200-no-mug")
+def _deep_valid(tmp: Path) -> tuple[list[str], str]:
+    # A valid odb 1,200 classes deep that lacks the objects the chains name.
     odb = tmp / "odb"
     for i in range(1200):
         folder = odb / f"o{i}"
         folder.mkdir(parents=True)
         parent = f"<derive>o{i + 1}</derive>" if i < 1199 else ""
         (folder / "manifest.xml").write_text(f"<object><name>o{i}</name>{parent}</object>")
-    return ["import", "{good}", "--store", "{store}", "--odb", str(odb)], "derive"
+    return ["import", "{good}", "--store", "{store}", "--odb", str(odb)], "unknown"
 
 
 @built("odb-deep-xml")
@@ -65,7 +86,7 @@ def _deep_xml(tmp: Path) -> tuple[list[str], str]:
     folder = tmp / "odb" / "a"
     folder.mkdir(parents=True)
     (folder / "manifest.xml").write_text("<object><name>a</name>" + "<x>" * 100_000 + "</x>" * 100_000 + "</object>")
-    return ["import", "{good}", "--store", "{store}", "--odb", str(tmp / "odb")], "manifest"
+    return ["import", "{good}", "--store", "{store}", "--odb", str(tmp / "odb")], "unknown object"
 
 
 @built("odb-manifest-symlink-loop")
@@ -87,8 +108,9 @@ def corrupt(store: Path, seed: int) -> None:
             handle.write(bytes((seed * 31 + i) % 251 for i in range(page)))
 
 
+#: Commands that write: each must find the damage before writing (readers are in test_corpus).
 for _seed in range(5):
-    for _command in (["import", "{good}"], ["export", "--out", "{tmp}/out"], ["load", "{dump}"]):
+    for _command in (["import", "{good}"], ["load", "{dump}"]):
         def _builder(tmp: Path, seed: int = _seed, command: list[str] = _command) -> tuple[list[str], str]:
             return [*command, "--store", "{store}", f"corrupt:{seed}"], "corrupt"
         BUILT[f"corrupted-store-{_seed}-{_command[0]}"] = _builder

@@ -52,23 +52,23 @@ for name, text in [
     ("empty-object", "{}"), ("nested-array", "[[[]]]"), ("deep-brackets", "[" * 100000),
     ("deep-braces", '{"a":' * 50000), ("deep-available", row()[:-1] + ', "available": ' + "[" * 60000 + "]" * 60000 + "}"),
 ]:
-    imp(f"json-{name}", text, "line 1" if name != "empty-object" else "'user' must be a non-empty string")
+    imp(f"json-{name}", text, ":1: " if name != "empty-object" else "'user' must be a non-empty string")
 
 for name, data, where in [
-    ("latin1-user", b'{"user": "caf\xe9", "time": "2025-03-03T08:00:00", "action": "open(fridge)"}\n', "line 1"),
-    ("ff-start", b"\xff" + row().encode() + b"\n", "line 1"),
-    ("lone-continuation", row().encode()[:-1] + b', "x": "\x80"}\n', "line 1"),
-    ("truncated-sequence", row().encode()[:-1] + b', "x": "\xc3"}\n', "line 1"),
-    ("overlong-slash", row().encode()[:-1] + b', "x": "\xc0\xaf"}\n', "line 1"),
-    ("surrogate-bytes", row().encode()[:-1] + b', "x": "\xed\xa0\x80"}\n', "line 1"),
-    ("utf16-file", (row() + "\n").encode("utf-16"), "line 1"),
-    ("bad-third-line", (row() + "\n" + row(time="2025-03-03T08:01:00") + "\n").encode() + b'{"user": "\xfe"}\n', "line 3"),
-    ("bad-after-200", "".join(row(time=f"2025-03-03T{8 + i // 60:02d}:{i % 60:02d}:00") + "\n" for i in range(200)).encode() + b"\xff\n", "line 201"),
-    ("nul-byte", row().encode()[:-1] + b', "x": "\x00"}\n', "line 1"),
-    ("nul-line", b"\x00\x00\x00\x00\n", "line 1"),
-    ("binary-garbage", bytes(range(256)) * 4, "line 1"),
-    ("utf8-bom", b"\xef\xbb\xbf" + row().encode() + b"\n", "line 1"),
-    ("cr-only-lines", (row() + "\r" + row(time="2025-03-03T08:01:00") + "\r").encode(), "line 1"),
+    ("latin1-user", b'{"user": "caf\xe9", "time": "2025-03-03T08:00:00", "action": "open(fridge)"}\n', ":1: "),
+    ("ff-start", b"\xff" + row().encode() + b"\n", ":1: "),
+    ("lone-continuation", row().encode()[:-1] + b', "x": "\x80"}\n', ":1: "),
+    ("truncated-sequence", row().encode()[:-1] + b', "x": "\xc3"}\n', ":1: "),
+    ("overlong-slash", row().encode()[:-1] + b', "x": "\xc0\xaf"}\n', ":1: "),
+    ("surrogate-bytes", row().encode()[:-1] + b', "x": "\xed\xa0\x80"}\n', ":1: "),
+    ("utf16-file", (row() + "\n").encode("utf-16"), ":1: "),
+    ("bad-third-line", (row() + "\n" + row(time="2025-03-03T08:01:00") + "\n").encode() + b'{"user": "\xfe"}\n', ":3: "),
+    ("bad-after-200", "".join(row(time=f"2025-03-03T{8 + i // 60:02d}:{i % 60:02d}:00") + "\n" for i in range(200)).encode() + b"\xff\n", ":201: "),
+    ("nul-byte", row().encode()[:-1] + b', "x": "\x00"}\n', ":1: "),
+    ("nul-line", b"\x00\x00\x00\x00\n", ":1: "),
+    ("binary-garbage", bytes(range(256)) * 4, ":1: "),
+    ("utf8-bom", b"\xef\xbb\xbf" + row().encode() + b"\n", ":1: "),
+    ("cr-only-lines", (row() + "\r" + row(time="2025-03-03T08:01:00") + "\r").encode(), ":1: "),
 ]:
     imp(f"bytes-{name}", data, where)
 
@@ -138,8 +138,8 @@ for name, value, expected in [
     ("unknown-second-object", "pour(thermos, unicorn)", "unknown object 'unicorn'"), ("accented-task", "pïck(red_mug)", "malformed action"),
     ("digit-task", "1pick(red_mug)", "malformed action"), ("variable-object", "pick(X)", "unknown object 'X'"),
     ("long-task", "p" * 5000 + "(red_mug)", "unknown task"), ("nul-in-action", "pick(red_mug)\u0000", "malformed action"),
-    ("newline-in-action", "pick(\nred_mug)", "unknown task" if False else "malformed action"),
-    ("dollar-where", "$where", "malformed action"), ("sql-quote", "pick(red_mug'); DROP TABLE neems; --", "bad object name"),
+    ("newline-in-action", "pick(red_mug)\nopen(fridge)", "malformed action"),
+    ("dollar-where", "$where", "malformed action"), ("sql-quote", "pick(red_mug'); DROP TABLE neems; --", "malformed action"),
     ("iri-task", "http://x/y(red_mug)", "malformed action"), ("colon-object", "pick(odb:red_mug)", "bad object name"),
 ]:
     imp(f"action-{name}", row(action=value), expected)
@@ -171,12 +171,12 @@ for name, lines, expected in [
     ("duplicate-numeric-id", [row(id=7), row(id=7, time=later(1))], "duplicate action id"),
     ("time-backwards", [row(time=later(5)), row(time=later(1))], "time goes backwards"),
     ("time-backwards-after-end", [row(time=later(1), end=later(9)), row(time=later(5))], "time goes backwards"),
-    ("bad-row-after-good", [row(time=later(i)) for i in range(5)] + [row(action="juggle(x)", time=later(9))], "line 6"),
-    ("bad-second-user", [row(), row(user="bob"), row(user="bob", time=later(1), action="pick(unicorn)")], "line 3"),
-    ("bad-last-of-many", [row(time=later(i)) for i in range(40)] + ["{"], "line 41"),
-    ("bad-json-in-middle", [row(), "{", row(time=later(1))], "line 2"),
-    ("unknown-object-first", [row(action="pick(unicorn)"), row(time=later(1))], "line 1"),
-    ("backwards-other-user-ok", [row(), row(user="bob", time=later(9)), row(user="bob", time=later(2))], "line 3"),
+    ("bad-row-after-good", [row(time=later(i)) for i in range(5)] + [row(action="juggle(x)", time=later(9))], ":6: "),
+    ("bad-second-user", [row(), row(user="bob"), row(user="bob", time=later(1), action="pick(unicorn)")], ":3: "),
+    ("bad-last-of-many", [row(time=later(i)) for i in range(40)] + ["{"], ":41: "),
+    ("bad-json-in-middle", [row(), "{", row(time=later(1))], ":2: "),
+    ("unknown-object-first", [row(action="pick(unicorn)"), row(time=later(1))], ":1: "),
+    ("backwards-other-user-ok", [row(), row(user="bob", time=later(9)), row(user="bob", time=later(2))], ":3: "),
 ]:
     imp(f"rows-{name}", "\n".join(lines), expected)
 
@@ -191,7 +191,7 @@ for name, args in [("replace-bad-first-row", "--replace"), ("session-bad-first-r
     IMPORT.append((f"args-{name}", row(user="p000-tea-red-yogurt", action="pick(unicorn)") + "\n", args, "unknown object 'unicorn'"))
 IMPORT.append(("args-replace-bad-late-row", "\n".join(
     [row(user="p000-tea-red-yogurt", time=later(i)) for i in range(3)] + [row(user="p000-tea-red-yogurt", action="juggle(x)", time=later(5))]) + "\n",
-    "--replace", "line 4"))
+    "--replace", ":4: "))
 IMPORT.append(("args-replace-duplicate-ids", "\n".join(
     [row(user="p000-tea-red-yogurt", id="a"), row(user="p000-tea-red-yogurt", id="a", time=later(1))]) + "\n",
     "--replace --commit-every 1", "duplicate action id"))
@@ -222,7 +222,7 @@ for name, text, expected in [
     ("duplicate-anchor-bomb", "a: &a [1,1,1,1,1,1,1,1,1]\nb: &b [*a,*a,*a,*a,*a,*a,*a,*a,*a]\nc: &c [*b,*b,*b,*b,*b,*b,*b,*b,*b]\nd: [*c,*c,*c,*c,*c,*c,*c,*c,*c]\n", "unknown hyperparameter"),
     ("python-tag", "knockout: !!python/object/apply:os.system ['true']\n", "malformed YAML"),
     ("binary-file", "\x00\x01\x02", "settings"), ("key-is-number", "5: 1.0\n", "unknown hyperparameter"),
-    ("key-is-list", "? [a, b]\n: 1\n", "unknown hyperparameter"), ("nested-value", "knockout: {value: 1}\n", "must be a number"),
+    ("key-is-list", "? [a, b]\n: 1\n", "malformed YAML"), ("nested-value", "knockout: {value: 1}\n", "must be a number"),
     ("date-value", "knockout: 2025-03-03\n", "must be a number"), ("deep-nesting", "knockout: " + "[" * 5000 + "]" * 5000 + "\n", "settings"),
 ]:
     SETTINGS.append((name, text, "", expected))
@@ -238,7 +238,7 @@ for name, text, expected in [
     ("namespace-angle", "namespace: http://x/<y>\n", "'namespace'"), ("namespace-newline", "namespace: \"http://x/\\ny\"\n", "'namespace'"),
     ("namespace-empty-host", "namespace: 'http://'\n", "'namespace'"), ("namespace-javascript", "namespace: 'javascript:alert(1)'\n", "'namespace'"),
     ("imports-list", "imports: [soma]\n", "'imports' must map"), ("imports-not-iri", "imports:\n  x: notaniri\n", "is not an IRI"),
-    ("imports-number", "imports:\n  x: 5\n", "is not an IRI"), ("imports-space", "imports:\n  x: http://a b/\n", "is not an IRI"),
+    ("imports-number", "imports:\n  x: 5\n", "is not an IRI"), ("imports-space", "imports:\n  x: http://a b/\n", "imports.x"),
     ("imports-bad-prefix", "imports:\n  'a b': http://x/\n", "prefix"), ("imports-numeric-prefix", "imports:\n  5: http://x/\n", "prefix"),
     ("map-list", "soma_odb_map: [a]\n", "'soma_odb_map' must map"), ("map-number-class", "soma_odb_map:\n  _mug: 5\n", "expected a class"),
     ("map-unknown-prefix", "soma_odb_map:\n  _mug: foo:Cup\n", "unknown prefix 'foo'"), ("map-no-prefix", "soma_odb_map:\n  _mug: Cup\n", "not a prefixed name"),
@@ -261,7 +261,8 @@ for name, text, expected in [
     ("actions-parent-number", "actions: {pick: {parent: 5}}\n", "unknown parent"), ("actions-parent-list", "actions: {pick: {parent: [place]}}\n", "parent"),
     ("actions-task-not-in-tbox", "actions: {pick: {task: soma:NoSuchTask}}\n", "NoSuchTask"),
     ("actions-task-bad-prefix", "actions: {pick: {task: 'x:y'}}\n", "unknown prefix"), ("actions-task-iri-space", "actions: {pick: {task: 'http://x/a b'}}\n", "actions.pick.task"),
-    ("deep-parent-chain", "actions:\n" + "".join(f"  a{i}: {{parent: a{i + 1}}}\n" for i in range(2000)) + "  a2000: {task: soma:Pouring}\n", "parent"),
+    ("deep-parent-cycle", "actions:\n" + "".join(f"  a{i}: {{parent: a{i + 1}}}\n" for i in range(2000)) + "  a2000: {parent: a0}\n", "cyclic parent"),
+    ("deep-parent-unknown", "actions:\n" + "".join(f"  a{i}: {{parent: a{i + 1}}}\n" for i in range(2000)) + "  a2000: {parent: nowhere}\n", "unknown parent 'nowhere'"),
     ("deep-nesting", "actions: " + "[" * 5000 + "]" * 5000 + "\n", "mapping"), ("binary", "\x00\x01\x02\x03", "mapping"),
     ("anchor-bomb", "x: &a [1,1,1,1,1,1,1,1,1]\ny: &b [*a,*a,*a,*a,*a,*a,*a,*a,*a]\nz: [*b,*b,*b,*b,*b,*b,*b,*b,*b]\n", "unknown key(s)"),
 ]:
@@ -309,7 +310,7 @@ for name, files, expected in [
     ("entity-bomb", {"a/manifest.xml": '<?xml version="1.0"?><!DOCTYPE o [<!ENTITY a "aaaaaaaaaa"><!ENTITY b "&a;&a;&a;&a;&a;&a;&a;&a;&a;&a;"><!ENTITY c "&b;&b;&b;&b;&b;&b;&b;&b;&b;&b;"><!ENTITY d "&c;&c;&c;&c;&c;&c;&c;&c;&c;&c;">]><object><name>&d;</name></object>'}, "manifest"),
     ("external-entity", {"a/manifest.xml": '<?xml version="1.0"?><!DOCTYPE o [<!ENTITY x SYSTEM "file:///etc/passwd">]><object><name>&x;</name></object>'}, "manifest"),
     ("latin1-undeclared", {"a/manifest.xml": b"<object><name>m\xfcg</name></object>"}, "malformed XML"),
-    ("utf16-no-bom", {"a/manifest.xml": "<object><name>mug</name></object>".encode("utf-16-le")}, "malformed XML"),
+    ("utf16-no-bom", {"a/manifest.xml": "<object><name>mug</name></object>".encode("utf-16-le")}, "unknown object"),
     ("binary", {"a/manifest.xml": bytes(range(256))}, "malformed XML"),
     ("manifest-is-folder", {"a/manifest.xml/x": ""}, "manifest"),
 ]:
@@ -338,12 +339,12 @@ CLI: list[tuple[str, str, str]] = []
 for value, expected in [
     ("nan", "--at"), ("inf", "--at"), ("infinity", "--at"), ("1e400", "--at"), ("1e20", "--at"), ("1e308", "--at"),
     ("-1e20", "--at"), ("NaN", "--at"), ("+inf", "--at"), ("", "--at"), ("abc", "--at"), ("2025-13-01T00:00", "--at"),
-    ("9999-12-31T23:59:59-12:00", "--at"), ("0001-01-01T00:00:00+05:00", "--at"), ("0x10", "--at"), ("1_000", "--at"),
+    ("9999-12-31T23:59:59-12:00", "--at"), ("0001-01-01T00:00:00+05:00", "--at"), ("0x10", "--at"),
     ("-5", "--at"), ("yesterday", "--at"),
 ]:
     slug = {"": "empty", "+inf": "plus-inf", "-1e20": "minus-1e20", "-5": "minus-5"}.get(value, value.lower().replace(":", "").replace("+", "p"))
-    CLI.append((f"why-not-at-{slug}", f"why-not 'pick(banana)' --store {{store}} --at={shlex.quote(value)}", expected))
-    CLI.append((f"rank-at-{slug}", f"rank --store {{store}} --available 'pick(banana)' --at={shlex.quote(value)}", expected))
+    CLI.append((f"why-not-at-{slug}", f"why-not 'pick(banana)' --store {{store}} --neem p000-tea-red-yogurt --at={shlex.quote(value)}", expected))
+    CLI.append((f"rank-at-{slug}", f"rank --store {{store}} --neem p000-tea-red-yogurt --available 'pick(banana)' --at={shlex.quote(value)}", expected))
 for name, uri, expected in [
     ("bad-port", "mongodb://alice:s3cret@localhost:99999/db", "Port"), ("space-host", "mongodb://alice:s3cret@ho st/db", "mongodb://"),
     ("at-in-password", "mongodb://alice:p@ss@localhost/db", "mongodb://"), ("slash-in-password", "mongodb://alice:pa/ss@localhost/db", "mongodb://"),
@@ -362,8 +363,8 @@ for name, uri in [("env-bad-port", "mongodb://alice:s3cret@localhost:99999/db"),
     CLI.append((name, f"env:NEEM_MONGO_URI={shlex.quote(uri)} neems --store mongodb", "mongodb://"))
 CLI.append(("env-unset", "env:NEEM_MONGO_URI= neems --store mongodb", "NEEM_MONGO_URI"))
 for name, path, expected in [
-    ("store-is-folder", "{tmp}", "cannot open"), ("store-not-sqlite", "{good}", "not a NEEM store"),
-    ("store-dev-null", "/dev/null", "store"), ("store-in-missing-proc", "/proc/nonexistent/x.sqlite", "cannot open"),
+    ("store-is-folder", "{tmp}", "no NEEM store"), ("store-not-sqlite", "{good}", "not a NEEM store"),
+    ("store-dev-null", "/dev/null", "store"), ("store-in-missing-proc", "/proc/nonexistent/x.sqlite", "no NEEM store"),
 ]:
     CLI.append((name, f"neems --store {path}", expected))
 for name, neem in [("underscore", "a_b"), ("empty", ""), ("dotdot", "../x"), ("too-long", "x" * 65), ("dollar", "$where"),
@@ -381,16 +382,16 @@ for name, args, expected in [
     ("load-existing", "load {dump} --neem p000-tea-red-yogurt --store {store}", "already exists"),
     ("export-out-is-file", "export --store {store} --neem p000-tea-red-yogurt --out {good}", "cannot write"),
     ("export-out-dev-null", "export --store {store} --neem p000-tea-red-yogurt --out /dev/null", "cannot write"),
-    ("settings-unknown-preset", "rank --store {store} --settings Z", "--settings"), ("settings-empty", "rank --store {store} --settings ''", "--settings"),
-    ("settings-missing-yaml", "rank --store {store} --settings {tmp}/none.yaml", "cannot read"),
-    ("available-bad-call", "rank --store {store} --available 'pick('", "malformed action"),
-    ("available-unknown-task", "rank --store {store} --available 'juggle(banana)'", "unknown task"),
-    ("available-unknown-object", "rank --store {store} --available 'pick(unicorn)'", "unknown object"),
-    ("available-injection", "rank --store {store} --available 'pick(banana)), halt, (true'", "malformed action"),
+    ("settings-unknown-preset", "rank --store {store} --neem p000-tea-red-yogurt --settings Z", "--settings"), ("settings-empty", "rank --store {store} --neem p000-tea-red-yogurt --settings ''", "settings"),
+    ("settings-missing-yaml", "rank --store {store} --neem p000-tea-red-yogurt --settings {tmp}/none.yaml", "cannot read"),
+    ("available-bad-call", "rank --store {store} --neem p000-tea-red-yogurt --available 'pick('", "malformed action"),
+    ("available-unknown-task", "rank --store {store} --neem p000-tea-red-yogurt --available 'juggle(banana)'", "unknown task"),
+    ("available-unknown-object", "rank --store {store} --neem p000-tea-red-yogurt --available 'pick(unicorn)'", "unknown object"),
+    ("available-injection", "rank --store {store} --neem p000-tea-red-yogurt --available 'pick(banana)), halt, (true'", "malformed action"),
     ("import-missing-file", "import {tmp}/none.jsonl --store {store}", "cannot read"), ("import-folder", "import {tmp} --store {store}", "cannot read"),
     ("import-mapping-and-ontology", "import {good} --store {store} --ontology {tmp}/o.owl --mapping {tmp}/m.yaml", "either --ontology"),
     ("import-ontology-missing", "import {good} --store {store} --ontology {tmp}/none.owl", "none.owl"),
-    ("import-ontology-not-owl", "import {good} --store {store} --ontology {good}", "sample"),
+    ("import-ontology-not-owl", "import {good} --store {store} --ontology {good}", "cannot parse"),
     ("import-odb-missing", "import {good} --store {store} --odb {tmp}/none", "odb folder not found"),
     ("import-mapping-missing", "import {good} --store {store} --mapping {tmp}/none.yaml", "cannot read"),
     ("import-soma-missing", "import {good} --store {store} --soma {tmp}/none", "none"),
@@ -435,7 +436,7 @@ def with_doc(**changes: Any) -> list[dict[str, Any]]:
 
 for name, changes, expected in [
     ("scope-string", {"scope": "always"}, "scope"), ("scope-number", {"scope": 5}, "scope"), ("scope-list", {"scope": [0, 1]}, "scope"),
-    ("scope-no-time", {"scope": {}}, "scope"), ("scope-time-string", {"scope": {"time": "now"}}, "scope"),
+    ("scope-time-list", {"scope": {"time": [0, 1]}}, "scope"), ("scope-time-string", {"scope": {"time": "now"}}, "scope"),
     ("since-string", {"scope": {"time": {"since": "abc", "until": float("inf")}}}, "since"),
     ("until-string", {"scope": {"time": {"since": 0.0, "until": "later"}}}, "until"),
     ("since-nan", {"scope": {"time": {"since": float("nan"), "until": float("inf")}}}, "since"),
@@ -443,9 +444,9 @@ for name, changes, expected in [
     ("since-list", {"scope": {"time": {"since": [0], "until": 1.0}}}, "since"),
     ("ostar-number", {"o*": 5}, "o*"), ("ostar-string", {"o*": "abc"}, "o*"), ("ostar-object", {"o*": {"a": 1}}, "o*"),
     ("pstar-number", {"p*": 5}, "p*"), ("pstar-null", {"p*": None}, "p*"),
-    ("s-missing", {"s": ...}, "'s'"), ("s-number", {"s": 5}, "'s'"), ("s-object", {"s": {"$gt": ""}}, "'s'"), ("s-empty", {"s": ""}, "'s'"),
+    ("s-missing", {"s": ...}, "'s'"), ("s-number", {"s": 5}, "'s'"), ("s-object", {"s": {"$gt": ""}}, "$gt"), ("s-empty", {"s": ""}, "'s'"),
     ("p-missing", {"p": ...}, "'p'"), ("p-number", {"p": 5}, "'p'"), ("p-list", {"p": ["a"]}, "'p'"),
-    ("o-missing", {"o": ...}, "'o'"), ("o-object", {"o": {"$where": "1"}}, "'o'"), ("o-list", {"o": [1, 2]}, "'o'"),
+    ("o-missing", {"o": ...}, "'o'"), ("o-object", {"o": {"$where": "1"}}, "$where"), ("o-list", {"o": [1, 2]}, "'o'"),
     ("graph-number", {"graph": 5}, "graph"), ("graph-object", {"graph": {"a": 1}}, "graph"),
     ("dollar-key", {"$where": "sleep(1000)"}, "$where"), ("dotted-key", {"a.b": 1}, "a.b"),
 ]:
@@ -453,16 +454,16 @@ for name, changes, expected in [
 
 for name, expected in [
     ("truncated-half", "truncated"), ("truncated-4-bytes", "truncated"), ("truncated-header", "truncated"),
-    ("length-huge", "corrupt"), ("length-negative", "corrupt"), ("length-zero", "corrupt"), ("garbage", "corrupt"),
-    ("bad-type-byte", "not valid BSON"), ("bad-utf8-key", "not valid BSON"), ("cut-at-boundary", "count"),
-    ("empty-file-with-count", "count"), ("missing-terminator", "not valid BSON"), ("extra-bytes", "truncated"),
+    ("length-huge", "corrupt"), ("length-negative", "corrupt"), ("length-zero", "corrupt"), ("garbage", "document 1"),
+    ("bad-type-byte", "not valid BSON"), ("bad-utf8-key", "not valid BSON"), ("cut-at-boundary", "counts 2"),
+    ("empty-file-with-count", "counts 2"), ("missing-terminator", "not valid BSON"), ("extra-bytes", "truncated"),
     ("json-instead", "corrupt"),
 ]:
     dump_case(f"bson-{name}", expected, raw=name.encode())
 
 for name, meta_raw, expected in [
     ("not-json", "{", "meta.json"), ("list", "[1]", "not a JSON object"), ("string", '"x"', "not a JSON object"),
-    ("created-by-number", '{"created_by": 12345}', "created_by"), ("created-by-object", '{"created_by": {"$gt": ""}}', "created_by"),
+    ("created-by-number", '{"created_by": 12345}', "created_by"), ("created-by-object", '{"created_by": {"$gt": ""}}', "$gt"),
     ("created-by-list", '{"created_by": ["a"]}', "created_by"), ("created-at-number", '{"created_at": 5}', "created_at"),
     ("created-at-word", '{"created_at": "yesterday"}', "created_at"), ("temporary-string", '{"temporary": "yes"}', "temporary"),
     ("id-invalid", '{"id": "a_b"}', "invalid NEEM id"), ("id-number", '{"id": 5}', "id"), ("id-object", '{"id": {"$ne": null}}', "id"),
@@ -472,9 +473,11 @@ for name, meta_raw, expected in [
     ("bson-extended-bad", '{"created_at": {"$date": "never"}}', "meta.json"),
 ]:
     dump_case(f"meta-{name}", expected, meta=None, meta_raw=meta_raw)
-dump_case("layout-id-from-folder-invalid", "invalid NEEM id", meta=None, extra={"name": b"a_b"})
+dump_case("layout-id-from-folder-invalid", "invalid NEEM id", meta=None, extra={"name": b"___"})
 dump_case("metadata-not-json", "metadata", metadata="{")
-dump_case("metadata-count-wrong", "count", metadata='{"indexes": [], "collectionName": "triples", "type": "collection", "count": 5}')
+dump_case("meta-count-wrong", "counts 5", meta_raw='{"id": "corpus-neem", "documents": {"triples": 5}}')
+dump_case("meta-count-not-a-number", "'documents'", meta_raw='{"id": "corpus-neem", "documents": {"triples": "two"}}')
+dump_case("meta-count-unknown-kind", "'documents'", meta_raw='{"id": "corpus-neem", "documents": {"people": 2}}')
 
 
 def write_all() -> int:
@@ -575,7 +578,8 @@ def _write_dump_case(folder: Path, spec: dict[str, Any]) -> None:
     if meta_raw is not None:
         (base / "meta.json").write_bytes(meta_raw if isinstance(meta_raw, bytes) else meta_raw.encode())
     elif spec["meta"] == "default":
-        (base / "meta.json").write_text(json_util.dumps({"id": "corpus-neem", "created_by": "corpus"}))
+        (base / "meta.json").write_text(json_util.dumps({"id": "corpus-neem", "created_by": "corpus",
+                                                         "documents": {"triples": count}}))
 
 
 if __name__ == "__main__":

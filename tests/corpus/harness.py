@@ -12,6 +12,7 @@ import gc
 import hashlib
 import io
 import os
+import signal
 import sys
 import tempfile
 import traceback
@@ -44,10 +45,20 @@ def _fd2_to(path: Path):  # noqa: ANN202 - a context manager
         os.close(saved)
 
 
-def run_cli(argv: Sequence[str], *, stdin: str = "") -> Outcome:
-    """``python -m oracle ARGV`` in this process."""
+class Hung(Exception):
+    """A command ran past its time limit (an input that makes it work without bound)."""
+
+
+def _hang(signum: int, frame: object) -> None:
+    raise Hung("the command ran longer than its time limit")
+
+
+def run_cli(argv: Sequence[str], *, stdin: str = "", limit_s: int = 60) -> Outcome:
+    """``python -m oracle ARGV`` in this process (at most ``limit_s`` seconds)."""
+    import oracle.cli
     from oracle.cli import main
 
+    _reuse_parser(oracle.cli)
     out, err = io.StringIO(), io.StringIO()
     crash = None
     code: int
@@ -56,6 +67,8 @@ def run_cli(argv: Sequence[str], *, stdin: str = "") -> Outcome:
         old_stdin = sys.stdin
         sys.stdin = io.StringIO(stdin)
         try:
+            previous = signal.signal(signal.SIGALRM, _hang)
+            signal.alarm(limit_s)
             with _fd2_to(fd_err), contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
                 try:
                     code = int(main(list(argv)) or 0)
@@ -65,10 +78,26 @@ def run_cli(argv: Sequence[str], *, stdin: str = "") -> Outcome:
                     code = -1
                     crash = traceback.format_exc()
         finally:
+            signal.alarm(0)
+            signal.signal(signal.SIGALRM, previous)
             sys.stdin = old_stdin
-            gc.collect()  # close what a failing command left open, as process exit would
+            gc.collect(0)  # close what a failing command left open, as process exit would
         low_level = fd_err.read_bytes().decode("utf-8", "replace")
     return Outcome(code, out.getvalue(), err.getvalue() + low_level, crash)
+
+
+def _reuse_parser(cli: object) -> None:
+    """Build the argument parser once: building it costs ~0.1 s, parsing with it is stateless."""
+    build = getattr(cli, "build_parser")
+    if getattr(build, "reused", False):
+        return
+    parser = build()
+
+    def reused():  # noqa: ANN202
+        return parser
+
+    reused.reused = True  # type: ignore[attr-defined]
+    setattr(cli, "build_parser", reused)
 
 
 def store_state(path: Path) -> str:

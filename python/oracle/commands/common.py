@@ -23,3 +23,19 @@ def ontology_from(args: argparse.Namespace):  # noqa: ANN201 - OdbOntology, impo
             raise NeemOracleError("give either --ontology or --odb/--mapping, not both")
         return load_ontology(args.ontology)
     return build_ontology(getattr(args, "odb", None), getattr(args, "mapping", None), getattr(args, "soma", None))
+
+
+def bounded_int(low: int, high: int):  # noqa: ANN201 - an argparse type
+    """An argparse ``type`` for a whole number in [low, high]: a value outside would make a
+    command run without bound (``demo --days 100000000``) or do nothing useful."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
+        if not low <= value <= high:
+            raise argparse.ArgumentTypeError(f"expected a whole number from {low} to {high}, got {text}")
+        return value
+
+    return parse

@@ -38,11 +38,11 @@ def _common(parser: argparse.ArgumentParser) -> None:
     add_ontology_options(parser)
 
 
-def _connect(args: argparse.Namespace):  # noqa: ANN202
+def _connect(args: argparse.Namespace, *, write: bool = False):  # noqa: ANN202
     from oracle.bridge import Bridge
     from oracle.commands.target import open_target
 
-    target = open_target(args)
+    target = open_target(args, write=write)
     return Bridge(target.store, target.neem_id, target.onto), target.onto
 
 
@@ -57,20 +57,20 @@ def _parse_task(text: str, onto) -> tuple[str, list[str]]:  # noqa: ANN001
 
 
 def _parse_time(text: str | None) -> float | None:
+    """Unix seconds of ``--at`` under the one time rule (oracle.timeline), inside the range a
+    store holds: ``nan``, ``inf`` or ``1e20`` are refused before anything reaches Prolog."""
+    from oracle.timeline import TimeValueError, parse_moment
+
     if text is None:
         return None
     try:
-        return float(text)
-    except ValueError:
-        pass
-    try:
-        return datetime.fromisoformat(text.replace("Z", "+00:00")).timestamp()
-    except ValueError:
-        raise NeemOracleError(f"--at {text!r}: expected ISO-8601 (2024-05-01T08:30) or unix seconds") from None
+        return parse_moment(text)
+    except TimeValueError as error:
+        raise NeemOracleError(f"--at {error}") from None
 
 
 def run_toplevel(args: argparse.Namespace) -> int:
-    bridge, _ = _connect(args)
+    bridge, _ = _connect(args, write=True)  # a query typed at the toplevel may assert facts
     print(f"% NEEM {bridge.neem_id} of {bridge.store.location}; KnowRob predicates loaded (halt. or EOF to leave)")
     bridge.query("prolog")
     return 0

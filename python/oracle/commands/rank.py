@@ -31,8 +31,8 @@ def run(args: argparse.Namespace) -> int:
     from oracle.ranking import finite, rank_neem
 
     settings = settings_from(args.settings)
-    bridge, onto = _connect(args)
     at = _parse_time(args.at) if args.at is not None else None
+    bridge, onto = _connect(args, write=not args.no_write)
     result = rank_neem(bridge, onto, settings, args.available, at, write=not args.no_write)
     if args.json:
         print(json.dumps({

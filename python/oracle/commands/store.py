@@ -54,7 +54,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_export(args: argparse.Namespace) -> int:
-    with open_store(args.store, number_format=args.numbers, create=False) as store:
+    with open_store(args.store, number_format=args.numbers, read_only=True) as store:
         if args.neem is not None:
             counts = export_neem(store, args.neem, args.out)
             print(f"{args.neem}: {counts['triples']} triples -> {args.out}")
@@ -76,7 +76,7 @@ def _iso(seconds: float | None) -> str | None:
 
 
 def run_neems(args: argparse.Namespace) -> int:
-    with open_store(args.store, number_format=args.numbers, create=False) as store:
+    with open_store(args.store, number_format=args.numbers, read_only=True) as store:
         rows = [summarize_neem(store, info.id) for info in store.neems()]
     if args.json:
         print(json.dumps([{**row.__dict__, "begin": _iso(row.begin), "end": _iso(row.end)} for row in rows], indent=2))
