@@ -21,6 +21,13 @@ from datetime import datetime, timedelta
 from pathlib import Path
 
 from oracle.errors import ChainSyntaxError
+from oracle.timeline import TimeValueError, check_seconds, seconds_of
+
+#: Longest line a chains file may have (bytes, newline included): a row with a thousand
+#: available actions is ~30 kB; the cap keeps memory bounded whatever the file holds.
+MAX_LINE = 1 << 20
+#: Longest user name or action id (characters).
+MAX_NAME = 200
 
 _NAME = r"[A-Za-z_][A-Za-z0-9_\-]*"
 _CALL = re.compile(rf"^\s*({_NAME})\s*(?:\(\s*(.*?)\s*\))?\s*$")
@@ -98,6 +105,14 @@ def parse_row(obj: object, where: str = "<row>") -> ChainRow:
     user = obj.get("user")
     if not isinstance(user, str) or not user:
         raise ChainSyntaxError(f"{where}: 'user' must be a non-empty string")
+    if not _printable_name(user):
+        raise ChainSyntaxError(f"{where}: 'user' {user[:60]!r} must be 1-{MAX_NAME} printable characters, not only spaces")
+    if "id" in obj:
+        action_id = obj["id"]
+        if isinstance(action_id, bool) or not isinstance(action_id, (str, int)) or (
+            isinstance(action_id, str) and not _printable_name(action_id)
+        ) or len(str(action_id)) > MAX_NAME:
+            raise ChainSyntaxError(f"{where}: 'id' must be a string of 1-{MAX_NAME} printable characters or an integer")
     if "action" not in obj:
         raise ChainSyntaxError(f"{where}: missing 'action'")
     try:
@@ -113,18 +128,36 @@ def parse_row(obj: object, where: str = "<row>") -> ChainRow:
     end = _moment(obj, "end", where)
     if obj.get("duration") is not None:
         duration = obj["duration"]
-        if isinstance(duration, bool) or not isinstance(duration, (int, float)) or duration < 0:
-            raise ChainSyntaxError(f"{where}: 'duration' must be a number of seconds >= 0, got {duration!r}")
+        if isinstance(duration, bool) or not isinstance(duration, (int, float)) or not duration >= 0:
+            raise ChainSyntaxError(f"{where}: 'duration' must be a number of seconds >= 0, got {_short(duration)}")
         if time is None:
             raise ChainSyntaxError(f"{where}: 'duration' needs a 'time'")
         if end is not None:
             raise ChainSyntaxError(f"{where}: give 'end' or 'duration', not both")
+        try:
+            check_seconds(seconds_of(time) + float(duration), "'time' + 'duration'")
+        except (TimeValueError, OverflowError):
+            raise ChainSyntaxError(
+                f"{where}: 'duration' {_short(duration)} ends after 9000-01-01; 'time' + 'duration' must lie between"
+                " 1970-01-01 and 9000-01-01 (UTC)"
+            ) from None
         end = time + timedelta(seconds=float(duration))
     if end is not None and (time is None or end < time):
         raise ChainSyntaxError(f"{where}: 'end' must not be before 'time'")
     line = int(where.rsplit(":", 1)[-1]) if where.rsplit(":", 1)[-1].isdigit() else 0
     extra = {key: obj[key] for key in sorted(unknown)}
     return ChainRow(user, action, time, available, line, extra, end)
+
+
+def _printable_name(text: str) -> bool:
+    # isprintable() is False for control, format (bidi overrides, zero-width) and surrogate
+    # characters, none of which belong in a name shown in listings and answers.
+    return bool(text.strip()) and text.isprintable() and len(text) <= MAX_NAME
+
+
+def _short(value: object) -> str:
+    text = repr(value)
+    return text if len(text) <= 40 else text[:37] + "..."
 
 
 def _moment(obj: dict, key: str, where: str) -> datetime | None:
@@ -134,27 +167,54 @@ def _moment(obj: dict, key: str, where: str) -> datetime | None:
     if not isinstance(raw, str):
         raise ChainSyntaxError(f"{where}: {key!r} must be an ISO-8601 string")
     try:
-        return datetime.fromisoformat(raw.replace("Z", "+00:00"))
+        moment = datetime.fromisoformat(raw.replace("Z", "+00:00"))
     except ValueError:
-        raise ChainSyntaxError(f"{where}: {key!r} {raw!r} is not ISO-8601") from None
+        raise ChainSyntaxError(f"{where}: {key!r} {raw[:60]!r} is not ISO-8601") from None
+    try:
+        seconds_of(moment)
+    except TimeValueError:
+        raise ChainSyntaxError(f"{where}: {key!r} {raw!r} must lie between 1970-01-01 and 9000-01-01 (UTC)") from None
+    return moment
 
 
 def read_chains(path: Path | str) -> Iterator[ChainRow]:
     """Yield the rows of a JSONL chains file (blank lines and ``#`` comments are skipped)."""
     path = Path(path)
     try:
-        handle = path.open(encoding="utf-8")
+        handle = path.open("rb")
     except OSError as error:
         raise ChainSyntaxError(f"{path}: cannot read ({error.strerror})") from None
     with handle:
-        for number, text in enumerate(handle, start=1):
+        # Line by line in binary with a cap: memory stays bounded (even for /dev/zero), and a
+        # byte that is not UTF-8 is reported with its line instead of failing a whole chunk.
+        number = 0
+        while True:
+            try:
+                raw = handle.readline(MAX_LINE + 1)
+            except OSError as error:
+                raise ChainSyntaxError(f"{path}:{number + 1}: cannot read ({error.strerror})") from None
+            if not raw:
+                return
+            number += 1
+            if len(raw) > MAX_LINE:
+                raise ChainSyntaxError(f"{path}:{number}: line longer than {MAX_LINE} bytes")
+            try:
+                text = raw.decode("utf-8")
+            except UnicodeDecodeError as error:
+                raise ChainSyntaxError(
+                    f"{path}:{number}: not UTF-8 (byte 0x{raw[error.start]:02x} at column {error.start + 1})"
+                ) from None
             stripped = text.strip()
             if not stripped or stripped.startswith("#"):
                 continue
             try:
                 obj = json.loads(stripped)
             except json.JSONDecodeError as error:
-                raise ChainSyntaxError(f"{path}:{number}: invalid JSON ({error.msg})") from None
+                raise ChainSyntaxError(f"{path}:{number}: invalid JSON ({error.msg} at column {error.colno})") from None
+            except RecursionError:
+                raise ChainSyntaxError(f"{path}:{number}: invalid JSON (nested too deeply)") from None
+            except ValueError as error:  # e.g. an integer of more than 4,300 digits
+                raise ChainSyntaxError(f"{path}:{number}: invalid JSON ({error})") from None
             yield parse_row(obj, f"{path}:{number}")
 
 

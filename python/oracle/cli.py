@@ -11,7 +11,7 @@ import importlib
 import importlib.util
 import sys
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, NoReturn
 
 from oracle import __version__
 from oracle.errors import NeemOracleError
@@ -30,6 +30,13 @@ COMMAND_MODULES = (
     "serve",
     "simulate",
 )
+
+
+class _Parser(argparse.ArgumentParser):
+    """Usage errors as one line on stderr (exit 2), like every other error of the tool."""
+
+    def error(self, message: str) -> NoReturn:
+        self.exit(2, f"error: {self.prog}: {message} (see {self.prog} --help)\n")
 
 
 class _Unused:
@@ -59,7 +66,7 @@ class _Subcommands:
 def build_parser(command: str | None = None, *, complete: bool = True) -> argparse.ArgumentParser:
     """The parser; with ``complete=False`` only ``command`` gets its options (every command is
     still listed, so ``--help`` and a misspelt command read the same)."""
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="python -m oracle",
         description="KnowRob-compatible NEEM store, Prolog bridge and PreferenceOracle.",
     )
@@ -86,12 +93,16 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(words)
     handler = getattr(args, "handler", None)
     if handler is None:
-        parser.print_help(sys.stderr)
+        print(f"error: {parser.prog}: give a command (see {parser.prog} --help)", file=sys.stderr)
         return 2
     try:
         return int(handler(args) or 0)
     except NeemOracleError as error:
-        print(f"error: {error}", file=sys.stderr)
+        from oracle.store.uri import mask_credentials  # here: importing oracle.store costs --help 40 ms
+
+        # One line, and never a password (a message may quote a --store URI).
+        text = " ".join(str(error).split()) or type(error).__name__
+        print(f"error: {mask_credentials(text)}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)

@@ -9,6 +9,7 @@ the boundaries below are this project's choice (docs/ontology.md).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from datetime import datetime, timezone
 
@@ -31,6 +32,21 @@ IDLE_THRESHOLD_S = 20.0
 
 class TimeValueError(ValueError):
     """A value that is not a time; callers turn it into their domain's error."""
+
+
+#: The instants a store accepts (unix seconds): from the epoch up to the start of the year 9000.
+#: Every reader can turn these into a clock time in any zone, and Decimal128, doubles and
+#: Prolog floats hold them exactly enough; a time outside would be stored and then break the
+#: commands that read it (Python's datetime ends in 9999, a zone offset can push past it).
+EARLIEST_S = 0.0
+LATEST_S = 221845392000.0  # 9000-01-01T00:00:00Z
+
+
+def check_seconds(seconds: float, what: str = "a time") -> float:
+    """``seconds`` if it lies in [EARLIEST_S, LATEST_S); else TimeValueError naming ``what``."""
+    if not (math.isfinite(seconds) and EARLIEST_S <= seconds < LATEST_S):
+        raise TimeValueError(f"{what} must lie between 1970-01-01 and 9000-01-01 (UTC), got {seconds!r} seconds")
+    return seconds
 
 
 def time_of_day(moment: datetime | float | int) -> str:
@@ -63,9 +79,15 @@ def clock(seconds: float) -> datetime:
 
 
 def seconds_of(moment: datetime) -> float:
-    """Unix seconds of a datetime; a naive one is the wall clock, read as UTC."""
+    """Unix seconds of a datetime; a naive one is the wall clock, read as UTC.
+
+    Raises TimeValueError when the instant lies outside [EARLIEST_S, LATEST_S)."""
     aware = moment if moment.tzinfo is not None else moment.replace(tzinfo=timezone.utc)
-    return aware.timestamp()
+    try:
+        seconds = aware.timestamp()
+    except (OverflowError, ValueError):  # year 1 at +05:00 is before year 1 in UTC
+        seconds = -math.inf
+    return check_seconds(seconds, moment.isoformat())
 
 
 def part_of_day_at(seconds: float) -> str:
@@ -78,13 +100,16 @@ def parse_instant(text: str) -> Instant:
 
     Raises TimeValueError naming the text when it is neither."""
     try:
-        return Instant.of(float(text))
+        seconds = float(text)
     except ValueError:
         pass
+    else:
+        return Instant.of(check_seconds(seconds, repr(text)))
     try:
-        return Instant.of(datetime.fromisoformat(text.replace("Z", "+00:00")))
+        moment = datetime.fromisoformat(text.replace("Z", "+00:00"))
     except ValueError:
         raise TimeValueError(f"{text!r}: expected ISO-8601 (2024-05-01T08:30) or unix seconds") from None
+    return Instant.of(moment)
 
 
 def now() -> Instant:
@@ -119,11 +144,8 @@ class Instant:
             return Instant(seconds_of(moment), time_of_day(moment))
         if isinstance(moment, bool) or not isinstance(moment, (int, float)):
             raise TimeValueError(f"a time must be a datetime or unix seconds, got {moment!r}")
-        seconds = float(moment)
-        try:
-            return Instant(seconds, part_of_day_at(seconds))
-        except (OverflowError, OSError, ValueError):  # NaN, infinities, years past 9999
-            raise TimeValueError(f"{moment!r} is not a time in unix seconds") from None
+        seconds = check_seconds(float(moment), repr(moment))
+        return Instant(seconds, part_of_day_at(seconds))
 
 
 #: What callers may pass as a time: a datetime, unix seconds, or an Instant already read.

@@ -20,6 +20,8 @@ def read_yaml(path: Path, error: type[NeemOracleError], what: str = "file") -> A
         raise error(f"{path}: cannot read {what} ({failure.strerror})") from None
     try:
         return yaml.safe_load(text)
+    except RecursionError:
+        raise error(f"{path}: malformed YAML (nested too deeply)") from None
     except yaml.YAMLError as failure:
         mark = getattr(failure, "problem_mark", None)
         where = f"{path}:{mark.line + 1}" if mark is not None else str(path)

@@ -43,6 +43,24 @@ NAMES: tuple[str, ...] = tuple(f.name for f in fields(Hyperparameters))
 _INTS = {"event_horizon_backwards", "event_horizon_forward"}
 
 
+#: The valid range of every hyperparameter: (lowest, highest), both included except a lowest of
+#: ``decreasing_importance_factor`` (0 would erase every predecessor level, eq. 4.11). The
+#: thesis values and the Fig. 5.5 presets lie well inside; the upper ends bound the work (the
+#: horizons are loop counts) and keep scores finite, and are documented in docs/algorithm.md.
+RANGES: dict[str, tuple[float, float]] = {
+    "object_factor": (0.0, 100.0),
+    "task_factor": (0.0, 100.0),
+    "knockout": (0.0, 1000.0),
+    "penalty": (0.0, 1000.0),
+    "event_horizon_backwards": (0, 1000),
+    "decreasing_importance_factor": (0.0, 1.0),
+    "compare_situations": (0.0, 100.0),
+    "time_of_day_penalty": (0.0, 1000.0),
+    "event_horizon_forward": (0, 100),
+    "multiple_occurrences_factor": (0.0, 100.0),
+}
+
+
 def validate(values: dict[str, Any], where: str = "settings") -> None:
     """Raise SettingsError naming ``where`` and the entry when a value is missing, mistyped or out of range."""
     for name in NAMES:
@@ -50,16 +68,25 @@ def validate(values: dict[str, Any], where: str = "settings") -> None:
             raise SettingsError(f"{where}: missing {name!r}")
         value = values[name]
         if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise SettingsError(f"{where}: {name!r} must be a number, got {value!r}")
-        if name in _INTS and not (isinstance(value, int) or float(value).is_integer()):
-            raise SettingsError(f"{where}: {name!r} must be a whole number, got {value!r}")
+            raise SettingsError(f"{where}: {name!r} must be a number, got {_short(value)}")
+        low, high = RANGES[name]
+        if isinstance(value, int) and not low <= value <= high:
+            # Compared as an int first: a 400-digit integer does not fit in a float.
+            raise SettingsError(f"{where}: {name!r} must be in [{low:g}, {high:g}], got {_short(value)}")
         if not math.isfinite(value):
             raise SettingsError(f"{where}: {name!r} must be finite, got {value!r}")
-        if value < 0:
-            raise SettingsError(f"{where}: {name!r} must be >= 0, got {value!r}")
-    factor = values["decreasing_importance_factor"]
-    if not 0 < factor <= 1:
-        raise SettingsError(f"{where}: 'decreasing_importance_factor' must be in (0, 1], got {factor!r}")
+        if name in _INTS and not float(value).is_integer():
+            raise SettingsError(f"{where}: {name!r} must be a whole number, got {value!r}")
+        if name == "decreasing_importance_factor":
+            if not low < value <= high:
+                raise SettingsError(f"{where}: 'decreasing_importance_factor' must be in (0, 1], got {value!r}")
+        elif not low <= value <= high:
+            raise SettingsError(f"{where}: {name!r} must be in [{low:g}, {high:g}], got {value!r}")
+
+
+def _short(value: object) -> str:
+    text = repr(value)
+    return text if len(text) <= 40 else f"{text[:20]}... ({len(text)} characters)"
 
 
 def _canonical_name(key: object, where: str) -> str:

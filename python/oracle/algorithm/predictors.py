@@ -22,6 +22,9 @@ from oracle.errors import SettingsError
 
 
 class Predictor(Protocol):
+    #: Steps fitted so far.
+    n_steps_: int
+
     def fit(self, history: Iterable[Step]) -> Any: ...
 
     def partial_fit(self, step: Step) -> Any: ...

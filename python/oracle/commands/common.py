@@ -78,13 +78,14 @@ def ontology_from(args: argparse.Namespace) -> OdbOntology:
     return build_ontology(getattr(args, "odb", None), getattr(args, "mapping", None), getattr(args, "soma", None))
 
 
-def connect(args: argparse.Namespace) -> tuple[Bridge, OdbOntology]:
+def connect(args: argparse.Namespace, *, write: bool = False) -> tuple[Bridge, OdbOntology]:
     """The Prolog bridge over the NEEM ``--store``/``--neem`` name, with the NEEM's ontology
-    (``commands.target``: the store is never created, several NEEMs need ``--neem``)."""
+    (``commands.target``: the store is never created, several NEEMs need ``--neem``; it is
+    opened read-only unless ``write``)."""
     from oracle.bridge import Bridge
     from oracle.commands.target import open_target
 
-    target = open_target(args)
+    target = open_target(args, write=write)
     return Bridge(target.store, target.neem_id, target.onto), target.onto
 
 
@@ -118,3 +119,19 @@ def method_from(args: argparse.Namespace) -> str:
     from oracle.algorithm.predictors import DEFAULT, predictor_spec
 
     return predictor_spec(getattr(args, "method", None) or DEFAULT).name
+
+
+def bounded_int(low: int, high: int):  # noqa: ANN201 - an argparse type
+    """An argparse ``type`` for a whole number in [low, high]: a value outside would make a
+    command run without bound (``demo --days 100000000``) or do nothing useful."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
+        if not low <= value <= high:
+            raise argparse.ArgumentTypeError(f"expected a whole number from {low} to {high}, got {text}")
+        return value
+
+    return parse

@@ -18,14 +18,17 @@ from oracle.errors import NeemOracleError
 if TYPE_CHECKING:
     from oracle.chains import ChainRow
 
-from oracle.commands.common import METHOD, add_options, method_from
+from oracle.commands.common import METHOD, add_options, bounded_int, method_from
+
+#: Registry mark of the NEEM the demo writes: it replaces only a NEEM carrying it.
+DEMO_ORIGIN = "demo"
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser("demo", help="log a simulated user, rank the next task, answer why-not (embedded store)")
     parser.add_argument("--store", help="store to use (default: the user's embedded SQLite store)")
-    parser.add_argument("--days", type=int, default=5, help="days of history to simulate (default 5)")
-    parser.add_argument("--seed", type=int, default=3, help="which simulated user (default 3)")
+    parser.add_argument("--days", type=bounded_int(1, 366), default=5, help="days of history to simulate, 1-366 (default 5)")
+    parser.add_argument("--seed", type=bounded_int(0, 1_000_000), default=3, help="which simulated user (default 3)")
     add_options(parser, METHOD)
     parser.set_defaults(handler=run)
 
@@ -57,11 +60,17 @@ def run(args: argparse.Namespace) -> int:
     history = [r for r in rows if _time(r).date() != last_day]
     now = next(r for r in rows if _time(r).date() == last_day)
     store = open_store(args.store)
-    logger = NeemLogger.create(store, onto, user=persona.file_name, neem_id="demo", replace=True, commit_every=200)
+    if store.has_neem("demo") and store.neem("demo").meta.get("origin") != DEMO_ORIGIN:
+        raise NeemOracleError(
+            f"{store.location} already holds a NEEM 'demo' that the demo did not write; keep it: run the demo"
+            " with --store OTHER.sqlite, or rename it first (persist --neem demo --as NAME)"
+        )
+    logger = NeemLogger.create(store, onto, user=persona.file_name, neem_id="demo", replace=True, commit_every=200,
+                               meta={"origin": DEMO_ORIGIN})
     for row in history:
         logger.action(row.action, _time(row), row.end, available=row.available)
     logger.available(now.available or (), _time(now))
-    logger.flush()
+    logger.close()  # commits, and swaps the new demo NEEM in for the old one
     print(f"2. NEEM 'demo' in {store.location}: {len(history)} actions of {persona.file_name} over {args.days} days")
     print(f"   ({persona.persona})")
 

@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
-from oracle.commands.common import NUMBERS, ONTOLOGY_OPTIONS, STORE, add_options, ontology_from
+from oracle.commands.common import NUMBERS, ONTOLOGY_OPTIONS, STORE, add_options, bounded_int, ontology_from
 from oracle.errors import NeemOracleError
 
 
@@ -16,24 +17,29 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--replace", action="store_true", help="replace a user's NEEM instead of adding a new one")
     parser.add_argument("--session", action="store_true",
                         help="log into temporary NEEMs, wiping earlier temporary ones (keep them with 'persist')")
-    parser.add_argument("--commit-every", type=int, default=100, metavar="N",
+    parser.add_argument("--commit-every", type=bounded_int(1, 1_000_000), default=100, metavar="N",
                         help="actions per transaction (1 = each action durable before the next; default 100)")
     parser.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    from oracle.neem.importing import import_chains
+    from oracle.neem.importing import check_chains, import_chains
     from oracle.store import open_store
 
     onto = ontology_from(args)
+    plans = check_chains(onto, args.chains)  # before the store is opened: a bad file creates nothing
     with open_store(args.store, number_format=args.numbers) as store:
         report: dict[str, int] = {}
         try:
             import_chains(store, onto, args.chains, replace=args.replace, report=report, commit_every=args.commit_every,
-                          session=args.session)
+                          session=args.session, plans=plans)
         except NeemOracleError:
             _print(report)
             raise
+        except KeyboardInterrupt:
+            _print(report)
+            print(f"interrupted: {sum(report.values())} actions committed", file=sys.stderr)
+            return 130
         _print(report)
     return 0
 

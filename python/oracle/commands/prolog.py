@@ -59,7 +59,7 @@ def _parse_task(text: str, onto: OdbOntology) -> tuple[str, list[str]]:
 def run_toplevel(args: argparse.Namespace) -> int:
     if args.answers is not None and args.answers < 1:
         raise NeemOracleError("--answers must be at least 1")
-    bridge, _ = connect(args)
+    bridge, _ = connect(args, write=True)  # a query typed at the toplevel may assert facts
     interactive = not args.goals and sys.stdin.isatty()
     if not args.quiet:
         banner = f"% NEEM {bridge.neem_id} of {bridge.store.location}; KnowRob predicates loaded"

@@ -30,8 +30,8 @@ def run(args: argparse.Namespace) -> int:
 
     settings = settings_from(args.settings)
     method = method_from(args)
-    bridge, onto = connect(args)
-    at = moment_from(args.at)
+    at = moment_from(args.at)  # before the store is opened: a bad --at touches nothing
+    bridge, onto = connect(args, write=not args.no_write)
     result = rank_neem(bridge, onto, settings, args.available, at, write=not args.no_write, method=method)
     if args.json:
         print(json.dumps({

@@ -7,7 +7,7 @@ import os
 import stat
 from pathlib import Path
 
-from oracle.commands.common import ONTOLOGY_OPTIONS, SETTINGS, STORE, add_options, ontology_from
+from oracle.commands.common import METHOD, ONTOLOGY_OPTIONS, SETTINGS, STORE, add_options, ontology_from
 from oracle.errors import NeemOracleError
 
 
@@ -19,7 +19,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--port", type=int, default=8765, help="TCP port (default 8765)")
     parser.add_argument("--token", help="token every request must present (needed to bind beyond loopback)")
     parser.add_argument("--token-file", type=Path, help="read the token from this file (must be private, 0600)")
-    add_options(parser, SETTINGS)
+    add_options(parser, METHOD, SETTINGS)
     parser.add_argument("--sync-writes", action="store_true",
                         help="answer a situation only after its NEEM write (default: answer first, write next)")
     add_options(parser, *ONTOLOGY_OPTIONS)
@@ -50,7 +50,7 @@ def run(args: argparse.Namespace) -> int:
 
     import uvicorn
 
-    from oracle.commands.common import settings_from
+    from oracle.commands.common import method_from, settings_from
     from oracle.service import build_context, is_loopback
     from oracle.service.app import create_app
 
@@ -60,8 +60,10 @@ def run(args: argparse.Namespace) -> int:
     if not 1 <= args.port <= 65535:
         raise NeemOracleError(f"--port {args.port}: expected 1-65535")
     settings = settings_from(args.settings)
+    method_from(args)  # an unknown --method is refused before the store is opened
     ontology = ontology_from(args)
-    ctx = build_context(args.store, ontology, settings, args.neem, token, write_behind=not args.sync_writes)
+    ctx = build_context(args.store, ontology, settings, args.neem, token, write_behind=not args.sync_writes,
+                        method=method_from(args))
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(name)s %(message)s")
     location = ctx.thread.call(lambda: ctx.engine.store.location)
     print(f"serving {location} on http://{args.host}:{args.port}/ (API docs at /docs); Ctrl-C stops", flush=True)

@@ -38,7 +38,7 @@ def run_export(args: argparse.Namespace) -> int:
     from oracle.store import open_store
     from oracle.store.dump import export_all, export_neem
 
-    with open_store(args.store, number_format=args.numbers, create=False) as store:
+    with open_store(args.store, number_format=args.numbers, read_only=True) as store:
         if args.neem is not None:
             counts = export_neem(store, args.neem, args.out)
             print(f"{args.neem}: {counts['triples']} triples -> {args.out}")
@@ -49,11 +49,13 @@ def run_export(args: argparse.Namespace) -> int:
 
 
 def run_load(args: argparse.Namespace) -> int:
+    from oracle.neem.query import summarize_neem
     from oracle.store import open_store
     from oracle.store.dump import load_dump
 
     with open_store(args.store, number_format=args.numbers) as store:
         for neem_id in load_dump(store, args.dir, neem_id=args.neem, replace=args.replace):
+            summarize_neem(store, neem_id)  # kept in the registry: listings need not count again
             print(neem_id)
     return 0
 
@@ -68,7 +70,9 @@ def run_neems(args: argparse.Namespace) -> int:
     from oracle.neem.query import summarize_neem
     from oracle.store import open_store
 
-    with open_store(args.store, number_format=args.numbers, create=False) as store:
+    # Read-only: a listing never waits for a writer. A NEEM whose kept summary is stale (a
+    # load, a bare insert) is counted from its triples; 'load' keeps the summary of what it loads.
+    with open_store(args.store, number_format=args.numbers, read_only=True) as store:
         rows = [summarize_neem(store, info.id) for info in store.neems()]
     if args.json:
         print(json.dumps([{**row.__dict__, "begin": _iso(row.begin), "end": _iso(row.end)} for row in rows], indent=2))

@@ -24,12 +24,13 @@ class Target:
     onto: OdbOntology
 
 
-def open_target(args: argparse.Namespace) -> Target:
-    """Open ``--store`` for reading, pick ``--neem`` and the ontology the NEEM was logged with."""
+def open_target(args: argparse.Namespace, *, write: bool = False) -> Target:
+    """Open ``--store`` (read-only unless ``write``: a reader never waits for a writer), pick
+    ``--neem`` and the ontology the NEEM was logged with."""
     from oracle.ontology.provenance import ontology_for
     from oracle.store import open_store
 
-    store = open_store(args.store, create=False)
+    store = open_store(args.store, create=False, read_only=not write)
     try:
         neem_id = args.neem if args.neem is not None else default_neem(store)
         info = store.neem(neem_id)

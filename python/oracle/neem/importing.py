@@ -1,17 +1,87 @@
-"""Bulk import: a chains JSONL file logged into one NEEM per user."""
+"""Bulk import: a chains JSONL file logged into one NEEM per user.
+
+Two passes over the file, both streaming (bounded memory): the first checks every row the way
+the logger would (syntax, task and objects, roles, time order and ids per user) and notes each
+user's last line, so a bad row anywhere writes nothing; the second logs, committing a user's
+NEEM when that user's last row is logged (docs/store.md, "Durability").
+"""
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
 from pathlib import Path
 
-from oracle.chains import read_chains
+from oracle.chains import ChainRow, read_chains
 from oracle.errors import LoggingError
 from oracle.neem.lifecycle import wipe_temporary_neems
-from oracle.neem.writer import NeemLogger
+from oracle.neem.writer import NeemLogger, check_call
 from oracle.ontology.model import OdbOntology
 from oracle.store import Store
 from oracle.store.tbox import TBox, tbox_from_graph
-from oracle.timeline import IDLE_THRESHOLD_S
+from oracle.timeline import IDLE_THRESHOLD_S, TimeValueError, seconds_of
+
+PERFORMERS = ("robot", "user")
+
+
+@dataclass
+class _UserPlan:
+    """What the first pass learned about one user's rows."""
+
+    last_line: int = 0
+    rows: int = 0
+    last_begin: float | None = None
+    ids: set[str] = field(default_factory=set)
+
+
+def check_chains(onto: OdbOntology, path: str | Path) -> dict[str, _UserPlan]:
+    """Check every row of a chains file as the logger will; return each user's plan.
+
+    Raises LoggingError naming the file and line of the first bad row."""
+    plans: dict[str, _UserPlan] = {}
+    where = str(path)
+    checked: set[object] = set()
+    try:
+        for row in read_chains(path):
+            where = f"{path}:{row.line}"
+            plan = plans.setdefault(row.user, _UserPlan())
+            _check_row(onto, row, plan, checked)
+            plan.last_line, plan.rows = row.line, plan.rows + 1
+    except LoggingError as error:
+        raise LoggingError(f"{where}: {error}") from None
+    if not plans:
+        raise LoggingError(f"{path}: no rows to import (every line is blank or a # comment)")
+    return plans
+
+
+def _check_row(onto: OdbOntology, row: ChainRow, plan: _UserPlan, checked: set[object]) -> None:
+    if row.time is None:
+        raise LoggingError("'time' is required to log an action")
+    for call in (row.action, *(row.available or ())):
+        if call not in checked:
+            check_call(onto, call)
+            if len(checked) < 100_000:
+                checked.add(call)
+    performer = row.extra.get("performed_by", "robot")
+    if performer not in PERFORMERS:
+        raise LoggingError(f"performed_by must be 'robot' or 'user', got {performer!r}")
+    try:
+        begin = seconds_of(row.time)
+        end = begin if row.end is None else seconds_of(row.end)
+    except TimeValueError as error:
+        raise LoggingError(str(error)) from None
+    del end  # the writer's rule (NeemLogger._check_time): no action starts before the one before
+    if plan.last_begin is not None and begin < plan.last_begin:
+        raise LoggingError(
+            f"time goes backwards: action {row.action} at {begin:.3f} is before the start of the last action"
+            f" ({plan.last_begin:.3f}) of user {row.user!r}"
+        )
+    plan.last_begin = begin
+    action_id = row.extra.get("id")
+    if action_id is not None:
+        key = str(action_id)
+        if key in plan.ids:
+            raise LoggingError(f"duplicate action id {key!r} for user {row.user!r}")
+        plan.ids.add(key)
 
 
 def import_chains(
@@ -25,6 +95,7 @@ def import_chains(
     commit_every: int = 1,
     tbox: TBox | None = None,
     session: bool = False,
+    plans: dict[str, _UserPlan] | None = None,
 ) -> dict[str, int]:
     """Log a chains JSONL file, one NEEM per user; return {NEEM id: actions committed}.
 
@@ -32,41 +103,57 @@ def import_chains(
     first, and these are wiped by the next session unless ``persist`` keeps them.
 
     Rows may carry ``id`` and ``performed_by`` besides the chain fields (``end``/``duration``
-    are chain fields, see oracle.chains). Rows are committed as they are logged (in groups of
-    ``commit_every``); an error on line n commits every good line before it, then raises an
-    error naming the file and line.
+    are chain fields, see oracle.chains). A bad row anywhere raises an error naming the file and
+    line before anything is written. Rows are committed in groups of ``commit_every`` and when
+    a user's last row is logged; with ``replace`` a user's old NEEM is swapped for the new one
+    only then (until then, and after any error, the old one is untouched). Session NEEMs, too,
+    appear only when complete, so two session imports at once do not wipe each other's.
+    ``plans`` is what ``check_chains`` returned for this file, when the caller checked it.
     """
+    if commit_every < 1:
+        raise LoggingError(f"commit_every must be at least 1, got {commit_every}")
+    plans = check_chains(onto, path) if plans is None else plans
     report = {} if report is None else report
     loggers: dict[str, NeemLogger] = {}
     tbox = tbox if tbox is not None else tbox_from_graph(onto.graph)
     where = str(path)
+    done = False
     try:
+        if session:
+            wipe_temporary_neems(store)
         for row in read_chains(path):
             where = f"{path}:{row.line}"
-            if row.time is None:
-                raise LoggingError("'time' is required to log an action")
-            end = row.end
             logger = loggers.get(row.user)
             if logger is None:
-                if session and not loggers:
-                    wipe_temporary_neems(store)
                 logger = NeemLogger.create(store, onto, user=row.user, replace=replace, tbox=tbox, temporary=session,
-                                           idle_threshold=idle_threshold, commit_every=commit_every)  # fmt: skip
+                                           idle_threshold=idle_threshold, commit_every=commit_every,
+                                           hidden=session)  # fmt: skip
                 loggers[row.user] = logger
-                report[logger.neem_id] = 0
+                report[logger._replaces or logger.neem_id] = 0
             action_id = row.extra.get("id")
             logger.action(
                 row.action,
-                row.time,
-                end,
+                row.time,  # type: ignore[arg-type]  # checked by the first pass
+                row.end,
                 performed_by=str(row.extra.get("performed_by", "robot")),
                 action_id=None if action_id is None else str(action_id),
                 available=row.available,
             )
-            report[logger.neem_id] = logger.committed
+            name = logger._replaces or logger.neem_id
+            if row.line == plans[row.user].last_line:
+                logger.close()  # the user's rows end here: commit (and swap in a replacement) now
+                report[name] = logger.committed
+            else:
+                report[name] = logger.committed
+        done = True
     except LoggingError as error:
         raise LoggingError(f"{where}: {error}") from None
     finally:
         for logger in loggers.values():
-            report[logger.neem_id] = logger.flush()
+            if logger._replaces is None:
+                report[logger.neem_id] = logger.flush()
+            elif not done:
+                name = logger._replaces
+                logger.abandon()  # the old NEEM stays as it was
+                report.pop(name, None)
     return report

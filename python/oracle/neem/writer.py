@@ -67,6 +67,26 @@ def _slug(text: str) -> str:
     return _SLUG.sub("-", text).strip("-") or "x"
 
 
+def person_iri(ns: str, user: str) -> str:
+    """The user's agent individual; never the robot's own, even for a user named "robot"."""
+    slug = _slug(user)
+    return f"{ns}Agent_{slug}" if slug != "robot" else f"{ns}Agent_user-robot"
+
+
+def check_call(onto: OdbOntology, call: TaskCall) -> None:
+    """LoggingError unless the call's task and objects are in the ontology and its objects fit
+    the task's roles (the checks an action gets before anything is written)."""
+    if call.task not in onto.tasks:
+        raise LoggingError(f"unknown task {call.task!r} in {call}; known tasks: {', '.join(sorted(onto.tasks))}")
+    for arg in call.args:
+        if arg not in onto.objects:
+            raise LoggingError(f"unknown object {arg!r} in {call}")
+    try:
+        onto.task_roles(call.task, len(call.args))
+    except OntologyError as error:
+        raise LoggingError(str(error)) from None
+
+
 class NeemLogger:
     """Writes one user's episode into one NEEM of a store."""
 
@@ -115,6 +135,9 @@ class NeemLogger:
         #: What ``neems`` lists, as committed; moved on with every commit (oracle.neem.query).
         known = summarize_neem(store, neem_id, info)
         self._summary = {"actions": known.actions, "begin": known.begin, "end": known.end}
+        #: The NEEM this one replaces when ``close()`` swaps it in (``create(replace=True)``).
+        self._replaces: str | None = None
+        self._may_replace = False
 
     # -- creation ---------------------------------------------------------------------------
     @classmethod
@@ -130,8 +153,14 @@ class NeemLogger:
         tbox: TBox | None = None,
         idle_threshold: float = IDLE_THRESHOLD_S,
         commit_every: int = 1,
+        hidden: bool = False,
+        meta: dict[str, object] | None = None,
     ) -> NeemLogger:
-        """A new NEEM for ``user`` holding the ontology's TBox (id: the user's name, made unique)."""
+        """A new NEEM for ``user`` holding the ontology's TBox (id: the user's name, made unique).
+
+        With ``replace`` (of an existing NEEM) or ``hidden`` the NEEM stays out of listings until
+        ``close()``: the old one is untouched until then, and a concurrent session start does
+        not wipe a temporary NEEM still being imported."""
         if not isinstance(user, str) or not user.strip():
             raise LoggingError("a NEEM needs a user name")
         if neem_id is None:
@@ -140,17 +169,32 @@ class NeemLogger:
             while store.has_neem(neem_id) and not replace:
                 n += 1
                 neem_id = f"{base}-{n}"
-        if replace and store.has_neem(neem_id):
-            store.drop_neem(neem_id)
+        elif not replace and store.has_neem(neem_id):
+            raise LoggingError(f"NEEM {neem_id!r} already exists (replace it, or choose another id)")
+        if commit_every < 1:
+            raise LoggingError(f"commit_every must be at least 1, got {commit_every}")
         recorded = record_of(onto)  # readers use the same ontology by default
-        extra = {"name": neem_id} if recorded is None else {"name": neem_id, ONTOLOGY_KEY: recorded.to_meta()}
-        store.create_neem(neem_id, user=user, temporary=temporary, meta=extra)
+        extra = {**(meta or {}), "name": neem_id}
+        if recorded is not None:
+            extra[ONTOLOGY_KEY] = recorded.to_meta()
+        # The NEEM is built hidden and made visible with its TBox in one step: a NEEM without its
+        # TBox (wrong closures) is never listed, even if the process is killed meanwhile. When it
+        # replaces one, it stays hidden until ``close()``: the old NEEM is untouched until then.
+        created = store.create_staging(neem_id, user=user, meta={**extra, "temporary": temporary})
+        staging: str | None = created
         try:
-            load_tbox(store, neem_id, tbox if tbox is not None else tbox_from_graph(onto.graph))
+            load_tbox(store, created, tbox if tbox is not None else tbox_from_graph(onto.graph))
+            if not hidden and not (replace and store.has_neem(neem_id)):
+                store.swap_in(created, neem_id, replace=False)
+                staging = None
+            logger = cls(store, onto, staging or neem_id, idle_threshold=idle_threshold, commit_every=commit_every)
         except BaseException:
-            store.drop_neem(neem_id)  # a NEEM without its TBox would give wrong closures
+            if staging is not None:
+                store.drop_neem(staging)
             raise
-        return cls(store, onto, neem_id, idle_threshold=idle_threshold, commit_every=commit_every)
+        if staging is not None:
+            logger._replaces, logger._may_replace = neem_id, replace
+        return logger
 
     @classmethod
     def start_session(
@@ -205,7 +249,7 @@ class NeemLogger:
         if who == "robot":
             return self._individual(f"{self.ns}Agent_robot", T.ROBOT_CLASS, out)
         if who == "user":
-            return self._individual(f"{self.ns}Agent_{_slug(self.user)}", T.PERSON_CLASS, out)
+            return self._individual(person_iri(self.ns, self.user), T.PERSON_CLASS, out)
         raise LoggingError(f"performed_by must be 'robot' or 'user', got {who!r}")
 
     def _resolve(self, call: TaskCall | str) -> TaskCall:
@@ -218,11 +262,7 @@ class NeemLogger:
                 call = parse_call(call)
             except ChainSyntaxError as error:
                 raise LoggingError(str(error)) from None
-        if call.task not in self.onto.tasks:
-            raise LoggingError(f"unknown task {call.task!r} in {call}; known tasks: {', '.join(sorted(self.onto.tasks))}")
-        for arg in call.args:
-            if arg not in self.onto.objects:
-                raise LoggingError(f"unknown object {arg!r} in {call}")
+        check_call(self.onto, call)
         if len(self._resolved) < 100_000:
             self._resolved[original] = call
         return call
@@ -368,11 +408,13 @@ class NeemLogger:
             options = [known(c) or self._resolve(c) for c in available]
         if action_id is not None:
             iri = f"{self.ns}Action_{_slug(action_id)}"
-            if self._exists(iri):
-                raise LoggingError(f"duplicate action id {action_id!r} in NEEM {self.neem_id!r}")
+            if self._exists(iri):  # stored or buffered (``_known``): whatever ``commit_every``
+                raise LoggingError(f"duplicate action id {action_id!r} in NEEM {self._public_id}")
         else:
             iri = self._event("Action")
         out = _Out()
+        if action_id is not None:
+            out.created.add(iri)
         idle = None
         if self._last_end is not None and is_idle_gap(self._last_end.seconds, start.seconds, self.idle_threshold):
             idle = self._idle(self._last_end, start, out)
@@ -457,11 +499,32 @@ class NeemLogger:
         self._buffered_calls = 0
         return self.committed
 
+    @property
+    def _public_id(self) -> str:
+        return repr(self._replaces or self.neem_id)
+
     def close(self) -> None:
+        """Commit what is buffered; a replacement NEEM then takes the place of the old one."""
         self.flush()
+        if self._replaces is not None:
+            self.store.swap_in(self.neem_id, self._replaces, replace=self._may_replace)
+            self.neem_id, self._replaces = self._replaces, None
+
+    def abandon(self) -> None:
+        """Give up a replacement before ``close()``: it is dropped and the old NEEM stays as it
+        was. For a logger that replaces nothing, the same as ``flush()``."""
+        if self._replaces is None:
+            self.flush()
+            return
+        self._buffer, self._buffered_calls = [], 0
+        self.store.drop_neem(self.neem_id)
+        self.neem_id, self._replaces = self._replaces, None
 
     def __enter__(self) -> NeemLogger:
         return self
 
-    def __exit__(self, *exc: object) -> None:
-        self.close()
+    def __exit__(self, kind: object, *exc: object) -> None:
+        if kind is not None and self._replaces is not None:
+            self.abandon()
+        else:
+            self.close()

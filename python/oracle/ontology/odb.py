@@ -7,6 +7,7 @@ Objects whose name starts with an underscore are abstract; both kinds become OWL
 
 from __future__ import annotations
 
+import math
 import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
@@ -14,7 +15,7 @@ from pathlib import Path
 
 from oracle.errors import OntologyError
 
-_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_\-]*$")
+_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_\-]{0,127}$")  # at most 128 characters
 _SNIPPET_SUFFIX = re.compile(r"(_sct)?\.(ya?ml)$", re.IGNORECASE)
 
 
@@ -89,6 +90,8 @@ def read_manifest(path: Path) -> OdbObject:
             mass = float(mass_text)
         except ValueError:
             raise OntologyError(f"{path}: <mass> {mass_text!r} of {name!r} is not a number") from None
+        if not (math.isfinite(mass) and mass >= 0):
+            raise OntologyError(f"{path}: <mass> {mass_text!r} of {name!r} must be a finite number >= 0")
     dimension = None
     dim_text = _text(root.find("dimension"))
     if dim_text is not None:
@@ -96,6 +99,8 @@ def read_manifest(path: Path) -> OdbObject:
             dimension = tuple(float(part) for part in dim_text.split())
         except ValueError:
             raise OntologyError(f"{path}: <dimension> {dim_text!r} of {name!r} is not numbers") from None
+        if not all(math.isfinite(part) and part >= 0 for part in dimension):
+            raise OntologyError(f"{path}: <dimension> {dim_text!r} of {name!r} must be finite numbers >= 0")
     return OdbObject(name, tuple(parents), tuple(tasks), mass, dimension, path)
 
 
@@ -121,23 +126,29 @@ def read_odb(directory: Path | str) -> dict[str, OdbObject]:
 
 
 def _check_acyclic(objects: dict[str, OdbObject]) -> None:
-    state: dict[str, int] = {}  # 1 = on the stack, 2 = done
-
-    def visit(name: str, stack: list[str]) -> None:
-        if state.get(name) == 2:
-            return
-        if state.get(name) == 1:
-            cycle = stack[stack.index(name):] + [name]
-            raise OntologyError(f"{objects[name].source}: cyclic derive: {' -> '.join(cycle)}")
-        state[name] = 1
-        stack.append(name)
-        for parent in objects[name].parents:
-            visit(parent, stack)
-        stack.pop()
-        state[name] = 2
-
-    for name in objects:
-        visit(name, [])
+    """Depth-first search with an explicit stack: a derive chain may be thousands deep."""
+    state: dict[str, int] = {}  # 1 = on the path, 2 = done
+    for root in objects:
+        if state.get(root) == 2:
+            continue
+        path: list[str] = [root]
+        pending: list[list[str]] = [list(objects[root].parents)]
+        state[root] = 1
+        while path:
+            if not pending[-1]:
+                state[path.pop()] = 2
+                pending.pop()
+                continue
+            parent = pending[-1].pop()
+            if state.get(parent) == 2:
+                continue
+            if state.get(parent) == 1:
+                cycle = path[path.index(parent):] + [parent]
+                shown = cycle if len(cycle) <= 8 else cycle[:4] + [f"... ({len(cycle) - 6} more)"] + cycle[-2:]
+                raise OntologyError(f"{objects[parent].source}: cyclic derive: {' -> '.join(shown)}")
+            state[parent] = 1
+            path.append(parent)
+            pending.append(list(objects[parent].parents))
 
 
 def inherited_tasks(objects: dict[str, OdbObject], name: str) -> tuple[str, ...]:

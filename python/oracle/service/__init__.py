@@ -25,8 +25,10 @@ def is_loopback(host: str) -> bool:
 
 
 def build_context(store_spec: str | None, ontology: Any, settings: Any, neem: str | None = None,
-                  token: str | None = None, write_behind: bool = True) -> Any:
-    """Open the store on the engine thread (its connection belongs there) and check ``neem``."""
+                  token: str | None = None, write_behind: bool = True, method: str | None = None) -> Any:
+    """Open the store on the engine thread (its connection belongs there) and check ``neem``;
+    sessions fit the predictor ``method`` (default: the one ``rank`` uses)."""
+    from oracle.algorithm.predictors import DEFAULT
     from oracle.service.app import Context
     from oracle.service.engine import Engine, EngineThread
     from oracle.store import open_store
@@ -34,7 +36,7 @@ def build_context(store_spec: str | None, ontology: Any, settings: Any, neem: st
     thread = EngineThread()
 
     def start() -> Engine:
-        engine = Engine(open_store(store_spec), ontology, settings)
+        engine = Engine(open_store(store_spec), ontology, settings, method or DEFAULT)
         if neem is not None:
             engine.session(neem)  # NotFound now rather than on the first request
         return engine

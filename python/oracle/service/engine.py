@@ -17,6 +17,7 @@ from concurrent.futures import ThreadPoolExecutor
 from typing import Any, TypeVar
 
 from oracle.algorithm.params import Hyperparameters
+from oracle.algorithm.predictors import DEFAULT
 from oracle.answers import something_else_sentence, what_next_sentence, why_not_sentence
 from oracle.bridge import Bridge
 from oracle.paths import prolog_dir
@@ -74,10 +75,12 @@ def _log_failure(future: Any) -> None:
 class Engine:
     """The live model of the store. Call its methods on the engine thread only."""
 
-    def __init__(self, store: Store, ontology: OdbOntology, settings: Hyperparameters) -> None:
+    def __init__(self, store: Store, ontology: OdbOntology, settings: Hyperparameters, method: str = DEFAULT) -> None:
         self.store = store
         self.ontology = ontology
         self.settings = settings
+        #: The predictor every session fits (``serve --method``; default: the routine predictor).
+        self.method = method
         self.sessions: dict[str, NeemSession] = {}
         self._bridge: Bridge | None = None
         self._query_loaded = False
@@ -97,7 +100,7 @@ class Engine:
             raise LoggingError(f"NEEM {neem!r} already exists")
         logger = NeemLogger.create(self.store, self.ontology, user=user, neem_id=neem, commit_every=NEVER)
         self.sessions[logger.neem_id] = NeemSession(logger.neem_id, logger, self.ontology,
-                                                    make_predictor(self.ontology, self.settings), [])
+                                                    make_predictor(self.ontology, self.settings, self.method), [])
         return {"id": logger.neem_id, "user": user}
 
     def bridge(self, neem: str) -> Bridge:
@@ -114,7 +117,7 @@ class Engine:
                 raise NotFound(f"no NEEM {neem!r} in the store")
             history = self.bridge(neem).history()
             logger = NeemLogger(self.store, self.ontology, neem, commit_every=NEVER)
-            session = NeemSession(neem, logger, self.ontology, make_predictor(self.ontology, self.settings), history)
+            session = NeemSession(neem, logger, self.ontology, make_predictor(self.ontology, self.settings, self.method), history)
             self.sessions[neem] = session
         return session
 

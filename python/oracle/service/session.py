@@ -12,8 +12,9 @@ from dataclasses import dataclass
 from datetime import datetime
 from typing import Any
 
-from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import Hyperparameters
+from oracle.algorithm.predictors import DEFAULT, Predictor
+from oracle.algorithm.predictors import make_predictor as make_named
 from oracle.algorithm.records import Ranking, Step
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError
@@ -53,9 +54,10 @@ class OutOfOrder(LoggingError):
     """A time before the end of the NEEM's last action: the NEEM's clock only goes forward."""
 
 
-def make_predictor(ontology: OdbOntology, settings: Hyperparameters) -> PreferenceOracle:
-    """The predictor a session fits; one place to change which one the service uses."""
-    return PreferenceOracle.from_settings(ontology.distances(), settings, opening_tasks(ontology))
+def make_predictor(ontology: OdbOntology, settings: Hyperparameters, method: str = DEFAULT) -> Predictor:
+    """The predictor a session fits: ``method`` by name (oracle.algorithm.predictors; the
+    settings apply to ``thesis``), the same one ``rank`` uses by default."""
+    return make_named(method, ontology.distances(), opening_tasks(ontology), settings)
 
 
 def moment_of(value: Any, what: str) -> Moment:
@@ -78,7 +80,7 @@ class NeemSession:
     """The live state of one NEEM. Validation happens before any write, so a refused request
     leaves both the NEEM and this object as they were."""
 
-    def __init__(self, neem: str, logger: NeemLogger, ontology: OdbOntology, predictor: PreferenceOracle,
+    def __init__(self, neem: str, logger: NeemLogger, ontology: OdbOntology, predictor: Predictor,
                  history: Sequence[dict[str, Any]]) -> None:
         self.neem = neem
         self.logger = logger

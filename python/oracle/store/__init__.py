@@ -39,7 +39,11 @@ def default_store_path() -> Path:
 
 
 def open_store(
-    spec: str | os.PathLike[str] | None = None, *, number_format: NumberFormat = "decimal128", create: bool = True
+    spec: str | os.PathLike[str] | None = None,
+    *,
+    number_format: NumberFormat = "decimal128",
+    create: bool = True,
+    read_only: bool = False,
 ) -> Store:
     """Open the store a ``--store`` value names.
 
@@ -47,7 +51,8 @@ def open_store(
     ``mongodb://...``: that server (database from the URI path, else ``roslog``); ``mongodb``:
     the server at $NEEM_MONGO_URI; ``sqlite:///PATH`` or a plain path: a SQLite file, created
     0600 if missing unless ``create`` is False (commands that only read pass False, so a typo'd
-    path is an error instead of a new empty store).
+    path is an error instead of a new empty store). ``read_only`` (implies not ``create``)
+    opens a SQLite file without writing anything, so a reader never waits for a writer.
     """
     if spec is None:
         uri = os.environ.get(MONGO_ENV)
@@ -55,7 +60,7 @@ def open_store(
             return open_mongo(uri, number_format=number_format)
         from oracle.store.sqlite import SQLiteStore
 
-        return SQLiteStore(default_store_path(), number_format, create=create)
+        return SQLiteStore(default_store_path(), number_format, create=create, read_only=read_only)
     text = os.fspath(spec)
     if text in ("mongodb", "mongo"):
         uri = os.environ.get(MONGO_ENV)
@@ -72,7 +77,7 @@ def open_store(
         raise StoreError(f"unknown store {text!r}: expected a path, sqlite:///PATH or mongodb://HOST")
     from oracle.store.sqlite import SQLiteStore
 
-    return SQLiteStore(text, number_format, create=create)
+    return SQLiteStore(text, number_format, create=create, read_only=read_only)
 
 
 def open_mongo(uri: str, *, number_format: NumberFormat = "decimal128", timeout_ms: int = 3000) -> Store:
@@ -81,12 +86,15 @@ def open_mongo(uri: str, *, number_format: NumberFormat = "decimal128", timeout_
     from pymongo import uri_parser
 
     from oracle.store.mongo import DEFAULT_DB, MongoStore
+    from oracle.store.uri import mask_uri, scrub
 
     try:
         parsed = uri_parser.parse_uri(uri)
         client: pymongo.MongoClient[dict[str, Any]] = pymongo.MongoClient(uri, serverSelectionTimeoutMS=timeout_ms)
     except Exception as error:
-        raise StoreError(f"{uri}: not a usable MongoDB URI ({error})") from None
+        # The URI may hold a password (from --store or $NEEM_MONGO_URI): never echo it.
+        hint = "; percent-encode '@', '/' and ':' in a user name or password" if "@" in uri else ""
+        raise StoreError(f"{mask_uri(uri)}: not a usable MongoDB URI ({scrub(str(error), uri)}){hint}") from None
     host = ",".join(f"{h}:{p}" for h, p in parsed["nodelist"])
     db_name = parsed.get("database") or DEFAULT_DB
     return MongoStore(client, db_name, number_format, location=f"mongodb://{host}/{db_name}")

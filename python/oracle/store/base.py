@@ -6,6 +6,7 @@ same documents; a backend only stores documents, finds them, and rewrites closur
 
 from __future__ import annotations
 
+import os
 import re
 from abc import ABC, abstractmethod
 from collections.abc import Iterable, Iterator, Mapping, Sequence
@@ -14,7 +15,10 @@ from dataclasses import dataclass, field
 from datetime import datetime, timezone
 from typing import Any
 
+from bson.decimal128 import Decimal128
+
 from oracle.errors import StoreError
+from oracle.store.validate import check_document, check_meta
 from oracle.store.model import (
     HIERARCHY,
     TAXONOMIC,
@@ -36,6 +40,9 @@ COLLECTION_KINDS: tuple[str, ...] = ("triples", "annotations", "tf", "inferred")
 
 #: A triple with its ``p*`` and ``o*``, ready to store.
 Closed = tuple[Triple, tuple[Any, ...], tuple[Any, ...]]
+
+#: Registry field marking a NEEM under construction (value: the NEEM it will replace).
+STAGING = "staging_for"
 
 _NEEM_ID = re.compile(r"^[A-Za-z0-9][A-Za-z0-9\-]{0,63}$")
 
@@ -84,6 +91,7 @@ def new_meta(user: str | None, temporary: bool, extra: Mapping[str, Any] | None 
         "temporary": temporary,
     }
     meta.update(extra or {})
+    check_meta(meta, "registry entry")
     return meta
 
 
@@ -156,6 +164,30 @@ class Store(ABC):
     @abstractmethod
     def update_meta(self, neem_id: str, **fields: Any) -> NeemInfo:
         """Change registry fields such as ``temporary``."""
+
+    # -- replacing a NEEM atomically --------------------------------------------------------
+    def create_staging(self, target: str, *, user: str | None = None, meta: Mapping[str, Any] | None = None) -> str:
+        """A new, hidden NEEM to build ``target`` (or its replacement) in: ``neems()`` does not
+        list it; ``swap_in`` makes it ``target``. A process killed meanwhile leaves ``target`` as
+        it was (and a hidden NEEM behind, never listed nor read)."""
+        check_neem_id(target)
+        staging = f"staging-{os.urandom(6).hex()}"
+        extra = {**(meta or {}), STAGING: target}
+        temporary = bool(extra.pop("temporary", False))
+        self.create_neem(staging, user=user, temporary=temporary, meta=extra)
+        return staging
+
+    def swap_in(self, staging: str, target: str, *, replace: bool = True, **fields: Any) -> NeemInfo:
+        """Make the complete NEEM ``staging`` visible as ``target``, replacing an existing one only
+        if ``replace`` (else StoreError: another process took the id meanwhile). One transaction
+        on SQLite; on MongoDB a rename per collection (KnowRob has no transactions)."""
+        with self.transaction():
+            if self.has_neem(target):
+                if not replace:
+                    raise StoreError(f"{self.location}: NEEM {target!r} already exists")
+                self.drop_neem(target)
+            self.rename_neem(staging, target)
+            return self.update_meta(target, **{STAGING: None, **fields})
 
     # -- writing ----------------------------------------------------------------------------
     @abstractmethod
@@ -239,7 +271,8 @@ class Store(ABC):
         batch: list[dict[str, Any]] = []
         count = 0
         with self.transaction():
-            for doc in docs:
+            for number, doc in enumerate(docs, start=1):
+                check_document(kind, doc, f"{getattr(docs, 'where', kind)}: document {number}")
                 batch.append(doc if isinstance(doc, dict) else dict(doc))
                 if len(batch) >= 5000:
                     self._insert_documents(neem_id, kind, batch)
@@ -317,6 +350,9 @@ class Store(ABC):
         for term in (s, p, o):
             if isinstance(term, (Var, Cmp)):
                 raise StoreError("find() takes constants; use match() for variables and comparisons")
+            check_literal(term)
+        if graph is not None and not isinstance(graph, str):
+            raise StoreError(f"graph must be a string, got {graph!r}")
         return self._find(neem_id, TriplePattern(s, p, o, graph), scope, limit, exact)
 
     @abstractmethod
@@ -378,6 +414,18 @@ def validate_patterns(patterns: Sequence[TriplePattern]) -> None:
             raise StoreError(f"not a TriplePattern: {pattern!r}")
         if isinstance(pattern.s, Cmp) or isinstance(pattern.p, Cmp):
             raise StoreError(f"a comparison may only stand for the object: {pattern!r}")
+        for term in (pattern.s, pattern.p, pattern.o):
+            if isinstance(term, Cmp):
+                check_literal(term.value)
+            elif not isinstance(term, Var):
+                check_literal(term)
+
+
+def check_literal(term: Any) -> None:
+    """A constant of a query is a plain value: a dict such as ``{"$gt": ""}`` would be a
+    MongoDB operator, and a list a set of values, so both are refused (issue 16)."""
+    if term is not None and not isinstance(term, (str, int, float, bool, Decimal128, datetime)):
+        raise StoreError(f"a query constant must be a string, number, boolean or date, got {term!r}")
 
 
 def validate_order(patterns: Sequence[TriplePattern], order: Sequence[tuple[str, bool]]) -> list[tuple[str, bool]]:

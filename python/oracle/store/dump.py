@@ -7,6 +7,7 @@ the registry entry. Documents are copied unchanged, so dump -> load -> dump is t
 
 from __future__ import annotations
 
+import errno
 import os
 import re
 import struct
@@ -19,22 +20,43 @@ from bson import json_util
 from bson.codec_options import DEFAULT_CODEC_OPTIONS, DatetimeConversion
 
 from oracle.errors import StoreError
-from oracle.store.base import COLLECTION_KINDS, SUMMARY_KEY, Store, check_neem_id
+from oracle.store.base import COLLECTION_KINDS, STAGING, SUMMARY_KEY, Store, check_neem_id
+from oracle.store.validate import check_meta
 from oracle.store.mongo import DEFAULT_DB, INDEXES
 
 META_FILE = "meta.json"
+#: meta.json field with the number of documents per collection, written by ``export``: a
+#: ``.bson`` cut exactly at a document boundary is otherwise indistinguishable from a whole one.
+COUNTS_KEY = "documents"
 #: Dates far outside Python's range must still survive a round trip.
 _CODEC = DEFAULT_CODEC_OPTIONS.with_options(datetime_conversion=DatetimeConversion.DATETIME_AUTO)
 _CANONICAL = json_util.JSONOptions(json_mode=json_util.JSONMode.CANONICAL)
 
 
-def _mkdir(path: Path) -> None:
-    path.mkdir(parents=True, exist_ok=True, mode=0o700)
+def _mkdir(path: Path, top: Path) -> None:
+    """``path`` with every missing folder above it, each created 0700 whatever the umask; the
+    dump's own folders (``top`` and below) are made 0700 if they existed, and are never a symlink."""
+    for folder in [path, *path.parents][::-1]:
+        inside = folder == top or top in folder.parents
+        if inside and folder.is_symlink():
+            raise StoreError(f"{folder}: is a symbolic link; refusing to write a dump through it")
+        if not folder.exists():
+            folder.mkdir(mode=0o700)
+            os.chmod(folder, 0o700)
+        elif inside:
+            os.chmod(folder, 0o700)
 
 
 def _open_private(path: Path) -> BinaryIO:
-    """Dumps hold personal data (thesis 3.5): files are created 0600."""
-    fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600)
+    """Dumps hold personal data (thesis 3.5): files are 0600, also when an existing 0644 file is
+    overwritten, and a symlink planted at the path is refused, never followed."""
+    try:
+        fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC | os.O_NOFOLLOW, 0o600)
+    except OSError as error:
+        if error.errno == errno.ELOOP:
+            raise StoreError(f"{path}: is a symbolic link; refusing to write through it") from None
+        raise
+    os.fchmod(fd, 0o600)
     return os.fdopen(fd, "wb")
 
 
@@ -64,7 +86,7 @@ def write_dump(
         for kind in COLLECTION_KINDS:
             collection = f"{prefix}_{kind}" if prefix else kind
             folder = out / kind / db_name
-            _mkdir(folder)
+            _mkdir(folder, out)
             count = 0
             with _open_private(folder / f"{collection}.bson") as handle:
                 for doc in documents.get(kind, ()):
@@ -74,6 +96,7 @@ def write_dump(
                 handle.write(json_util.dumps(metadata(collection, kind), json_options=_CANONICAL).encode())
             counts[kind] = count
         if meta is not None:
+            _mkdir(out, out)
             with _open_private(out / META_FILE) as handle:
                 handle.write(json_util.dumps(dict(meta), indent=2, sort_keys=True).encode() + b"\n")
     except OSError as error:
@@ -85,8 +108,9 @@ def export_neem(store: Store, neem_id: str, out: Path | str, *, db_name: str = D
     """Write one NEEM as a KnowRob dump folder."""
     info = store.neem(neem_id)
     # The kept summary belongs to this store's write marks, not to the dump.
-    meta = {k: v for k, v in info.meta.items() if k not in ("temporary", SUMMARY_KEY)}
+    meta = {k: v for k, v in info.meta.items() if k not in ("temporary", STAGING, COUNTS_KEY, SUMMARY_KEY)}
     meta["id"] = neem_id
+    meta[COUNTS_KEY] = {kind: store.count(neem_id, kind) for kind in COLLECTION_KINDS}
     docs = {kind: store.read_documents(neem_id, kind) for kind in COLLECTION_KINDS}
     return write_dump(out, docs, meta, db_name)
 
@@ -150,11 +174,29 @@ def _neem_groups(root: Path) -> dict[tuple[Path, str | None], dict[str, Path]]:
     return groups
 
 
+class _Documents:
+    """The documents of one ``.bson`` file, counted as they are read, named for error messages."""
+
+    def __init__(self, path: Path) -> None:
+        self.path = path
+        self.where = str(path)
+        self.count = 0
+
+    def __iter__(self) -> Iterator[dict[str, Any]]:
+        for doc in iter_bson(self.path):
+            self.count += 1
+            yield doc
+
+
 def load_dump(store: Store, path: Path | str, *, neem_id: str | None = None, replace: bool = False) -> list[str]:
     """Load every NEEM found under ``path`` (a NEEM folder, a folder of them, or a hub dump).
 
     The id is ``neem_id`` (only when one NEEM is found), else the collection prefix, else the
     ``id`` in meta.json, else the folder name. Return the ids loaded.
+
+    Each NEEM is loaded into a hidden staging NEEM and swapped in under its id only when every
+    document was read, checked and counted (meta.json's ``documents``, when present, must match):
+    on any error, or a kill, an existing NEEM of that id is untouched (``replace``).
     """
     root = Path(path)
     if not root.is_dir():
@@ -164,25 +206,35 @@ def load_dump(store: Store, path: Path | str, *, neem_id: str | None = None, rep
         raise StoreError(f"{root}: no triples/annotations/tf/inferred .bson files found")
     if neem_id is not None and len(groups) > 1:
         raise StoreError(f"{root}: holds {len(groups)} NEEMs; --neem names only one")
-    loaded: list[str] = []
+    plans = []
     for (folder, prefix), files in sorted(groups.items(), key=lambda item: (str(item[0][0]), item[0][1] or "")):
         meta = _read_meta(folder)
         target = neem_id or prefix or meta.pop("id", None) or _SAFE.sub("-", folder.resolve().name).strip("-")
         meta.pop("id", None)
         meta.pop(SUMMARY_KEY, None)
         check_neem_id(target)
-        if store.has_neem(target):
-            if not replace:
-                raise StoreError(f"{store.location}: NEEM {target!r} already exists (load with --replace)")
-            store.drop_neem(target)
+        if store.has_neem(target) and not replace:
+            raise StoreError(f"{store.location}: NEEM {target!r} already exists (load with --replace)")
+        plans.append((target, files, meta, folder))
+    loaded: list[str] = []
+    for target, files, meta, folder in plans:
+        counts = meta.pop(COUNTS_KEY, None)
         meta["temporary"] = False
-        store.create_neem(target, user=meta.get("created_by"), meta=meta)
+        staging = store.create_staging(target, user=meta.get("created_by"), meta=meta)
         try:
             for kind in COLLECTION_KINDS:
                 if kind in files:
-                    store.write_documents(target, kind, iter_bson(files[kind]))
+                    docs = _Documents(files[kind])
+                    store.write_documents(staging, kind, docs)
+                    expected = counts.get(kind) if isinstance(counts, dict) else None
+                    if expected is not None and expected != docs.count:
+                        raise StoreError(
+                            f"{files[kind]}: holds {docs.count} documents but {folder / META_FILE} counts {expected};"
+                            " the dump is cut or altered"
+                        )
+            store.swap_in(staging, target)
         except BaseException:
-            store.drop_neem(target)  # a half-loaded NEEM would look complete in listings
+            store.drop_neem(staging)  # the old NEEM, if any, was never touched
             raise
         loaded.append(target)
     return loaded
@@ -194,10 +246,26 @@ def _read_meta(folder: Path) -> dict[str, Any]:
         return {}
     try:
         meta = json_util.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError) as error:
-        raise StoreError(f"{path}: not a JSON object ({error})") from None
+    except RecursionError:
+        raise StoreError(f"{path}: not a JSON object (nested too deeply)") from None
+    except (OSError, ValueError, TypeError, OverflowError) as error:
+        raise StoreError(f"{path}: not a JSON object ({str(error)[:120]})") from None
     if not isinstance(meta, dict):
         raise StoreError(f"{path}: not a JSON object")
+    check_meta(meta, str(path))
+    counts = meta.get(COUNTS_KEY)
+    if counts is not None and not (
+        isinstance(counts, dict) and all(k in COLLECTION_KINDS and type(v) is int and v >= 0 for k, v in counts.items())
+    ):
+        raise StoreError(f"{path}: {COUNTS_KEY!r} must map collection kinds to document counts")
+    if "id" in meta and not isinstance(meta["id"], str):
+        raise StoreError(f"{path}: 'id' must be a string, got {meta['id']!r}")
+    for metadata_file in folder.rglob("*.metadata.json"):
+        try:
+            if not isinstance(json_util.loads(metadata_file.read_text(encoding="utf-8")), dict):
+                raise ValueError("not an object")
+        except (OSError, ValueError) as error:
+            raise StoreError(f"{metadata_file}: not a mongodump metadata JSON object ({error})") from None
     return meta
 
 

@@ -16,7 +16,7 @@ from typing import Any
 from bson.decimal128 import Decimal128
 
 from oracle.errors import StoreError
-from oracle.store.base import COLLECTION_KINDS, NeemInfo, Store
+from oracle.store.base import COLLECTION_KINDS, STAGING, NeemInfo, Store
 from oracle.store.model import (
     HIERARCHY,
     TAXONOMIC,
@@ -81,15 +81,26 @@ class MongoStore(Store):
         return self.db[f"{neem_id}_{kind}"]
 
     # -- registry ---------------------------------------------------------------------------
-    def neems(self) -> list[NeemInfo]:
+    def _registry(self) -> dict[str, NeemInfo]:
+        """Every NEEM, hidden staging ones included."""
         infos = {doc["_id"]: NeemInfo.from_meta(doc["_id"], {k: v for k, v in doc.items() if k != "_id"})
-                 for doc in self.db[META].find({})}  # fmt: skip
+                 for doc in self.db[META].find({}) if isinstance(doc.get("_id"), str)}  # fmt: skip
         # NEEMs restored with mongorestore have collections but no meta entry.
         for name in self.db.list_collection_names():
             if name.endswith("_triples"):
                 neem_id = name[: -len("_triples")]
                 infos.setdefault(neem_id, NeemInfo(neem_id))
-        return [infos[key] for key in sorted(infos)]
+        return infos
+
+    def neems(self) -> list[NeemInfo]:
+        infos = self._registry()
+        return [infos[key] for key in sorted(infos) if not infos[key].meta.get(STAGING)]  # replacements being built are hidden
+
+    def neem(self, neem_id: str) -> NeemInfo:
+        info = self._registry().get(neem_id)
+        if info is None:
+            raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
+        return info
 
     def has_neem(self, neem_id: str) -> bool:
         if neem_id in self._present:

@@ -18,8 +18,10 @@ from __future__ import annotations
 import math
 import os
 import sqlite3
+import stat
 import struct
 import time
+import urllib.parse
 from collections.abc import Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from functools import partial
@@ -34,7 +36,7 @@ from bson.int64 import Int64
 from bson.objectid import ObjectId
 
 from oracle.errors import StoreError
-from oracle.store.base import COLLECTION_KINDS, Closed, NeemInfo, Store
+from oracle.store.base import COLLECTION_KINDS, STAGING, Closed, NeemInfo, Store
 from oracle.store.model import (
     RDF_TYPE,
     SUBCLASS_OF,
@@ -115,11 +117,51 @@ def _indexes(neem_id: str) -> list[tuple[str, str]]:
     return [(name, f"CREATE INDEX {_quote(name)} {target}") for name, target in made]
 
 
-def _rowid(cursor: sqlite3.Cursor) -> int:
+def _rowid(cursor: _Cursor | sqlite3.Cursor) -> int:
     """The id of the row an INSERT just made (sqlite3 types it Optional for other statements)."""
     if cursor.lastrowid is None:
         raise StoreError("SQLite reported no id for an inserted row")
     return cursor.lastrowid
+def _reason(error: sqlite3.Error) -> str:
+    text = str(error)
+    if isinstance(error, sqlite3.DatabaseError) and "malformed" in text:
+        return f"{text}: the store file is corrupt (restore it from a backup or an export)"
+    return text
+
+
+class _Cursor:
+    """A cursor whose rows, fetched lazily, also turn sqlite3 errors (a corrupt page met while
+    reading) into StoreError."""
+
+    def __init__(self, cursor: sqlite3.Cursor, location: str) -> None:
+        self.cursor = cursor
+        self.location = location
+
+    def fetchone(self) -> Any:
+        try:
+            return self.cursor.fetchone()
+        except sqlite3.Error as error:
+            raise StoreError(f"{self.location}: {_reason(error)}") from None
+
+    def fetchall(self) -> list[Any]:
+        try:
+            return self.cursor.fetchall()
+        except sqlite3.Error as error:
+            raise StoreError(f"{self.location}: {_reason(error)}") from None
+
+    def __iter__(self) -> Iterator[Any]:
+        try:
+            yield from self.cursor
+        except sqlite3.Error as error:
+            raise StoreError(f"{self.location}: {_reason(error)}") from None
+
+    @property
+    def lastrowid(self) -> int | None:
+        return self.cursor.lastrowid
+
+    @property
+    def rowcount(self) -> int:
+        return self.cursor.rowcount
 
 
 class _Connection:
@@ -129,11 +171,11 @@ class _Connection:
         self.conn = conn
         self.location = location
 
-    def execute(self, sql: str, params: Sequence[Any] = ()) -> sqlite3.Cursor:
+    def execute(self, sql: str, params: Sequence[Any] = ()) -> _Cursor:
         try:
-            return self.conn.execute(sql, params)
+            return _Cursor(self.conn.execute(sql, params), self.location)
         except sqlite3.Error as error:
-            raise StoreError(f"{self.location}: {error}") from None
+            raise StoreError(f"{self.location}: {_reason(error)}") from None
 
     def executemany(self, sql: str, rows: Any) -> sqlite3.Cursor:
         try:
@@ -150,14 +192,20 @@ class SQLiteStore(Store):
     a killed process, which is the crash model of issue 3)."""
 
     def __init__(
-        self, path: str | os.PathLike[str], number_format: NumberFormat = "decimal128", *, create: bool = True
+        self,
+        path: str | os.PathLike[str],
+        number_format: NumberFormat = "decimal128",
+        *,
+        create: bool = True,
+        read_only: bool = False,
     ) -> None:
         super().__init__(number_format)
         self.path = Path(path).expanduser()
         self.location = str(self.path)
-        if not create and not self.path.is_file():
+        self.read_only = read_only
+        if (read_only or not create) and not self.path.is_file():
             raise StoreError(f"{self.path}: no NEEM store there (check --store; 'import' or 'load' creates one)")
-        self._conn = _Connection(self._connect(), self.location)
+        self._conn = _Connection(self._connect_read_only() if read_only else self._connect(), self.location)
         self._depth = 0
         self._cids: dict[Any, int] = {}
         self._members: dict[int, tuple[Any, ...]] = {}
@@ -173,13 +221,38 @@ class SQLiteStore(Store):
         self._counter = int.from_bytes(os.urandom(3), "big")
 
     # -- connection -------------------------------------------------------------------------
+    def _connect_read_only(self) -> sqlite3.Connection:
+        """A connection that writes nothing on open (no pragma that changes the file, no schema),
+        so ``neems`` or ``why-not`` never wait for, nor block, an ``import`` or ``load``."""
+        try:
+            uri = "file:" + urllib.parse.quote(str(self.path.resolve())) + "?mode=ro"
+            conn = sqlite3.connect(uri, uri=True, isolation_level=None, check_same_thread=False)
+            conn.execute("PRAGMA busy_timeout=10000")
+            conn.execute("PRAGMA query_only=1")
+            conn.execute("PRAGMA cache_size=-65536")
+            row = conn.execute("SELECT value FROM store_info WHERE key='schema'").fetchone()
+        except sqlite3.DatabaseError as error:
+            reason = "not a NEEM store" if "no such table" in str(error) or "not a database" in str(error) else str(error)
+            raise StoreError(f"{self.path}: cannot open the NEEM store ({reason})") from None
+        version = None if row is None else row[0]
+        if version != SCHEMA_VERSION:
+            raise StoreError(f"{self.path}: store schema {version}, this version reads {SCHEMA_VERSION}")
+        return conn
+
     def _connect(self) -> sqlite3.Connection:
         try:
             self.path.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
+            existed = self.path.exists()
             # Create the file 0600 before SQLite does; its -wal and -shm files copy the mode.
             fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o600)
-            os.close(fd)
+            try:
+                if existed and stat.S_IMODE(os.fstat(fd).st_mode) & 0o077:
+                    os.fchmod(fd, 0o600)  # a store copied in as 0644 is private from now on
+            finally:
+                os.close(fd)
             conn = sqlite3.connect(self.path, isolation_level=None, check_same_thread=False)
+            if existed and self.path.stat().st_size > 0:
+                self._check_integrity(conn)
             conn.execute("PRAGMA journal_mode=WAL")
             conn.execute("PRAGMA synchronous=NORMAL")
             conn.execute("PRAGMA busy_timeout=10000")  # concurrent writers wait instead of failing
@@ -206,6 +279,20 @@ class SQLiteStore(Store):
         if version != SCHEMA_VERSION:
             raise StoreError(f"{self.path}: store schema {version}, this version reads {SCHEMA_VERSION}")
         return conn
+
+    def _check_integrity(self, conn: sqlite3.Connection) -> None:
+        """Refuse to write into a damaged file: writing would spread the damage, and a later
+        reader would answer from it. ``quick_check`` reads every page once (no index cross-check)."""
+        try:
+            problems = [row[0] for row in conn.execute("PRAGMA quick_check(3)").fetchall()]
+        except sqlite3.DatabaseError as error:
+            problems = [str(error)]
+        if problems != ["ok"]:
+            conn.close()
+            raise StoreError(
+                f"{self.path}: the store file is corrupt ({'; '.join(problems)[:200]}); nothing was written"
+                " (restore it from a backup or an export)"
+            )
 
     def close(self) -> None:
         self._conn.close()
@@ -234,7 +321,14 @@ class SQLiteStore(Store):
     # -- registry ---------------------------------------------------------------------------
     def neems(self) -> list[NeemInfo]:
         rows = self._conn.execute("SELECT id, meta FROM neems ORDER BY id").fetchall()
-        return [NeemInfo.from_meta(neem_id, bson.decode(meta)) for neem_id, meta in rows]
+        infos = [NeemInfo.from_meta(neem_id, self._meta(neem_id, meta)) for neem_id, meta in rows]
+        return [info for info in infos if not info.meta.get(STAGING)]  # replacements being built are hidden
+
+    def _meta(self, neem_id: str, blob: bytes) -> dict[str, Any]:
+        try:
+            return bson.decode(blob)
+        except Exception:  # noqa: BLE001 - a damaged page; the caller gets a StoreError, not a traceback
+            raise StoreError(f"{self.location}: the registry entry of NEEM {neem_id!r} is corrupt") from None
 
     def has_neem(self, neem_id: str) -> bool:
         if neem_id in self._present:
@@ -248,7 +342,7 @@ class SQLiteStore(Store):
         row = self._conn.execute("SELECT meta FROM neems WHERE id=?", (neem_id,)).fetchone()
         if row is None:
             raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
-        return NeemInfo.from_meta(neem_id, bson.decode(row[0]))
+        return NeemInfo.from_meta(neem_id, self._meta(neem_id, row[0]))
 
     def _create_neem(self, neem_id: str, record: dict[str, Any]) -> None:
         t = partial(_table, neem_id)

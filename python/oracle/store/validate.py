@@ -1,0 +1,121 @@
+"""The door check: documents and registry entries from outside (dumps, callers) that a reader
+could not read are refused before they are stored (issue 16: a store never holds a row a reader
+cannot read). A message names the document and the field."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from datetime import datetime
+from typing import Any
+
+from bson.decimal128 import Decimal128
+
+from oracle.errors import StoreError
+
+#: Registry fields and the types a reader expects of them (None allowed for each).
+_META_TYPES: dict[str, tuple[type, ...]] = {"created_by": (str,), "created_at": (str,), "temporary": (bool,),
+                                            "id": (str,), "name": (str,)}  # fmt: skip
+_MAX_DEPTH = 64
+
+
+def check_keys(doc: Mapping[str, Any], where: str) -> None:
+    """No key may start with ``$`` or hold a ``.`` or NUL at any depth: MongoDB would read it as
+    an operator or a path (``{"$where": ...}``), and no KnowRob document has one."""
+    stack: list[tuple[Any, int]] = [(doc, 0)]
+    while stack:
+        value, depth = stack.pop()
+        if depth > _MAX_DEPTH:
+            raise StoreError(f"{where}: nested more than {_MAX_DEPTH} levels deep")
+        if isinstance(value, Mapping):
+            for key, item in value.items():
+                if not isinstance(key, str) or key.startswith("$") or "." in key or "\x00" in key:
+                    raise StoreError(f"{where}: key {str(key)[:40]!r} is not allowed (no '$' prefix, '.' or NUL)")
+                stack.append((item, depth + 1))
+        elif isinstance(value, (list, tuple)):
+            stack.extend((item, depth + 1) for item in value)
+
+
+def _number(value: Any) -> float | None:
+    """A time bound as float (Decimal128, int, float or a BSON date), or None if it is none."""
+    if isinstance(value, bool):
+        return None
+    if isinstance(value, Decimal128):
+        value = float(value.to_decimal())
+    elif isinstance(value, datetime):
+        try:
+            return value.timestamp()
+        except (OverflowError, OSError, ValueError):
+            return None
+    if isinstance(value, (int, float)) and not math.isnan(value):
+        return float(value)
+    return None
+
+
+def _term(value: Any) -> bool:
+    if isinstance(value, Decimal128):
+        return not value.to_decimal().is_nan()
+    if isinstance(value, float):
+        return not math.isnan(value)
+    return isinstance(value, (str, int, bool, datetime))
+
+
+def check_document(kind: str, doc: Mapping[str, Any], where: str) -> None:
+    """Refuse a document of collection ``kind`` that the store's readers would choke on."""
+    check_keys(doc, where)
+    if kind == "triples":
+        for field in ("s", "p"):
+            value = doc.get(field)
+            if not isinstance(value, str) or not value:
+                raise StoreError(f"{where}: {field!r} must be a non-empty string, got {_short(value)}")
+        if "o" not in doc or not _term(doc["o"]):
+            raise StoreError(f"{where}: 'o' must be a string, number, boolean or date, got {_short(doc.get('o'))}")
+        for field in ("p*", "o*"):
+            if field in doc and not (isinstance(doc[field], list) and all(_term(v) for v in doc[field])):
+                raise StoreError(f"{where}: {field!r} must be a list of terms, got {_short(doc[field])}")
+        if "graph" in doc and not isinstance(doc["graph"], str):
+            raise StoreError(f"{where}: 'graph' must be a string, got {_short(doc['graph'])}")
+        if "scope" in doc:
+            _check_scope(doc["scope"], where)
+    elif kind == "annotations":
+        for field in ("s", "p"):
+            if not isinstance(doc.get(field), str):
+                raise StoreError(f"{where}: {field!r} must be a string, got {_short(doc.get(field))}")
+
+
+def _check_scope(scope: Any, where: str) -> None:
+    if not isinstance(scope, Mapping) or not isinstance(scope.get("time", {}), Mapping):
+        raise StoreError(f"{where}: 'scope' must be {{time: {{since, until}}}}, got {_short(scope)}")
+    bounds = scope.get("time", {})
+    values = {}
+    for field in ("since", "until"):
+        if field in bounds:
+            number = _number(bounds[field])
+            if number is None:
+                raise StoreError(f"{where}: scope.time.{field} must be a number of seconds, got {_short(bounds[field])}")
+            values[field] = number
+    if "since" in values and "until" in values and values["since"] > values["until"]:
+        raise StoreError(f"{where}: scope.time.since {values['since']!r} is after until {values['until']!r}")
+
+
+def check_meta(meta: Mapping[str, Any], where: str) -> None:
+    """A registry entry (``meta.json``, ``create_neem(meta=...)``) a listing can show."""
+    check_keys(meta, where)
+    for field, types in _META_TYPES.items():
+        value = meta.get(field)
+        if value is not None and not isinstance(value, types):
+            raise StoreError(f"{where}: {field!r} must be a {types[0].__name__}, got {_short(value)}")
+    user = meta.get("created_by")
+    if isinstance(user, str) and not (user.strip() and user.isprintable() and len(user) <= 200):
+        raise StoreError(f"{where}: 'created_by' {user[:40]!r} must be 1-200 printable characters")
+    created = meta.get("created_at")
+    if isinstance(created, str):
+        try:
+            datetime.fromisoformat(created.replace("Z", "+00:00"))
+        except ValueError:
+            raise StoreError(f"{where}: 'created_at' {created[:40]!r} is not an ISO-8601 time") from None
+
+
+def _short(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 40 else text[:37] + "..."

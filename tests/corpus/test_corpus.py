@@ -1,0 +1,207 @@
+"""The bad-input corpus: every input is refused with one line, a non-zero exit, and no change.
+
+For each input in ``tests/corpus/<entry>/cases.tsv`` (and each one ``built.py`` makes) the
+command runs in-process against a copy of a small store holding two NEEMs, and must: not raise
+(no traceback), exit non-zero, print exactly one line on stderr containing the expected
+fragment, leak no password, and leave the store's bytes as they were.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shlex
+import shutil
+import sys
+from collections.abc import Iterator
+from dataclasses import dataclass
+from pathlib import Path
+
+import pytest
+
+from tests.corpus.built import BUILT, corrupt
+from tests.corpus.harness import run_cli, store_state
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parents[1]
+SECRETS = ("s3cret", "p@ss", "pa/ss", "pa:ss", "s3cr%zzet")
+
+#: How each entry's input reaches the program; ``{input}`` is the corpus file or folder.
+COMMANDS = {
+    "import": ["import", "{input}", "--store", "{store}"],
+    "settings": ["rank", "--store", "{store}", "--neem", "p000-tea-red-yogurt", "--settings", "{input}"],
+    "mapping": ["import", "{good}", "--store", "{store}", "--mapping", "{input}"],
+    "odb": ["import", "{good}", "--store", "{store}", "--odb", "{input}"],
+    "prolog": ["why-not", "{text}", "--store", "{store}", "--neem", "p000-tea-red-yogurt"],
+    "load": ["load", "{input}", "--store", "{store}"],
+    "cli": ["{args}"],
+}
+
+
+@dataclass(frozen=True)
+class Case:
+    entry: str
+    name: str
+    argv: tuple[str, ...]
+    expected: str
+    input: Path | None = None
+
+
+def corpus_cases() -> Iterator[Case]:
+    for entry, template in COMMANDS.items():
+        for line in (HERE / entry / "cases.tsv").read_text(encoding="utf-8").splitlines():
+            if line.startswith("#") or not line.strip():
+                continue
+            file, extra, expected = line.split("\t")
+            path = HERE / entry / file
+            argv: list[str] = []
+            for part in template:
+                if part == "{args}":
+                    argv += shlex.split(path.read_text(encoding="utf-8"))
+                elif part == "{text}":
+                    argv.append(path.read_text(encoding="utf-8").rstrip("\n"))
+                else:
+                    argv.append(part.replace("{input}", str(path)))
+            yield Case(entry, file, tuple(argv + shlex.split(extra)), expected, path)
+    for name, _builder in BUILT.items():
+        yield Case("built", name, (), "")
+
+
+CASES = list(corpus_cases())
+
+
+def test_the_corpus_is_large_enough():
+    by_entry: dict[str, int] = {}
+    for case in CASES:
+        by_entry[case.entry] = by_entry.get(case.entry, 0) + 1
+    assert sum(by_entry.values()) >= 500, by_entry
+    assert all(count >= 7 for count in by_entry.values()), by_entry
+
+
+@pytest.fixture(scope="session")
+def world(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
+    """A store with two NEEMs of 25 actions each, a valid chains file and a dump of one NEEM."""
+    root = tmp_path_factory.mktemp("corpus")
+    rows: list[str] = []
+    counts: dict[str, int] = {}
+    for line in (ROOT / "ontology" / "sample-chains.jsonl").read_text().splitlines():
+        user = json.loads(line)["user"]
+        counts[user] = counts.get(user, 0) + 1
+        if counts[user] <= 25 and len(counts) <= 2:
+            rows.append(line)
+    good = root / "good.jsonl"
+    good.write_text("\n".join(rows) + "\n")
+    store = root / "base.sqlite"
+    done = run_cli(["import", str(good), "--store", str(store)])
+    assert done.code == 0, done
+    dump = root / "dump"
+    done = run_cli(["export", "--store", str(store), "--neem", "p001-coffee-green-fruit", "--out", str(dump)])
+    assert done.code == 0, done
+    return {"store": store, "good": good, "dump": dump}
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _one_ontology():
+    """Build the default ontology once per session instead of once per command (a speed-up only:
+    the ontology every command builds from the shipped files is the same)."""
+    import oracle.ontology
+    import oracle.store.tbox
+
+    build, tbox_of = oracle.ontology.build_ontology, oracle.store.tbox.tbox_from_graph
+    built_default: list[object] = []
+    tboxes: dict[int, object] = {}
+
+    def cached_build(odb=None, mapping=None, soma=None, *rest, **kw):  # noqa: ANN001, ANN202
+        if odb is None and mapping is None and soma is None and not rest and not kw:
+            if not built_default:
+                built_default.append(build())
+            return built_default[0]
+        return build(odb, mapping, soma, *rest, **kw)
+
+    def cached_tbox(graph, *rest, **kw):  # noqa: ANN001, ANN202
+        if rest or kw:
+            return tbox_of(graph, *rest, **kw)
+        if id(graph) not in tboxes:
+            tboxes[id(graph)] = (graph, tbox_of(graph))
+        return tboxes[id(graph)][1]
+
+    patched = []
+    for module in list(sys.modules.values()):
+        for name, original, replacement in (("build_ontology", build, cached_build), ("tbox_from_graph", tbox_of, cached_tbox)):
+            if getattr(module, name, None) is original:
+                setattr(module, name, replacement)
+                patched.append((module, name, original))
+    yield
+    for module, name, original in patched:
+        setattr(module, name, original)
+
+
+@pytest.mark.parametrize("case", CASES, ids=[f"{c.entry}/{c.name}" for c in CASES])
+def test_bad_input_is_refused_in_one_line_and_changes_nothing(case: Case, world, tmp_path: Path, monkeypatch):
+    store = tmp_path / "store.sqlite"
+    shutil.copy(world["store"], store)
+    scratch = tmp_path / "scratch"
+    scratch.mkdir()
+    argv, expected = list(case.argv), case.expected
+    if case.entry == "built":
+        argv, expected = BUILT[case.name](scratch)
+    for token in [a for a in argv if a.startswith("corrupt:")]:
+        argv.remove(token)
+        corrupt(store, int(token.split(":")[1]))
+    while argv and argv[0].startswith("env:"):
+        name, _, value = argv.pop(0)[4:].partition("=")
+        monkeypatch.setenv(name, value)
+    places = {"{store}": str(store), "{good}": str(world["good"]), "{tmp}": str(scratch), "{dump}": str(world["dump"])}
+    for key, value in places.items():
+        argv = [a.replace(key, value) for a in argv]
+    # A refused load may have written and dropped a hidden staging NEEM: its pages differ, so
+    # for loads the store's content (every NEEM's registry entry and documents) is compared.
+    state = logical_state if case.entry == "load" else store_state
+    before = state(store)
+
+    outcome = run_cli(argv)
+
+    assert outcome.crash is None, f"traceback:\n{outcome.crash}"
+    assert "Traceback" not in outcome.stderr
+    assert outcome.code not in (0, -1), f"exit {outcome.code}; stdout {outcome.stdout[:300]!r}"
+    lines = outcome.stderr.strip().splitlines()
+    assert len(lines) == 1, f"expected one line on stderr, got {len(lines)}: {outcome.stderr[:600]!r}"
+    assert expected in lines[0], lines[0]
+    for secret in SECRETS:
+        assert secret not in outcome.stderr + outcome.stdout
+    assert state(store) == before, "the store changed"
+
+
+def logical_state(path: Path) -> str:
+    """A digest of what a reader sees: the NEEM listing, each entry and every document."""
+    import hashlib
+
+    import bson
+
+    from oracle.store import COLLECTION_KINDS, open_store
+
+    digest = hashlib.sha256()
+    with open_store(path, read_only=True) as store:
+        for info in store.neems():
+            digest.update(bson.encode({"id": info.id, "meta": dict(info.meta)}))
+            for kind in COLLECTION_KINDS:
+                for doc in store.read_documents(info.id, kind):
+                    digest.update(bson.encode(doc))
+    return digest.hexdigest()
+
+
+@pytest.mark.parametrize("seed", range(5))
+@pytest.mark.parametrize(
+    "command", [["export", "--out", "{tmp}/out"], ["neems"], ["why-not", "pick(banana)", "--neem", "p000-tea-red-yogurt"]]
+)
+def test_a_damaged_store_gives_readers_an_error_or_an_answer_never_a_traceback(seed, command, world, tmp_path):
+    # Readers do not check the whole file (that would cost them a full read); a damaged page
+    # they meet is a one-line error, a page they do not need does not stop them.
+    store = tmp_path / "store.sqlite"
+    shutil.copy(world["store"], store)
+    corrupt(store, seed)
+    argv = [a.replace("{tmp}", str(tmp_path)) for a in command] + ["--store", str(store)]
+    outcome = run_cli(argv)
+    assert outcome.crash is None, outcome.crash
+    if outcome.code != 0:
+        assert len(outcome.stderr.strip().splitlines()) == 1, outcome.stderr

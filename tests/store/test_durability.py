@@ -1,0 +1,204 @@
+"""Issue 16's promises: atomic replacement, readers that never wait, nothing leaked."""
+
+from __future__ import annotations
+
+import json
+import os
+import sqlite3
+import stat
+from pathlib import Path
+
+import mongomock_ng as mongomock
+import pytest
+
+from oracle.cli import main
+from oracle.errors import LoggingError, StoreError
+from oracle.neem.importing import import_chains
+from oracle.neem.lifecycle import wipe_temporary_neems
+from oracle.neem.writer import NeemLogger
+from oracle.store import COLLECTION_KINDS, open_store
+from oracle.store.dump import export_neem, load_dump
+from oracle.store.mongo import MongoStore
+from oracle.store.sqlite import SQLiteStore
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def rows(user: str, n: int, start_minute: int = 0, **extra: object) -> list[dict]:
+    return [{"user": user, "time": f"2025-03-03T{8 + (start_minute + i) // 60:02d}:{(start_minute + i) % 60:02d}:00",
+             "action": "open(fridge)" if i % 2 == 0 else "close(fridge)", **extra} for i in range(n)]  # fmt: skip
+
+
+def write(path: Path, lines: list[dict]) -> Path:
+    path.write_text("".join(json.dumps(line) + "\n" for line in lines))
+    return path
+
+
+@pytest.fixture(params=["sqlite", "mongomock"])
+def store(request, tmp_path):
+    if request.param == "sqlite":
+        s = SQLiteStore(tmp_path / "s.sqlite")
+    else:
+        s = MongoStore(mongomock.MongoClient(), "roslog")
+    yield s
+    s.close()
+
+
+@pytest.fixture(scope="module")
+def onto():
+    from oracle.ontology import build_ontology
+
+    return build_ontology()
+
+
+def content(store, neem_id: str) -> dict[str, int]:
+    return {kind: store.count(neem_id, kind) for kind in COLLECTION_KINDS}
+
+
+def test_the_durability_promise_is_stated():
+    text = " ".join((ROOT / "docs" / "store.md").read_text().split())
+    for claim in (
+        "A NEEM becomes visible (in `neems`, to readers) only together with its TBox",
+        "until then, and after any error or kill, the old NEEM is untouched",
+        "a killed import loses at most the rows since the last commit of the user in flight",
+        "Bad input is refused before anything is written, and a store never holds a row that a reader cannot read",
+    ):
+        assert claim in text
+
+
+def test_import_replace_keeps_the_old_neem_until_the_new_one_is_complete(store, onto, tmp_path, monkeypatch):
+    import_chains(store, onto, write(tmp_path / "a.jsonl", rows("alice", 6)), commit_every=2)
+    before = content(store, "alice")
+    calls = {"n": 0}
+    original = NeemLogger.action
+
+    def failing(self, *args, **kwargs):  # noqa: ANN001, ANN202 - a disk that fills up mid-import
+        calls["n"] += 1
+        if calls["n"] == 4:
+            raise LoggingError("disk full")
+        return original(self, *args, **kwargs)
+
+    monkeypatch.setattr(NeemLogger, "action", failing)
+    with pytest.raises(LoggingError, match="disk full"):
+        import_chains(store, onto, write(tmp_path / "b.jsonl", rows("alice", 9)), replace=True, commit_every=2)
+    assert [info.id for info in store.neems()] == ["alice"]
+    assert content(store, "alice") == before
+    monkeypatch.setattr(NeemLogger, "action", original)
+    import_chains(store, onto, write(tmp_path / "b.jsonl", rows("alice", 9)), replace=True, commit_every=2)
+    assert [info.id for info in store.neems()] == ["alice"]
+    assert content(store, "alice")["triples"] > before["triples"]
+
+
+def test_load_replace_with_a_cut_dump_keeps_the_old_neem(store, onto, tmp_path):
+    import_chains(store, onto, write(tmp_path / "a.jsonl", rows("alice", 6)))
+    export_neem(store, "alice", tmp_path / "dump")
+    before = content(store, "alice")
+    bson_file = tmp_path / "dump" / "triples" / "roslog" / "triples.bson"
+    data = bson_file.read_bytes()
+    bson_file.write_bytes(data[: len(data) // 2])
+    with pytest.raises(StoreError, match="truncated or corrupt"):
+        load_dump(store, tmp_path / "dump", replace=True)
+    assert content(store, "alice") == before
+    # Cut exactly at a document boundary: only meta.json's count tells.
+    first = int.from_bytes(data[:4], "little")
+    bson_file.write_bytes(data[:first])
+    with pytest.raises(StoreError, match="counts"):
+        load_dump(store, tmp_path / "dump", replace=True)
+    assert content(store, "alice") == before
+    assert [info.id for info in store.neems()] == ["alice"]
+
+
+def test_duplicate_ids_are_refused_whatever_the_commit_interval(store, onto):
+    logger = NeemLogger.create(store, onto, user="alice", commit_every=100)
+    logger.action("open(fridge)", 1_740_988_800, action_id="x1")
+    with pytest.raises(LoggingError, match="duplicate action id 'x1'"):
+        logger.action("close(fridge)", 1_740_988_860, action_id="x1")
+
+
+def test_a_user_named_robot_is_not_the_robot(store, onto):
+    logger = NeemLogger.create(store, onto, user="robot")
+    done = logger.action("open(fridge)", 1_740_988_800, performed_by="user")
+    logger.close()
+    performers = {doc["o"] for doc in store.find(logger.neem_id, s=done.iri, exact=True) if doc["p"].endswith("isPerformedBy")}
+    assert performers and not any(iri.endswith("#Agent_robot") for iri in performers)
+
+
+def test_a_session_import_in_progress_is_not_wiped_by_another_session(store, onto):
+    logger = NeemLogger.create(store, onto, user="alice", temporary=True, hidden=True)
+    logger.action("open(fridge)", 1_740_988_800)
+    assert wipe_temporary_neems(store) == []  # the other session's start
+    logger.close()
+    assert [info.id for info in store.neems()] == ["alice"]
+
+
+def test_mongo_filter_values_are_literals(onto):
+    store = MongoStore(mongomock.MongoClient(), "roslog")
+    logger = NeemLogger.create(store, onto, user="alice")
+    logger.action("open(fridge)", 1_740_988_800)
+    logger.close()
+    for bad in ({"$gt": ""}, {"$ne": None}, ["a", "b"]):
+        with pytest.raises(StoreError, match="query constant"):
+            list(store.find("alice", s=bad))
+
+
+def test_readers_do_not_wait_for_a_writer(tmp_path, onto, capsys):
+    path = tmp_path / "s.sqlite"
+    with SQLiteStore(path) as s:
+        import_chains(s, onto, write(tmp_path / "a.jsonl", rows("alice", 3)))
+    writer = sqlite3.connect(path, isolation_level=None)
+    writer.execute("BEGIN IMMEDIATE")  # a long load holds the write lock
+    writer.execute("INSERT INTO store_info VALUES ('busy', 'yes')")
+    try:
+        assert main(["neems", "--store", str(path), "--json"]) == 0
+        assert [n["id"] for n in json.loads(capsys.readouterr().out)] == ["alice"]
+    finally:
+        writer.execute("ROLLBACK")
+        writer.close()
+
+
+def test_a_store_readable_by_others_is_made_private_when_opened_for_writing(tmp_path, onto):
+    path = tmp_path / "s.sqlite"
+    SQLiteStore(path).close()
+    os.chmod(path, 0o644)
+    with open_store(path, read_only=True):
+        pass
+    assert stat.S_IMODE(path.stat().st_mode) == 0o644  # reading changes nothing
+    SQLiteStore(path).close()
+    assert stat.S_IMODE(path.stat().st_mode) == 0o600
+
+
+def test_export_is_private_and_never_follows_a_symlink(tmp_path, onto):
+    store = SQLiteStore(tmp_path / "s.sqlite")
+    import_chains(store, onto, write(tmp_path / "a.jsonl", rows("alice", 2)))
+    out = tmp_path / "out"
+    (out / "triples" / "roslog").mkdir(parents=True)
+    old = out / "triples" / "roslog" / "triples.metadata.json"
+    old.write_text("{}")
+    os.chmod(old, 0o644)
+    victim = tmp_path / "victim"
+    victim.write_text("keep")
+    os.symlink(victim, out / "triples" / "roslog" / "triples.bson")
+    with pytest.raises(StoreError, match="symbolic link"):
+        export_neem(store, "alice", out)
+    assert victim.read_text() == "keep"
+    os.remove(out / "triples" / "roslog" / "triples.bson")
+    previous = os.umask(0)
+    try:
+        export_neem(store, "alice", out / "deeper" / "dump")
+        export_neem(store, "alice", out)
+    finally:
+        os.umask(previous)
+    for path in [out, *out.rglob("*")]:
+        assert stat.S_IMODE(path.stat().st_mode) == (0o700 if path.is_dir() else 0o600), path
+
+
+@pytest.mark.parametrize("uri", ["mongodb://alice:s3cret@localhost:99999/db", "mongodb://alice:p@ss@localhost/db",
+                                 "mongodb://alice:pa/ss@localhost/db", "mongodb://alice:s3cret@ho st/db"])
+def test_no_message_shows_a_password(uri, capsys, monkeypatch):
+    assert main(["neems", "--store", uri]) == 1
+    assert main(["import", str(ROOT / "ontology" / "sample-chains.jsonl"), "--store", uri]) == 1
+    monkeypatch.setenv("NEEM_MONGO_URI", uri)
+    assert main(["neems", "--store", "mongodb"]) == 1
+    err = capsys.readouterr().err
+    password = uri.split("://", 1)[1].rsplit("@", 1)[0].split(":", 1)[1]
+    assert password not in err, err
