@@ -90,7 +90,8 @@ def test_evaluate_command_writes_json_report_and_plots(tmp_path, capsys):
     assert code == 0
     summary = json.loads((out / "s.json").read_text())
     reference = next(iter(summary["methods"]))
-    assert set(BASELINES) <= set(summary["methods"])
+    assert reference == summary["method"] == "routine"
+    assert set(BASELINES) | {"routine", "oracle"} <= set(summary["methods"])
     assert set(summary["chance"]) == {"top1", "top3", "top5"} and summary["n_predictions"] == 12
     assert summary["methods"]["oracle"]["per_user"]["cy"]["top5"] == 1.0
     # every other method is compared with the first one, on the same predictions
@@ -114,3 +115,18 @@ def test_evaluate_rejects_bad_settings(tmp_path, capsys):
     write_chain(path, "cy", ["pick(apple)"])
     assert main(["evaluate", str(path), "--settings", "Z"]) == 1
     assert "not a YAML file" in capsys.readouterr().err
+
+
+def test_evaluate_method_thesis_scores_the_thesis_oracle_alone_with_its_figures(tmp_path, kitchen):
+    path = tmp_path / "c.jsonl"
+    for day in range(3):
+        write_chain(path, "cy", ["pick(apple)", "eat(apple)", "pick(red_mug)", "drink_from(red_mug)", "pick(banana)"],
+                    start=datetime(2026, 3, 2 + day, 19, 0))
+    assert main(["evaluate", str(path), "--method", "thesis", "--json", str(tmp_path / "t.json")]) == 0
+    thesis = json.loads((tmp_path / "t.json").read_text())
+    assert list(thesis["methods"]) == ["oracle"] and thesis["method"] == "oracle"
+    direct = summarize(replay(kitchen, load_users(path), [OracleMethod(kitchen, Hyperparameters())]))
+    for k in ("top1", "top3", "top5"):
+        assert thesis["methods"]["oracle"][k] == direct["methods"]["oracle"][k]
+    assert main(["evaluate", str(path), "--json", str(tmp_path / "r.json")]) == 0
+    assert list(json.loads((tmp_path / "r.json").read_text())["methods"]) == ["routine"]

@@ -9,18 +9,19 @@ import sys
 import time
 from pathlib import Path
 
-from oracle.algorithm.params import save_settings
-from oracle.commands.common import ONTOLOGY_OPTIONS, SETTINGS, add_options, ontology_from, settings_from
+from oracle.commands.common import (
+    METHOD, ONTOLOGY_OPTIONS, SETTINGS, add_options, method_from, ontology_from, settings_from,
+)
 from oracle.errors import NeemOracleError
-from oracle.evaluation.replay import check_users, load_users, make_methods, replay, stderr_progress, summarize
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     evaluate = subparsers.add_parser("evaluate", help="replay chains and score the oracle against baselines")
     evaluate.add_argument("chains", type=Path, help="chains JSONL file or a folder of them")
-    add_options(evaluate, *ONTOLOGY_OPTIONS, SETTINGS)
+    add_options(evaluate, *ONTOLOGY_OPTIONS, METHOD, SETTINGS)
     evaluate.add_argument("--baselines", action="store_true",
-                          help="also run every history-only baseline (docs/evaluation.md), compared pairwise")
+                          help="also run the thesis oracle (unless it is --method) and every history-only "
+                               "baseline (docs/evaluation.md), compared pairwise with --method")
     evaluate.add_argument("--ablations", action="store_true", help="also replay the thesis Fig. 5.5 settings A-N")
     evaluate.add_argument("--json", type=Path, metavar="OUT", help="write the summary JSON here")
     evaluate.add_argument("--report", type=Path, metavar="FILE.md", help="write a markdown report here")
@@ -40,13 +41,18 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_evaluate(args: argparse.Namespace) -> int:
+    from oracle.evaluation.replay import check_users, load_users, make_methods, replay, stderr_progress, summarize
+
+    method = method_from(args)
     ontology = ontology_from(args)
     settings = settings_from(args.settings)
     users = load_users(args.chains)
     check_users(ontology, users, str(args.chains))
     started = time.perf_counter()
-    result = replay(ontology, users, make_methods(ontology, settings, args.baselines), args.seed, stderr_progress)
+    methods = make_methods(ontology, settings, args.baselines, method)
+    result = replay(ontology, users, methods, args.seed, stderr_progress)
     summary = summarize(result)
+    summary["method"] = methods[0].name
     names = result.methods()
     if len(names) > 1:
         from oracle.evaluation.statistics import cold_start_summary, comparison_summary
@@ -55,7 +61,9 @@ def run_evaluate(args: argparse.Namespace) -> int:
         summary["cold_start"] = cold_start_summary(result, args.seed)
     summary["settings"] = settings.to_dict()
     summary["replay_seconds"] = time.perf_counter() - started
-    command = "python -m oracle " + " ".join(shlex.quote(a) for a in sys.argv[1:]) if sys.argv[1:2] == ["evaluate"] else "python -m oracle evaluate"
+    command = "python -m oracle evaluate"
+    if sys.argv[1:2] == ["evaluate"]:
+        command = "python -m oracle " + " ".join(shlex.quote(a) for a in sys.argv[1:])
     if args.ablations:
         from oracle.evaluation.ablations import run_ablations
 
@@ -72,7 +80,7 @@ def run_evaluate(args: argparse.Namespace) -> int:
         from oracle.evaluation import plots
 
         args.plots.mkdir(parents=True, exist_ok=True)
-        made = [plots.box_plots(summary, args.plots), plots.learning_curves(result, args.plots)]
+        made = [plots.box_plots(summary, args.plots), plots.learning_curves(result, args.plots, methods[0].name)]
         if "comparisons" in summary:
             made.append(plots.differences(summary, args.plots))
         if args.ablations:
@@ -111,6 +119,8 @@ def _write(path: Path, text: str) -> None:
 
 
 def run_tune(args: argparse.Namespace) -> int:
+    from oracle.algorithm.params import save_settings
+    from oracle.evaluation.replay import check_users, load_users
     from oracle.evaluation.tuning import tune
 
     ontology = ontology_from(args)

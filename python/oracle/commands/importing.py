@@ -7,7 +7,6 @@ from pathlib import Path
 
 from oracle.commands.common import NUMBERS, ONTOLOGY_OPTIONS, STORE, add_options, ontology_from
 from oracle.errors import NeemOracleError
-from oracle.store import open_store
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -24,6 +23,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from oracle.neem.importing import import_chains
+    from oracle.store import open_store
 
     onto = ontology_from(args)
     with open_store(args.store, number_format=args.numbers) as store:

@@ -5,10 +5,13 @@ from __future__ import annotations
 import argparse
 import json
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from oracle.errors import OntologyError
-from oracle.ontology import OdbOntology, build_with_report, load_ontology, owl_distance, write_ontology
 from oracle.commands.common import JSON, MAPPING, ODB, ONTOLOGY, SOMA, add_options
+
+if TYPE_CHECKING:  # the ontology package (rdflib, numpy) is imported where a command runs
+    from oracle.ontology import OdbOntology
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -30,6 +33,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_build(args: argparse.Namespace) -> int:
+    from oracle.ontology import build_with_report, write_ontology
+
     ontology, report = build_with_report(args.odb, args.mapping, args.soma)
     out = write_ontology(ontology, args.out)
     summary = {
@@ -78,6 +83,8 @@ def _resolve(ontology: OdbOntology, name: str) -> str:
 
 
 def run_distance(args: argparse.Namespace) -> int:
+    from oracle.ontology import build_with_report, load_ontology, owl_distance
+
     if args.ontology is not None:
         ontology = load_ontology(args.ontology)
     else:

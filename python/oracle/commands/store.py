@@ -7,10 +7,6 @@ import json
 from pathlib import Path
 
 from oracle.commands.common import JSON, NUMBERS, STORE, add_options
-from oracle.neem.query import summarize_neem
-from oracle.store import open_store
-from oracle.timeline import format_clock
-from oracle.store.dump import export_all, export_neem, load_dump
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -39,6 +35,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_export(args: argparse.Namespace) -> int:
+    from oracle.store import open_store
+    from oracle.store.dump import export_all, export_neem
+
     with open_store(args.store, number_format=args.numbers, create=False) as store:
         if args.neem is not None:
             counts = export_neem(store, args.neem, args.out)
@@ -50,6 +49,9 @@ def run_export(args: argparse.Namespace) -> int:
 
 
 def run_load(args: argparse.Namespace) -> int:
+    from oracle.store import open_store
+    from oracle.store.dump import load_dump
+
     with open_store(args.store, number_format=args.numbers) as store:
         for neem_id in load_dump(store, args.dir, neem_id=args.neem, replace=args.replace):
             print(neem_id)
@@ -57,10 +59,15 @@ def run_load(args: argparse.Namespace) -> int:
 
 
 def _iso(seconds: float | None) -> str | None:
+    from oracle.timeline import format_clock
+
     return None if seconds is None else format_clock(seconds)
 
 
 def run_neems(args: argparse.Namespace) -> int:
+    from oracle.neem.query import summarize_neem
+    from oracle.store import open_store
+
     with open_store(args.store, number_format=args.numbers, create=False) as store:
         rows = [summarize_neem(store, info.id) for info in store.neems()]
     if args.json:
@@ -78,6 +85,8 @@ def run_neems(args: argparse.Namespace) -> int:
 
 
 def run_persist(args: argparse.Namespace) -> int:
+    from oracle.store import open_store
+
     with open_store(args.store, number_format=args.numbers, create=False) as store:
         from oracle.neem.lifecycle import persist
 

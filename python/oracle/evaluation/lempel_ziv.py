@@ -20,7 +20,7 @@ class _Node:
     count: int = 0
     # how often a symbol followed it: LZ78 transitions out of the node, Active LeZi within the window
     followed: int = 0
-    children: dict[object, "_Node"] = field(default_factory=dict)
+    children: dict[object, _Node] = field(default_factory=dict)
 
 
 class LZ78:

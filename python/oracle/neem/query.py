@@ -1,18 +1,23 @@
 """Reading a NEEM back for listings and tests: executed actions in time order, one-line summaries.
 
-The oracle itself reads its history through Prolog (``odb_model:situation_history``); this module
+The oracle itself reads its history through Prolog (``odb_history:situation_history``); this module
 is the small Python-side reader the CLI's listings and the logger's own resume need.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 from oracle.neem import terms as T
-from oracle.ontology.vocabulary import Vocabulary
-from oracle.store import RDF_TYPE, Store, TriplePattern, Var
+from oracle.errors import StoreError
+from oracle.store import RDF_TYPE, NeemInfo, Store, Triple, TriplePattern, Var
+from oracle.store.base import SUMMARY_KEY
 from oracle.timeline import TIME_OF_DAY_NAMES
+
+if TYPE_CHECKING:  # the ontology package imports rdflib and numpy, which a listing never needs
+    from oracle.ontology.vocabulary import Vocabulary
 
 
 @dataclass(frozen=True)
@@ -66,9 +71,27 @@ class NeemSummary:
     temporary: bool
 
 
-def summarize_neem(store: Store, neem_id: str) -> NeemSummary:
-    """User, number of executed actions and time span of a NEEM (ours or a loaded one)."""
-    info = store.neem(neem_id)
+def summarize_neem(store: Store, neem_id: str, info: NeemInfo | None = None) -> NeemSummary:
+    """User, number of executed actions and time span of a NEEM (ours or a loaded one).
+
+    The registry keeps them under SUMMARY_KEY with the store's write mark (``Store.write_mark``)
+    they were taken at; the logger moves them on as it commits, any other write (a load, a
+    bare insert) moves the mark, and the next listing reads the triples once and keeps them."""
+    info = store.neem(neem_id) if info is None else info
+    mark = store.write_mark(neem_id)
+    kept = info.meta.get(SUMMARY_KEY)
+    if isinstance(kept, dict) and kept.get("mark") == mark:
+        return NeemSummary(neem_id, info.user, int(kept["actions"]), kept.get("begin"), kept.get("end"), info.temporary)
+    actions, begin, end = count_actions(store, neem_id)
+    try:
+        store.update_meta(neem_id, **{SUMMARY_KEY: {"actions": actions, "begin": begin, "end": end, "mark": mark}})
+    except StoreError:
+        pass  # a store opened read-only lists what it reads, it just cannot keep the summary
+    return NeemSummary(neem_id, info.user, actions, begin, end, info.temporary)
+
+
+def count_actions(store: Store, neem_id: str) -> tuple[int, float | None, float | None]:
+    """Executed actions, earliest begin and latest end of a NEEM, read from its triples."""
     actions = {
         doc["s"]
         for doc in store.find(neem_id, p=RDF_TYPE, o=T.ACTION)
@@ -77,14 +100,28 @@ def summarize_neem(store: Store, neem_id: str) -> NeemSummary:
     begins = [row["B"] for row in store.match(neem_id, [TriplePattern(Var("I"), T.BEGIN, Var("B"))])]
     ends = [row["E"] for row in store.match(neem_id, [TriplePattern(Var("I"), T.END, Var("E"))])]
     numbers = lambda values: [v for v in values if isinstance(v, (int, float))]  # noqa: E731
-    return NeemSummary(
-        id=neem_id,
-        user=info.user,
-        actions=len(actions),
-        begin=min(numbers(begins), default=None),
-        end=max(numbers(ends) or numbers(begins), default=None),
-        temporary=info.temporary,
+    return (
+        len(actions),
+        min(numbers(begins), default=None),
+        max(numbers(ends) or numbers(begins), default=None),
     )
+
+
+def summary_after(summary: dict[str, Any], triples: Iterable[Triple]) -> dict[str, Any]:
+    """A summary moved on by triples written by the logger (which types executed actions
+    exactly ``dul:Action`` and mental ones ``soma:MentalAction``)."""
+    actions, begin, end = summary["actions"], summary["begin"], summary["end"]
+    for triple in triples:
+        p = triple.p
+        if p == RDF_TYPE:
+            if triple.o == T.ACTION:
+                actions += 1
+        elif p == T.BEGIN and isinstance(triple.o, (int, float)):
+            begin = triple.o if begin is None else min(begin, triple.o)
+            end = triple.o if end is None else max(end, triple.o)
+        elif p == T.END and isinstance(triple.o, (int, float)):
+            end = triple.o if end is None else max(end, triple.o)
+    return {"actions": actions, "begin": begin, "end": end}
 
 
 def recorded_part_of_day(store: Store, neem_id: str, vocab: Vocabulary, begin: float) -> str | None:

@@ -1,29 +1,30 @@
-"""The SOMA/DUL terms a NEEM is written and read back with, as strings (store values are strings)."""
+"""The SOMA/DUL terms a NEEM is written and read back with, as strings (store values are
+strings; built from the namespace IRIs, so reading a NEEM needs no rdflib)."""
 
 from __future__ import annotations
 
-from oracle.namespaces import DUL, OWL, SOMA
+from oracle.namespaces import DUL_IRI as DUL, OWL_IRI as OWL, SOMA_IRI as SOMA
 
-NAMED_INDIVIDUAL = str(OWL.NamedIndividual)
-ACTION = str(DUL.Action)
-MENTAL_ACTION = str(SOMA.MentalAction)
-EXECUTES = str(DUL.executesTask)
-PARTICIPANT = str(DUL.hasParticipant)
-PERFORMED_BY = str(SOMA.isPerformedBy)
-HAS_INTERVAL = str(DUL.hasTimeInterval)
-TIME_INTERVAL = str(DUL.TimeInterval)
-BEGIN = str(SOMA.hasIntervalBegin)
-END = str(SOMA.hasIntervalEnd)
-IS_TASK_OF = str(DUL.isTaskOf)
-CLASSIFIES = str(DUL.classifies)
-PLAN = str(SOMA.ActionExecutionPlan)
-PLAN_FOR = str(SOMA.isPlanFor)
-IMAGINING = str(SOMA.Imagining)
-REASONING = str(SOMA.Reasoning)
-PREFERENCE_ORDER = str(SOMA.PreferenceOrder)
-ORDER = str(SOMA.Order)
-ORDERS = str(SOMA.orders)
-ORDERED_ELEMENT = str(SOMA.OrderedElement)
-ENCAPSULATES = str(SOMA.encapsulates)
-ROBOT_CLASS = str(DUL.PhysicalAgent)
-PERSON_CLASS = str(DUL.NaturalPerson)
+NAMED_INDIVIDUAL = OWL + "NamedIndividual"
+ACTION = DUL + "Action"
+MENTAL_ACTION = SOMA + "MentalAction"
+EXECUTES = DUL + "executesTask"
+PARTICIPANT = DUL + "hasParticipant"
+PERFORMED_BY = SOMA + "isPerformedBy"
+HAS_INTERVAL = DUL + "hasTimeInterval"
+TIME_INTERVAL = DUL + "TimeInterval"
+BEGIN = SOMA + "hasIntervalBegin"
+END = SOMA + "hasIntervalEnd"
+IS_TASK_OF = DUL + "isTaskOf"
+CLASSIFIES = DUL + "classifies"
+PLAN = SOMA + "ActionExecutionPlan"
+PLAN_FOR = SOMA + "isPlanFor"
+IMAGINING = SOMA + "Imagining"
+REASONING = SOMA + "Reasoning"
+PREFERENCE_ORDER = SOMA + "PreferenceOrder"
+ORDER = SOMA + "Order"
+ORDERS = SOMA + "orders"
+ORDERED_ELEMENT = SOMA + "OrderedElement"
+ENCAPSULATES = SOMA + "encapsulates"
+ROBOT_CLASS = DUL + "PhysicalAgent"
+PERSON_CLASS = DUL + "NaturalPerson"

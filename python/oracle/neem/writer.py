@@ -21,11 +21,13 @@ from oracle.chains import TaskCall, parse_call
 from oracle.errors import ChainSyntaxError, LoggingError, OntologyError, StoreError
 from oracle.neem import terms as T
 from oracle.neem.lifecycle import wipe_temporary_neems
+from oracle.neem.query import summarize_neem, summary_after
 from oracle.ontology.model import OdbOntology
+from oracle.ontology.provenance import META_KEY as ONTOLOGY_KEY, check_logged_with, record_of
 from oracle.store import RDF_TYPE, Store, Triple, TriplePattern, Var
+from oracle.store.base import SUMMARY_KEY
 from oracle.store.tbox import TBox, load_tbox, tbox_from_graph
 from oracle.timeline import IDLE_THRESHOLD_S, Instant, Moment, TimeValueError, is_idle_gap
-from oracle.ontology.provenance import META_KEY as ONTOLOGY_KEY, check_logged_with, record_of
 
 _SLUG = re.compile(r"[^A-Za-z0-9_\-]+")
 #: NEEM ids are collection prefixes: no underscores (see store.base.check_neem_id).
@@ -110,6 +112,9 @@ class NeemLogger:
         #: Latest begin and latest end of the executed actions: actions may overlap, as events
         #: do in KnowRob (two sensors firing at once), but none may start before the one before.
         self._last_begin, self._last_end = self._resume_clock()
+        #: What ``neems`` lists, as committed; moved on with every commit (oracle.neem.query).
+        known = summarize_neem(store, neem_id, info)
+        self._summary = {"actions": known.actions, "begin": known.begin, "end": known.end}
 
     # -- creation ---------------------------------------------------------------------------
     @classmethod
@@ -435,7 +440,12 @@ class NeemLogger:
         """Commit what is buffered as one transaction; return how many calls are committed."""
         if self._buffer:
             try:
-                self.store.insert(self.neem_id, self._buffer)
+                summary = summary_after(self._summary, self._buffer)
+                with self.store.transaction():
+                    self.store.insert(self.neem_id, self._buffer)
+                    mark = self.store.write_mark(self.neem_id)
+                    self.store.update_meta(self.neem_id, **{SUMMARY_KEY: {**summary, "mark": mark}})
+                self._summary = summary
             except StoreError as error:
                 # The in-memory view may now name individuals that were never stored.
                 self._known.clear()

@@ -19,7 +19,7 @@ from bson import json_util
 from bson.codec_options import DEFAULT_CODEC_OPTIONS, DatetimeConversion
 
 from oracle.errors import StoreError
-from oracle.store.base import COLLECTION_KINDS, Store, check_neem_id
+from oracle.store.base import COLLECTION_KINDS, SUMMARY_KEY, Store, check_neem_id
 from oracle.store.mongo import DEFAULT_DB, INDEXES
 
 META_FILE = "meta.json"
@@ -84,7 +84,8 @@ def write_dump(
 def export_neem(store: Store, neem_id: str, out: Path | str, *, db_name: str = DEFAULT_DB) -> dict[str, int]:
     """Write one NEEM as a KnowRob dump folder."""
     info = store.neem(neem_id)
-    meta = {k: v for k, v in info.meta.items() if k != "temporary"}
+    # The kept summary belongs to this store's write marks, not to the dump.
+    meta = {k: v for k, v in info.meta.items() if k not in ("temporary", SUMMARY_KEY)}
     meta["id"] = neem_id
     docs = {kind: store.read_documents(neem_id, kind) for kind in COLLECTION_KINDS}
     return write_dump(out, docs, meta, db_name)
@@ -168,6 +169,7 @@ def load_dump(store: Store, path: Path | str, *, neem_id: str | None = None, rep
         meta = _read_meta(folder)
         target = neem_id or prefix or meta.pop("id", None) or _SAFE.sub("-", folder.resolve().name).strip("-")
         meta.pop("id", None)
+        meta.pop(SUMMARY_KEY, None)
         check_neem_id(target)
         if store.has_neem(target):
             if not replace:
