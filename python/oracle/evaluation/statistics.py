@@ -26,7 +26,7 @@ MIN_USERS = 10
 BLOCK = 50
 RESAMPLES = 10_000
 LEVEL = 0.95
-#: Cold start: the first this many predictions of every user (issue 10's target).
+#: Cold start: the first this many predictions of every user, where a method has the least history.
 COLD_START = 30
 
 
