@@ -4,11 +4,12 @@ VENV ?= .venv
 PY := $(VENV)/bin/python
 PLT := $(sort $(shell find prolog -name '*.plt'))
 
-.PHONY: setup test test-python test-prolog bench demo up down test-mongo clean help
+.PHONY: setup test lint test-python test-prolog bench demo up down test-mongo clean help
 
 help:
 	@echo "make setup      install python3-venv and SWI-Prolog (Debian) if missing, create $(VENV), install the package"
-	@echo "make test       plunit suites, then pytest"
+	@echo "make test       lint, plunit suites, then pytest"
+	@echo "make lint       ruff and mypy (config in pyproject.toml)"
 	@echo "make bench      benchmarks (printed figures)"
 	@echo "make demo       the main job on the embedded default store"
 	@echo "make up/down    docker compose dev stack with MongoDB (needs a Docker engine)"
@@ -27,7 +28,11 @@ setup:
 	$(PY) -m pip install -q -e '.[dev]'
 	@$(PY) -c "import oracle, pyswip, rdflib, owlready2, numpy, yaml, pymongo; print('neem-oracle', oracle.__version__, 'ready')"
 
-test: test-prolog test-python
+test: lint test-prolog test-python
+
+lint:
+	$(VENV)/bin/ruff check python tests
+	$(VENV)/bin/mypy
 
 test-prolog:
 	@set -e; for t in $(PLT); do \

@@ -9,6 +9,8 @@
       store_match/2,            % +Patterns, +Scope
       store_match/3,            % +Patterns, +Scope, +Options
       store_insert/1,           % +Triples
+      store_insert/2,           % +Triples, +Merge
+      store_retract/1,          % +Patterns
       store_taxonomic/1,        % ?Property
       store_scope_now/1,        % -Scope
       store_python_request/1,   % -Request
@@ -39,6 +41,7 @@ A question scope is `scope(Since, Until)`: a fact is visible when its own scope 
 :- use_module(library(error)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
+:- use_module(library(pairs)).
 
 :- dynamic backend_/1.
 :- dynamic mem_triple/5.        % S, P, O, Since, Until
@@ -107,16 +110,60 @@ store_reset :-
     store_use_memory.
 
 %!  store_insert(+Triples) is det.
+%!  store_insert(+Triples, +Merge) is det.
 %   Write a list of `triple(S,P,O,Since,Until)` into the current backend (kb_project/1).
+%   Merge (memory backend; the Python stores only append) says what happens to a stored
+%   triple with the same S, P, O whose scope overlaps the new one: `union` (the default,
+%   KnowRob's kb_project) replaces both by one triple over the union of their scopes;
+%   `intersect` (KnowRob's `until`/`since` projection) narrows the stored triple to the
+%   intersection instead of adding the new one.
 store_insert(Triples) :-
+    store_insert(Triples, union).
+
+store_insert(Triples, Merge) :-
     must_be(list, Triples),
+    must_be(oneof([union, intersect]), Merge),
     maplist(check_insert, Triples),
     (   backend_(python(Neem))
     ->  maplist(insert_row, Triples, Rows),
         neem_store:py_insert([Neem|Rows], Reply),
         reply_rows(Reply, _)
-    ;   forall(member(triple(S,P,O,Since,Until), Triples),
-               assertz(mem_triple(S, P, O, Since, Until)))
+    ;   forall(member(T, Triples), mem_insert(Merge, T))
+    ).
+
+mem_insert(Merge, triple(S, P, O, Since, Until)) :-
+    findall(S1-U1, ( mem_triple(S, P, O, S1, U1), S1 =< Until, U1 >= Since ), Overlaps),
+    (   Overlaps == []
+    ->  assertz(mem_triple(S, P, O, Since, Until))
+    ;   Merge == union
+    ->  retractall_overlapping(S, P, O, Since, Until),
+        pairs_keys_values(Overlaps, Ss, Us),
+        foldl(num_min, Ss, Since, Since1), foldl(num_max, Us, Until, Until1),
+        assertz(mem_triple(S, P, O, Since1, Until1))
+    ;   retractall_overlapping(S, P, O, Since, Until),
+        forall(member(S1-U1, Overlaps),
+               ( num_max(S1, Since, Since1), num_min(U1, Until, Until1),
+                 assertz(mem_triple(S, P, O, Since1, Until1)) ))
+    ).
+
+%   min/max by comparison: `is max(inf, inf)` raises float_overflow in SWI-Prolog.
+num_min(A, B, M) :- ( A =< B -> M = A ; M = B ).
+num_max(A, B, M) :- ( A >= B -> M = A ; M = B ).
+
+retractall_overlapping(S, P, O, Since, Until) :-
+    forall(( clause(mem_triple(S, P, O, S1, U1), true, Ref), S1 =< Until, U1 >= Since ),
+           erase(Ref)).
+
+%!  store_retract(+Patterns) is det.
+%   Delete every stored triple matching one of the `t(S,P,O)` patterns (kb_unproject/1).
+%   Only the memory backend deletes: the Python stores offer no delete, so there it is an
+%   error.
+store_retract(Patterns) :-
+    must_be(list, Patterns),
+    maplist(check_pattern, Patterns),
+    (   backend_(python(_))
+    ->  throw(error(neem_store_error('kb_unproject: the NEEM stores are append-only (no delete)'), _))
+    ;   forall(member(t(S, P, O), Patterns), retractall(mem_triple(S, P, O, _, _)))
     ).
 
 check_insert(triple(S,P,O,Since,Until)) :-

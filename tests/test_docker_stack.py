@@ -203,7 +203,7 @@ def _ignored(path: str, patterns: list[str]) -> bool:
 
 def test_legacy_builder_keeps_venv_git_and_env_out():
     assert not (DOCKER / "Dockerfile.dockerignore").exists(), "BuildKit would prefer it; keep one file"
-    patterns = [l.strip() for l in DOCKERIGNORE.read_text().splitlines() if l.strip() and not l.startswith("#")]
+    patterns = [line.strip() for line in DOCKERIGNORE.read_text().splitlines() if line.strip() and not line.startswith("#")]
     for secret in (".venv/bin/python", ".git/HEAD", "docker/.env", "docker/.env.example", "build/lib/x.py"):
         assert _ignored(secret, patterns), secret
     for needed in ("pyproject.toml", "setup.py", "python/oracle/cli.py", "ontology/mapping.yaml",
@@ -527,7 +527,8 @@ def test_make_n_up_prints_the_compose_command():
     done = subprocess.run([MAKE, "-n", "up"], cwd=ROOT, capture_output=True, text=True, timeout=30)
     assert done.returncode == 0, done.stderr
     assert "docker compose -f docker/docker-compose.yml --env-file docker/.env up -d" in done.stdout
-    assert done.stdout.rstrip().endswith("run --rm --no-deps oracle neems")  # the NEEM list comes last
+    commands = [line for line in done.stdout.splitlines() if not line.startswith("make[")]  # under make: "Entering directory"
+    assert commands[-1].endswith("run --rm --no-deps oracle neems")  # the NEEM list comes last
     down = subprocess.run([MAKE, "-n", "down"], cwd=ROOT, capture_output=True, text=True, timeout=30)
     assert "docker compose -f docker/docker-compose.yml --env-file" in down.stdout and " down" in down.stdout
 

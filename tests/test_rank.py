@@ -67,3 +67,19 @@ def test_rank_and_why_not_with_an_ontology_file(store, tmp_path, capsys):
     assert "reasons" in json.loads(capsys.readouterr().out)
     assert main(["why-not", "pick(banana)", "--store", str(store), "--ontology", str(owl), "--odb", str(tmp_path)]) == 1
     assert "either --ontology or --odb/--mapping" in capsys.readouterr().err
+
+
+def test_rank_method_thesis_writes_the_thesis_ranking_and_names_the_method(store, capsys):
+    capsys.readouterr()
+    assert main(["rank", "--store", str(store), "--json", "--no-write", "--method", "thesis"]) == 0
+    thesis = json.loads(capsys.readouterr().out)
+    assert thesis["method"] == "thesis" and "probability" not in thesis["ranking"][0]
+    assert main(["rank", "--store", str(store), "--json", "--no-write"]) == 0
+    routine = json.loads(capsys.readouterr().out)
+    assert routine["method"] == "routine"
+    best = routine["ranking"][0]
+    # the chain repeats exactly: its last three actions were followed by the next one twice
+    assert best["call"] == "place(thermos, counter_top)" and best["context_order"] == 3 and best["similar"] == 2
+    assert [r["score"] for r in routine["ranking"]] == sorted(r["score"] for r in routine["ranking"])
+    assert main(["rank", "--store", str(store), "--method", "bayes"]) == 1
+    assert "unknown method 'bayes' (known: routine, routine-fixed, routine-mixture, thesis)" in capsys.readouterr().err

@@ -5,7 +5,10 @@
       kb_call_stepwise/2,       % :Goal, +Scope
       kb_compile/3,             % +Goal, +Scope, -Plan
       kb_findall/4,             % +Template, :Goal, +Scope, -List
-      kb_project/1              % +Statement
+      kb_call/3,                % :Goal, +QueryScope, -FactScope
+      kb_project/1,             % +Statement
+      kb_project/2,             % +Statement, +Scope
+      kb_unproject/1            % +Statement
     ]).
 /** <module> The query language: kb_call and kb_project (KnowRob 2.x src/lang/query.pl)
 
@@ -30,12 +33,13 @@ kb_project/1 asserts statements built from the same vocabulary (see kb_project/1
 :- use_module(library(error)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
-:- use_module('../neem_store', [store_match/2, store_match/3, store_insert/1]).
-:- use_module(triple, [kb_iri/2, iri_term/1, triple_steps/6]).
-:- use_module(scope, [current_scope/1, scope_check/1, scope_overlaps/3, runtime_scope/3]).
+:- use_module('../neem_store', [store_match/2, store_match/3, store_insert/2, store_retract/1]).
+:- use_module(triple, [kb_iri/2, iri_term/1, triple_steps/6, unit_factor/2]).
+:- use_module(scope, [current_scope/1, scope_check/1, scope_overlaps/3, runtime_scope/3,
+                       scope_term/2, scope_dict/2]).
 
 :- meta_predicate
-    kb_call(0), kb_call(0, +), kb_call_stepwise(0), kb_call_stepwise(0, +),
+    kb_call(0), kb_call(0, +), kb_call(0, +, -), kb_call_stepwise(0), kb_call_stepwise(0, +),
     kb_findall(?, 0, +, -).
 
 %!  kb_rule(?Head, ?Body) is nondet.
@@ -50,9 +54,20 @@ kb_project/1 asserts statements built from the same vocabulary (see kb_project/1
 kb_call(Goal) :-
     current_scope(Scope),
     kb_call(Goal, Scope).
-kb_call(Goal, Scope) :-
+kb_call(Goal, Scope0) :-
+    scope_term(Scope0, Scope),
     kb_compile(Goal, Scope, compiled, Plan),
     run_plan(Plan).
+
+%!  kb_call(:Goal, +QueryScope, -FactScope) is nondet.
+%   kb_call/2 with KnowRob's scope dictionaries: QueryScope is `dict{}` (any time) or
+%   `dict{time: dict{since: =<(T0), until: >=(T1)}}` (also `scope(T0,T1)` or `any`).
+%   FactScope is the question scope as a dictionary: the store does not report the scopes
+%   of the facts it matched (see docs/prolog.md).
+kb_call(Goal, QScope, FScope) :-
+    scope_term(QScope, Scope),
+    kb_call(Goal, Scope),
+    scope_dict(Scope, FScope).
 
 %!  kb_call_stepwise(:Goal) is nondet.
 %!  kb_call_stepwise(:Goal, +Scope) is nondet.
@@ -114,6 +129,19 @@ unfold((C -> T), Mod, Scope, [ite(PC, PT, [call(fail)])|S], S) :- !,
 unfold(\+ G, Mod, Scope, [not(P)|S], S) :- !,
     sub_plan(G, Mod, Scope, P).
 unfold(true, _, _, S, S) :- !.
+unfold([], _, _, S, S) :- !.
+unfold([G|Gs], Mod, Scope, S0, S) :- !,      % a list of goals is their conjunction
+    unfold(G, Mod, Scope, S0, S1),
+    unfold(Gs, Mod, Scope, S1, S).
+unfold(call(G), Mod, Scope, S0, S) :- !,
+    unfold(G, Mod, Scope, S0, S).
+unfold(call_with_context(G, Options), Mod, _, S0, S) :- !,   % mongolog: scope(Dict) option
+    must_be(list, Options),
+    (   memberchk(scope(D), Options) -> true ; D = dict{} ),
+    S0 = [scoped(context, Mod:G, D)|S].
+unfold(holds(Q), Mod, Scope, S0, S) :- !,
+    query_triple(Q, Su, P, O),
+    unfold(holds(Su, P, O), Mod, Scope, S0, S).
 unfold(during(G, I), Mod, _, S0, S) :- !,
     (   nonvar(I), I = [T0, T1], number(T0), number(T1)
     ->  unfold(G, Mod, scope(T0, T1), S0, S)
@@ -131,6 +159,9 @@ unfold(until(G, T), Mod, _, S0, S) :- !,
     ).
 unfold(triple(Su, P, O), _, Scope, S0, S) :- !,
     triple_steps(Su, P, O, Scope, S0, S).
+unfold(holds(Su, P, O), _, Scope, S0, S) :-
+    unit_term(O, F, V), !,
+    triple_steps(Su, P, X, Scope, S0, [call(kb_query:unit_value(F, V, X))|S]).
 unfold(holds(Su, P, O), _, Scope, S0, S) :- !,
     triple_steps(Su, P, O, Scope, S0, S).
 unfold(has_type(A, B), Mod, Scope, S0, S) :- !,
@@ -147,6 +178,22 @@ unfold(G, Mod, Scope, S0, S) :-
     unfold(Body, Mod, Scope, S0, S).
 unfold(G, Mod, _, [call(Mod:G)|S], S).
 
+%   holds(P(S,O)): the relation P between S and O.
+query_triple(Q, Su, P, O) :-
+    must_be(callable, Q),
+    Q =.. [P, Su, O].
+
+%   A unit term Unit(Value) (KnowRob: `m(6.5)`, `cm(X)`): Factor converts to the SI unit the
+%   store holds.
+unit_term(O, F, V) :-
+    compound(O), O =.. [U, V], atom(U), unit_factor(U, F).
+
+%!  unit_value(+Factor, ?Value, +Stored) is semidet.
+unit_value(F, V, X) :-
+    number(X),
+    V1 is X / F,
+    (   var(V) -> V = V1 ; abs(V - V1) =< 1.0e-9 * max(1.0, abs(V1)) ).
+
 sub_plan(G, Mod, Scope, Plan) :-
     unfold(G, Mod, Scope, Steps, []),
     group(compiled, Steps, Plan).
@@ -161,6 +208,8 @@ not_named_individual(B) :-
 %   compiled: consecutive patterns under one scope become one match/2 step; the filters
 %   of their value operators follow it. stepwise: one match per pattern.
 group(_, [], []).
+group(Mode, [once_pattern(T, Scope)|Steps], Plan) :- !,
+    group(Mode, [pattern(T, Scope)|Steps], Plan).
 group(Mode, [pattern(T, Scope)|Steps], [match([T|Ts1], Scope)|Plan]) :- !,
     (   Mode == compiled
     ->  take_patterns(Steps, Scope, Ts1, Filters, Rest)
@@ -172,6 +221,9 @@ group(Mode, [Step|Steps], [Step|Plan]) :-
     group(Mode, Steps, Plan).
 
 take_patterns([pattern(T, Scope1)|Steps], Scope, [T|Ts], Fs, Rest) :-
+    Scope1 == Scope, !,
+    take_patterns(Steps, Scope, Ts, Fs, Rest).
+take_patterns([once_pattern(T, Scope1)|Steps], Scope, [T|Ts], Fs, Rest) :-
     Scope1 == Scope, !,
     take_patterns(Steps, Scope, Ts, Fs, Rest).
 take_patterns([call(F)|Steps], Scope, Ts, [call(F)|Fs], Rest) :-
@@ -190,7 +242,10 @@ run_plan([Step|Steps]) :-
 
 run_step(match(Ts, Scope)) :-
     maplist(expand_pattern, Ts, Ts1),
-    store_match(Ts1, Scope).
+    (   ground(Ts1)
+    ->  once(store_match(Ts1, Scope))      % a ground goal succeeds once (KnowRob)
+    ;   store_match(Ts1, Scope)
+    ).
 run_step(call(G)) :- call(G).
 run_step(or(A, B)) :- ( run_plan(A) ; run_plan(B) ).
 run_step(ite(C, T, E)) :- ( run_plan(C) -> run_plan(T) ; run_plan(E) ).
@@ -207,14 +262,53 @@ expand_pattern(t(S, P, O), t(S1, P1, O1)) :-
                  *******************************/
 
 %!  kb_project(+Statement) is det.
-%   Assert Statement: triple/3, model predicates defined by triples, event_interval/3
-%   (creates the time interval), `occurs(E)` and conjunctions of these, optionally
-%   scoped: `Statement during [T0,T1]`, `Statement since T`, `Statement until T`.
-%   Universal scope otherwise, as NEEM narrative facts are.
+%!  kb_project(+Statement, +Scope) is det.
+%   Assert Statement: triple/3, holds/1,3 (unit terms `m(6.5)` are stored in the SI unit),
+%   model predicates defined by triples, event_interval/3 (creates the time interval),
+%   `occurs(E)`, lists and conjunctions of these, optionally scoped: `Statement during
+%   [T0,T1]`, `Statement during Event` (the event's interval), `Statement since T`,
+%   `Statement until T`, or Scope (`scope(T0,T1)` or a KnowRob scope dictionary). Universal
+%   scope otherwise, as NEEM narrative facts are. A stored triple whose scope overlaps the
+%   new one is merged with it (union of the scopes); `until`/`since` narrow a stored triple
+%   instead (intersection), as KnowRob does.
 kb_project(Statement) :-
     Inf is inf,
-    project(Statement, 0.0, Inf, Triples, []),
-    store_insert(Triples).
+    kb_project_(Statement, 0.0, Inf).
+
+kb_project(Statement, Scope0) :-
+    scope_term(Scope0, Scope),
+    (   Scope = scope(S, U) -> true ; S = 0.0, U is inf ),
+    kb_project_(Statement, S, U).
+
+kb_project_(Statement, S, U) :-
+    (   narrowing(Statement) -> Merge = intersect ; Merge = union ),
+    project(Statement, S, U, Triples, []),
+    store_insert(Triples, Merge).
+
+narrowing(_:G) :- !, narrowing(G).
+narrowing(until(_, _)).
+narrowing(since(_, _)).
+
+%!  kb_unproject(+Statement) is det.
+%   Delete the triples Statement stands for (triple/3, holds/3, model predicates defined by
+%   triples, conjunctions); unbound arguments match anything.
+kb_unproject(Statement) :-
+    unproject(Statement, Patterns, []),
+    store_retract(Patterns).
+
+unproject(V, _, _) :-
+    var(V), !, instantiation_error(V).
+unproject(_:G, T0, T) :- !, unproject(G, T0, T).
+unproject((A, B), T0, T) :- !, unproject(A, T0, T1), unproject(B, T1, T).
+unproject(triple(S, P, O), [t(S1, P1, O1)|T], T) :- !,
+    kb_iri(S, S1), kb_iri(P, P1), kb_iri(O, O1).
+unproject(holds(S, P, O), T0, T) :- !, unproject(triple(S, P, O), T0, T).
+unproject(has_type(A, B), T0, T) :- !, unproject(triple(A, rdf:type, B), T0, T).
+unproject(G, T0, T) :-
+    kb_rule(G, Body), !,
+    unproject(Body, T0, T).
+unproject(G, _, _) :-
+    domain_error(unprojectable_statement, G).
 
 project(V, _, _, _, _) :-
     var(V), !, instantiation_error(V).
@@ -223,8 +317,18 @@ project(_:G, S, U, T0, T) :- !,
 project((A, B), S, U, T0, T) :- !,
     project(A, S, U, T0, T1),
     project(B, S, U, T1, T).
-project(during(G, [S, U]), _, _, T0, T) :- !,
-    must_be(number, S), must_be(number, U),
+project([], _, _, T, T) :- !.
+project(true, _, _, T, T) :- !.
+project(ask(G), _, _, T, T) :- !,          % KnowRob's deprecated alias of kb_call/1
+    once(kb_call(G)).
+project([G|Gs], S, U, T0, T) :- !,
+    project(G, S, U, T0, T1),
+    project(Gs, S, U, T1, T).
+project(during(G, I), _, _, T0, T) :- !,
+    (   nonvar(I), I = [S, U]
+    ->  must_be(number, S), must_be(number, U)
+    ;   runtime_scope(during, I, scope(S, U))
+    ),
     project(G, S, U, T0, T).
 project(since(G, S), _, _, T0, T) :- !,
     must_be(number, S), Inf is inf,
@@ -233,11 +337,20 @@ project(until(G, U), _, _, T0, T) :- !,
     must_be(number, U),
     project(G, 0.0, U, T0, T).
 project(triple(S, P, O), Since, Until, [triple(S1, P1, O1, Since, Until)|T], T) :- !,
-    must_be(ground, triple(S, P, O)),
-    kb_iri(S, S1), kb_iri(P, P1), kb_iri(O, O1),
+    (   ground(triple(S, P, O)) -> true
+    ;   throw(error(instantiation_error, project(triple(S, P, O))))   % KnowRob's context
+    ),
+    kb_iri(S, S1), kb_iri(P, P1), value_atomic(O, O1),
     must_be(atom, S1), must_be(atom, P1), must_be(atomic, O1).
+project(holds(Q), Since, Until, T0, T) :- !,
+    query_triple(Q, S, P, O),
+    project(holds(S, P, O), Since, Until, T0, T).
 project(holds(S, P, O), Since, Until, T0, T) :- !,
-    project(triple(S, P, O), Since, Until, T0, T).
+    (   unit_term(O, F, V)
+    ->  must_be(number, V), X is V * F
+    ;   X = O
+    ),
+    project(triple(S, P, X), Since, Until, T0, T).
 project(has_type(A, B), Since, Until, T0, T) :- !,
     project(triple(A, rdf:type, B), Since, Until, T0, T).
 project(event_interval(E, B, End), Since, Until, T0, T) :- !,
@@ -256,7 +369,19 @@ project(occurs(E), Since, Until, T0, T) :- !,
     (   Until =:= Inf -> End = Since ; End = Until ),
     project((has_type(E, dul:'Event'), event_interval(E, Since, End)), 0.0, Inf, T0, T).
 project(G, S, U, T0, T) :-
+    kb_projection(G, G1), !,
+    project(G1, S, U, T0, T).
+project(G, S, U, T0, T) :-
     kb_rule(G, Body), !,
     project(Body, S, U, T0, T).
 project(G, _, _, _, _) :-
     domain_error(projectable_statement, G).
+
+%   `term(T)` values are stored as their text (KnowRob's term/1), other values as they are.
+value_atomic(term(T), A) :- !, must_be(ground, T), term_to_atom(T, A).
+value_atomic(O, O1) :- kb_iri(O, O1).
+
+%!  kb_projection(?Statement, ?Expanded) is nondet.
+%   Statement is projected as Expanded (multifile: for model predicates whose projection is
+%   not their query rule, e.g. rdf_list/2).
+:- multifile kb_projection/2.

@@ -44,4 +44,67 @@ test(names_with_prolog_syntax, [nondet, setup(store_reset), cleanup(store_reset)
 test(bad_scope, [error(type_error(scope, later))]) :-
     kb_call(true, later).
 
+test(project_merges_overlapping_scopes, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project(triple(s, p, o), scope(10, 20)),
+    kb_project(triple(s, p, o), scope(5, 12)),
+    findall(S-U, neem_store:mem_triple(s, p, o, S, U), L), L == [5-20],
+    kb_call(triple(s, p, o), scope(6, 19)),
+    kb_project(triple(s, p, o), scope(30, 40)),
+    findall(S-U, neem_store:mem_triple(s, p, o, S, U), L2), msort(L2, [5-20, 30-40]).
+
+test(until_narrows, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project(triple(q, region, green)),
+    kb_project(triple(q, region, green) until 300),
+    kb_project(triple(q, region, red) since 300),
+    kb_call(triple(q, region, red)),
+    \+ kb_call(triple(q, region, green)),
+    kb_call(triple(q, region, green) during [200, 250]),
+    findall(U, neem_store:mem_triple(q, region, green, _, U), [300]).
+
+test(project_during_event, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project(event_interval(act, 10.0, 20.0)),
+    kb_project(triple(obj, hasRole, r1) during act),
+    kb_call(triple(obj, hasRole, r1) during act),
+    \+ kb_call(triple(obj, hasRole, r1)).
+
+test(unproject, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project((triple(a, b, c), triple(a, b, d), triple(x, b, c))),
+    kb_unproject(triple(a, b, _)),
+    \+ kb_call(triple(a, b, _)),
+    kb_call(triple(x, b, c)).
+
+test(goal_list_and_call, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
+    n(a1, A1),
+    findall(T, kb_call([executes_task(A1, T), call(instance_of(T, odb:pour))]), Ts),
+    n(pour1, P), Ts == [P].
+
+test(scope_dicts, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project(triple(s, p, o), dict{time: dict{since: =(double(5)), until: =(double(10))}}),
+    kb_call(triple(s, p, o), dict{time: dict{since: =<(double(6)), until: >=(double(9))}}, F),
+    F = dict{time: dict{since: 6, until: 9}},
+    \+ kb_call(triple(s, p, o), dict{time: dict{since: =<(4), until: >=(9)}}, _),
+    kb_call(triple(s, p, o), dict{}, _).
+
+test(term_values, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project(triple(lecturer, hairColor, term([255, 99, 71]))),
+    kb_call(triple(lecturer, hairColor, term([255, 99, 71]))),
+    kb_call(triple(lecturer, hairColor, term(X))), X == [255, 99, 71].
+
+test(unproject_python_is_an_error, [setup(store_reset), cleanup(store_reset),
+                                    error(instantiation_error)]) :-
+    kb_unproject(_).
+
+test(project_error_context, [setup(store_reset), cleanup(store_reset),
+                              error(instantiation_error, project(triple(a, b, _)))]) :-
+    kb_project(triple(a, b, _)).
+
+test(call_with_context, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project(triple(s, p, o), scope(10, 20)),
+    kb_call(call_with_context(triple(s, p, o), [scope(dict{time: dict{since: =<(15), until: >=(15)}})])),
+    \+ kb_call(call_with_context(triple(s, p, o), [scope(dict{time: dict{since: =<(25), until: >=(25)}})])).
+
+test(ask_in_projection, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project((ask(C = g), triple(e, f, C))),
+    kb_call(triple(e, f, g)).
+
 :- end_tests(kb_query).

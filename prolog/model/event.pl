@@ -9,7 +9,8 @@
       has_time_interval/2,      % ?Event, ?Interval
       has_interval_begin/2,     % ?Interval, ?Begin
       has_interval_end/2,       % ?Interval, ?End
-      event_interval/3          % ?Event, ?Begin, ?End
+      event_interval/3,         % ?Event, ?Begin, ?End
+      has_participant/3         % ?Event, ?Object, ?Class
     ]).
 /** <module> Events and actions (KnowRob 2.x src/model/DUL/Event.pl, SOMA's interval)
 
@@ -27,6 +28,7 @@ kb_query:kb_rule(is_mental_action(A), has_type(A, soma:'MentalAction')).
 kb_query:kb_rule(executes_task(A, T), holds(A, dul:executesTask, T)).
 kb_query:kb_rule(is_performed_by(A, Agent), holds(A, soma:isPerformedBy, Agent)).
 kb_query:kb_rule(has_participant(E, O), holds(E, dul:hasParticipant, O)).
+kb_query:kb_rule(has_participant(E, O, C), ( holds(E, dul:hasParticipant, O), has_type(O, C) )).
 kb_query:kb_rule(has_subevent(E, S), holds(E, dul:hasConstituent, S)).
 kb_query:kb_rule(has_time_interval(E, I), triple(E, dul:hasTimeInterval, I)).
 kb_query:kb_rule(has_interval_begin(I, B), triple(I, soma:hasIntervalBegin, B)).
@@ -57,3 +59,7 @@ has_interval_end(I, B) :- kb_call(has_interval_end(I, B)).
 %!  event_interval(?Event, ?Begin, ?End) is nondet.
 %   The begin and end of the event's time interval (unix seconds).
 event_interval(E, B, End) :- kb_call(event_interval(E, B, End)).
+%!  has_participant(?Event, ?Object, ?Class) is nondet.
+%   Object takes part in Event and is an instance of Class (with Class free: its asserted
+%   types but owl:NamedIndividual).
+has_participant(E, O, C) :- kb_call(has_participant(E, O, C)).

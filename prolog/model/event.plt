@@ -20,4 +20,10 @@ test(has_participant_includes_performed_by, [nondet, setup(load_test_episode), c
 test(event_interval, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
     n(a3, A3), event_interval(A3, B, E), B =:= 201, E =:= 205.
 
+test(has_participant_class, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
+    n(a1, A1), n(thermos1, Th),
+    findall(O-C, has_participant(A1, O, C), Rows),
+    memberchk(Th-'https://ontology.dlr.de/soma/odb#thermos', Rows),
+    has_participant(A1, Th, odb:thermos).
+
 :- end_tests(dul_event).

@@ -1,6 +1,8 @@
 :- begin_tests(dul_object).
 
 :- use_module(object).
+:- use_module('../lang/query').
+:- use_module('../lang/temporal').
 :- use_module('../neem_store').
 :- use_module('../fixtures/test_episode').
 
@@ -11,5 +13,11 @@ test(has_role_direction, [nondet, setup(load_test_episode), cleanup(store_reset)
 
 test(no_agent_typed, [setup(load_test_episode), cleanup(store_reset)]) :-
     \+ is_agent(_).
+
+test(region_transition, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project(has_region(colour, green) until 300),
+    kb_project(has_region(colour, red) since 300),
+    has_region(colour, red), \+ has_region(colour, green),
+    kb_call(has_region(colour, green) during [200, 250]).
 
 :- end_tests(dul_object).

@@ -2,22 +2,51 @@
     [ instance_of/2,            % ?Individual, ?Class
       subclass_of/2,            % ?Class, ?SuperClass
       subproperty_of/2,         % ?Property, ?SuperProperty
-      has_type/2                % ?Individual, ?Class
+      has_type/2,               % ?Individual, ?Class
+      is_resource/1,            % ?Entity
+      is_property/1,            % ?Entity
+      has_range/2,              % ?Property, ?Range
+      has_domain/2,             % ?Property, ?Domain
+      rdf_list/2,               % ?RDFList, ?List
+      new_iri/1,                % -IRI
+      new_iri/2                 % -IRI, +Type
     ]).
 /** <module> RDFS vocabulary (KnowRob 2.x src/model/RDFS.pl)
 
 instance_of/2 and subclass_of/2 are taxonomic triple goals: a bound class matches the
 asserted class and its ancestors (`o*`), a free class binds the asserted one. has_type/2
 is instance_of/2 that refuses compound class expressions and, with a free class, leaves
-out owl:NamedIndividual.
+out owl:NamedIndividual. is_resource/1 and is_property/1 are typed rdfs:Resource and
+rdf:Property; rdf_list/2 reads (and, through kb_project/1, writes) an rdf:first/rdf:rest
+list; new_iri/1,2 make an IRI not used as a subject yet.
 */
 
-:- use_module('../lang/query', [kb_call/1]).
+:- use_module(library(lists)).
+:- use_module(library(error)).
+:- use_module('../lang/query', [kb_call/1, kb_call/2]).
+:- use_module('../lang/triple', [kb_iri/2]).
 
 :- multifile kb_query:kb_rule/2.
 kb_query:kb_rule(instance_of(A, B), triple(A, rdf:type, B)).
 kb_query:kb_rule(subclass_of(A, B), triple(A, rdfs:subClassOf, B)).
 kb_query:kb_rule(subproperty_of(A, B), triple(A, rdfs:subPropertyOf, B)).
+kb_query:kb_rule(is_resource(A), ( member(C, [rdfs:'Resource', rdfs:'Class', owl:'Class']), has_type(A, C) )).
+kb_query:kb_rule(is_property(A), ( member(C, [rdf:'Property', owl:'ObjectProperty', owl:'DatatypeProperty',
+                                             owl:'AnnotationProperty']), has_type(A, C) )).
+kb_query:kb_rule(has_range(P, R), triple(P, rdfs:range, R)).
+kb_query:kb_rule(has_domain(P, D), triple(P, rdfs:domain, D)).
+
+:- multifile kb_query:kb_projection/2.
+kb_query:kb_projection(rdf_list(L, Xs), [has_type(L, rdf:'List')|Triples]) :-
+    must_be(ground, L-Xs), must_be(list, Xs),
+    list_triples(L, Xs, 1, Triples).
+
+list_triples(L, [], _, [triple(L, rdf:rest, rdf:nil)]) :- !.   % only for the empty tail
+list_triples(L, [X], _, [triple(L, rdf:first, X), triple(L, rdf:rest, rdf:nil)]) :- !.
+list_triples(L, [X|Xs], I, [triple(L, rdf:first, X), triple(L, rdf:rest, Next)|Ts]) :-
+    kb_iri(L, L1), atomic_list_concat([L1, '_', I], Next),
+    I1 is I + 1,
+    list_triples(Next, Xs, I1, Ts).
 
 %!  instance_of(?Individual, ?Class) is nondet.
 instance_of(A, B) :- kb_call(instance_of(A, B)).
@@ -30,3 +59,47 @@ subproperty_of(A, B) :- kb_call(subproperty_of(A, B)).
 
 %!  has_type(?Individual, ?Class) is nondet.
 has_type(A, B) :- kb_call(has_type(A, B)).
+
+%!  is_resource(?Entity) is nondet.
+%   Typed rdfs:Resource, rdfs:Class or owl:Class (KnowRob reads these through the OWL
+%   vocabulary's own axioms, which a NEEM does not carry).
+is_resource(A) :- distinct(A, kb_call(is_resource(A))).
+%!  is_property(?Entity) is nondet.
+%   Typed rdf:Property or one of OWL's property classes.
+is_property(A) :- distinct(A, kb_call(is_property(A))).
+%!  has_range(?Property, ?Range) is nondet.
+has_range(P, R) :- kb_call(has_range(P, R)).
+%!  has_domain(?Property, ?Domain) is nondet.
+has_domain(P, D) :- kb_call(has_domain(P, D)).
+
+%!  rdf_list(?RDFList, ?List) is nondet.
+%   List holds the rdf:first elements along the rdf:rest chain of RDFList. With RDFList
+%   free, a list whose first element is List's first (List must be bound then).
+rdf_list(L0, Xs) :-
+    kb_iri(L0, L),
+    (   var(L)
+    ->  must_be(list, Xs), Xs = [First0|_], kb_iri(First0, First),
+        kb_call(triple(L, rdf:first, First)),
+        \+ kb_call(triple(_, rdf:rest, L))
+    ;   true
+    ),
+    findall(X, kb_call(( triple(L, reflexive(transitive(rdf:rest)), Y), triple(Y, rdf:first, X) )), Ys),
+    (   var(Xs) -> Xs = Ys ; maplist(kb_iri, Xs, Xs1), Xs1 == Ys ).
+
+%!  new_iri(-IRI) is det.
+%!  new_iri(-IRI, +Type) is det.
+%   An IRI that is no subject in the store: Type's IRI (rdfs:Resource by default) followed
+%   by `_` and random letters.
+new_iri(IRI) :- new_iri(IRI, rdfs:'Resource').
+new_iri(IRI, Type0) :-
+    kb_iri(Type0, Type),
+    must_be(atom, Type),
+    repeat,
+    random_name(Name),
+    atomic_list_concat([Type, '_', Name], IRI),
+    \+ kb_call(triple(IRI, _, _), any), !.
+
+random_name(Name) :-
+    length(Cs, 10),
+    maplist([C]>>(random_between(0, 51, I), nth0(I, `ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz`, C)), Cs),
+    atom_codes(Name, Cs).

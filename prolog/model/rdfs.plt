@@ -1,6 +1,7 @@
 :- begin_tests(model_rdfs).
 
 :- use_module(rdfs).
+:- use_module('../lang/query').
 :- use_module('../neem_store').
 :- use_module('../fixtures/test_episode').
 
@@ -14,5 +15,22 @@ test(has_type_skips_named_individual, [nondet, setup(load_test_episode), cleanup
     n(apple1, A),
     findall(C, has_type(A, C), Cs), Cs == ['https://ontology.dlr.de/soma/odb#apple'],
     \+ has_type(A, some(x)).
+
+test(resource_and_property, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project((has_type(adult, rdfs:'Resource'), has_type(hasNumber, rdf:'Property'))),
+    is_resource(adult), \+ is_resource(hasNumber),
+    is_property(hasNumber), \+ is_property(adult), \+ is_property(nothing).
+
+test(rdf_list_round_trip, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project(rdf_list(chain, [hasParent, hasAncestor])),
+    rdf_list(chain, L), L == [hasParent, hasAncestor],
+    rdf_list(chain, [hasParent, hasAncestor]),
+    \+ rdf_list(chain, [hasAncestor, hasParent]),
+    rdf_list(Head, [hasParent, hasAncestor]), Head == chain.
+
+test(new_iri, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    new_iri(I, dul:'Action'), atom(I),
+    sub_atom(I, 0, _, _, 'http://www.ontologydesignpatterns.org/ont/dul/DUL.owl#Action_'),
+    new_iri(J), I \== J.
 
 :- end_tests(model_rdfs).

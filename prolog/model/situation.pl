@@ -3,7 +3,10 @@
       is_physical_task/1,       % ?Task
       is_episode/1,             % ?Episode
       task_role/2,              % ?Task, ?Role
-      plan_defines_task/2       % ?Plan, ?Task
+      plan_defines_task/2,      % ?Plan, ?Task
+      is_setting_for/2,         % ?Situation, ?Entity
+      satisfies/2,              % ?Situation, ?Description
+      is_diagnosis/1            % ?Description
     ]).
 /** <module> Tasks, plans and episodes (KnowRob 2.x src/model/DUL/Situation.pl, SOMA)
 
@@ -19,6 +22,9 @@ kb_query:kb_rule(is_physical_task(A), has_type(A, soma:'PhysicalTask')).
 kb_query:kb_rule(is_episode(A), has_type(A, soma:'Episode')).
 kb_query:kb_rule(task_role(T, R), holds(T, dul:isTaskOf, R)).
 kb_query:kb_rule(plan_defines_task(P, T), holds(P, soma:isPlanFor, T)).
+kb_query:kb_rule(is_setting_for(S, E), holds(S, dul:isSettingFor, E)).
+kb_query:kb_rule(satisfies(S, D), holds(S, dul:satisfies, D)).
+kb_query:kb_rule(is_diagnosis(D), has_type(D, dul:'Diagnosis')).
 
 %!  is_task(?Task) is nondet.
 is_task(A) :- kb_call(is_task(A)).
@@ -30,3 +36,10 @@ is_episode(A) :- kb_call(is_episode(A)).
 task_role(T, R) :- kb_call(task_role(T, R)).
 %!  plan_defines_task(?Plan, ?Task) is nondet.
 plan_defines_task(P, T) :- kb_call(plan_defines_task(P, T)).
+%!  is_setting_for(?Situation, ?Entity) is nondet.
+%   The situation (e.g. an episode) is the setting for the entity (e.g. an action).
+is_setting_for(S, E) :- kb_call(is_setting_for(S, E)).
+%!  satisfies(?Situation, ?Description) is nondet.
+satisfies(S, D) :- kb_call(satisfies(S, D)).
+%!  is_diagnosis(?Description) is nondet.
+is_diagnosis(D) :- kb_call(is_diagnosis(D)).

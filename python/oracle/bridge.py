@@ -26,18 +26,19 @@ import threading
 from collections.abc import Iterator, Sequence
 from datetime import datetime
 from itertools import islice
-from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from oracle.errors import PrologError, StoreError
 from oracle.paths import prolog_dir
 from oracle.store import Cmp, Scope, Store, TriplePattern, Triple, Var
 
-PROLOG_DIR = prolog_dir()
-#: The Prolog modules under PROLOG_DIR, in load order (KnowRob's layout: lang/, model/; the
+if TYPE_CHECKING:
+    from oracle.ontology import OdbOntology
+
+#: The Prolog modules under ``paths.prolog_dir()``, in load order (KnowRob's layout: lang/, model/; the
 #: odb extension in odb/); each is imported into ``user`` so a typed query sees its exports.
 MODULES = ("neem_store", "lang/triple", "lang/scope", "lang/query", "lang/holds", "lang/temporal",
-           "model/rdfs", "model/event", "model/object", "model/situation",
+           "model/rdfs", "model/event", "model/object", "model/situation", "model/action", "model/interval",
            "odb/names", "odb/calls", "odb/events", "odb/decisions", "odb/history", "answers", "batch_toplevel")
 #: Rows per chunk handed to Prolog by one solution of py_match/2.
 CHUNK = 5000
@@ -179,9 +180,9 @@ def py_match(req: Any, out: Any, handle: Any) -> Any:
         return PL_retry(key)
     if control == PL_REDO:
         key = PL_foreign_context(handle)
-        chunks = _GENERATORS.get(key)
+        pending = _GENERATORS.get(key)
         try:
-            chunk = next(chunks, None) if chunks is not None else None
+            chunk = next(pending, None) if pending is not None else None
         except Exception as error:
             _GENERATORS.pop(key, None)
             out.unify(_error_text(error))
@@ -230,8 +231,9 @@ def _ensure_loaded() -> None:
     Prolog.register_foreign(py_match, arity=2, module="neem_store", nondeterministic=True)
     Prolog.register_foreign(py_insert, arity=2, module="neem_store")
     Prolog.register_foreign(py_request, arity=1, module="neem_store")
+    folder = prolog_dir()
     for name in MODULES:
-        path = PROLOG_DIR / f"{name}.pl"
+        path = folder / f"{name}.pl"
         if not path.exists():
             raise PrologError(f"{path}: Prolog module missing")
         _STATE["request"] = [Atom(str(path))]
@@ -270,7 +272,7 @@ class Bridge:
     """Prolog connected to one NEEM of a store. Only one bridge is active per process
     (pyswip's Prolog is process-wide); creating a new one replaces the previous."""
 
-    def __init__(self, store: Store, neem_id: str, ontology: Any | None = None) -> None:
+    def __init__(self, store: Store, neem_id: str, ontology: OdbOntology | None = None) -> None:
         from pyswip import Atom
 
         self.store = store
@@ -284,7 +286,7 @@ class Bridge:
             if ontology is not None:
                 self.set_ontology(ontology)
 
-    def set_ontology(self, ontology: Any) -> None:
+    def set_ontology(self, ontology: OdbOntology) -> None:
         """Tell odb_names the ontology's namespace and which role of each task is which."""
         from pyswip import Atom
 
@@ -396,7 +398,7 @@ def _python_value(value: Any) -> Any:
     return value
 
 
-def connect(store: Store, neem_id: str, ontology: Any | None = None) -> Bridge:
+def connect(store: Store, neem_id: str, ontology: OdbOntology | None = None) -> Bridge:
     """A bridge to ``neem_id``; raises StoreError when the NEEM is missing."""
     try:
         return Bridge(store, neem_id, ontology)
@@ -404,4 +406,4 @@ def connect(store: Store, neem_id: str, ontology: Any | None = None) -> Bridge:
         raise
 
 
-__all__ = ["Bridge", "CROSSINGS", "PROLOG_DIR", "connect", "quote_atom", "term_text"]
+__all__ = ["Bridge", "CROSSINGS", "connect", "quote_atom", "term_text"]

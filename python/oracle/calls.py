@@ -1,8 +1,7 @@
 """Chain calls (``pour(thermos, green_mug)``) as the oracle's records, using the ontology.
 
-The one place where odb names in a chain become task and object class IRIs in role slots:
-``task(a, b)`` puts ``a`` in the reference slot and ``b`` in the target slot; ``task(a)`` puts
-``a`` in the target slot unless the task has no target role (``OdbOntology.task_roles``).
+The one place where odb names in a chain become task and object class IRIs in role slots; which
+argument fills which slot is ``TaskClass.slots`` (the logger's roles follow the same rule).
 """
 
 from __future__ import annotations
@@ -22,14 +21,8 @@ def option_of(ontology: OdbOntology, call: TaskCall) -> Option:
     """The Option for a call; unknown tasks or objects raise OntologyError naming them."""
     task = ontology.task_iri(call.task)
     classes = [ontology.object_iri(name) for name in call.args]
-    if len(classes) == 2:
-        return Option(task, target=classes[1], reference=classes[0])
-    if len(classes) == 1:
-        info = ontology.tasks[call.task]
-        if info.target_role is None and info.ref_role is not None:
-            return Option(task, reference=classes[0])
-        return Option(task, target=classes[0])
-    return Option(task)
+    filled = dict(zip(ontology.tasks[call.task].slots(len(classes)), classes))
+    return Option(task, target=filled.get("target"), reference=filled.get("reference"))
 
 
 def opening_tasks(ontology: OdbOntology) -> frozenset[str]:

@@ -101,7 +101,7 @@ def parse_row(obj: object, where: str = "<row>") -> ChainRow:
     if "action" not in obj:
         raise ChainSyntaxError(f"{where}: missing 'action'")
     try:
-        action = parse_call(obj["action"])  # type: ignore[arg-type]
+        action = parse_call(obj["action"])
         available = None
         if obj.get("available") is not None:
             if not isinstance(obj["available"], list):

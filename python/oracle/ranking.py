@@ -1,7 +1,11 @@
 """The oracle in the system: history from the NEEM (through Prolog), ranking, write-back.
 
-NEEM -> ``odb_history:situation_history`` (one crossing) -> Steps -> PreferenceOracle -> ranking
+NEEM -> ``odb_history:situation_history`` (one crossing) -> Steps -> the chosen predictor -> ranking
 -> ``NeemLogger.preference`` (an imagined preference the Prolog answers read).
+
+The answers read the written rank (1 = best) and show the score; for every predictor the score is
+lower-is-better: the thesis oracle writes its eq. 4.12 distance, the routine predictor -log2 of its
+probability (docs/algorithm.md).
 """
 
 from __future__ import annotations
@@ -11,8 +15,8 @@ import time
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import Hyperparameters
+from oracle.algorithm.predictors import DEFAULT, make_predictor
 from oracle.algorithm.records import Ranking
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError, NeemOracleError
@@ -41,6 +45,7 @@ class NeemRanking:
     milliseconds: float
     written: str | None
     note: str | None
+    method: str = DEFAULT
 
 
 def finite(score: float) -> float:
@@ -54,6 +59,7 @@ def rank_neem(
     available: list[str] | None = None,
     at: Instant | None = None,
     write: bool = True,
+    method: str = DEFAULT,
 ) -> NeemRanking:
     """Rank ``available`` (chain syntax) at ``at`` (default: now), or else the NEEM's latest
     imagined situation, at the part of day recorded with it (oracle.timeline's rule)."""
@@ -72,7 +78,7 @@ def rank_neem(
         instant = Instant(begin, recorded or part_of_day_at(begin))
     when, part = instant.seconds, instant.part_of_day
     steps = steps_from_history(ontology, [row for row in bridge.history() if float(row["begin"]) < when])
-    oracle = PreferenceOracle.from_settings(ontology.distances(), settings, opening_tasks(ontology)).fit(steps)
+    oracle = make_predictor(method, ontology.distances(), opening_tasks(ontology), settings).fit(steps)
     started = time.perf_counter()
     ranking = oracle.rank([option_of(ontology, c) for c in calls], part)
     elapsed = (time.perf_counter() - started) * 1000
@@ -85,4 +91,4 @@ def rank_neem(
             note = f"ranking not written: {error}"
     return NeemRanking(bridge.neem_id, when, part, len(steps), ranking,
                        tuple(call_of(ontology, t.option) for t in ranking),
-                       tuple(call_of(ontology, o) for o in ranking.chain()), elapsed, written, note)
+                       tuple(call_of(ontology, o) for o in ranking.chain()), elapsed, written, note, method)

@@ -1,7 +1,9 @@
-"""Reading a YAML file so that every failure names the file (and line) in the caller's error type."""
+"""Reading a YAML file so that every failure names the file (and line) in the caller's error type,
+and checking a mapping's keys the same way."""
 
 from __future__ import annotations
 
+from collections.abc import Collection, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -22,3 +24,10 @@ def read_yaml(path: Path, error: type[NeemOracleError], what: str = "file") -> A
         mark = getattr(failure, "problem_mark", None)
         where = f"{path}:{mark.line + 1}" if mark is not None else str(path)
         raise error(f"{where}: malformed YAML ({getattr(failure, 'problem', failure)})") from None
+
+
+def check_keys(data: Mapping[Any, Any], allowed: Collection[str], where: str, error: type[NeemOracleError]) -> None:
+    """Raise ``error`` naming ``where``, the unknown keys and the allowed ones when ``data`` has others."""
+    unknown = set(data) - set(allowed)
+    if unknown:
+        raise error(f"{where}: unknown key(s) {', '.join(sorted(map(str, unknown)))}; allowed: {', '.join(sorted(allowed))}")

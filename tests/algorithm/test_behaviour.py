@@ -17,7 +17,7 @@ from oracle.algorithm.reference import (
     ReferenceOracle, importance_weights, overall_distance, situation_distance,
 )
 from oracle.algorithm.records import Option, Step, canonical_options
-from oracle.algorithm.tree import occurrence_value, successor_tree
+from oracle.algorithm.tree import Successions, TreeShape, occurrence_value, successor_tree
 from oracle.errors import OntologyError, SettingsError
 
 PICK, PLACE, POUR, OPEN_, CLOSE, DRINK = TASKS
@@ -63,18 +63,17 @@ def test_fig_4_6_tree_scores_and_order():
     next_position = np.array([1, 2, -1, 4, 5, -1, 7, 8, -1])
     roots, dists = np.array([0, 3, 6]), np.array([0.5, 0.3, 0.4])
     present = frozenset({DRAWER, PLATE, RED})
-    tree = successor_tree(roots, dists, next_position, executed, options, 3, 0.7, present, frozenset(), True)
+    history = Successions(next_position, executed, options)
+    tree = successor_tree(roots, dists, history, TreeShape(3, 0.7, present, frozenset()), True)
     assert [n.option for n in tree] == [Option(PICK, RED), Option(PICK, PLATE)]
     assert tree[0].score == pytest.approx(0.28, abs=0.005) and tree[0].support == 2
     assert tree[1].score == pytest.approx(0.3, abs=1e-3)
     assert [n.option for n in tree[0].children] == [Option(CLOSE, DRAWER), Option(PLACE, RED)]
     # Fig. 4.7: without the plate present, the plate branch disappears ...
-    pruned = successor_tree(roots, dists, next_position, executed, options, 3, 0.7,
-                            frozenset({DRAWER, RED}), frozenset(), True)
+    pruned = successor_tree(roots, dists, history, TreeShape(3, 0.7, frozenset({DRAWER, RED}), frozenset()), True)
     assert [n.option for n in pruned] == [Option(PICK, RED)]
     # ... unless the candidate opens something, which may reveal it
-    unchecked = successor_tree(roots, dists, next_position, executed, options, 3, 0.7,
-                               frozenset({DRAWER, RED}), frozenset({OPEN_}), False)
+    unchecked = successor_tree(roots, dists, history, TreeShape(3, 0.7, frozenset({DRAWER, RED}), frozenset({OPEN_})), False)
     assert len(unchecked) == 2
 
 

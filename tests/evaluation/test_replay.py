@@ -7,7 +7,7 @@ from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.records import Option, Step
 from oracle.cli import main
 from oracle.errors import OntologyError
-from oracle.evaluation.baselines import Bigram, MostFrequent, NGram, chance_hit
+from oracle.evaluation.baselines import BASELINES, Bigram, MostFrequent, NGram, chance_hit
 from oracle.evaluation.replay import OracleMethod, check_users, load_users, replay, summarize
 from oracle.ontology import build_ontology
 
@@ -85,15 +85,29 @@ def test_evaluate_command_writes_json_report_and_plots(tmp_path, capsys):
         write_chain(path, "cy", ["pick(apple)", "eat(apple)", "pick(red_mug)", "drink_from(red_mug)"],
                     start=datetime(2026, 3, 2 + day, 19, 0))
     out = tmp_path / "out"
-    code = main(["evaluate", str(path), "--baselines", "--json", str(out / "s.json"), "--report", str(out / "r.md"),
-                 "--plots", str(out)])
+    code = main(["evaluate", str(path), "--baselines", "--ablations", "--json", str(out / "s.json"),
+                 "--report", str(out / "r.md"), "--plots", str(out)])
     assert code == 0
     summary = json.loads((out / "s.json").read_text())
-    assert set(summary["methods"]) == {"oracle", "most_frequent", "bigram", "ngram"}
+    reference = next(iter(summary["methods"]))
+    assert reference == summary["method"] == "routine"
+    assert set(BASELINES) | {"routine", "oracle"} <= set(summary["methods"])
     assert set(summary["chance"]) == {"top1", "top3", "top5"} and summary["n_predictions"] == 12
     assert summary["methods"]["oracle"]["per_user"]["cy"]["top5"] == 1.0
-    assert "| oracle |" in (out / "r.md").read_text()
-    assert (out / "per_user_box.png").stat().st_size > 1000 and (out / "learning_curve.png").exists()
+    # every other method is compared with the first one, on the same predictions
+    paired = summary["comparisons"]
+    assert paired["reference"] == reference and set(paired["methods"]) == set(summary["methods"]) - {reference}
+    ngram = paired["methods"]["ngram"]["top1"]
+    assert ngram["low"] <= ngram["difference"] <= ngram["high"] and 0 <= ngram["p"] <= ngram["p_holm"] <= 1
+    cold = summary["cold_start"]
+    assert cold["n_predictions"] == 12 and cold["comparisons"]["reference"] == reference
+    ablations = summary["ablations"]["settings"]
+    assert set(ablations) == set("ABCDEFGHIJKLMN") and "vs_A" in ablations["B"] and "vs_A" not in ablations["A"]
+    report = (out / "r.md").read_text()
+    assert "| oracle |" in report and "Paired differences against" in report and "## Cold start" in report
+    assert "| ngram | " + f"{100 * ngram['difference']:+.1f} [" in report
+    for name in ("per_user_box.png", "learning_curve.png", "differences.png", "ablations.png"):
+        assert (out / name).stat().st_size > 1000
 
 
 def test_evaluate_rejects_bad_settings(tmp_path, capsys):
@@ -101,3 +115,18 @@ def test_evaluate_rejects_bad_settings(tmp_path, capsys):
     write_chain(path, "cy", ["pick(apple)"])
     assert main(["evaluate", str(path), "--settings", "Z"]) == 1
     assert "not a YAML file" in capsys.readouterr().err
+
+
+def test_evaluate_method_thesis_scores_the_thesis_oracle_alone_with_its_figures(tmp_path, kitchen):
+    path = tmp_path / "c.jsonl"
+    for day in range(3):
+        write_chain(path, "cy", ["pick(apple)", "eat(apple)", "pick(red_mug)", "drink_from(red_mug)", "pick(banana)"],
+                    start=datetime(2026, 3, 2 + day, 19, 0))
+    assert main(["evaluate", str(path), "--method", "thesis", "--json", str(tmp_path / "t.json")]) == 0
+    thesis = json.loads((tmp_path / "t.json").read_text())
+    assert list(thesis["methods"]) == ["oracle"] and thesis["method"] == "oracle"
+    direct = summarize(replay(kitchen, load_users(path), [OracleMethod(kitchen, Hyperparameters())]))
+    for k in ("top1", "top3", "top5"):
+        assert thesis["methods"]["oracle"][k] == direct["methods"]["oracle"][k]
+    assert main(["evaluate", str(path), "--json", str(tmp_path / "r.json")]) == 0
+    assert list(json.loads((tmp_path / "r.json").read_text())["methods"]) == ["routine"]

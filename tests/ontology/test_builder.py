@@ -17,7 +17,8 @@ KITCHEN_OBJECTS = (
     "fridge milk_carton juice beer_bottle cucumber avocado yogurt tap coffee_machine microwave dish_washer stove"
 ).split()
 KITCHEN_TASKS = "pick place pour drink_from eat cut eat_with stir open close turn_on turn_off".split()
-EDAN_OBJECTS = "_robot _tool human _gripper _container _coffee_machine _content _fruit _microwave _phone _tray _cube edans_ikea_kitchen_door oven_knob".split()
+EDAN_OBJECTS = ("_robot _tool human _gripper _container _coffee_machine _content _fruit _microwave _phone _tray _cube "
+                "edans_ikea_kitchen_door oven_knob").split()
 
 
 def soma_or_dul(iri: str) -> bool:

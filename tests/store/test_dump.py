@@ -146,7 +146,8 @@ def documents(draw):
     p = draw(st.one_of(st.just(RDF_TYPE), st.just(SUBCLASS_OF), iris))
     o = draw(values)
     doc = {"_id": ObjectId(), "s": draw(iris), "p": p, "o": o, "p*": draw(st.lists(iris, min_size=1, max_size=3)),
-           "o*": draw(st.one_of(st.just([o]), st.lists(iris, min_size=1, max_size=4))), "graph": draw(st.sampled_from(["user", "SOMA"]))}  # fmt: skip
+           "o*": draw(st.one_of(st.just([o]), st.lists(iris, min_size=1, max_size=4))),
+           "graph": draw(st.sampled_from(["user", "SOMA"]))}  # fmt: skip
     if draw(st.booleans()):
         since = draw(st.one_of(st.just(Decimal128("0")), st.floats(0, 2e9)))
         doc["scope"] = {"time": {"since": since, "until": draw(st.sampled_from([Decimal128("Infinity"), float("inf"), 2e9]))}}

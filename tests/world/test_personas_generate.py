@@ -10,7 +10,7 @@ from oracle.chains import read_chains
 from oracle.errors import NeemOracleError
 from oracle.world.generate import INTENTIONS, generate
 from oracle.world.personas import make_persona, make_personas, tune_count
-from oracle.world.rules import load_world
+from oracle.world.worldfile import load_world
 
 
 @pytest.fixture(scope="module")

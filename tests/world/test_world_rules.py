@@ -6,7 +6,7 @@ from hypothesis import strategies as st
 
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import ChainSyntaxError, NeemOracleError, WorldError
-from oracle.world.rules import default_world, load_world
+from oracle.world.worldfile import default_world, load_world
 from oracle.world.state import HAND
 
 TABLE_5_1 = (

@@ -17,30 +17,32 @@ return identical scores; the property tests hold them to 1e-9.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from functools import partial
 
 import numpy as np
+import numpy.typing as npt
 
 from oracle.algorithm.params import NAMES, Hyperparameters, OracleParams
 from oracle.algorithm.reference import (
-    Candidate, assemble_ranking, class_row, importance_weights, offered_options,
+    Candidate, RankRequest, assemble_ranking, class_row, importance_weights, offered_options,
 )
 from oracle.algorithm.records import Option, Ranking, Step, option_key
+from oracle.algorithm.tree import Successions
 from oracle.errors import SettingsError
 from oracle.timeline import TIME_OF_DAY_NAMES
 
-_TOD = {name: code for code, name in enumerate(TIME_OF_DAY_NAMES)}
+_TOD: dict[str | None, int] = {name: code for code, name in enumerate(TIME_OF_DAY_NAMES)}
 
 
 class _Column:
     """A growing 1-d numpy array with amortised O(1) append."""
 
-    def __init__(self, dtype) -> None:
+    def __init__(self, dtype: npt.DTypeLike) -> None:
         self._data = np.empty(64, dtype=dtype)
         self.size = 0
 
-    def append(self, value) -> None:
+    def append(self, value: float) -> None:
         if self.size == self._data.size:
             self._data = np.concatenate([self._data, np.empty_like(self._data)])
         self._data[self.size] = value
@@ -142,7 +144,7 @@ class PreferenceOracle(OracleParams):
         self._next_position.append(-1)
         self.n_steps_ = position + 1
 
-    def _classes_of(self, options) -> np.ndarray:
+    def _classes_of(self, options: Sequence[Option]) -> np.ndarray:
         rows = np.empty((len(options), 3), dtype=np.int64)
         for i, option in enumerate(options):
             rows[i, 0] = class_row(self.distances, option.task)
@@ -150,7 +152,7 @@ class PreferenceOracle(OracleParams):
             rows[i, 2] = -1 if option.reference is None else class_row(self.distances, option.reference)
         return rows
 
-    def _intern_options(self, options) -> list[int]:
+    def _intern_options(self, options: Iterable[Option]) -> list[int]:
         new = [o for o in dict.fromkeys(options) if o not in self._option_ids]
         if new:
             classes = self._classes_of(new)
@@ -189,7 +191,8 @@ class PreferenceOracle(OracleParams):
             total = total + term
             count += both | one
         average = np.divide(total, count, out=np.zeros(task.shape), where=count > 0)
-        return p.task_factor * task + p.object_factor * average
+        distance: np.ndarray = p.task_factor * task + p.object_factor * average
+        return distance
 
     def _set_distance_vector(self, rows: np.ndarray, set_ids: np.ndarray) -> np.ndarray:
         """Algorithm 3's option set distance from the options behind ``rows`` (canonical order;
@@ -221,7 +224,8 @@ class PreferenceOracle(OracleParams):
         total = np.zeros(best.shape[1])
         for i in range(k):  # left to right, as the reference adds
             total += best[i]
-        return total / k
+        mean: np.ndarray = total / k
+        return mean
 
     def _historic_set_distances(self, set_a: int, needed: np.ndarray) -> np.ndarray:
         """Memoised set distances from historic set ``set_a`` to every set id (nan where not needed)."""
@@ -243,7 +247,7 @@ class PreferenceOracle(OracleParams):
         """Algorithm 3 distance of step ``a`` (as the current side) to every earlier step."""
         p = self.params_
         executed = self._executed.view
-        base = self._option_table[executed[a], executed[:a]]
+        base: np.ndarray = self._option_table[executed[a], executed[:a]]
         if p.compare_situations <= 0 or a == 0:
             return base
         need = base < p.knockout
@@ -251,7 +255,7 @@ class PreferenceOracle(OracleParams):
             return base
         sets = self._set_of_step.view[:a]
         table = self._historic_set_distances(int(self._set_of_step.view[a]), np.unique(sets[need]))
-        row = base.copy()
+        row: np.ndarray = base.copy()
         row[need] = base[need] + table[sets[need]] * p.compare_situations
         return row
 
@@ -315,8 +319,8 @@ class PreferenceOracle(OracleParams):
 
         results = [Candidate(c, option, counts[c], totals[c], nearest[c], partial(members, c))
                    for c, option in enumerate(offered)]
-        return assemble_ranking(p, self.opening_tasks, offered, results, tree_roots, present_objects,
-                                self._next_position.view, executed, self.options_)
+        request = RankRequest(p, self.opening_tasks, offered, tree_roots, present_objects)
+        return assemble_ranking(request, results, Successions(self._next_position.view, executed, self.options_))
 
     def _predecessors(self, columns: np.ndarray, weights: list[float]) -> tuple[np.ndarray, np.ndarray]:
         """Weighted predecessor distances for the historic steps at ``columns`` (see reference)."""

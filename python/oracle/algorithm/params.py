@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass, fields, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, Self
 
 import yaml
 
@@ -35,7 +35,7 @@ class Hyperparameters:
     def __post_init__(self) -> None:
         validate(asdict(self))
 
-    def to_dict(self) -> dict[str, float | int]:
+    def to_dict(self) -> dict[str, Any]:
         return asdict(self)
 
 
@@ -103,24 +103,24 @@ def save_settings(settings: Hyperparameters, path: Path | str) -> None:
     Path(path).write_text(yaml.safe_dump(settings.to_dict(), sort_keys=False), encoding="utf-8")
 
 
-_RECOMMENDED = Hyperparameters()
+_DEFAULTS = Hyperparameters()  # Table 4.2, "recommended"
 
 #: Thesis Fig. 5.5 settings: each is the recommended settings with one parameter changed.
 PRESETS: dict[str, Hyperparameters] = {
-    "A": _RECOMMENDED,
-    "B": replace(_RECOMMENDED, compare_situations=0.0),
-    "C": replace(_RECOMMENDED, time_of_day_penalty=10.0),
-    "D": replace(_RECOMMENDED, time_of_day_penalty=1.0),
-    "E": replace(_RECOMMENDED, multiple_occurrences_factor=1.0),
-    "F": replace(_RECOMMENDED, multiple_occurrences_factor=0.0),
-    "G": replace(_RECOMMENDED, decreasing_importance_factor=1.0),
-    "H": replace(_RECOMMENDED, object_factor=0.0),
-    "I": replace(_RECOMMENDED, task_factor=0.0),
-    "J": replace(_RECOMMENDED, penalty=_RECOMMENDED.knockout),
-    "K": replace(_RECOMMENDED, penalty=20.0),
-    "L": replace(_RECOMMENDED, knockout=0.0),
-    "M": replace(_RECOMMENDED, knockout=20.0),
-    "N": replace(_RECOMMENDED, event_horizon_backwards=0),
+    "A": _DEFAULTS,
+    "B": replace(_DEFAULTS, compare_situations=0.0),
+    "C": replace(_DEFAULTS, time_of_day_penalty=10.0),
+    "D": replace(_DEFAULTS, time_of_day_penalty=1.0),
+    "E": replace(_DEFAULTS, multiple_occurrences_factor=1.0),
+    "F": replace(_DEFAULTS, multiple_occurrences_factor=0.0),
+    "G": replace(_DEFAULTS, decreasing_importance_factor=1.0),
+    "H": replace(_DEFAULTS, object_factor=0.0),
+    "I": replace(_DEFAULTS, task_factor=0.0),
+    "J": replace(_DEFAULTS, penalty=_DEFAULTS.knockout),
+    "K": replace(_DEFAULTS, penalty=20.0),
+    "L": replace(_DEFAULTS, knockout=0.0),
+    "M": replace(_DEFAULTS, knockout=20.0),
+    "N": replace(_DEFAULTS, event_horizon_backwards=0),
 }
 PRESETS["recommended"] = PRESETS["A"]
 PRESETS["no_situations"] = PRESETS["B"]
@@ -145,11 +145,16 @@ class OracleParams:
     _param_names: tuple[str, ...] = ("distances", "opening_tasks", *NAMES)
 
     def __init__(self, distances: Any = None, *, opening_tasks: frozenset[str] = frozenset(),
-                 object_factor: float = 1.0, task_factor: float = 2.0, knockout: float = 1.16,
-                 penalty: float = 3.7, event_horizon_backwards: int = 16,
-                 decreasing_importance_factor: float = 0.81, compare_situations: float = 1.0,
-                 time_of_day_penalty: float = 1.18, event_horizon_forward: int = 3,
-                 multiple_occurrences_factor: float = 0.25) -> None:
+                 object_factor: float = _DEFAULTS.object_factor, task_factor: float = _DEFAULTS.task_factor,
+                 knockout: float = _DEFAULTS.knockout, penalty: float = _DEFAULTS.penalty,
+                 event_horizon_backwards: int = _DEFAULTS.event_horizon_backwards,
+                 decreasing_importance_factor: float = _DEFAULTS.decreasing_importance_factor,
+                 compare_situations: float = _DEFAULTS.compare_situations,
+                 time_of_day_penalty: float = _DEFAULTS.time_of_day_penalty,
+                 event_horizon_forward: int = _DEFAULTS.event_horizon_forward,
+                 multiple_occurrences_factor: float = _DEFAULTS.multiple_occurrences_factor) -> None:
+        # The defaults are Hyperparameters' (Table 4.2), written once there; each argument is
+        # spelled out so the signature shows the estimator's parameters (scikit-learn's contract).
         self.distances = distances
         self.opening_tasks = opening_tasks
         self.object_factor = object_factor
@@ -183,7 +188,7 @@ class OracleParams:
 
     @classmethod
     def from_settings(cls, distances: Any, settings: Hyperparameters | str = "recommended",
-                      opening_tasks: frozenset[str] = frozenset()):
+                      opening_tasks: frozenset[str] = frozenset()) -> Self:
         """Build an oracle from a Hyperparameters record or a preset name."""
         if isinstance(settings, str):
             settings = preset(settings)

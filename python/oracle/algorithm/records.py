@@ -5,10 +5,23 @@ Every class and task is a full IRI; ``label`` is for display only. See docs/algo
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
+from typing import Any, Protocol
 
 from oracle.timeline import TIME_OF_DAY_NAMES
+
+
+
+class DistanceTable(Protocol):
+    """Algorithm 1 precomputed (``ontology.DistanceMatrix``): ``index`` maps a class IRI to its
+    row and column of ``values``."""
+
+    @property
+    def index(self) -> Mapping[str, int]: ...
+
+    @property
+    def values(self) -> Any: ...
 
 
 @dataclass(frozen=True)
@@ -114,7 +127,7 @@ class Ranking:
 
     tasks: tuple[RankedTask, ...]
 
-    def __iter__(self):
+    def __iter__(self) -> Iterator[RankedTask]:
         return iter(self.tasks)
 
     def __len__(self) -> int:

@@ -9,6 +9,7 @@ same operations in the same order, so the two agree to the last bit.
 from __future__ import annotations
 
 import math
+from functools import partial
 from dataclasses import dataclass
 from collections.abc import Callable, Iterable, Sequence
 
@@ -16,21 +17,21 @@ import numpy as np
 
 from oracle.algorithm.params import Hyperparameters, OracleParams
 from oracle.algorithm.records import (
-    Option, RankedTask, Ranking, Step, canonical_options,
+    DistanceTable, Option, RankedTask, Ranking, Step, TreeNode, canonical_options,
 )
-from oracle.algorithm.tree import occurrence_value, successor_tree
+from oracle.algorithm.tree import Successions, TreeShape, occurrence_value, successor_tree
 from oracle.errors import OntologyError, SettingsError
 
 
 # ---------------------------------------------------------------------------------------------
 # Algorithm 1 comes precomputed: a DistanceMatrix with .index (IRI -> row) and .values.
 
-def class_distance(matrix, a: str, b: str) -> float:
+def class_distance(matrix: DistanceTable, a: str, b: str) -> float:
     """Algorithm 1 distance between two classes, looked up in the precomputed matrix."""
     return float(matrix.values[class_row(matrix, a), class_row(matrix, b)])
 
 
-def class_row(matrix, iri: str) -> int:
+def class_row(matrix: DistanceTable, iri: str) -> int:
     try:
         return matrix.index[iri]
     except KeyError:
@@ -41,7 +42,7 @@ def class_row(matrix, iri: str) -> int:
 # ---------------------------------------------------------------------------------------------
 # Algorithm 2: overall distance between two executed (or available) tasks.
 
-def overall_distance(p: Hyperparameters, matrix, a: Option, b: Option) -> float:
+def overall_distance(p: Hyperparameters, matrix: DistanceTable, a: Option, b: Option) -> float:
     """``task factor * dist(task) + object factor * avg(object distances)``.
 
     Objects are compared slot by slot (target with target, reference with reference). A slot
@@ -66,7 +67,7 @@ def overall_distance(p: Hyperparameters, matrix, a: Option, b: Option) -> float:
 # ---------------------------------------------------------------------------------------------
 # Algorithm 3: situation distance, adding the comparison of the available options.
 
-def option_set_distance(p: Hyperparameters, matrix, mine: Sequence[Option], theirs: Sequence[Option]) -> float:
+def option_set_distance(p: Hyperparameters, matrix: DistanceTable, mine: Sequence[Option], theirs: Sequence[Option]) -> float:
     """Average over ``mine`` of the smallest Algorithm 2 distance to any option in ``theirs``.
 
     Both are canonical option sets. When either set is empty (not recorded) there is nothing to
@@ -88,7 +89,7 @@ def option_set_distance(p: Hyperparameters, matrix, mine: Sequence[Option], thei
     return total / len(best_distances)
 
 
-def situation_distance(p: Hyperparameters, matrix, a: Option, a_options: Sequence[Option],
+def situation_distance(p: Hyperparameters, matrix: DistanceTable, a: Option, a_options: Sequence[Option],
                        b: Option, b_options: Sequence[Option]) -> float:
     """Algorithm 3: Algorithm 2, plus ``compare situations * option set distance`` unless skipped."""
     dist = overall_distance(p, matrix, a, b)
@@ -116,7 +117,7 @@ def is_chain_start(history: Sequence[Step], position: int) -> bool:
     return position < 0 or history[position].idle
 
 
-def predecessor_distance(p: Hyperparameters, matrix, history: Sequence[Step], j: int,
+def predecessor_distance(p: Hyperparameters, matrix: DistanceTable, history: Sequence[Step], j: int,
                          weights: Sequence[float]) -> tuple[float, float]:
     """Weighted distances of the predecessors: ``p_n(s_c)`` against ``p_n(s_h)`` for n = 1..horizon.
 
@@ -234,18 +235,22 @@ class ReferenceOracle(OracleParams):
                 total += dist
             roots = np.array([j for j, _ in similar], dtype=np.int64)
             dists = np.array([d for _, d in similar], dtype=np.float64)
-            results.append(Candidate(position, candidate, len(similar), total, nearest, lambda r=roots, d=dists: (r, d)))
+            results.append(Candidate(position, candidate, len(similar), total, nearest, partial(_pair, roots, dists)))
 
         option_ids: dict[Option, int] = {}
         executed = np.array([option_ids.setdefault(step.option, len(option_ids)) for step in history],
                             dtype=np.int64)
         next_position = np.array([j + 1 if j + 1 < len(history) and not history[j + 1].idle else -1
                                   for j in range(len(history))], dtype=np.int64)
-        return assemble_ranking(p, self.opening_tasks, offered, results, tree_roots, present_objects,
-                                next_position, executed, list(option_ids))
+        request = RankRequest(p, self.opening_tasks, offered, tree_roots, present_objects)
+        return assemble_ranking(request, results, Successions(next_position, executed, list(option_ids)))
 
 
-def offered_options(current, time_of_day: str | None) -> tuple[tuple[Option, ...], str | None]:
+def _pair(roots: np.ndarray, distances: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    return roots, distances
+
+
+def offered_options(current: Step | Iterable[Option], time_of_day: str | None) -> tuple[tuple[Option, ...], str | None]:
     """The offered options, duplicates dropped (first kept), and the time of day of now."""
     if isinstance(current, Step):
         options, now = current.options, current.time_of_day if time_of_day is None else time_of_day
@@ -273,11 +278,23 @@ class Candidate:
     members: Callable[[], tuple[np.ndarray, np.ndarray]]
 
 
-def assemble_ranking(p: Hyperparameters, opening_tasks, offered: Sequence[Option],
-                     results: Sequence[Candidate], tree_roots: int | None, present_objects,
-                     next_position: np.ndarray, executed: np.ndarray, options: Sequence[Option]) -> Ranking:
+@dataclass(frozen=True)
+class RankRequest:
+    """One ``rank()`` call: the settings, the Opening tasks, the offered options (duplicates
+    dropped), how many top candidates get a forward tree (None: all) and the objects present
+    (None: those of the offered options)."""
+
+    params: Hyperparameters
+    opening_tasks: frozenset[str]
+    offered: Sequence[Option]
+    tree_roots: int | None
+    present_objects: Iterable[str] | None
+
+
+def assemble_ranking(request: RankRequest, results: Sequence[Candidate], history: Successions) -> Ranking:
     """Order candidates by eq. 4.12 (ties: offered order); those without similar history follow
     by nearest Algorithm 2 distance, then offered order. Shared by both oracles."""
+    p, offered, tree_roots, present_objects = request.params, request.offered, request.tree_roots, request.present_objects
     scored = []
     for found in results:
         if found.n_similar:
@@ -289,14 +306,13 @@ def assemble_ranking(p: Hyperparameters, opening_tasks, offered: Sequence[Option
 
     present = frozenset(present_objects) if present_objects is not None else frozenset(
         obj for option in offered for obj in option.objects())
-    opening = frozenset(opening_tasks)
+    opening = frozenset(request.opening_tasks)
+    shape = TreeShape(p.event_horizon_forward, p.multiple_occurrences_factor, present, opening)
     tasks = []
     for rank, (_, score, found) in enumerate(scored, start=1):
-        successors = ()
+        successors: tuple[TreeNode, ...] = ()
         if found.n_similar and (tree_roots is None or rank <= tree_roots):
             roots, dists = found.members()
-            successors = successor_tree(roots, dists, next_position, executed, options,
-                                        p.event_horizon_forward, p.multiple_occurrences_factor,
-                                        present, opening, found.option.task not in opening)
+            successors = successor_tree(roots, dists, history, shape, found.option.task not in opening)
         tasks.append(RankedTask(rank, score, found.option, found.n_similar, found.nearest, successors))
     return Ranking(tuple(tasks))

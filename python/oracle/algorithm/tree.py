@@ -10,6 +10,7 @@ this module, so their trees are identical whenever their ``H(s_o)`` and distance
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -18,33 +19,50 @@ from oracle.algorithm.records import Option, TreeNode
 
 def occurrence_value(total: float, count: int, factor: float) -> float:
     """Eq. 4.12: ``v = (avg + 0.0001) / len^x`` with ``avg = total / count``; lower is better."""
-    return (total / count + 0.0001) / (count ** factor)
+    return float((total / count + 0.0001) / (count ** factor))
+
+
+@dataclass(frozen=True)
+class Successions:
+    """How the history goes on: ``next_position[i]`` is the position of the successor of step i
+    (-1 when the history ends or the successor is an odb:IdleTask, which ends the chain);
+    ``executed[i]`` is the id of step i's executed option in ``options``."""
+
+    next_position: np.ndarray
+    executed: np.ndarray
+    options: Sequence[Option]
+
+
+@dataclass(frozen=True)
+class TreeShape:
+    """What bounds a tree: ``depth`` levels (event horizon forward), eq. 4.12's ``factor``
+    (multiple occurrences factor), the objects ``present`` now and the tasks under soma:Opening."""
+
+    depth: int
+    factor: float
+    present: frozenset[str]
+    opening_tasks: frozenset[str]
 
 
 def successor_tree(
     roots: np.ndarray,
     distances: np.ndarray,
-    next_position: np.ndarray,
-    executed: np.ndarray,
-    options: Sequence[Option],
-    depth: int,
-    factor: float,
-    present: frozenset[str],
-    opening_tasks: frozenset[str],
+    history: Successions,
+    shape: TreeShape,
     checked: bool,
 ) -> tuple[TreeNode, ...]:
     """The successor nodes of one candidate whose similar historic situations are at ``roots``.
 
     ``roots`` (ascending history positions) and ``distances`` pair each member of ``H(s_o)`` with
-    its distance to the candidate; ``next_position[i]`` is the position of the successor of step
-    i (-1 when the history ends or the successor is an odb:IdleTask, which ends the chain);
-    ``executed[i]`` is the id of step i's executed option in ``options``. ``checked`` is False when
-    the candidate is an Opening task, below which objects are not checked for presence (Fig. 4.7).
+    its distance to the candidate. ``checked`` is False when the candidate is an Opening task,
+    below which objects are not checked for presence (Fig. 4.7).
 
     A node at depth k is a distinct sequence of k successor options; it gathers the roots whose
     chains follow that sequence and is valued by eq. 4.12 over their distances, which are summed
     in history order. Siblings are sorted by value, then by the earliest history position.
     """
+    next_position, executed, options = history.next_position, history.executed, history.options
+    depth, factor, present, opening_tasks = shape.depth, shape.factor, shape.present, shape.opening_tasks
     if depth <= 0 or roots.size == 0:
         return ()
     n_options = max(len(options), 1)

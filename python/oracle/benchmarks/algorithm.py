@@ -1,4 +1,5 @@
-"""Benchmark of the PreferenceOracle: time per prediction of ``fast`` and ``reference`` (issue 5).
+"""Benchmark of the predictors: time per prediction of the thesis oracle's ``fast`` and ``reference``
+(issue 5) and of the routine predictor, the default (issue 10: median <= 1 ms at 300, <= 20 ms at 10,000).
 
 Synthetic histories of 100 to 10,000 steps with ~20 available options per situation, over a
 random 90-class taxonomy whose distances follow thesis eq. 4.5; a routine-like Markov chain over
@@ -18,6 +19,7 @@ import numpy as np
 from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import PRESETS
 from oracle.algorithm.reference import ReferenceOracle
+from oracle.algorithm.routine import RoutineOracle
 from oracle.algorithm.records import Option, Step
 from oracle.ontology.distance import DistanceMatrix
 from oracle.timeline import TIME_OF_DAY_NAMES
@@ -33,19 +35,24 @@ def taxonomy(rng: np.random.Generator, n_tasks: int = 30, n_objects: int = 60) -
     leaves: dict[str, list[str]] = {"Task": [], "Object": []}
     for kind, count in (("Task", n_tasks), ("Object", n_objects)):
         top = len(names)
-        names.append(kind); parent.append(0)
+        names.append(kind)
+        parent.append(0)
         groups = []
         for g in range(max(2, count // 6)):
-            groups.append(len(names)); names.append(f"{kind}Group{g}"); parent.append(top)
+            groups.append(len(names))
+            names.append(f"{kind}Group{g}")
+            parent.append(top)
         for i in range(count):
-            names.append(f"{kind}{i}"); parent.append(int(rng.choice(groups)))
+            names.append(f"{kind}{i}")
+            parent.append(int(rng.choice(groups)))
             leaves[kind].append(NS + names[-1])
     n = len(names)
     ancestors = []
     for i in range(n):
         chain, node = [], i
         while node >= 0:
-            chain.append(node); node = parent[node]
+            chain.append(node)
+            node = parent[node]
         ancestors.append(chain)
     depth_total = max(len(a) for a in ancestors)
     values = np.zeros((n, n))
@@ -147,7 +154,31 @@ def run(quick: bool = False) -> list[dict]:
                          "p99_ms": round(float(np.percentile(adds, 99)), 4), "peak_mb": None})
             print(f"{size:>8} {name:<14} {'fast add':<10} {np.median(adds):>10.3f} {np.percentile(adds, 99):>9.3f}",
                   flush=True)
+        rows.extend(_routine_rows(matrix, prefix, queries, fast_queries, size))
     return rows
+
+
+def _routine_rows(matrix, prefix, queries, count: int, size: int) -> list[dict]:
+    """The routine predictor on the same history and queries (its own defaults, self-tuned)."""
+    model = RoutineOracle(matrix).fit(prefix)
+    model.rank(queries[0], tree_roots=1)
+    times = _times(model, queries[:count], 3)
+    median, p99 = float(np.median(times)), float(np.percentile(times, 99))
+    peak = _peak_mb(lambda: RoutineOracle(matrix), prefix, queries)
+    print(f"{size:>8} {'default':<14} {'routine':<10} {median:>10.3f} {p99:>9.3f} {peak:>8.1f}", flush=True)
+    adds = []
+    model = RoutineOracle(matrix).fit(prefix[:-20])
+    for step in prefix[-20:]:  # adding a step also scores the variants on it: one rank
+        start = time.perf_counter()
+        model.partial_fit(step)
+        adds.append((time.perf_counter() - start) * 1000.0)
+    print(f"{size:>8} {'default':<14} {'rout. add':<10} {np.median(adds):>10.3f} {np.percentile(adds, 99):>9.3f}",
+          flush=True)
+    return [{"area": "algorithm", "name": "rank", "history": size, "impl": "routine", "settings": "default",
+             "median_ms": round(median, 4), "p99_ms": round(p99, 4), "peak_mb": round(peak, 2)},
+            {"area": "algorithm", "name": "partial_fit", "history": size, "impl": "routine", "settings": "default",
+             "median_ms": round(float(np.median(adds)), 4), "p99_ms": round(float(np.percentile(adds, 99)), 4),
+             "peak_mb": None}]
 
 
 if __name__ == "__main__":

@@ -12,7 +12,7 @@ SHARED_SOMA = Path(__file__).resolve().parents[4] / "shared" / "soma"
 
 def run(quick: bool = False) -> list[dict]:
     rows = []
-    sources = [("core TBox", None)]
+    sources: list[tuple[str, Path | None]] = [("core TBox", None)]
     if (SHARED_SOMA / "SOMA.owl").exists() and not quick:
         sources.append(("official SOMA/DUL", SHARED_SOMA))
     for label, soma in sources:

@@ -7,6 +7,7 @@ import tempfile
 import time
 from datetime import datetime, timedelta
 from pathlib import Path
+from typing import Any
 
 
 #: Goal-by-goal evaluation costs one store query per solution of the goals before; on the
@@ -151,8 +152,15 @@ def _sql_floor(path: Path, neem: str) -> int:
     import sqlite3
 
     conn = sqlite3.connect(path)
-    terms = dict(conn.execute("SELECT value, id FROM terms"))
-    names = {v: k for k, v in terms.items()}
+    names: dict[Any, Any] = {}
+
+    def name(term_id: Any) -> Any:
+        """The IRI of a term id, looked up once (the terms table is shared by every NEEM)."""
+        if term_id not in names:
+            row = conn.execute("SELECT value FROM terms WHERE id=?", (term_id,)).fetchone()
+            names[term_id] = row[0] if row else term_id
+        return names[term_id]
+
     iri = {
         "exec": "http://www.ontologydesignpatterns.org/ont/dul/DUL.owl#executesTask",
         "hti": "http://www.ontologydesignpatterns.org/ont/dul/DUL.owl#hasTimeInterval",
@@ -162,7 +170,10 @@ def _sql_floor(path: Path, neem: str) -> int:
         "imag": "https://ontology.dlr.de/soma/odb#imagines_situation",
         "plan": "http://www.ease-crc.org/ont/SOMA.owl#isPlanFor",
     }
-    ids = {k: terms.get(v, -1) for k, v in iri.items()}
+    ids = {}
+    for key, value in iri.items():
+        row = conn.execute("SELECT id FROM terms WHERE value=?", (value,)).fetchone()
+        ids[key] = row[0] if row else -1
     t = f'"{neem}_triples"'
 
     def drive(alias: str, key: str) -> str:
@@ -180,7 +191,7 @@ def _sql_floor(path: Path, neem: str) -> int:
     count = 0
     for sql in queries:
         for row in conn.execute(sql, ids):
-            [names.get(v, v) for v in row]
+            [name(v) if isinstance(v, int) else v for v in row]
             count += 1
     conn.close()
     return count

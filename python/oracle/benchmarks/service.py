@@ -55,9 +55,9 @@ def _prepare(store: Path, robots: int, actions: int, steps: int) -> list[tuple[s
     return plans
 
 
-def _serve(store: Path) -> tuple[subprocess.Popen, str]:
+def _serve(store: Path, *extra: str) -> tuple[subprocess.Popen, str]:
     port = _free_port()
-    process = subprocess.Popen([sys.executable, "-m", "oracle", "serve", "--store", str(store), "--port", str(port)],
+    process = subprocess.Popen([sys.executable, "-m", "oracle", "serve", "--store", str(store), "--port", str(port), *extra],
                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     url = f"http://127.0.0.1:{port}"
     deadline = time.monotonic() + 120
@@ -111,7 +111,7 @@ def run(quick: bool = False) -> list[dict]:
           flush=True)
     with tempfile.TemporaryDirectory(prefix="neem-bench-service-") as folder:
         store = Path(folder) / "bench.sqlite"
-        plans = _prepare(store, robots, actions, steps * 2)
+        plans = _prepare(store, robots, actions, steps * 3)
         process, url = _serve(store)
         stop = threading.Event()
         timer = threading.Timer(CAP_S, stop.set)
@@ -124,7 +124,7 @@ def run(quick: bool = False) -> list[dict]:
 
             neem, user, todo = plans[0]
             alone = drive(url, user, todo[:steps], neem, stop=stop)
-            for kind in ("situation", "server", "rank", "action"):
+            for kind in ("situation", "server", "engine", "rank", "action"):
                 rows.append(_row("1 robot", kind, alone.latencies.get(kind, []), 1, len(alone.errors)))
 
             results: list[Drive] = [Drive() for _ in plans]
@@ -142,7 +142,7 @@ def run(quick: bool = False) -> list[dict]:
                 thread.join()
             seconds = time.perf_counter() - started
             errors = sum(len(r.errors) for r in results)
-            for kind in ("situation", "server", "rank", "action"):
+            for kind in ("situation", "server", "engine", "rank", "action"):
                 values = [v for r in results for v in r.latencies.get(kind, [])]
                 rows.append(_row(f"{len(plans)} robots at once", kind, values, len(plans), errors))
             posted = sum(len(r.latencies.get("situation", [])) + len(r.latencies.get("action", [])) for r in results)
@@ -150,9 +150,28 @@ def run(quick: bool = False) -> list[dict]:
                   f"{'; stopped by the time cap' if stop.is_set() else ''}", flush=True)
         finally:
             timer.cancel()
-            process.terminate()
-            try:
-                process.wait(timeout=20)
-            except subprocess.TimeoutExpired:
-                process.kill()
+            _stop(process)
+        rows.extend(_sync_writes(store, plans[0], steps))
     return rows
+
+
+def _stop(process: subprocess.Popen) -> None:
+    process.terminate()
+    try:
+        process.wait(timeout=20)
+    except subprocess.TimeoutExpired:
+        process.kill()
+
+
+def _sync_writes(store: Path, plan: tuple[str, str, list], steps: int) -> list[dict]:
+    """The same robot against a service started with --sync-writes: what write-behind saves."""
+    neem, user, todo = plan
+    process, url = _serve(store, "--sync-writes")
+    try:
+        _open_sessions(url, [plan])
+        later = todo[2 * steps:] or todo[steps:]
+        done = drive(url, user, later[: max(10, steps // 3)], neem)
+        return [_row("1 robot, --sync-writes", kind, done.latencies.get(kind, []), 1, len(done.errors))
+                for kind in ("situation", "action")]
+    finally:
+        _stop(process)

@@ -11,7 +11,7 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NamedTuple
 
-from oracle.errors import NeemOracleError, SettingsError, StoreError
+from oracle.errors import NeemOracleError, SettingsError
 
 if TYPE_CHECKING:  # imported lazily at run time, so that --help stays fast
     from oracle.algorithm.params import Hyperparameters
@@ -54,6 +54,11 @@ ODB = Option(("--odb",), {"type": Path, "help": "odb folder (default: the sample
 MAPPING = Option(("--mapping",), {"type": Path, "help": "mapping YAML (default: the sample kitchen's, shipped in ontology/)"})
 SOMA = Option(("--soma",), {"type": Path, "help": "folder with the official SOMA.owl/SOMA-HOME.owl/DUL.owl (default: the core TBox)"})
 ONTOLOGY = Option(("--ontology",), {"type": Path, "help": "OWL file written by 'ontology build' (instead of --odb/--mapping)"})
+METHOD = Option(("--method",), {
+    "metavar": "NAME",
+    "help": "predictor (oracle.algorithm.predictors): routine (the default: exact contexts backed off to ontology "
+            "similarity, self-tuned), routine-fixed, routine-mixture, or thesis (the thesis oracle with --settings)",
+})
 #: The options naming the ontology a command works with (see ``ontology_from``).
 ONTOLOGY_OPTIONS = (ODB, MAPPING, SOMA, ONTOLOGY)
 
@@ -74,8 +79,8 @@ def ontology_from(args: argparse.Namespace) -> OdbOntology:
 
 
 def connect(args: argparse.Namespace) -> tuple[Bridge, OdbOntology]:
-    """The Prolog bridge over the NEEM a reading command works on and the ontology it was logged
-    with (``commands.target``: the store is never created, several NEEMs need ``--neem``)."""
+    """The Prolog bridge over the NEEM ``--store``/``--neem`` name, with the NEEM's ontology
+    (``commands.target``: the store is never created, several NEEMs need ``--neem``)."""
     from oracle.bridge import Bridge
     from oracle.commands.target import open_target
 
@@ -106,3 +111,10 @@ def moment_from(text: str | None) -> Instant | None:
         return parse_instant(text)
     except TimeValueError as error:
         raise NeemOracleError(f"--at {error}") from None
+
+
+def method_from(args: argparse.Namespace) -> str:
+    """The predictor name of ``--method`` (default: the registry's); one-line error when unknown."""
+    from oracle.algorithm.predictors import DEFAULT, predictor_spec
+
+    return predictor_spec(getattr(args, "method", None) or DEFAULT).name

@@ -50,7 +50,7 @@ def _progress(done: int, total: int) -> None:
 
 def run_generate(args: argparse.Namespace) -> int:
     from oracle.world.generate import generate
-    from oracle.world.rules import load_world
+    from oracle.world.worldfile import load_world
 
     world = load_world(args.world)
     summary = generate(args.out, personas=args.personas, days=args.days, seed=args.seed, world=world, progress=_progress)

@@ -10,6 +10,15 @@ from __future__ import annotations
 
 import argparse
 import time
+from datetime import datetime
+from typing import TYPE_CHECKING
+
+from oracle.errors import NeemOracleError
+
+if TYPE_CHECKING:
+    from oracle.chains import ChainRow
+
+from oracle.commands.common import METHOD, add_options, method_from
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -17,6 +26,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--store", help="store to use (default: the user's embedded SQLite store)")
     parser.add_argument("--days", type=int, default=5, help="days of history to simulate (default 5)")
     parser.add_argument("--seed", type=int, default=3, help="which simulated user (default 3)")
+    add_options(parser, METHOD)
     parser.set_defaults(handler=run)
 
 
@@ -32,8 +42,9 @@ def run(args: argparse.Namespace) -> int:
     from oracle.store import open_store
     from oracle.world.generate import simulate
     from oracle.world.personas import make_persona
-    from oracle.world.rules import load_world
+    from oracle.world.worldfile import load_world
 
+    method = method_from(args)
     if args.days < 1:
         raise NeemOracleError("--days must be at least 1")
     started = time.perf_counter()
@@ -42,20 +53,20 @@ def run(args: argparse.Namespace) -> int:
 
     persona = make_persona(args.seed, 0)
     rows, _ = simulate(persona, load_world(), args.days + 1, args.seed)
-    last_day = rows[-1].time.date()
-    history = [r for r in rows if r.time.date() != last_day]
-    now = next(r for r in rows if r.time.date() == last_day)
+    last_day = _time(rows[-1]).date()
+    history = [r for r in rows if _time(r).date() != last_day]
+    now = next(r for r in rows if _time(r).date() == last_day)
     store = open_store(args.store)
     logger = NeemLogger.create(store, onto, user=persona.file_name, neem_id="demo", replace=True, commit_every=200)
     for row in history:
-        logger.action(row.action, row.time, row.end, available=row.available)
-    logger.available(now.available, now.time)
+        logger.action(row.action, _time(row), row.end, available=row.available)
+    logger.available(now.available or (), _time(now))
     logger.flush()
     print(f"2. NEEM 'demo' in {store.location}: {len(history)} actions of {persona.file_name} over {args.days} days")
     print(f"   ({persona.persona})")
 
     bridge = Bridge(store, "demo", onto)
-    result = rank_neem(bridge, onto, Hyperparameters())
+    result = rank_neem(bridge, onto, Hyperparameters(), method=method)
     print(f"3. what the user may want now (they went on to do {now.action}):")
     print_ranking(result, limit=5)
 
@@ -64,3 +75,10 @@ def run(args: argparse.Namespace) -> int:
     print(f"4. why not {asked}?  {why_not_sentence(answer)}")
     print(f"done in {time.perf_counter() - started:.1f} s; try: python -m oracle prolog --neem demo")
     return 0
+
+
+def _time(row: ChainRow) -> datetime:
+    """The time of a simulated row (the generator gives every row one)."""
+    if row.time is None:
+        raise NeemOracleError(f"simulated row {row.action} has no time")
+    return row.time

@@ -9,15 +9,19 @@ import sys
 import time
 from pathlib import Path
 
-from oracle.commands.common import ONTOLOGY_OPTIONS, SETTINGS, add_options, ontology_from, settings_from
+from oracle.commands.common import (
+    METHOD, ONTOLOGY_OPTIONS, SETTINGS, add_options, method_from, ontology_from, settings_from,
+)
 from oracle.errors import NeemOracleError
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     evaluate = subparsers.add_parser("evaluate", help="replay chains and score the oracle against baselines")
     evaluate.add_argument("chains", type=Path, help="chains JSONL file or a folder of them")
-    add_options(evaluate, *ONTOLOGY_OPTIONS, SETTINGS)
-    evaluate.add_argument("--baselines", action="store_true", help="also run most-frequent, bigram and n-gram")
+    add_options(evaluate, *ONTOLOGY_OPTIONS, METHOD, SETTINGS)
+    evaluate.add_argument("--baselines", action="store_true",
+                          help="also run the thesis oracle (unless it is --method) and every history-only "
+                               "baseline (docs/evaluation.md), compared pairwise with --method")
     evaluate.add_argument("--ablations", action="store_true", help="also replay the thesis Fig. 5.5 settings A-N")
     evaluate.add_argument("--json", type=Path, metavar="OUT", help="write the summary JSON here")
     evaluate.add_argument("--report", type=Path, metavar="FILE.md", help="write a markdown report here")
@@ -39,21 +43,32 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 def run_evaluate(args: argparse.Namespace) -> int:
     from oracle.evaluation.replay import check_users, load_users, make_methods, replay, stderr_progress, summarize
 
+    method = method_from(args)
     ontology = ontology_from(args)
     settings = settings_from(args.settings)
     users = load_users(args.chains)
     check_users(ontology, users, str(args.chains))
     started = time.perf_counter()
-    result = replay(ontology, users, make_methods(ontology, settings, args.baselines), args.seed, stderr_progress)
+    methods = make_methods(ontology, settings, args.baselines, method)
+    result = replay(ontology, users, methods, args.seed, stderr_progress)
     summary = summarize(result)
+    summary["method"] = methods[0].name
+    names = result.methods()
+    if len(names) > 1:
+        from oracle.evaluation.statistics import cold_start_summary, comparison_summary
+
+        summary["comparisons"] = comparison_summary(result.outcomes, names[0], names[1:], args.seed)
+        summary["cold_start"] = cold_start_summary(result, args.seed)
     summary["settings"] = settings.to_dict()
     summary["replay_seconds"] = time.perf_counter() - started
-    command = "python -m oracle " + " ".join(shlex.quote(a) for a in sys.argv[1:]) if sys.argv[1:2] == ["evaluate"] else "python -m oracle evaluate"
+    command = "python -m oracle evaluate"
+    if sys.argv[1:2] == ["evaluate"]:
+        command = "python -m oracle " + " ".join(shlex.quote(a) for a in sys.argv[1:])
     if args.ablations:
         from oracle.evaluation.ablations import run_ablations
 
-        summary["ablations"] = run_ablations(ontology, users, args.seed,
-                                             lambda letter: print(f"ablation {letter}", file=sys.stderr))
+        print("ablations A-N", file=sys.stderr)
+        summary["ablations"] = run_ablations(ontology, users, args.seed, stderr_progress)
     _print_table(summary)
     if args.json is not None:
         _write(args.json, json.dumps(summary, indent=1) + "\n")
@@ -65,7 +80,9 @@ def run_evaluate(args: argparse.Namespace) -> int:
         from oracle.evaluation import plots
 
         args.plots.mkdir(parents=True, exist_ok=True)
-        made = [plots.box_plots(summary, args.plots), plots.learning_curves(result, args.plots)]
+        made = [plots.box_plots(summary, args.plots), plots.learning_curves(result, args.plots, methods[0].name)]
+        if "comparisons" in summary:
+            made.append(plots.differences(summary, args.plots))
         if args.ablations:
             made.append(plots.ablation_plot(summary["ablations"], args.plots))
         print("plots: " + ", ".join(str(p) for p in made))
@@ -74,14 +91,23 @@ def run_evaluate(args: argparse.Namespace) -> int:
 
 def _print_table(summary: dict) -> None:
     print(f"{summary['n_predictions']} predictions, {summary['mean_candidates']:.1f} candidates each on average")
-    print(f"{'method':16s} {'top1':>7s} {'top3':>7s} {'top5':>7s} {'ms/pred':>8s}")
+    paired = summary.get("comparisons", {}).get("methods", {})
+    extra = f" {'top3 - ' + summary['comparisons']['reference'] + ' [95% CI]':>28s} {'p(Holm)':>8s}" if paired else ""
+    print(f"{'method':16s} {'top1':>7s} {'top3':>7s} {'top5':>7s} {'ms/pred':>8s}{extra}")
     for name, entry in summary["methods"].items():
-        print(f"{name:16s} {entry['top1']:7.3f} {entry['top3']:7.3f} {entry['top5']:7.3f} {entry['ms_per_prediction']:8.2f}")
+        line = f"{name:16s} {entry['top1']:7.3f} {entry['top3']:7.3f} {entry['top5']:7.3f} {entry['ms_per_prediction']:8.2f}"
+        if name in paired:
+            d = paired[name]["top3"]
+            line += f" {d['difference']:+9.3f} [{d['low']:+.3f}, {d['high']:+.3f}] {d['p_holm']:8.2g}"
+        print(line)
     chance = summary["chance"]
     print(f"{'chance':16s} {chance['top1']:7.3f} {chance['top3']:7.3f} {chance['top5']:7.3f}")
-    for letter, row in summary.get("ablations", {}).items():
+    for letter, row in summary.get("ablations", {}).get("settings", {}).items():
+        versus = row.get("vs_A", {}).get("top5")
+        tail = (f" top5 - A {versus['difference']:+.3f} [{versus['low']:+.3f}, {versus['high']:+.3f}] "
+                f"p(Holm) {versus['p_holm']:.2g}") if versus else ""
         print(f"  {letter}: top1 {row['top1']:.3f} top3 {row['top3']:.3f} top5 {row['top5']:.3f} "
-              f"p(top5 vs A) {row['p_top5']:.3g} {row['ms_per_prediction']:.2f} ms")
+              f"{row['ms_per_prediction']:.2f} ms{tail}")
 
 
 def _write(path: Path, text: str) -> None:

@@ -5,7 +5,12 @@ from __future__ import annotations
 import argparse
 import json
 import math
-from oracle.commands.common import AT, JSON, NEEM, ONTOLOGY_OPTIONS, SETTINGS, STORE, add_options
+from typing import TYPE_CHECKING
+
+from oracle.commands.common import AT, JSON, METHOD, NEEM, ONTOLOGY_OPTIONS, SETTINGS, STORE, add_options
+
+if TYPE_CHECKING:
+    from oracle.ranking import NeemRanking
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -13,25 +18,27 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     add_options(parser, STORE, NEEM)
     parser.add_argument("--available", nargs="+", metavar="CALL",
                         help="rank these calls (e.g. 'pick(red_mug)') instead of the latest imagined situation")
-    add_options(parser, AT, SETTINGS)
+    add_options(parser, AT, METHOD, SETTINGS)
     parser.add_argument("--no-write", action="store_true", help="do not write the ranking back into the NEEM")
     add_options(parser, JSON, *ONTOLOGY_OPTIONS)
     parser.set_defaults(handler=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    from oracle.commands.common import connect, moment_from, settings_from
+    from oracle.commands.common import connect, method_from, moment_from, settings_from
     from oracle.ranking import finite, rank_neem
 
     settings = settings_from(args.settings)
+    method = method_from(args)
     bridge, onto = connect(args)
     at = moment_from(args.at)
-    result = rank_neem(bridge, onto, settings, args.available, at, write=not args.no_write)
+    result = rank_neem(bridge, onto, settings, args.available, at, write=not args.no_write, method=method)
     if args.json:
         print(json.dumps({
-            "neem": result.neem, "at": result.at, "time_of_day": result.time_of_day, "history": result.history,
-            "ms": result.milliseconds,
-            "ranking": [{"rank": t.rank, "call": str(c), "score": finite(t.score), "similar": t.n_similar}
+            "neem": result.neem, "method": result.method, "at": result.at, "time_of_day": result.time_of_day,
+            "history": result.history, "ms": result.milliseconds,
+            "ranking": [{"rank": t.rank, "call": str(c), "score": finite(t.score), "similar": t.n_similar,
+                         **support_fields(t)}
                         for t, c in zip(result.ranking, result.calls)],
             "chain": [str(c) for c in result.chain], "written": result.written, "note": result.note,
         }, indent=1))
@@ -40,16 +47,40 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def print_ranking(result, limit: int | None = None) -> None:  # noqa: ANN001
+def support_fields(task) -> dict:  # noqa: ANN001 - a RankedTask
+    """What supports a routine-predictor ranking (empty for the thesis oracle)."""
+    from oracle.algorithm.routine import RoutineTask
+
+    if not isinstance(task, RoutineTask):
+        return {}
+    return {"probability": task.probability, "context_order": task.order, "context": list(task.context),
+            "situations": list(task.situations)}
+
+
+def describe(task) -> str:  # noqa: ANN001 - a RankedTask
+    """One line of why a task stands where it does; scores are lower-is-better for every method."""
+    from oracle.algorithm.routine import RoutineTask
+
+    if isinstance(task, RoutineTask):
+        if task.order > 0:
+            why = f"followed [{', '.join(task.context)}] {task.n_similar}x"
+        elif task.order == 0:
+            why = f"done {task.n_similar}x, not after this context"
+        else:
+            why = "never done: by similarity"
+        return f"p {task.probability:.3f} ({why})"
+    return "no similar history" if math.isinf(task.score) else f"score {task.score:.4f} from {task.n_similar} similar"
+
+
+def print_ranking(result: NeemRanking, limit: int | None = None) -> None:
     from oracle.timeline import format_clock
 
     when = format_clock(result.at)
     print(f"NEEM {result.neem}: {result.history} past actions, decision at {when} ({result.time_of_day}); "
-          f"ranked {len(result.calls)} options in {result.milliseconds:.2f} ms")
+          f"{result.method} ranked {len(result.calls)} options in {result.milliseconds:.2f} ms")
     shown = list(zip(result.ranking, result.calls))[:limit]
     for t, call in shown:
-        score = "no similar history" if math.isinf(t.score) else f"score {t.score:.4f} from {t.n_similar} similar"
-        print(f"  {t.rank:2d}. {str(call):32s} {score}")
+        print(f"  {t.rank:2d}. {str(call):32s} {describe(t)}")
     if limit is not None and len(result.calls) > limit:
         print(f"  ... and {len(result.calls) - limit} more")
     print("predicted chain: " + " -> ".join(str(c) for c in result.chain))

@@ -4,10 +4,14 @@ from __future__ import annotations
 
 import argparse
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING
 
 from oracle.commands.common import ontology_from
 from oracle.errors import StoreError
+
+if TYPE_CHECKING:
+    from oracle.ontology import OdbOntology
+    from oracle.store import Store
 
 #: The options that name an ontology; when none is given, the NEEM's own ontology is used.
 ONTOLOGY_DESTS = ("odb", "mapping", "soma", "ontology")
@@ -15,9 +19,9 @@ ONTOLOGY_DESTS = ("odb", "mapping", "soma", "ontology")
 
 @dataclass(frozen=True)
 class Target:
-    store: Any
+    store: Store
     neem_id: str
-    onto: Any
+    onto: OdbOntology
 
 
 def open_target(args: argparse.Namespace) -> Target:
@@ -37,7 +41,7 @@ def open_target(args: argparse.Namespace) -> Target:
     return Target(store, neem_id, onto)
 
 
-def default_neem(store: Any) -> str:
+def default_neem(store: Store) -> str:
     """The store's only NEEM. With several, guessing (say, the newest) would answer about the
     wrong user without a word, so the user is asked to choose."""
     ids = [info.id for info in store.neems()]

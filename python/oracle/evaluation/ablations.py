@@ -1,14 +1,17 @@
-"""Thesis Fig. 5.5 settings A-N replayed against A, with Mann-Whitney U p-values and timing."""
+"""Thesis Fig. 5.5 settings A-N replayed side by side, each compared with A on the same predictions.
+
+One replay ranks every step with all fourteen settings, so the comparisons are paired: per-user
+differences with bootstrap intervals and Holm-corrected Wilcoxon signed-rank tests (statistics.py).
+"""
 
 from __future__ import annotations
 
 from collections.abc import Callable
 
-from scipy.stats import mannwhitneyu
-
 from oracle.algorithm.params import PRESETS
 from oracle.chains import ChainRow
 from oracle.evaluation.replay import KS, OracleMethod, replay, summarize
+from oracle.evaluation.statistics import comparison_summary
 from oracle.ontology import OdbOntology
 
 
@@ -16,28 +19,22 @@ def run_ablations(
     ontology: OdbOntology,
     users: dict[str, list[ChainRow]],
     seed: int = 0,
-    progress: Callable[[str], None] | None = None,
+    progress: Callable[[int, int, str], None] | None = None,
 ) -> dict:
-    """Replay every preset; per preset: accuracies, per-user lists, p-values against A, timing."""
-    summaries: dict[str, dict] = {}
-    for letter, settings in ((k, v) for k, v in PRESETS.items() if len(k) == 1):
-        if progress is not None:
-            progress(letter)
-        result = replay(ontology, users, [OracleMethod(ontology, settings, name=letter)], seed)
-        summaries[letter] = summarize(result)["methods"][letter]
-    base = summaries["A"]["per_user"]
+    """Per setting: accuracies, per-user accuracies, timing, the settings, and ``vs_A`` (paired, per k)."""
+    letters = [k for k in PRESETS if len(k) == 1]
+    methods = [OracleMethod(ontology, PRESETS[letter], name=letter) for letter in letters]
+    result = replay(ontology, users, methods, seed, progress)
+    summary = summarize(result)["methods"]
+    paired = comparison_summary(result.outcomes, "A", [x for x in letters if x != "A"], seed)
     table: dict[str, dict] = {}
-    for letter, entry in summaries.items():
+    for letter in letters:
+        entry = summary[letter]
         row = {f"top{k}": entry[f"top{k}"] for k in KS}
         row["ms_per_prediction"] = entry["ms_per_prediction"]
         row["settings"] = PRESETS[letter].to_dict()
-        for k in KS:
-            mine = [entry["per_user"][u][f"top{k}"] for u in base]
-            theirs = [base[u][f"top{k}"] for u in base]
-            if letter == "A" or len(base) < 2 or mine == theirs:
-                row[f"p_top{k}"] = 1.0
-            else:
-                row[f"p_top{k}"] = float(mannwhitneyu(mine, theirs, alternative="two-sided").pvalue)
+        if letter != "A":
+            row["vs_A"] = paired["methods"][letter]
         row["per_user"] = entry["per_user"]
         table[letter] = row
-    return table
+    return {"unit": paired["unit"], "units": paired["units"], "test": paired["test"], "settings": table}

@@ -4,51 +4,26 @@
 - ``most_frequent``: candidates by how often the user executed that exact action before.
 - ``bigram``: candidates by count after the previous action, ties broken by overall frequency.
 - ``ngram``: PPM-C blending of contexts up to order 3 (without exclusion), backing off to the
-  user's action frequencies and finally to uniform; documented in docs/evaluation.md.
+  user's action frequencies and finally to uniform; ``ppmc1`` ... ``ppmc5`` the same at other orders.
+- ``ppmx3``, ``ppmx5``: PPM-C with full exclusion (Cleary & Witten 1984, Moffat 1990).
+- ``kn3``, ``kn5``, ``wb3``, ``wb5``: interpolated Kneser-Ney and Witten-Bell n-grams (smoothing.py).
+- ``lz78``, ``alz``: the LZ78 predictor and Active LeZi (lempel_ziv.py).
 
-Each method ranks by a score and breaks ties by the candidate order it was given; the replay
-shuffles every candidate set with a seeded generator, so ties never leak the answer.
+Formulas and references: docs/evaluation.md. Each method ranks by a score and breaks ties by the
+candidate order it was given; the replay shuffles every candidate set with a seeded generator, so
+ties never leak the answer.
 """
 
 from __future__ import annotations
 
 from collections import Counter, defaultdict
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from functools import partial
 
 from oracle.algorithm.records import Option, Step
-
-IDLE_TOKEN = "<idle>"
-
-
-def token(step: Step) -> object:
-    return IDLE_TOKEN if step.idle else step.option
-
-
-class CountingMethod:
-    """Shared history bookkeeping for the count-based baselines."""
-
-    name = "counting"
-
-    def __init__(self) -> None:
-        self.reset()
-
-    def reset(self) -> None:
-        self.tokens: list[object] = []
-        self.unigram: Counter[object] = Counter()
-
-    def observe(self, step: Step) -> None:
-        tok = token(step)
-        self.tokens.append(tok)
-        if not step.idle:
-            self.unigram[tok] += 1
-
-    def scores(self, candidates: Sequence[Option]) -> list[float]:
-        raise NotImplementedError
-
-    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None) -> list[Option]:
-        scores = self.scores(candidates)
-        order = sorted(range(len(candidates)), key=lambda i: -scores[i])
-        return [candidates[i] for i in order]
+from oracle.evaluation.lempel_ziv import LZ78, ActiveLeZi
+from oracle.evaluation.smoothing import KneserNey, WittenBell
+from oracle.evaluation.tokens import IDLE_TOKEN, CountingMethod, token
 
 
 class MostFrequent(CountingMethod):
@@ -77,13 +52,13 @@ class Bigram(CountingMethod):
         return [following[c] + self.unigram[c] / (total + 1) for c in candidates]
 
 
-class NGram(CountingMethod):
-    """PPM-C without exclusion: P(c) = (n(ctx,c) + esc(ctx) * P_lower(c)) / (n(ctx) + d(ctx))."""
+class ContextTables(CountingMethod):
+    """Counts of what followed each context of length 1..order (idle tokens included)."""
 
-    name = "ngram"
-
-    def __init__(self, order: int = 3) -> None:
+    def __init__(self, order: int = 3, name: str | None = None) -> None:
         self.order = order
+        if name is not None:
+            self.name = name
         super().__init__()
 
     def reset(self) -> None:
@@ -97,6 +72,21 @@ class NGram(CountingMethod):
                 self.tables[n][tuple(self.tokens[-n:])][tok] += 1
         super().observe(step)
 
+    def contexts(self) -> list[Counter[object]]:
+        """Follower counts of the current contexts that were seen before, shortest first."""
+        found = []
+        for n in range(1, min(self.order, len(self.tokens)) + 1):
+            counts = self.tables[n].get(tuple(self.tokens[-n:]))
+            if counts:
+                found.append(counts)
+        return found
+
+
+class NGram(ContextTables):
+    """PPM-C without exclusion: P(c) = (n(ctx,c) + d(ctx) * P_lower(c)) / (n(ctx) + d(ctx))."""
+
+    name = "ngram"
+
     def scores(self, candidates: Sequence[Option]) -> list[float]:
         if not candidates:
             return []
@@ -106,16 +96,40 @@ class NGram(CountingMethod):
         probs = [
             (self.unigram[c] + distinct * uniform) / (total + distinct) if total else uniform for c in candidates
         ]
-        for n in range(1, self.order + 1):
-            if len(self.tokens) < n:
-                break
-            counts = self.tables[n].get(tuple(self.tokens[-n:]))
-            if not counts:
-                continue
+        for counts in self.contexts():
             seen = sum(counts.values())
             kinds = len(counts)
             probs = [(counts[c] + kinds * p) / (seen + kinds) for c, p in zip(candidates, probs)]
         return probs
+
+
+class PPMExclusion(ContextTables):
+    """PPM-C with full exclusion: from the longest seen context down, a symbol is coded at the first
+    order that saw it, and the symbols seen at higher orders are left out of every lower order's counts."""
+
+    name = "ppmx"
+
+    def scores(self, candidates: Sequence[Option]) -> list[float]:
+        probs = {c: 0.0 for c in candidates}
+        unassigned = set(probs)
+        excluded: set[object] = set()
+        escape = 1.0
+        for counts in [*reversed(self.contexts()), self.unigram]:
+            kept = {s: n for s, n in counts.items() if s not in excluded}
+            seen = sum(kept.values())
+            if not seen:
+                continue
+            kinds = len(kept)
+            for symbol, n in kept.items():
+                if symbol in unassigned:
+                    probs[symbol] = escape * n / (seen + kinds)
+                    unassigned.discard(symbol)
+            escape *= kinds / (seen + kinds)
+            excluded.update(kept)
+        # order -1: what is left of the mass, spread evenly over the candidates no order has seen
+        for symbol in unassigned:
+            probs[symbol] = escape / len(unassigned)
+        return [probs[c] for c in candidates]
 
 
 def chance_hit(k: int, n_candidates: int, truth_offered: bool) -> float:
@@ -125,4 +139,17 @@ def chance_hit(k: int, n_candidates: int, truth_offered: bool) -> float:
     return min(k, n_candidates) / n_candidates
 
 
-BASELINES = {"most_frequent": MostFrequent, "bigram": Bigram, "ngram": NGram}
+#: Every baseline by name; each value builds a fresh method. ``ngram`` keeps its historic name (PPM-C order 3).
+BASELINES: dict[str, Callable[[], CountingMethod | LZ78 | ActiveLeZi | KneserNey | WittenBell]] = {
+    "most_frequent": MostFrequent,
+    "bigram": Bigram,
+    "ngram": NGram,
+    **{f"ppmc{n}": partial(NGram, n, f"ppmc{n}") for n in (1, 2, 4, 5)},
+    **{f"ppmx{n}": partial(PPMExclusion, n, f"ppmx{n}") for n in (3, 5)},
+    **{f"kn{n}": partial(KneserNey, n, name=f"kn{n}") for n in (3, 5)},
+    **{f"wb{n}": partial(WittenBell, n, name=f"wb{n}") for n in (3, 5)},
+    "lz78": LZ78,
+    "alz": ActiveLeZi,
+}
+
+__all__ = ["BASELINES", "IDLE_TOKEN", "Bigram", "MostFrequent", "NGram", "PPMExclusion", "chance_hit", "token"]

@@ -14,6 +14,7 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from datetime import datetime
 from pathlib import Path
+from typing import Any
 from xml.sax.saxutils import escape
 
 import yaml
@@ -58,7 +59,7 @@ SOMA_ODB_MAP = {
     "dishwasher": "soma:Dishwasher",
 }
 
-ACTIONS = {
+ACTIONS: dict[str, dict[str, Any]] = {
     "open": {"task": "soma:Opening", "ref_role": False, "target_role": "soma:ShapedObject", "disposition": "soma:Enclosing"},
     "open_door": {"parent": "open"},
     "open_cupboard": {"parent": "open", "disposition": "soma:Storage"},

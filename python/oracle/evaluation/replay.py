@@ -19,8 +19,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Protocol
 
-from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import Hyperparameters
+from oracle.algorithm.predictors import DEFAULT, THESIS, make_predictor
 from oracle.algorithm.records import Option, Step
 from oracle.chains import ChainRow, read_chains
 from oracle.errors import ChainSyntaxError
@@ -43,17 +43,21 @@ class Method(Protocol):
 
 
 class OracleMethod:
-    """The fast PreferenceOracle behind the replay's Method interface."""
+    """A predictor of the registry (``oracle.algorithm.predictors``) behind the replay's Method
+    interface; ``method`` names it (default: the thesis oracle, with ``settings``), ``name`` is the
+    column it gets in the summary (default: the method's name; "oracle" for the thesis)."""
 
-    def __init__(self, ontology: OdbOntology, settings: Hyperparameters, name: str = "oracle") -> None:
-        self.name = name
+    def __init__(self, ontology: OdbOntology, settings: Hyperparameters, name: str | None = None,
+                 method: str = THESIS) -> None:
+        self.method = method
+        self.name = name if name is not None else ("oracle" if method == THESIS else method)
         self.settings = settings
         self.distances = ontology.distances()
         self.opening = opening_tasks(ontology)
         self.reset()
 
     def reset(self) -> None:
-        self.model = PreferenceOracle.from_settings(self.distances, self.settings, self.opening).fit([])
+        self.model = make_predictor(self.method, self.distances, self.opening, self.settings).fit([])
 
     def rank(self, candidates: Sequence[Option], time_of_day: str | None = None) -> list[Option]:
         return list(self.model.rank(list(candidates), time_of_day, tree_roots=0).options())
@@ -82,7 +86,7 @@ class ReplayResult:
         return list(self.outcomes[0].ranks) if self.outcomes else []
 
 
-def load_users(path: Path | str) -> "OrderedDict[str, list[ChainRow]]":
+def load_users(path: Path | str) -> OrderedDict[str, list[ChainRow]]:
     """Rows of a JSONL file, or of every ``*.jsonl`` in a folder, grouped by user in file order."""
     path = Path(path)
     files = sorted(path.glob("*.jsonl")) if path.is_dir() else [path]
@@ -178,9 +182,14 @@ def stderr_progress(done: int, total: int, user: str) -> None:
     sys.stderr.flush()
 
 
-def make_methods(ontology: OdbOntology, settings: Hyperparameters, baselines: bool) -> list[Method]:
-    methods: list[Method] = [OracleMethod(ontology, settings)]
+def make_methods(ontology: OdbOntology, settings: Hyperparameters, baselines: bool,
+                 method: str = DEFAULT) -> list[Method]:
+    """The predictor ``method``; with ``baselines`` also the thesis oracle (when it is not the one
+    chosen) and every baseline."""
+    methods: list[Method] = [OracleMethod(ontology, settings, method=method)]
     if baselines:
+        if method != THESIS:
+            methods.append(OracleMethod(ontology, settings, method=THESIS))
         methods.extend(cls() for cls in BASELINES.values())
     return methods
 
@@ -209,21 +218,9 @@ def summarize(result: ReplayResult) -> dict:
 
 def _rate(outcomes: Iterable[Outcome], name: str, k: int) -> float:
     outcomes = list(outcomes)
-    hits = sum(1 for o in outcomes if o.ranks[name] is not None and o.ranks[name] <= k)
+    hits = sum(1 for o in outcomes if (rank := o.ranks[name]) is not None and rank <= k)
     return hits / len(outcomes) if outcomes else 0.0
 
 
-def learning_curve(result: ReplayResult, name: str, k: int, max_index: int | None = None) -> tuple[list[float], list[float], list[int]]:
-    """Accuracy by action index across users, chance at the same index, and the number of users."""
-    by_index: dict[int, list[Outcome]] = {}
-    for o in result.outcomes:
-        if max_index is None or o.index < max_index:
-            by_index.setdefault(o.index, []).append(o)
-    indices = sorted(by_index)
-    acc = [_rate(by_index[i], name, k) for i in indices]
-    chance = [sum(chance_hit(k, o.n_candidates, o.truth_offered) for o in by_index[i]) / len(by_index[i]) for i in indices]
-    return acc, chance, [len(by_index[i]) for i in indices]
-
-
-__all__ = ["KS", "Method", "OracleMethod", "Outcome", "ReplayResult", "check_users", "learning_curve",
+__all__ = ["KS", "Method", "OracleMethod", "Outcome", "ReplayResult", "check_users",
            "load_users", "make_methods", "opening_tasks", "replay", "stderr_progress", "summarize"]

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, replace
+from typing import Any
 
 from oracle.algorithm.params import Hyperparameters
 from oracle.chains import ChainRow
@@ -33,6 +34,7 @@ class TuningStep:
 
 def _neighbours(settings: Hyperparameters, name: str, step: float) -> list[Hyperparameters]:
     value = getattr(settings, name)
+    values: list[float]
     if name == "event_horizon_backwards":
         delta = max(1, round(value * step))
         candidates = [value - delta, value + delta]
@@ -50,7 +52,8 @@ def _neighbours(settings: Hyperparameters, name: str, step: float) -> list[Hyper
         if v == value:
             continue
         try:
-            out.append(replace(settings, **{name: v}))
+            changed: dict[str, Any] = {name: v}
+            out.append(replace(settings, **changed))
         except SettingsError:
             continue
     return out

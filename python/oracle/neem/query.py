@@ -1,6 +1,6 @@
 """Reading a NEEM back for listings and tests: executed actions in time order, one-line summaries.
 
-The oracle itself reads its history through Prolog (``odb_model:situation_history``); this module
+The oracle itself reads its history through Prolog (``odb_history:situation_history``); this module
 is the small Python-side reader the CLI's listings and the logger's own resume need.
 """
 

@@ -23,11 +23,11 @@ from oracle.neem import terms as T
 from oracle.neem.lifecycle import wipe_temporary_neems
 from oracle.neem.query import summarize_neem, summary_after
 from oracle.ontology.model import OdbOntology
+from oracle.ontology.provenance import META_KEY as ONTOLOGY_KEY, check_logged_with, record_of
 from oracle.store import RDF_TYPE, Store, Triple, TriplePattern, Var
 from oracle.store.base import SUMMARY_KEY
 from oracle.store.tbox import TBox, load_tbox, tbox_from_graph
 from oracle.timeline import IDLE_THRESHOLD_S, Instant, Moment, TimeValueError, is_idle_gap
-from oracle.ontology.provenance import META_KEY as ONTOLOGY_KEY, check_logged_with, record_of
 
 _SLUG = re.compile(r"[^A-Za-z0-9_\-]+")
 #: NEEM ids are collection prefixes: no underscores (see store.base.check_neem_id).

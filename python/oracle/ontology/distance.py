@@ -63,7 +63,7 @@ class DistanceMatrix:
         self.key = key
 
     @classmethod
-    def from_values(cls, classes: tuple[str, ...], values: np.ndarray) -> "DistanceMatrix":
+    def from_values(cls, classes: tuple[str, ...], values: np.ndarray) -> DistanceMatrix:
         """A matrix given outright (synthetic worlds in tests and benchmarks); no LCS is known."""
         import numpy as np
 
@@ -82,7 +82,7 @@ class DistanceMatrix:
             raise OntologyError(f"unknown class {cls}") from None
 
     @classmethod
-    def compute(cls, taxonomy: Taxonomy) -> "DistanceMatrix":
+    def compute(cls, taxonomy: Taxonomy) -> DistanceMatrix:
         import numpy as np
 
         classes = taxonomy.classes
@@ -101,8 +101,8 @@ class DistanceMatrix:
         for c in classes:
             members = below[c]
             rows = np.fromiter((m[0] for m in members), dtype=np.int64, count=len(members))
-            steps = np.fromiter((m[1] for m in members), dtype=np.int64, count=len(members))
-            cand = (steps[:, None] + steps[None, :]) * (max_depth + 1) + (max_depth - taxonomy.depth(c))
+            hops = np.fromiter((m[1] for m in members), dtype=np.int64, count=len(members))
+            cand = (hops[:, None] + hops[None, :]) * (max_depth + 1) + (max_depth - taxonomy.depth(c))
             block = np.ix_(rows, rows)
             current = key[block]
             better = cand < current
@@ -115,7 +115,7 @@ class DistanceMatrix:
         return cls(classes, values, lcs, taxonomy_key(taxonomy))
 
     @classmethod
-    def cached(cls, taxonomy: Taxonomy, cache_dir: Path | None = None) -> "DistanceMatrix":
+    def cached(cls, taxonomy: Taxonomy, cache_dir: Path | None = None) -> DistanceMatrix:
         """Load the matrix for this taxonomy from the cache, computing and saving it if absent."""
         import numpy as np
 

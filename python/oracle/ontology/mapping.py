@@ -10,11 +10,12 @@ from its parent; an action without parent inherits from ``action_defaults``. ``F
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 from pathlib import Path
 
 from oracle.errors import OntologyError
 from oracle.namespaces import DEFAULT_ODB_NAMESPACE, STANDARD_PREFIXES
-from oracle.yamlfile import read_yaml
+from oracle.yamlfile import check_keys, read_yaml
 
 TOP_KEYS = frozenset({"namespace", "imports", "soma_odb_map", "root_object", "action_defaults", "actions"})
 ACTION_FIELDS = ("task", "ref_role", "target_role", "disposition")
@@ -85,9 +86,7 @@ def load_mapping(path: Path | str) -> Mapping:
     data = read_yaml(path, OntologyError, "mapping")
     if not isinstance(data, dict):
         raise OntologyError(f"{path}: expected a mapping at the top level")
-    unknown = set(data) - TOP_KEYS
-    if unknown:
-        raise OntologyError(f"{path}: unknown key(s) {', '.join(sorted(map(str, unknown)))}; allowed: {', '.join(sorted(TOP_KEYS))}")
+    check_keys(data, TOP_KEYS, str(path), OntologyError)
     where = str(path)
     namespace = _namespace(data.get("namespace"), where)
     prefixes = dict(STANDARD_PREFIXES)
@@ -139,9 +138,7 @@ def _check_action_keys(spec: object, where: str, allow_parent: bool) -> None:
     if not isinstance(spec, dict):
         raise OntologyError(f"{where}: expected a mapping of {', '.join(ACTION_FIELDS)}")
     allowed = ACTION_KEYS if allow_parent else frozenset(ACTION_FIELDS)
-    unknown = set(spec) - allowed
-    if unknown:
-        raise OntologyError(f"{where}: unknown key(s) {', '.join(sorted(map(str, unknown)))}; allowed: {', '.join(sorted(allowed))}")
+    check_keys(spec, allowed, where, OntologyError)
 
 
 def _resolve_actions(raw: dict, defaults: ActionMapping, prefixes: dict[str, str], path: Path) -> dict[str, ActionMapping]:
@@ -164,7 +161,7 @@ def _resolve_actions(raw: dict, defaults: ActionMapping, prefixes: dict[str, str
         where = f"{path}: actions.{name}"
         if "task" in spec and not isinstance(spec["task"], str):
             raise OntologyError(f"{where}.task: expected a task class like soma:Pouring")
-        fields = {
+        fields: dict[str, Any] = {
             "task": expand_curie(spec["task"], prefixes, f"{where}.task") if "task" in spec else base.task,
             "ref_role": _role(spec["ref_role"], prefixes, f"{where}.ref_role") if "ref_role" in spec else base.ref_role,
             "target_role": _role(spec["target_role"], prefixes, f"{where}.target_role") if "target_role" in spec else base.target_role,

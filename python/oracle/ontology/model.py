@@ -9,7 +9,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
-from typing import Any
 
 from rdflib import Graph, Literal, URIRef
 from rdflib.namespace import OWL, RDF, RDFS
@@ -45,6 +44,18 @@ class TaskClass:
     disposition: str | None
     parent: str | None
 
+    def slots(self, n_args: int) -> tuple[str, ...]:
+        """The role slot ("reference" or "target") each argument of a call fills, in order: the
+        one home of this rule. ``task(a, b)``: a is the reference, b the target; ``task(a)``: a
+        is the target unless the task has a reference role and no target role."""
+        if n_args == 0:
+            return ()
+        if n_args == 1:
+            return ("reference",) if self.target_role is None and self.ref_role is not None else ("target",)
+        if n_args == 2:
+            return ("reference", "target")
+        raise OntologyError(f"task {self.name!r} takes at most two objects, got {n_args}")
+
 
 @dataclass(eq=False)
 class OdbOntology:
@@ -54,7 +65,7 @@ class OdbOntology:
     tasks: dict[str, TaskClass]
     cache_dir: Path | None = field(default=None, repr=False)
     #: Where it came from (an ``OntologySource``), recorded by the NEEMs logged with it.
-    source: Any = field(default=None, repr=False)
+    source: OntologySource | None = field(default=None, repr=False)
 
     @property
     def vocab(self) -> Vocabulary:
@@ -87,13 +98,7 @@ class OdbOntology:
         info = self.tasks.get(task)
         if info is None:
             raise OntologyError(f"unknown task {task!r}; known tasks: {', '.join(sorted(self.tasks))}")
-        if n_args == 0:
-            return ()
-        if n_args == 1:
-            return (info.target_role if info.target_role is not None else info.ref_role,)
-        if n_args == 2:
-            return (info.ref_role, info.target_role)
-        raise OntologyError(f"task {task!r} takes at most two objects, got {n_args}")
+        return tuple(info.ref_role if slot == "reference" else info.target_role for slot in info.slots(n_args))
 
     @cached_property
     def taxonomy(self) -> Taxonomy:
@@ -107,7 +112,7 @@ class OdbOntology:
         return self.taxonomy.is_subclass_of(self.task_iri(task), soma_class)
 
     @classmethod
-    def from_graph(cls, graph: Graph, namespace: str | None = None, cache_dir: Path | None = None) -> "OdbOntology":
+    def from_graph(cls, graph: Graph, namespace: str | None = None, cache_dir: Path | None = None) -> OdbOntology:
         namespace = namespace or find_namespace(graph)
         _bind_standard_prefixes(graph)
         vocab = Vocabulary(namespace)

@@ -10,12 +10,15 @@ from __future__ import annotations
 
 import hashlib
 import json
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from oracle.errors import OntologyError
+
+if TYPE_CHECKING:  # a type only: model imports this module
+    from oracle.ontology.model import OdbOntology
 
 #: Key of the record in a NEEM's registry entry (meta document).
 META_KEY = "ontology"
@@ -46,7 +49,7 @@ class OntologySource:
                                                           ("soma", self.soma)) if value is not None]
         return " ".join(parts) if parts else "the sample kitchen ontology"
 
-    def open(self):  # noqa: ANN201 - OdbOntology (imported lazily: builder imports this module)
+    def open(self) -> OdbOntology:
         """Rebuild or reload the ontology; a recorded file that is gone is an error naming it."""
         from oracle.ontology.builder import build_ontology
         from oracle.ontology.model import load_ontology
@@ -80,7 +83,7 @@ class Recorded:
         return Recorded(OntologySource(text("odb"), text("mapping"), text("soma"), text("owl")), entry["fingerprint"])
 
 
-def fingerprint(onto: Any) -> str:
+def fingerprint(onto: OdbOntology) -> str:
     """A hash of what a NEEM's triples depend on: namespace, objects and tasks with their classes.
 
     Whether the ontology came from odb + mapping or from the OWL file built from them, the
@@ -95,13 +98,14 @@ def fingerprint(onto: Any) -> str:
     return hashlib.sha256(json.dumps(body, sort_keys=True).encode()).hexdigest()[:16]
 
 
-def record_of(onto: Any) -> Recorded | None:
+def record_of(onto: OdbOntology) -> Recorded | None:
     """What a new NEEM records about ``onto`` (None for an ontology made in memory)."""
     source = getattr(onto, "source", None)
     return None if source is None else Recorded(source, fingerprint(onto))
 
 
-def ontology_for(neem_id: str, meta: Mapping[str, Any], given: Any | None, fallback: Any) -> Any:
+def ontology_for(neem_id: str, meta: Mapping[str, Any], given: OdbOntology | None,
+                 fallback: Callable[[], OdbOntology]) -> OdbOntology:
     """The ontology to read NEEM ``neem_id`` with.
 
     ``given`` is what the user named (None: nothing); ``fallback()`` builds the default for a
@@ -134,7 +138,7 @@ def _absolute(path: Path | str | None) -> str | None:
     return None if path is None else str(Path(path).expanduser().resolve())
 
 
-def check_logged_with(neem_id: str, meta: Mapping[str, Any], onto: Any) -> None:
+def check_logged_with(neem_id: str, meta: Mapping[str, Any], onto: OdbOntology) -> None:
     """Logging more into a NEEM needs the ontology it was begun with."""
     recorded = Recorded.from_meta(meta)
     if recorded is not None and fingerprint(onto) != recorded.fingerprint:

@@ -37,7 +37,7 @@ class Taxonomy:
             self.depth(cls)
 
     @classmethod
-    def from_graph(cls, graph: Graph) -> "Taxonomy":
+    def from_graph(cls, graph: Graph) -> Taxonomy:
         parents: dict[str, set[str]] = {}
         for s in graph.subjects(RDF.type, OWL.Class):
             if isinstance(s, URIRef):

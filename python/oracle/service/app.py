@@ -150,7 +150,7 @@ def _offline_docs(app: FastAPI) -> None:
     from fastapi.staticfiles import StaticFiles
 
     try:
-        import swagger_ui_bundle
+        import swagger_ui_bundle  # type: ignore[import-untyped]
     except ImportError:  # the schema stays at /openapi.json
         return
     app.mount(STATIC_DOCS, StaticFiles(directory=swagger_ui_bundle.swagger_ui_path), name="docs-static")

@@ -18,7 +18,8 @@ from typing import Any, TypeVar
 
 from oracle.algorithm.params import Hyperparameters
 from oracle.answers import something_else_sentence, what_next_sentence, why_not_sentence
-from oracle.bridge import PROLOG_DIR, Bridge
+from oracle.bridge import Bridge
+from oracle.paths import prolog_dir
 from oracle.errors import LoggingError, NeemOracleError, StoreError
 from oracle.neem.writer import NeemLogger
 from oracle.timeline import Instant
@@ -29,7 +30,7 @@ from oracle.store import Store
 T = TypeVar("T")
 LOG = logging.getLogger("oracle.service")
 #: The service's Prolog query module (json_query/2): loaded once into the bridge's engine.
-QUERY_MODULE = PROLOG_DIR / "json_query.pl"
+QUERY_MODULE = prolog_dir() / "json_query.pl"
 #: A whole request is one transaction: the logger never commits on its own.
 NEVER = 10**9
 
@@ -37,16 +38,15 @@ NEVER = 10**9
 class EngineThread:
     """The Prolog thread; ``await run(f, ...)`` runs f there and returns its result.
 
-    There is one per process and it never exits: pyswip attaches a Prolog engine to the thread
-    that first queries, and a thread that ends with an engine attached crashed the process
-    (segmentation fault) at the next Prolog call from a new thread."""
+    There is one per process and it lives as long as the process: the Prolog engine the bridge
+    attaches to it (``bridge._attach_engine``) is attached once and never left behind."""
 
-    _pool: ThreadPoolExecutor | None = None
+    _shared: ThreadPoolExecutor | None = None
 
     def __init__(self) -> None:
-        if EngineThread._pool is None:
-            EngineThread._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="oracle-engine")
-        self._pool = EngineThread._pool
+        if EngineThread._shared is None:
+            EngineThread._shared = ThreadPoolExecutor(max_workers=1, thread_name_prefix="oracle-engine")
+        self._pool: ThreadPoolExecutor = EngineThread._shared
 
     async def run(self, fn: Callable[..., T], *args: Any) -> T:
         return await asyncio.get_running_loop().run_in_executor(self._pool, fn, *args)

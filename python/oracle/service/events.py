@@ -58,7 +58,7 @@ class EventHub:
             while until is None or not until.is_set():
                 try:
                     number, event = await asyncio.wait_for(queue.get(), KEEPALIVE_S)
-                except asyncio.TimeoutError:
+                except TimeoutError:
                     yield ": keep-alive\n\n"
                     continue
                 yield event.sse(number)

@@ -60,7 +60,10 @@ _SCRIPT = """
     return fetch(api(path), {method: 'POST', headers: headers, body: JSON.stringify(body)})
       .then(function (r) { return r.json().then(function (j) { if (!r.ok) throw new Error(j.error || r.status); return j; }); });
   }
-  function el(tag, cls, text) { var e = document.createElement(tag); if (cls) e.className = cls; if (text !== undefined) e.textContent = text; return e; }
+  function el(tag, cls, text) {
+    var e = document.createElement(tag); if (cls) e.className = cls;
+    if (text !== undefined) e.textContent = text; return e;
+  }
   function choose(task, workflow, item) {
     var body = {task: task}; if (workflow) body.workflow = workflow;
     send('/choice', body).then(function () {

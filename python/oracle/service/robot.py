@@ -24,7 +24,7 @@ def persona_rows(persona: int, seed: int, days: int) -> tuple[str, list[Any]]:
     """The persona's file name and the ChainRows of its simulated days."""
     from oracle.world.generate import simulate
     from oracle.world.personas import make_persona
-    from oracle.world.rules import load_world
+    from oracle.world.worldfile import load_world
 
     who = make_persona(seed, persona)
     return who.file_name, simulate(who, load_world(), days, seed)[0]
@@ -65,6 +65,7 @@ def drive(url: str, user: str, rows: list[Any], neem: str | None, token: str | N
                 timing = client.server_timing
                 if "engine" in timing:
                     result.latencies.setdefault("server", []).append(timing["engine"] + timing.get("queue", 0.0))
+                    result.latencies.setdefault("engine", []).append(timing["engine"])
                 end = row.end.isoformat() if row.end is not None else None
                 _, ms = client.request("POST", f"{base}/actions", {"call": str(row.action), "begin": at, "end": end})
                 result.latencies.setdefault("action", []).append(ms)

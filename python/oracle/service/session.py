@@ -17,12 +17,11 @@ from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.records import Ranking, Step
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError
-from oracle.evaluation.replay import opening_tasks
 from oracle.neem.writer import LoggedAction, NeemLogger
 from oracle.timeline import Instant, clock
 from oracle.ontology import OdbOntology
 from oracle.ranking import finite
-from oracle.calls import call_of, check_call, idle_step, option_of, steps_from_history
+from oracle.calls import call_of, check_call, idle_step, opening_tasks, option_of, steps_from_history
 
 #: The forward tree is built for the top suggestion only: the page and the API offer its chain
 #: as the one workflow; the ranking itself does not depend on how many trees are built.
@@ -90,7 +89,7 @@ class NeemSession:
         #: The logger's clock: nothing may be logged before the end of the last action.
         self.last_end: float | None = max(ends) if ends else None
         #: Begin of the last logged action: a situation counts for the next action only when it
-        #: came after it (odb_model:situation_history's rule).
+        #: came after it (odb_history:situation_history's rule).
         self.prev_begin: float | None = max(begins) if begins else None
         self.pending: Situation | None = None
         self.latest: dict[str, Any] | None = None
@@ -158,7 +157,7 @@ class NeemSession:
             "neem": self.neem, "at": situation.when.seconds, "time_of_day": situation.when.part_of_day,
             "history": self.predictor.n_steps_,
             "ranking": [{"rank": t.rank, "task": call, "score": finite(t.score), "support": t.n_similar}
-                        for t, call in zip(ranking, calls)],
+                        for t, call in zip(ranking, calls, strict=True)],
             "chain": [str(call_of(self.ontology, o)) for o in ranking.chain()],
             "ms": round(ms, 3),
         }

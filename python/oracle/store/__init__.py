@@ -7,6 +7,7 @@ else talks to the ``Store`` interface (docs/store.md).
 from __future__ import annotations
 
 import os
+from typing import Any
 from pathlib import Path
 
 from oracle.errors import StoreError
@@ -83,7 +84,7 @@ def open_mongo(uri: str, *, number_format: NumberFormat = "decimal128", timeout_
 
     try:
         parsed = uri_parser.parse_uri(uri)
-        client = pymongo.MongoClient(uri, serverSelectionTimeoutMS=timeout_ms)
+        client: pymongo.MongoClient[dict[str, Any]] = pymongo.MongoClient(uri, serverSelectionTimeoutMS=timeout_ms)
     except Exception as error:
         raise StoreError(f"{uri}: not a usable MongoDB URI ({error})") from None
     host = ",".join(f"{h}:{p}" for h, p in parsed["nodelist"])

@@ -117,19 +117,41 @@ class Store(ABC):
     def has_neem(self, neem_id: str) -> bool:
         return any(info.id == neem_id for info in self.neems())
 
-    @abstractmethod
     def create_neem(
         self, neem_id: str, *, user: str | None = None, temporary: bool = False, meta: Mapping[str, Any] | None = None
     ) -> NeemInfo:
         """Create the empty collections (with KnowRob's indexes) and the registry entry."""
+        check_neem_id(neem_id)
+        if self.has_neem(neem_id):
+            raise StoreError(f"{self.location}: NEEM {neem_id!r} already exists")
+        record = new_meta(user, temporary, meta)
+        self._create_neem(neem_id, record)
+        self._hierarchies.pop(neem_id, None)
+        return NeemInfo.from_meta(neem_id, record)
 
     @abstractmethod
+    def _create_neem(self, neem_id: str, record: dict[str, Any]) -> None: ...
+
     def drop_neem(self, neem_id: str) -> None:
         """Delete a NEEM and everything in it."""
+        self.neem(neem_id)
+        self._drop_neem(neem_id)
+        self._hierarchies.pop(neem_id, None)
 
     @abstractmethod
+    def _drop_neem(self, neem_id: str) -> None: ...
+
     def rename_neem(self, neem_id: str, new_id: str) -> None:
         """Give a NEEM a new id (collection prefix); its documents are untouched."""
+        info = self.neem(neem_id)
+        check_neem_id(new_id)
+        if self.has_neem(new_id):
+            raise StoreError(f"{self.location}: NEEM {new_id!r} already exists")
+        self._rename_neem(neem_id, new_id, info)
+        self._hierarchies.pop(neem_id, None)
+
+    @abstractmethod
+    def _rename_neem(self, neem_id: str, new_id: str, info: NeemInfo) -> None: ...
 
     @abstractmethod
     def update_meta(self, neem_id: str, **fields: Any) -> NeemInfo:
@@ -288,8 +310,9 @@ class Store(ABC):
         """Documents matching one pattern with KnowRob's semantics (see TriplePattern).
 
         ``exact`` compares s, p and o with the asserted fields only (no ``p*``/``o*``), which
-        also finds documents without closures such as version markers. ``scope`` None means any time (KnowRob's wildcard scope); otherwise a document is
-        returned when its scope overlaps the given one.
+        also finds documents without closures such as version markers. ``scope`` None means any
+        time (KnowRob's wildcard scope); otherwise a document is returned when its scope overlaps
+        the given one.
         """
         for term in (s, p, o):
             if isinstance(term, (Var, Cmp)):

@@ -11,7 +11,7 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from datetime import datetime, timezone
 from operator import itemgetter
-from typing import Any, Literal, Union
+from typing import Any, Literal
 
 from bson.decimal128 import Decimal128
 from bson.int64 import Int64
@@ -34,7 +34,7 @@ NumberFormat = Literal["decimal128", "double"]
 NUMBER_FORMATS: tuple[str, ...] = ("decimal128", "double")
 
 #: A value as Python code sees it: IRIs and string literals are both ``str``, as in KnowRob.
-Value = Union[str, float, int, bool, datetime]
+Value = str | float | int | bool | datetime
 
 
 class Triple(tuple):  # type: ignore[type-arg]
@@ -74,7 +74,7 @@ class Annotation:
 
     s: str
     p: str
-    v: str
+    v: Any
 
 
 @dataclass(frozen=True)
@@ -113,17 +113,17 @@ class Cmp:
 
     def holds(self, value: Any) -> bool:
         if self.op == "<":
-            return value < self.value
+            return bool(value < self.value)
         if self.op == "=<":
-            return value <= self.value
+            return bool(value <= self.value)
         if self.op == ">":
-            return value > self.value
-        return value >= self.value
+            return bool(value > self.value)
+        return bool(value >= self.value)
 
 
 #: A pattern term: a variable, a constant, or None for "anything" (an anonymous variable);
 #: the object may also be a ``Cmp``.
-Term = Union[Var, Value, None]
+Term = Var | Value | None
 
 
 @dataclass(frozen=True)
@@ -203,9 +203,8 @@ def unix_seconds(value: Any) -> float | None:
     if value is None:
         return None
     if isinstance(value, datetime):
-        if value.tzinfo is None:
-            value = value.replace(tzinfo=timezone.utc)
-        return value.timestamp()
+        moment: datetime = value if value.tzinfo is not None else value.replace(tzinfo=timezone.utc)
+        return moment.timestamp()
     return float(decode_value(value))
 
 

@@ -8,7 +8,7 @@ indexes on triples. NEEM registry entries live in ``meta`` as on openEASE.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from datetime import datetime, timezone
 from typing import Any
@@ -16,7 +16,7 @@ from typing import Any
 from bson.decimal128 import Decimal128
 
 from oracle.errors import StoreError
-from oracle.store.base import COLLECTION_KINDS, NeemInfo, Store, check_neem_id, new_meta
+from oracle.store.base import COLLECTION_KINDS, NeemInfo, Store
 from oracle.store.model import (
     HIERARCHY,
     TAXONOMIC,
@@ -101,34 +101,20 @@ class MongoStore(Store):
             self._present.add(neem_id)
         return found
 
-    def create_neem(
-        self, neem_id: str, *, user: str | None = None, temporary: bool = False, meta: Mapping[str, Any] | None = None
-    ) -> NeemInfo:
-        check_neem_id(neem_id)
-        if self.has_neem(neem_id):
-            raise StoreError(f"{self.location}: NEEM {neem_id!r} already exists")
-        record = new_meta(user, temporary, meta)
+    def _create_neem(self, neem_id: str, record: dict[str, Any]) -> None:
         for kind in COLLECTION_KINDS:
             coll = self.db.create_collection(f"{neem_id}_{kind}")
             for keys in INDEXES[kind]:
                 coll.create_index([(key, 1) for key in keys])
         self.db[META].insert_one({"_id": neem_id, **record})
-        self._hierarchies.pop(neem_id, None)
-        return NeemInfo.from_meta(neem_id, record)
 
-    def drop_neem(self, neem_id: str) -> None:
-        self.neem(neem_id)
+    def _drop_neem(self, neem_id: str) -> None:
         for kind in COLLECTION_KINDS:
             self._coll(neem_id, kind).drop()
         self.db[META].delete_one({"_id": neem_id})
         self._present.discard(neem_id)
-        self._hierarchies.pop(neem_id, None)
 
-    def rename_neem(self, neem_id: str, new_id: str) -> None:
-        info = self.neem(neem_id)
-        check_neem_id(new_id)
-        if self.has_neem(new_id):
-            raise StoreError(f"{self.location}: NEEM {new_id!r} already exists")
+    def _rename_neem(self, neem_id: str, new_id: str, info: NeemInfo) -> None:
         names = set(self.db.list_collection_names())
         for kind in COLLECTION_KINDS:
             if f"{neem_id}_{kind}" in names:
@@ -136,7 +122,6 @@ class MongoStore(Store):
         self.db[META].delete_one({"_id": neem_id})
         self.db[META].insert_one({"_id": new_id, **dict(info.meta)})
         self._present.discard(neem_id)
-        self._hierarchies.pop(neem_id, None)
 
     def update_meta(self, neem_id: str, **fields: Any) -> NeemInfo:
         meta = dict(self.neem(neem_id).meta)
@@ -189,12 +174,12 @@ class MongoStore(Store):
             yield Annotation(doc["s"], doc["p"], doc.get("v"))
 
     def _count(self, neem_id: str, kind: str) -> int:
-        return self._coll(neem_id, kind).count_documents({})
+        return int(self._coll(neem_id, kind).count_documents({}))
 
     def write_mark(self, neem_id: str) -> int:
         # The collection's document count from its metadata: triples are never deleted one
         # by one, so it grows with every insert; count_documents would scan.
-        return self._coll(neem_id, "triples").estimated_document_count()
+        return int(self._coll(neem_id, "triples").estimated_document_count())
 
     def _find(
         self, neem_id: str, pattern: TriplePattern, scope: Scope | None, limit: int | None, exact: bool

@@ -6,6 +6,11 @@ indexes need. ``p*``/``o*`` are stored by reference to a content-addressed closu
 ``rdf:type dul:Action`` triples share one closure row, so the closure costs one integer per
 triple and ``o* contains C`` is an indexed lookup. IRIs and strings are interned in a ``terms`` table so
 rows and index entries hold small integers (half the cost of indexing the IRI text).
+
+Why this module is large: the schema, term and closure interning, the insert path and the
+closure propagation share the connection and three caches (terms, closures, scopes) that must
+stay consistent within one transaction; split across modules they would share private state.
+The query compiler, which needs none of it but term ids, lives in ``store.sql``.
 """
 
 from __future__ import annotations
@@ -17,6 +22,7 @@ import struct
 import time
 from collections.abc import Iterator, Mapping, Sequence
 from contextlib import contextmanager
+from functools import partial
 from datetime import datetime, timezone
 from pathlib import Path
 from typing import Any
@@ -28,7 +34,7 @@ from bson.int64 import Int64
 from bson.objectid import ObjectId
 
 from oracle.errors import StoreError
-from oracle.store.base import COLLECTION_KINDS, Closed, NeemInfo, Store, check_neem_id, new_meta
+from oracle.store.base import COLLECTION_KINDS, Closed, NeemInfo, Store
 from oracle.store.model import (
     RDF_TYPE,
     SUBCLASS_OF,
@@ -103,10 +109,17 @@ _TRIPLE_INDEXES = (
 
 def _indexes(neem_id: str) -> list[tuple[str, str]]:
     """(name, CREATE INDEX statement) of every index of a NEEM's tables."""
-    t = lambda kind: _table(neem_id, kind)  # noqa: E731
+    t = partial(_table, neem_id)
     made = [(f"{neem_id}_triples_{name}", f"ON {t('triples')}({cols}){where}") for name, cols, where in _TRIPLE_INDEXES]
     made += [(f"{neem_id}_annotations_sp", f"ON {t('annotations')}(s, p)"), (f"{neem_id}_tf_cs", f"ON {t('tf')}(child, stamp)")]
     return [(name, f"CREATE INDEX {_quote(name)} {target}") for name, target in made]
+
+
+def _rowid(cursor: sqlite3.Cursor) -> int:
+    """The id of the row an INSERT just made (sqlite3 types it Optional for other statements)."""
+    if cursor.lastrowid is None:
+        raise StoreError("SQLite reported no id for an inserted row")
+    return cursor.lastrowid
 
 
 class _Connection:
@@ -237,14 +250,8 @@ class SQLiteStore(Store):
             raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
         return NeemInfo.from_meta(neem_id, bson.decode(row[0]))
 
-    def create_neem(
-        self, neem_id: str, *, user: str | None = None, temporary: bool = False, meta: Mapping[str, Any] | None = None
-    ) -> NeemInfo:
-        check_neem_id(neem_id)
-        if self.has_neem(neem_id):
-            raise StoreError(f"{self.location}: NEEM {neem_id!r} already exists")
-        record = new_meta(user, temporary, meta)
-        t = lambda kind: _table(neem_id, kind)  # noqa: E731
+    def _create_neem(self, neem_id: str, record: dict[str, Any]) -> None:
+        t = partial(_table, neem_id)
         with self.transaction():
             self._conn.execute("INSERT INTO neems VALUES (?, ?)", (neem_id, bson.encode(record)))
             self._conn.execute(
@@ -258,23 +265,15 @@ class SQLiteStore(Store):
             self._conn.execute(f"CREATE TABLE {t('inferred')}(id INTEGER PRIMARY KEY, doc BLOB NOT NULL)")
             for _, sql in _indexes(neem_id):
                 self._conn.execute(sql)
-        self._hierarchies.pop(neem_id, None)
-        return NeemInfo.from_meta(neem_id, record)
 
-    def drop_neem(self, neem_id: str) -> None:
-        self.neem(neem_id)
+    def _drop_neem(self, neem_id: str) -> None:
         with self.transaction():
             for kind in COLLECTION_KINDS:
                 self._conn.execute(f"DROP TABLE IF EXISTS {_table(neem_id, kind)}")
             self._conn.execute("DELETE FROM neems WHERE id=?", (neem_id,))
         self._present.discard(neem_id)
-        self._hierarchies.pop(neem_id, None)
 
-    def rename_neem(self, neem_id: str, new_id: str) -> None:
-        info = self.neem(neem_id)
-        check_neem_id(new_id)
-        if self.has_neem(new_id):
-            raise StoreError(f"{self.location}: NEEM {new_id!r} already exists")
+    def _rename_neem(self, neem_id: str, new_id: str, info: NeemInfo) -> None:
         with self.transaction():
             for kind in COLLECTION_KINDS:
                 self._conn.execute(f"ALTER TABLE {_table(neem_id, kind)} RENAME TO {_table(new_id, kind)}")
@@ -285,9 +284,7 @@ class SQLiteStore(Store):
             for _, sql in _indexes(new_id):
                 self._conn.execute(sql)
             self._conn.execute("UPDATE neems SET id=? WHERE id=?", (new_id, neem_id))
-        del info
         self._present.discard(neem_id)
-        self._hierarchies.pop(neem_id, None)
 
     def update_meta(self, neem_id: str, **fields: Any) -> NeemInfo:
         meta = dict(self.neem(neem_id).meta)
@@ -303,12 +300,12 @@ class SQLiteStore(Store):
         if tid is None:
             cursor = self._conn.execute("INSERT OR IGNORE INTO terms(value) VALUES (?)", (value,))
             if cursor.rowcount == 1:
-                tid = cursor.lastrowid
+                tid = _rowid(cursor)
             else:
                 tid = self._conn.execute("SELECT id FROM terms WHERE value=?", (value,)).fetchone()[0]
             self._tids[value] = tid
-            self._tvals[tid] = value  # type: ignore[index]
-        return tid  # type: ignore[return-value]
+            self._tvals[tid] = value
+        return tid
 
     def known_term_id(self, value: str) -> int:
         """The id of a term for a query; -1 (matching nothing) when the store never saw it."""
@@ -365,7 +362,7 @@ class SQLiteStore(Store):
         blob = key if isinstance(key, bytes) else bson.encode({"c": list(closure)})
         row = self._conn.execute("SELECT cid FROM closure WHERE key=?", (blob,)).fetchone()
         if row is None:
-            cid = self._conn.execute("INSERT INTO closure(key) VALUES (?)", (blob,)).lastrowid
+            cid = _rowid(self._conn.execute("INSERT INTO closure(key) VALUES (?)", (blob,)))
             self._conn.executemany(
                 "INSERT INTO closure_member VALUES (?, ?, ?)",
                 [(cid, pos, self._tid(v) if type(v) is str else None) for pos, v in enumerate(closure)],
@@ -405,6 +402,7 @@ class SQLiteStore(Store):
         prefix = struct.pack(">I", int(time.time())) + self._random
         counter = self._counter
         rows = []
+        sql_o: Any
         for triple, pstar, ostar in closed:
             counter = (counter + 1) & 0xFFFFFF
             o = triple.o
@@ -540,13 +538,13 @@ class SQLiteStore(Store):
 
     def _count(self, neem_id: str, kind: str) -> int:
         self._require(neem_id)
-        return self._conn.execute(f"SELECT count(*) FROM {_table(neem_id, kind)}").fetchone()[0]
+        return int(self._conn.execute(f"SELECT count(*) FROM {_table(neem_id, kind)}").fetchone()[0])
 
     def write_mark(self, neem_id: str) -> int:
         # Triple rows are never deleted, only a whole NEEM: the last rowid grows with every
         # insert and is read from the end of the table's b-tree, not by counting.
         self._require(neem_id)
-        return self._conn.execute(f"SELECT coalesce(max(id), 0) FROM {_table(neem_id, 'triples')}").fetchone()[0]
+        return int(self._conn.execute(f"SELECT coalesce(max(id), 0) FROM {_table(neem_id, 'triples')}").fetchone()[0])
 
     def _find(
         self, neem_id: str, pattern: TriplePattern, scope: Scope | None, limit: int | None, exact: bool
@@ -560,7 +558,7 @@ class SQLiteStore(Store):
         for row in self._conn.execute(sql, query.params).fetchall():
             yield self._document(row)
 
-    def _scope_doc(self, since: float | None, until: float | None, sk: int) -> dict[str, Any]:
+    def _scope_doc(self, since: float, until: float, sk: int) -> dict[str, Any]:
         key = (since, until, sk)
         cached = self._scopes.get(key)
         if cached is None:

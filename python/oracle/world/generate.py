@@ -20,7 +20,8 @@ from oracle.chains import ChainRow, TaskCall, parse_call, write_chains
 from oracle.errors import NeemOracleError
 from oracle.timeline import first_hour
 from oracle.world.personas import MUGS, Persona, RoutineEntry, make_personas
-from oracle.world.rules import World, load_world
+from oracle.world.rules import World
+from oracle.world.worldfile import load_world
 from oracle.world.state import State
 
 #: Day 1 of every simulated week (a Monday); times are wall-clock times without a zone
@@ -65,11 +66,13 @@ def _fetch(obj: str, destination: str) -> ScriptStep:
 
 
 def _use(obj: str, target: str, day: _Day) -> list[ScriptStep]:
-    return [f"pick({obj})", f"pour({obj}, {target})", day.back(obj)]
+    steps: list[ScriptStep] = [f"pick({obj})", f"pour({obj}, {target})", day.back(obj)]
+    return steps
 
 
 def _drink(vessel: str, day: _Day) -> list[ScriptStep]:
-    return [f"pick({vessel})"] + [f"drink_from({vessel})"] * day.sips() + [f"place({vessel}, {day.prefs.table})"]
+    steps: list[ScriptStep] = [f"pick({vessel})", *[f"drink_from({vessel})"] * day.sips(), f"place({vessel}, {day.prefs.table})"]
+    return steps
 
 
 # --- intentions -----------------------------------------------------------------------------------
@@ -81,7 +84,7 @@ def hot_drink(day: _Day, state: State, kind: str | None = None, mug: str | None 
         mug = "espresso_cup"
     steps: list[ScriptStep] = [_fetch(mug, t)]
     if kind == "tea":
-        bag = [f"pick({p.tea})", f"place({p.tea}, {mug})"]
+        bag: list[ScriptStep] = [f"pick({p.tea})", f"place({p.tea}, {mug})"]
         steps += day.ordered("tea", bag, _use("thermos", mug, day))
     elif p.coffee == "instant":
         steps += day.ordered("coffee", _use("instant_coffee", mug, day), _use("thermos", mug, day))
@@ -259,7 +262,8 @@ class _Simulator:
                 clock = max(clock + timedelta(minutes=1), start)
                 day = _Day(self.persona, self.rng, entry.time)
                 steps = INTENTIONS[entry.intention](day, state) + self._closing(day)
-                for row, state, clock in self._execute(day, steps, state, clock):
+                # _execute hands back the state and clock after each row: the next intention starts there
+                for row, state, clock in self._execute(day, steps, state, clock):  # noqa: B007, B020
                     yield row
 
     def _agenda(self) -> list[RoutineEntry]:

@@ -1,0 +1,17 @@
+:- begin_tests(soma_action).
+
+:- use_module(action).
+:- use_module('../lang/query').
+:- use_module('../neem_store').
+
+test(succeeded, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    \+ action_succeeded(act),
+    kb_project(action_succeeded(act)),
+    action_succeeded(act), \+ action_failed(act),
+    action_status(act, S), S == 'http://www.ease-crc.org/ont/SOMA.owl#ExecutionState_Succeeded'.
+
+test(failed_and_active, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project((action_failed(a), action_active(b))),
+    action_failed(a), action_active(b), \+ action_paused(b).
+
+:- end_tests(soma_action).

@@ -1,0 +1,82 @@
+"""Similarity mass of past situations: the generalising part of the routine predictor (docs/algorithm.md).
+
+Every past action ``a_j`` lends a candidate ``c`` the weight
+``exp(-(d(c, a_j) + D_j) / tau) / rho^[time of day differs]``, where ``d`` is thesis Algorithm 2
+and ``D_j`` compares the chain before ``a_j`` with the chain before now. The weights *add up*
+over the history, so repetitions count (the thesis's eq. 4.12 averages them instead), and an
+action never done still gets mass through the actions it resembles.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+START = -2   # before the first step: the chain has no predecessor there
+
+
+class Rows:
+    """A growing (n, width) int64 table with amortised O(1) append of one row."""
+
+    def __init__(self, width: int) -> None:
+        self._data = np.empty((64, max(width, 1)), dtype=np.int64)
+        self.width = width
+        self.size = 0
+
+    def append(self, row: float | Sequence[float] | np.ndarray) -> None:
+        if self.size == self._data.shape[0]:
+            self._data = np.concatenate([self._data, np.empty_like(self._data)])
+        self._data[self.size, : self.width] = row
+        self.size += 1
+
+    @property
+    def view(self) -> np.ndarray:
+        return self._data[: self.size, : self.width]
+
+
+def context_distance(table: np.ndarray, now: tuple[int, ...], then: np.ndarray, penalty: float,
+                     decay: float) -> np.ndarray:
+    """``D_j = sum_n decay^(n-1) * delta(now_n, then_jn)`` over the ``len(now)`` predecessors.
+
+    ``now[n-1]`` and ``then[:, n-1]`` are the n-th predecessor tokens (option id, idle or START);
+    ``delta`` is Algorithm 2 between two options, 0 between equal special tokens and ``penalty``
+    otherwise (a chain that started, or went idle, where the other did not).
+    """
+    total = np.zeros(then.shape[0])
+    for n, token in enumerate(now):
+        theirs = then[:, n]
+        if token >= 0:
+            delta = np.where(theirs >= 0, table[token][np.maximum(theirs, 0)], penalty)
+        else:
+            delta = np.where(theirs == token, 0.0, penalty)
+        total += decay ** n * delta
+    return total
+
+
+def similarity_mass(candidate_distances: np.ndarray, executed: np.ndarray, context: np.ndarray,
+                    tod_differs: np.ndarray, tau: float, tod_penalty: float) -> np.ndarray:
+    """``S(c) = sum_j exp(-(d(c, a_j) + D_j) / tau) * rho^-[tod_j differs]`` for every candidate.
+
+    ``candidate_distances`` is (candidates x options) Algorithm 2; ``executed`` the option id of
+    every past action, ``context`` its ``D_j``. Grouping the past actions by option first keeps
+    it O(history + candidates x options).
+    """
+    n_options = candidate_distances.shape[1]
+    if executed.size == 0 or n_options == 0:
+        return np.zeros(candidate_distances.shape[0])
+    log_weight = -context / tau - np.where(tod_differs, math.log(tod_penalty) if tod_penalty > 0 else 0.0, 0.0)
+    shift = log_weight.max()  # the common factor exp(shift) cancels when S is normalised
+    per_option = np.bincount(executed, weights=np.exp(log_weight - shift), minlength=n_options)
+    return np.exp(-candidate_distances / tau) @ per_option
+
+
+def normalised(mass: np.ndarray) -> np.ndarray:
+    """``Q(c) = S(c) / sum S``; uniform when nothing is known."""
+    total = float(mass.sum())
+    if not mass.size:
+        return mass
+    if total <= 0 or not math.isfinite(total):
+        return np.full(mass.size, 1.0 / mass.size)
+    return mass / total

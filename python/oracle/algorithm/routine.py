@@ -1,0 +1,325 @@
+"""The routine predictor (the default): exact-context counts of the user's own actions, backed off
+to ontology similarity of past situations, self-tuned on the user's own history.
+
+For each variant ``v = (stream, order, tau)`` the probability of a candidate is PPM-C over the
+user's exact contexts whose lowest level is the similarity distribution ``Q`` of ``kernel``; the
+variants are averaged with weights proportional to how well each predicted the user's past steps
+(``selftune``). docs/algorithm.md, "Routine predictor", gives every formula and the reasons.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from itertools import product
+from typing import Any
+
+import numpy as np
+
+from oracle.algorithm.contexts import IDLE, UNKNOWN, Blend, ContextCounts
+from oracle.algorithm.kernel import START, Rows, context_distance, normalised, similarity_mass
+from oracle.algorithm.reference import offered_options
+from oracle.algorithm.selftune import VariantWeights
+from oracle.algorithm.similarity import class_rows, option_distances
+from oracle.algorithm.records import Option, RankedTask, Ranking, Step, TreeNode
+from oracle.algorithm.tree import Successions, TreeShape, successor_tree
+from oracle.errors import SettingsError
+from oracle.timeline import TIME_OF_DAY_NAMES
+
+_TOD = {name: code for code, name in enumerate(TIME_OF_DAY_NAMES)}
+STREAMS = ("idle", "through")   # idle steps as tokens / contexts that run across idle steps
+TUNINGS = ("leader", "mixture", "fixed")
+#: ``fit`` scores the variants on at most this many latest steps (``partial_fit`` scores every step).
+TUNING_WINDOW = 1000
+
+
+@dataclass(frozen=True)
+class RoutineTask(RankedTask):
+    """A ranked option with what supports it.
+
+    ``score`` is ``-log2 P`` (bits of surprise; lower is better, like the thesis's distance);
+    ``context`` the longest exact context (oldest first, ``idle`` for a gap) that was followed by
+    this option ``n_similar`` times, ``order`` its length (0: the option was done, in no matching
+    context; -1: never done); ``situations`` the history positions of those past situations
+    (latest last), or of the most similar past actions when there are none.
+    """
+
+    probability: float = 0.0
+    order: int = -1
+    context: tuple[str, ...] = ()
+    situations: tuple[int, ...] = ()
+
+
+class _Stream:
+    """One token stream: its context counts and each past action's predecessor tokens."""
+
+    def __init__(self, max_order: int, depth: int) -> None:
+        self.counts = ContextCounts(max_order)
+        self.depth = depth
+        self.before = Rows(depth)     # per past action: predecessors 1..depth (START padded)
+
+    def recent(self) -> tuple[int, ...]:
+        tokens = self.counts.tokens
+        return tuple(tokens[-n] if len(tokens) >= n else START for n in range(1, self.depth + 1))
+
+
+class RoutineOracle:
+    """The routine predictor, with the estimator contract of the thesis oracle (style.md).
+
+    ``distances`` is the DistanceMatrix; ``task_factor``, ``object_factor``, ``penalty`` and
+    ``time_of_day_penalty`` are the thesis's Table 4.2 values, used in the same roles;
+    ``orders``, ``temperatures`` and ``streams`` span the variants that ``tuning`` weighs
+    ("leader": the best so far, "mixture": posterior weights, "fixed": the first variant).
+    """
+
+    _param_names = ("distances", "opening_tasks", "orders", "temperatures", "lowest_orders", "streams", "context_depth",
+                    "context_decay", "tuning", "task_factor", "object_factor", "penalty",
+                    "time_of_day_penalty", "event_horizon_forward")
+
+    def __init__(self, distances: Any = None, *, opening_tasks: frozenset[str] = frozenset(),
+                 orders: tuple[int, ...] = (3, 5), temperatures: tuple[float, ...] = (0.5, 2.0),
+                 lowest_orders: tuple[int, ...] = (0, 1),
+                 streams: tuple[str, ...] = ("idle",), context_depth: int = 3, context_decay: float = 0.5,
+                 tuning: str = "leader", task_factor: float = 2.0, object_factor: float = 1.0,
+                 penalty: float = 3.7, time_of_day_penalty: float = 1.18, event_horizon_forward: int = 3) -> None:
+        self.distances = distances
+        self.opening_tasks = opening_tasks
+        self.orders = orders
+        self.temperatures = temperatures
+        self.lowest_orders = lowest_orders
+        self.streams = streams
+        self.context_depth = context_depth
+        self.context_decay = context_decay
+        self.tuning = tuning
+        self.task_factor = task_factor
+        self.object_factor = object_factor
+        self.penalty = penalty
+        self.time_of_day_penalty = time_of_day_penalty
+        self.event_horizon_forward = event_horizon_forward
+
+    def get_params(self, deep: bool = True) -> dict[str, Any]:
+        return {name: getattr(self, name) for name in self._param_names}
+
+    def set_params(self, **params: Any) -> RoutineOracle:
+        for name, value in params.items():
+            if name not in self._param_names:
+                raise SettingsError(f"unknown parameter {name!r} for {type(self).__name__}")
+            setattr(self, name, value)
+        return self
+
+    # -- learning -------------------------------------------------------------------------
+
+    def _validate(self) -> None:
+        name = type(self).__name__
+        if not self.orders or any(isinstance(n, bool) or not isinstance(n, int) or n < 0 for n in self.orders):
+            raise SettingsError(f"{name}: orders must be whole numbers >= 0, got {self.orders!r}")
+        if not self.lowest_orders or any(isinstance(n, bool) or not isinstance(n, int) or n not in (0, 1)
+                                         for n in self.lowest_orders):
+            raise SettingsError(f"{name}: lowest_orders must be 0 or 1, got {self.lowest_orders!r}")
+        if not self.temperatures or any(not (isinstance(t, (int, float)) and math.isfinite(t) and t > 0)
+                                        for t in self.temperatures):
+            raise SettingsError(f"{name}: temperatures must be positive numbers, got {self.temperatures!r}")
+        if not self.streams or any(s not in STREAMS for s in self.streams):
+            raise SettingsError(f"{name}: streams must be among {', '.join(STREAMS)}, got {self.streams!r}")
+        if self.tuning not in TUNINGS:
+            raise SettingsError(f"{name}: tuning must be one of {', '.join(TUNINGS)}, got {self.tuning!r}")
+        if not isinstance(self.context_depth, int) or self.context_depth < 0:
+            raise SettingsError(f"{name}: context_depth must be a whole number >= 0, got {self.context_depth!r}")
+        for value, what in ((self.context_decay, "context_decay"), (self.task_factor, "task_factor"),
+                            (self.object_factor, "object_factor"), (self.penalty, "penalty"),
+                            (self.time_of_day_penalty, "time_of_day_penalty")):
+            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value < 0:
+                raise SettingsError(f"{name}: {what} must be a number >= 0, got {value!r}")
+
+    def fit(self, history: Iterable[Step]) -> RoutineOracle:
+        self._validate()
+        self._raw_params = tuple(self.get_params().values())
+        self.variants_ = tuple(product(self.streams, self.orders, self.temperatures, self.lowest_orders))
+        self.weights_ = VariantWeights(len(self.variants_))
+        self._values = np.asarray(self.distances.values, dtype=np.float64)
+        self.options_: list[Option] = []
+        self._ids: dict[Option, int] = {}
+        self._classes = np.empty((0, 3), dtype=np.int64)
+        self._table = np.zeros((0, 0))
+        self._streams = {s: _Stream(max(self.orders), self.context_depth) for s in self.streams}
+        self._executed = Rows(1)        # per past action: option id
+        self._tod = Rows(1)             # per past action: time-of-day code, -1 unknown
+        self._position = Rows(1)        # per past action: its position in the history
+        self._next = Rows(1)            # per history position: successor position, -1 none or idle
+        self._step_ids = Rows(1)        # per history position: option id, -1 idle
+        self.n_steps_ = 0
+        steps = list(history)
+        for position, step in enumerate(steps):
+            # scoring a step costs one rank: only the latest TUNING_WINDOW steps tune a long history
+            self._add(step, score=position >= len(steps) - TUNING_WINDOW)
+        return self
+
+    def partial_fit(self, step: Step) -> RoutineOracle:
+        if not hasattr(self, "variants_"):
+            return self.fit([step])
+        self._check()
+        self._add(step, score=True)
+        return self
+
+    def _check(self) -> None:
+        if not hasattr(self, "variants_"):
+            raise SettingsError(f"{type(self).__name__} is not fitted; call fit(history) first")
+        if tuple(self.get_params().values()) != self._raw_params:
+            raise SettingsError("parameters changed since fit; call fit(history) again")
+
+    def _intern(self, option: Option) -> int:
+        known = self._ids.get(option)
+        if known is not None:
+            return known
+        row = class_rows(self.distances, [option])
+        old = len(self.options_)
+        if old == self._table.shape[0]:
+            size = max(32, 2 * old)
+            table = np.zeros((size, size))
+            table[:old, :old] = self._table[:old, :old]
+            self._table = table
+            classes = np.empty((size, 3), dtype=np.int64)
+            classes[:old] = self._classes[:old]
+            self._classes = classes
+        self._classes[old] = row[0]
+        distances = self._distances(row, self._classes[: old + 1])[0]
+        self._table[old, : old + 1] = distances
+        self._table[: old + 1, old] = distances
+        self._ids[option] = old
+        self.options_.append(option)
+        return old
+
+    def _distances(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        return option_distances(self._values, a, b, self.task_factor, self.object_factor, self.penalty)
+
+    def _add(self, step: Step, score: bool) -> None:
+        if not isinstance(step, Step):
+            raise TypeError(f"history entries must be Step records, got {type(step).__name__}")
+        if score and self.tuning != "fixed" and not step.idle and step.options:  # "fixed" needs no scores
+            offered, _ = offered_options(step, None)
+            if step.option in offered:
+                truth = offered.index(step.option)
+                self.weights_.update(self._variant_probabilities(offered, step.time_of_day)[0], truth)
+        position = self.n_steps_
+        for option in step.options:  # offered again later: their distances are then looked up
+            self._intern(option)
+        if step.idle:
+            token = IDLE
+        else:
+            token = self._intern(step.option)
+            if position > 0 and self._step_ids.view[position - 1, 0] != IDLE:
+                self._next.view[position - 1, 0] = position
+            for stream in self._streams.values():
+                stream.before.append(stream.recent())
+            self._executed.append(token)
+            self._tod.append(_TOD.get(step.time_of_day or "", -1))
+            self._position.append(position)
+        for name, stream in self._streams.items():
+            if name == "idle" or token != IDLE:
+                stream.counts.add(token)
+        self._step_ids.append(token)
+        self._next.append(-1)
+        self.n_steps_ = position + 1
+
+    # -- ranking --------------------------------------------------------------------------
+
+    def _variant_probabilities(self, offered: Sequence[Option], now: str | None,
+                               which: Sequence[int] | None = None
+                               ) -> tuple[list[np.ndarray], list[Blend], np.ndarray]:
+        """The distribution over ``offered`` and the blend of each variant in ``which`` (default:
+        all), and the candidates' Algorithm 2 distances to every interned option."""
+        ids = [self._ids.get(option, UNKNOWN) for option in offered]
+        count = len(self.options_)
+        if UNKNOWN in ids:
+            cand = self._distances(class_rows(self.distances, offered), self._classes[:count])
+        else:
+            cand = self._table[ids, :count]
+        executed = self._executed.view[:, 0]
+        now_code = _TOD.get(now, -1) if now is not None else -1
+        then = self._tod.view[:, 0]
+        differs = (then >= 0) & (then != now_code) if now_code >= 0 else np.zeros(then.size, dtype=bool)
+        table = self._table[:count, :count]
+        chosen = [self.variants_[v] for v in (range(len(self.variants_)) if which is None else which)]
+        context = {name: context_distance(table, s.recent(), s.before.view, self.penalty, self.context_decay)
+                   for name, s in self._streams.items() if any(v[0] == name for v in chosen)}
+        base: dict[tuple[str, float], np.ndarray] = {}
+        blends: dict[tuple[str, int, float, int], Blend] = {}
+        probabilities = []
+        for stream, order, tau, lowest in chosen:
+            if (stream, tau) not in base:
+                base[stream, tau] = normalised(similarity_mass(cand, executed, context[stream], differs, tau,
+                                                               self.time_of_day_penalty))
+            blend = blends[stream, order, tau, lowest] = self._streams[stream].counts.blend(
+                ids, base[stream, tau], order, lowest)
+            probabilities.append(blend.probabilities)
+        return probabilities, [blends[v] for v in chosen], cand
+
+    def rank(self, current: Step | Iterable[Option], time_of_day: str | None = None, *,
+             tree_roots: int | None = 3, present_objects: Iterable[str] | None = None) -> Ranking:
+        """Rank the available options of ``current`` (a Step, or options plus ``time_of_day``),
+        most probable first (ties: the order offered); the model is not changed."""
+        self._check()
+        offered, now = offered_options(current, time_of_day)
+        if not offered:
+            return Ranking(())
+        weights = self.weights_.weights(self.tuning)
+        used = np.flatnonzero(weights > 0).tolist()  # the leader alone, unless mixing
+        probabilities, blends, cand = self._variant_probabilities(offered, now, used)
+        mixed = np.zeros(len(offered))
+        for weight, p in zip(weights[used], probabilities):
+            mixed += weight * p
+        total = float(mixed.sum())
+        mixed = mixed / total if total > 0 else np.full(len(offered), 1.0 / len(offered))  # P(c | offered)
+        lead = int(np.argmax(weights[used]))
+        explain = blends[lead]
+        stream = self._streams[self.variants_[used[lead]][0]]
+        order = sorted(range(len(offered)), key=lambda i: (-mixed[i], i))
+        nearest = cand.min(axis=1) if cand.shape[1] else np.full(len(offered), math.inf)
+        present = frozenset(present_objects) if present_objects is not None else frozenset(
+            obj for option in offered for obj in option.objects())
+        tasks = []
+        for rank, i in enumerate(order, start=1):
+            option, n = offered[i], int(explain.order[i])
+            context = stream.counts.context(n) if n > 0 else ()
+            situations = self._support(stream, self._ids.get(option, UNKNOWN), context or (), n)
+            successors: tuple[TreeNode, ...] = ()
+            if situations and (tree_roots is None or rank <= tree_roots):
+                successors = successor_tree(
+                    np.array(situations, dtype=np.int64), np.ones(len(situations)),
+                    Successions(self._next.view[:, 0], np.maximum(self._step_ids.view[:, 0], 0), self.options_),
+                    TreeShape(self.event_horizon_forward, 1.0, present, frozenset(self.opening_tasks)),
+                    option.task not in self.opening_tasks)
+            probability = float(mixed[i])
+            tasks.append(RoutineTask(
+                rank, -math.log2(probability) if probability > 0 else math.inf, option,
+                int(explain.count[i]) if n >= 0 else 0, float(nearest[i]), successors, probability, n,
+                tuple(self._label(t) for t in context or ()), tuple(situations[-5:]) if n >= 0 else ()))
+        return Ranking(tuple(tasks))
+
+    def _support(self, stream: _Stream, option_id: int, context: tuple[int, ...], n: int) -> list[int]:
+        """History positions where ``option_id`` followed ``context`` (all its uses when n is 0)."""
+        if option_id == UNKNOWN or n < 0:
+            return []
+        executed = self._executed.view[:, 0]
+        hit = executed == option_id
+        before = stream.before.view
+        for k in range(min(n, before.shape[1])):
+            hit &= before[:, k] == context[-1 - k]
+        if n > before.shape[1]:  # longer than the kept predecessors: check the stream itself
+            tokens = np.asarray(stream.counts.tokens, dtype=np.int64)
+            where = self._stream_index(stream)
+            for k in range(before.shape[1], n):
+                at = where - 1 - k
+                hit &= (at >= 0) & (tokens[np.maximum(at, 0)] == context[-1 - k])
+        positions: list[int] = self._position.view[hit, 0].tolist()
+        return positions
+
+    def _stream_index(self, stream: _Stream) -> np.ndarray:
+        """The index of every past action in ``stream``'s token list."""
+        if stream is self._streams.get("through"):
+            return np.arange(self._executed.size)
+        return self._position.view[:, 0]
+
+    def _label(self, token: int) -> str:
+        return "idle" if token == IDLE else str(self.options_[token])

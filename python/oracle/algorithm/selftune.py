@@ -1,0 +1,54 @@
+"""Self-tuning on the user's own history (thesis 4.5) without a tuning split: prequential weights.
+
+Before a step joins the history, every variant has already predicted it; its log-probability of
+what the user did is added to that variant's score. "mixture" weighs the variants by
+``softmax(score)`` (the Bayesian posterior of the variants under a uniform prior). "leader" keeps a
+second score, the variant's hits as the user's tablet would show them (truth at rank 1, in the top
+3, in the top 5, each counting 1/3), and puts all weight on the best so far (follow the leader;
+ties go to the earlier variant). "fixed" always uses the first variant.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+import numpy as np
+
+#: Floor of a probability before its log: a variant that gave the truth 0 is penalised, not killed.
+FLOOR = 1e-12
+
+
+class VariantWeights:
+    """Cumulative log-likelihood of each variant on the steps seen so far."""
+
+    def __init__(self, n_variants: int) -> None:
+        self.scores = np.zeros(n_variants)
+        self.hits = np.zeros(n_variants)
+        self.steps = 0
+
+    def update(self, probabilities: Sequence[np.ndarray], truth: int) -> None:
+        """Score every variant's distribution over the offered options on the option done."""
+        for v, p in enumerate(probabilities):
+            self.scores[v] += math.log(max(float(p[truth]), FLOOR))
+            # rank as ``rank`` orders: by probability, ties by the order offered
+            better = int(np.count_nonzero(p > p[truth])) + int(np.count_nonzero(p[:truth] == p[truth]))
+            self.hits[v] += ((better < 1) + (better < 3) + (better < 5)) / 3.0
+        self.steps += 1
+
+    def weights(self, tuning: str) -> np.ndarray:
+        n = self.scores.size
+        out = np.zeros(n)
+        if tuning == "fixed" or self.steps == 0:
+            out[0] = 1.0
+        elif tuning == "leader":
+            out[int(np.argmax(self.hits))] = 1.0  # ties: the earlier (default) variant
+        else:
+            shifted = self.scores - self.scores.max()
+            out = np.exp(shifted)
+            out /= out.sum()
+        return out
+
+    def describe(self) -> list[float]:
+        """Mean log2-likelihood per step of each variant (for reports)."""
+        return [s / math.log(2) / max(1, self.steps) for s in self.scores.tolist()]

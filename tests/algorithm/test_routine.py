@@ -1,0 +1,178 @@
+"""Claims about the routine predictor (docs/algorithm.md, "Routine predictor") and the registry."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from algoworld import IDLE, OBJECTS, TASKS, histories, option_strategy, random_matrix, synthetic_history
+from oracle.algorithm.fast import PreferenceOracle
+from oracle.algorithm.params import PRESETS, Hyperparameters
+from oracle.algorithm.predictors import DEFAULT, PREDICTORS, make_predictor, predictor_spec
+from oracle.algorithm.reference import overall_distance
+from oracle.algorithm.routine import RoutineOracle, RoutineTask
+from oracle.algorithm.similarity import class_rows, option_distances
+from oracle.algorithm.records import Option, Step
+from oracle.errors import SettingsError
+from oracle.ontology.distance import DistanceMatrix
+
+PICK, PLACE, POUR, OPEN_, CLOSE, DRINK = TASKS
+RED, BLUE, THERMOS, DRAWER, TABLE, SPOON, PLATE = OBJECTS
+
+
+def kitchen() -> DistanceMatrix:
+    """Mugs are close to each other and far from the drawer; pick is close to place."""
+    classes = TASKS + OBJECTS + (IDLE,)
+    values = np.full((len(classes), len(classes)), 1.5)
+    near = {(RED, BLUE): 0.1, (PICK, PLACE): 0.4, (RED, THERMOS): 0.6, (BLUE, THERMOS): 0.6}
+    for (a, b), d in near.items():
+        i, j = classes.index(a), classes.index(b)
+        values[i, j] = values[j, i] = d
+    np.fill_diagonal(values, 0.0)
+    return DistanceMatrix.from_values(classes, values)
+
+
+def act(option: Option, options=(), tod=None) -> Step:
+    return Step(option.task, option.target, option.reference, tuple(options), tod, False, str(option))
+
+
+def idle() -> Step:
+    return Step(IDLE, idle=True, label="idle")
+
+
+ROUTINE = (Option(PICK, RED), Option(POUR, THERMOS, RED), Option(DRINK, RED), Option(PLACE, RED, TABLE))
+OFFERED = tuple(reversed(ROUTINE)) + (Option(OPEN_, DRAWER),)
+
+
+def test_empty_history_keeps_the_offered_order_with_equal_probabilities():
+    ranking = RoutineOracle(kitchen()).fit([]).rank(OFFERED)
+    assert ranking.options() == OFFERED
+    assert all(isinstance(t, RoutineTask) and t.order == -1 and t.n_similar == 0 for t in ranking)
+    assert [t.probability for t in ranking] == pytest.approx([1 / len(OFFERED)] * len(OFFERED))
+    assert all(math.isinf(t.nearest) for t in ranking)
+    assert RoutineOracle(kitchen()).fit([]).rank(()).tasks == ()
+
+
+def test_one_step_history_ranks_the_repeated_action_first():
+    ranking = RoutineOracle(kitchen()).fit([act(ROUTINE[1], OFFERED)]).rank(OFFERED)
+    assert ranking[0].option == ROUTINE[1] and ranking[0].order == 0 and ranking[0].n_similar == 1
+    assert sum(t.probability for t in ranking) == pytest.approx(1.0)
+    assert [t.score for t in ranking] == sorted(t.score for t in ranking)  # -log2 p: lower is better
+
+
+def test_a_repeated_routine_is_learned_exactly_with_its_context_and_chain():
+    history = [act(o, OFFERED) for _ in range(4) for o in ROUTINE] + [act(o, OFFERED) for o in ROUTINE[:3]]
+    ranking = RoutineOracle(kitchen()).fit(history).rank(OFFERED)
+    best = ranking[0]
+    assert best.option == ROUTINE[3]
+    assert best.order == 3 and best.n_similar == 4
+    assert best.context == tuple(str(o) for o in ROUTINE[:3])
+    assert best.situations == (3, 7, 11, 15)          # every past PLACE after pick, pour, drink
+    assert ranking.chain()[:2] == (ROUTINE[3], ROUTINE[0])  # what followed it in the past
+
+
+def test_a_never_seen_action_is_ranked_by_its_similarity_to_what_the_user_did():
+    history = [act(Option(PICK, RED), (Option(PICK, RED),)) for _ in range(5)]
+    offered = (Option(OPEN_, DRAWER), Option(PICK, BLUE), Option(CLOSE, DRAWER))
+    ranking = RoutineOracle(kitchen()).fit(history).rank(offered)
+    assert ranking[0].option == Option(PICK, BLUE)    # the blue mug is like the red one
+    assert ranking[0].order == -1 and ranking[0].n_similar == 0
+    assert ranking[0].nearest == pytest.approx(2 * 0.0 + 0.1)
+
+
+def test_what_follows_an_idle_gap_is_a_context_of_its_own():
+    a, b, c, d = ROUTINE
+    history = []
+    for _ in range(3):
+        history += [act(a), act(b), act(d), act(a), act(b), idle(), act(c)]
+    model = RoutineOracle(kitchen()).fit(history)
+    assert model.rank((c, d)).options() == (d, c)  # after pick, pour: place (no gap since the last action) ...
+    after_gap = model.partial_fit(act(a)).partial_fit(act(b)).partial_fit(idle()).rank((d, c))
+    assert after_gap[0].option == c and "idle" in after_gap[0].context  # ... but drink after a gap
+
+
+def test_the_time_of_day_moves_similar_evidence():
+    morning, evening = Option(DRINK, RED), Option(DRINK, BLUE)
+    history = [act(morning, tod="Morning"), act(evening, tod="Evening")] * 3
+    model = RoutineOracle(kitchen(), orders=(0,), time_of_day_penalty=3.0).fit(history)
+    offered = (Option(PICK, RED), Option(PICK, BLUE))
+    assert model.rank(offered, "Morning")[0].option == offered[0]
+    assert model.rank(offered, "Evening")[0].option == offered[1]
+
+
+def test_rank_changes_nothing_and_fit_equals_partial_fit():
+    steps = synthetic_history(80, seed=4)
+    model = RoutineOracle(random_matrix(4)).fit(steps[:60])
+    before = (model.n_steps_, model.weights_.hits.copy(), len(model.options_))
+    first = model.rank(steps[60])
+    assert model.rank(steps[60]) == first
+    assert (model.n_steps_, len(model.options_)) == before[::2] and (model.weights_.hits == before[1]).all()
+    for step in steps[60:]:
+        model.partial_fit(step)
+    fresh = RoutineOracle(random_matrix(4)).fit(steps)
+    assert fresh.rank(steps[0]) == model.rank(steps[0])
+
+
+@settings(max_examples=25, deadline=None)
+@given(histories(max_size=20), st.lists(option_strategy(), min_size=1, max_size=5).map(tuple))
+def test_rankings_are_deterministic_permutations_of_the_offer(history, offered):
+    one = RoutineOracle(random_matrix(1)).fit(history).rank(offered)
+    two = RoutineOracle(random_matrix(1)).fit(history).rank(offered)
+    assert one == two
+    assert sorted(map(str, one.options())) == sorted(map(str, dict.fromkeys(offered)))
+    assert [t.rank for t in one] == list(range(1, len(one) + 1))
+    assert sum(t.probability for t in one) == pytest.approx(1.0)
+
+
+@settings(max_examples=40, deadline=None)
+@given(option_strategy(), option_strategy())
+def test_vectorised_algorithm_2_equals_the_reference(a, b):
+    matrix = random_matrix(2)
+    values = option_distances(matrix.values, class_rows(matrix, [a]), class_rows(matrix, [b]), 2.0, 1.0, 3.7)
+    assert values[0, 0] == pytest.approx(overall_distance(Hyperparameters(), matrix, a, b))
+
+
+def test_self_tuning_follows_the_variant_that_predicted_the_user_best():
+    steps = synthetic_history(200, seed=6)
+    model = RoutineOracle(random_matrix(6), orders=(0, 3), temperatures=(1.0,), lowest_orders=(0,)).fit(steps)
+    assert model.variants_ == (("idle", 0, 1.0, 0), ("idle", 3, 1.0, 0))
+    assert model.weights_.hits[1] > model.weights_.hits[0]  # the routine is sequential
+    assert model.weights_.weights("leader").tolist() == [0.0, 1.0]
+    assert model.weights_.weights("fixed").tolist() == [1.0, 0.0]
+
+
+def test_parameters_follow_the_estimator_contract():
+    model = RoutineOracle(kitchen(), orders=(2,))
+    assert model.get_params()["orders"] == (2,)
+    assert model.set_params(tuning="fixed") is model and model.tuning == "fixed"
+    with pytest.raises(SettingsError, match="unknown parameter"):
+        model.set_params(nope=1)
+    for bad in ({"orders": ()}, {"temperatures": (0.0,)}, {"streams": ("sideways",)}, {"tuning": "best"},
+                {"penalty": -1.0}, {"context_depth": 1.5}, {"lowest_orders": (2,)}):
+        with pytest.raises(SettingsError):
+            RoutineOracle(kitchen(), **bad).fit([])
+    fitted = RoutineOracle(kitchen()).fit([])
+    fitted.set_params(orders=(1,))
+    with pytest.raises(SettingsError, match="changed since fit"):
+        fitted.rank(OFFERED)
+    with pytest.raises(SettingsError, match="not fitted"):
+        RoutineOracle(kitchen()).rank(OFFERED)
+
+
+def test_the_registry_names_the_default_and_the_exact_thesis_oracle():
+    assert DEFAULT == "routine" and set(PREDICTORS) >= {"routine", "thesis"}
+    assert isinstance(make_predictor("routine", kitchen()), RoutineOracle)
+    assert make_predictor("routine-fixed", kitchen()).tuning == "fixed"
+    steps = synthetic_history(60, seed=3)
+    matrix = random_matrix(3)
+    for name in ("recommended", "L"):
+        thesis = make_predictor("thesis", matrix, frozenset({TASKS[3]}), PRESETS[name]).fit(steps[:50])
+        direct = PreferenceOracle.from_settings(matrix, PRESETS[name], frozenset({TASKS[3]})).fit(steps[:50])
+        assert thesis.rank(steps[55]) == direct.rank(steps[55])
+    assert predictor_spec(" Thesis ").name == "thesis"
+    with pytest.raises(SettingsError, match="known: routine, routine-fixed, routine-mixture, thesis"):
+        make_predictor("bayes", matrix)
