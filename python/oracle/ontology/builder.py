@@ -21,7 +21,9 @@ from oracle.ontology.mapping import ActionMapping, Mapping, load_mapping
 from oracle.ontology.model import GENERATED_MARK, VANN_NAMESPACE, OdbOntology
 from oracle.ontology.odb import OdbObject, read_odb
 from oracle.ontology.provenance import OntologySource
-from oracle.ontology.upper import DATA_DIR, declared_entities, load_upper
+from oracle.ontology.cache import build_key, cached_build
+from oracle.ontology.distance import default_cache_dir
+from oracle.ontology.upper import CORE_TBOX, DATA_DIR, OFFICIAL_FILES, declared_entities, load_upper
 from oracle.ontology.vocabulary import Vocabulary
 
 DEFAULT_ODB = DATA_DIR / "kitchen-odb"
@@ -57,13 +59,27 @@ def build_with_report(
     soma_dir: Path | str | None = None,
     cache_dir: Path | None = None,
 ) -> tuple[OdbOntology, BuildReport]:
-    objects = read_odb(odb_dir if odb_dir is not None else DEFAULT_ODB)
-    maps = load_mapping(mapping if mapping is not None else DEFAULT_MAPPING)
+    """The ontology and what the build did; a build of the same files is loaded from the cache
+    (oracle.ontology.cache) instead of being made again."""
+    odb_path = Path(odb_dir if odb_dir is not None else DEFAULT_ODB).expanduser()
+    mapping_path = Path(mapping if mapping is not None else DEFAULT_MAPPING).expanduser()
+    soma_path = None if soma_dir is None else Path(soma_dir).expanduser()
+    key = build_key(odb_path, mapping_path, soma_path, CORE_TBOX, OFFICIAL_FILES)
+    directory = cache_dir if cache_dir is not None else default_cache_dir()
+    onto, report = cached_build(key, directory, lambda: _build(odb_path, mapping_path, soma_dir))
+    onto.cache_dir = cache_dir
+    onto.source = OntologySource.built(odb_dir, mapping, soma_dir)
+    return onto, report
+
+
+def _build(odb_dir: Path, mapping: Path, soma_dir: Path | str | None) -> tuple[OdbOntology, BuildReport]:
+    objects = read_odb(odb_dir)
+    maps = load_mapping(mapping)
     upper = load_upper(soma_dir)
     _check_upper_iris(maps, upper, "the official SOMA/DUL files" if soma_dir else "the core TBox (pass --soma DIR for the official files)")
     graph, report = _generate(objects, maps, upper)
-    onto = OdbOntology.from_graph(graph, maps.namespace, cache_dir)
-    onto.source = OntologySource.built(odb_dir, mapping, soma_dir)
+    onto = OdbOntology.from_graph(graph, maps.namespace)
+    onto.taxonomy  # noqa: B018 - computed once here, so the cached copy carries it
     return onto, report
 
 

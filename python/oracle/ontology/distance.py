@@ -15,12 +15,15 @@ import math
 import os
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-import numpy as np
 import platformdirs
 
 from oracle.errors import OntologyError
 from oracle.ontology.taxonomy import Taxonomy
+
+if TYPE_CHECKING:  # numpy is imported where a matrix is made: why-not and neems never need one
+    import numpy as np
 
 #: Bumped whenever the formula or the tie rules change, so stale caches are never used.
 ALGORITHM_VERSION = "alg1-v1"
@@ -62,6 +65,8 @@ class DistanceMatrix:
     @classmethod
     def from_values(cls, classes: tuple[str, ...], values: np.ndarray) -> DistanceMatrix:
         """A matrix given outright (synthetic worlds in tests and benchmarks); no LCS is known."""
+        import numpy as np
+
         return cls(tuple(classes), values, np.zeros(values.shape, dtype=np.int32), "given")
 
     def distance(self, a: str, b: str) -> float:
@@ -78,6 +83,8 @@ class DistanceMatrix:
 
     @classmethod
     def compute(cls, taxonomy: Taxonomy) -> DistanceMatrix:
+        import numpy as np
+
         classes = taxonomy.classes
         n = len(classes)
         index = {c: i for i, c in enumerate(classes)}
@@ -110,6 +117,8 @@ class DistanceMatrix:
     @classmethod
     def cached(cls, taxonomy: Taxonomy, cache_dir: Path | None = None) -> DistanceMatrix:
         """Load the matrix for this taxonomy from the cache, computing and saving it if absent."""
+        import numpy as np
+
         directory = cache_dir if cache_dir is not None else default_cache_dir()
         key = taxonomy_key(taxonomy)
         path = directory / f"distances-{key}.npz"
@@ -126,6 +135,7 @@ class DistanceMatrix:
             directory.mkdir(parents=True, exist_ok=True, mode=0o700)
             tmp = path.with_name(path.name + f".{os.getpid()}.tmp.npz")
             np.savez_compressed(tmp, classes=np.array(matrix.classes), values=matrix.values, lcs=matrix.lcs_index)
+            os.chmod(tmp, 0o600)  # the cache is the user's, like the stores
             os.replace(tmp, path)
         except OSError:
             pass  # caching is an optimisation; a read-only home still works

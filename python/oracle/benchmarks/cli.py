@@ -1,0 +1,214 @@
+"""CLI figures a user meets (issue 15): the fixed cost of a call, ``neems`` / ``why-not`` /
+``what-next`` from start to exit, and logging throughput through ``import`` with peak memory,
+at 1,000-50,000 actions, each beside a floor measured in the same run.
+
+Floors: the interpreter starting and exiting (``python -c pass``) for a call; for logging,
+plain ``sqlite3`` inserting the very rows ``import`` wrote (same schema and indexes, one
+transaction per 1,000 actions as ``--commit-every 1000``), and the same without the secondary
+indexes. Every figure is min/median/max of ``REPEAT`` runs, the max being the worst a user
+met (with 5 runs, what a p99 can honestly be read as). Wall time on a shared machine is mostly
+waiting for a core, so the CPU seconds (user + system of the child) are printed beside it.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import sqlite3
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+#: NEEM sizes (executed actions); quick runs use the first and a small second one.
+SIZES = (1000, 10000, 50000)
+QUICK_SIZES = (1000, 4000)
+#: Runs per single-call figure.
+REPEAT = 5
+#: Runs per ``import`` figure (an import of 50,000 actions takes minutes on a shared machine).
+IMPORT_REPEAT = 3
+COMMIT_EVERY = 1000
+
+
+def _spread(samples: list[float]) -> dict[str, float]:
+    ordered = sorted(samples)
+    return {"min": ordered[0], "median": ordered[len(ordered) // 2], "max": ordered[-1], "runs": len(ordered)}
+
+
+def _fmt(spread: dict[str, float], unit: float = 1.0, digits: int = 2) -> str:
+    return "/".join(f"{spread[k] * unit:.{digits}f}" for k in ("min", "median", "max"))
+
+
+def exponent(sizes: list[int], values: list[float]) -> float | None:
+    """The growth exponent k of value ~ size^k between the two largest sizes."""
+    if len(sizes) < 2 or values[-2] <= 0 or values[-1] <= 0:
+        return None
+    return math.log(values[-1] / values[-2]) / math.log(sizes[-1] / sizes[-2])
+
+
+def _run(argv: list[str], env: dict[str, str]) -> tuple[float, float, int]:
+    """Wall seconds, CPU seconds and peak RSS (KiB) of one child process run to exit."""
+    start = time.perf_counter()
+    child = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=env)
+    _, status, usage = os.wait4(child.pid, 0)
+    wall = time.perf_counter() - start
+    child.returncode = os.waitstatus_to_exitcode(status)
+    err = child.stderr.read().decode() if child.stderr else ""
+    if child.stderr:
+        child.stderr.close()
+    if child.returncode != 0:
+        raise RuntimeError(f"{' '.join(argv)} failed: {err.strip()[-400:]}")
+    return wall, usage.ru_utime + usage.ru_stime, usage.ru_maxrss
+
+
+def _calls(argvs: dict[str, list[str]], env: dict[str, str], repeat: int) -> dict[str, dict[str, dict[str, float]]]:
+    """Each command ``repeat`` times, interleaved with the floor so both meet the same load."""
+    walls: dict[str, list[float]] = {name: [] for name in ["floor", *argvs]}
+    cpus: dict[str, list[float]] = {name: [] for name in walls}
+    for _ in range(repeat):
+        for name, argv in [("floor", [sys.executable, "-c", "pass"]), *argvs.items()]:
+            wall, cpu, _ = _run(argv, env)
+            walls[name].append(wall)
+            cpus[name].append(cpu)
+    return {name: {"wall_s": _spread(walls[name]), "cpu_s": _spread(cpus[name])} for name in walls}
+
+
+def _chains(tmp: Path, n: int, env: dict[str, str]) -> list[str]:
+    """``n`` chain rows of one simulated persona (~20 available tasks per decision)."""
+    gen = tmp / "gen"
+    days = n // 35 + 30
+    subprocess.run([sys.executable, "-m", "oracle", "generate", "--personas", "1", "--days", str(days), "--seed", "3",
+                    "--out", str(gen)], check=True, capture_output=True, env=env)  # fmt: skip
+    rows = [line for name in ("tune.jsonl", "test.jsonl") for line in (gen / name).read_text().splitlines() if line]
+    if len(rows) < n:
+        raise RuntimeError(f"the simulation gave {len(rows)} actions, fewer than {n}")
+    return rows
+
+
+def _chain_file(tmp: Path, rows: list[str], n: int) -> Path:
+    path = tmp / f"u{n}.jsonl"
+    with path.open("w") as out:
+        for line in rows[:n]:
+            row = json.loads(line)
+            row["user"] = f"u{n}"
+            out.write(json.dumps(row) + "\n")
+    return path
+
+
+def _sqlite_floor(store: Path, neem: str, actions: int, indexes: bool) -> tuple[float, float]:
+    """Wall and CPU seconds plain sqlite3 takes to insert the rows ``import`` wrote into the NEEM's triples
+    table, into a fresh file with the same table (and, with ``indexes``, the same indexes),
+    committing every COMMIT_EVERY actions' worth of rows."""
+    source = sqlite3.connect(store)
+    table = f'"{neem}_triples"'
+    columns = "oid, s, p, o, ok, pstar, ostar, graph, since, until, sk, raw"
+    rows = source.execute(f"SELECT {columns} FROM {table} ORDER BY id").fetchall()
+    schema = source.execute("SELECT sql FROM sqlite_master WHERE name=?", (f"{neem}_triples",)).fetchone()[0]
+    index_sql = [sql for (sql,) in source.execute(
+        "SELECT sql FROM sqlite_master WHERE type='index' AND tbl_name=? AND sql IS NOT NULL", (f"{neem}_triples",))]
+    source.close()
+    with tempfile.TemporaryDirectory() as tmp:
+        conn = sqlite3.connect(Path(tmp) / "floor.sqlite", isolation_level=None)
+        conn.execute("PRAGMA journal_mode=WAL")
+        conn.execute("PRAGMA synchronous=NORMAL")
+        conn.execute(schema)
+        for sql in index_sql if indexes else ():
+            conn.execute(sql)
+        per_commit = max(1, len(rows) * COMMIT_EVERY // max(actions, 1))
+        insert = f"INSERT INTO {table}({columns}) VALUES ({', '.join('?' * 12)})"
+        start, cpu = time.perf_counter(), time.process_time()
+        for i in range(0, len(rows), per_commit):
+            conn.execute("BEGIN")
+            conn.executemany(insert, rows[i:i + per_commit])
+            conn.execute("COMMIT")
+        elapsed, cpu = time.perf_counter() - start, time.process_time() - cpu
+        conn.close()
+    return elapsed, cpu
+
+
+def run(quick: bool = False) -> list[dict]:
+    sizes = list(QUICK_SIZES if quick else SIZES)
+    rows: list[dict] = []
+    py = sys.executable
+    with tempfile.TemporaryDirectory() as tmp_name:
+        tmp = Path(tmp_name)
+        # A fresh cache dir: the first call of each command fills it, as after installing.
+        env = {**os.environ, "NEEM_ORACLE_CACHE": str(tmp / "cache")}
+        env.pop("PYTHONDONTWRITEBYTECODE", None)  # installed packages have their .pyc; so do we
+        subprocess.run([py, "-m", "compileall", "-q", str(Path(__file__).resolve().parents[1])], check=True, env=env)
+        print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores while measuring", flush=True)
+
+        fixed = _calls({"help": [py, "-m", "oracle", "--help"]}, env, REPEAT)
+        floor = fixed["floor"]
+        ratio = fixed["help"]["wall_s"]["median"] / floor["wall_s"]["median"]
+        cpu_ratio = fixed["help"]["cpu_s"]["median"] / max(floor["cpu_s"]["median"], 1e-3)
+        print(f"--help start to exit: wall {_fmt(fixed['help']['wall_s'], 1000, 0)} ms (min/median/max),"
+              f" cpu {_fmt(fixed['help']['cpu_s'], 1000, 0)} ms; floor (python -c pass) wall"
+              f" {_fmt(floor['wall_s'], 1000, 0)} ms, cpu {_fmt(floor['cpu_s'], 1000, 0)} ms;"
+              f" {ratio:.1f}x floor wall, {cpu_ratio:.1f}x cpu (target < 150 ms)", flush=True)  # fmt: skip
+        rows.append({"area": "cli", "name": "help", **fixed["help"], "floor": floor, "floor_ratio": ratio,
+                     "cpu_floor_ratio": cpu_ratio})  # fmt: skip
+
+        chains = _chains(tmp, max(sizes), env)
+        store = tmp / "store.sqlite"
+        trend: dict[str, list[float]] = {}
+        for n in sizes:
+            path = _chain_file(tmp, chains, n)
+            walls, cpus, rss = [], [], []
+            for attempt in range(IMPORT_REPEAT):
+                wall, cpu, peak = _run([py, "-m", "oracle", "import", str(path), "--store", str(store), "--replace",
+                                        "--commit-every", str(COMMIT_EVERY)], env)  # fmt: skip
+                walls.append(wall)
+                cpus.append(cpu)
+                rss.append(peak / 1024)
+            neem = f"u{n}"
+            floors = {indexes: [_sqlite_floor(store, neem, n, indexes) for _ in range(IMPORT_REPEAT)]
+                      for indexes in (True, False)}
+            with_idx, bare = (_spread([w for w, _ in floors[k]]) for k in (True, False))
+            with_idx_cpu, bare_cpu = (_spread([c for _, c in floors[k]]) for k in (True, False))
+            wall_s, cpu_s = _spread(walls), _spread(cpus)
+            rate, cpu_rate = n / wall_s["median"], n / cpu_s["median"]
+            floor_rate, bare_rate = n / with_idx["median"], n / bare["median"]
+            floor_cpu_rate, bare_cpu_rate = n / with_idx_cpu["median"], n / bare_cpu["median"]
+            print(f"import, {n:>6,} actions: {rate:,.0f} actions/s wall, {cpu_rate:,.0f} per cpu-second (wall"
+                  f" {_fmt(wall_s)} s, cpu {_fmt(cpu_s)} s, start to exit); peak RSS {max(rss):.0f} MiB", flush=True)
+            print(f"    floor, plain sqlite3 inserting the same rows: {floor_rate:,.0f}/s wall, {floor_cpu_rate:,.0f}"
+                  f" per cpu-second with these indexes; {bare_rate:,.0f}/s, {bare_cpu_rate:,.0f} without;"
+                  f" import/floor {rate / floor_rate:.2f} wall, {cpu_rate / floor_cpu_rate:.2f} cpu"
+                  f" (target >= 4,000/s, <= 200 MiB at 50k)", flush=True)  # fmt: skip
+            rows.append({"area": "cli", "name": "import", "actions": n, "wall_s": wall_s, "cpu_s": cpu_s,
+                         "actions_per_s": rate, "actions_per_cpu_s": cpu_rate, "peak_rss_mib": max(rss),
+                         "sqlite_floor_s": with_idx, "sqlite_floor_cpu_s": with_idx_cpu,
+                         "sqlite_no_index_floor_s": bare, "sqlite_no_index_floor_cpu_s": bare_cpu,
+                         "floor_ratio": rate / floor_rate, "cpu_floor_ratio": cpu_rate / floor_cpu_rate})  # fmt: skip
+            trend.setdefault("import", []).append(wall_s["median"])
+
+            task = json.loads(chains[n - 1])["action"]
+            common = ["--store", str(store)]
+            found = _calls({
+                "neems": [py, "-m", "oracle", "neems", *common],
+                "why-not": [py, "-m", "oracle", "why-not", task, *common, "--neem", neem],
+                "what-next": [py, "-m", "oracle", "what-next", *common, "--neem", neem],
+            }, env, REPEAT)  # fmt: skip
+            base = found["floor"]["wall_s"]["median"]
+            base_cpu = max(found["floor"]["cpu_s"]["median"], 1e-3)
+            print(f"    floor (python -c pass) wall {_fmt(found['floor']['wall_s'])} s, cpu {_fmt(found['floor']['cpu_s'])} s")
+            for name in ("neems", "why-not", "what-next"):
+                figure = found[name]
+                limit = 0.35 if n <= 1000 else 0.6
+                print(f"{name:>9} start to exit, {n:>6,} actions: wall {_fmt(figure['wall_s'])} s, cpu"
+                      f" {_fmt(figure['cpu_s'])} s; {figure['wall_s']['median'] / base:.1f}x floor wall,"
+                      f" {figure['cpu_s']['median'] / base_cpu:.1f}x cpu (target < {limit} s)", flush=True)  # fmt: skip
+                rows.append({"area": "cli", "name": name, "actions": n, **figure, "floor": found["floor"],
+                             "floor_ratio": figure["wall_s"]["median"] / base,
+                             "cpu_floor_ratio": figure["cpu_s"]["median"] / base_cpu})  # fmt: skip
+                trend.setdefault(name, []).append(figure["cpu_s"]["median"])
+        for name, values in trend.items():
+            k = exponent(sizes, values)
+            shown = "-" if k is None else f"{k:.2f}"
+            print(f"growth exponent of {name} ({'wall' if name == 'import' else 'cpu'}) between"
+                  f" {sizes[-2]:,} and {sizes[-1]:,} actions: {shown}")  # fmt: skip
+            rows.append({"area": "cli", "name": f"{name} growth exponent", "sizes": sizes[-2:], "value": k})
+    return rows

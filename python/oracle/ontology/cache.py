@@ -1,0 +1,95 @@
+"""The built ontology, cached on disk by a hash of everything the build reads.
+
+A build parses the odb manifests, the mapping YAML and the upper TBox and generates a graph
+(~150 ms of every ``why-not``, ``rank`` or ``import``); the cached copy loads in ~20 ms. The
+key hashes the bytes of every input file and the source of the code that builds, so an edit
+to any of them makes a new entry: an entry is never stale, only unused. Entries live in the
+user's cache dir (0700, files 0600, written atomically); one that cannot be read is rebuilt.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import pickle
+import stat
+import sys
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from oracle.errors import OntologyError
+
+if TYPE_CHECKING:
+    from oracle.ontology.builder import BuildReport
+    from oracle.ontology.model import OdbOntology
+
+#: Bumped when the layout of an entry changes.
+FORMAT = "1"
+_CODE_DIR = Path(__file__).resolve().parent
+
+
+def _input_files(odb_dir: Path, mapping: Path, soma_dir: Path | None, core_tbox: Path, official: tuple[str, ...]) -> Iterator[Path]:
+    """Every file the build reads, in a fixed order (a file added to the odb changes the set)."""
+    yield from sorted(odb_dir.glob("*/manifest.xml"))
+    yield mapping
+    if soma_dir is None:
+        yield core_tbox
+    else:
+        yield from (soma_dir / name for name in official)
+    yield from sorted(_CODE_DIR.glob("*.py"))
+    yield _CODE_DIR.parent / "namespaces.py"
+
+
+def build_key(odb_dir: Path, mapping: Path, soma_dir: Path | None, core_tbox: Path, official: tuple[str, ...]) -> str | None:
+    """The hash of the inputs, or None when one cannot be read (the build then says why)."""
+    import rdflib  # already loaded by the builder; an entry holds an rdflib Graph
+
+    digest = hashlib.sha256(f"neem-oracle ontology cache {FORMAT} {sys.version} {rdflib.__version__}\0".encode())
+    try:
+        for path in _input_files(odb_dir, mapping, soma_dir, core_tbox, official):
+            digest.update(str(path).encode() + b"\0")
+            digest.update(hashlib.sha256(path.read_bytes()).digest())
+    except OSError:
+        return None
+    return digest.hexdigest()[:32]
+
+
+def _readable_entry(path: Path) -> bool:
+    """Only a regular file of this user that nobody else may write is loaded (it is a pickle)."""
+    try:
+        info = path.stat()
+    except OSError:
+        return False
+    return stat.S_ISREG(info.st_mode) and info.st_uid == os.getuid() and not info.st_mode & 0o022
+
+
+def cached_build(
+    key: str | None, directory: Path, build: Callable[[], tuple[OdbOntology, BuildReport]]
+) -> tuple[OdbOntology, BuildReport]:
+    """The entry for ``key`` when there is a good one, else ``build()`` saved under ``key``."""
+    path = directory / f"ontology-{key}.pickle"
+    if key is not None and _readable_entry(path):
+        try:
+            with path.open("rb") as handle:
+                entry = pickle.load(handle)
+            if isinstance(entry, tuple) and len(entry) == 3 and entry[0] == key:
+                return entry[1], entry[2]
+        except Exception:  # noqa: BLE001 - a damaged entry (any unpickling error) is rebuilt below
+            pass
+    built = build()
+    if key is not None:
+        _save(path, (key, *built))
+    return built
+
+
+def _save(path: Path, entry: tuple[object, ...]) -> None:
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
+        tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
+        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600)
+        with os.fdopen(fd, "wb") as handle:
+            pickle.dump(entry, handle, protocol=pickle.HIGHEST_PROTOCOL)
+        os.replace(tmp, path)
+    except (OSError, pickle.PicklingError, OntologyError):
+        pass  # caching is an optimisation; a read-only home still builds every time
