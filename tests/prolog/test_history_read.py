@@ -6,6 +6,8 @@ from __future__ import annotations
 import random
 from datetime import datetime, timedelta
 
+import pytest
+
 from oracle.bridge import Bridge
 from oracle.neem.writer import NeemLogger
 from oracle.paths import prolog_dir
@@ -31,9 +33,22 @@ def log_random_neem(store, onto, n_actions: int, seed: int) -> None:
     log.flush()
 
 
-def test_one_pass_history_equals_reference(tmp_path, onto):
-    store = open_store(tmp_path / "h.sqlite")
-    log_random_neem(store, onto, 300, seed=7)
+def _sqlite(tmp_path):
+    return open_store(tmp_path / "h.sqlite")
+
+
+def _mongomock(_):
+    import mongomock_ng
+
+    from oracle.store.mongo import MongoStore
+
+    return MongoStore(mongomock_ng.MongoClient(), "h")
+
+
+@pytest.mark.parametrize("make_store, actions", [(_sqlite, 300), (_mongomock, 60)], ids=["sqlite", "mongomock"])
+def test_one_pass_history_equals_reference(tmp_path, onto, make_store, actions):
+    store = make_store(tmp_path)
+    log_random_neem(store, onto, actions, seed=7)
     bridge = Bridge(store, "r", onto)
     try:
         fixture = prolog_dir() / "fixtures" / "history_reference.pl"
@@ -44,7 +59,7 @@ def test_one_pass_history_equals_reference(tmp_path, onto):
             " ( New == Old -> Same = true ; Same = false )"
         )
         assert rows[0]["Same"] == "true"
-        assert rows[0]["N"] >= 300
+        assert rows[0]["N"] >= actions
         assert 0 < rows[0]["Nones"] < rows[0]["N"]  # both branches of the availability rule ran
     finally:
         bridge.close()
