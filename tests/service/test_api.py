@@ -162,3 +162,22 @@ def test_page_renders_the_latest_ranking_without_external_resources(client, neem
     assert "open(small_drawer)" in html and "Why not?" in html
     assert "http://" not in html.replace("http://www.w3", "") and "https://" not in html
     assert "default-src 'none'" in page.headers["content-security-policy"]
+
+
+def test_a_neem_logged_elsewhere_shows_its_latest_situation(ctx, onto):
+    """The page after `make demo`: a NEEM whose last record is an imagined situation."""
+    from fastapi.testclient import TestClient
+
+    from oracle.neem.writer import NeemLogger
+
+    def log() -> None:
+        logger = NeemLogger.create(ctx.engine.store, onto, user="eve", neem_id="eve")
+        logger.action("pick(red_mug)", at(0, 0), at(0, 2))
+        logger.available(["pick(thermos)", "open(fridge)"], at(0, 5))
+        logger.flush()
+
+    ctx.thread.call(log)
+    with TestClient(create_app(ctx)) as client:
+        shown = client.get("/api/neems/eve/situation").json()
+        assert sorted(r["task"] for r in shown["ranking"]) == ["open(fridge)", "pick(thermos)"]
+        assert "pick(thermos)" in client.get("/", params={"neem": "eve"}).text

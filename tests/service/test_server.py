@@ -83,7 +83,8 @@ def test_simulated_robot_drives_a_persona_without_errors(server):
     user, rows = persona_rows(1, 3, 1)
     result = drive(server, user, rows[:20], "robot-sim")
     assert result.errors == [] and result.steps == 20
-    assert len(result.latencies["situation"]) == 20
+    assert len(result.latencies["situation"]) == len(result.latencies["choice"]) == 20
+    assert call(server, "/api/neems/robot-sim/choice")[1]["task"] == str(rows[19].action)
     history = call(server, "/api/neems/robot-sim/situation")[1]["history"]
     assert history >= 19  # every action but the last was in the history the last situation ranked
 

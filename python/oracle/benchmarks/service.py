@@ -1,4 +1,5 @@
-"""The live service under load: N simulated robots posting situations to a real server process
+"""The live service under load: N simulated robots posting situations and actions (no tablet
+choices) to a real server process
 on a free loopback port, each into its own NEEM of 1,000 logged actions. Bounded by request
 counts and a wall-clock cap; it stops by itself.
 
@@ -123,7 +124,7 @@ def run(quick: bool = False) -> list[dict]:
             rows.append(_row("floor (GET /api/health)", "round trip", _floor(url, 300), 1, 0))
 
             neem, user, todo = plans[0]
-            alone = drive(url, user, todo[:steps], neem, stop=stop)
+            alone = drive(url, user, todo[:steps], neem, stop=stop, choices=False)
             for kind in ("situation", "server", "engine", "rank", "action"):
                 rows.append(_row("1 robot", kind, alone.latencies.get(kind, []), 1, len(alone.errors)))
 
@@ -132,7 +133,7 @@ def run(quick: bool = False) -> list[dict]:
             def one(index: int) -> None:
                 neem_i, user_i, todo_i = plans[index]
                 start = steps if index == 0 else 0
-                results[index] = drive(url, user_i, todo_i[start:start + steps], neem_i, stop=stop)
+                results[index] = drive(url, user_i, todo_i[start:start + steps], neem_i, stop=stop, choices=False)
 
             threads = [threading.Thread(target=one, args=(i,)) for i in range(len(plans))]
             started = time.perf_counter()
@@ -170,7 +171,7 @@ def _sync_writes(store: Path, plan: tuple[str, str, list], steps: int) -> list[d
     try:
         _open_sessions(url, [plan])
         later = todo[2 * steps:] or todo[steps:]
-        done = drive(url, user, later[: max(10, steps // 3)], neem)
+        done = drive(url, user, later[: max(10, steps // 3)], neem, choices=False)
         return [_row("1 robot, --sync-writes", kind, done.latencies.get(kind, []), 1, len(done.errors))
                 for kind in ("situation", "action")]
     finally:

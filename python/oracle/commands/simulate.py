@@ -1,8 +1,8 @@
 """``python -m oracle simulate --serve URL --persona N``: a simulated robot driving the service.
 
 The robot lives in the kitchen world (oracle.world) with one persona: each simulated step it
-posts what it perceives, the tasks available, and the action the persona then chose, as EDAN's
-framework would. ``--robots N`` runs N robots at once (one NEEM each) for a load test.
+posts what it perceives and the tasks available, the persona's choice as the tablet would, and
+the action it then executes, as EDAN's framework would. ``--robots N`` runs N robots at once (one NEEM each) for a load test.
 """
 
 from __future__ import annotations
@@ -51,7 +51,7 @@ def run(args: argparse.Namespace) -> int:
     steps = sum(r.steps for r in results)
     errors = [e for r in results for e in r.errors]
     print(f"{args.robots} robot(s) drove {steps} steps in {seconds:.1f} s; {len(errors)} errors")
-    for kind in ("perception", "situation", "server", "rank", "action"):
+    for kind in ("perception", "situation", "server", "rank", "choice", "action"):
         values = sorted(v for r in results for v in r.latencies.get(kind, []))
         if values:
             print(f"  {kind:10s} n={len(values):5d}  p50 {percentile(values, 50):6.2f} ms  p99 {percentile(values, 99):6.2f} ms")

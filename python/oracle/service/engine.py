@@ -119,7 +119,20 @@ class Engine:
             logger = NeemLogger(self.store, self.ontology, neem, commit_every=NEVER)
             session = NeemSession(neem, logger, self.ontology, make_predictor(self.ontology, self.settings, self.method), history)
             self.sessions[neem] = session
+            self._show_latest(session)
         return session
+
+    def _show_latest(self, session: NeemSession) -> None:
+        """Rank the NEEM's latest imagined situation (not written: it was ranked when logged), so
+        the page has something to show before the robot posts (e.g. right after ``make demo``)."""
+        latest = self.bridge(session.neem).latest_situation()
+        if latest is None:
+            return
+        try:
+            found, ranking, ms = session.situation(latest["available"], float(latest["begin"]))
+        except NeemOracleError:
+            return  # an old situation, before the last action: nothing current to show
+        session.describe(found, ranking, ms)
 
     # -- answers ------------------------------------------------------------------------------
     def why_not(self, neem: str, task: str, at: Any) -> dict[str, Any]:

@@ -31,9 +31,10 @@ def persona_rows(persona: int, seed: int, days: int) -> tuple[str, list[Any]]:
 
 
 def drive(url: str, user: str, rows: list[Any], neem: str | None, token: str | None = None,
-          delay: float = 0.0, stop: threading.Event | None = None) -> Drive:
+          delay: float = 0.0, stop: threading.Event | None = None, choices: bool = True) -> Drive:
     """Create (or reuse) the NEEM and post the rows step by step: perception of objects not
-    seen before, the situation, the action the persona chose."""
+    seen before, the situation, the persona's choice as the tablet posts it (``choices``), and
+    the action the robot then executes."""
     from oracle.service.client import Client, ServiceError
 
     client = Client(url, token)
@@ -66,6 +67,9 @@ def drive(url: str, user: str, rows: list[Any], neem: str | None, token: str | N
                 if "engine" in timing:
                     result.latencies.setdefault("server", []).append(timing["engine"] + timing.get("queue", 0.0))
                     result.latencies.setdefault("engine", []).append(timing["engine"])
+                if choices:
+                    _, ms = client.request("POST", f"{base}/choice", {"task": str(row.action)})
+                    result.latencies.setdefault("choice", []).append(ms)
                 end = row.end.isoformat() if row.end is not None else None
                 _, ms = client.request("POST", f"{base}/actions", {"call": str(row.action), "begin": at, "end": end})
                 result.latencies.setdefault("action", []).append(ms)
