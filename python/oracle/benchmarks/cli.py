@@ -157,7 +157,7 @@ def run(quick: bool = False) -> list[dict]:
         for n in sizes:
             path = _chain_file(tmp, chains, n)
             walls, cpus, rss = [], [], []
-            for attempt in range(IMPORT_REPEAT):
+            for _attempt in range(IMPORT_REPEAT):
                 wall, cpu, peak = _run([py, "-m", "oracle", "import", str(path), "--store", str(store), "--replace",
                                         "--commit-every", str(COMMIT_EVERY)], env)  # fmt: skip
                 walls.append(wall)
