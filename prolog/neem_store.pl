@@ -8,6 +8,7 @@
       store_reset/0,
       store_match/2,            % +Patterns, +Scope
       store_match/3,            % +Patterns, +Scope, +Options
+      store_match_scoped/3,     % +Patterns, +Scope, -FactScope
       store_insert/1,           % +Triples
       store_insert/2,           % +Triples, +Merge
       store_retract/1,          % +Patterns
@@ -194,6 +195,40 @@ store_match(Patterns0, Scope, Options) :-
     backend_(Backend),
     match(Backend, Patterns, Scope, Options).
 
+%!  store_match_scoped(+Patterns, +Scope, -FactScope) is nondet.
+%   store_match/2 that also says when the matched facts hold together: FactScope is
+%   `scope(Since, Until)`, the intersection of the scopes of the documents matched (one
+%   solution per combination of documents, as mongolog's `v_scope`; empty intersections
+%   are dropped). What `G during [S,U]` with S and U free and kb_call/3 report.
+store_match_scoped(Patterns0, Scope, FactScope) :-
+    must_be(list, Patterns0),
+    Patterns0 \== [],
+    maplist(check_pattern, Patterns0),
+    check_scope(Scope),
+    maplist(bound_comparison, Patterns0, Patterns),
+    backend_(Backend),
+    Inf is inf,
+    (   Backend == memory
+    ->  mem_conj_scoped(Patterns, Scope, scope(0.0, Inf), FactScope)
+    ;   match(Backend, Patterns, Scope, []),
+        Backend = python(Neem),
+        foldl(doc_scope(Neem, Scope), Patterns, scope(0.0, Inf), FactScope)
+    ).
+
+%   The scope of one matched (now ground) pattern's document, intersected with Acc.
+doc_scope(Neem, Scope, t(S, P, O0), Acc, FS) :-
+    (   nonvar(O0), O0 = cmp(_, _, O) -> true ; O = O0 ),
+    neem_store:py_scopes([Neem, S, P, O], Reply),
+    reply_rows(Reply, Rows),
+    member([Since, Until], Rows),
+    in_scope(Scope, Since, Until),
+    scope_intersection(Acc, Since, Until, FS).
+
+scope_intersection(scope(S0, U0), S1, U1, scope(S, U)) :-
+    num_max(S0, S1, S),
+    num_min(U0, U1, U),
+    S =< U.
+
 %   A comparison whose value is already bound is that value, if it passes.
 bound_comparison(t(S, P, C), t(S, P, O)) :-
     nonvar(C), C = cmp(Op, A, X), nonvar(X), !,
@@ -363,15 +398,22 @@ store_set_request(R) :-
 
 mem_conj([], _).
 mem_conj([t(S,P,O)|Ps], Scope) :-
-    mem_pattern(S, P, O, Scope),
+    mem_pattern(S, P, O, Scope, _, _),
     mem_conj(Ps, Scope).
 
-mem_pattern(S, P, C, Scope) :-
+mem_conj_scoped([], _, FS, FS).
+mem_conj_scoped([t(S,P,O)|Ps], Scope, FS0, FS) :-
+    mem_pattern(S, P, O, Scope, Since, Until),
+    scope_intersection(FS0, Since, Until, FS1),
+    mem_conj_scoped(Ps, Scope, FS1, FS).
+
+%   mem_pattern(?S, ?P, ?O, +Scope, -Since, -Until): a stored triple and its scope.
+mem_pattern(S, P, C, Scope, Since, Until) :-
     nonvar(C), C = cmp(Op, A, X), !,
-    mem_pattern(S, P, X, Scope),
+    mem_pattern(S, P, X, Scope, Since, Until),
     number(X),
     compare_value(Op, X, A).
-mem_pattern(S, P, O, Scope) :-
+mem_pattern(S, P, O, Scope, Since, Until) :-
     atom(P), store_taxonomic(P), !,
     (   var(O)
     ->  mem_triple(S, P, O, Since, Until)
@@ -380,7 +422,7 @@ mem_pattern(S, P, O, Scope) :-
         memberchk(O, Closure)
     ),
     in_scope(Scope, Since, Until).
-mem_pattern(S, P, O, Scope) :-
+mem_pattern(S, P, O, Scope, Since, Until) :-
     atom(P), !,
     mem_triple(S, P0, O, Since, Until),
     (   P0 == P
@@ -390,7 +432,7 @@ mem_pattern(S, P, O, Scope) :-
         memberchk(P, Closure)
     ),
     in_scope(Scope, Since, Until).
-mem_pattern(S, P, O, Scope) :-
+mem_pattern(S, P, O, Scope, Since, Until) :-
     mem_triple(S, P, O, Since, Until),
     in_scope(Scope, Since, Until).
 

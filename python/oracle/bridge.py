@@ -48,7 +48,7 @@ _STATE: dict[str, Any] = {"bridge": None, "loaded": False, "request": None}
 _GENERATORS: dict[int, Iterator[str]] = {}
 _NEXT_KEY = [1]
 #: How many times Prolog called into Python (crossings), per foreign predicate.
-CROSSINGS = {"py_match": 0, "py_insert": 0, "py_request": 0}
+CROSSINGS = {"py_match": 0, "py_insert": 0, "py_request": 0, "py_scopes": 0}
 
 
 # -- values ------------------------------------------------------------------------------
@@ -213,6 +213,33 @@ def py_insert(req: Any, out: Any) -> bool:
     return True
 
 
+def _scope_number(value: Any) -> float:
+    if hasattr(value, "to_decimal"):
+        return float(value.to_decimal())
+    return float(value)
+
+
+def py_scopes(req: Any, out: Any) -> bool:
+    """The time scopes ``[Since, Until]`` of the documents stating one ground triple (any time,
+    KnowRob's p*/o* semantics): what ``G during [S, U]`` with S and U free binds."""
+    CROSSINGS["py_scopes"] += 1
+    try:
+        bridge = _STATE["bridge"]
+        if bridge is None:
+            raise PrologError("no store is connected to Prolog")
+        neem, s, p, o = (_plain(x) for x in req)
+        rows = []
+        for doc in bridge.store.find(neem, s, p, o):
+            time = doc.get("scope", {}).get("time", {})
+            since = _scope_number(time.get("since", 0.0))
+            until = _scope_number(time.get("until", math.inf))
+            rows.append(f"[{term_text(since)},{term_text(until)}]")
+        out.unify("[" + ",".join(rows) + "]")
+    except Exception as error:
+        out.unify(_error_text(error))
+    return True
+
+
 def py_request(out: Any) -> bool:
     CROSSINGS["py_request"] += 1
     request = _STATE["request"]
@@ -231,6 +258,7 @@ def _ensure_loaded() -> None:
     Prolog.register_foreign(py_match, arity=2, module="neem_store", nondeterministic=True)
     Prolog.register_foreign(py_insert, arity=2, module="neem_store")
     Prolog.register_foreign(py_request, arity=1, module="neem_store")
+    Prolog.register_foreign(py_scopes, arity=2, module="neem_store")
     folder = prolog_dir()
     for name in MODULES:
         path = folder / f"{name}.pl"
