@@ -12,6 +12,8 @@
       store_insert/1,           % +Triples
       store_insert/2,           % +Triples, +Merge
       store_retract/1,          % +Patterns
+      store_annotation/3,       % ?Subject, ?Property, ?Value
+      store_insert_annotations/1, % +Annotations
       store_taxonomic/1,        % ?Property
       store_scope_now/1,        % -Scope
       store_python_request/1,   % -Request
@@ -46,6 +48,7 @@ A question scope is `scope(Since, Until)`: a fact is visible when its own scope 
 
 :- dynamic backend_/1.
 :- dynamic mem_triple/5.        % S, P, O, Since, Until
+:- dynamic mem_annotation/3.    % S, P, Value
 
 backend_(memory).
 
@@ -108,6 +111,7 @@ store_assert(Triple, _, _) :-
 %   Forget every asserted triple and go back to the memory backend.
 store_reset :-
     retractall(mem_triple(_,_,_,_,_)),
+    retractall(mem_annotation(_,_,_)),
     store_use_memory.
 
 %!  store_insert(+Triples) is det.
@@ -166,6 +170,38 @@ store_retract(Patterns) :-
     ->  throw(error(neem_store_error('kb_unproject: the NEEM stores are append-only (no delete)'), _))
     ;   forall(member(t(S, P, O), Patterns), retractall(mem_triple(S, P, O, _, _)))
     ).
+
+%!  store_annotation(?Subject, ?Property, ?Value) is nondet.
+%   A label, comment or other annotation value: KnowRob keeps these in the `annotations`
+%   collection, apart from the triples (no scopes, no closures).
+store_annotation(S, P, V) :-
+    check_term(S), check_term(P),
+    (   backend_(python(Neem))
+    ->  ( atom(S) -> S1 = S ; S1 = '' ),
+        ( atom(P) -> P1 = P ; P1 = '' ),
+        neem_store:py_annotations([Neem, S1, P1], Reply),
+        reply_rows(Reply, Rows),
+        member([S, P, V], Rows)
+    ;   mem_annotation(S, P, V)
+    ).
+
+%!  store_insert_annotations(+Annotations) is det.
+%   Store a list of `annotation(S, P, Value)` in the annotations collection.
+store_insert_annotations(As) :-
+    must_be(list, As),
+    maplist(check_annotation, As),
+    (   backend_(python(Neem))
+    ->  findall([S, P, V], member(annotation(S, P, V), As), Rows),
+        neem_store:py_annotate([Neem|Rows], Reply),
+        reply_rows(Reply, _)
+    ;   forall(member(annotation(S, P, V), As),
+               ( mem_annotation(S, P, V) -> true ; assertz(mem_annotation(S, P, V)) ))
+    ).
+
+check_annotation(annotation(S, P, V)) :- !,
+    must_be(atom, S), must_be(atom, P), must_be(atomic, V).
+check_annotation(A) :-
+    type_error(annotation, A).
 
 check_insert(triple(S,P,O,Since,Until)) :-
     !,

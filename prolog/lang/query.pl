@@ -136,6 +136,7 @@ unfold((C -> T), Mod, Scope, [ite(PC, PT, [call(fail)])|S], S) :- !,
 unfold(\+ G, Mod, Scope, [not(P)|S], S) :- !,
     sub_plan(G, Mod, Scope, P).
 unfold(true, _, _, S, S) :- !.
+unfold(assign(X, V), _, _, [call(X = V)|S], S) :- !.     % mongolog's assign/2
 unfold([], _, _, S, S) :- !.
 unfold([G|Gs], Mod, Scope, S0, S) :- !,      % a list of goals is their conjunction
     unfold(G, Mod, Scope, S0, S1),
@@ -186,9 +187,13 @@ unfold(G, Mod, Scope, S0, S) :-
 unfold(G, Mod, _, [call(Mod:G)|S], S).
 
 %   holds(P(S,O)): the relation P between S and O.
+%   holds(prefix:'P'(S,O)) reads as Prefix:P (KnowRob marks this case blocked).
 query_triple(Q, Su, P, O) :-
     must_be(callable, Q),
-    Q =.. [P, Su, O].
+    (   Q = Prefix:Q1, atom(Prefix), compound(Q1), Q1 =.. [L, Su, O]
+    ->  P = Prefix:L
+    ;   Q =.. [P, Su, O]
+    ).
 
 %   A unit term Unit(Value) (KnowRob: `m(6.5)`, `cm(X)`): Factor converts to the SI unit the
 %   store holds.
@@ -198,12 +203,20 @@ unit_term(O, F, V) :-
 %!  unit_value(+Factor, ?Value, +Stored) is semidet.
 unit_value(F, V, X) :-
     number(X),
-    V1 is X / F,
+    from_si(F, X, V1),
     (   var(V) -> V = V1 ; abs(V - V1) =< 1.0e-9 * max(1.0, abs(V1)) ).
 
 %   `G during I` with I a variable or `[S, U]` of two variables.
 free_interval(I) :- var(I), !.
 free_interval([T0, T1]) :- var(T0), var(T1).
+
+%   A unit's factor below 1 is applied through its inverse (100 for cm), which floats
+%   hold exactly: 6.5 m is 650.0 cm, not 649.9999999999999.
+from_si(F, X, V) :- ( integral_inverse(F, Inv) -> V is X * Inv ; V is X / F ).
+to_si(F, V, X) :- ( integral_inverse(F, Inv) -> X is V / Inv ; X is V * F ).
+
+integral_inverse(F, Inv) :-
+    F < 1, Inv0 is 1 / F, Inv is round(Inv0), abs(Inv0 - Inv) < 1.0e-6.
 
 sub_plan(G, Mod, Scope, Plan) :-
     unfold(G, Mod, Scope, Steps, []),
@@ -417,7 +430,7 @@ project(holds(Q), Since, Until, T0, T) :- !,
     project(holds(S, P, O), Since, Until, T0, T).
 project(holds(S, P, O), Since, Until, T0, T) :- !,
     (   unit_term(O, F, V)
-    ->  must_be(number, V), X is V * F
+    ->  must_be(number, V), to_si(F, V, X)
     ;   X = O
     ),
     project(triple(S, P, X), Since, Until, T0, T).

@@ -30,7 +30,7 @@ from typing import TYPE_CHECKING, Any
 
 from oracle.errors import PrologError, StoreError
 from oracle.paths import prolog_dir
-from oracle.store import Cmp, Scope, Store, TriplePattern, Triple, Var
+from oracle.store import Annotation, Cmp, Scope, Store, TriplePattern, Triple, Var
 
 if TYPE_CHECKING:
     from oracle.ontology import OdbOntology
@@ -48,7 +48,7 @@ _STATE: dict[str, Any] = {"bridge": None, "loaded": False, "request": None}
 _GENERATORS: dict[int, Iterator[str]] = {}
 _NEXT_KEY = [1]
 #: How many times Prolog called into Python (crossings), per foreign predicate.
-CROSSINGS = {"py_match": 0, "py_insert": 0, "py_request": 0, "py_scopes": 0}
+CROSSINGS = {"py_match": 0, "py_insert": 0, "py_request": 0, "py_scopes": 0, "py_annotations": 0, "py_annotate": 0}
 
 
 # -- values ------------------------------------------------------------------------------
@@ -240,6 +240,40 @@ def py_scopes(req: Any, out: Any) -> bool:
     return True
 
 
+def py_annotations(req: Any, out: Any) -> bool:
+    """Annotations ``[S, P, Value]`` of a subject and/or property (``''`` for any)."""
+    CROSSINGS["py_annotations"] += 1
+    try:
+        bridge = _STATE["bridge"]
+        if bridge is None:
+            raise PrologError("no store is connected to Prolog")
+        neem, s, p = (_plain(x) for x in req)
+        rows = (
+            f"[{term_text(a.s)},{term_text(a.p)},{term_text(a.v)}]"
+            for a in bridge.store.annotations(neem, s or None, p or None)
+        )
+        out.unify("[" + ",".join(rows) + "]")
+    except Exception as error:
+        out.unify(_error_text(error))
+    return True
+
+
+def py_annotate(req: Any, out: Any) -> bool:
+    """Store ``[S, P, Value]`` rows in the NEEM's annotations collection (load_owl/1)."""
+    CROSSINGS["py_annotate"] += 1
+    try:
+        bridge = _STATE["bridge"]
+        if bridge is None:
+            raise PrologError("no store is connected to Prolog")
+        neem = _plain(req[0])
+        rows = [Annotation(_plain(s), _plain(p), _plain(v)) for s, p, v in req[1:]]
+        bridge.store.insert_annotations(neem, rows)
+        out.unify("[]")
+    except Exception as error:
+        out.unify(_error_text(error))
+    return True
+
+
 def py_request(out: Any) -> bool:
     CROSSINGS["py_request"] += 1
     request = _STATE["request"]
@@ -259,6 +293,8 @@ def _ensure_loaded() -> None:
     Prolog.register_foreign(py_insert, arity=2, module="neem_store")
     Prolog.register_foreign(py_request, arity=1, module="neem_store")
     Prolog.register_foreign(py_scopes, arity=2, module="neem_store")
+    Prolog.register_foreign(py_annotations, arity=2, module="neem_store")
+    Prolog.register_foreign(py_annotate, arity=2, module="neem_store")
     folder = prolog_dir()
     for name in MODULES:
         path = folder / f"{name}.pl"
