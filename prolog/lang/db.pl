@@ -33,8 +33,9 @@ kb_db:package_path/2; without ROS there is none, so such a URL is an error namin
 :- use_module(triple, [kb_iri/2]).
 
 %!  package_path(+Package, -Directory) is semidet.
-%   Where a ROS package's files are (multifile: a ROS set-up adds its packages).
+%   Where a ROS package's files are (multifile and dynamic: a ROS set-up adds its packages).
 :- multifile package_path/2.
+:- dynamic package_path/2.
 
 %!  load_owl(+URL) is det.
 %!  load_owl(+URL, +Options) is det.
