@@ -53,3 +53,17 @@ def test_numbers_written_as_decimal128_are_found_by_a_double(tmp_path):
     (doc,) = store.db["n_triples"].find({})
     assert doc["o"] == Decimal128("12.5")
     assert list(store.match("n", [TriplePattern(Var("I"), X + "begin", 12.5)])) == [{"I": X + "i"}]
+
+
+def test_meta_has_the_fields_openease_reads(tmp_path):
+    from datetime import datetime
+
+    from oracle.store.base import OPENEASE_FIELDS
+
+    store = make_store("mongomock", tmp_path)
+    store.create_neem("5fc8ff968f880006aa208e19", user="alice", meta={"description": "kitchen mornings"})
+    doc = store.db["meta"].find_one({"_id": "5fc8ff968f880006aa208e19"})
+    assert set(OPENEASE_FIELDS) <= set(doc)  # openEASE's NEEM list reads these without a default
+    assert doc["name"] == "5fc8ff968f880006aa208e19" and doc["description"] == "kitchen mornings"
+    assert datetime.fromisoformat(doc["created_at"]).tzinfo is not None and isinstance(doc["url"], str)
+    assert doc["visibility"] is False and "image" not in doc  # an absent image shows openEASE's cover

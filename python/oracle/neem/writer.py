@@ -2,9 +2,10 @@
 
 One NEEM per user. Every public call validates first and then writes one transaction, so bad
 input raises before anything is written and a killed process loses at most the call in flight.
-Task, role, plan and object individuals are descriptions shared by every event of the NEEM that
-uses them (DUL concepts), so the task an action executes is the very task its plan imagined and
-its preference ranked; events (actions, intervals) get fresh individuals. See docs/store.md.
+Every action executes its own task individual with its own roles, as neem-interface writes them,
+and the roles classify their objects only during the action (``has_role(O, R) during A``). Plans
+(what an imagining found available, what a preference ranked) define one shared task description
+per call. Objects and agents are shared by every event of the NEEM. See docs/store.md.
 """
 
 from __future__ import annotations
@@ -268,7 +269,8 @@ class NeemLogger:
         return call
 
     def _task(self, call: TaskCall, out: _Out, since: float) -> str:
-        """The task individual of a call with its roles (``Role dul:classifies Object``)."""
+        """The task a plan of a call defines, with its roles (``Role dul:classifies Object``):
+        one description per call, shared by every imagining and preference that names it."""
         key = self._keys.get(call)
         if key is None:
             key = self._keys[call] = _slug(str(call).replace(", ", "__").replace("(", "__").replace(")", ""))
@@ -290,6 +292,27 @@ class NeemLogger:
             out.append(Triple(role, RDF_TYPE, T.NAMED_INDIVIDUAL))
             out.append(Triple(task, T.IS_TASK_OF, role))
             out.append(Triple(role, T.CLASSIFIES, obj))
+        return task
+
+    def _executed_task(self, call: TaskCall, begin: Instant, end: Instant, out: _Out) -> str:
+        """A fresh task individual for one action, with one role per argument; the role
+        classifies its object during the action only (neem-interface's
+        ``has_role(Obj, Role) during Action``), the task's type and roles hold always."""
+        task = self._event("Task")
+        out.append(Triple(task, RDF_TYPE, self.onto.task_iri(call.task)))
+        out.append(Triple(task, RDF_TYPE, T.NAMED_INDIVIDUAL))
+        try:
+            roles = self.onto.task_roles(call.task, len(call.args))
+        except OntologyError as error:
+            raise LoggingError(str(error)) from None
+        for arg, role_class in zip(call.args, roles):
+            if role_class is None:
+                continue
+            role = self._event("Role")
+            out.append(Triple(role, RDF_TYPE, role_class))
+            out.append(Triple(role, RDF_TYPE, T.NAMED_INDIVIDUAL))
+            out.append(Triple(task, T.IS_TASK_OF, role))
+            out.append(Triple(role, T.CLASSIFIES, self.object_iri(arg), since=begin.seconds, until=end.seconds))
         return task
 
     def _plan(self, call: TaskCall, out: _Out, since: float) -> str:
@@ -317,9 +340,11 @@ class NeemLogger:
         out.append(Triple(interval, T.END, end.seconds))
         return interval
 
-    def _mental(self, task_class: str, task_key: str, at: Instant, out: _Out) -> str:
+    def _mental(self, task_class: str, at: Instant, out: _Out) -> str:
         action = self._event("MentalAction")
-        task = self._individual(f"{self.ns}Task_{task_key}", task_class, out)
+        task = self._event("Task")  # one task per action, mental ones too
+        out.append(Triple(task, RDF_TYPE, task_class))
+        out.append(Triple(task, RDF_TYPE, T.NAMED_INDIVIDUAL))
         out.append(Triple(action, RDF_TYPE, T.MENTAL_ACTION))
         out.append(Triple(action, T.EXECUTES, task))
         out.append(Triple(action, T.PERFORMED_BY, self._agent("robot", out)))
@@ -375,7 +400,7 @@ class NeemLogger:
         return action
 
     def _imagining(self, calls: Sequence[TaskCall], when: Instant, out: _Out) -> str:
-        action = self._mental(T.IMAGINING, "imagining", when, out)
+        action = self._mental(T.IMAGINING, when, out)
         imagines, plans = self._imagines, self._plans
         for call in calls:
             plan = plans.get(call)
@@ -419,12 +444,12 @@ class NeemLogger:
         if self._last_end is not None and is_idle_gap(self._last_end.seconds, start.seconds, self.idle_threshold):
             idle = self._idle(self._last_end, start, out)
         imagining = self._imagining(options, start, out) if options is not None else None
-        task = self._task(call, out, start.seconds)
+        for arg in call.args:  # objects first: an unknown one raises before the task is built
+            out.append(Triple(iri, T.PARTICIPANT, self._object(arg, out, start.seconds)))
+        task = self._executed_task(call, start, stop, out)
         out.append(Triple(iri, RDF_TYPE, T.ACTION))
         out.append(Triple(iri, RDF_TYPE, T.NAMED_INDIVIDUAL))
         out.append(Triple(iri, T.EXECUTES, task))
-        for arg in call.args:
-            out.append(Triple(iri, T.PARTICIPANT, self._object(arg, out, start.seconds)))
         out.append(Triple(iri, T.PERFORMED_BY, self._agent(performed_by, out)))
         out.append(Triple(iri, T.HAS_INTERVAL, self._interval(start, stop, out)))
         self._write(out)
@@ -435,7 +460,9 @@ class NeemLogger:
 
     def _idle(self, begin: Instant, end: Instant, out: _Out) -> str:
         idle = self._event("Action")
-        task = self._individual(f"{self.ns}Task_idle", self.vocab.idle_task, out)
+        task = self._event("Task")
+        out.append(Triple(task, RDF_TYPE, self.vocab.idle_task))
+        out.append(Triple(task, RDF_TYPE, T.NAMED_INDIVIDUAL))
         out.append(Triple(idle, RDF_TYPE, T.ACTION))
         out.append(Triple(idle, RDF_TYPE, T.NAMED_INDIVIDUAL))
         out.append(Triple(idle, T.EXECUTES, task))
@@ -456,7 +483,7 @@ class NeemLogger:
         when = _instant(at)
         resolved = [(self._resolve(call), float(score)) for call, score in ranking]
         out = _Out()
-        action = self._mental(T.REASONING, "reasoning", when, out)
+        action = self._mental(T.REASONING, when, out)
         order = self._event("PreferenceOrder")
         out.append(Triple(action, self.vocab.imagines_preference, order))
         out.append(Triple(order, RDF_TYPE, T.PREFERENCE_ORDER))

@@ -84,10 +84,30 @@ class NeemInfo:
 SUMMARY_KEY = "summary"
 
 
-def new_meta(user: str | None, temporary: bool, extra: Mapping[str, Any] | None = None) -> dict[str, Any]:
+#: The fields openEASE's NEEM list reads from a ``meta`` document without a default
+#: (ease-crc/openease ``neems/neem.py``: a document missing one breaks the listing). It also
+#: reads ``mail``, ``repo``, ``projects``, ``visibility`` and ``image`` when present (an absent
+#: image shows its default cover); the NEEM handbook's meta adds ``model_version``,
+#: ``keywords``, ``activity``, ``environment`` and ``agent``. See docs/store.md.
+OPENEASE_FIELDS: tuple[str, ...] = ("name", "description", "created_by", "created_at", "url")
+
+
+def new_meta(
+    user: str | None, temporary: bool, extra: Mapping[str, Any] | None = None, *, name: str | None = None
+) -> dict[str, Any]:
+    """A registry document with every field openEASE reads; ``extra`` overrides the defaults."""
     meta: dict[str, Any] = {
+        "name": name,
+        "description": f"Episodes of {user or 'a user'} with an assistive robot, logged by neem-oracle",
         "created_by": user,
         "created_at": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+        "url": "",  # openEASE links the NEEM's repository; a private store has none
+        "model_version": "SOMA/DUL, the neem-oracle core extract",  # what the NEEM was modelled with
+        "keywords": ["neem-oracle", "assistive robot", "activities of daily living"],
+        "activity": {"name": "activities of daily living", "url": ""},
+        "environment": "home",
+        "agent": "assistive robot arm",
+        "visibility": False,  # privacy (thesis 3.5): a NEEM is the user's until they publish it
         "temporary": temporary,
     }
     meta.update(extra or {})
@@ -132,7 +152,7 @@ class Store(ABC):
         check_neem_id(neem_id)
         if self.has_neem(neem_id):
             raise StoreError(f"{self.location}: NEEM {neem_id!r} already exists")
-        record = new_meta(user, temporary, meta)
+        record = new_meta(user, temporary, meta, name=neem_id)
         self._create_neem(neem_id, record)
         self._hierarchies.pop(neem_id, None)
         return NeemInfo.from_meta(neem_id, record)
