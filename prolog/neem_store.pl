@@ -14,6 +14,8 @@
       store_retract/1,          % +Patterns
       store_annotation/3,       % ?Subject, ?Property, ?Value
       store_insert_annotations/1, % +Annotations
+      store_pose/4,             % +Frame, +At, -Pose, -Stamp
+      store_assert_pose/3,      % +Frame, +Stamp, +Pose
       store_taxonomic/1,        % ?Property
       store_scope_now/1,        % -Scope
       store_python_request/1,   % -Request
@@ -49,6 +51,7 @@ A question scope is `scope(Since, Until)`: a fact is visible when its own scope 
 :- dynamic backend_/1.
 :- dynamic mem_triple/5.        % S, P, O, Since, Until
 :- dynamic mem_annotation/3.    % S, P, Value
+:- dynamic mem_tf/3.            % ChildFrame, Stamp, [RefFrame, [X,Y,Z], [QX,QY,QZ,QW]]
 
 backend_(memory).
 
@@ -112,6 +115,7 @@ store_assert(Triple, _, _) :-
 store_reset :-
     retractall(mem_triple(_,_,_,_,_)),
     retractall(mem_annotation(_,_,_)),
+    retractall(mem_tf(_,_,_)),
     store_use_memory.
 
 %!  store_insert(+Triples) is det.
@@ -196,6 +200,33 @@ store_insert_annotations(As) :-
         reply_rows(Reply, _)
     ;   forall(member(annotation(S, P, V), As),
                ( mem_annotation(S, P, V) -> true ; assertz(mem_annotation(S, P, V)) ))
+    ).
+
+%!  store_pose(+Frame, +At, -Pose, -Stamp) is semidet.
+%   The latest transform of tf frame Frame stamped at or before At (`any`: the latest of
+%   all): Pose is `[RefFrame, [X,Y,Z], [QX,QY,QZ,QW]]`, from the NEEM's tf collection.
+store_pose(Frame, At, Pose, Stamp) :-
+    must_be(atom, Frame),
+    (   At == any -> true ; must_be(number, At) ),
+    (   backend_(python(Neem))
+    ->  ( At == any -> A = -1 ; A = At ),
+        neem_store:py_tf([Neem, Frame, A], Reply),
+        reply_rows(Reply, [[Stamp, Ref, X, Y, Z, QX, QY, QZ, QW]]),
+        Pose = [Ref, [X, Y, Z], [QX, QY, QZ, QW]]
+    ;   findall(St-P, ( mem_tf(Frame, St, P), ( At == any -> true ; St =< At ) ), Ps),
+        Ps \== [],
+        keysort(Ps, Sorted),
+        last(Sorted, Stamp-Pose)
+    ).
+
+%!  store_assert_pose(+Frame, +Stamp, +Pose) is det.
+%   Add a transform to the memory backend (tests; the logger writes the Python stores).
+store_assert_pose(Frame, Stamp, Pose) :-
+    must_be(atom, Frame), must_be(number, Stamp),
+    (   Pose = [Ref, [X, Y, Z], [QX, QY, QZ, QW]], atom(Ref),
+        maplist(number, [X, Y, Z, QX, QY, QZ, QW])
+    ->  assertz(mem_tf(Frame, Stamp, Pose))
+    ;   type_error(pose, Pose)
     ).
 
 check_annotation(annotation(S, P, V)) :- !,

@@ -42,6 +42,11 @@ kb_project/1 asserts statements built from the same vocabulary (see kb_project/1
     kb_call(0), kb_call(0, +), kb_call(0, +, -), kb_call_stepwise(0), kb_call_stepwise(0, +),
     kb_findall(?, 0, +, -).
 
+%!  kb_scoped_goal(+Goal, +Scope, -Call) is semidet.
+%   Goal is not made of triples but depends on the question scope (e.g. is_at/2 reads tf
+%   data at the scope's time): Call answers it in Scope. Multifile.
+:- multifile kb_scoped_goal/3.
+
 %!  kb_rule(?Head, ?Body) is nondet.
 %   Head is defined by Body, a conjunction of triple/3 goals, other model predicates and
 %   Prolog goals (KnowRob's `?>` rules). Multifile: the model modules add their own.
@@ -184,6 +189,8 @@ unfold(occurs(E), Mod, Scope, S0, S) :- !,
 unfold(G, Mod, Scope, S0, S) :-
     kb_rule(G, Body), !,
     unfold(Body, Mod, Scope, S0, S).
+unfold(G, _, Scope, [call(Call)|S], S) :-
+    kb_scoped_goal(G, Scope, Call), !.
 unfold(G, Mod, _, [call(Mod:G)|S], S).
 
 %   holds(P(S,O)): the relation P between S and O.

@@ -38,7 +38,7 @@ if TYPE_CHECKING:
 #: The Prolog modules under ``paths.prolog_dir()``, in load order (KnowRob's layout: lang/, model/; the
 #: odb extension in odb/); each is imported into ``user`` so a typed query sees its exports.
 MODULES = ("neem_store", "lang/triple", "lang/scope", "lang/query", "lang/holds", "lang/temporal", "lang/db",
-           "model/rdfs", "model/event", "model/object", "model/situation", "model/action", "model/interval",
+           "model/rdfs", "model/event", "model/object", "model/situation", "model/action", "model/interval", "model/tf",
            "odb/names", "odb/calls", "odb/events", "odb/decisions", "odb/history", "answers", "batch_toplevel")
 #: Rows per chunk handed to Prolog by one solution of py_match/2.
 CHUNK = 5000
@@ -48,7 +48,8 @@ _STATE: dict[str, Any] = {"bridge": None, "loaded": False, "request": None}
 _GENERATORS: dict[int, Iterator[str]] = {}
 _NEXT_KEY = [1]
 #: How many times Prolog called into Python (crossings), per foreign predicate.
-CROSSINGS = {"py_match": 0, "py_insert": 0, "py_request": 0, "py_scopes": 0, "py_annotations": 0, "py_annotate": 0}
+CROSSINGS = {"py_match": 0, "py_insert": 0, "py_request": 0, "py_scopes": 0, "py_annotations": 0, "py_annotate": 0,
+             "py_tf": 0}
 
 
 # -- values ------------------------------------------------------------------------------
@@ -274,6 +275,29 @@ def py_annotate(req: Any, out: Any) -> bool:
     return True
 
 
+def py_tf(req: Any, out: Any) -> bool:
+    """The latest transform of a tf frame stamped at or before a time (-1: any time), as
+    ``[[Stamp, RefFrame, X, Y, Z, QX, QY, QZ, QW]]`` or ``[]``."""
+    from oracle.neem.tf import pose_at
+
+    CROSSINGS["py_tf"] += 1
+    try:
+        bridge = _STATE["bridge"]
+        if bridge is None:
+            raise PrologError("no store is connected to Prolog")
+        neem, frame, at = _plain(req[0]), _plain(req[1]), req[2]
+        found = pose_at(bridge.store, neem, frame, None if at == -1 else float(at))
+        if found is None:
+            out.unify("[]")
+        else:
+            stamp, pose = found
+            values = [stamp, pose.frame, *pose.position, *pose.rotation]
+            out.unify("[[" + ",".join(term_text(v) for v in values) + "]]")
+    except Exception as error:
+        out.unify(_error_text(error))
+    return True
+
+
 def py_request(out: Any) -> bool:
     CROSSINGS["py_request"] += 1
     request = _STATE["request"]
@@ -295,6 +319,7 @@ def _ensure_loaded() -> None:
     Prolog.register_foreign(py_scopes, arity=2, module="neem_store")
     Prolog.register_foreign(py_annotations, arity=2, module="neem_store")
     Prolog.register_foreign(py_annotate, arity=2, module="neem_store")
+    Prolog.register_foreign(py_tf, arity=2, module="neem_store")
     folder = prolog_dir()
     for name in MODULES:
         path = folder / f"{name}.pl"

@@ -16,6 +16,7 @@ import time
 import uuid
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from typing import Any
 from datetime import datetime, timezone
 
 from oracle.chains import TaskCall, parse_call
@@ -23,6 +24,7 @@ from oracle.errors import ChainSyntaxError, LoggingError, OntologyError, StoreEr
 from oracle.neem import terms as T
 from oracle.neem.lifecycle import wipe_temporary_neems
 from oracle.neem.query import summarize_neem, summary_after
+from oracle.neem.tf import Pose, frame_name, tf_document
 from oracle.ontology.model import OdbOntology
 from oracle.ontology.provenance import META_KEY as ONTOLOGY_KEY, check_logged_with, record_of
 from oracle.store import RDF_TYPE, Store, Triple, TriplePattern, Var
@@ -109,6 +111,8 @@ class NeemLogger:
         #: How many calls (actions, perceptions, ...) are durably in the store.
         self.committed = 0
         self._buffer: list[Triple] = []
+        self._tf: list[dict[str, Any]] = []  # transforms of perceptions, written with the triples
+        self._tf_seq = 0
         self._buffered_calls = 0
         self.onto = onto
         self.neem_id = neem_id
@@ -379,12 +383,19 @@ class NeemLogger:
         return _instant(max(begins)), _instant(max(ends))
 
     # -- public API -------------------------------------------------------------------------
-    def perceive(self, obj: str, at: Moment) -> str:
-        """The robot perceives an odb object; its type triple is scoped from the first perception."""
+    def perceive(self, obj: str, at: Moment, pose: Pose | None = None) -> str:
+        """The robot perceives an odb object; its type triple is scoped from the first perception.
+        With a ``pose`` (thesis future work: raw technical data) the object's transform at that
+        moment goes into the NEEM's tf collection, frame = the object IRI's local name."""
         when = _instant(at)
         self._check_time(when, f"perception of {obj!r}")
+        if pose is not None and not isinstance(pose, Pose):
+            raise LoggingError(f"perception of {obj!r}: pose must be a Pose, got {type(pose).__name__}")
         out = _Out()
         iri = self._object(obj, out, when.seconds)
+        if pose is not None:
+            self._tf_seq += 1
+            self._tf.append(tf_document(frame_name(iri), pose, when.seconds, self._tf_seq))
         self._write(out)
         return iri
 
@@ -507,11 +518,13 @@ class NeemLogger:
 
     def flush(self) -> int:
         """Commit what is buffered as one transaction; return how many calls are committed."""
-        if self._buffer:
+        if self._buffer or self._tf:
             try:
                 summary = summary_after(self._summary, self._buffer)
                 with self.store.transaction():
                     self.store.insert(self.neem_id, self._buffer)
+                    if self._tf:
+                        self.store.write_documents(self.neem_id, "tf", self._tf)
                     mark = self.store.write_mark(self.neem_id)
                     self.store.update_meta(self.neem_id, **{SUMMARY_KEY: {**summary, "mark": mark}})
                 self._summary = summary
@@ -521,7 +534,7 @@ class NeemLogger:
                 self._plans.clear()
                 raise LoggingError(f"NEEM {self.neem_id!r}: {error}") from None
             finally:
-                self._buffer = []
+                self._buffer, self._tf = [], []
         self.committed += self._buffered_calls
         self._buffered_calls = 0
         return self.committed
@@ -543,7 +556,7 @@ class NeemLogger:
         if self._replaces is None:
             self.flush()
             return
-        self._buffer, self._buffered_calls = [], 0
+        self._buffer, self._tf, self._buffered_calls = [], [], 0
         self.store.drop_neem(self.neem_id)
         self.neem_id, self._replaces = self._replaces, None
 

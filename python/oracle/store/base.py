@@ -301,7 +301,8 @@ class Store(ABC):
             if batch:
                 self._insert_documents(neem_id, kind, batch)
                 count += len(batch)
-        self._hierarchies.pop(neem_id, None)
+        if kind == "triples":  # only triples carry the taxonomy
+            self._hierarchies.pop(neem_id, None)
         return count
 
     def _insert_triples(self, neem_id: str, closed: list[Closed], builder: DocumentBuilder) -> None:
