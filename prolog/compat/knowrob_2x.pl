@@ -1,5 +1,7 @@
 :- module(knowrob_2x,
     [ knowrob_suite_setup/2,    % +Fixture, +Namespace
+      knowrob_2x_units/1,       % -Units
+      knowrob_2x_score/3,       % +Units, -Passed, -Total
       knowrob_fixture/2,        % +Name, -File
       assert_true/1,            % :Goal
       assert_false/1,           % :Goal
@@ -24,6 +26,8 @@ stand for, as KnowRob's tests do through rdf_meta.
 */
 
 :- use_module(library(semweb/rdf_prefixes)).
+:- use_module(library(plunit)).
+:- use_module(library(aggregate)).
 :- use_module('../neem_store', [store_reset/0]).
 :- use_module('../lang/query', [kb_call/1]).
 :- use_module('../lang/db', [load_owl/2]).
@@ -38,17 +42,35 @@ knowrob_fixture(Name, File) :-
     atomic_list_concat([Dir, '/../fixtures/knowrob_2x/', Name, '.ttl'], File0),
     absolute_file_name(File0, File, [access(read)]).
 
+%!  fresh_store_hook is semidet.
+%   Defined by a caller that runs the tests on another backend (the Python stores): make an
+%   empty store current. Without it, the memory backend is reset.
+:- dynamic fresh_store_hook/0.
+
 %!  knowrob_suite_setup(+Fixture, +Namespace) is det.
-%   A fresh memory store holding the fixture (`none` for an empty one), with `test` the
-%   prefix of Namespace (rdf_tests' `namespace(...)` option).
+%   A fresh store holding the fixture (`none` for an empty one), with `test` the prefix of
+%   Namespace (rdf_tests' `namespace(...)` option).
 knowrob_suite_setup(Fixture, NS) :-
-    store_reset,
+    (   clause(fresh_store_hook, _) -> fresh_store_hook ; store_reset ),
     rdf_register_prefix(test, NS, [force(true)]),
     (   Fixture == none
     ->  true
     ;   knowrob_fixture(Fixture, File),
         load_owl(File, [graph(test)])
     ).
+
+%!  knowrob_2x_units(-Units) is det.
+%   The test units of knowrob_2x.plt, in KnowRob's file order.
+knowrob_2x_units([knowrob_lang_triple, knowrob_lang_temporal, knowrob_lang_holds,
+                  knowrob_model_rdfs, knowrob_model_neem, knowrob_model_terms]).
+
+%!  knowrob_2x_score(+Units, -Passed, -Total) is det.
+%   Run the units (loaded test files) and count: Total is the number of tests they hold,
+%   Passed those that passed (a unit whose set-up fails passes none).
+knowrob_2x_score(Units, Passed, Total) :-
+    ( run_tests(Units) -> true ; true ),
+    aggregate_all(count, ( member(U, Units), plunit:current_test(U, _, _, _, _) ), Total),
+    aggregate_all(count, ( member(U, Units), plunit:passed(U, _, _, _, _) ), Passed).
 
 %!  assert_true(:Goal) is semidet.
 %   Goal succeeds (once).

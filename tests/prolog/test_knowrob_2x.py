@@ -4,6 +4,7 @@ load_owl/1 and annotations, on SQLite and on the Mongo code path (mongomock-ng).
 
 from __future__ import annotations
 
+import itertools
 import re
 import shutil
 import subprocess
@@ -15,34 +16,23 @@ from oracle.paths import prolog_dir
 from oracle.store import open_store
 from oracle.store.mongo import MongoStore
 
-UNITS = ["knowrob_lang_triple", "knowrob_lang_temporal", "knowrob_lang_holds",
-         "knowrob_model_rdfs", "knowrob_model_neem", "knowrob_model_terms"]
+ADAPTER = prolog_dir() / "compat" / "knowrob_2x.pl"
+SUITE = prolog_dir() / "compat" / "knowrob_2x.plt"
 
 
 def run_knowrob_suite() -> tuple[int, int]:
-    """(passed, total) of the restated KnowRob 2.x tests, from plunit's summary."""
-    adapter = prolog_dir() / "compat" / "knowrob_2x.pl"
-    goal = (f"load_files(['{adapter}'],[]), load_test_files([]), "
-            f"(run_tests([{','.join(UNITS)}]) -> halt(0) ; halt(1))")
-    done = subprocess.run(["swipl", "-g", goal, "-t", "halt(1)"], capture_output=True, text=True, timeout=300)
-    text = done.stdout + done.stderr
-    total = 0
-    for unit in UNITS:  # every unit ran (a unit whose setup failed runs no test)
-        assert f"PL-Unit: {unit} " in text, text[-2000:]
-    all_passed = re.search(r"All (\d+) tests passed", text)
-    if all_passed:
-        total = int(all_passed.group(1))
-        return total, total
-    failed = sum(int(n) for n in re.findall(r"(\d+) tests? failed", text))
-    passed = int(re.search(r"(\d+) tests? passed", text).group(1)) if re.search(r"(\d+) tests? passed", text) else 0
-    return passed, passed + failed
+    """(passed, total) of the restated KnowRob 2.x tests on the memory backend (plain swipl)."""
+    goal = (f"load_files(['{ADAPTER}'],[]), load_files(['{SUITE}'],[]), knowrob_2x_units(U), "
+            "knowrob_2x_score(U, P, T), format('score ~w ~w~n', [P, T])")
+    done = subprocess.run(["swipl", "-g", goal, "-t", "halt"], capture_output=True, text=True, timeout=300)
+    found = re.search(r"^score (\d+) (\d+)$", done.stdout, re.M)
+    assert found, done.stdout[-2000:] + done.stderr[-2000:]
+    return int(found.group(1)), int(found.group(2))
 
 
 @pytest.mark.skipif(shutil.which("swipl") is None, reason="needs swipl")
 def test_knowrob_2x_own_tests_pass():
-    passed, total = run_knowrob_suite()
-    assert total == 60
-    assert passed == 60
+    assert run_knowrob_suite() == (60, 60)
 
 
 def _sqlite(tmp_path):
@@ -90,3 +80,38 @@ def test_free_interval_bound_to_fact_scope(bridge):
     rows = bridge.solutions(f"kb_call(triple('{SWRL}Lea', P, O), dict{{}}, F), get_dict(time, F, T), "
                             "get_dict(until, T, U)", ["O", "U"])
     assert rows == [("+4934", 34.0)]
+
+
+#: Restated KnowRob tests that cannot pass on the append-only Python stores: they delete a
+#: triple (kb_unproject), narrow a stored scope (until) or ask about the union of two
+#: overlapping projections (KnowRob merges the documents; the stores keep both).
+APPEND_ONLY = {"retract triple", "assert to triplestore and check if triple exists", "extend time scope",
+               "during(+Triple,+Overlapping)", "until(+Triple,+Instant)"}
+
+
+def test_knowrob_2x_own_tests_on_the_python_stores(bridge):
+    """The same 60 tests with every unit on a fresh NEEM of the store (SQLite, mongomock-ng)."""
+    from pyswip import Atom, Prolog
+
+    ids = itertools.count(1)
+
+    def py_fresh_neem(out):
+        neem = f"k2x{next(ids)}"
+        bridge.store.create_neem(neem)
+        out.unify(Atom(neem))
+        return True
+
+    Prolog.register_foreign(py_fresh_neem, arity=1, module="neem_store")
+    bridge.query(f"load_files(['{ADAPTER}'],[]), load_files(['{SUITE}'],[])")
+    bridge.query("retractall(knowrob_2x:fresh_store_hook), "
+                 "assertz((knowrob_2x:fresh_store_hook :- neem_store:py_fresh_neem(Id), store_use_python(Id)))")
+    try:
+        (row,) = bridge.query("knowrob_2x_units(U), knowrob_2x_score(U, P, T), "
+                              "findall(N, (member(X, U), plunit:failed(X, N, _, _)), F)")
+    finally:
+        bridge.query("retractall(knowrob_2x:fresh_store_hook)")
+    failed = {name.decode() if isinstance(name, bytes) else str(name) for name in row["F"]}
+    print(f"KnowRob 2.x tests on {type(bridge.store).__name__}: {row['P']}/{row['T']}, failed: {sorted(failed)}")
+    assert row["T"] == 60
+    assert failed <= APPEND_ONLY, failed - APPEND_ONLY
+    assert row["P"] == 60 - len(failed) >= 54
