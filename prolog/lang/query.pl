@@ -6,8 +6,10 @@
       kb_compile/3,             % +Goal, +Scope, -Plan
       kb_findall/4,             % +Template, :Goal, +Scope, -List
       kb_call/3,                % :Goal, +QueryScope, -FactScope
+      kb_call/4,                % :Goal, +QueryScope, -FactScope, +Options
       kb_project/1,             % +Statement
       kb_project/2,             % +Statement, +Scope
+      kb_project/3,             % +Statement, +Scope, +Options
       kb_unproject/1            % +Statement
     ]).
 /** <module> The query language: kb_call and kb_project (KnowRob 2.x src/lang/query.pl)
@@ -39,7 +41,7 @@ kb_project/1 asserts statements built from the same vocabulary (see kb_project/1
                        scope_term/2, scope_dict/2, universal_scope/1]).
 
 :- meta_predicate
-    kb_call(0), kb_call(0, +), kb_call(0, +, -), kb_call_stepwise(0), kb_call_stepwise(0, +),
+    kb_call(0), kb_call(0, +), kb_call(0, +, -), kb_call(0, +, -, +), kb_call_stepwise(0), kb_call_stepwise(0, +),
     kb_findall(?, 0, +, -).
 
 %!  kb_scoped_goal(+Goal, +Scope, -Call) is semidet.
@@ -74,6 +76,21 @@ kb_call(Goal, QScope, FScope) :-
     scope_term(QScope, Scope),
     kb_call_scoped(Goal, Scope, scope(S, U)),
     scope_dict(scope(S, U), FScope).
+
+%!  kb_call(:Goal, +QueryScope, -FactScope, +Options) is nondet.
+%   kb_call/3 with KnowRob's options: `graph(user)` and `graph('*')` (KnowRob's default, no
+%   graph filter) are accepted; another graph is a domain error, as the stores keep no graph
+%   hierarchy to filter by.
+kb_call(Goal, QScope, FScope, Options) :-
+    graph_options(Options),
+    kb_call(Goal, QScope, FScope).
+
+graph_options(Options) :-
+    must_be(list, Options),
+    (   memberchk(graph(G), Options), \+ memberchk(G, [user, '*'])
+    ->  domain_error(graph_without_hierarchy, G)
+    ;   true
+    ).
 
 %   kb_call_scoped(:Goal, +Scope, -FactScope): kb_call/2 threading the facts' scope.
 kb_call_scoped(Goal, Scope, FS) :-
@@ -368,6 +385,12 @@ kb_project(Statement, Scope0) :-
     scope_term(Scope0, Scope),
     (   Scope = scope(S, U) -> true ; S = 0.0, U is inf ),
     kb_project_(Statement, S, U).
+
+%!  kb_project(+Statement, +Scope, +Options) is det.
+%   kb_project/2 with KnowRob's options (`graph(user)`, `graph('*')`; see kb_call/4).
+kb_project(Statement, Scope, Options) :-
+    graph_options(Options),
+    kb_project(Statement, Scope).
 
 kb_project_(Statement, S, U) :-
     (   narrowing(Statement) -> Merge = intersect ; Merge = union ),

@@ -107,6 +107,12 @@ test(free_event_of_during_bound_at_runtime, [nondet, setup(store_reset), cleanup
     kb_project(triple(obj, hasRole, r1) during act),
     kb_call(( is_action(A), triple(obj, hasRole, R) during A )), A == act, R == r1.
 
+test(options_graph, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project(triple(s, p, o), dict{}, [graph(user)]),
+    kb_call(triple(s, p, o), dict{}, _, [graph('*')]),
+    catch(kb_call(triple(s, p, o), dict{}, _, [graph(soma)]), E, true),
+    E = error(domain_error(graph_without_hierarchy, soma), _).
+
 test(term_values, [nondet, setup(store_reset), cleanup(store_reset)]) :-
     kb_project(triple(lecturer, hairColor, term([255, 99, 71]))),
     kb_call(triple(lecturer, hairColor, term([255, 99, 71]))),
