@@ -7,17 +7,17 @@
       assert_false/1,           % :Goal
       assert_equals/2,          % +Actual, +Expected
       assert_unifies/2,         % ?Actual, ?Expected
-      time_scope/3,             % ?Since, ?Until, -Scope
       test_call/3               % :Goal, ?Var, +Value
     ]).
 /** <module> What KnowRob 2.x's own tests need around the predicates mirrored here
 
 KnowRob 2.x runs its plunit tests with helpers from rosprolog (`rostest`'s assertions),
-mongolog (`test_call/3`), its scope module (`time_scope/3`) and `rdf_tests` (load an OWL
-file per test unit, register the `test` prefix). This module gives the same helpers over
-`prolog/`, so `knowrob_2x.plt` can restate those tests case by case: 60 tests of
-`lang/terms/triple.plt`, `lang/terms/temporal.pl`, `lang/terms/holds.pl`, `model/RDFS.pl`,
-`model/NEEM.pl` and `model/terms.pl` (KnowRob master, 2.0.0). The OWL files of the tests
+mongolog (`test_call/3`) and `rdf_tests` (load an OWL file per test unit, register the
+`test` prefix). This module gives the same helpers over `prolog/`, so `knowrob_2x.plt` can
+restate those tests case by case: 73 tests of `lang/terms/triple.plt`,
+`lang/terms/temporal.pl`, `lang/terms/holds.pl`, `model/RDFS.pl`, `model/NEEM.pl`,
+`model/terms.pl` (the 60 of the mirrored predicates) and `lang/scope.pl` (13; KnowRob
+master, 2.0.0). The OWL files of the tests
 are replaced by small Turtle files in `prolog/fixtures/knowrob_2x/` with the individuals
 the tests ask about, loaded through load_owl/2 as KnowRob loads its files.
 
@@ -62,7 +62,7 @@ knowrob_suite_setup(Fixture, NS) :-
 %!  knowrob_2x_units(-Units) is det.
 %   The test units of knowrob_2x.plt, in KnowRob's file order.
 knowrob_2x_units([knowrob_lang_triple, knowrob_lang_temporal, knowrob_lang_holds,
-                  knowrob_model_rdfs, knowrob_model_neem, knowrob_model_terms]).
+                  knowrob_model_rdfs, knowrob_model_neem, knowrob_model_terms, knowrob_lang_scope]).
 
 %!  knowrob_2x_score(+Units, -Passed, -Total) is det.
 %   Run the units (loaded test files) and count: Total is the number of tests they hold,
@@ -94,10 +94,6 @@ assert_equals(A, E) :-
 assert_unifies(A, E) :-
     rdf_global_term(E, E1),
     A = E1.
-
-%!  time_scope(?Since, ?Until, -Scope) is det.
-%   KnowRob's scope dictionary `dict{time: dict{since: Since, until: Until}}`.
-time_scope(Since, Until, dict{time: dict{since: Since, until: Until}}).
 
 %!  test_call(:Goal, ?Var, +Value) is nondet.
 %   mongolog's test_call/3: Goal with Var assigned Value first, as one kb_call.

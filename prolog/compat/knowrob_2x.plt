@@ -7,6 +7,7 @@
 :- use_module(knowrob_2x).
 :- use_module('../neem_store', [store_reset/0]).
 :- use_module('../lang/query').
+:- use_module('../lang/scope').
 :- use_module('../lang/temporal').
 :- use_module('../lang/holds').
 :- use_module('../lang/triple').
@@ -459,3 +460,86 @@ test('assert(during(occurs(+),+Event))') :-
     assert_true(occurs(test:'Event6') during test:'Short1').
 
 :- end_tests(knowrob_model_terms).
+
+                 /*******************************
+                 *      lang/scope.pl (14)      *
+                 *******************************/
+
+:- begin_tests(knowrob_lang_scope).
+
+test('scope_data([3,20])') :-
+    time_scope(=(3), =(20), S),
+    time_scope_data(S, Data),
+    assertion(ground(Data)),
+    assertion(Data = [3, 20]).
+
+test('scope_data([3,>=20])') :-
+    time_scope(=(3), >=(20), S),
+    time_scope_data(S, Data),
+    assertion(ground(Data)),
+    assertion(Data = [3, >=(20)]).
+
+test('scope_data([=<3,20])') :-
+    time_scope(=<(3), =(20), S),
+    time_scope_data(S, Data),
+    assertion(ground(Data)),
+    assertion(Data = [=<(3), 20]).
+
+test('subscope_of(current,universal)') :-
+    universal_scope(S1),
+    current_scope(S2),
+    assertion(subscope_of(S2, S1)).
+
+test('subscope_of([15,18],[10,20])') :-
+    time_scope(=(10), =(20), S1), time_scope(=(15), =(18), S2),
+    assertion(subscope_of(S2, S1)),
+    assertion(\+ subscope_of(S1, S2)).
+
+test('subscope_of([15,18],[15,20])') :-
+    time_scope(=(15), =(20), S1), time_scope(=(15), =(18), S2),
+    assertion(subscope_of(S2, S1)),
+    assertion(\+ subscope_of(S1, S2)).
+
+test('subscope_of([15,18],[15,18])') :-
+    time_scope(=(15), =(18), S1), time_scope(=(15), =(18), S2),
+    assertion(subscope_of(S2, S1)),
+    assertion(subscope_of(S1, S2)).
+
+test('subscope_of([15,18],[10,>=20])') :-
+    time_scope(=(10), >=(20), S1), time_scope(=(15), =(18), S2),
+    assertion(subscope_of(S2, S1)),
+    assertion(\+ subscope_of(S1, S2)).
+
+test('intersect_scope([5,18],[10,20])') :-
+    time_scope(=(5), =(18), S1), time_scope(=(10), =(20), S2),
+    scope_intersect(S1, S2, S3),
+    time_scope_data(S3, Data),
+    assertion(ground(Data)),
+    assertion(Data = [10, 18]).
+
+test('intersect_scope([5,10],[10,20])') :-
+    time_scope(=(5), =(10), S1), time_scope(=(10), =(20), S2),
+    scope_intersect(S1, S2, S3),
+    time_scope_data(S3, Data),
+    assertion(ground(Data)),
+    assertion(Data = [10, 10]).
+
+test('intersect_scope([5,9],[10,20])') :-
+    time_scope(=(5), =(9), S1), time_scope(=(10), =(20), S2),
+    assertion(\+ scope_intersect(S1, S2, _)).
+
+test('intersect_scope([5,18],[10,>=20])') :-
+    time_scope(=(5), =(18), S1), time_scope(=(10), >=(20), S2),
+    scope_intersect(S1, S2, S3),
+    time_scope_data(S3, Data),
+    assertion(ground(Data)),
+    assertion(Data = [10, 18]).
+
+test('intersect_scope([5,>=18],[10,>=20])') :-
+    time_scope(=(5), >=(18), S1), time_scope(=(10), >=(20), S2),
+    scope_intersect(S1, S2, S3),
+    time_scope_data(S3, Data),
+    assertion(ground(Data)),
+    assertion(Data = [10, >=(18)]).
+
+:- end_tests(knowrob_lang_scope).
