@@ -75,8 +75,8 @@ def describe(task) -> str:  # noqa: ANN001 - a RankedTask
 def print_ranking(result: NeemRanking, limit: int | None = None) -> None:
     from oracle.timeline import format_clock
 
-    when = format_clock(result.at)
-    print(f"NEEM {result.neem}: {result.history} past actions, decision at {when} ({result.time_of_day}); "
+    when = f"{format_clock(result.at)} ({result.time_of_day})" if result.time_of_day else f"position {result.at:g} (no clock)"
+    print(f"NEEM {result.neem}: {result.history} past actions, decision at {when}; "
           f"{result.method} ranked {len(result.calls)} options in {result.milliseconds:.2f} ms")
     shown = list(zip(result.ranking, result.calls))[:limit]
     for t, call in shown:
