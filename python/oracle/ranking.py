@@ -66,7 +66,6 @@ def rank_neem(
     without a clock, times are positions with no part of the day, and "now" is the position
     after the last action."""
     clocked = has_clock(bridge.store.neem(bridge.neem_id).meta)
-    history = bridge.history()
     if available:
         calls = [parse_call(text) for text in available]
         for call in calls:
@@ -74,7 +73,7 @@ def rank_neem(
         if clocked:
             instant = at if at is not None else now()
         else:
-            last = max((float(row["end"]) for row in history), default=0.0)
+            last = 0.0 if at is not None else max((float(row["end"]) for row in bridge.history()), default=0.0)
             instant = Instant(at.seconds if at is not None else last, None)
     else:
         latest = bridge.latest_situation()
@@ -85,7 +84,7 @@ def rank_neem(
         recorded = recorded_part_of_day(bridge.store, bridge.neem_id, ontology.vocab, begin)
         instant = Instant(begin, (recorded or part_of_day_at(begin)) if clocked else None)
     when, part = instant.seconds, instant.part_of_day
-    steps = steps_from_history(ontology, [row for row in history if float(row["begin"]) < when])
+    steps = steps_from_history(ontology, [row for row in bridge.history() if float(row["begin"]) < when])
     oracle = make_predictor(method, ontology.distances(), opening_tasks(ontology), settings).fit(steps)
     started = time.perf_counter()
     ranking = oracle.rank([option_of(ontology, c) for c in calls], part)
