@@ -20,7 +20,7 @@ from oracle.algorithm.predictors import DEFAULT, make_predictor
 from oracle.algorithm.records import Ranking
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError, NeemOracleError
-from oracle.calls import call_of, check_call, opening_tasks, option_of, steps_from_history
+from oracle.calls import call_of, check_call, opening_tasks, option_of, steps_before
 from oracle.neem.query import recorded_part_of_day
 from oracle.neem.writer import NeemLogger
 from oracle.ontology import OdbOntology
@@ -84,7 +84,7 @@ def rank_neem(
         recorded = recorded_part_of_day(bridge.store, bridge.neem_id, ontology.vocab, begin)
         instant = Instant(begin, (recorded or part_of_day_at(begin)) if clocked else None)
     when, part = instant.seconds, instant.part_of_day
-    steps = steps_from_history(ontology, [row for row in bridge.history() if float(row["begin"]) < when])
+    steps = steps_before(ontology, bridge.history(), when)
     oracle = make_predictor(method, ontology.distances(), opening_tasks(ontology), settings).fit(steps)
     started = time.perf_counter()
     ranking = oracle.rank([option_of(ontology, c) for c in calls], part)

@@ -19,7 +19,7 @@ from oracle.algorithm.records import Ranking, Step
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError
 from oracle.neem.writer import LoggedAction, NeemLogger
-from oracle.timeline import Instant, clock
+from oracle.timeline import Instant, clock, is_idle_gap
 from oracle.ontology import OdbOntology
 from oracle.ranking import finite
 from oracle.calls import call_of, check_call, idle_step, opening_tasks, option_of, steps_from_history
@@ -98,6 +98,9 @@ class NeemSession:
         self.open: dict[str, OpenAction] = {}
         self.poses: dict[str, list[float]] = {}
         self.choice: dict[str, Any] | None = None
+        #: The idle step of the current pause is fitted: by the first situation after an idle
+        #: gap (ranked as the replay ranks it), or by the action that ends the pause.
+        self.idle_fitted = bool(history) and history[-1]["call"] == "idle"
         self._keys = 0
 
     # -- validation ---------------------------------------------------------------------------
@@ -138,6 +141,9 @@ class NeemSession:
         moment = moment_of(at, "at")
         when = Instant.of(moment)
         self._check_time(when, "situation")
+        if not self.idle_fitted and self.last_end is not None and is_idle_gap(self.last_end, when.seconds):
+            self.predictor.partial_fit(idle_step(self.ontology, clock(self.last_end)))
+            self.idle_fitted = True
         started = time.perf_counter()
         ranking = self.predictor.rank([option_of(self.ontology, c) for c in calls], when.part_of_day,
                                       tree_roots=TREE_ROOTS)
@@ -204,7 +210,8 @@ class NeemSession:
         logged = self.logger.action(call, start, stop, performed_by=performed_by)
         self.logger.flush()
         if logged.idle is not None and self.last_end is not None:
-            self.predictor.partial_fit(idle_step(self.ontology, clock(self.last_end)))
+            if not self.idle_fitted:
+                self.predictor.partial_fit(idle_step(self.ontology, clock(self.last_end)))
             self.prev_begin = self.last_end
         pending = self.pending
         counts = (pending is not None and pending.when.seconds <= logged.begin
@@ -216,4 +223,5 @@ class NeemSession:
         self.last_end = logged.end
         self.prev_begin = logged.begin
         self.pending = None
+        self.idle_fitted = False
         return logged
