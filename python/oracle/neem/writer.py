@@ -1,5 +1,11 @@
 """Writing a NEEM (thesis 3.4-3.5): what the robot perceived, could do, did and predicted, as triples.
 
+Why this module is large: it has one job, turning the robot's calls into one NEEM's triples, and
+its parts (the individuals it mints, the calls it has checked, the plans it knows, the buffer it
+commits, the clock it keeps) share caches that must stay consistent with what is stored; split,
+they would share private state. Reading back lives in ``neem.query``, persisting and wiping in
+``neem.lifecycle``, bulk import in ``neem.importing``.
+
 One NEEM per user. Every public call validates first and then writes one transaction, so bad
 input raises before anything is written and a killed process loses at most the call in flight.
 Task, role, plan and object individuals are descriptions shared by every event of the NEEM that
