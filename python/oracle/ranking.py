@@ -58,6 +58,7 @@ def rank_neem(
     settings: Hyperparameters,
     available: list[str] | None = None,
     at: Instant | None = None,
+    *,
     write: bool = True,
     method: str = DEFAULT,
 ) -> NeemRanking:
