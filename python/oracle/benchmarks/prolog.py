@@ -9,6 +9,8 @@ from datetime import datetime, timedelta
 from pathlib import Path
 from typing import Any
 
+from oracle.benchmarks.figures import growth_exponent, spread, spread_text
+
 
 #: Goal-by-goal evaluation costs one store query per solution of the goals before; on the
 #: 10,000-action NEEM it takes minutes, so it is timed on a NEEM of this many actions.
@@ -101,24 +103,6 @@ def run(quick: bool = False) -> list[dict]:
 HISTORY_SIZES = (1000, 10000, 50000)
 
 
-def _spread(samples: list[float]) -> dict[str, float]:
-    ordered = sorted(samples)
-    return {"min": ordered[0], "median": ordered[len(ordered) // 2], "max": ordered[-1]}
-
-
-def _fmt(spread: dict[str, float], unit: float = 1.0, digits: int = 3) -> str:
-    return "/".join(f"{spread[k] * unit:.{digits}f}" for k in ("min", "median", "max"))
-
-
-def _exponent(sizes: list[int], values: list[float]) -> float | None:
-    """The growth exponent k of value ~ size^k between the two largest sizes."""
-    import math
-
-    if len(sizes) < 2 or values[-2] <= 0 or values[-1] <= 0:
-        return None
-    return math.log(values[-1] / values[-2]) / math.log(sizes[-1] / sizes[-2])
-
-
 def _chains_store(tmp: Path, sizes: list[int]) -> Path:
     """A store with one imported NEEM ``u<N>`` per size: the first N rows of one simulated
     persona (the world generator's chains, ~20 available tasks per decision), imported through
@@ -205,7 +189,7 @@ def _timed(fn, repeat: int = 3) -> tuple[dict[str, float], dict[str, float]]:
         fn()
         walls.append(time.perf_counter() - w)
         cpus.append(time.process_time() - c)
-    return _spread(walls), _spread(cpus)
+    return spread(walls), spread(cpus)
 
 
 def _rank_cli(store: Path, neem: str, repeat: int = 3) -> tuple[dict[str, float], dict[str, float]]:
@@ -223,7 +207,7 @@ def _rank_cli(store: Path, neem: str, repeat: int = 3) -> tuple[dict[str, float]
         walls.append(time.perf_counter() - start)
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
         cpus.append(after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
-    return _spread(walls), _spread(cpus)
+    return spread(walls), spread(cpus)
 
 
 def history_figures(quick: bool = False) -> list[dict]:
@@ -253,13 +237,14 @@ def history_figures(quick: bool = False) -> list[dict]:
             wall, cpu = _timed(lambda: history.append(len(bridge.history())))
             _, floor = _timed(lambda: _sql_floor(path, neem))
             ratio = cpu["median"] / floor["median"]
-            print(f"history read, {n:>6,} actions ({history[-1]} rows): wall {_fmt(wall)} s, cpu {_fmt(cpu)} s"
-                  f" (min/median/max); SQL floor cpu {_fmt(floor)} s; cpu/floor {ratio:.1f}x")
+            print(f"history read, {n:>6,} actions ({history[-1]} rows): wall {spread_text(wall, digits=3)} s,"
+                  f" cpu {spread_text(cpu, digits=3)} s"
+                  f" (min/median/max); SQL floor cpu {spread_text(floor, digits=3)} s; cpu/floor {ratio:.1f}x")
             why_wall, _ = _timed(lambda: bridge.why_not("pick", ["banana"]))
-            print(f"why_not(pick(banana)) in process, {n:>6,} actions: {_fmt(why_wall, 1000, 1)} ms"
+            print(f"why_not(pick(banana)) in process, {n:>6,} actions: {spread_text(why_wall, 1000, 1)} ms"
                   f" (target <= {50 if n <= 10000 else 200} ms)")
             rank_wall, rank_cpu = _rank_cli(path, neem)
-            print(f"rank start to exit, {n:>6,} actions: wall {_fmt(rank_wall)} s, cpu {_fmt(rank_cpu)} s"
+            print(f"rank start to exit, {n:>6,} actions: wall {spread_text(rank_wall, digits=3)} s, cpu {spread_text(rank_cpu, digits=3)} s"
                   f" (target < {1 if n <= 10000 else 4} s)")
             medians["history_cpu"].append(cpu["median"])
             medians["rank_wall"].append(rank_wall["median"])
@@ -277,7 +262,7 @@ def history_figures(quick: bool = False) -> list[dict]:
                 rows.append({"area": "prolog", "name": "history equals reference", "actions": n, "equal": same == "true"})
             bridge.close()
         for key, label in (("history_cpu", "history read cpu"), ("rank_wall", "rank wall"), ("floor", "SQL floor")):
-            k = _exponent(sizes, medians[key])
+            k = growth_exponent(sizes, medians[key])
             if k is not None:
                 print(f"growth exponent, {label}, {sizes[-2]:,} -> {sizes[-1]:,}: {k:.2f} (n log n ~ 1.1)")
                 rows.append({"area": "prolog", "name": f"growth {label}", "exponent": k,
