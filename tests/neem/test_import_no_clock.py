@@ -115,3 +115,11 @@ def _calls(onto, ranking):  # noqa: ANN001, ANN202 - test helper
     from oracle.calls import call_of
 
     return [call_of(onto, t.option) for t in ranking]
+
+
+def test_a_dump_keeps_the_neem_without_a_clock(tmp_path):
+    spec, other = str(tmp_path / "s.sqlite"), str(tmp_path / "t.sqlite")
+    assert main(["import", str(timeless(tmp_path)), "--store", spec, "--no-clock", *ONTOLOGY]) == 0
+    assert main(["export", "--store", spec, "--neem", "ada", "--out", str(tmp_path / "dump")]) == 0
+    assert main(["load", str(tmp_path / "dump"), "--store", other]) == 0
+    assert open_store(other).neem("ada").meta["clock"] == "sequence"
