@@ -101,6 +101,15 @@ def part_of_day_at(seconds: float) -> str:
     return time_of_day(clock(seconds))
 
 
+def parse_iso(text: str) -> datetime:
+    """ISO-8601 text as a datetime (``Z`` is UTC; without a zone it stays naive, the wall clock
+    that ``seconds_of`` reads as UTC). Raises TimeValueError naming the text when it is not one."""
+    try:
+        return datetime.fromisoformat(text.replace("Z", "+00:00"))
+    except ValueError:
+        raise TimeValueError(f"{text!r}: expected ISO-8601 (2024-05-01T08:30) or unix seconds") from None
+
+
 def parse_instant(text: str) -> Instant:
     """``--at`` text as an Instant: unix seconds, or ISO-8601 (without a zone: UTC).
 
@@ -111,11 +120,7 @@ def parse_instant(text: str) -> Instant:
         pass
     else:
         return Instant.of(check_seconds(seconds, repr(text)))
-    try:
-        moment = datetime.fromisoformat(text.replace("Z", "+00:00"))
-    except ValueError:
-        raise TimeValueError(f"{text!r}: expected ISO-8601 (2024-05-01T08:30) or unix seconds") from None
-    return Instant.of(moment)
+    return Instant.of(parse_iso(text))
 
 
 def now() -> Instant:
