@@ -17,14 +17,11 @@ from pathlib import Path
 from oracle.chains import ChainRow, read_chains
 from oracle.errors import LoggingError
 from oracle.neem.lifecycle import wipe_temporary_neems
-from oracle.neem.writer import NeemLogger, check_call
+from oracle.neem.writer import NeemLogger, check_call, check_performer
 from oracle.ontology.model import OdbOntology
 from oracle.store import Store
 from oracle.store.tbox import TBox, tbox_from_graph
 from oracle.timeline import CLOCK_KEY, IDLE_THRESHOLD_S, SEQUENCE_CLOCK, Instant, TimeValueError, seconds_of, sequence_instant
-
-PERFORMERS = ("robot", "user")
-
 
 @dataclass
 class _UserPlan:
@@ -68,9 +65,7 @@ def _check_row(onto: OdbOntology, row: ChainRow, plan: _UserPlan, checked: set[o
             check_call(onto, call)
             if len(checked) < 100_000:
                 checked.add(call)
-    performer = row.extra.get("performed_by", "robot")
-    if performer not in PERFORMERS:
-        raise LoggingError(f"performed_by must be 'robot' or 'user', got {performer!r}")
+    check_performer(row.extra.get("performed_by", "robot"))
     if row.time is None:  # the sequence clock: in order by construction
         return _check_id(row, plan)
     try:

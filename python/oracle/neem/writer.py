@@ -79,6 +79,17 @@ def person_iri(ns: str, user: str) -> str:
     return f"{ns}Agent_{slug}" if slug != "robot" else f"{ns}Agent_user-robot"
 
 
+#: Who may perform an action: the robot, or the user it assists.
+PERFORMERS = ("robot", "user")
+
+
+def check_performer(who: object) -> str:
+    """``who`` if it names a performer (PERFORMERS), else LoggingError."""
+    if who not in PERFORMERS:
+        raise LoggingError(f"performed_by must be 'robot' or 'user', got {who!r}")
+    return str(who)
+
+
 def check_call(onto: OdbOntology, call: TaskCall) -> None:
     """LoggingError unless the call's task and objects are in the ontology and its objects fit
     the task's roles (the checks an action gets before anything is written)."""
@@ -256,9 +267,8 @@ class NeemLogger:
     def _agent(self, who: str, out: _Out) -> str:
         if who == "robot":
             return self._individual(f"{self.ns}Agent_robot", T.ROBOT_CLASS, out)
-        if who == "user":
-            return self._individual(person_iri(self.ns, self.user), T.PERSON_CLASS, out)
-        raise LoggingError(f"performed_by must be 'robot' or 'user', got {who!r}")
+        check_performer(who)
+        return self._individual(person_iri(self.ns, self.user), T.PERSON_CLASS, out)
 
     def _resolve(self, call: TaskCall | str) -> TaskCall:
         resolved = self._resolved.get(call)

@@ -18,7 +18,7 @@ from oracle.algorithm.predictors import make_predictor as make_named
 from oracle.algorithm.records import Ranking, Step
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError
-from oracle.neem.writer import LoggedAction, NeemLogger
+from oracle.neem.writer import LoggedAction, NeemLogger, check_performer
 from oracle.timeline import Instant, clock, is_idle_gap
 from oracle.ontology import OdbOntology
 from oracle.ranking import finite
@@ -176,8 +176,7 @@ class NeemSession:
         call = self.calls([call_text], "call")[0]
         moment = moment_of(at, "at")
         self._check_time(Instant.of(moment), f"action {call}")
-        if performed_by not in ("robot", "user"):
-            raise LoggingError(f"performed_by must be 'robot' or 'user', got {performed_by!r}")
+        check_performer(performed_by)
         if key is None:
             self._keys += 1
             key = f"a{self._keys}"
