@@ -103,6 +103,14 @@ def run(quick: bool = False) -> list[dict]:
 HISTORY_SIZES = (1000, 10000, 50000)
 
 
+_spread, _exponent = spread, growth_exponent
+
+
+def _fmt(figure: dict[str, float], unit: float = 1.0, digits: int = 3) -> str:
+    """A spread as min/median/max, three digits unless told (the history figures are seconds)."""
+    return spread_text(figure, unit, digits)
+
+
 def _chains_store(tmp: Path, sizes: list[int]) -> Path:
     """A store with one imported NEEM ``u<N>`` per size: the first N rows of one simulated
     persona (the world generator's chains, ~20 available tasks per decision), imported through
@@ -189,7 +197,7 @@ def _timed(fn, repeat: int = 3) -> tuple[dict[str, float], dict[str, float]]:
         fn()
         walls.append(time.perf_counter() - w)
         cpus.append(time.process_time() - c)
-    return spread(walls), spread(cpus)
+    return _spread(walls), _spread(cpus)
 
 
 def _rank_cli(store: Path, neem: str, repeat: int = 3) -> tuple[dict[str, float], dict[str, float]]:
@@ -207,7 +215,7 @@ def _rank_cli(store: Path, neem: str, repeat: int = 3) -> tuple[dict[str, float]
         walls.append(time.perf_counter() - start)
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
         cpus.append(after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
-    return spread(walls), spread(cpus)
+    return _spread(walls), _spread(cpus)
 
 
 def history_figures(quick: bool = False) -> list[dict]:
@@ -237,14 +245,13 @@ def history_figures(quick: bool = False) -> list[dict]:
             wall, cpu = _timed(lambda: history.append(len(bridge.history())))
             _, floor = _timed(lambda: _sql_floor(path, neem))
             ratio = cpu["median"] / floor["median"]
-            print(f"history read, {n:>6,} actions ({history[-1]} rows): wall {spread_text(wall, digits=3)} s,"
-                  f" cpu {spread_text(cpu, digits=3)} s"
-                  f" (min/median/max); SQL floor cpu {spread_text(floor, digits=3)} s; cpu/floor {ratio:.1f}x")
+            print(f"history read, {n:>6,} actions ({history[-1]} rows): wall {_fmt(wall)} s, cpu {_fmt(cpu)} s"
+                  f" (min/median/max); SQL floor cpu {_fmt(floor)} s; cpu/floor {ratio:.1f}x")
             why_wall, _ = _timed(lambda: bridge.why_not("pick", ["banana"]))
-            print(f"why_not(pick(banana)) in process, {n:>6,} actions: {spread_text(why_wall, 1000, 1)} ms"
+            print(f"why_not(pick(banana)) in process, {n:>6,} actions: {_fmt(why_wall, 1000, 1)} ms"
                   f" (target <= {50 if n <= 10000 else 200} ms)")
             rank_wall, rank_cpu = _rank_cli(path, neem)
-            print(f"rank start to exit, {n:>6,} actions: wall {spread_text(rank_wall, digits=3)} s, cpu {spread_text(rank_cpu, digits=3)} s"
+            print(f"rank start to exit, {n:>6,} actions: wall {_fmt(rank_wall)} s, cpu {_fmt(rank_cpu)} s"
                   f" (target < {1 if n <= 10000 else 4} s)")
             medians["history_cpu"].append(cpu["median"])
             medians["rank_wall"].append(rank_wall["median"])
@@ -262,7 +269,7 @@ def history_figures(quick: bool = False) -> list[dict]:
                 rows.append({"area": "prolog", "name": "history equals reference", "actions": n, "equal": same == "true"})
             bridge.close()
         for key, label in (("history_cpu", "history read cpu"), ("rank_wall", "rank wall"), ("floor", "SQL floor")):
-            k = growth_exponent(sizes, medians[key])
+            k = _exponent(sizes, medians[key])
             if k is not None:
                 print(f"growth exponent, {label}, {sizes[-2]:,} -> {sizes[-1]:,}: {k:.2f} (n log n ~ 1.1)")
                 rows.append({"area": "prolog", "name": f"growth {label}", "exponent": k,
