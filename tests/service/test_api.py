@@ -20,7 +20,7 @@ def neem(client) -> str:
 def test_situation_answers_ranking_and_chain_and_writes_the_preference(client, neem):
     drive(client, neem)
     answer = client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(2, 0)}).json()
-    assert answer["history"] == 2 * len(ROUTINE) + 1  # the night between is an idle action
+    assert answer["history"] == 2 * len(ROUTINE) + 2  # each night is an idle step, tonight's too
     assert [r["rank"] for r in answer["ranking"]] == list(range(1, len(AVAILABLE) + 1))
     assert sorted(r["task"] for r in answer["ranking"]) == AVAILABLE
     top = answer["ranking"][0]["task"]
@@ -49,6 +49,64 @@ def test_incremental_predictor_ranks_like_a_fresh_fit_of_the_neem(client, neem, 
     fresh = ctx.thread.call(refit)
     assert fresh.history == live["history"]
     assert [str(c) for c in fresh.calls] == [r["task"] for r in live["ranking"]]
+    assert [round(min(t.score, 1e9), 9) for t in fresh.ranking] == [round(r["score"], 9) for r in live["ranking"]]
+    # the support too: the same past situations, found by their place in the stored history
+    from oracle.ranking import support_fields
+
+    begins = [float(row["begin"]) for row in ctx.thread.call(lambda: ctx.engine.bridge(neem).history())]
+    assert [[begins[p] for p in support_fields(t).get("situations", [])] for t in fresh.ranking] == \
+        [r["situations"] for r in live["ranking"]]
+    assert [t.n_similar for t in fresh.ranking] == [r["support"] for r in live["ranking"]]
+
+
+def test_support_names_the_past_situations_behind_each_task(client, neem):
+    """The routine predictor's support: how often the user did the task after the same context,
+    and when (only times at which the user began that very task)."""
+    drive(client, neem)
+    ranking = client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(2, 0)}).json()["ranking"]
+    began = {call: {at(day, 10 * i) for day in range(2) for i, c in enumerate(ROUTINE) if c == call} for call in AVAILABLE}
+    for entry in ranking:
+        assert set(entry["situations"]) <= began[entry["task"]], entry
+        assert entry["situations"] == sorted(entry["situations"])  # latest last
+        assert entry["reason"] and "\n" not in entry["reason"]
+    top = ranking[0]
+    assert top["context_order"] >= 1 and top["support"] >= 1 and top["situations"]
+    # the morning after a night: the routine's first task, after the break, the morning before
+    assert top["task"] == ROUTINE[0] and top["context"][-1] == "idle" and top["situations"] == [at(1, 0)]
+    assert top["reason"].startswith("after ") and "a break: 1\u00d7" in top["reason"]
+    banana = next(e for e in ranking if e["task"] == "pick(banana)")
+    assert (banana["context_order"], banana["support"], banana["situations"]) == (-1, 0, [])
+    assert banana["reason"].startswith("never done")
+
+
+def test_a_situation_after_a_break_is_ranked_after_the_idle_step(client, neem):
+    """The replay observes the idle step before it ranks the next decision; live, the NEEM's
+    idle action is written only with the next action, so the session must add it itself."""
+    drive(client, neem)
+    morning = client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(2, 0)}).json()
+    soon = client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(2, 1)}).json()
+    assert morning["history"] == soon["history"]  # one break, however many situations
+    assert morning["chain"][:2] == ROUTINE[:2]
+    done = client.post(f"/api/neems/{neem}/actions", json={"call": ROUTINE[0], "begin": at(2, 2)}).json()
+    assert done["idle"] is not None and done["history"] == morning["history"] + 1
+
+
+def test_an_action_inside_the_gap_undoes_the_break(client, neem, ctx, onto):
+    """A situation after the idle gap, then an action that began before it: the NEEM holds no
+    idle action, and the live predictor must again equal a fresh fit of the NEEM."""
+    from oracle.algorithm.params import Hyperparameters
+    from oracle.ranking import rank_neem
+    from oracle.timeline import Instant
+
+    drive(client, neem, days=1)
+    last = at(0, 10 * (len(ROUTINE) - 1)) + 5
+    client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": last + 60})
+    done = client.post(f"/api/neems/{neem}/actions", json={"call": "pick(apple)", "begin": last + 5, "end": last + 6}).json()
+    assert done["idle"] is None and done["history"] == len(ROUTINE) + 1
+    live = client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": last + 8}).json()
+    fresh = ctx.thread.call(lambda: rank_neem(ctx.engine.bridge(neem), onto, Hyperparameters(), AVAILABLE,
+                                              Instant.of(last + 8), write=False))
+    assert fresh.history == live["history"]
     assert [round(min(t.score, 1e9), 9) for t in fresh.ranking] == [round(r["score"], 9) for r in live["ranking"]]
 
 
