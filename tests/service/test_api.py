@@ -150,6 +150,23 @@ def test_perception_is_logged_and_unknown_objects_refused(client, neem):
     ("/api/prolog", {"query": "halt", "neem": "ada"}, 400, "not allowed"),
     ("/api/prolog", {"query": "kb_call(halt)", "neem": "ada"}, 400, "not allowed"),
     ("/api/prolog", {"query": "member(X, [a", "neem": "ada"}, 400, "syntax"),
+    ("/api/neems/ada/situation", {"available": ["pick(red_mug)"], "at": 1e300}, 400, "between 1970"),
+    ("/api/neems/ada/situation", {"available": ["pick(red_mug)"], "at": "9999-12-31T23:59"}, 400, "between 1970"),
+    ("/api/neems/ada/situation", {"available": "pick(red_mug)"}, 422, "available"),
+    ("/api/neems/ada/perception", {"objects": [{"name": "red_mug", "pose": [1, 2]}]}, 422, "pose"),
+    ("/api/neems/ada/perception", {"objects": [{"name": "red_mug"}], "at": "soon"}, 400, "ISO-8601"),
+    ("/api/neems/ada/actions", {"phase": "begin"}, 400, "call is required"),
+    ("/api/neems/ada/actions", {"phase": "end"}, 400, "needs the id"),
+    ("/api/neems/ada/actions", {"call": "pick(red_mug)", "performed_by": "cat"}, 422, "performed_by"),
+    ("/api/neems/ada/actions", {"call": "fly(red_mug)"}, 400, "fly"),
+    ("/api/neems/ada/choice", {"task": "pick(red_mug)", "workflow": ["fly(x)"]}, 400, "workflow"),
+    ("/api/neems", {"user": "ada", "neem": "ada"}, 400, "already exists"),
+    ("/api/neems", {"user": ""}, 422, "user"),
+    ("/api/prolog", {"query": "X = 1", "neem": "nobody"}, 404, "nobody"),
+    ("/api/prolog", {"query": "X = 1", "neem": "ada", "bindings": {"X": True}}, 400, "binding X"),
+    ("/api/prolog", {"query": "X = 1", "neem": "ada", "limit": 0}, 422, "limit"),
+    ("/api/prolog", {"query": "open('/etc/passwd', read, S)", "neem": "ada"}, 400, "not allowed"),
+    ("/api/prolog", {"query": "assertz(foo)", "neem": "ada"}, 400, "not allowed"),
 ])
 def test_bad_input_is_a_one_line_4xx_and_changes_nothing(client, neem, ctx, path, body, status, needle):
     client.post(f"/api/neems/{neem}/actions", json={"call": "pick(apple)", "begin": at(0, 0), "end": at(0, 2)})
@@ -160,6 +177,28 @@ def test_bad_input_is_a_one_line_4xx_and_changes_nothing(client, neem, ctx, path
     assert needle in error and "\n" not in error
     assert ctx.thread.call(lambda: ctx.engine.store.count(neem)) == count
     assert client.get("/api/neems").status_code == 200  # still serving
+
+
+@pytest.mark.parametrize("method,path,status,needle", [
+    ("GET", "/api/neems/ada/why-not", 422, "task"),
+    ("GET", "/api/neems/ada/why-not?task=fly(x)", 400, "fly"),
+    ("GET", "/api/neems/ada/why-not?task=pick(banana)&at=never", 400, "ISO-8601"),
+    ("GET", "/api/neems/nobody/why-not?task=pick(banana)", 404, "nobody"),
+    ("GET", "/api/neems/nobody/what-next", 404, "nobody"),
+    ("GET", "/api/neems/nobody/situation", 404, "nobody"),
+    ("GET", "/api/neems/ada/something-else?task=pick(", 400, "malformed"),
+    ("GET", "/api/nothing-here", 404, "Not Found"),
+    ("DELETE", "/api/neems", 405, "Method Not Allowed"),
+    ("POST", "/api/neems/ada/situation", 422, "JSON"),  # a body that is not JSON
+])
+def test_every_other_refusal_is_one_line_too(client, neem, ctx, method, path, status, needle):
+    count = ctx.thread.call(lambda: ctx.engine.store.count(neem))
+    response = client.request(method, path, content=b"{not json", headers={"Content-Type": "application/json"})
+    assert response.status_code == status, response.text
+    error = response.json()["error"]
+    assert needle in error and "\n" not in error
+    assert ctx.thread.call(lambda: ctx.engine.store.count(neem)) == count
+    assert ctx.thread.call(lambda: (ctx.engine.session(neem).latest, ctx.engine.session(neem).choice)) == (None, None)
 
 
 def test_prolog_pages_solutions_and_binds_values_as_terms(client, neem):

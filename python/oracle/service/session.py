@@ -20,7 +20,7 @@ from oracle.answers import support_sentence
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError
 from oracle.neem.writer import LoggedAction, NeemLogger
-from oracle.timeline import Instant, clock, is_idle_gap
+from oracle.timeline import Instant, TimeValueError, clock, is_idle_gap
 from oracle.ontology import OdbOntology
 from oracle.ranking import finite, support_fields
 from oracle.calls import call_of, check_call, idle_step, opening_tasks, option_of, steps_from_history
@@ -62,7 +62,17 @@ def make_predictor(ontology: OdbOntology, settings: Hyperparameters, method: str
 
 
 def moment_of(value: Any, what: str) -> Moment:
-    """A time the API received: unix seconds, or ISO-8601 (naive: the logger's rule, UTC)."""
+    """A time the API received: unix seconds, or ISO-8601 (naive: the logger's rule, UTC),
+    within the range every store accepts."""
+    moment = _moment(value, what)
+    try:
+        Instant.of(moment)
+    except TimeValueError as error:
+        raise LoggingError(f"{what}: {error}") from None
+    return moment
+
+
+def _moment(value: Any, what: str) -> Moment:
     if value is None:
         return time.time()
     if isinstance(value, bool):
@@ -221,6 +231,8 @@ class NeemSession:
     def end(self, key: str | None, call_text: str | None, at: Any) -> LoggedAction:
         if key is None:
             matches = [a for a in self.open.values() if call_text is not None and str(a.call) == str(parse_call(call_text))]
+            if call_text is None:
+                raise LoggingError("phase end needs the id the begin answered (or the open action's call)")
             if len(matches) != 1:
                 raise LoggingError(f"no single open action {call_text!r} to end; give its id")
             key = matches[0].key
