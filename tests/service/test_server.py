@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import os
 import shutil
 import socket
@@ -234,3 +235,40 @@ def test_page_reconnects_after_the_service_restarts_and_catches_up(tmp_path, bro
         page.close()
     finally:
         stop_server(process)
+
+
+def test_simulate_command_drives_the_service_and_reports_latencies(server):
+    """``oracle simulate`` as a user runs it: one robot, a persona's day, into its own NEEM."""
+    from oracle.service.robot import persona_rows
+
+    result = subprocess.run([sys.executable, "-m", "oracle", "simulate", "--serve", server, "--persona", "2",
+                             "--days", "1", "--neem", "sim-cli"], cwd=ROOT, capture_output=True, text=True, timeout=600)
+    assert result.returncode == 0, result.stdout + result.stderr
+    summary = re.match(r"1 robot\(s\) drove (\d+) steps in [\d.]+ s; 0 errors$", result.stdout.splitlines()[0])
+    assert summary, result.stdout
+    _, rows = persona_rows(2, 3, 1)
+    assert int(summary.group(1)) == len(rows)
+    for kind in ("situation", "choice", "action"):
+        assert re.search(rf"^  {kind}\s+n=\s*{len(rows)}\s+p50\s+[\d.]+ ms\s+p99\s+[\d.]+ ms$", result.stdout, re.M), kind
+    assert call(server, "/api/neems/sim-cli/choice")[1]["task"] == str(rows[-1].action)
+    _, latest = call(server, "/api/neems/sim-cli/situation")
+    assert latest["history"] >= len(rows) - 1 and latest["ranking"]
+
+
+@pytest.mark.parametrize("args,message", [
+    (["--serve", "ftp://127.0.0.1:1"], "error: --serve 'ftp://127.0.0.1:1': expected http://HOST:PORT"),
+    (["--serve", "http://127.0.0.1:1", "--robots", "0"], "error: --robots and --days must be at least 1"),
+])
+def test_simulate_refuses_bad_arguments_in_one_line(args, message):
+    result = subprocess.run([sys.executable, "-m", "oracle", "simulate", *args], cwd=ROOT, capture_output=True,
+                            text=True, timeout=120)
+    assert (result.returncode, result.stderr.strip()) == (1, message)
+
+
+def test_simulate_against_no_service_fails_with_the_reason():
+    port = free_port()  # nothing listens there
+    result = subprocess.run([sys.executable, "-m", "oracle", "simulate", "--serve", f"http://127.0.0.1:{port}",
+                             "--days", "1"], cwd=ROOT, capture_output=True, text=True, timeout=120)
+    assert result.returncode == 1
+    assert "0 steps" in result.stdout and "1 errors" in result.stdout
+    assert re.search(r"error: .*(refused|reach)", result.stdout, re.I), result.stdout
