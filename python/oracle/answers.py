@@ -89,7 +89,7 @@ def support_sentence(entry: dict[str, Any]) -> str:
         after = ("\u2026 " if len(context) > SHOWN_CONTEXT else "") + " \u2192 ".join(context[-SHOWN_CONTEXT:])
         return f"after {after}: {n}\u00d7{last}"
     if order == 0 or entry.get("done"):
-        return f"done {n}\u00d7, not after this{last}" if n else "done before, not after this"
+        return f"done {n}\u00d7, not at this point{last}" if n else "done before, not at this point"
     return "never done: like similar tasks"
 
 

@@ -84,6 +84,13 @@ _SCRIPT = """
     }).catch(function (e) { say('Could not send your choice: ' + e.message); });
   }
   function whyNot(task) { ask('/why-not?task=' + encodeURIComponent(task)); }
+  function breakable(span, text) {  // a long call wraps after ( _ or , and never mid-word
+    text.split(/(?<=[(_,])/).forEach(function (part, i) {
+      if (i) span.appendChild(document.createElement('wbr'));
+      span.appendChild(document.createTextNode(part));
+    });
+    return span;
+  }
   function supportText(t) {
     if (t.reason) return t.reason;
     var n = t.support; return n ? (n === 1 ? 'like 1 past situation' : 'like ' + n + ' past situations') : 'new to me';
@@ -108,7 +115,7 @@ _SCRIPT = """
       var li = el('li', i === 0 ? 'top' : '');
       var b = el('button', 'task'); b.type = 'button'; b.dataset.task = t.task;
       b.appendChild(el('span', 'rank', String(t.rank)));
-      b.appendChild(el('span', 'name', t.task));
+      b.appendChild(breakable(el('span', 'name'), t.task));
       b.appendChild(el('span', 'why-score', supportText(t)));
       b.setAttribute('aria-label', (i === 0 ? 'Suggested: ' : 'Option ' + t.rank + ': ') + t.task);
       b.addEventListener('click', function () { choose(t.task, null, li); });
@@ -199,7 +206,7 @@ def _items(state: dict[str, Any] | None) -> str:
         label = ("Suggested: " if index == 0 else f"Option {task['rank']}: ") + name
         out.append(
             f"<li class='{'top' if index == 0 else ''}'><button type='button' class='task' data-task='{name}'"
-            f" aria-label='{label}'><span class='rank'>{task['rank']}</span><span class='name'>{name}</span>"
+            f" aria-label='{label}'><span class='rank'>{task['rank']}</span><span class='name'>{_breakable(name)}</span>"
             f"<span class='why-score'>{support}</span></button>"
             f"<button type='button' class='whynot' aria-label='Why not {name}?'>Why not?</button></li>")
         if index == 0 and len(chain) >= 2:
@@ -207,6 +214,11 @@ def _items(state: dict[str, Any] | None) -> str:
                        f" workflow, one step after the other</span><span class='steps'>{escape(' → '.join(chain))}"
                        "</span></button></li>")
     return "".join(out)
+
+
+def _breakable(text: str) -> str:
+    """Line-break opportunities after ( _ and , (the script's ``breakable``)."""
+    return text.replace("(", "(<wbr>").replace("_", "_<wbr>").replace(",", ",<wbr>")
 
 
 def _shell(title: str, body: str, neem: str) -> str:
