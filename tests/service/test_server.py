@@ -244,7 +244,8 @@ def test_simulate_command_drives_the_service_and_reports_latencies(server):
     result = subprocess.run([sys.executable, "-m", "oracle", "simulate", "--serve", server, "--persona", "2",
                              "--days", "1", "--neem", "sim-cli"], cwd=ROOT, capture_output=True, text=True, timeout=600)
     assert result.returncode == 0, result.stdout + result.stderr
-    summary = re.match(r"1 robot\(s\) drove (\d+) steps in [\d.]+ s; 0 errors$", result.stdout.splitlines()[0])
+    assert result.stdout.splitlines()[0] == f"driving NEEM sim-cli: the page is {server}/?neem=sim-cli"
+    summary = re.search(r"^1 robot\(s\) drove (\d+) steps in [\d.]+ s; 0 errors$", result.stdout, re.M)
     assert summary, result.stdout
     _, rows = persona_rows(2, 3, 1)
     assert int(summary.group(1)) == len(rows)
