@@ -278,3 +278,28 @@ def test_a_neem_logged_elsewhere_shows_its_latest_situation(ctx, onto):
         shown = client.get("/api/neems/eve/situation").json()
         assert sorted(r["task"] for r in shown["ranking"]) == ["open(fridge)", "pick(thermos)"]
         assert "pick(thermos)" in client.get("/", params={"neem": "eve"}).text
+
+
+def test_the_thesis_oracle_explains_with_its_similar_situations(tmp_path, onto):
+    """``serve --method thesis``: support is |H(s_o)| and the reason says so; no context fields."""
+    import re
+
+    from fastapi.testclient import TestClient
+
+    from oracle.algorithm.params import Hyperparameters
+    from oracle.service import build_context
+
+    context = build_context(str(tmp_path / "t.sqlite"), onto, Hyperparameters(), method="thesis")
+    try:
+        with TestClient(create_app(context)) as client:
+            client.post("/api/neems", json={"user": "ada", "neem": "ada"})
+            drive(client, "ada", days=1)
+            ranking = client.post("/api/neems/ada/situation", json={"available": AVAILABLE, "at": at(1, 0)}).json()["ranking"]
+    finally:
+        context.thread.close()
+    assert all((e["probability"], e["context_order"], e["context"], e["situations"]) == (None, None, [], []) for e in ranking)
+    for entry in ranking:
+        n = entry["support"]
+        assert entry["reason"] == ("new to me" if n == 0 else f"like {n} past situation{'s' if n != 1 else ''}")
+        assert re.fullmatch(r"like \d+ past situations?|new to me", entry["reason"])
+    assert any(e["support"] > 0 for e in ranking)
