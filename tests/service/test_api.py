@@ -303,3 +303,27 @@ def test_the_thesis_oracle_explains_with_its_similar_situations(tmp_path, onto):
         assert entry["reason"] == ("new to me" if n == 0 else f"like {n} past situation{'s' if n != 1 else ''}")
         assert re.fullmatch(r"like \d+ past situations?|new to me", entry["reason"])
     assert any(e["support"] > 0 for e in ranking)
+
+
+def test_the_request_log_holds_ids_never_the_users_data(ctx, caplog):
+    """Method, route template, NEEM id, status and time; no task, object, query or token, also on
+    refusals."""
+    import logging
+
+    from fastapi.testclient import TestClient
+
+    ctx.token = "s3cret-token-123"
+    auth = {"Authorization": "Bearer s3cret-token-123"}
+    with caplog.at_level(logging.INFO, logger="oracle.service"), TestClient(create_app(ctx)) as client:
+        client.post("/api/neems", json={"user": "Ada Lovelace", "neem": "ada"}, headers=auth)
+        client.post("/api/neems/ada/perception", json={"objects": [{"name": "banana"}], "at": at(0, 0)}, headers=auth)
+        client.post("/api/neems/ada/situation", json={"available": ["pick(red_mug)", "open(fridge)"], "at": at(0, 1)}, headers=auth)
+        client.post("/api/neems/ada/actions", json={"call": "pick(red_mug)", "begin": at(0, 2)}, headers=auth)
+        client.get("/api/neems/ada/why-not", params={"task": "pick(thermos)"}, headers=auth)
+        client.post("/api/neems/ada/situation", json={"available": ["fly(unicorn)"]}, headers=auth)
+        client.post("/api/prolog", json={"query": "atom_length(secretquery, N)", "neem": "ada"}, headers=auth)
+        client.get("/api/neems", params={"token": "wrong-token-guess"})
+    text = "\n".join(record.getMessage() for record in caplog.records)
+    assert "POST /api/neems/{neem}/situation neem=ada 200" in text
+    for secret in ("Ada Lovelace", "banana", "red_mug", "fridge", "thermos", "unicorn", "secretquery", "s3cret", "wrong-token"):
+        assert secret not in text, secret
