@@ -20,11 +20,11 @@ from oracle.algorithm.predictors import DEFAULT, make_predictor
 from oracle.algorithm.records import RankedTask, Ranking
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError, NeemOracleError
-from oracle.calls import call_of, check_call, idle_step, opening_tasks, option_of, steps_from_history
+from oracle.calls import call_of, check_call, opening_tasks, option_of, steps_before
 from oracle.neem.query import recorded_part_of_day
 from oracle.neem.writer import NeemLogger
 from oracle.ontology import OdbOntology
-from oracle.timeline import Instant, clock, is_idle_gap, now, part_of_day_at
+from oracle.timeline import Instant, now, part_of_day_at
 
 if TYPE_CHECKING:
     from oracle.bridge import Bridge
@@ -55,7 +55,8 @@ def finite(score: float) -> float:
 def support_fields(task: RankedTask) -> dict[str, Any]:
     """What supports a routine-predictor ranking (empty for the thesis oracle): its probability,
     the exact context it followed (``context_order`` its length; 0: done, not after this context;
-    -1: never done) and the history positions of those past situations (latest last, at most 5)."""
+    -1: no counted context holds it) and the history positions of those past situations (latest
+    last, at most 5)."""
     from oracle.algorithm.routine import RoutineTask
 
     if not isinstance(task, RoutineTask):
@@ -89,13 +90,7 @@ def rank_neem(
         recorded = recorded_part_of_day(bridge.store, bridge.neem_id, ontology.vocab, begin)
         instant = Instant(begin, recorded or part_of_day_at(begin))
     when, part = instant.seconds, instant.part_of_day
-    rows = [row for row in bridge.history() if float(row["begin"]) < when]
-    steps = steps_from_history(ontology, rows)
-    last_end = max((float(row["end"]) for row in rows), default=None)
-    if last_end is not None and is_idle_gap(last_end, when) and rows[-1]["call"] != "idle":
-        # a decision after a break follows an idle step, as the evaluation replays it; the NEEM
-        # holds the idle action only once the next action is logged
-        steps.append(idle_step(ontology, clock(last_end)))
+    steps = steps_before(ontology, bridge.history(), when)
     oracle = make_predictor(method, ontology.distances(), opening_tasks(ontology), settings).fit(steps)
     started = time.perf_counter()
     ranking = oracle.rank([option_of(ontology, c) for c in calls], part)

@@ -20,7 +20,8 @@ def neem(client) -> str:
 def test_situation_answers_ranking_and_chain_and_writes_the_preference(client, neem):
     drive(client, neem)
     answer = client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(2, 0)}).json()
-    assert answer["history"] == 2 * len(ROUTINE) + 2  # each night is an idle step, tonight's too
+    # the night between is an idle action; so is the pause before this decision (the replay's rule)
+    assert answer["history"] == 2 * len(ROUTINE) + 2
     assert [r["rank"] for r in answer["ranking"]] == list(range(1, len(AVAILABLE) + 1))
     assert sorted(r["task"] for r in answer["ranking"]) == AVAILABLE
     top = answer["ranking"][0]["task"]

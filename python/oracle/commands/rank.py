@@ -57,7 +57,7 @@ def describe(task) -> str:  # noqa: ANN001 - a RankedTask
         elif task.order == 0:
             why = f"done {task.n_similar}x, not after this context"
         else:
-            why = "never done: by similarity"
+            why = "no past context: by similarity"
         return f"p {task.probability:.3f} ({why})"
     return "no similar history" if math.isinf(task.score) else f"score {task.score:.4f} from {task.n_similar} similar"
 

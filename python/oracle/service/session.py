@@ -109,10 +109,10 @@ class NeemSession:
         #: Begin of the last logged action: a situation counts for the next action only when it
         #: came after it (odb_history:situation_history's rule).
         self.prev_begin: float | None = max(begins) if begins else None
-        #: A break the predictor was told of before its idle action is logged: a situation after
-        #: the idle gap is ranked after it, as the evaluation replays it (the logger writes the idle
-        #: action only with the next action).
-        self.break_fitted = False
+        #: The idle step of the current pause is fitted before its idle action is logged: by the
+        #: first situation after an idle gap, ranked as the replay ranks it (the logger writes the
+        #: idle action only with the next action, which then fits nothing more).
+        self.idle_fitted = False
         self.pending: Situation | None = None
         self.latest: dict[str, Any] | None = None
         self.open: dict[str, OpenAction] = {}
@@ -174,9 +174,9 @@ class NeemSession:
     def _fit_break(self, now: float) -> None:
         """The idle step before a situation posted an idle gap after the last action's end: the
         NEEM will hold it once the next action is logged; the predictor must see it now."""
-        if not self.break_fitted and self.last_end is not None and is_idle_gap(self.last_end, now, self.logger.idle_threshold):
+        if not self.idle_fitted and self.last_end is not None and is_idle_gap(self.last_end, now, self.logger.idle_threshold):
             self._fit(idle_step(self.ontology, clock(self.last_end)), self.last_end)
-            self.break_fitted = True
+            self.idle_fitted = True
 
     def write_situation(self, situation: Situation, ranking: Ranking) -> str:
         """Log the situation as the imagined one and the ranking as the imagined preference,
@@ -253,16 +253,16 @@ class NeemSession:
         logged = self.logger.action(call, start, stop, performed_by=performed_by)
         self.logger.flush()
         if logged.idle is not None and self.last_end is not None:
-            if not self.break_fitted:
+            if not self.idle_fitted:
                 self._fit(idle_step(self.ontology, clock(self.last_end)), self.last_end)
             self.prev_begin = self.last_end
-        elif self.break_fitted:
+        elif self.idle_fitted:
             # the action began before the break the predictor was told of (within the idle gap
             # of the last action): the NEEM holds no idle action, so neither may the predictor
             self.steps.pop()
             self.begins.pop()
             self.predictor = self.predictor.fit(self.steps)
-        self.break_fitted = False
+        self.idle_fitted = False
         pending = self.pending
         counts = (pending is not None and pending.when.seconds <= logged.begin
                   and (self.prev_begin is None or pending.when.seconds > self.prev_begin))
