@@ -13,11 +13,11 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.predictors import DEFAULT, make_predictor
-from oracle.algorithm.records import Ranking
+from oracle.algorithm.records import RankedTask, Ranking
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError, NeemOracleError
 from oracle.calls import call_of, check_call, opening_tasks, option_of, steps_before
@@ -50,6 +50,19 @@ class NeemRanking:
 
 def finite(score: float) -> float:
     return score if math.isfinite(score) else NO_HISTORY_SCORE
+
+
+def support_fields(task: RankedTask) -> dict[str, Any]:
+    """What supports a routine-predictor ranking (empty for the thesis oracle): its probability,
+    the exact context it followed (``context_order`` its length; 0: done, not after this context;
+    -1: no counted context holds it) and the history positions of those past situations (latest
+    last, at most 5)."""
+    from oracle.algorithm.routine import RoutineTask
+
+    if not isinstance(task, RoutineTask):
+        return {}
+    return {"probability": task.probability, "context_order": task.order, "context": list(task.context),
+            "situations": list(task.situations)}
 
 
 def rank_neem(

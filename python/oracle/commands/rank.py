@@ -22,7 +22,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from oracle.commands.common import connect, method_from, moment_from, settings_from
     from oracle.commands.shown import print_ranking
-    from oracle.ranking import finite, rank_neem
+    from oracle.ranking import finite, rank_neem, support_fields
 
     settings = settings_from(args.settings)
     method = method_from(args)
@@ -41,13 +41,3 @@ def run(args: argparse.Namespace) -> int:
         return 0
     print_ranking(result)
     return 0
-
-
-def support_fields(task) -> dict:  # noqa: ANN001 - a RankedTask
-    """What supports a routine-predictor ranking (empty for the thesis oracle)."""
-    from oracle.algorithm.routine import RoutineTask
-
-    if not isinstance(task, RoutineTask):
-        return {}
-    return {"probability": task.probability, "context_order": task.order, "context": list(task.context),
-            "situations": list(task.situations)}
