@@ -16,6 +16,10 @@ pyswip's traps (toolchain-facts §2) shape the code: outputs are always fresh va
 unified in Prolog, exceptions inside foreign predicates are caught here and handed over as
 ``error(Message)`` (pyswip would turn them into silent failure), no ``Prolog.query`` runs
 inside a foreign predicate, and every use of pyswip holds one process-wide lock.
+
+Why this module is large: every foreign predicate Prolog calls (matching, inserting, the
+facts' scopes, annotations, poses) lives here, beside the state and lock they share, so that
+pyswip and its traps stay in one module.
 """
 
 from __future__ import annotations

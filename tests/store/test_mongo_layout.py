@@ -65,7 +65,7 @@ def test_numbers_written_as_decimal128_are_found_by_a_double(tmp_path):
 def test_meta_has_the_fields_openease_reads(tmp_path):
     from datetime import datetime
 
-    from oracle.store.base import OPENEASE_FIELDS
+    from oracle.store.meta import OPENEASE_FIELDS
 
     store = make_store("mongomock", tmp_path)
     store.create_neem("5fc8ff968f880006aa208e19", user="alice", meta={"description": "kitchen mornings"})

@@ -12,13 +12,14 @@ from abc import ABC, abstractmethod
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from contextlib import AbstractContextManager
 from dataclasses import dataclass, field
-from datetime import datetime, timezone
+from datetime import datetime
 from typing import Any
 
 from bson.decimal128 import Decimal128
 
 from oracle.errors import StoreError
-from oracle.store.validate import check_document, check_meta
+from oracle.store.meta import new_meta
+from oracle.store.validate import check_document
 from oracle.store.model import (
     HIERARCHY,
     TAXONOMIC,
@@ -82,37 +83,6 @@ class NeemInfo:
 
 #: Registry key of the summary ``neems`` lists (oracle.neem.query keeps it); never exported.
 SUMMARY_KEY = "summary"
-
-
-#: The fields openEASE's NEEM list reads from a ``meta`` document without a default
-#: (ease-crc/openease ``neems/neem.py``: a document missing one breaks the listing). It also
-#: reads ``mail``, ``repo``, ``projects``, ``visibility`` and ``image`` when present (an absent
-#: image shows its default cover); the NEEM handbook's meta adds ``model_version``,
-#: ``keywords``, ``activity``, ``environment`` and ``agent``. See docs/store.md.
-OPENEASE_FIELDS: tuple[str, ...] = ("name", "description", "created_by", "created_at", "url")
-
-
-def new_meta(
-    user: str | None, temporary: bool, extra: Mapping[str, Any] | None = None, *, name: str | None = None
-) -> dict[str, Any]:
-    """A registry document with every field openEASE reads; ``extra`` overrides the defaults."""
-    meta: dict[str, Any] = {
-        "name": name,
-        "description": f"Episodes of {user or 'a user'} with an assistive robot, logged by neem-oracle",
-        "created_by": user,
-        "created_at": datetime.now(timezone.utc).isoformat(timespec="seconds"),
-        "url": "",  # openEASE links the NEEM's repository; a private store has none
-        "model_version": "SOMA/DUL, the neem-oracle core extract",  # what the NEEM was modelled with
-        "keywords": ["neem-oracle", "assistive robot", "activities of daily living"],
-        "activity": {"name": "activities of daily living", "url": ""},
-        "environment": "home",
-        "agent": "assistive robot arm",
-        "visibility": False,  # privacy (thesis 3.5): a NEEM is the user's until they publish it
-        "temporary": temporary,
-    }
-    meta.update(extra or {})
-    check_meta(meta, "registry entry")
-    return meta
 
 
 class Store(ABC):
