@@ -96,7 +96,7 @@ def main() -> None:
     parser.add_argument("--odb")
     parser.add_argument("--mapping")
     parser.add_argument("variants", nargs="*", metavar="NAME=JSON")
-    args = parser.parse_args()
+    args = parser.parse_intermixed_args()
     chosen = dict(v.split("=", 1) for v in args.variants)
     variants = {name: json.loads(text) for name, text in chosen.items()} if chosen else ALTERNATIVES
     ontology = build_ontology(args.odb, args.mapping, None)
