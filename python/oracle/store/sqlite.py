@@ -695,6 +695,7 @@ class SQLiteStore(Store):
         scope: Scope | None,
         limit: int | None,
         order: Sequence[tuple[str, bool]],
+        select: Sequence[str] | None = None,
     ) -> Iterator[dict[str, Any]]:
         self._require(neem_id)
         query = SqlCompiler(self, _table(neem_id, "triples"), scope)
@@ -704,7 +705,7 @@ class SQLiteStore(Store):
             query.inline_closures = i == first
             query.joined = i in joined
             query.add(pattern)
-        names = list(query.bound)
+        names = [name for name in query.bound if select is None or name in select]
         if not names:
             select = "1"
         else:
