@@ -149,12 +149,19 @@ def _chunks(store: Store, req: Sequence[Any]) -> Iterator[str]:
     # (a history read returns each task and plan IRI thousands of times).
     rows = store.match(neem, patterns, scope=scope, limit=limit, order=order, select=names)
     texts: dict[str, str] = {}
+    numbers: dict[float, str] = {}
 
     def text(value: Any) -> str:
-        if type(value) is str:
+        kind = type(value)
+        if kind is str:
             known = texts.get(value)
             if known is None:
                 known = texts[value] = quote_atom(value)
+            return known
+        if kind is float and value != 0.0:  # 0.0 == -0.0, but their texts differ
+            known = numbers.get(value)
+            if known is None:
+                known = numbers[value] = term_text(value)
             return known
         return term_text(value)
 
