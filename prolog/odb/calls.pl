@@ -114,8 +114,14 @@ task_calls(Ts, Pairs) :-
 %!  call_tasks(+Call, -Tasks) is det.
 %   The task individuals whose call is Call (the logger makes one per call).
 call_tasks(Call, Tasks) :-
-    call_classes(Call, TC, _),
-    findall(T, kb_call(triple(T, rdf:type, TC), any), Ts0),
+    call_classes(Call, TC, OCs),
+    (   OCs = [OC|_]
+    ->  % A task with this call has a role whose object is typed with the first argument's
+        % class: only those tasks are read, not every task of the class (one query each).
+        findall(T, kb_call(( triple(O, rdf:type, OC), has_role(O, R), task_role(T, R),
+                             triple(T, rdf:type, TC) ), any), Ts0)
+    ;   findall(T, kb_call(triple(T, rdf:type, TC), any), Ts0)
+    ),
     sort(Ts0, Ts),
     findall(T, ( member(T, Ts), task_call(T, C), C = Call ), Tasks).
 
