@@ -109,6 +109,10 @@ _TRIPLE_INDEXES = (
 )
 
 
+#: Term ids looked up one at a time before ``_tval`` reads the whole terms table instead.
+TERM_SCAN_AFTER = 2000
+
+
 def _indexes(neem_id: str) -> list[tuple[str, str]]:
     """(name, CREATE INDEX statement) of every index of a NEEM's tables."""
     t = partial(_table, neem_id)
@@ -217,6 +221,7 @@ class SQLiteStore(Store):
         self._tids: dict[str, int] = {}
         self._tvals: dict[int, str] = {}
         self._all_terms = False
+        self._term_misses = 0
         self._random = os.urandom(5)
         self._counter = int.from_bytes(os.urandom(3), "big")
 
@@ -420,8 +425,11 @@ class SQLiteStore(Store):
     def _tval(self, tid: int) -> str:
         value = self._tvals.get(tid)
         if value is None:
-            if not self._all_terms:
-                # Reading a NEEM touches most of its terms: one scan beats many lookups.
+            self._term_misses += 1
+            if not self._all_terms and self._term_misses > TERM_SCAN_AFTER:
+                # Reading a NEEM touches most of its terms: one scan beats many lookups. A
+                # question touches a few hundred of a table of every NEEM's terms: it looks
+                # them up one by one (the scan cost 0.2-0.3 s at 50,000 actions).
                 for key, text in self._conn.execute("SELECT id, value FROM terms"):
                     self._tvals[key] = text
                     self._tids[text] = key
