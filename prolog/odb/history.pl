@@ -37,6 +37,11 @@ situation, the one the next ranking is for.
 %   pass over the actions in begin order that merges the imaginings (also in begin order)
 %   and looks parts of day and calls up in AVL trees: O(n log n) in the rows read.
 situation_history(Situations) :-
+    situation_history(Situations, _).
+
+%   situation_history(-Situations, -Calls): also the AVL tree of task individual -> call
+%   the rows were made from (every call in Situations but `idle` is one of its values).
+situation_history(Situations, Calls) :-
     odb_iri('IdleTask', Idle),
     kb_findall(B-A-T-E-C, ( executes_task(A, T), triple(T, rdf:type, C), event_interval(A, B, E) ),
                any, Typed),
@@ -105,16 +110,26 @@ advance(Groups, _, Latest, Groups, Latest).
 %   objects, calls written in the chain syntax `pour(thermos,green_mug)`; one crossing for
 %   the Python side.
 situation_history_json(JSON) :-
-    situation_history(Situations),
-    maplist(situation_dict, Situations, Dicts),
+    situation_history(Situations, Calls),
+    % Each distinct call is written once (a long NEEM repeats a few hundred calls ~20 times
+    % per action in the available sets).
+    assoc_to_values(Calls, CallList),
+    sort([idle|CallList], Distinct),
+    findall(C-X, ( member(C, Distinct), format(atom(X), '~w', [C]) ), TextPairs),
+    list_to_assoc(TextPairs, Texts),
+    maplist(situation_dict(Texts), Situations, Dicts),
     with_output_to(string(JSON), json_write_dict(current_output, Dicts, [width(0)])).
 
-situation_dict(situation(B, E, Call, Part, Avail), _{begin:B, end:E, call:CallText, part:Part, available:AvailJ}) :-
-    format(atom(CallText), '~w', [Call]),
+situation_dict(Texts, situation(B, E, Call, Part, Avail),
+               _{begin:B, end:E, call:CallText, part:Part, available:AvailJ}) :-
+    get_assoc(Call, Texts, CallText),
     (   Avail == none
     ->  AvailJ = null
-    ;   findall(X, ( member(C, Avail), format(atom(X), '~w', [C]) ), AvailJ)
+    ;   maplist(call_text(Texts), Avail, AvailJ)
     ).
+
+call_text(Texts, Call, Text) :-
+    get_assoc(Call, Texts, Text).
 
 %!  latest_situation(-Begin, -Calls) is semidet.
 %   The latest imagined situation of the NEEM: when it began and the calls it found
