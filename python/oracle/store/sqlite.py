@@ -263,7 +263,8 @@ class SQLiteStore(Store):
             conn.execute("PRAGMA journal_mode=WAL")
             conn.execute("PRAGMA synchronous=NORMAL")
             conn.execute("PRAGMA busy_timeout=10000")  # concurrent writers wait instead of failing
-            conn.execute("PRAGMA temp_store=MEMORY")
+            # temp_store stays FILE: with MEMORY, dropping a NEEM (import --replace) kept its
+            # statement journal in memory, +270 MiB at 50,000 actions; sorts are as fast.
             # Fewer, larger checkpoints: each one fsyncs, commits themselves do not.
             conn.execute("PRAGMA wal_autocheckpoint=8192")
             conn.execute("PRAGMA cache_size=-65536")
