@@ -138,6 +138,17 @@ def test_perception_is_logged_and_unknown_objects_refused(client, neem):
     assert bad.status_code == 400 and "unicorn" in bad.json()["error"]
 
 
+def test_a_perceived_pose_goes_into_the_neem_and_prolog_says_where_the_object_was(client, neem):
+    pose = [0.5, -0.25, 0.9, 0.0, 0.0, 0.7071, 0.7071]
+    ok = client.post(f"/api/neems/{neem}/perception", json={"objects": [{"name": "red_mug", "pose": pose}], "at": at(0, 0)})
+    assert ok.status_code == 200, ok.text
+    answer = client.post("/api/prolog", json={"query": "is_at(odb:'Object_red_mug', [Ref, Pos, Rot])", "neem": neem}).json()
+    (where,) = answer["solutions"]
+    assert where["Pos"] == pose[:3] and where["Rot"] == pose[3:]
+    short = client.post(f"/api/neems/{neem}/perception", json={"objects": [{"name": "apple", "pose": [1, 2, 3, 4]}], "at": at(0, 1)})
+    assert short.status_code == 400 and "x, y, z" in short.json()["error"]
+
+
 @pytest.mark.parametrize("path,body,status,needle", [
     ("/api/neems/ada/situation", {"available": ["fly(red_mug)"]}, 400, "fly"),
     ("/api/neems/ada/situation", {"available": ["pick(red_mug"]}, 400, "malformed"),

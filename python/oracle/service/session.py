@@ -19,6 +19,7 @@ from oracle.algorithm.records import RankedTask, Ranking, Step
 from oracle.answers import support_sentence
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError
+from oracle.neem.tf import Pose
 from oracle.neem.writer import LoggedAction, NeemLogger, check_performer
 from oracle.timeline import Instant, TimeValueError, clock, is_idle_gap
 from oracle.ontology import OdbOntology
@@ -87,6 +88,18 @@ def _moment(value: Any, what: str) -> Moment:
     raise LoggingError(f"{what}: expected unix seconds or ISO-8601 (2024-05-01T08:30), got {value!r}")
 
 
+def pose_of(name: str, values: Sequence[float] | None) -> Pose | None:
+    """The API's pose list, ``x, y, z`` or ``x, y, z, qx, qy, qz, qw`` in the robot's frame, as
+    the logger's Pose (written to the NEEM's tf collection); LoggingError for any other length."""
+    if values is None:
+        return None
+    if len(values) == 3:
+        return Pose((values[0], values[1], values[2]))
+    if len(values) == 7:
+        return Pose((values[0], values[1], values[2]), (values[3], values[4], values[5], values[6]))
+    raise LoggingError(f"pose of {name!r}: give x, y, z or x, y, z, qx, qy, qz, qw ({len(values)} numbers given)")
+
+
 class NeemSession:
     """The live state of one NEEM. Validation happens before any write, so a refused request
     leaves both the NEEM and this object as they were."""
@@ -139,10 +152,12 @@ class NeemSession:
         moment = moment_of(at, "at")
         when = Instant.of(moment)
         self._check_time(when, "perception")
-        for name, _ in objects:
+        poses = []
+        for name, pose in objects:
             if name not in self.ontology.objects:
                 raise LoggingError(f"unknown object {name!r}")
-        iris = [self.logger.perceive(name, moment) for name, _ in objects]
+            poses.append(pose_of(name, pose))
+        iris = [self.logger.perceive(name, moment, pose) for (name, _), pose in zip(objects, poses)]
         self.logger.flush()
         for name, pose in objects:
             if pose is not None:
