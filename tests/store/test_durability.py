@@ -202,3 +202,61 @@ def test_no_message_shows_a_password(uri, capsys, monkeypatch):
     err = capsys.readouterr().err
     password = uri.split("://", 1)[1].rsplit("@", 1)[0].split(":", 1)[1]
     assert password not in err, err
+
+
+def _two_neem_dump(store, onto, tmp_path: Path) -> Path:
+    import_chains(store, onto, write(tmp_path / "ab.jsonl", rows("alice", 4) + rows("bob", 4, start_minute=30)))
+    export_neem(store, "alice", tmp_path / "two" / "alice")
+    export_neem(store, "bob", tmp_path / "two" / "bob")
+    store.drop_neem("alice")
+    store.drop_neem("bob")
+    return tmp_path / "two"
+
+
+def test_a_dump_of_two_neems_loads_both_or_neither(store, onto, tmp_path):
+    dump = _two_neem_dump(store, onto, tmp_path)
+    bson_file = dump / "bob" / "triples" / "roslog" / "triples.bson"
+    whole = bson_file.read_bytes()
+    bson_file.write_bytes(whole[: len(whole) - 7])  # alice's folder sorts first and is fine
+    with pytest.raises(StoreError, match="truncated or corrupt"):
+        load_dump(store, dump)
+    assert store.neems() == [] and store.staging_neems() == []
+    bson_file.write_bytes(whole)
+    assert load_dump(store, dump) == ["alice", "bob"]
+    assert [info.id for info in store.neems()] == ["alice", "bob"]
+
+
+def test_two_folders_holding_one_neem_id_are_refused(store, onto, tmp_path):
+    dump = _two_neem_dump(store, onto, tmp_path)
+    meta = json.loads((dump / "bob" / "meta.json").read_text())
+    (dump / "bob" / "meta.json").write_text(json.dumps({**meta, "id": "alice"}))
+    with pytest.raises(StoreError, match="both hold NEEM 'alice'"):
+        load_dump(store, dump, replace=True)
+    assert store.neems() == [] and store.staging_neems() == []
+
+
+def _dead_pid() -> int:
+    import subprocess
+    import sys
+
+    child = subprocess.Popen([sys.executable, "-c", "pass"])
+    child.wait()
+    return child.pid
+
+
+def test_hidden_neems_of_dead_builders_are_dropped_by_the_next_writer(store, onto):
+    from oracle.store.base import STAGED_BY
+
+    dead = store.create_staging("alice", user="alice")
+    store.update_meta(dead, **{STAGED_BY: {**store.neem(dead).meta[STAGED_BY], "pid": _dead_pid()}})
+    elsewhere = store.create_staging("bob", user="bob")
+    store.update_meta(elsewhere, **{STAGED_BY: {"host": "another-host", "pid": 1}})
+    old = store.create_staging("carol", user="carol")
+    store.update_meta(old, **{STAGED_BY: {"host": "another-host", "pid": 1}, "created_at": "2020-01-01T00:00:00+00:00"})
+    alive = store.create_staging("dave", user="dave")  # this very process: still building it
+    assert {info.id for info in store.staging_neems()} == {elsewhere, alive}
+    assert store.neems() == []
+    # A session start wipes temporary NEEMs and, with them, what killed processes left.
+    store.update_meta(alive, **{STAGED_BY: {"host": store.neem(alive).meta[STAGED_BY]["host"], "pid": _dead_pid()}})
+    wipe_temporary_neems(store)
+    assert [info.id for info in store.staging_neems()] == [elsewhere]

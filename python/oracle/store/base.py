@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import os
 import re
+import socket
 from abc import ABC, abstractmethod
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from contextlib import AbstractContextManager
@@ -43,6 +44,10 @@ Closed = tuple[Triple, tuple[Any, ...], tuple[Any, ...]]
 
 #: Registry field marking a NEEM under construction (value: the NEEM it will replace).
 STAGING = "staging_for"
+#: Registry field of a staging NEEM: the process building it ({"host": ..., "pid": ...}).
+STAGED_BY = "staged_by"
+#: A staging NEEM whose builder cannot be checked (another host) is abandoned after this long.
+ABANDONED_AFTER_S = 24 * 3600
 
 _NEEM_ID = re.compile(r"^[A-Za-z0-9][A-Za-z0-9\-]{0,63}$")
 
@@ -171,11 +176,34 @@ class Store(ABC):
         list it; ``swap_in`` makes it ``target``. A process killed meanwhile leaves ``target`` as
         it was (and a hidden NEEM behind, never listed nor read)."""
         check_neem_id(target)
+        self.drop_abandoned_staging()
         staging = f"staging-{os.urandom(6).hex()}"
-        extra = {**(meta or {}), STAGING: target}
+        extra = {**(meta or {}), STAGING: target, STAGED_BY: {"host": socket.gethostname(), "pid": os.getpid()}}
         temporary = bool(extra.pop("temporary", False))
         self.create_neem(staging, user=user, temporary=temporary, meta=extra)
         return staging
+
+    @abstractmethod
+    def staging_neems(self) -> list[NeemInfo]:
+        """The hidden NEEMs under construction (``create_staging``), which ``neems()`` leaves out."""
+
+    def drop_abandoned_staging(self) -> list[str]:
+        """Drop the staging NEEMs of processes that died (a killed import or load): they hold
+        personal data nobody can see, list or wipe otherwise. A staging NEEM of a live process
+        is kept; one made on another host is dropped once it is older than a day."""
+        here, now = socket.gethostname(), datetime.now(timezone.utc)
+        dropped = []
+        for info in self.staging_neems():
+            owner = info.meta.get(STAGED_BY)
+            if isinstance(owner, dict) and owner.get("host") == here and isinstance(owner.get("pid"), int):
+                abandoned = not _process_alive(owner["pid"])
+            else:
+                abandoned = _age_s(info.created_at, now) > ABANDONED_AFTER_S
+            if abandoned:
+                self._drop_neem(info.id)
+                self._hierarchies.pop(info.id, None)
+                dropped.append(info.id)
+        return dropped
 
     def swap_in(self, staging: str, target: str, *, replace: bool = True, **fields: Any) -> NeemInfo:
         """Make the complete NEEM ``staging`` visible as ``target``, replacing an existing one only
@@ -187,7 +215,7 @@ class Store(ABC):
                     raise StoreError(f"{self.location}: NEEM {target!r} already exists")
                 self.drop_neem(target)
             self.rename_neem(staging, target)
-            return self.update_meta(target, **{STAGING: None, **fields})
+            return self.update_meta(target, **{STAGING: None, STAGED_BY: None, **fields})
 
     # -- writing ----------------------------------------------------------------------------
     @abstractmethod
@@ -404,6 +432,28 @@ class Store(ABC):
 
     def __exit__(self, *exc: object) -> None:
         self.close()
+
+
+def _process_alive(pid: int) -> bool:
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OverflowError, ValueError):
+        return True  # another user's process (or an id that cannot be checked): keep its NEEM
+    return True
+
+
+def _age_s(created_at: object, now: datetime) -> float:
+    try:
+        made = datetime.fromisoformat(str(created_at))
+    except ValueError:
+        return float("inf")  # no readable creation time: nobody can be building it still
+    if made.tzinfo is None:
+        made = made.replace(tzinfo=timezone.utc)
+    return (now - made).total_seconds()
 
 
 def validate_patterns(patterns: Sequence[TriplePattern]) -> None:

@@ -150,8 +150,12 @@ class _Cursor:
             raise StoreError(f"{self.location}: {_reason(error)}") from None
 
     def __iter__(self) -> Iterator[Any]:
+        # Not ``yield from``: a generator abandoned mid-way (an export that failed on a full
+        # disk) would then close the cursor when collected, after the store closed, and print
+        # a traceback ("Cannot operate on a closed database") instead of staying quiet.
         try:
-            yield from self.cursor
+            for row in self.cursor:  # noqa: UP028 - see above
+                yield row
         except sqlite3.Error as error:
             raise StoreError(f"{self.location}: {_reason(error)}") from None
 
@@ -226,11 +230,14 @@ class SQLiteStore(Store):
         so ``neems`` or ``why-not`` never wait for, nor block, an ``import`` or ``load``."""
         try:
             uri = "file:" + urllib.parse.quote(str(self.path.resolve())) + "?mode=ro"
-            conn = sqlite3.connect(uri, uri=True, isolation_level=None, check_same_thread=False)
-            conn.execute("PRAGMA busy_timeout=10000")
-            conn.execute("PRAGMA query_only=1")
-            conn.execute("PRAGMA cache_size=-65536")
-            row = conn.execute("SELECT value FROM store_info WHERE key='schema'").fetchone()
+            try:
+                conn, row = self._open_read_only(uri)
+            except sqlite3.OperationalError:
+                if os.access(self.path.parent, os.W_OK):
+                    raise
+                # A store on read-only media (a mounted backup): SQLite cannot make the WAL's
+                # shared-memory file there, and nobody can change the file, so it is read as is.
+                conn, row = self._open_read_only(uri + "&immutable=1")
         except sqlite3.DatabaseError as error:
             reason = "not a NEEM store" if "no such table" in str(error) or "not a database" in str(error) else str(error)
             raise StoreError(f"{self.path}: cannot open the NEEM store ({reason})") from None
@@ -238,6 +245,18 @@ class SQLiteStore(Store):
         if version != SCHEMA_VERSION:
             raise StoreError(f"{self.path}: store schema {version}, this version reads {SCHEMA_VERSION}")
         return conn
+
+    @staticmethod
+    def _open_read_only(uri: str) -> tuple[sqlite3.Connection, Any]:
+        conn = sqlite3.connect(uri, uri=True, isolation_level=None, check_same_thread=False)
+        try:
+            conn.execute("PRAGMA busy_timeout=10000")
+            conn.execute("PRAGMA query_only=1")
+            conn.execute("PRAGMA cache_size=-65536")
+            return conn, conn.execute("SELECT value FROM store_info WHERE key='schema'").fetchone()
+        except BaseException:
+            conn.close()
+            raise
 
     def _connect(self) -> sqlite3.Connection:
         try:
@@ -319,10 +338,15 @@ class SQLiteStore(Store):
             self._conn.execute("COMMIT")
 
     # -- registry ---------------------------------------------------------------------------
-    def neems(self) -> list[NeemInfo]:
+    def _registry(self) -> list[NeemInfo]:
         rows = self._conn.execute("SELECT id, meta FROM neems ORDER BY id").fetchall()
-        infos = [NeemInfo.from_meta(neem_id, self._meta(neem_id, meta)) for neem_id, meta in rows]
-        return [info for info in infos if not info.meta.get(STAGING)]  # replacements being built are hidden
+        return [NeemInfo.from_meta(neem_id, self._meta(neem_id, meta)) for neem_id, meta in rows]
+
+    def neems(self) -> list[NeemInfo]:
+        return [info for info in self._registry() if not info.meta.get(STAGING)]  # replacements being built are hidden
+
+    def staging_neems(self) -> list[NeemInfo]:
+        return [info for info in self._registry() if info.meta.get(STAGING)]
 
     def _meta(self, neem_id: str, blob: bytes) -> dict[str, Any]:
         try:
