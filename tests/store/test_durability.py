@@ -17,7 +17,7 @@ from oracle.neem.importing import import_chains
 from oracle.neem.lifecycle import wipe_temporary_neems
 from oracle.neem.writer import NeemLogger
 from oracle.store import COLLECTION_KINDS, open_store
-from oracle.store.dump import export_neem, load_dump
+from oracle.store.dump import export_all, export_neem, load_dump
 from oracle.store.mongo import MongoStore
 from oracle.store.sqlite import SQLiteStore
 
@@ -260,3 +260,21 @@ def test_hidden_neems_of_dead_builders_are_dropped_by_the_next_writer(store, ont
     store.update_meta(alive, **{STAGED_BY: {"host": store.neem(alive).meta[STAGED_BY]["host"], "pid": _dead_pid()}})
     wipe_temporary_neems(store)
     assert [info.id for info in store.staging_neems()] == [elsewhere]
+
+
+def test_a_loaded_neem_takes_the_space_an_imported_one_does_and_dumps_back_byte_for_byte(onto, tmp_path):
+    imported = tmp_path / "imported.sqlite"
+    with SQLiteStore(imported) as s:
+        import_chains(s, onto, ROOT / "ontology" / "sample-chains.jsonl")
+        export_all(s, tmp_path / "dump")
+    loaded = tmp_path / "loaded.sqlite"
+    with SQLiteStore(loaded) as s:
+        load_dump(s, tmp_path / "dump")
+        export_all(s, tmp_path / "again")
+    for store in (imported, loaded):  # fold the write-ahead log in, so file sizes compare
+        with sqlite3.connect(store) as raw:
+            raw.execute("PRAGMA wal_checkpoint(TRUNCATE)")
+    assert loaded.stat().st_size <= 1.1 * imported.stat().st_size, (loaded.stat().st_size, imported.stat().st_size)
+    first = {p.relative_to(tmp_path / "dump"): p.read_bytes() for p in (tmp_path / "dump").rglob("*") if p.is_file()}
+    second = {p.relative_to(tmp_path / "again"): p.read_bytes() for p in (tmp_path / "again").rglob("*") if p.is_file()}
+    assert first == second

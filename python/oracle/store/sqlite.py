@@ -564,8 +564,27 @@ class SQLiteStore(Store):
         since = self._seconds(time_.get("since"))
         until = self._seconds(time_.get("until"))
         oid = doc["_id"].binary if isinstance(doc["_id"], ObjectId) else b""
-        return (oid, self._tid(s) if type(s) is str else None, self._tid(p) if type(p) is str else None, sql_o, kind,
-                pstar_cid, ostar_cid, doc.get("graph"), since, until, None, raw or bson.encode(doc, codec_options=_CODEC))  # fmt: skip
+        row = (oid, self._tid(s) if type(s) is str else None, self._tid(p) if type(p) is str else None, sql_o, kind,
+               pstar_cid, ostar_cid, doc.get("graph"), since, until, None, raw or bson.encode(doc, codec_options=_CODEC))  # fmt: skip
+        return self._without_raw(row)
+
+    def _without_raw(self, row: tuple[Any, ...]) -> tuple[Any, ...]:
+        """The row without its BSON copy when the columns rebuild the very same bytes (every
+        document this program wrote): a loaded NEEM then takes the space an imported one does."""
+        oid, s, p, _o, _ok, pstar, ostar, graph, since, until, _sk, raw = row
+        if len(oid) != 12 or s is None or p is None or pstar is None or ostar is None or since is None or until is None:
+            return row
+        if graph is not None and type(graph) is not str:
+            return row
+        for sk in (SK_DECIMAL, SK_DOUBLE):
+            lean = (*row[:10], sk, None)
+            try:
+                same = bson.encode(self._document(lean), codec_options=_CODEC) == raw
+            except Exception:  # noqa: BLE001 - any value the columns cannot rebuild: keep the copy
+                return row
+            if same:
+                return lean
+        return row
 
     def _insert_documents(self, neem_id: str, kind: str, docs: list[dict[str, Any]]) -> None:
         self._require(neem_id)
