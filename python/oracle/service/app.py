@@ -22,6 +22,7 @@ from urllib.parse import parse_qs, urlsplit
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse, Response
+from starlette.exceptions import HTTPException
 
 from oracle.errors import NeemOracleError
 from oracle.service.engine import Engine, EngineThread, NotFound
@@ -71,6 +72,12 @@ def create_app(ctx: Context) -> FastAPI:
         first = error.errors()[0] if error.errors() else {}
         where = ".".join(str(p) for p in first.get("loc", ()) if p != "body") or "request"
         return _error(422, f"{where}: {first.get('msg', 'invalid')}")
+
+    @app.exception_handler(HTTPException)
+    async def http_error(request: Request, error: HTTPException) -> JSONResponse:
+        # Starlette's own refusals (a body that is no JSON it can parse, an unknown route) in
+        # the service's one-line shape.
+        return _error(error.status_code, str(error.detail))
 
     @app.exception_handler(Exception)
     async def bug(request: Request, error: Exception) -> JSONResponse:

@@ -19,7 +19,7 @@ from oracle.algorithm.records import Ranking, Step
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError
 from oracle.neem.writer import LoggedAction, NeemLogger
-from oracle.timeline import Instant, clock
+from oracle.timeline import Instant, TimeValueError, clock
 from oracle.ontology import OdbOntology
 from oracle.ranking import finite
 from oracle.calls import call_of, check_call, idle_step, opening_tasks, option_of, steps_from_history
@@ -117,7 +117,7 @@ class NeemSession:
     # -- perception -------------------------------------------------------------------------
     def perceive(self, objects: Sequence[tuple[str, list[float] | None]], at: Any) -> list[str]:
         moment = moment_of(at, "at")
-        when = Instant.of(moment)
+        when = _instant(moment)
         self._check_time(when, "perception")
         for name, _ in objects:
             if name not in self.ontology.objects:
@@ -136,7 +136,7 @@ class NeemSession:
             raise LoggingError("available must name at least one task, e.g. [\"pick(red_mug)\"]")
         calls = self.calls(available, "available")
         moment = moment_of(at, "at")
-        when = Instant.of(moment)
+        when = _instant(moment)
         self._check_time(when, "situation")
         started = time.perf_counter()
         ranking = self.predictor.rank([option_of(self.ontology, c) for c in calls], when.part_of_day,
@@ -169,7 +169,7 @@ class NeemSession:
     def begin(self, call_text: str, at: Any, performed_by: str, key: str | None) -> OpenAction:
         call = self.calls([call_text], "call")[0]
         moment = moment_of(at, "at")
-        self._check_time(Instant.of(moment), f"action {call}")
+        self._check_time(_instant(moment), f"action {call}")
         if performed_by not in ("robot", "user"):
             raise LoggingError(f"performed_by must be 'robot' or 'user', got {performed_by!r}")
         if key is None:
@@ -200,7 +200,7 @@ class NeemSession:
         call = self.calls([call_text], "call")[0]
         start = moment_of(begin, "begin")
         stop = moment_of(end, "end") if end is not None else start
-        self._check_time(Instant.of(start), f"action {call}")
+        self._check_time(_instant(start), f"action {call}")
         logged = self.logger.action(call, start, stop, performed_by=performed_by)
         self.logger.flush()
         if logged.idle is not None and self.last_end is not None:
@@ -217,3 +217,11 @@ class NeemSession:
         self.prev_begin = logged.begin
         self.pending = None
         return logged
+
+
+def _instant(moment: Any) -> Instant:
+    """The instant of a request's time; one out of range (NaN, 1e20, year 9999) is the caller's error."""
+    try:
+        return Instant.of(moment)
+    except TimeValueError as error:
+        raise LoggingError(str(error)) from None
