@@ -278,3 +278,32 @@ def test_a_loaded_neem_takes_the_space_an_imported_one_does_and_dumps_back_byte_
     first = {p.relative_to(tmp_path / "dump"): p.read_bytes() for p in (tmp_path / "dump").rglob("*") if p.is_file()}
     second = {p.relative_to(tmp_path / "again"): p.read_bytes() for p in (tmp_path / "again").rglob("*") if p.is_file()}
     assert first == second
+
+
+def test_a_chains_file_is_private_complete_and_never_written_through_a_link(tmp_path):
+    from oracle.chains import read_chains, write_chains
+
+    rows = list(read_chains(ROOT / "ontology" / "sample-chains.jsonl"))
+    out = tmp_path / "new" / "deeper" / "chains.jsonl"
+    previous = os.umask(0)
+    try:
+        assert write_chains(rows, out) == len(rows)
+    finally:
+        os.umask(previous)
+    assert stat.S_IMODE(out.stat().st_mode) == 0o600
+    assert all(stat.S_IMODE(p.stat().st_mode) == 0o700 for p in (tmp_path / "new", tmp_path / "new" / "deeper"))
+    victim = tmp_path / "victim"
+    victim.write_text("keep")
+    os.symlink(victim, tmp_path / "link.jsonl")
+    with pytest.raises(OSError, match="symbolic link"):
+        write_chains(rows, tmp_path / "link.jsonl")
+    assert victim.read_text() == "keep"
+
+    def failing():  # noqa: ANN202 - a source that breaks mid-way (as a full disk would)
+        yield from rows[:5]
+        raise OSError(28, "No space left on device")
+
+    with pytest.raises(OSError, match="No space"):
+        write_chains(failing(), out)
+    assert len(list(read_chains(out))) == len(rows)  # the earlier file, whole
+    assert sorted(p.name for p in out.parent.iterdir()) == ["chains.jsonl"]
