@@ -276,6 +276,9 @@ class SQLiteStore(Store):
             conn.execute("PRAGMA synchronous=NORMAL")
             conn.execute("PRAGMA busy_timeout=10000")  # concurrent writers wait instead of failing
             conn.execute("PRAGMA temp_store=MEMORY")
+            # A dropped or wiped NEEM's pages are overwritten, not just freed: its documents
+            # cannot be read back from the file (most builds default to it; this one need not).
+            conn.execute("PRAGMA secure_delete=ON")
             # Fewer, larger checkpoints: each one fsyncs, commits themselves do not.
             conn.execute("PRAGMA wal_autocheckpoint=8192")
             conn.execute("PRAGMA cache_size=-65536")
