@@ -143,6 +143,7 @@ def import_chains(
             if row.line == plans[row.user].last_line:
                 logger.close()  # the user's rows end here: commit (and swap in a replacement) now
                 report[name] = logger.committed
+                del loggers[row.user]  # done: its caches need not stay in memory (many users)
             else:
                 report[name] = logger.committed
         done = True

@@ -66,6 +66,8 @@ from oracle.store.sql import (
 )
 
 SCHEMA_VERSION = "3"
+#: Terms whose ids a writer keeps in memory (about 100 bytes each) before it starts over.
+TERM_CACHE = 50_000
 
 def _python_value(value: Any, kind: int) -> Any:
     if kind == K_BOOL:
@@ -424,6 +426,12 @@ class SQLiteStore(Store):
                 tid = _rowid(cursor)
             else:
                 tid = self._conn.execute("SELECT id FROM terms WHERE value=?", (value,)).fetchone()[0]
+            if len(self._tids) >= TERM_CACHE:
+                # Every event is a new term: an import of a million rows would otherwise keep
+                # millions of them in memory. The cache starts over (ids are in the table).
+                self._tids.clear()
+                self._tvals.clear()
+                self._all_terms = False
             self._tids[value] = tid
             self._tvals[tid] = value
         return tid
