@@ -8,6 +8,7 @@ NEEM when that user's last row is logged (docs/store.md, "Durability").
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -96,6 +97,7 @@ def import_chains(
     tbox: TBox | None = None,
     session: bool = False,
     plans: dict[str, _UserPlan] | None = None,
+    stop: Callable[[], bool] | None = None,
 ) -> dict[str, int]:
     """Log a chains JSONL file, one NEEM per user; return {NEEM id: actions committed}.
 
@@ -109,6 +111,8 @@ def import_chains(
     only then (until then, and after any error, the old one is untouched). Session NEEMs, too,
     appear only when complete, so two session imports at once do not wipe each other's.
     ``plans`` is what ``check_chains`` returned for this file, when the caller checked it.
+    ``stop`` is asked before each row; when it says True (Ctrl-C was pressed) the import ends
+    there with KeyboardInterrupt, between two rows, so ``report`` counts exactly what is stored.
     """
     if commit_every < 1:
         raise LoggingError(f"commit_every must be at least 1, got {commit_every}")
@@ -122,6 +126,8 @@ def import_chains(
         if session:
             wipe_temporary_neems(store)
         for row in read_chains(path):
+            if stop is not None and stop():
+                raise KeyboardInterrupt
             where = f"{path}:{row.line}"
             logger = loggers.get(row.user)
             if logger is None:
