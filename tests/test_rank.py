@@ -83,3 +83,20 @@ def test_rank_method_thesis_writes_the_thesis_ranking_and_names_the_method(store
     assert [r["score"] for r in routine["ranking"]] == sorted(r["score"] for r in routine["ranking"])
     assert main(["rank", "--store", str(store), "--method", "bayes"]) == 1
     assert "unknown method 'bayes' (known: routine, routine-fixed, routine-mixture, thesis)" in capsys.readouterr().err
+
+
+def test_a_decision_after_a_pause_is_ranked_after_an_idle_step(store, capsys):
+    """The next morning the pause since the last action is an idle gap: the history the ranking
+    uses ends with that idle step (as the replay ranks it), so the chain's opening action leads,
+    and "what was the context" says idle."""
+    capsys.readouterr()
+    assert main(["rank", "--store", str(store), "--available", "pick(red_mug)", "open(small_drawer)", "pick(banana)",
+                 "--at", "2026-03-05T08:00:00", "--no-write", "--json"]) == 0
+    later = json.loads(capsys.readouterr().out)
+    assert later["history"] == 3 * len(CHAIN) + 3  # 2 nights logged as idle actions, and this pause
+    best = later["ranking"][0]
+    assert best["call"] == "open(small_drawer)" and best["context"][-1] == "idle"
+    # a moment after the last action there is no pause: no idle step
+    assert main(["rank", "--store", str(store), "--available", "pick(red_mug)", "open(small_drawer)",
+                 "--at", "2026-03-04T08:01:00", "--no-write", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["history"] == 3 * len(CHAIN) + 2

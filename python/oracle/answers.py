@@ -71,3 +71,27 @@ def something_else_sentence(answer: dict[str, Any]) -> str:
         return f"I know of no alternative to {current}."
     best = alternatives[0]
     return f"Instead of {current} I would do {best['task']} (rank {best['rank']}, score {best['score']:.3g})."
+
+
+def support_sentence(entry: dict[str, Any]) -> str:
+    """Why a ranked task stands where it does, short enough for a touch target: the service's
+    ranking entry (``support`` and, from the routine predictor, ``context_order``, ``context``
+    and the times of the supporting past ``situations``, latest last; ``done``: whether the user
+    ever did it). The sentence names the last two steps of the context; the entry holds it all."""
+    n = int(entry.get("support") or 0)
+    order = entry.get("context_order")
+    times = entry.get("situations") or []
+    last = f", last {clock(times[-1]).strftime('%a %H:%M')}" if times else ""
+    if order is None:  # the thesis oracle: |H(s_o)|, the similar past situations
+        return f"like {n} past situation{'s' if n != 1 else ''}" if n else "new to me"
+    if order > 0:
+        context = ["a break" if c == "idle" else c for c in entry.get("context") or []]
+        after = ("\u2026 " if len(context) > SHOWN_CONTEXT else "") + " \u2192 ".join(context[-SHOWN_CONTEXT:])
+        return f"after {after}: {n}\u00d7{last}"
+    if order == 0 or entry.get("done"):
+        return f"done {n}\u00d7, not at this point{last}" if n else "done before, not at this point"
+    return "never done: like similar tasks"
+
+
+#: Context steps a support sentence names (the latest ones).
+SHOWN_CONTEXT = 2

@@ -14,7 +14,7 @@ from oracle.chains import TaskCall
 from oracle.errors import OntologyError
 from oracle.namespaces import SOMA
 from oracle.ontology import OdbOntology
-from oracle.timeline import time_of_day
+from oracle.timeline import clock, is_idle_gap, time_of_day
 
 
 def option_of(ontology: OdbOntology, call: TaskCall) -> Option:
@@ -78,4 +78,18 @@ def steps_from_history(ontology: OdbOntology, rows: Iterable[dict]) -> list[Step
         option = option_of(ontology, call)
         options = tuple(option_of(ontology, parse_call(c)) for c in row.get("available") or ())
         steps.append(Step(option.task, option.target, option.reference, options, part, False, str(call)))
+    return steps
+
+
+def steps_before(ontology: OdbOntology, rows: Iterable[dict], at: float) -> list[Step]:
+    """The history a decision at unix seconds ``at`` is ranked with: the ``situation_history``
+    rows that began before it and, when the pause since the last action's end is an idle gap,
+    the idle step the logger will write before the next action (the replay's rule:
+    evaluation.replay observes that idle before ranking the decision after a gap)."""
+    earlier = [row for row in rows if float(row["begin"]) < at]
+    steps = steps_from_history(ontology, earlier)
+    if earlier and earlier[-1]["call"] != "idle":
+        last_end = max(float(row["end"] if row.get("end") is not None else row["begin"]) for row in earlier)
+        if is_idle_gap(last_end, at):
+            steps.append(idle_step(ontology, clock(last_end)))  # as the logger will date it
     return steps

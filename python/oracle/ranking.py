@@ -13,14 +13,14 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.predictors import DEFAULT, make_predictor
-from oracle.algorithm.records import Ranking
+from oracle.algorithm.records import RankedTask, Ranking
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError, NeemOracleError
-from oracle.calls import call_of, check_call, opening_tasks, option_of, steps_from_history
+from oracle.calls import call_of, check_call, opening_tasks, option_of, steps_before
 from oracle.neem.query import recorded_part_of_day
 from oracle.neem.writer import NeemLogger
 from oracle.ontology import OdbOntology
@@ -52,6 +52,19 @@ def finite(score: float) -> float:
     return score if math.isfinite(score) else NO_HISTORY_SCORE
 
 
+def support_fields(task: RankedTask) -> dict[str, Any]:
+    """What supports a routine-predictor ranking (empty for the thesis oracle): its probability,
+    the exact context it followed (``context_order`` its length; 0: done, not after this context;
+    -1: no counted context holds it) and the history positions of those past situations (latest
+    last, at most 5)."""
+    from oracle.algorithm.routine import RoutineTask
+
+    if not isinstance(task, RoutineTask):
+        return {}
+    return {"probability": task.probability, "context_order": task.order, "context": list(task.context),
+            "situations": list(task.situations)}
+
+
 def rank_neem(
     bridge: Bridge,
     ontology: OdbOntology,
@@ -77,7 +90,7 @@ def rank_neem(
         recorded = recorded_part_of_day(bridge.store, bridge.neem_id, ontology.vocab, begin)
         instant = Instant(begin, recorded or part_of_day_at(begin))
     when, part = instant.seconds, instant.part_of_day
-    steps = steps_from_history(ontology, [row for row in bridge.history() if float(row["begin"]) < when])
+    steps = steps_before(ontology, bridge.history(), when)
     oracle = make_predictor(method, ontology.distances(), opening_tasks(ontology), settings).fit(steps)
     started = time.perf_counter()
     ranking = oracle.rank([option_of(ontology, c) for c in calls], part)

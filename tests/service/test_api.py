@@ -20,7 +20,8 @@ def neem(client) -> str:
 def test_situation_answers_ranking_and_chain_and_writes_the_preference(client, neem):
     drive(client, neem)
     answer = client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(2, 0)}).json()
-    assert answer["history"] == 2 * len(ROUTINE) + 1  # the night between is an idle action
+    # the night between is an idle action; so is the pause before this decision (the replay's rule)
+    assert answer["history"] == 2 * len(ROUTINE) + 2
     assert [r["rank"] for r in answer["ranking"]] == list(range(1, len(AVAILABLE) + 1))
     assert sorted(r["task"] for r in answer["ranking"]) == AVAILABLE
     top = answer["ranking"][0]["task"]
@@ -49,6 +50,64 @@ def test_incremental_predictor_ranks_like_a_fresh_fit_of_the_neem(client, neem, 
     fresh = ctx.thread.call(refit)
     assert fresh.history == live["history"]
     assert [str(c) for c in fresh.calls] == [r["task"] for r in live["ranking"]]
+    assert [round(min(t.score, 1e9), 9) for t in fresh.ranking] == [round(r["score"], 9) for r in live["ranking"]]
+    # the support too: the same past situations, found by their place in the stored history
+    from oracle.ranking import support_fields
+
+    begins = [float(row["begin"]) for row in ctx.thread.call(lambda: ctx.engine.bridge(neem).history())]
+    assert [[begins[p] for p in support_fields(t).get("situations", [])] for t in fresh.ranking] == \
+        [r["situations"] for r in live["ranking"]]
+    assert [t.n_similar for t in fresh.ranking] == [r["support"] for r in live["ranking"]]
+
+
+def test_support_names_the_past_situations_behind_each_task(client, neem):
+    """The routine predictor's support: how often the user did the task after the same context,
+    and when (only times at which the user began that very task)."""
+    drive(client, neem)
+    ranking = client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(2, 0)}).json()["ranking"]
+    began = {call: {at(day, 10 * i) for day in range(2) for i, c in enumerate(ROUTINE) if c == call} for call in AVAILABLE}
+    for entry in ranking:
+        assert set(entry["situations"]) <= began[entry["task"]], entry
+        assert entry["situations"] == sorted(entry["situations"])  # latest last
+        assert entry["reason"] and "\n" not in entry["reason"]
+    top = ranking[0]
+    assert top["context_order"] >= 1 and top["support"] >= 1 and top["situations"]
+    # the morning after a night: the routine's first task, after the break, the morning before
+    assert top["task"] == ROUTINE[0] and top["context"][-1] == "idle" and top["situations"] == [at(1, 0)]
+    assert top["reason"].startswith("after ") and "a break: 1\u00d7" in top["reason"]
+    banana = next(e for e in ranking if e["task"] == "pick(banana)")
+    assert (banana["context_order"], banana["support"], banana["situations"]) == (-1, 0, [])
+    assert banana["reason"].startswith("never done")
+
+
+def test_a_situation_after_a_break_is_ranked_after_the_idle_step(client, neem):
+    """The replay observes the idle step before it ranks the next decision; live, the NEEM's
+    idle action is written only with the next action, so the session must add it itself."""
+    drive(client, neem)
+    morning = client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(2, 0)}).json()
+    soon = client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(2, 1)}).json()
+    assert morning["history"] == soon["history"]  # one break, however many situations
+    assert morning["chain"][:2] == ROUTINE[:2]
+    done = client.post(f"/api/neems/{neem}/actions", json={"call": ROUTINE[0], "begin": at(2, 2)}).json()
+    assert done["idle"] is not None and done["history"] == morning["history"] + 1
+
+
+def test_an_action_inside_the_gap_undoes_the_break(client, neem, ctx, onto):
+    """A situation after the idle gap, then an action that began before it: the NEEM holds no
+    idle action, and the live predictor must again equal a fresh fit of the NEEM."""
+    from oracle.algorithm.params import Hyperparameters
+    from oracle.ranking import rank_neem
+    from oracle.timeline import Instant
+
+    drive(client, neem, days=1)
+    last = at(0, 10 * (len(ROUTINE) - 1)) + 5
+    client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": last + 60})
+    done = client.post(f"/api/neems/{neem}/actions", json={"call": "pick(apple)", "begin": last + 5, "end": last + 6}).json()
+    assert done["idle"] is None and done["history"] == len(ROUTINE) + 1
+    live = client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": last + 8}).json()
+    fresh = ctx.thread.call(lambda: rank_neem(ctx.engine.bridge(neem), onto, Hyperparameters(), AVAILABLE,
+                                              Instant.of(last + 8), write=False))
+    assert fresh.history == live["history"]
     assert [round(min(t.score, 1e9), 9) for t in fresh.ranking] == [round(r["score"], 9) for r in live["ranking"]]
 
 
@@ -92,6 +151,23 @@ def test_perception_is_logged_and_unknown_objects_refused(client, neem):
     ("/api/prolog", {"query": "halt", "neem": "ada"}, 400, "not allowed"),
     ("/api/prolog", {"query": "kb_call(halt)", "neem": "ada"}, 400, "not allowed"),
     ("/api/prolog", {"query": "member(X, [a", "neem": "ada"}, 400, "syntax"),
+    ("/api/neems/ada/situation", {"available": ["pick(red_mug)"], "at": 1e300}, 400, "between 1970"),
+    ("/api/neems/ada/situation", {"available": ["pick(red_mug)"], "at": "9999-12-31T23:59"}, 400, "between 1970"),
+    ("/api/neems/ada/situation", {"available": "pick(red_mug)"}, 422, "available"),
+    ("/api/neems/ada/perception", {"objects": [{"name": "red_mug", "pose": [1, 2]}]}, 422, "pose"),
+    ("/api/neems/ada/perception", {"objects": [{"name": "red_mug"}], "at": "soon"}, 400, "ISO-8601"),
+    ("/api/neems/ada/actions", {"phase": "begin"}, 400, "call is required"),
+    ("/api/neems/ada/actions", {"phase": "end"}, 400, "needs the id"),
+    ("/api/neems/ada/actions", {"call": "pick(red_mug)", "performed_by": "cat"}, 422, "performed_by"),
+    ("/api/neems/ada/actions", {"call": "fly(red_mug)"}, 400, "fly"),
+    ("/api/neems/ada/choice", {"task": "pick(red_mug)", "workflow": ["fly(x)"]}, 400, "workflow"),
+    ("/api/neems", {"user": "ada", "neem": "ada"}, 400, "already exists"),
+    ("/api/neems", {"user": ""}, 422, "user"),
+    ("/api/prolog", {"query": "X = 1", "neem": "nobody"}, 404, "nobody"),
+    ("/api/prolog", {"query": "X = 1", "neem": "ada", "bindings": {"X": True}}, 400, "binding X"),
+    ("/api/prolog", {"query": "X = 1", "neem": "ada", "limit": 0}, 422, "limit"),
+    ("/api/prolog", {"query": "open('/etc/passwd', read, S)", "neem": "ada"}, 400, "not allowed"),
+    ("/api/prolog", {"query": "assertz(foo)", "neem": "ada"}, 400, "not allowed"),
 ])
 def test_bad_input_is_a_one_line_4xx_and_changes_nothing(client, neem, ctx, path, body, status, needle):
     client.post(f"/api/neems/{neem}/actions", json={"call": "pick(apple)", "begin": at(0, 0), "end": at(0, 2)})
@@ -102,6 +178,28 @@ def test_bad_input_is_a_one_line_4xx_and_changes_nothing(client, neem, ctx, path
     assert needle in error and "\n" not in error
     assert ctx.thread.call(lambda: ctx.engine.store.count(neem)) == count
     assert client.get("/api/neems").status_code == 200  # still serving
+
+
+@pytest.mark.parametrize("method,path,status,needle", [
+    ("GET", "/api/neems/ada/why-not", 422, "task"),
+    ("GET", "/api/neems/ada/why-not?task=fly(x)", 400, "fly"),
+    ("GET", "/api/neems/ada/why-not?task=pick(banana)&at=never", 400, "ISO-8601"),
+    ("GET", "/api/neems/nobody/why-not?task=pick(banana)", 404, "nobody"),
+    ("GET", "/api/neems/nobody/what-next", 404, "nobody"),
+    ("GET", "/api/neems/nobody/situation", 404, "nobody"),
+    ("GET", "/api/neems/ada/something-else?task=pick(", 400, "malformed"),
+    ("GET", "/api/nothing-here", 404, "Not Found"),
+    ("DELETE", "/api/neems", 405, "Method Not Allowed"),
+    ("POST", "/api/neems/ada/situation", 422, "JSON"),  # a body that is not JSON
+])
+def test_every_other_refusal_is_one_line_too(client, neem, ctx, method, path, status, needle):
+    count = ctx.thread.call(lambda: ctx.engine.store.count(neem))
+    response = client.request(method, path, content=b"{not json", headers={"Content-Type": "application/json"})
+    assert response.status_code == status, response.text
+    error = response.json()["error"]
+    assert needle in error and "\n" not in error
+    assert ctx.thread.call(lambda: ctx.engine.store.count(neem)) == count
+    assert ctx.thread.call(lambda: (ctx.engine.session(neem).latest, ctx.engine.session(neem).choice)) == (None, None)
 
 
 def test_prolog_pages_solutions_and_binds_values_as_terms(client, neem):
@@ -181,3 +279,52 @@ def test_a_neem_logged_elsewhere_shows_its_latest_situation(ctx, onto):
         shown = client.get("/api/neems/eve/situation").json()
         assert sorted(r["task"] for r in shown["ranking"]) == ["open(fridge)", "pick(thermos)"]
         assert "pick(thermos)" in client.get("/", params={"neem": "eve"}).text
+
+
+def test_the_thesis_oracle_explains_with_its_similar_situations(tmp_path, onto):
+    """``serve --method thesis``: support is |H(s_o)| and the reason says so; no context fields."""
+    import re
+
+    from fastapi.testclient import TestClient
+
+    from oracle.algorithm.params import Hyperparameters
+    from oracle.service import build_context
+
+    context = build_context(str(tmp_path / "t.sqlite"), onto, Hyperparameters(), method="thesis")
+    try:
+        with TestClient(create_app(context)) as client:
+            client.post("/api/neems", json={"user": "ada", "neem": "ada"})
+            drive(client, "ada", days=1)
+            ranking = client.post("/api/neems/ada/situation", json={"available": AVAILABLE, "at": at(1, 0)}).json()["ranking"]
+    finally:
+        context.thread.close()
+    assert all((e["probability"], e["context_order"], e["context"], e["situations"]) == (None, None, [], []) for e in ranking)
+    for entry in ranking:
+        n = entry["support"]
+        assert entry["reason"] == ("new to me" if n == 0 else f"like {n} past situation{'s' if n != 1 else ''}")
+        assert re.fullmatch(r"like \d+ past situations?|new to me", entry["reason"])
+    assert any(e["support"] > 0 for e in ranking)
+
+
+def test_the_request_log_holds_ids_never_the_users_data(ctx, caplog):
+    """Method, route template, NEEM id, status and time; no task, object, query or token, also on
+    refusals."""
+    import logging
+
+    from fastapi.testclient import TestClient
+
+    ctx.token = "s3cret-token-123"
+    auth = {"Authorization": "Bearer s3cret-token-123"}
+    with caplog.at_level(logging.INFO, logger="oracle.service"), TestClient(create_app(ctx)) as client:
+        client.post("/api/neems", json={"user": "Ada Lovelace", "neem": "ada"}, headers=auth)
+        client.post("/api/neems/ada/perception", json={"objects": [{"name": "banana"}], "at": at(0, 0)}, headers=auth)
+        client.post("/api/neems/ada/situation", json={"available": ["pick(red_mug)", "open(fridge)"], "at": at(0, 1)}, headers=auth)
+        client.post("/api/neems/ada/actions", json={"call": "pick(red_mug)", "begin": at(0, 2)}, headers=auth)
+        client.get("/api/neems/ada/why-not", params={"task": "pick(thermos)"}, headers=auth)
+        client.post("/api/neems/ada/situation", json={"available": ["fly(unicorn)"]}, headers=auth)
+        client.post("/api/prolog", json={"query": "atom_length(secretquery, N)", "neem": "ada"}, headers=auth)
+        client.get("/api/neems", params={"token": "wrong-token-guess"})
+    text = "\n".join(record.getMessage() for record in caplog.records)
+    assert "POST /api/neems/{neem}/situation neem=ada 200" in text
+    for secret in ("Ada Lovelace", "banana", "red_mug", "fridge", "thermos", "unicorn", "secretquery", "s3cret", "wrong-token"):
+        assert secret not in text, secret

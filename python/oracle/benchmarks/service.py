@@ -108,8 +108,11 @@ def _open_sessions(url: str, plans: list[tuple[str, str, list]]) -> float:
 def run(quick: bool = False) -> list[dict]:
     actions, steps, robots = (200, 30, 2) if quick else (1000, 150, 3)
     rows: list[dict] = []
-    print(f"  load average before: {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores (other work inflates every figure)",
-          flush=True)
+    import importlib.util
+
+    print(f"  load average before: {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores (other work inflates every figure);"
+          f" niceness {os.nice(0)}; uvicorn's HTTP parser:"
+          f" {'httptools' if importlib.util.find_spec('httptools') else 'h11 (pure Python)'}", flush=True)
     with tempfile.TemporaryDirectory(prefix="neem-bench-service-") as folder:
         store = Path(folder) / "bench.sqlite"
         plans = _prepare(store, robots, actions, steps * 3)

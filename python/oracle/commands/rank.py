@@ -26,7 +26,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from oracle.commands.common import connect, method_from, moment_from, settings_from
-    from oracle.ranking import finite, rank_neem
+    from oracle.ranking import finite, rank_neem, support_fields
 
     settings = settings_from(args.settings)
     method = method_from(args)
@@ -47,16 +47,6 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def support_fields(task) -> dict:  # noqa: ANN001 - a RankedTask
-    """What supports a routine-predictor ranking (empty for the thesis oracle)."""
-    from oracle.algorithm.routine import RoutineTask
-
-    if not isinstance(task, RoutineTask):
-        return {}
-    return {"probability": task.probability, "context_order": task.order, "context": list(task.context),
-            "situations": list(task.situations)}
-
-
 def describe(task) -> str:  # noqa: ANN001 - a RankedTask
     """One line of why a task stands where it does; scores are lower-is-better for every method."""
     from oracle.algorithm.routine import RoutineTask
@@ -67,7 +57,7 @@ def describe(task) -> str:  # noqa: ANN001 - a RankedTask
         elif task.order == 0:
             why = f"done {task.n_similar}x, not after this context"
         else:
-            why = "never done: by similarity"
+            why = "no past context: by similarity"
         return f"p {task.probability:.3f} ({why})"
     return "no similar history" if math.isinf(task.score) else f"score {task.score:.4f} from {task.n_similar} similar"
 

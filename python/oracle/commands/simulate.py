@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import threading
 import time
+from urllib.parse import quote
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -39,7 +40,10 @@ def run(args: argparse.Namespace) -> int:
     def one(index: int) -> None:
         neem = args.neem if args.robots == 1 else (f"{args.neem}-{index}" if args.neem else None)
         user, rows = persona_rows(args.persona + index, args.seed, args.days)
-        results[index] = drive(args.serve, user, rows, neem, args.token, args.delay)
+        results[index] = drive(args.serve, user, rows, neem, args.token, args.delay, announce=show)
+
+    def show(neem: str) -> None:
+        print(f"driving NEEM {neem}: the page is {args.serve.rstrip('/')}/?neem={quote(neem, safe='')}", flush=True)
 
     started = time.perf_counter()
     threads = [threading.Thread(target=one, args=(i,)) for i in range(args.robots)]

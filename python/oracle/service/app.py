@@ -22,7 +22,7 @@ from urllib.parse import parse_qs, urlsplit
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import JSONResponse, Response
-from starlette.exceptions import HTTPException
+from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from oracle.errors import NeemOracleError
 from oracle.service.engine import Engine, EngineThread, NotFound
@@ -73,11 +73,13 @@ def create_app(ctx: Context) -> FastAPI:
         where = ".".join(str(p) for p in first.get("loc", ()) if p != "body") or "request"
         return _error(422, f"{where}: {first.get('msg', 'invalid')}")
 
-    @app.exception_handler(HTTPException)
-    async def http_error(request: Request, error: HTTPException) -> JSONResponse:
-        # Starlette's own refusals (a body that is no JSON it can parse, an unknown route) in
-        # the service's one-line shape.
-        return _error(error.status_code, str(error.detail))
+    @app.exception_handler(StarletteHTTPException)
+    async def http_error(request: Request, error: StarletteHTTPException) -> JSONResponse:
+        # unknown paths and methods answer in the same one-line form as every other refusal
+        answer = _error(error.status_code, f"{request.method} {request.url.path}: {error.detail}")
+        for name, value in (error.headers or {}).items():
+            answer.headers[name] = value
+        return answer
 
     @app.exception_handler(Exception)
     async def bug(request: Request, error: Exception) -> JSONResponse:

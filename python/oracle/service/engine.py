@@ -69,7 +69,8 @@ class EngineThread:
 def _log_failure(future: Any) -> None:
     error = future.exception()
     if error is not None:
-        LOG.error("background write failed: %s", str(error).splitlines()[0] if str(error) else type(error).__name__)
+        # the type only: a message may name the user's tasks or objects, and the log holds ids only
+        LOG.error("background write failed: %s", type(error).__name__)
 
 
 class Engine:

@@ -17,6 +17,8 @@ from typing import Any
 QUEUE_SIZE = 256
 #: A comment line this often keeps proxies and the browser from closing an idle stream.
 KEEPALIVE_S = 15.0
+#: How soon a browser reconnects a dropped stream (the page then fetches the latest ranking).
+RETRY_MS = 2000
 
 
 @dataclass(frozen=True)
@@ -54,7 +56,7 @@ class EventHub:
         entry = (queue, neem)
         self._subscribers.add(entry)
         try:
-            yield ": connected\n\n"
+            yield f"retry: {RETRY_MS}\n: connected\n\n"
             while until is None or not until.is_set():
                 try:
                     number, event = await asyncio.wait_for(queue.get(), KEEPALIVE_S)

@@ -1,7 +1,7 @@
 """The tablet page (thesis 2.1 and its first future-work item): the ranked available tasks
 as large touch targets, top suggestion first, the predicted chain as one workflow choice,
-"why not?" on any task, live updates from the event stream, and a tap posted back as the
-user's decision.
+"why not?" on any task, "what next?" and "something else?", live updates from the event
+stream (reconnecting after a drop), and a tap posted back as the user's decision.
 
 Server-rendered HTML with one inline style and one inline script: no external resource (the
 robot has no network), no build step. Native buttons give touch, keyboard and switch access
@@ -13,6 +13,8 @@ from __future__ import annotations
 import json
 from html import escape
 from typing import Any
+
+from oracle.answers import support_sentence
 
 _STYLE = """
 :root { --ink:#111; --paper:#fbfaf7; --top:#0b5394; --line:#c9c4b8; --focus:#ff9e00; }
@@ -29,11 +31,11 @@ ol { list-style:none; padding:0; margin:0; }
 li { display:flex; gap:14px; margin:0 0 14px; }
 button { font:inherit; border-radius:16px; cursor:pointer; }
 button:focus-visible { outline:6px solid var(--focus); outline-offset:3px; }
-.task { flex:1; min-height:96px; text-align:left; padding:16px 24px; border:3px solid var(--line);
+.task { flex:1; min-width:0; min-height:96px; text-align:left; padding:16px 24px; border:3px solid var(--line);
         background:#fff; color:var(--ink); display:flex; align-items:center; gap:20px; }
 .task .rank { font-weight:700; font-size:40px; min-width:1.6em; text-align:center; }
-.task .name { font-size:34px; font-weight:600; }
-.task .why-score { margin-left:auto; font-size:22px; color:#555; text-align:right; }
+.task .name { font-size:34px; font-weight:600; overflow-wrap:anywhere; }
+.task .why-score { margin-left:auto; font-size:22px; color:#555; text-align:right; max-width:40%; }
 li.top .task { background:var(--top); border-color:var(--top); color:#fff; min-height:132px; }
 li.top .task .name { font-size:42px; }
 li.top .task .why-score { color:#dfe9f5; }
@@ -45,6 +47,14 @@ li.flow { display:block; }
 #workflow .label { display:block; font-size:22px; color:#444; }
 #workflow .steps { font-size:32px; font-weight:600; }
 .empty { font-size:30px; color:#555; padding:30px 0; }
+#ask { display:flex; gap:14px; margin:10px 0 0; }
+#ask button { flex:1; min-height:96px; border:3px solid var(--line); background:#f1efe9; color:var(--ink); font-size:28px; }
+#link { margin:0 0 18px; padding:14px 18px; border-radius:12px; background:#7a1f1f; color:#fff; }
+@media (max-width: 820px) {
+  body { font-size:24px; } main { padding:14px 14px 30px; }
+  .whynot { min-width:120px; font-size:22px; } .task { padding:14px 16px; gap:12px; }
+  .task .why-score { font-size:19px; max-width:45%; }
+}
 """
 
 _SCRIPT = """
@@ -73,14 +83,27 @@ _SCRIPT = """
                    : 'You chose ' + task + '. The robot will do it.');
     }).catch(function (e) { say('Could not send your choice: ' + e.message); });
   }
-  function whyNot(task) {
-    fetch(api('/why-not?task=' + encodeURIComponent(task)), {headers: auth})
+  function whyNot(task) { ask('/why-not?task=' + encodeURIComponent(task)); }
+  function breakable(span, text) {  // a long call wraps after ( _ or , and never mid-word
+    text.split(/(?<=[(_,])/).forEach(function (part, i) {
+      if (i) span.appendChild(document.createElement('wbr'));
+      span.appendChild(document.createTextNode(part));
+    });
+    return span;
+  }
+  function supportText(t) {
+    if (t.reason) return t.reason;
+    var n = t.support; return n ? (n === 1 ? 'like 1 past situation' : 'like ' + n + ' past situations') : 'new to me';
+  }
+  function ask(path) {
+    fetch(api(path), {headers: auth})
       .then(function (r) { return r.json(); })
       .then(function (j) { say(j.sentence || j.error); })
       .catch(function (e) { say('No answer: ' + e.message); });
   }
-  function supportText(n) { return n ? (n === 1 ? 'like 1 past situation' : 'like ' + n + ' past situations') : 'new to me'; }
+  var shown = cfg.state;
   function render(state) {
+    shown = state;
     list.textContent = '';
     if (!state || !state.ranking || !state.ranking.length) {
       list.appendChild(el('li', 'empty', 'Waiting for the robot to say what it can do.'));
@@ -92,8 +115,8 @@ _SCRIPT = """
       var li = el('li', i === 0 ? 'top' : '');
       var b = el('button', 'task'); b.type = 'button'; b.dataset.task = t.task;
       b.appendChild(el('span', 'rank', String(t.rank)));
-      b.appendChild(el('span', 'name', t.task));
-      b.appendChild(el('span', 'why-score', supportText(t.support)));
+      b.appendChild(breakable(el('span', 'name'), t.task));
+      b.appendChild(el('span', 'why-score', supportText(t)));
       b.setAttribute('aria-label', (i === 0 ? 'Suggested: ' : 'Option ' + t.rank + ': ') + t.task);
       b.addEventListener('click', function () { choose(t.task, null, li); });
       var w = el('button', 'whynot', 'Why not?'); w.type = 'button';
@@ -117,12 +140,37 @@ _SCRIPT = """
     var next = items[(i + (e.key === 'ArrowDown' ? 1 : items.length - 1)) % items.length];
     if (next) { next.focus(); e.preventDefault(); }
   });
+  document.getElementById('whatnext').addEventListener('click', function () { ask('/what-next'); });
+  document.getElementById('other').addEventListener('click', function () {
+    var top = shown && shown.ranking && shown.ranking[0];
+    ask('/something-else' + (top ? '?task=' + encodeURIComponent(top.task) : ''));
+  });
   render(cfg.state);
+  // Live updates. The browser reconnects a dropped stream by itself (the server asks for 2 s);
+  // a refused one (the service restarting) is retried here, backing off to 15 s. Events sent
+  // while the page was away are lost, so every reconnection fetches the latest ranking.
   var url = '/api/events?neem=' + encodeURIComponent(cfg.neem) + (cfg.token ? '&token=' + encodeURIComponent(cfg.token) : '');
-  var source = new EventSource(url);
-  source.addEventListener('situation', function (m) { render(JSON.parse(m.data)); say(''); });
-  source.addEventListener('action', function (m) { var a = JSON.parse(m.data); say('The robot did ' + a.call + '.'); });
-  source.onopen = function () { document.body.dataset.live = 'yes'; };
+  var link = document.getElementById('link'), lost = false, delay = 1000;
+  function catchUp() {
+    fetch(api('/situation'), {headers: auth})
+      .then(function (r) { return r.ok ? r.json() : null; })
+      .then(function (j) { if (j && j.ranking && j.ranking.length) render(j); })
+      .catch(function () {});
+  }
+  function connect() {
+    var source = new EventSource(url);
+    source.addEventListener('situation', function (m) { render(JSON.parse(m.data)); say(''); });
+    source.addEventListener('action', function (m) { var a = JSON.parse(m.data); say('The robot did ' + a.call + '.'); });
+    source.onopen = function () {
+      document.body.dataset.live = 'yes'; link.hidden = true; delay = 1000;
+      if (lost) { lost = false; catchUp(); }
+    };
+    source.onerror = function () {
+      document.body.dataset.live = 'no'; lost = true; link.hidden = false;
+      if (source.readyState === EventSource.CLOSED) { setTimeout(connect, delay); delay = Math.min(2 * delay, 15000); }
+    };
+  }
+  connect();
 })();
 """
 
@@ -135,9 +183,12 @@ def render_page(neem: str | None, state: dict[str, Any] | None, token: str | Non
     config = json.dumps({"neem": neem, "state": state, "token": token}).replace("</", "<\\/")
     items = _items(state)
     body = f"""
+<p id="link" role="alert" hidden>Lost the connection to the robot; reconnecting…</p>
 <p id="status" role="status" aria-live="polite"></p>
 <h1>What would you like now? <small id="when"></small></h1>
 <ol id="tasks" aria-label="Tasks the robot can do now, best first">{items}</ol>
+<div id="ask"><button type="button" id="whatnext">What next?</button>
+<button type="button" id="other">Something else?</button></div>
 <script type="application/json" id="config">{config}</script>
 <script>{_SCRIPT}</script>"""
     return _shell(neem, body, neem)
@@ -151,12 +202,11 @@ def _items(state: dict[str, Any] | None) -> str:
     out = []
     for index, task in enumerate(ranking):
         name = escape(task["task"])
-        n = task["support"]
-        support = f"like {n} past situation{'s' if n != 1 else ''}" if n else "new to me"
+        support = escape(task.get("reason") or support_sentence(task))
         label = ("Suggested: " if index == 0 else f"Option {task['rank']}: ") + name
         out.append(
             f"<li class='{'top' if index == 0 else ''}'><button type='button' class='task' data-task='{name}'"
-            f" aria-label='{label}'><span class='rank'>{task['rank']}</span><span class='name'>{name}</span>"
+            f" aria-label='{label}'><span class='rank'>{task['rank']}</span><span class='name'>{_breakable(name)}</span>"
             f"<span class='why-score'>{support}</span></button>"
             f"<button type='button' class='whynot' aria-label='Why not {name}?'>Why not?</button></li>")
         if index == 0 and len(chain) >= 2:
@@ -164,6 +214,11 @@ def _items(state: dict[str, Any] | None) -> str:
                        f" workflow, one step after the other</span><span class='steps'>{escape(' → '.join(chain))}"
                        "</span></button></li>")
     return "".join(out)
+
+
+def _breakable(text: str) -> str:
+    """Line-break opportunities after ( _ and , (the script's ``breakable``)."""
+    return text.replace("(", "(<wbr>").replace("_", "_<wbr>").replace(",", ",<wbr>")
 
 
 def _shell(title: str, body: str, neem: str) -> str:

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 from urllib.parse import quote
@@ -31,10 +32,11 @@ def persona_rows(persona: int, seed: int, days: int) -> tuple[str, list[Any]]:
 
 
 def drive(url: str, user: str, rows: list[Any], neem: str | None, token: str | None = None,
-          delay: float = 0.0, stop: threading.Event | None = None, choices: bool = True) -> Drive:
-    """Create (or reuse) the NEEM and post the rows step by step: perception of objects not
-    seen before, the situation, the persona's choice as the tablet posts it (``choices``), and
-    the action the robot then executes."""
+          delay: float = 0.0, stop: threading.Event | None = None, choices: bool = True,
+          announce: Callable[[str], None] | None = None) -> Drive:
+    """Create (or reuse) the NEEM (``announce`` is told its id) and post the rows step by step:
+    perception of objects not seen before, the situation, the persona's choice as the tablet
+    posts it (``choices``), and the action the robot then executes."""
     from oracle.service.client import Client, ServiceError
 
     client = Client(url, token)
@@ -47,6 +49,9 @@ def drive(url: str, user: str, rows: list[Any], neem: str | None, token: str | N
         except ServiceError as error:
             result.errors.append(str(error))
             return result
+        assert neem is not None
+        if announce is not None:
+            announce(neem)
         base = f"/api/neems/{quote(neem, safe='')}"
         seen: set[str] = set()
         for row in rows:

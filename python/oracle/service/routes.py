@@ -10,7 +10,7 @@ import time
 from typing import Annotated, Any, Literal
 
 from fastapi import APIRouter, BackgroundTasks, Query, Request
-from fastapi.responses import HTMLResponse, Response, StreamingResponse
+from fastapi.responses import HTMLResponse, JSONResponse, StreamingResponse
 from pydantic import BaseModel, Field
 
 from oracle.service.events import Event
@@ -109,8 +109,7 @@ async def perception(neem: str, body: Perception, request: Request) -> dict[str,
 
 
 @router.post("/api/neems/{neem}/situation", tags=["robot"])
-async def situation(neem: str, body: SituationIn, request: Request, response: Response,
-                    background: BackgroundTasks) -> dict[str, Any]:
+async def situation(neem: str, body: SituationIn, request: Request, background: BackgroundTasks) -> JSONResponse:
     """Log the available tasks as the imagined situation, rank them, write the ranking back as
     the imagined preference. The answer is sent as soon as the ranking is known; the NEEM write
     is the next job on the engine thread, before any later request. The Server-Timing header
@@ -125,7 +124,7 @@ async def situation(neem: str, body: SituationIn, request: Request, response: Re
         return found, ranking, session.describe(found, ranking, ms), started, time.perf_counter()
 
     found, ranking, answer, started, done = await ctx.thread.run(job)
-    response.headers["Server-Timing"] = f"queue;dur={(started - queued) * 1000:.3f}, engine;dur={(done - started) * 1000:.3f}"
+    timing = f"queue;dur={(started - queued) * 1000:.3f}, engine;dur={(done - started) * 1000:.3f}"
     write = lambda: ctx.engine.session(neem).write_situation(found, ranking)  # noqa: E731
     if ctx.write_behind:
         # The write is queued now (so no later request overtakes it) but waits until the answer
@@ -140,7 +139,9 @@ async def situation(neem: str, body: SituationIn, request: Request, response: Re
     else:
         await ctx.thread.run(write)
     ctx.hub.publish(Event("situation", neem, answer))
-    return answer
+    # answered as JSON directly: FastAPI's jsonable_encoder walks every field of the ranking and
+    # cost more than the ranking itself (0.6 ms against 0.8 ms for 15 tasks); the values are plain
+    return JSONResponse(answer, headers={"Server-Timing": timing})
 
 
 def _after(sent: threading.Event, write: Any) -> None:

@@ -15,13 +15,14 @@ from typing import Any
 from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.predictors import DEFAULT, Predictor
 from oracle.algorithm.predictors import make_predictor as make_named
-from oracle.algorithm.records import Ranking, Step
+from oracle.algorithm.records import RankedTask, Ranking, Step
+from oracle.answers import support_sentence
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError
 from oracle.neem.writer import LoggedAction, NeemLogger
-from oracle.timeline import Instant, TimeValueError, clock
+from oracle.timeline import Instant, TimeValueError, clock, is_idle_gap
 from oracle.ontology import OdbOntology
-from oracle.ranking import finite
+from oracle.ranking import finite, support_fields
 from oracle.calls import call_of, check_call, idle_step, opening_tasks, option_of, steps_from_history
 
 #: The forward tree is built for the top suggestion only: the page and the API offer its chain
@@ -61,7 +62,17 @@ def make_predictor(ontology: OdbOntology, settings: Hyperparameters, method: str
 
 
 def moment_of(value: Any, what: str) -> Moment:
-    """A time the API received: unix seconds, or ISO-8601 (naive: the logger's rule, UTC)."""
+    """A time the API received: unix seconds, or ISO-8601 (naive: the logger's rule, UTC),
+    within the range every store accepts."""
+    moment = _moment(value, what)
+    try:
+        Instant.of(moment)
+    except TimeValueError as error:
+        raise LoggingError(f"{what}: {error}") from None
+    return moment
+
+
+def _moment(value: Any, what: str) -> Moment:
     if value is None:
         return time.time()
     if isinstance(value, bool):
@@ -85,7 +96,12 @@ class NeemSession:
         self.neem = neem
         self.logger = logger
         self.ontology = ontology
-        self.predictor = predictor.fit(steps_from_history(ontology, history))
+        #: The steps fitted so far, and when each began (the predictor's history positions: what
+        #: a ranking's supporting past situations are shown as).
+        self.steps: list[Step] = steps_from_history(ontology, history)
+        self.begins: list[float] = [float(row["begin"]) for row in history]
+        self.predictor = predictor.fit(self.steps)
+        self.done = {step.label for step in self.steps if not step.idle}
         ends = [float(row["end"]) for row in history]
         begins = [float(row["begin"]) for row in history]
         #: The logger's clock: nothing may be logged before the end of the last action.
@@ -93,6 +109,10 @@ class NeemSession:
         #: Begin of the last logged action: a situation counts for the next action only when it
         #: came after it (odb_history:situation_history's rule).
         self.prev_begin: float | None = max(begins) if begins else None
+        #: The idle step of the current pause is fitted before its idle action is logged: by the
+        #: first situation after an idle gap, ranked as the replay ranks it (the logger writes the
+        #: idle action only with the next action, which then fits nothing more).
+        self.idle_fitted = False
         self.pending: Situation | None = None
         self.latest: dict[str, Any] | None = None
         self.open: dict[str, OpenAction] = {}
@@ -117,7 +137,7 @@ class NeemSession:
     # -- perception -------------------------------------------------------------------------
     def perceive(self, objects: Sequence[tuple[str, list[float] | None]], at: Any) -> list[str]:
         moment = moment_of(at, "at")
-        when = _instant(moment)
+        when = Instant.of(moment)
         self._check_time(when, "perception")
         for name, _ in objects:
             if name not in self.ontology.objects:
@@ -136,12 +156,27 @@ class NeemSession:
             raise LoggingError("available must name at least one task, e.g. [\"pick(red_mug)\"]")
         calls = self.calls(available, "available")
         moment = moment_of(at, "at")
-        when = _instant(moment)
+        when = Instant.of(moment)
         self._check_time(when, "situation")
+        self._fit_break(when.seconds)
         started = time.perf_counter()
         ranking = self.predictor.rank([option_of(self.ontology, c) for c in calls], when.part_of_day,
                                       tree_roots=TREE_ROOTS)
         return Situation(calls, when, moment), ranking, (time.perf_counter() - started) * 1000
+
+    def _fit(self, step: Step, begin: float) -> None:
+        self.predictor.partial_fit(step)
+        self.steps.append(step)
+        self.begins.append(begin)
+        if not step.idle:
+            self.done.add(step.label)
+
+    def _fit_break(self, now: float) -> None:
+        """The idle step before a situation posted an idle gap after the last action's end: the
+        NEEM will hold it once the next action is logged; the predictor must see it now."""
+        if not self.idle_fitted and self.last_end is not None and is_idle_gap(self.last_end, now, self.logger.idle_threshold):
+            self._fit(idle_step(self.ontology, clock(self.last_end)), self.last_end)
+            self.idle_fitted = True
 
     def write_situation(self, situation: Situation, ranking: Ranking) -> str:
         """Log the situation as the imagined one and the ranking as the imagined preference,
@@ -158,18 +193,30 @@ class NeemSession:
         self.latest = {
             "neem": self.neem, "at": situation.when.seconds, "time_of_day": situation.when.part_of_day,
             "history": self.predictor.n_steps_,
-            "ranking": [{"rank": t.rank, "task": call, "score": finite(t.score), "support": t.n_similar}
-                        for t, call in zip(ranking, calls, strict=True)],
+            "ranking": [self._entry(t, call) for t, call in zip(ranking, calls, strict=True)],
             "chain": [str(call_of(self.ontology, o)) for o in ranking.chain()],
             "ms": round(ms, 3),
         }
         return self.latest
 
+    def _entry(self, task: RankedTask, call: str) -> dict[str, Any]:
+        """One ranked task as the API answers it: ``support`` is how many past situations back
+        it (the thesis oracle: |H(s_o)|; the routine predictor: how often the user did it after
+        the same exact context), ``situations`` when the latest of those began (at most 5),
+        ``reason`` the same in a few words."""
+        fields = support_fields(task)
+        entry: dict[str, Any] = {"rank": task.rank, "task": call, "score": finite(task.score), "support": task.n_similar,
+                                 "probability": fields.get("probability"), "context_order": fields.get("context_order"),
+                                 "context": fields.get("context", []),
+                                 "situations": [self.begins[p] for p in fields.get("situations", []) if p < len(self.begins)]}
+        entry["reason"] = support_sentence({**entry, "done": call in self.done})
+        return entry
+
     # -- actions ------------------------------------------------------------------------------
     def begin(self, call_text: str, at: Any, performed_by: str, key: str | None) -> OpenAction:
         call = self.calls([call_text], "call")[0]
         moment = moment_of(at, "at")
-        self._check_time(_instant(moment), f"action {call}")
+        self._check_time(Instant.of(moment), f"action {call}")
         if performed_by not in ("robot", "user"):
             raise LoggingError(f"performed_by must be 'robot' or 'user', got {performed_by!r}")
         if key is None:
@@ -184,6 +231,8 @@ class NeemSession:
     def end(self, key: str | None, call_text: str | None, at: Any) -> LoggedAction:
         if key is None:
             matches = [a for a in self.open.values() if call_text is not None and str(a.call) == str(parse_call(call_text))]
+            if call_text is None:
+                raise LoggingError("phase end needs the id the begin answered (or the open action's call)")
             if len(matches) != 1:
                 raise LoggingError(f"no single open action {call_text!r} to end; give its id")
             key = matches[0].key
@@ -200,28 +249,28 @@ class NeemSession:
         call = self.calls([call_text], "call")[0]
         start = moment_of(begin, "begin")
         stop = moment_of(end, "end") if end is not None else start
-        self._check_time(_instant(start), f"action {call}")
+        self._check_time(Instant.of(start), f"action {call}")
         logged = self.logger.action(call, start, stop, performed_by=performed_by)
         self.logger.flush()
         if logged.idle is not None and self.last_end is not None:
-            self.predictor.partial_fit(idle_step(self.ontology, clock(self.last_end)))
+            if not self.idle_fitted:
+                self._fit(idle_step(self.ontology, clock(self.last_end)), self.last_end)
             self.prev_begin = self.last_end
+        elif self.idle_fitted:
+            # the action began before the break the predictor was told of (within the idle gap
+            # of the last action): the NEEM holds no idle action, so neither may the predictor
+            self.steps.pop()
+            self.begins.pop()
+            self.predictor = self.predictor.fit(self.steps)
+        self.idle_fitted = False
         pending = self.pending
         counts = (pending is not None and pending.when.seconds <= logged.begin
                   and (self.prev_begin is None or pending.when.seconds > self.prev_begin))
         options = tuple(option_of(self.ontology, c) for c in sorted(set(pending.calls), key=str)) if counts and pending else ()
         option = option_of(self.ontology, call)
-        self.predictor.partial_fit(Step(option.task, option.target, option.reference, options,
-                                        logged.part_of_day, False, str(call)))
+        self._fit(Step(option.task, option.target, option.reference, options, logged.part_of_day, False, str(call)),
+                  logged.begin)
         self.last_end = logged.end
         self.prev_begin = logged.begin
         self.pending = None
         return logged
-
-
-def _instant(moment: Any) -> Instant:
-    """The instant of a request's time; one out of range (NaN, 1e20, year 9999) is the caller's error."""
-    try:
-        return Instant.of(moment)
-    except TimeValueError as error:
-        raise LoggingError(str(error)) from None
