@@ -177,7 +177,7 @@ class Store(ABC):
         it was (and a hidden NEEM behind, never listed nor read)."""
         check_neem_id(target)
         self.drop_abandoned_staging()
-        staging = f"staging-{os.urandom(6).hex()}"
+        staging = f"staging-{os.urandom(6).hex()}"  # the prefix is how backends find them (staging_neems)
         extra = {**(meta or {}), STAGING: target, STAGED_BY: {"host": socket.gethostname(), "pid": os.getpid()}}
         temporary = bool(extra.pop("temporary", False))
         self.create_neem(staging, user=user, temporary=temporary, meta=extra)

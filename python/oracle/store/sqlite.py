@@ -351,7 +351,11 @@ class SQLiteStore(Store):
         return [info for info in self._registry() if not info.meta.get(STAGING)]  # replacements being built are hidden
 
     def staging_neems(self) -> list[NeemInfo]:
-        return [info for info in self._registry() if info.meta.get(STAGING)]
+        # Staging ids all start with "staging-" (Store.create_staging): a range on the primary
+        # key, so every new NEEM of an import of many users does not decode the whole registry.
+        rows = self._conn.execute("SELECT id, meta FROM neems WHERE id >= 'staging-' AND id < 'staging.'").fetchall()
+        infos = [NeemInfo.from_meta(neem_id, self._meta(neem_id, meta)) for neem_id, meta in rows]
+        return [info for info in infos if info.meta.get(STAGING)]
 
     def _meta(self, neem_id: str, blob: bytes) -> dict[str, Any]:
         try:
