@@ -307,3 +307,28 @@ def test_a_chains_file_is_private_complete_and_never_written_through_a_link(tmp_
         write_chains(failing(), out)
     assert len(list(read_chains(out))) == len(rows)  # the earlier file, whole
     assert sorted(p.name for p in out.parent.iterdir()) == ["chains.jsonl"]
+
+
+def test_a_builder_killed_inside_the_swap_leaves_the_old_neem_or_the_new_one(store, onto, tmp_path):
+    # MongoDB has no transaction: swap_in drops the old NEEM, then renames the new one. Both
+    # moments a kill can fall between are set up by hand; the next writer must repair either.
+    from oracle.store.base import READY, STAGED_BY
+
+    import_chains(store, onto, write(tmp_path / "a.jsonl", rows("alice", 4)))
+    old = content(store, "alice")
+    dead = {"host": __import__("socket").gethostname(), "pid": _dead_pid()}
+    before_drop = store.create_staging("alice", user="alice")
+    store.update_meta(before_drop, **{STAGED_BY: dead, READY: True})
+    store.drop_abandoned_staging()  # the old NEEM is still there: the half-done replacement goes
+    assert content(store, "alice") == old and store.staging_neems() == []
+
+    logger = NeemLogger.create(store, onto, user="alice", replace=True)
+    for i in range(7):
+        logger.action("open(fridge)", 1_740_988_800 + 60 * i)
+    logger.flush()
+    store.update_meta(logger.neem_id, **{STAGED_BY: dead, READY: True})
+    new = content(store, logger.neem_id)
+    store.drop_neem("alice")  # killed right after dropping the old NEEM
+    store.drop_abandoned_staging()
+    assert [info.id for info in store.neems()] == ["alice"] and content(store, "alice") == new
+    assert store.staging_neems() == [] and READY not in {k for k, v in store.neem("alice").meta.items() if v}

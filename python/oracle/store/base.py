@@ -46,6 +46,10 @@ Closed = tuple[Triple, tuple[Any, ...], tuple[Any, ...]]
 STAGING = "staging_for"
 #: Registry field of a staging NEEM: the process building it ({"host": ..., "pid": ...}).
 STAGED_BY = "staged_by"
+#: Registry field of a staging NEEM that is complete and about to replace its target: if its
+#: builder dies once the old NEEM is dropped (MongoDB has no transaction), the next writer
+#: finishes the swap instead of dropping it.
+READY = "ready_to_swap"
 #: A staging NEEM whose builder cannot be checked (another host) is abandoned after this long.
 ABANDONED_AFTER_S = 24 * 3600
 
@@ -190,7 +194,9 @@ class Store(ABC):
     def drop_abandoned_staging(self) -> list[str]:
         """Drop the staging NEEMs of processes that died (a killed import or load): they hold
         personal data nobody can see, list or wipe otherwise. A staging NEEM of a live process
-        is kept; one made on another host is dropped once it is older than a day."""
+        is kept; one made on another host is dropped once it is older than a day. One that was
+        ready to replace a NEEM already dropped (a kill inside ``swap_in`` on MongoDB) is
+        swapped in instead. Returns the ids dropped."""
         here, now = socket.gethostname(), datetime.now(timezone.utc)
         dropped = []
         for info in self.staging_neems():
@@ -199,10 +205,17 @@ class Store(ABC):
                 abandoned = not _process_alive(owner["pid"])
             else:
                 abandoned = _age_s(info.created_at, now) > ABANDONED_AFTER_S
-            if abandoned:
-                self._drop_neem(info.id)
-                self._hierarchies.pop(info.id, None)
-                dropped.append(info.id)
+            if not abandoned:
+                continue
+            target = info.meta.get(STAGING)
+            if info.meta.get(READY) and isinstance(target, str) and not self.has_neem(target):
+                # Killed between dropping the old NEEM and renaming the new one: finish the swap.
+                self.rename_neem(info.id, target)
+                self.update_meta(target, **{STAGING: None, STAGED_BY: None, READY: None})
+                continue
+            self._drop_neem(info.id)
+            self._hierarchies.pop(info.id, None)
+            dropped.append(info.id)
         return dropped
 
     def swap_in(self, staging: str, target: str, *, replace: bool = True, **fields: Any) -> NeemInfo:
@@ -213,9 +226,10 @@ class Store(ABC):
             if self.has_neem(target):
                 if not replace:
                     raise StoreError(f"{self.location}: NEEM {target!r} already exists")
+                self.update_meta(staging, **{READY: True})
                 self.drop_neem(target)
             self.rename_neem(staging, target)
-            return self.update_meta(target, **{STAGING: None, STAGED_BY: None, **fields})
+            return self.update_meta(target, **{STAGING: None, STAGED_BY: None, READY: None, **fields})
 
     # -- writing ----------------------------------------------------------------------------
     @abstractmethod

@@ -20,7 +20,7 @@ from bson import json_util
 from bson.codec_options import DEFAULT_CODEC_OPTIONS, DatetimeConversion
 
 from oracle.errors import StoreError
-from oracle.store.base import COLLECTION_KINDS, STAGED_BY, STAGING, SUMMARY_KEY, Store, check_neem_id
+from oracle.store.base import COLLECTION_KINDS, READY, STAGED_BY, STAGING, SUMMARY_KEY, Store, check_neem_id
 from oracle.store.validate import check_meta
 from oracle.store.mongo import DEFAULT_DB, INDEXES
 
@@ -128,7 +128,7 @@ def export_neem(store: Store, neem_id: str, out: Path | str, *, db_name: str = D
     """Write one NEEM as a KnowRob dump folder."""
     info = store.neem(neem_id)
     # The kept summary belongs to this store's write marks, not to the dump.
-    meta = {k: v for k, v in info.meta.items() if k not in ("temporary", STAGING, STAGED_BY, COUNTS_KEY, SUMMARY_KEY)}
+    meta = {k: v for k, v in info.meta.items() if k not in ("temporary", STAGING, STAGED_BY, READY, COUNTS_KEY, SUMMARY_KEY)}
     meta["id"] = neem_id
     meta[COUNTS_KEY] = {kind: store.count(neem_id, kind) for kind in COLLECTION_KINDS}
     docs = {kind: store.read_documents(neem_id, kind) for kind in COLLECTION_KINDS}
@@ -236,7 +236,7 @@ def load_dump(store: Store, path: Path | str, *, neem_id: str | None = None, rep
     for (folder, prefix), files in sorted(groups.items(), key=lambda item: (str(item[0][0]), item[0][1] or "")):
         meta = _read_meta(folder)
         target = neem_id or prefix or meta.pop("id", None) or _SAFE.sub("-", folder.resolve().name).strip("-")
-        for key in ("id", SUMMARY_KEY, STAGING, STAGED_BY):
+        for key in ("id", SUMMARY_KEY, STAGING, STAGED_BY, READY):
             meta.pop(key, None)
         check_neem_id(target)
         if store.has_neem(target) and not replace:
