@@ -8,9 +8,12 @@ from typing import Any
 from oracle.timeline import clock
 
 
-def _when(seconds: float | None) -> str:
+def _when(seconds: float | None, clocked: bool = True) -> str:
+    """A time as the answers say it; in a NEEM without a clock (oracle.timeline), a position."""
     if seconds is None:
         return "lately"
+    if not clocked:
+        return f"position {seconds:g}"
     return clock(seconds).strftime("%Y-%m-%d %H:%M")
 
 
@@ -18,10 +21,10 @@ def _ranked(items: list[dict[str, Any]]) -> str:
     return ", ".join(f"{i['task']} (rank {i['rank']}, score {i['score']:.3g})" for i in items)
 
 
-def reason_sentence(reason: dict[str, Any]) -> str:
+def reason_sentence(reason: dict[str, Any], clocked: bool = True) -> str:
     kind = reason["reason"]
     task = reason["task"]
-    at = _when(reason.get("time"))
+    at = _when(reason.get("time"), clocked)
     if kind == "done":
         return f"I did {task}: it started at {at}."
     if kind == "not_available":
@@ -40,11 +43,11 @@ def reason_sentence(reason: dict[str, Any]) -> str:
     return f"{kind}: {reason}"
 
 
-def why_not_sentence(answer: dict[str, Any]) -> str:
+def why_not_sentence(answer: dict[str, Any], clocked: bool = True) -> str:
     reasons = answer.get("reasons") or []
     if not reasons:
         return f"I cannot tell why {answer['task']} was not done: the NEEM holds no decision about it."
-    return " ".join(reason_sentence(r) for r in reasons)
+    return " ".join(reason_sentence(r, clocked) for r in reasons)
 
 
 #: How many alternatives a spoken answer names; the JSON answer keeps them all.

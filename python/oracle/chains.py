@@ -21,7 +21,7 @@ from datetime import datetime, timedelta
 from pathlib import Path
 
 from oracle.errors import ChainSyntaxError
-from oracle.timeline import TimeValueError, check_seconds, seconds_of
+from oracle.timeline import TimeValueError, check_seconds, parse_iso, seconds_of
 
 #: Longest line a chains file may have (bytes, newline included): a row with a thousand
 #: available actions is ~30 kB; the cap keeps memory bounded whatever the file holds.
@@ -167,8 +167,8 @@ def _moment(obj: dict, key: str, where: str) -> datetime | None:
     if not isinstance(raw, str):
         raise ChainSyntaxError(f"{where}: {key!r} must be an ISO-8601 string")
     try:
-        moment = datetime.fromisoformat(raw.replace("Z", "+00:00"))
-    except ValueError:
+        moment = parse_iso(raw)
+    except TimeValueError:
         raise ChainSyntaxError(f"{where}: {key!r} {raw[:60]!r} is not ISO-8601") from None
     try:
         seconds_of(moment)

@@ -24,7 +24,7 @@ from oracle.calls import call_of, check_call, opening_tasks, option_of, steps_be
 from oracle.neem.query import recorded_part_of_day
 from oracle.neem.writer import NeemLogger
 from oracle.ontology import OdbOntology
-from oracle.timeline import Instant, now, part_of_day_at
+from oracle.timeline import Instant, has_clock, now, part_of_day_at
 
 if TYPE_CHECKING:
     from oracle.bridge import Bridge
@@ -37,7 +37,7 @@ NO_HISTORY_SCORE = 1e9
 class NeemRanking:
     neem: str
     at: float
-    time_of_day: str
+    time_of_day: str | None  # None: the NEEM has no clock (oracle.timeline.has_clock)
     history: int
     ranking: Ranking
     calls: tuple[TaskCall, ...]
@@ -71,16 +71,24 @@ def rank_neem(
     settings: Hyperparameters,
     available: list[str] | None = None,
     at: Instant | None = None,
+    *,
     write: bool = True,
     method: str = DEFAULT,
 ) -> NeemRanking:
     """Rank ``available`` (chain syntax) at ``at`` (default: now), or else the NEEM's latest
-    imagined situation, at the part of day recorded with it (oracle.timeline's rule)."""
+    imagined situation, at the part of day recorded with it (oracle.timeline's rule). In a NEEM
+    without a clock, times are positions with no part of the day, and "now" is the position
+    after the last action."""
+    clocked = has_clock(bridge.store.neem(bridge.neem_id).meta)
     if available:
         calls = [parse_call(text) for text in available]
         for call in calls:
             check_call(ontology, call, "available")
-        instant = at if at is not None else now()
+        if clocked:
+            instant = at if at is not None else now()
+        else:
+            last = 0.0 if at is not None else max((float(row["end"]) for row in bridge.history()), default=0.0)
+            instant = Instant(at.seconds if at is not None else last, None)
     else:
         latest = bridge.latest_situation()
         if latest is None:
@@ -88,7 +96,7 @@ def rank_neem(
         calls = [parse_call(text) for text in latest["available"]]
         begin = float(latest["begin"])
         recorded = recorded_part_of_day(bridge.store, bridge.neem_id, ontology.vocab, begin)
-        instant = Instant(begin, recorded or part_of_day_at(begin))
+        instant = Instant(begin, (recorded or part_of_day_at(begin)) if clocked else None)
     when, part = instant.seconds, instant.part_of_day
     steps = steps_before(ontology, bridge.history(), when)
     oracle = make_predictor(method, ontology.distances(), opening_tasks(ontology), settings).fit(steps)

@@ -10,6 +10,7 @@ the boundaries below are this project's choice (docs/ontology.md).
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 from datetime import datetime, timezone
 
@@ -24,6 +25,11 @@ PARTS_OF_DAY: tuple[tuple[int, str], ...] = (
 
 #: The class names, each once, in the order they are introduced in the ontology.
 TIME_OF_DAY_NAMES: tuple[str, ...] = ("Morning", "Midday", "Evening", "Night")
+
+#: Registry mark (``meta["clock"]``) of a NEEM logged from a time-less action log: its intervals
+#: are positions in the log, not clock times (docs/time.md, "Logs without a clock").
+CLOCK_KEY = "clock"
+SEQUENCE_CLOCK = "sequence"
 
 #: Shared grasping (no task) for this long or longer is an odb:IdleTask; shorter gaps are
 #: transitions between tasks (thesis 3.4).
@@ -95,6 +101,15 @@ def part_of_day_at(seconds: float) -> str:
     return time_of_day(clock(seconds))
 
 
+def parse_iso(text: str) -> datetime:
+    """ISO-8601 text as a datetime (``Z`` is UTC; without a zone it stays naive, the wall clock
+    that ``seconds_of`` reads as UTC). Raises TimeValueError naming the text when it is not one."""
+    try:
+        return datetime.fromisoformat(text.replace("Z", "+00:00"))
+    except ValueError:
+        raise TimeValueError(f"{text!r}: expected ISO-8601 (2024-05-01T08:30) or unix seconds") from None
+
+
 def parse_instant(text: str) -> Instant:
     """``--at`` text as an Instant: unix seconds, or ISO-8601 (without a zone: UTC).
 
@@ -105,11 +120,7 @@ def parse_instant(text: str) -> Instant:
         pass
     else:
         return Instant.of(check_seconds(seconds, repr(text)))
-    try:
-        moment = datetime.fromisoformat(text.replace("Z", "+00:00"))
-    except ValueError:
-        raise TimeValueError(f"{text!r}: expected ISO-8601 (2024-05-01T08:30) or unix seconds") from None
-    return Instant.of(moment)
+    return Instant.of(parse_iso(text))
 
 
 def now() -> Instant:
@@ -130,10 +141,11 @@ def is_idle_gap(previous_end: float | None, start: float, threshold: float = IDL
 
 @dataclass(frozen=True)
 class Instant:
-    """A logged time: unix seconds for the interval, wall-clock part of day for odb:TimeOfDay."""
+    """A logged time: unix seconds for the interval, wall-clock part of day for odb:TimeOfDay
+    (None on a sequence clock, where the seconds are a position and there is no part of day)."""
 
     seconds: float
-    part_of_day: str
+    part_of_day: str | None
 
     @staticmethod
     def of(moment: Moment) -> Instant:
@@ -146,6 +158,17 @@ class Instant:
             raise TimeValueError(f"a time must be a datetime or unix seconds, got {moment!r}")
         seconds = check_seconds(float(moment), repr(moment))
         return Instant(seconds, part_of_day_at(seconds))
+
+
+def sequence_instant(position: float) -> Instant:
+    """Position ``position`` of a time-less log on the sequence clock: that many seconds after
+    the epoch, with no part of the day (action n of a user spans [n, n + 1])."""
+    return Instant(check_seconds(float(position), f"position {position!r}"), None)
+
+
+def has_clock(meta: Mapping[str, object]) -> bool:
+    """False for a NEEM logged on the sequence clock (its registry ``meta`` says so)."""
+    return meta.get(CLOCK_KEY) != SEQUENCE_CLOCK
 
 
 #: What callers may pass as a time: a datetime, unix seconds, or an Instant already read.

@@ -58,3 +58,23 @@ def test_invalid_constructor_params_fail_at_fit():
     with pytest.raises(SettingsError, match="penalty"):
         PreferenceOracle(random_matrix(0), penalty=float("nan")).fit([])
     assert preset("b") == PRESETS["B"]
+
+
+def test_every_predictor_takes_table_4_2_defaults_from_one_place():
+    """The routine predictor reuses some thesis parameters in the same roles: same defaults, and
+    the scikit-learn contract from the same base (get_params lists exactly the constructor's)."""
+    import inspect
+
+    from oracle.algorithm.fast import PreferenceOracle
+    from oracle.algorithm.params import Hyperparameters
+    from oracle.algorithm.routine import RoutineOracle
+
+    thesis = Hyperparameters().to_dict()
+    for cls in (PreferenceOracle, RoutineOracle):
+        signature = inspect.signature(cls.__init__)
+        shared = {name: p.default for name, p in signature.parameters.items() if name in thesis}
+        assert shared and shared == {name: thesis[name] for name in shared}, cls.__name__
+        model = cls()
+        assert set(model.get_params()) == set(signature.parameters) - {"self"}
+        with pytest.raises(SettingsError, match="unknown parameter"):
+            model.set_params(no_such_parameter=1)

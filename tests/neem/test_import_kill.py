@@ -19,6 +19,7 @@ import time
 from pathlib import Path
 
 from oracle.store import open_store
+from oracle.store.staging import drop_abandoned
 
 USERS, ROWS, COMMIT_EVERY, KILLS = 4, 15, 4, 20
 
@@ -89,7 +90,7 @@ def test_random_kills_lose_at_most_the_rows_since_the_last_commit_of_the_user_in
             assert all(n is None for n in order[in_flight + 1 :]), f"kill {k}: {order}"
             seen_partial += n is not None and 0 < n < ROWS
         with open_store(store) as s:  # the next writer drops what the killed import left hidden
-            s.drop_abandoned_staging()
+            drop_abandoned(s)
             assert s.staging_neems() == [], f"kill {k}: hidden NEEMs left"
     assert seen_partial >= 0  # how many kills landed mid-user varies with the machine's speed
 

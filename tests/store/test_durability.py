@@ -20,6 +20,7 @@ from oracle.store import COLLECTION_KINDS, open_store
 from oracle.store.dump import export_all, export_neem, load_dump
 from oracle.store.mongo import MongoStore
 from oracle.store.sqlite import SQLiteStore
+from oracle.store.staging import drop_abandoned
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -319,7 +320,7 @@ def test_a_builder_killed_inside_the_swap_leaves_the_old_neem_or_the_new_one(sto
     dead = {"host": __import__("socket").gethostname(), "pid": _dead_pid()}
     before_drop = store.create_staging("alice", user="alice")
     store.update_meta(before_drop, **{STAGED_BY: dead, READY: True})
-    store.drop_abandoned_staging()  # the old NEEM is still there: the half-done replacement goes
+    drop_abandoned(store)  # the old NEEM is still there: the half-done replacement goes
     assert content(store, "alice") == old and store.staging_neems() == []
 
     logger = NeemLogger.create(store, onto, user="alice", replace=True)
@@ -329,6 +330,6 @@ def test_a_builder_killed_inside_the_swap_leaves_the_old_neem_or_the_new_one(sto
     store.update_meta(logger.neem_id, **{STAGED_BY: dead, READY: True})
     new = content(store, logger.neem_id)
     store.drop_neem("alice")  # killed right after dropping the old NEEM
-    store.drop_abandoned_staging()
+    drop_abandoned(store)
     assert [info.id for info in store.neems()] == ["alice"] and content(store, "alice") == new
     assert store.staging_neems() == [] and READY not in {k for k, v in store.neem("alice").meta.items() if v}

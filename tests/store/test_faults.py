@@ -18,6 +18,7 @@ from pathlib import Path
 import pytest
 
 from oracle.store import open_store
+from oracle.store.staging import drop_abandoned
 
 ROOT = Path(__file__).resolve().parents[2]
 SAMPLE = ROOT / "ontology" / "sample-chains.jsonl"
@@ -95,7 +96,7 @@ def test_a_disk_that_fills_up_during_import_replace_leaves_every_neem_as_it_was(
     kept = [neem for neem in data if after[neem] == data[neem]]
     assert kept and kept == sorted(data)[len(data) - len(kept) :], (kept, done.stdout)
     with open_store(store) as s:  # the next writer finds a sound file, and drops what was left hidden
-        s.drop_abandoned_staging()
+        drop_abandoned(s)
         assert s.staging_neems() == []
 
 

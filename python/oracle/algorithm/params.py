@@ -131,6 +131,8 @@ def save_settings(settings: Hyperparameters, path: Path | str) -> None:
 
 
 _DEFAULTS = Hyperparameters()  # Table 4.2, "recommended"
+#: Table 4.2's values, for predictors that reuse some of them in the same roles (``routine``).
+THESIS_DEFAULTS = _DEFAULTS
 
 #: Thesis Fig. 5.5 settings: each is the recommended settings with one parameter changed.
 PRESETS: dict[str, Hyperparameters] = {
@@ -163,11 +165,25 @@ def preset(name: str, where: str = "settings") -> Hyperparameters:
     return PRESETS[key]
 
 
-class OracleParams:
-    """scikit-learn style parameter handling shared by the reference and the fast oracle.
+class EstimatorParams:
+    """scikit-learn's ``get_params``/``set_params``, for every predictor: a subclass lists its
+    constructor arguments in ``_param_names`` and its ``__init__`` only stores them."""
 
-    Subclasses list their constructor arguments in ``_param_names``; ``__init__`` only stores them.
-    """
+    _param_names: tuple[str, ...] = ()
+
+    def get_params(self, deep: bool = True) -> dict[str, Any]:
+        return {name: getattr(self, name) for name in self._param_names}
+
+    def set_params(self, **params: Any) -> Self:
+        for name, value in params.items():
+            if name not in self._param_names:
+                raise SettingsError(f"unknown parameter {name!r} for {type(self).__name__}")
+            setattr(self, name, value)
+        return self
+
+
+class OracleParams(EstimatorParams):
+    """The thesis oracle's parameters (Table 4.2), shared by the reference and the fast oracle."""
 
     _param_names: tuple[str, ...] = ("distances", "opening_tasks", *NAMES)
 
@@ -194,16 +210,6 @@ class OracleParams:
         self.time_of_day_penalty = time_of_day_penalty
         self.event_horizon_forward = event_horizon_forward
         self.multiple_occurrences_factor = multiple_occurrences_factor
-
-    def get_params(self, deep: bool = True) -> dict[str, Any]:
-        return {name: getattr(self, name) for name in self._param_names}
-
-    def set_params(self, **params: Any) -> OracleParams:
-        for name, value in params.items():
-            if name not in self._param_names:
-                raise SettingsError(f"unknown parameter {name!r} for {type(self).__name__}")
-            setattr(self, name, value)
-        return self
 
     def hyperparameters(self) -> Hyperparameters:
         """The current hyperparameters, validated (raises SettingsError)."""

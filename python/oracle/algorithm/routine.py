@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 
 from oracle.algorithm.contexts import IDLE, UNKNOWN, Blend, ContextCounts
+from oracle.algorithm.params import THESIS_DEFAULTS, EstimatorParams
 from oracle.algorithm.kernel import START, Rows, context_distance, normalised, similarity_mass
 from oracle.algorithm.reference import offered_options
 from oracle.algorithm.selftune import VariantWeights
@@ -64,7 +65,7 @@ class _Stream:
         return tuple(tokens[-n] if len(tokens) >= n else START for n in range(1, self.depth + 1))
 
 
-class RoutineOracle:
+class RoutineOracle(EstimatorParams):
     """The routine predictor, with the estimator contract of the thesis oracle (style.md).
 
     ``distances`` is the DistanceMatrix; ``task_factor``, ``object_factor``, ``penalty`` and
@@ -81,8 +82,10 @@ class RoutineOracle:
                  orders: tuple[int, ...] = (3, 5), temperatures: tuple[float, ...] = (0.5, 2.0),
                  lowest_orders: tuple[int, ...] = (0, 1),
                  streams: tuple[str, ...] = ("idle",), context_depth: int = 3, context_decay: float = 0.5,
-                 tuning: str = "leader", task_factor: float = 2.0, object_factor: float = 1.0,
-                 penalty: float = 3.7, time_of_day_penalty: float = 1.18, event_horizon_forward: int = 3) -> None:
+                 tuning: str = "leader", task_factor: float = THESIS_DEFAULTS.task_factor,
+                 object_factor: float = THESIS_DEFAULTS.object_factor, penalty: float = THESIS_DEFAULTS.penalty,
+                 time_of_day_penalty: float = THESIS_DEFAULTS.time_of_day_penalty,
+                 event_horizon_forward: int = THESIS_DEFAULTS.event_horizon_forward) -> None:
         self.distances = distances
         self.opening_tasks = opening_tasks
         self.orders = orders
@@ -97,16 +100,6 @@ class RoutineOracle:
         self.penalty = penalty
         self.time_of_day_penalty = time_of_day_penalty
         self.event_horizon_forward = event_horizon_forward
-
-    def get_params(self, deep: bool = True) -> dict[str, Any]:
-        return {name: getattr(self, name) for name in self._param_names}
-
-    def set_params(self, **params: Any) -> RoutineOracle:
-        for name, value in params.items():
-            if name not in self._param_names:
-                raise SettingsError(f"unknown parameter {name!r} for {type(self).__name__}")
-            setattr(self, name, value)
-        return self
 
     # -- learning -------------------------------------------------------------------------
 

@@ -13,7 +13,6 @@ waiting for a core, so the CPU seconds (user + system of the child) are printed 
 from __future__ import annotations
 
 import json
-import math
 import os
 import sqlite3
 import subprocess
@@ -21,6 +20,8 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+
+from oracle.benchmarks.figures import growth_exponent, spread, spread_text
 
 #: NEEM sizes (executed actions); quick runs use the first and a small second one.
 SIZES = (1000, 10000, 50000)
@@ -30,22 +31,6 @@ REPEAT = 5
 #: Runs per ``import`` figure (an import of 50,000 actions takes minutes on a shared machine).
 IMPORT_REPEAT = 3
 COMMIT_EVERY = 1000
-
-
-def _spread(samples: list[float]) -> dict[str, float]:
-    ordered = sorted(samples)
-    return {"min": ordered[0], "median": ordered[len(ordered) // 2], "max": ordered[-1], "runs": len(ordered)}
-
-
-def _fmt(spread: dict[str, float], unit: float = 1.0, digits: int = 2) -> str:
-    return "/".join(f"{spread[k] * unit:.{digits}f}" for k in ("min", "median", "max"))
-
-
-def exponent(sizes: list[int], values: list[float]) -> float | None:
-    """The growth exponent k of value ~ size^k between the two largest sizes."""
-    if len(sizes) < 2 or values[-2] <= 0 or values[-1] <= 0:
-        return None
-    return math.log(values[-1] / values[-2]) / math.log(sizes[-1] / sizes[-2])
 
 
 def _run(argv: list[str], env: dict[str, str]) -> tuple[float, float, int]:
@@ -72,7 +57,7 @@ def _calls(argvs: dict[str, list[str]], env: dict[str, str], repeat: int) -> dic
             wall, cpu, _ = _run(argv, env)
             walls[name].append(wall)
             cpus[name].append(cpu)
-    return {name: {"wall_s": _spread(walls[name]), "cpu_s": _spread(cpus[name])} for name in walls}
+    return {name: {"wall_s": spread(walls[name]), "cpu_s": spread(cpus[name])} for name in walls}
 
 
 def _chains(tmp: Path, n: int, env: dict[str, str]) -> list[str]:
@@ -144,9 +129,9 @@ def run(quick: bool = False) -> list[dict]:
         floor = fixed["floor"]
         ratio = fixed["help"]["wall_s"]["median"] / floor["wall_s"]["median"]
         cpu_ratio = fixed["help"]["cpu_s"]["median"] / max(floor["cpu_s"]["median"], 1e-3)
-        print(f"--help start to exit: wall {_fmt(fixed['help']['wall_s'], 1000, 0)} ms (min/median/max),"
-              f" cpu {_fmt(fixed['help']['cpu_s'], 1000, 0)} ms; floor (python -c pass) wall"
-              f" {_fmt(floor['wall_s'], 1000, 0)} ms, cpu {_fmt(floor['cpu_s'], 1000, 0)} ms;"
+        print(f"--help start to exit: wall {spread_text(fixed['help']['wall_s'], 1000, 0)} ms (min/median/max),"
+              f" cpu {spread_text(fixed['help']['cpu_s'], 1000, 0)} ms; floor (python -c pass) wall"
+              f" {spread_text(floor['wall_s'], 1000, 0)} ms, cpu {spread_text(floor['cpu_s'], 1000, 0)} ms;"
               f" {ratio:.1f}x floor wall, {cpu_ratio:.1f}x cpu (target < 150 ms)", flush=True)  # fmt: skip
         rows.append({"area": "cli", "name": "help", **fixed["help"], "floor": floor, "floor_ratio": ratio,
                      "cpu_floor_ratio": cpu_ratio})  # fmt: skip
@@ -166,14 +151,14 @@ def run(quick: bool = False) -> list[dict]:
             neem = f"u{n}"
             floors = {indexes: [_sqlite_floor(store, neem, n, indexes) for _ in range(IMPORT_REPEAT)]
                       for indexes in (True, False)}
-            with_idx, bare = (_spread([w for w, _ in floors[k]]) for k in (True, False))
-            with_idx_cpu, bare_cpu = (_spread([c for _, c in floors[k]]) for k in (True, False))
-            wall_s, cpu_s = _spread(walls), _spread(cpus)
+            with_idx, bare = (spread([w for w, _ in floors[k]]) for k in (True, False))
+            with_idx_cpu, bare_cpu = (spread([c for _, c in floors[k]]) for k in (True, False))
+            wall_s, cpu_s = spread(walls), spread(cpus)
             rate, cpu_rate = n / wall_s["median"], n / cpu_s["median"]
             floor_rate, bare_rate = n / with_idx["median"], n / bare["median"]
             floor_cpu_rate, bare_cpu_rate = n / with_idx_cpu["median"], n / bare_cpu["median"]
             print(f"import, {n:>6,} actions: {rate:,.0f} actions/s wall, {cpu_rate:,.0f} per cpu-second (wall"
-                  f" {_fmt(wall_s)} s, cpu {_fmt(cpu_s)} s, start to exit); peak RSS {max(rss):.0f} MiB", flush=True)
+                  f" {spread_text(wall_s)} s, cpu {spread_text(cpu_s)} s, start to exit); peak RSS {max(rss):.0f} MiB", flush=True)
             print(f"    floor, plain sqlite3 inserting the same rows: {floor_rate:,.0f}/s wall, {floor_cpu_rate:,.0f}"
                   f" per cpu-second with these indexes; {bare_rate:,.0f}/s, {bare_cpu_rate:,.0f} without;"
                   f" import/floor {rate / floor_rate:.2f} wall, {cpu_rate / floor_cpu_rate:.2f} cpu"
@@ -194,19 +179,20 @@ def run(quick: bool = False) -> list[dict]:
             }, env, REPEAT)  # fmt: skip
             base = found["floor"]["wall_s"]["median"]
             base_cpu = max(found["floor"]["cpu_s"]["median"], 1e-3)
-            print(f"    floor (python -c pass) wall {_fmt(found['floor']['wall_s'])} s, cpu {_fmt(found['floor']['cpu_s'])} s")
+            floor_s = found["floor"]
+            print(f"    floor (python -c pass) wall {spread_text(floor_s['wall_s'])} s, cpu {spread_text(floor_s['cpu_s'])} s")
             for name in ("neems", "why-not", "what-next"):
                 figure = found[name]
                 limit = 0.35 if n <= 1000 else 0.6
-                print(f"{name:>9} start to exit, {n:>6,} actions: wall {_fmt(figure['wall_s'])} s, cpu"
-                      f" {_fmt(figure['cpu_s'])} s; {figure['wall_s']['median'] / base:.1f}x floor wall,"
+                print(f"{name:>9} start to exit, {n:>6,} actions: wall {spread_text(figure['wall_s'])} s, cpu"
+                      f" {spread_text(figure['cpu_s'])} s; {figure['wall_s']['median'] / base:.1f}x floor wall,"
                       f" {figure['cpu_s']['median'] / base_cpu:.1f}x cpu (target < {limit} s)", flush=True)  # fmt: skip
                 rows.append({"area": "cli", "name": name, "actions": n, **figure, "floor": found["floor"],
                              "floor_ratio": figure["wall_s"]["median"] / base,
                              "cpu_floor_ratio": figure["cpu_s"]["median"] / base_cpu})  # fmt: skip
                 trend.setdefault(name, []).append(figure["cpu_s"]["median"])
         for name, values in trend.items():
-            k = exponent(sizes, values)
+            k = growth_exponent(sizes, values)
             shown = "-" if k is None else f"{k:.2f}"
             print(f"growth exponent of {name} ({'wall' if name == 'import' else 'cpu'}) between"
                   f" {sizes[-2]:,} and {sizes[-1]:,} actions: {shown}")  # fmt: skip

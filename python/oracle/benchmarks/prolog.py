@@ -9,6 +9,8 @@ from datetime import datetime, timedelta
 from pathlib import Path
 from typing import Any
 
+from oracle.benchmarks.figures import growth_exponent, spread, spread_text
+
 
 #: Goal-by-goal evaluation costs one store query per solution of the goals before; on the
 #: 10,000-action NEEM it takes minutes, so it is timed on a NEEM of this many actions.
@@ -101,22 +103,12 @@ def run(quick: bool = False) -> list[dict]:
 HISTORY_SIZES = (1000, 10000, 50000)
 
 
-def _spread(samples: list[float]) -> dict[str, float]:
-    ordered = sorted(samples)
-    return {"min": ordered[0], "median": ordered[len(ordered) // 2], "max": ordered[-1]}
+_spread, _exponent = spread, growth_exponent
 
 
-def _fmt(spread: dict[str, float], unit: float = 1.0, digits: int = 3) -> str:
-    return "/".join(f"{spread[k] * unit:.{digits}f}" for k in ("min", "median", "max"))
-
-
-def _exponent(sizes: list[int], values: list[float]) -> float | None:
-    """The growth exponent k of value ~ size^k between the two largest sizes."""
-    import math
-
-    if len(sizes) < 2 or values[-2] <= 0 or values[-1] <= 0:
-        return None
-    return math.log(values[-1] / values[-2]) / math.log(sizes[-1] / sizes[-2])
+def _fmt(figure: dict[str, float], unit: float = 1.0, digits: int = 3) -> str:
+    """A spread as min/median/max, three digits unless told (the history figures are seconds)."""
+    return spread_text(figure, unit, digits)
 
 
 def _chains_store(tmp: Path, sizes: list[int]) -> Path:

@@ -18,15 +18,15 @@ from oracle.errors import NeemOracleError
 if TYPE_CHECKING:
     from oracle.chains import ChainRow
 
-from oracle.commands.common import METHOD, add_options, bounded_int, method_from
+from oracle.commands.common import METHOD, STORE, add_options, bounded_int, method_from
 
 #: Registry mark of the NEEM the demo writes: it replaces only a NEEM carrying it.
 DEMO_ORIGIN = "demo"
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
-    parser = subparsers.add_parser("demo", help="log a simulated user, rank the next task, answer why-not (embedded store)")
-    parser.add_argument("--store", help="store to use (default: the user's embedded SQLite store)")
+    parser = subparsers.add_parser("demo", help="log a simulated user, rank the next task, answer why-not")
+    add_options(parser, STORE)
     parser.add_argument("--days", type=bounded_int(1, 366), default=5, help="days of history to simulate, 1-366 (default 5)")
     parser.add_argument("--seed", type=bounded_int(0, 1_000_000), default=3, help="which simulated user (default 3)")
     add_options(parser, METHOD)
@@ -37,7 +37,7 @@ def run(args: argparse.Namespace) -> int:
     from oracle.algorithm.params import Hyperparameters
     from oracle.answers import why_not_sentence
     from oracle.bridge import Bridge
-    from oracle.commands.rank import print_ranking
+    from oracle.commands.shown import print_ranking
     from oracle.errors import NeemOracleError
     from oracle.neem.writer import NeemLogger
     from oracle.ontology import build_with_report

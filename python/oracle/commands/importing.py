@@ -20,6 +20,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--replace", action="store_true", help="replace a user's NEEM instead of adding a new one")
     parser.add_argument("--session", action="store_true",
                         help="log into temporary NEEMs, wiping earlier temporary ones (keep them with 'persist')")
+    parser.add_argument("--no-clock", action="store_true",
+                        help="the rows have no times (e.g. EGTEA): log each user's actions in file order on a sequence clock, "
+                             "with no part of the day (docs/time.md)")
     parser.add_argument("--commit-every", type=bounded_int(1, 1_000_000), default=100, metavar="N",
                         help="actions per transaction (1 = each action durable before the next; default 100)")
     parser.set_defaults(handler=run)
@@ -30,12 +33,12 @@ def run(args: argparse.Namespace) -> int:
     from oracle.store import open_store
 
     onto = ontology_from(args)
-    plans = check_chains(onto, args.chains)  # before the store is opened: a bad file creates nothing
+    plans = check_chains(onto, args.chains, no_clock=args.no_clock)  # before the store is opened: a bad file creates nothing
     with open_store(args.store, number_format=args.numbers) as store, _first_ctrl_c_between_rows() as stop:
         report: dict[str, int] = {}
         try:
             import_chains(store, onto, args.chains, replace=args.replace, report=report, commit_every=args.commit_every,
-                          session=args.session, plans=plans, stop=stop)
+                          session=args.session, plans=plans, no_clock=args.no_clock, stop=stop)
         except NeemOracleError:
             _print(report)
             raise

@@ -79,12 +79,14 @@ def run_toplevel(args: argparse.Namespace) -> int:
 
 def run_why_not(args: argparse.Namespace) -> int:
     from oracle.answers import why_not_sentence
+    from oracle.timeline import has_clock
 
     bridge, onto = connect(args)
     task, objs = _parse_task(args.task, onto)
     at = moment_from(args.at)
     answer = bridge.why_not(task, objs, None if at is None else at.seconds)
-    print(json.dumps(answer, indent=2) if args.json else why_not_sentence(answer))
+    clocked = has_clock(bridge.store.neem(bridge.neem_id).meta)
+    print(json.dumps(answer, indent=2) if args.json else why_not_sentence(answer, clocked))
     return 0
 
 

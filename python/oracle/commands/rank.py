@@ -4,13 +4,8 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
-from typing import TYPE_CHECKING
 
 from oracle.commands.common import AT, JSON, METHOD, NEEM, ONTOLOGY_OPTIONS, SETTINGS, STORE, add_options
-
-if TYPE_CHECKING:
-    from oracle.ranking import NeemRanking
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -26,6 +21,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from oracle.commands.common import connect, method_from, moment_from, settings_from
+    from oracle.commands.shown import print_ranking
     from oracle.ranking import finite, rank_neem, support_fields
 
     settings = settings_from(args.settings)
@@ -45,36 +41,3 @@ def run(args: argparse.Namespace) -> int:
         return 0
     print_ranking(result)
     return 0
-
-
-def describe(task) -> str:  # noqa: ANN001 - a RankedTask
-    """One line of why a task stands where it does; scores are lower-is-better for every method."""
-    from oracle.algorithm.routine import RoutineTask
-
-    if isinstance(task, RoutineTask):
-        if task.order > 0:
-            why = f"followed [{', '.join(task.context)}] {task.n_similar}x"
-        elif task.order == 0:
-            why = f"done {task.n_similar}x, not after this context"
-        else:
-            why = "no past context: by similarity"
-        return f"p {task.probability:.3f} ({why})"
-    return "no similar history" if math.isinf(task.score) else f"score {task.score:.4f} from {task.n_similar} similar"
-
-
-def print_ranking(result: NeemRanking, limit: int | None = None) -> None:
-    from oracle.timeline import format_clock
-
-    when = format_clock(result.at)
-    print(f"NEEM {result.neem}: {result.history} past actions, decision at {when} ({result.time_of_day}); "
-          f"{result.method} ranked {len(result.calls)} options in {result.milliseconds:.2f} ms")
-    shown = list(zip(result.ranking, result.calls))[:limit]
-    for t, call in shown:
-        print(f"  {t.rank:2d}. {str(call):32s} {describe(t)}")
-    if limit is not None and len(result.calls) > limit:
-        print(f"  ... and {len(result.calls) - limit} more")
-    print("predicted chain: " + " -> ".join(str(c) for c in result.chain))
-    if result.written is not None:
-        print(f"ranking written back as {result.written}")
-    if result.note is not None:
-        print(result.note)

@@ -60,30 +60,37 @@ def run_load(args: argparse.Namespace) -> int:
     return 0
 
 
-def _iso(seconds: float | None) -> str | None:
+def _iso(seconds: float | None, clocked: bool = True) -> str | None:
+    """A time of the listing; in a NEEM without a clock (oracle.timeline), its position."""
     from oracle.timeline import format_clock
 
-    return None if seconds is None else format_clock(seconds)
+    if seconds is None:
+        return None
+    return format_clock(seconds) if clocked else f"position {seconds:g}"
 
 
 def run_neems(args: argparse.Namespace) -> int:
     from oracle.neem.query import summarize_neem
     from oracle.store import open_store
+    from oracle.timeline import has_clock
 
     # Read-only: a listing never waits for a writer. A NEEM whose kept summary is stale (a
     # load, a bare insert) is counted from its triples; 'load' keeps the summary of what it loads.
     with open_store(args.store, number_format=args.numbers, read_only=True) as store:
-        rows = [summarize_neem(store, info.id) for info in store.neems()]
+        infos = list(store.neems())
+        rows = [summarize_neem(store, info.id) for info in infos]
+    clocked = {info.id: has_clock(info.meta) for info in infos}
     if args.json:
-        print(json.dumps([{**row.__dict__, "begin": _iso(row.begin), "end": _iso(row.end)} for row in rows], indent=2))
+        print(json.dumps([{**row.__dict__, "begin": _iso(row.begin, clocked[row.id]), "end": _iso(row.end, clocked[row.id])}
+                          for row in rows], indent=2))
         return 0
     wid = max([4] + [len(row.id) for row in rows])
     wuser = max([4] + [len(row.user or "-") for row in rows])
     print(f"{'NEEM':<{wid}}  {'user':<{wuser}}  {'actions':>7}  {'begin':<25}  {'end':<25}  kept")
     for row in rows:
         print(
-            f"{row.id:<{wid}}  {row.user or '-':<{wuser}}  {row.actions:>7}  {_iso(row.begin) or '-':<25}"
-            f"  {_iso(row.end) or '-':<25}  {'no' if row.temporary else 'yes'}"
+            f"{row.id:<{wid}}  {row.user or '-':<{wuser}}  {row.actions:>7}  {_iso(row.begin, clocked[row.id]) or '-':<25}"
+            f"  {_iso(row.end, clocked[row.id]) or '-':<25}  {'no' if row.temporary else 'yes'}"
         )
     return 0
 

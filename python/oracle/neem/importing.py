@@ -3,26 +3,26 @@
 Two passes over the file, both streaming (bounded memory): the first checks every row the way
 the logger would (syntax, task and objects, roles, time order and ids per user) and notes each
 user's last line, so a bad row anywhere writes nothing; the second logs, committing a user's
-NEEM when that user's last row is logged (docs/store.md, "Durability").
+NEEM when that user's last row is logged (docs/store.md, "Durability"). A log without clock times
+imports only when asked (``no_clock``): each user's actions then lie on the sequence clock, in
+file order (docs/time.md, "Logs without a clock").
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from datetime import datetime
 from pathlib import Path
 
 from oracle.chains import ChainRow, read_chains
 from oracle.errors import LoggingError
 from oracle.neem.lifecycle import wipe_temporary_neems
-from oracle.neem.writer import NeemLogger, check_call
+from oracle.neem.writer import NeemLogger, check_call, check_performer
 from oracle.ontology.model import OdbOntology
 from oracle.store import Store
 from oracle.store.tbox import TBox, tbox_from_graph
-from oracle.timeline import IDLE_THRESHOLD_S, TimeValueError, seconds_of
-
-PERFORMERS = ("robot", "user")
-
+from oracle.timeline import CLOCK_KEY, IDLE_THRESHOLD_S, SEQUENCE_CLOCK, Instant, TimeValueError, seconds_of, sequence_instant
 
 @dataclass
 class _UserPlan:
@@ -34,8 +34,9 @@ class _UserPlan:
     ids: set[str] = field(default_factory=set)
 
 
-def check_chains(onto: OdbOntology, path: str | Path) -> dict[str, _UserPlan]:
+def check_chains(onto: OdbOntology, path: str | Path, *, no_clock: bool = False) -> dict[str, _UserPlan]:
     """Check every row of a chains file as the logger will; return each user's plan.
+    With ``no_clock`` every row must be time-less (no ``time``, ``end`` or ``duration``).
 
     Raises LoggingError naming the file and line of the first bad row."""
     plans: dict[str, _UserPlan] = {}
@@ -45,7 +46,7 @@ def check_chains(onto: OdbOntology, path: str | Path) -> dict[str, _UserPlan]:
         for row in read_chains(path):
             where = f"{path}:{row.line}"
             plan = plans.setdefault(row.user, _UserPlan())
-            _check_row(onto, row, plan, checked)
+            _check_row(onto, row, plan, checked, no_clock)
             plan.last_line, plan.rows = row.line, plan.rows + 1
     except LoggingError as error:
         raise LoggingError(f"{where}: {error}") from None
@@ -54,17 +55,20 @@ def check_chains(onto: OdbOntology, path: str | Path) -> dict[str, _UserPlan]:
     return plans
 
 
-def _check_row(onto: OdbOntology, row: ChainRow, plan: _UserPlan, checked: set[object]) -> None:
-    if row.time is None:
-        raise LoggingError("'time' is required to log an action")
+def _check_row(onto: OdbOntology, row: ChainRow, plan: _UserPlan, checked: set[object], no_clock: bool) -> None:
+    if no_clock:
+        if row.time is not None or row.end is not None:
+            raise LoggingError("the row has a time, but a log without a clock (--no-clock) must have none")
+    elif row.time is None:
+        raise LoggingError("'time' is required to log an action (a log without clock times: import --no-clock)")
     for call in (row.action, *(row.available or ())):
         if call not in checked:
             check_call(onto, call)
             if len(checked) < 100_000:
                 checked.add(call)
-    performer = row.extra.get("performed_by", "robot")
-    if performer not in PERFORMERS:
-        raise LoggingError(f"performed_by must be 'robot' or 'user', got {performer!r}")
+    check_performer(row.extra.get("performed_by", "robot"))
+    if row.time is None:  # the sequence clock: in order by construction
+        return _check_id(row, plan)
     try:
         begin = seconds_of(row.time)
         end = begin if row.end is None else seconds_of(row.end)
@@ -77,6 +81,10 @@ def _check_row(onto: OdbOntology, row: ChainRow, plan: _UserPlan, checked: set[o
             f" ({plan.last_begin:.3f}) of user {row.user!r}"
         )
     plan.last_begin = begin
+    _check_id(row, plan)
+
+
+def _check_id(row: ChainRow, plan: _UserPlan) -> None:
     action_id = row.extra.get("id")
     if action_id is not None:
         key = str(action_id)
@@ -97,6 +105,7 @@ def import_chains(
     tbox: TBox | None = None,
     session: bool = False,
     plans: dict[str, _UserPlan] | None = None,
+    no_clock: bool = False,
     stop: Callable[[], bool] | None = None,
 ) -> dict[str, int]:
     """Log a chains JSONL file, one NEEM per user; return {NEEM id: actions committed}.
@@ -111,12 +120,15 @@ def import_chains(
     only then (until then, and after any error, the old one is untouched). Session NEEMs, too,
     appear only when complete, so two session imports at once do not wipe each other's.
     ``plans`` is what ``check_chains`` returned for this file, when the caller checked it.
+    With ``no_clock`` the rows have no times: a user's n-th action (from 0) spans positions n to
+    n + 1 of the sequence clock, and the NEEMs are marked as having no clock.
     ``stop`` is asked before each row; when it says True (Ctrl-C was pressed) the import ends
     there with KeyboardInterrupt, between two rows, so ``report`` counts exactly what is stored.
     """
     if commit_every < 1:
         raise LoggingError(f"commit_every must be at least 1, got {commit_every}")
-    plans = check_chains(onto, path) if plans is None else plans
+    plans = check_chains(onto, path, no_clock=no_clock) if plans is None else plans
+    positions: dict[str, int] = {}
     report = {} if report is None else report
     loggers: dict[str, NeemLogger] = {}
     tbox = tbox if tbox is not None else tbox_from_graph(onto.graph)
@@ -133,14 +145,19 @@ def import_chains(
             if logger is None:
                 logger = NeemLogger.create(store, onto, user=row.user, replace=replace, tbox=tbox, temporary=session,
                                            idle_threshold=idle_threshold, commit_every=commit_every,
-                                           hidden=session)  # fmt: skip
+                                           hidden=session, meta={CLOCK_KEY: SEQUENCE_CLOCK} if no_clock else None)  # fmt: skip
                 loggers[row.user] = logger
                 report[logger._replaces or logger.neem_id] = 0
             action_id = row.extra.get("id")
+            begin: datetime | Instant | None = row.time
+            end: datetime | Instant | None = row.end
+            if no_clock:
+                position = positions[row.user] = positions.get(row.user, -1) + 1
+                begin, end = sequence_instant(position), sequence_instant(position + 1)
             logger.action(
                 row.action,
-                row.time,  # type: ignore[arg-type]  # checked by the first pass
-                row.end,
+                begin,  # type: ignore[arg-type]  # checked by the first pass
+                end,
                 performed_by=str(row.extra.get("performed_by", "robot")),
                 action_id=None if action_id is None else str(action_id),
                 available=row.available,

@@ -1,5 +1,11 @@
 """Writing a NEEM (thesis 3.4-3.5): what the robot perceived, could do, did and predicted, as triples.
 
+Why this module is large: it has one job, turning the robot's calls into one NEEM's triples, and
+its parts (the individuals it mints, the calls it has checked, the plans it knows, the buffer it
+commits, the clock it keeps) share caches that must stay consistent with what is stored; split,
+they would share private state. Reading back lives in ``neem.query``, persisting and wiping in
+``neem.lifecycle``, bulk import in ``neem.importing``.
+
 One NEEM per user. Every public call validates first and then writes one transaction, so bad
 input raises before anything is written and a killed process loses at most the call in flight.
 Task, role, plan and object individuals are descriptions shared by every event of the NEEM that
@@ -27,7 +33,7 @@ from oracle.ontology.provenance import META_KEY as ONTOLOGY_KEY, check_logged_wi
 from oracle.store import RDF_TYPE, Store, Triple, TriplePattern, Var
 from oracle.store.base import SUMMARY_KEY
 from oracle.store.tbox import TBox, load_tbox, tbox_from_graph
-from oracle.timeline import IDLE_THRESHOLD_S, Instant, Moment, TimeValueError, is_idle_gap
+from oracle.timeline import IDLE_THRESHOLD_S, Instant, Moment, TimeValueError, has_clock, is_idle_gap, sequence_instant
 
 _SLUG = re.compile(r"[^A-Za-z0-9_\-]+")
 #: NEEM ids are collection prefixes: no underscores (see store.base.check_neem_id).
@@ -49,7 +55,7 @@ class LoggedAction:
     call: TaskCall
     begin: float
     end: float
-    part_of_day: str
+    part_of_day: str | None
     task: str
     idle: str | None = None
     imagining: str | None = None
@@ -71,6 +77,17 @@ def person_iri(ns: str, user: str) -> str:
     """The user's agent individual; never the robot's own, even for a user named "robot"."""
     slug = _slug(user)
     return f"{ns}Agent_{slug}" if slug != "robot" else f"{ns}Agent_user-robot"
+
+
+#: Who may perform an action: the robot, or the user it assists.
+PERFORMERS = ("robot", "user")
+
+
+def check_performer(who: object) -> str:
+    """``who`` if it names a performer (PERFORMERS), else LoggingError."""
+    if who not in PERFORMERS:
+        raise LoggingError(f"performed_by must be 'robot' or 'user', got {who!r}")
+    return str(who)
 
 
 def check_call(onto: OdbOntology, call: TaskCall) -> None:
@@ -116,6 +133,8 @@ class NeemLogger:
         self.vocab = onto.vocab
         info = store.neem(neem_id)
         check_logged_with(neem_id, info.meta, onto)
+        #: False for a NEEM on the sequence clock (oracle.timeline): its times are positions.
+        self.clocked = has_clock(info.meta)
         self.user: str = info.user or "user"
         #: Individuals known to be stored (or buffered): no store query needed for them.
         self._known: set[str] = set()
@@ -248,9 +267,8 @@ class NeemLogger:
     def _agent(self, who: str, out: _Out) -> str:
         if who == "robot":
             return self._individual(f"{self.ns}Agent_robot", T.ROBOT_CLASS, out)
-        if who == "user":
-            return self._individual(person_iri(self.ns, self.user), T.PERSON_CLASS, out)
-        raise LoggingError(f"performed_by must be 'robot' or 'user', got {who!r}")
+        check_performer(who)
+        return self._individual(person_iri(self.ns, self.user), T.PERSON_CLASS, out)
 
     def _resolve(self, call: TaskCall | str) -> TaskCall:
         resolved = self._resolved.get(call)
@@ -309,10 +327,16 @@ class NeemLogger:
         return plan
 
     def _interval(self, begin: Instant, end: Instant, out: _Out) -> str:
-        """A dul:TimeInterval also typed with its odb:TimeOfDay part (that is how it is recorded)."""
+        """A dul:TimeInterval also typed with its odb:TimeOfDay part (that is how it is recorded;
+        on the sequence clock there is none, and a clock time there is an error, as is a position
+        in a NEEM with a clock)."""
+        if (begin.part_of_day is None) == self.clocked:
+            raise LoggingError(f"NEEM {self._public_id} has a clock: a sequence position is no time" if self.clocked else
+                               f"NEEM {self._public_id} has no clock (logged from a time-less log): give positions, not times")
         interval = self._event("TimeInterval")
         out.append(Triple(interval, RDF_TYPE, T.TIME_INTERVAL))
-        out.append(Triple(interval, RDF_TYPE, self.vocab.part_of_day(begin.part_of_day)))
+        if begin.part_of_day is not None:
+            out.append(Triple(interval, RDF_TYPE, self.vocab.part_of_day(begin.part_of_day)))
         out.append(Triple(interval, T.BEGIN, begin.seconds))
         out.append(Triple(interval, T.END, end.seconds))
         return interval
@@ -351,6 +375,8 @@ class NeemLogger:
                 ends.append(row["E"])
         if not begins:
             return None, None
+        if not self.clocked:
+            return sequence_instant(max(begins)), sequence_instant(max(ends))
         return _instant(max(begins)), _instant(max(ends))
 
     # -- public API -------------------------------------------------------------------------

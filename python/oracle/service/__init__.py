@@ -6,9 +6,14 @@ from __future__ import annotations
 
 import ipaddress
 import socket
-from typing import Any
+from typing import TYPE_CHECKING
 
 from oracle.errors import NeemOracleError
+
+if TYPE_CHECKING:  # the package is imported by every command's --help: keep it light
+    from oracle.algorithm.params import Hyperparameters
+    from oracle.ontology import OdbOntology
+    from oracle.service.app import Context
 
 
 def is_loopback(host: str) -> bool:
@@ -24,8 +29,8 @@ def is_loopback(host: str) -> bool:
     return bool(addresses) and all(ipaddress.ip_address(a.split("%")[0]).is_loopback for a in addresses)
 
 
-def build_context(store_spec: str | None, ontology: Any, settings: Any, neem: str | None = None,
-                  token: str | None = None, write_behind: bool = True, method: str | None = None) -> Any:
+def build_context(store_spec: str | None, ontology: OdbOntology, settings: Hyperparameters, neem: str | None = None,
+                  token: str | None = None, write_behind: bool = True, method: str | None = None) -> Context:
     """Open the store on the engine thread (its connection belongs there) and check ``neem``;
     sessions fit the predictor ``method`` (default: the one ``rank`` uses)."""
     from oracle.algorithm.predictors import DEFAULT

@@ -19,7 +19,7 @@ from oracle.algorithm.records import RankedTask, Ranking, Step
 from oracle.answers import support_sentence
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError
-from oracle.neem.writer import LoggedAction, NeemLogger
+from oracle.neem.writer import LoggedAction, NeemLogger, check_performer
 from oracle.timeline import Instant, TimeValueError, clock, is_idle_gap
 from oracle.ontology import OdbOntology
 from oracle.ranking import finite, support_fields
@@ -217,8 +217,7 @@ class NeemSession:
         call = self.calls([call_text], "call")[0]
         moment = moment_of(at, "at")
         self._check_time(Instant.of(moment), f"action {call}")
-        if performed_by not in ("robot", "user"):
-            raise LoggingError(f"performed_by must be 'robot' or 'user', got {performed_by!r}")
+        check_performer(performed_by)
         if key is None:
             self._keys += 1
             key = f"a{self._keys}"

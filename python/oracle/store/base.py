@@ -46,12 +46,8 @@ Closed = tuple[Triple, tuple[Any, ...], tuple[Any, ...]]
 STAGING = "staging_for"
 #: Registry field of a staging NEEM: the process building it ({"host": ..., "pid": ...}).
 STAGED_BY = "staged_by"
-#: Registry field of a staging NEEM that is complete and about to replace its target: if its
-#: builder dies once the old NEEM is dropped (MongoDB has no transaction), the next writer
-#: finishes the swap instead of dropping it.
+#: Registry field of a complete staging NEEM about to replace its target (see store.staging).
 READY = "ready_to_swap"
-#: A staging NEEM whose builder cannot be checked (another host) is abandoned after this long.
-ABANDONED_AFTER_S = 24 * 3600
 
 _NEEM_ID = re.compile(r"^[A-Za-z0-9][A-Za-z0-9\-]{0,63}$")
 
@@ -179,8 +175,9 @@ class Store(ABC):
         """A new, hidden NEEM to build ``target`` (or its replacement) in: ``neems()`` does not
         list it; ``swap_in`` makes it ``target``. A process killed meanwhile leaves ``target`` as
         it was (and a hidden NEEM behind, never listed nor read)."""
+        from oracle.store.staging import drop_abandoned  # what dead builders left (store/staging.py)
         check_neem_id(target)
-        self.drop_abandoned_staging()
+        drop_abandoned(self)
         staging = f"staging-{os.urandom(6).hex()}"  # the prefix is how backends find them (staging_neems)
         extra = {**(meta or {}), STAGING: target, STAGED_BY: {"host": socket.gethostname(), "pid": os.getpid()}}
         temporary = bool(extra.pop("temporary", False))
@@ -190,33 +187,6 @@ class Store(ABC):
     @abstractmethod
     def staging_neems(self) -> list[NeemInfo]:
         """The hidden NEEMs under construction (``create_staging``), which ``neems()`` leaves out."""
-
-    def drop_abandoned_staging(self) -> list[str]:
-        """Drop the staging NEEMs of processes that died (a killed import or load): they hold
-        personal data nobody can see, list or wipe otherwise. A staging NEEM of a live process
-        is kept; one made on another host is dropped once it is older than a day. One that was
-        ready to replace a NEEM already dropped (a kill inside ``swap_in`` on MongoDB) is
-        swapped in instead. Returns the ids dropped."""
-        here, now = socket.gethostname(), datetime.now(timezone.utc)
-        dropped = []
-        for info in self.staging_neems():
-            owner = info.meta.get(STAGED_BY)
-            if isinstance(owner, dict) and owner.get("host") == here and isinstance(owner.get("pid"), int):
-                abandoned = not _process_alive(owner["pid"])
-            else:
-                abandoned = _age_s(info.created_at, now) > ABANDONED_AFTER_S
-            if not abandoned:
-                continue
-            target = info.meta.get(STAGING)
-            if info.meta.get(READY) and isinstance(target, str) and not self.has_neem(target):
-                # Killed between dropping the old NEEM and renaming the new one: finish the swap.
-                self.rename_neem(info.id, target)
-                self.update_meta(target, **{STAGING: None, STAGED_BY: None, READY: None})
-                continue
-            self._drop_neem(info.id)
-            self._hierarchies.pop(info.id, None)
-            dropped.append(info.id)
-        return dropped
 
     def swap_in(self, staging: str, target: str, *, replace: bool = True, **fields: Any) -> NeemInfo:
         """Make the complete NEEM ``staging`` visible as ``target``, replacing an existing one only
@@ -446,28 +416,6 @@ class Store(ABC):
 
     def __exit__(self, *exc: object) -> None:
         self.close()
-
-
-def _process_alive(pid: int) -> bool:
-    if pid == os.getpid():
-        return True
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except (PermissionError, OverflowError, ValueError):
-        return True  # another user's process (or an id that cannot be checked): keep its NEEM
-    return True
-
-
-def _age_s(created_at: object, now: datetime) -> float:
-    try:
-        made = datetime.fromisoformat(str(created_at))
-    except ValueError:
-        return float("inf")  # no readable creation time: nobody can be building it still
-    if made.tzinfo is None:
-        made = made.replace(tzinfo=timezone.utc)
-    return (now - made).total_seconds()
 
 
 def validate_patterns(patterns: Sequence[TriplePattern]) -> None:
