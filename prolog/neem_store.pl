@@ -8,9 +8,14 @@
       store_reset/0,
       store_match/2,            % +Patterns, +Scope
       store_match/3,            % +Patterns, +Scope, +Options
+      store_match_scoped/3,     % +Patterns, +Scope, -FactScope
       store_insert/1,           % +Triples
       store_insert/2,           % +Triples, +Merge
       store_retract/1,          % +Patterns
+      store_annotation/3,       % ?Subject, ?Property, ?Value
+      store_insert_annotations/1, % +Annotations
+      store_pose/4,             % +Frame, +At, -Pose, -Stamp
+      store_assert_pose/3,      % +Frame, +Stamp, +Pose
       store_taxonomic/1,        % ?Property
       store_scope_now/1,        % -Scope
       store_python_request/1,   % -Request
@@ -45,6 +50,8 @@ A question scope is `scope(Since, Until)`: a fact is visible when its own scope 
 
 :- dynamic backend_/1.
 :- dynamic mem_triple/5.        % S, P, O, Since, Until
+:- dynamic mem_annotation/3.    % S, P, Value
+:- dynamic mem_tf/3.            % ChildFrame, Stamp, [RefFrame, [X,Y,Z], [QX,QY,QZ,QW]]
 
 backend_(memory).
 
@@ -107,6 +114,8 @@ store_assert(Triple, _, _) :-
 %   Forget every asserted triple and go back to the memory backend.
 store_reset :-
     retractall(mem_triple(_,_,_,_,_)),
+    retractall(mem_annotation(_,_,_)),
+    retractall(mem_tf(_,_,_)),
     store_use_memory.
 
 %!  store_insert(+Triples) is det.
@@ -166,6 +175,65 @@ store_retract(Patterns) :-
     ;   forall(member(t(S, P, O), Patterns), retractall(mem_triple(S, P, O, _, _)))
     ).
 
+%!  store_annotation(?Subject, ?Property, ?Value) is nondet.
+%   A label, comment or other annotation value: KnowRob keeps these in the `annotations`
+%   collection, apart from the triples (no scopes, no closures).
+store_annotation(S, P, V) :-
+    check_term(S), check_term(P),
+    (   backend_(python(Neem))
+    ->  ( atom(S) -> S1 = S ; S1 = '' ),
+        ( atom(P) -> P1 = P ; P1 = '' ),
+        neem_store:py_annotations([Neem, S1, P1], Reply),
+        reply_rows(Reply, Rows),
+        member([S, P, V], Rows)
+    ;   mem_annotation(S, P, V)
+    ).
+
+%!  store_insert_annotations(+Annotations) is det.
+%   Store a list of `annotation(S, P, Value)` in the annotations collection.
+store_insert_annotations(As) :-
+    must_be(list, As),
+    maplist(check_annotation, As),
+    (   backend_(python(Neem))
+    ->  findall([S, P, V], member(annotation(S, P, V), As), Rows),
+        neem_store:py_annotate([Neem|Rows], Reply),
+        reply_rows(Reply, _)
+    ;   forall(member(annotation(S, P, V), As),
+               ( mem_annotation(S, P, V) -> true ; assertz(mem_annotation(S, P, V)) ))
+    ).
+
+%!  store_pose(+Frame, +At, -Pose, -Stamp) is semidet.
+%   The latest transform of tf frame Frame stamped at or before At (`any`: the latest of
+%   all): Pose is `[RefFrame, [X,Y,Z], [QX,QY,QZ,QW]]`, from the NEEM's tf collection.
+store_pose(Frame, At, Pose, Stamp) :-
+    must_be(atom, Frame),
+    (   At == any -> true ; must_be(number, At) ),
+    (   backend_(python(Neem))
+    ->  ( At == any -> A = -1 ; A = At ),
+        neem_store:py_tf([Neem, Frame, A], Reply),
+        reply_rows(Reply, [[Stamp, Ref, X, Y, Z, QX, QY, QZ, QW]]),
+        Pose = [Ref, [X, Y, Z], [QX, QY, QZ, QW]]
+    ;   findall(St-P, ( mem_tf(Frame, St, P), ( At == any -> true ; St =< At ) ), Ps),
+        Ps \== [],
+        keysort(Ps, Sorted),
+        last(Sorted, Stamp-Pose)
+    ).
+
+%!  store_assert_pose(+Frame, +Stamp, +Pose) is det.
+%   Add a transform to the memory backend (tests; the logger writes the Python stores).
+store_assert_pose(Frame, Stamp, Pose) :-
+    must_be(atom, Frame), must_be(number, Stamp),
+    (   Pose = [Ref, [X, Y, Z], [QX, QY, QZ, QW]], atom(Ref),
+        maplist(number, [X, Y, Z, QX, QY, QZ, QW])
+    ->  assertz(mem_tf(Frame, Stamp, Pose))
+    ;   type_error(pose, Pose)
+    ).
+
+check_annotation(annotation(S, P, V)) :- !,
+    must_be(atom, S), must_be(atom, P), must_be(atomic, V).
+check_annotation(A) :-
+    type_error(annotation, A).
+
 check_insert(triple(S,P,O,Since,Until)) :-
     !,
     must_be(atom, S), must_be(atom, P), must_be(atomic, O),
@@ -193,6 +261,40 @@ store_match(Patterns0, Scope, Options) :-
     maplist(bound_comparison, Patterns0, Patterns),
     backend_(Backend),
     match(Backend, Patterns, Scope, Options).
+
+%!  store_match_scoped(+Patterns, +Scope, -FactScope) is nondet.
+%   store_match/2 that also says when the matched facts hold together: FactScope is
+%   `scope(Since, Until)`, the intersection of the scopes of the documents matched (one
+%   solution per combination of documents, as mongolog's `v_scope`; empty intersections
+%   are dropped). What `G during [S,U]` with S and U free and kb_call/3 report.
+store_match_scoped(Patterns0, Scope, FactScope) :-
+    must_be(list, Patterns0),
+    Patterns0 \== [],
+    maplist(check_pattern, Patterns0),
+    check_scope(Scope),
+    maplist(bound_comparison, Patterns0, Patterns),
+    backend_(Backend),
+    Inf is inf,
+    (   Backend == memory
+    ->  mem_conj_scoped(Patterns, Scope, scope(0.0, Inf), FactScope)
+    ;   match(Backend, Patterns, Scope, []),
+        Backend = python(Neem),
+        foldl(doc_scope(Neem, Scope), Patterns, scope(0.0, Inf), FactScope)
+    ).
+
+%   The scope of one matched (now ground) pattern's document, intersected with Acc.
+doc_scope(Neem, Scope, t(S, P, O0), Acc, FS) :-
+    (   nonvar(O0), O0 = cmp(_, _, O) -> true ; O = O0 ),
+    neem_store:py_scopes([Neem, S, P, O], Reply),
+    reply_rows(Reply, Rows),
+    member([Since, Until], Rows),
+    in_scope(Scope, Since, Until),
+    scope_intersection(Acc, Since, Until, FS).
+
+scope_intersection(scope(S0, U0), S1, U1, scope(S, U)) :-
+    num_max(S0, S1, S),
+    num_min(U0, U1, U),
+    S =< U.
 
 %   A comparison whose value is already bound is that value, if it passes.
 bound_comparison(t(S, P, C), t(S, P, O)) :-
@@ -363,15 +465,22 @@ store_set_request(R) :-
 
 mem_conj([], _).
 mem_conj([t(S,P,O)|Ps], Scope) :-
-    mem_pattern(S, P, O, Scope),
+    mem_pattern(S, P, O, Scope, _, _),
     mem_conj(Ps, Scope).
 
-mem_pattern(S, P, C, Scope) :-
+mem_conj_scoped([], _, FS, FS).
+mem_conj_scoped([t(S,P,O)|Ps], Scope, FS0, FS) :-
+    mem_pattern(S, P, O, Scope, Since, Until),
+    scope_intersection(FS0, Since, Until, FS1),
+    mem_conj_scoped(Ps, Scope, FS1, FS).
+
+%   mem_pattern(?S, ?P, ?O, +Scope, -Since, -Until): a stored triple and its scope.
+mem_pattern(S, P, C, Scope, Since, Until) :-
     nonvar(C), C = cmp(Op, A, X), !,
-    mem_pattern(S, P, X, Scope),
+    mem_pattern(S, P, X, Scope, Since, Until),
     number(X),
     compare_value(Op, X, A).
-mem_pattern(S, P, O, Scope) :-
+mem_pattern(S, P, O, Scope, Since, Until) :-
     atom(P), store_taxonomic(P), !,
     (   var(O)
     ->  mem_triple(S, P, O, Since, Until)
@@ -380,7 +489,7 @@ mem_pattern(S, P, O, Scope) :-
         memberchk(O, Closure)
     ),
     in_scope(Scope, Since, Until).
-mem_pattern(S, P, O, Scope) :-
+mem_pattern(S, P, O, Scope, Since, Until) :-
     atom(P), !,
     mem_triple(S, P0, O, Since, Until),
     (   P0 == P
@@ -390,7 +499,7 @@ mem_pattern(S, P, O, Scope) :-
         memberchk(P, Closure)
     ),
     in_scope(Scope, Since, Until).
-mem_pattern(S, P, O, Scope) :-
+mem_pattern(S, P, O, Scope, Since, Until) :-
     mem_triple(S, P, O, Since, Until),
     in_scope(Scope, Since, Until).
 

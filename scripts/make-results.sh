@@ -30,6 +30,18 @@ if [ -d "$SHARED/egtea_gaze_plus" ]; then
         --plots "docs/results/egtea-$tag"
   done
 fi
+# self-tuning ablations of the routine predictor: its first variant alone, and the likelihood mixture
+for m in routine-fixed routine-mixture; do
+  $PY -m oracle evaluate out/bench/test.jsonl --method "$m" --json "out/persona-$m.json"
+  if [ -d out/kasteren ]; then
+    $PY -m oracle evaluate out/kasteren/chains.jsonl --odb out/kasteren/odb --mapping out/kasteren/mapping.yaml \
+        --method "$m" --json "out/kasteren-$m.json"
+  fi
+  if [ -d out/egtea ]; then
+    $PY -m oracle evaluate out/egtea/chains.jsonl --odb out/egtea/odb --mapping out/egtea/mapping.yaml \
+        --method "$m" --json "out/egtea-$m.json"
+  fi
+done
 # nltk.lm against the online Kneser-Ney of the baselines (docs/evaluation.md, "Kneser-Ney and Witten-Bell")
 { $PY scripts/nltk-speed.py out/bench/test.jsonl 200
   if [ -d out/kasteren ]; then $PY scripts/nltk-speed.py out/kasteren/chains.jsonl 1319; fi; } | tee out/nltk-speed.txt

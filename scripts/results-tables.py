@@ -4,6 +4,9 @@ usage: python scripts/results-tables.py [OUT] [NAME ...]   (OUT defaults to out/
 Per evaluation: accuracy of every method and its paired difference to the first method (the one
 the run scored first, named in the column header) with the 95 % bootstrap interval and the
 Holm-corrected Wilcoxon p; the cold start; with ablations the Fig. 5.5 table against A.
+Then, over the three sets, the targets of the default predictor (ahead of the best baseline on
+Top-1/3/5 with the Top-3 interval above zero; cold start at least as good as the thesis oracle)
+and its self-tuning ablations.
 """
 
 import json
@@ -72,6 +75,68 @@ def table(name: str, label: str) -> None:
               f"({ablations['unit']}); p: {ablations['test']}.\n")
 
 
+SETS = [("persona", "Persona test split"), ("kasteren", "van Kasteren house A"), ("egtea", "EGTEA Gaze+")]
+
+
+def points(entry: dict, flip: bool = True) -> str:
+    """Reference minus method (flip) in points with the 95 % interval."""
+    sign = -1 if flip else 1
+    low, high = sorted((sign * entry["low"], sign * entry["high"]))
+    return f"{100 * sign * entry['difference']:+.1f} [{100 * low:+.1f}, {100 * high:+.1f}]"
+
+
+def targets() -> None:
+    """Per set: the default predictor against the best baseline per k, and the cold start."""
+    rows = []
+    for tag, label in SETS:
+        path = OUT / f"{tag}-recommended.json"
+        if not path.exists():
+            continue
+        data = json.loads(path.read_text())
+        paired, ref = data["comparisons"], data["comparisons"]["reference"]
+        baselines = [m for m in paired["methods"] if m != "oracle"]
+        cells, met = [], True
+        for k in KS:
+            best = max(baselines, key=lambda m: data["methods"][m][f"top{k}"])
+            entry = paired["methods"][best][f"top{k}"]
+            ours = data["methods"][ref][f"top{k}"]
+            met &= ours > data["methods"][best][f"top{k}"] and (k != 3 or -entry["high"] > 0)
+            cells.append(f"{ours:.3f} vs `{best}` {data['methods'][best][f'top{k}']:.3f}: {points(entry)}")
+        cold = data["cold_start"]
+        ahead = all(cold["methods"][ref][f"top{k}"] >= cold["methods"]["oracle"][f"top{k}"] for k in KS)
+        cold_cell = " / ".join(f"{cold['methods'][ref][f'top{k}']:.3f} vs {cold['methods']['oracle'][f'top{k}']:.3f}"
+                               for k in KS)
+        rows.append(f"| {label} | {' | '.join(cells)} | {'yes' if met else 'no'} | {cold_cell} | "
+                    f"{'yes' if ahead else 'no'} |")
+    if not rows:
+        return
+    print("**Targets of the default predictor** (`routine` minus the strongest baseline per k, in points, "
+          "with the 95 % bootstrap interval; cold start: Top-1 / Top-3 / Top-5 of `routine` vs the thesis "
+          "oracle over each user's first 30 predictions)\n")
+    print("| set | Top-1 | Top-3 | Top-5 | ahead, Top-3 interval above 0 | cold start | cold start >= thesis |")
+    print("| --- | --- | --- | --- | --- | --- | --- |")
+    print("\n".join(rows) + "\n")
+
+
+def self_tuning() -> None:
+    """The routine predictor with its self-tuning (leader), its first variant alone, and the mixture."""
+    rows = []
+    for tag, label in SETS:
+        files = {"routine (leader)": (OUT / f"{tag}-recommended.json", "routine"),
+                 "routine-fixed": (OUT / f"{tag}-routine-fixed.json", "routine-fixed"),
+                 "routine-mixture": (OUT / f"{tag}-routine-mixture.json", "routine-mixture")}
+        if not all(path.exists() for path, _ in files.values()):
+            continue
+        for name, (path, key) in files.items():
+            entry = json.loads(path.read_text())["methods"][key]
+            rows.append(f"| {label} | {name} | {entry['top1']:.3f} | {entry['top3']:.3f} | {entry['top5']:.3f} | "
+                        f"{entry['ms_per_prediction']:.2f} |")
+    if rows:
+        print("**Self-tuning of the routine predictor**\n")
+        print("| set | tuning | Top-1 | Top-3 | Top-5 | ms/prediction |\n| --- | --- | ---: | ---: | ---: | ---: |")
+        print("\n".join(rows) + "\n")
+
+
 for name, label in [("persona-recommended", "Persona test split, recommended settings (thesis Table 4.2)"),
                     ("persona-tuned", "Persona test split, settings tuned on the tuning split (top-1)"),
                     ("kasteren-recommended", "van Kasteren house A, recommended settings"),
@@ -80,3 +145,7 @@ for name, label in [("persona-recommended", "Persona test split, recommended set
                     ("egtea-tuned-top1", "EGTEA Gaze+, persona-tuned settings")]:
     if (OUT / f"{name}.json").exists() and (not ONLY or name in ONLY):
         table(name, label)
+if not ONLY or "targets" in ONLY:
+    targets()
+if not ONLY or "self-tuning" in ONLY:
+    self_tuning()

@@ -6,8 +6,10 @@
       kb_compile/3,             % +Goal, +Scope, -Plan
       kb_findall/4,             % +Template, :Goal, +Scope, -List
       kb_call/3,                % :Goal, +QueryScope, -FactScope
+      kb_call/4,                % :Goal, +QueryScope, -FactScope, +Options
       kb_project/1,             % +Statement
       kb_project/2,             % +Statement, +Scope
+      kb_project/3,             % +Statement, +Scope, +Options
       kb_unproject/1            % +Statement
     ]).
 /** <module> The query language: kb_call and kb_project (KnowRob 2.x src/lang/query.pl)
@@ -33,14 +35,19 @@ kb_project/1 asserts statements built from the same vocabulary (see kb_project/1
 :- use_module(library(error)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
-:- use_module('../neem_store', [store_match/2, store_match/3, store_insert/2, store_retract/1]).
+:- use_module('../neem_store', [store_match/2, store_match/3, store_match_scoped/3, store_insert/2, store_retract/1]).
 :- use_module(triple, [kb_iri/2, iri_term/1, triple_steps/6, unit_factor/2]).
 :- use_module(scope, [current_scope/1, scope_check/1, scope_overlaps/3, runtime_scope/3,
-                       scope_term/2, scope_dict/2]).
+                       scope_term/2, scope_dict/2, universal_scope/1]).
 
 :- meta_predicate
-    kb_call(0), kb_call(0, +), kb_call(0, +, -), kb_call_stepwise(0), kb_call_stepwise(0, +),
+    kb_call(0), kb_call(0, +), kb_call(0, +, -), kb_call(0, +, -, +), kb_call_stepwise(0), kb_call_stepwise(0, +),
     kb_findall(?, 0, +, -).
+
+%!  kb_scoped_goal(+Goal, +Scope, -Call) is semidet.
+%   Goal is not made of triples but depends on the question scope (e.g. is_at/2 reads tf
+%   data at the scope's time): Call answers it in Scope. Multifile.
+:- multifile kb_scoped_goal/3.
 
 %!  kb_rule(?Head, ?Body) is nondet.
 %   Head is defined by Body, a conjunction of triple/3 goals, other model predicates and
@@ -62,12 +69,34 @@ kb_call(Goal, Scope0) :-
 %!  kb_call(:Goal, +QueryScope, -FactScope) is nondet.
 %   kb_call/2 with KnowRob's scope dictionaries: QueryScope is `dict{}` (any time) or
 %   `dict{time: dict{since: =<(T0), until: >=(T1)}}` (also `scope(T0,T1)` or `any`).
-%   FactScope is the question scope as a dictionary: the store does not report the scopes
-%   of the facts it matched (see docs/prolog.md).
+%   FactScope, `dict{time: dict{since: S, until: U}}`, says when the facts of the solution
+%   hold together: the intersection of the scopes of the documents matched (mongolog's
+%   `v_scope`), universal for a solution that matched none.
 kb_call(Goal, QScope, FScope) :-
     scope_term(QScope, Scope),
-    kb_call(Goal, Scope),
-    scope_dict(Scope, FScope).
+    kb_call_scoped(Goal, Scope, scope(S, U)),
+    scope_dict(scope(S, U), FScope).
+
+%!  kb_call(:Goal, +QueryScope, -FactScope, +Options) is nondet.
+%   kb_call/3 with KnowRob's options: `graph(user)` and `graph('*')` (KnowRob's default, no
+%   graph filter) are accepted; another graph is a domain error, as the stores keep no graph
+%   hierarchy to filter by.
+kb_call(Goal, QScope, FScope, Options) :-
+    graph_options(Options),
+    kb_call(Goal, QScope, FScope).
+
+graph_options(Options) :-
+    must_be(list, Options),
+    (   memberchk(graph(G), Options), \+ memberchk(G, [user, '*'])
+    ->  domain_error(graph_without_hierarchy, G)
+    ;   true
+    ).
+
+%   kb_call_scoped(:Goal, +Scope, -FactScope): kb_call/2 threading the facts' scope.
+kb_call_scoped(Goal, Scope, FS) :-
+    kb_compile(Goal, Scope, compiled, Plan),
+    universal_scope(FS0),
+    run_plan_fs(Plan, FS0, FS).
 
 %!  kb_call_stepwise(:Goal) is nondet.
 %!  kb_call_stepwise(:Goal, +Scope) is nondet.
@@ -129,6 +158,7 @@ unfold((C -> T), Mod, Scope, [ite(PC, PT, [call(fail)])|S], S) :- !,
 unfold(\+ G, Mod, Scope, [not(P)|S], S) :- !,
     sub_plan(G, Mod, Scope, P).
 unfold(true, _, _, S, S) :- !.
+unfold(assign(X, V), _, _, [call(X = V)|S], S) :- !.     % mongolog's assign/2
 unfold([], _, _, S, S) :- !.
 unfold([G|Gs], Mod, Scope, S0, S) :- !,      % a list of goals is their conjunction
     unfold(G, Mod, Scope, S0, S1),
@@ -176,12 +206,18 @@ unfold(occurs(E), Mod, Scope, S0, S) :- !,
 unfold(G, Mod, Scope, S0, S) :-
     kb_rule(G, Body), !,
     unfold(Body, Mod, Scope, S0, S).
+unfold(G, _, Scope, [call(Call)|S], S) :-
+    kb_scoped_goal(G, Scope, Call), !.
 unfold(G, Mod, _, [call(Mod:G)|S], S).
 
 %   holds(P(S,O)): the relation P between S and O.
+%   holds(prefix:'P'(S,O)) reads as Prefix:P (KnowRob marks this case blocked).
 query_triple(Q, Su, P, O) :-
     must_be(callable, Q),
-    Q =.. [P, Su, O].
+    (   Q = Prefix:Q1, atom(Prefix), compound(Q1), Q1 =.. [L, Su, O]
+    ->  P = Prefix:L
+    ;   Q =.. [P, Su, O]
+    ).
 
 %   A unit term Unit(Value) (KnowRob: `m(6.5)`, `cm(X)`): Factor converts to the SI unit the
 %   store holds.
@@ -191,8 +227,20 @@ unit_term(O, F, V) :-
 %!  unit_value(+Factor, ?Value, +Stored) is semidet.
 unit_value(F, V, X) :-
     number(X),
-    V1 is X / F,
+    from_si(F, X, V1),
     (   var(V) -> V = V1 ; abs(V - V1) =< 1.0e-9 * max(1.0, abs(V1)) ).
+
+%   `G during I` with I a variable or `[S, U]` of two variables.
+free_interval(I) :- var(I), !.
+free_interval([T0, T1]) :- var(T0), var(T1).
+
+%   A unit's factor below 1 is applied through its inverse (100 for cm), which floats
+%   hold exactly: 6.5 m is 650.0 cm, not 649.9999999999999.
+from_si(F, X, V) :- ( integral_inverse(F, Inv) -> V is X * Inv ; V is X / F ).
+to_si(F, V, X) :- ( integral_inverse(F, Inv) -> X is V / Inv ; X is V * F ).
+
+integral_inverse(F, Inv) :-
+    F < 1, Inv0 is 1 / F, Inv is round(Inv0), abs(Inv0 - Inv) < 1.0e-6.
 
 sub_plan(G, Mod, Scope, Plan) :-
     unfold(G, Mod, Scope, Steps, []),
@@ -251,8 +299,66 @@ run_step(or(A, B)) :- ( run_plan(A) ; run_plan(B) ).
 run_step(ite(C, T, E)) :- ( run_plan(C) -> run_plan(T) ; run_plan(E) ).
 run_step(not(P)) :- \+ run_plan(P).
 run_step(scoped(Kind, G, Arg)) :-
-    runtime_scope(Kind, Arg, Scope),
-    kb_call(G, Scope).
+    (   free_argument(Kind, Arg)
+    ->  universal_scope(FS0),
+        bind_scope(Kind, G, Arg, FS0, _)
+    ;   runtime_scope(Kind, Arg, Scope),
+        kb_call(G, Scope)
+    ).
+
+%   The plan threading the facts' scope `scope(Since, Until)` (see kb_call/3): a match
+%   intersects it with the scopes of the documents it matched; a solution whose facts never
+%   held together is dropped.
+run_plan_fs([], FS, FS).
+run_plan_fs([Step|Steps], FS0, FS) :-
+    run_step_fs(Step, FS0, FS1),
+    run_plan_fs(Steps, FS1, FS).
+
+run_step_fs(match(Ts, Scope), FS0, FS) :-
+    maplist(expand_pattern, Ts, Ts1),
+    (   ground(Ts1)
+    ->  once(store_match_scoped(Ts1, Scope, FS1))
+    ;   store_match_scoped(Ts1, Scope, FS1)
+    ),
+    intersect_fs(FS0, FS1, FS).
+run_step_fs(call(G), FS, FS) :- call(G).
+run_step_fs(or(A, B), FS0, FS) :- ( run_plan_fs(A, FS0, FS) ; run_plan_fs(B, FS0, FS) ).
+run_step_fs(ite(C, T, E), FS0, FS) :-
+    (   run_plan_fs(C, FS0, FS1) -> run_plan_fs(T, FS1, FS) ; run_plan_fs(E, FS0, FS) ).
+run_step_fs(not(P), FS, FS) :- \+ run_plan(P).
+run_step_fs(scoped(Kind, G, Arg), FS0, FS) :-
+    (   free_argument(Kind, Arg)
+    ->  bind_scope(Kind, G, Arg, FS0, FS)
+    ;   runtime_scope(Kind, Arg, Scope),
+        kb_call_scoped(G, Scope, FS1),
+        intersect_fs(FS0, FS1, FS)
+    ).
+
+%   KnowRob's free instants and intervals (decided when the step runs: an event of
+%   `G during E` may be bound by an earlier goal): `G during [S,U]` (or `G during I`) asks
+%   at any time and binds [S,U] to the facts' scope, `G since T` asks for facts still true
+%   now and binds T to their begin, `G until T` asks at any time and binds T to their end.
+free_argument(during, I) :- free_interval(I).
+free_argument(since, T) :- var(T).
+free_argument(until, T) :- var(T).
+
+bind_scope(Kind, G, Arg, FS0, FS) :-
+    free_question(Kind, Scope),
+    kb_call_scoped(G, Scope, FS1),
+    FS1 = scope(S, U),
+    (   Kind == during -> Arg = [S, U]
+    ;   Kind == since -> Arg = S
+    ;   Arg = U
+    ),
+    intersect_fs(FS0, FS1, FS).
+
+free_question(since, scope(Inf, Now)) :- !, Inf is inf, get_time(Now).
+free_question(_, any).
+
+intersect_fs(scope(S0, U0), scope(S1, U1), scope(S, U)) :-
+    ( S0 >= S1 -> S = S0 ; S = S1 ),
+    ( U0 =< U1 -> U = U0 ; U = U1 ),
+    S =< U.
 
 expand_pattern(t(S, P, O), t(S1, P1, O1)) :-
     kb_iri(S, S1), kb_iri(P, P1), kb_iri(O, O1).
@@ -279,6 +385,12 @@ kb_project(Statement, Scope0) :-
     scope_term(Scope0, Scope),
     (   Scope = scope(S, U) -> true ; S = 0.0, U is inf ),
     kb_project_(Statement, S, U).
+
+%!  kb_project(+Statement, +Scope, +Options) is det.
+%   kb_project/2 with KnowRob's options (`graph(user)`, `graph('*')`; see kb_call/4).
+kb_project(Statement, Scope, Options) :-
+    graph_options(Options),
+    kb_project(Statement, Scope).
 
 kb_project_(Statement, S, U) :-
     (   narrowing(Statement) -> Merge = intersect ; Merge = union ),
@@ -336,10 +448,11 @@ project(since(G, S), _, _, T0, T) :- !,
 project(until(G, U), _, _, T0, T) :- !,
     must_be(number, U),
     project(G, 0.0, U, T0, T).
-project(triple(S, P, O), Since, Until, [triple(S1, P1, O1, Since, Until)|T], T) :- !,
+project(triple(S, P, O), Since0, Until0, [triple(S1, P1, O1, Since, Until)|T], T) :- !,
     (   ground(triple(S, P, O)) -> true
     ;   throw(error(instantiation_error, project(triple(S, P, O))))   % KnowRob's context
     ),
+    to_float(Since0, Since), to_float(Until0, Until),    % scopes are doubles, as in KnowRob
     kb_iri(S, S1), kb_iri(P, P1), value_atomic(O, O1),
     must_be(atom, S1), must_be(atom, P1), must_be(atomic, O1).
 project(holds(Q), Since, Until, T0, T) :- !,
@@ -347,7 +460,7 @@ project(holds(Q), Since, Until, T0, T) :- !,
     project(holds(S, P, O), Since, Until, T0, T).
 project(holds(S, P, O), Since, Until, T0, T) :- !,
     (   unit_term(O, F, V)
-    ->  must_be(number, V), X is V * F
+    ->  must_be(number, V), to_si(F, V, X)
     ;   X = O
     ),
     project(triple(S, P, X), Since, Until, T0, T).
@@ -376,6 +489,9 @@ project(G, S, U, T0, T) :-
     project(Body, S, U, T0, T).
 project(G, _, _, _, _) :-
     domain_error(projectable_statement, G).
+
+to_float(X, F) :- float(X), !, F = X.       % `is float(inf)` overflows
+to_float(X, F) :- must_be(number, X), F is float(X).
 
 %   `term(T)` values are stored as their text (KnowRob's term/1), other values as they are.
 value_atomic(term(T), A) :- !, must_be(ground, T), term_to_atom(T, A).

@@ -47,10 +47,10 @@ test(bad_scope, [error(type_error(scope, later))]) :-
 test(project_merges_overlapping_scopes, [nondet, setup(store_reset), cleanup(store_reset)]) :-
     kb_project(triple(s, p, o), scope(10, 20)),
     kb_project(triple(s, p, o), scope(5, 12)),
-    findall(S-U, neem_store:mem_triple(s, p, o, S, U), L), L == [5-20],
+    findall(S-U, neem_store:mem_triple(s, p, o, S, U), L), L == [5.0-20.0],
     kb_call(triple(s, p, o), scope(6, 19)),
     kb_project(triple(s, p, o), scope(30, 40)),
-    findall(S-U, neem_store:mem_triple(s, p, o, S, U), L2), msort(L2, [5-20, 30-40]).
+    findall(S-U, neem_store:mem_triple(s, p, o, S, U), L2), msort(L2, [5.0-20.0, 30.0-40.0]).
 
 test(until_narrows, [nondet, setup(store_reset), cleanup(store_reset)]) :-
     kb_project(triple(q, region, green)),
@@ -59,7 +59,7 @@ test(until_narrows, [nondet, setup(store_reset), cleanup(store_reset)]) :-
     kb_call(triple(q, region, red)),
     \+ kb_call(triple(q, region, green)),
     kb_call(triple(q, region, green) during [200, 250]),
-    findall(U, neem_store:mem_triple(q, region, green, _, U), [300]).
+    findall(U, neem_store:mem_triple(q, region, green, _, U), [300.0]).
 
 test(project_during_event, [nondet, setup(store_reset), cleanup(store_reset)]) :-
     kb_project(event_interval(act, 10.0, 20.0)),
@@ -81,9 +81,37 @@ test(goal_list_and_call, [nondet, setup(load_test_episode), cleanup(store_reset)
 test(scope_dicts, [nondet, setup(store_reset), cleanup(store_reset)]) :-
     kb_project(triple(s, p, o), dict{time: dict{since: =(double(5)), until: =(double(10))}}),
     kb_call(triple(s, p, o), dict{time: dict{since: =<(double(6)), until: >=(double(9))}}, F),
-    F = dict{time: dict{since: 6, until: 9}},
+    F = dict{time: dict{since: 5.0, until: 10.0}},       % the fact's scope
     \+ kb_call(triple(s, p, o), dict{time: dict{since: =<(4), until: >=(9)}}, _),
     kb_call(triple(s, p, o), dict{}, _).
+
+test(free_interval_bound_to_fact_scope, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project(triple(lea, number, n1) during [10, 34]),
+    kb_call(triple(lea, number, n1) during [S, U]), [S, U] == [10.0, 34.0],
+    kb_call(triple(lea, number, n1) during I), I == [10.0, 34.0],
+    kb_call(triple(lea, number, n1) until E), E == 34.0,
+    \+ kb_call(triple(lea, number, n1) since _),          % not true now
+    kb_project(triple(lea, number, n2) since 800),
+    kb_call(triple(lea, number, n2) since B), B == 800.0.
+
+test(fact_scope_is_the_intersection, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project(triple(a, p, b) during [0, 50]),
+    kb_project(triple(b, p, c) during [20, 80]),
+    kb_call((triple(a, p, X), triple(X, p, c)), dict{}, F),
+    F == dict{time: dict{since: 20.0, until: 50.0}},
+    kb_project(triple(b, p, d) during [60, 90]),
+    \+ kb_call((triple(a, p, Y), triple(Y, p, d)), dict{}, _).   % never held together
+
+test(free_event_of_during_bound_at_runtime, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project((is_action(act), event_interval(act, 10.0, 20.0))),
+    kb_project(triple(obj, hasRole, r1) during act),
+    kb_call(( is_action(A), triple(obj, hasRole, R) during A )), A == act, R == r1.
+
+test(options_graph, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project(triple(s, p, o), dict{}, [graph(user)]),
+    kb_call(triple(s, p, o), dict{}, _, [graph('*')]),
+    catch(kb_call(triple(s, p, o), dict{}, _, [graph(soma)]), E, true),
+    E = error(domain_error(graph_without_hierarchy, soma), _).
 
 test(term_values, [nondet, setup(store_reset), cleanup(store_reset)]) :-
     kb_project(triple(lecturer, hairColor, term([255, 99, 71]))),

@@ -5,7 +5,12 @@
       scope_overlaps/3,         % +Scope, +Begin, +End
       runtime_scope/3,          % +Kind, +Argument, -Scope
       scope_term/2,             % +ScopeOrDict, -Scope
-      scope_dict/2              % +Scope, -Dict
+      scope_dict/2,             % +Scope, -Dict
+      wildcard_scope/1,         % -Dict
+      time_scope/3,             % ?Since, ?Until, ?Dict
+      time_scope_data/2,        % +Scope, -[Since, Until]
+      subscope_of/2,            % +Sub, +Sup
+      scope_intersect/3         % +A, +B, -Intersection
     ]).
 /** <module> Question scopes (KnowRob 2.x src/lang/scope.pl)
 
@@ -100,3 +105,90 @@ bound_value(V, X) :-
 %   Scope as KnowRob's dictionary `dict{time: dict{since: S, until: U}}` (`dict{}` for any).
 scope_dict(any, dict{}) :- !.
 scope_dict(scope(S, U), dict{time: dict{since: S, until: U}}).
+
+                 /*******************************
+                 *  KNOWROB'S SCOPE DICTIONARIES *
+                 *******************************/
+
+%!  wildcard_scope(-Dict) is det.
+%   The scope dictionary that sees every fact, `dict{}`.
+wildcard_scope(dict{}).
+
+%!  time_scope(?Since, ?Until, ?Dict) is det.
+%   `dict{time: dict{since: Since, until: Until}}`, ends as KnowRob writes them (`=(5)`,
+%   `=<(double(T))`, ...); also reads a dictionary without the `time` key.
+time_scope(Since, Until, Scope) :-
+    (   nonvar(Scope), is_dict(Scope), \+ get_dict(time, Scope, _)
+    ->  Scope = dict{since: Since, until: Until}
+    ;   Scope = dict{time: dict{since: Since, until: Until}}
+    ).
+
+%!  time_scope_data(+Scope, -Ends) is det.
+%   Ends is `[Since, Until]` of a scope dictionary (or `scope(S,U)`): an `=` end as its
+%   number, another comparison kept as `Op(Number)`, `double(...)` dropped, a missing end
+%   left unbound.
+time_scope_data(scope(S, U), [S, U]) :- !.
+time_scope_data(Scope, [Since, Until]) :-
+    must_be(dict, Scope),
+    (   get_dict(time, Scope, Time) -> true ; Time = Scope ),
+    end_data(since, Time, Since),
+    end_data(until, Time, Until).
+
+end_data(Key, Time, Value) :-
+    (   get_dict(Key, Time, V0)
+    ->  end_value(V0, Value)
+    ;   true
+    ).
+
+end_value(V, _) :- var(V), !.
+end_value(double(V), X) :- !, end_value(V, X).
+end_value(V, X) :-
+    compound(V), V =.. [Op, A], polarity(Op, _), !,
+    end_value(A, A1),
+    (   Op == (=) -> X = A1 ; X =.. [Op, A1] ).
+end_value('Infinity', X) :- !, X is inf.
+end_value(V, V).
+
+%!  subscope_of(+Sub, +Sup) is semidet.
+%   Every time of Sub is in Sup: Sup begins no later and ends no earlier.
+subscope_of(Sub, Sup) :-
+    time_scope_data(Sub, [S0, U0]),
+    time_scope_data(Sup, [S1, U1]),
+    earliest(S0, S1, E), E == S1,
+    latest(U0, U1, L), L == U1.
+
+%!  scope_intersect(+A, +B, -Intersection) is semidet.
+%   The scope both hold in (fails when they do not meet); the wildcard `dict{}` is neutral.
+scope_intersect(A, B, B) :- A == dict{}, !.
+scope_intersect(A, B, A) :- B == dict{}, !.
+scope_intersect(A, B, dict{time: Time}) :-
+    time_scope_data(A, [S0, U0]),
+    time_scope_data(B, [S1, U1]),
+    latest(S0, S1, S), ground(S),
+    earliest(U0, U1, U),
+    (   var(U) -> true ; earliest(S, U, E), E == S ),
+    (   ground(U) -> Time = dict{since: S, until: U} ; Time = dict{since: S} ).
+
+%   The earlier / later of two ends. A plain number is an exact end; `=<(T)` is "at T or
+%   before", `>=(T)` "at T or after", so at the same time `=<(T)` is earlier and `>=(T)` later;
+%   an unbound end is open (never the earlier one, always the later one).
+earliest(A, B, M) :- var(A), !, M = B.
+earliest(A, B, M) :- var(B), !, M = A.
+earliest(A, B, M) :-
+    end_key(A, VA, PA), end_key(B, VB, PB),
+    (   VA < VB -> M = A ; VB < VA -> M = B ; PA =< PB -> M = A ; M = B ).
+
+latest(A, _, M) :- var(A), !, M = A.
+latest(_, B, M) :- var(B), !, M = B.
+latest(A, B, M) :-
+    end_key(A, VA, PA), end_key(B, VB, PB),
+    (   VA > VB -> M = A ; VB > VA -> M = B ; PA >= PB -> M = A ; M = B ).
+
+end_key(E, V, P) :-
+    (   compound(E), E =.. [Op, V0], polarity(Op, P0) -> V = V0, P = P0 ; V = E, P = 0 ).
+
+polarity(<, -1).
+polarity(=<, -1).
+polarity(=, 0).
+polarity(>, 1).
+polarity(>=, 1).

@@ -8,6 +8,7 @@
       has_range/2,              % ?Property, ?Range
       has_domain/2,             % ?Property, ?Domain
       rdf_list/2,               % ?RDFList, ?List
+      rdf_list_head/2,          % ?SubList, ?Head
       new_iri/1,                % -IRI
       new_iri/2                 % -IRI, +Type
     ]).
@@ -85,6 +86,16 @@ rdf_list(L0, Xs) :-
     ),
     findall(X, kb_call(( triple(L, reflexive(transitive(rdf:rest)), Y), triple(Y, rdf:first, X) )), Ys),
     (   var(Xs) -> Xs = Ys ; maplist(kb_iri, Xs, Xs1), Xs1 == Ys ).
+
+%!  rdf_list_head(?SubList, ?Head) is nondet.
+%   Head is the first cell of the rdf:first/rdf:rest list that SubList (a cell of it) is the
+%   rest of, or SubList itself when it is a list's first cell.
+rdf_list_head(Sub0, Head0) :-
+    kb_iri(Sub0, Sub), kb_iri(Head0, Head),
+    (   var(Sub) -> kb_call(triple(Sub, rdf:first, _), any) ; true ),
+    kb_call(triple(H, transitive(reflexive(rdf:rest)), Sub), any),
+    \+ kb_call(triple(_, rdf:rest, H), any),
+    Head = H.
 
 %!  new_iri(-IRI) is det.
 %!  new_iri(-IRI, +Type) is det.

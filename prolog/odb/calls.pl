@@ -112,12 +112,22 @@ task_calls(Ts, Pairs) :-
             Pairs).
 
 %!  call_tasks(+Call, -Tasks) is det.
-%   The task individuals whose call is Call (the logger makes one per call).
+%   The task individuals whose call is Call (the logger makes one per action, and one per
+%   call for the plans): one store query for the roles of every task of the call's class,
+%   whose rows give each task's call as task_call/2 reads it.
 call_tasks(Call, Tasks) :-
     call_classes(Call, TC, _),
-    findall(T, kb_call(triple(T, rdf:type, TC), any), Ts0),
-    sort(Ts0, Ts),
-    findall(T, ( member(T, Ts), task_call(T, C), C = Call ), Tasks).
+    task_role_rows(T, C, R, RC, OC, Goal),
+    kb_findall(T-(C-R-RC-OC), ( triple(T, rdf:type, TC), Goal ), any, Rows),
+    sort(1, @=<, Rows, ByTask),             % stable: each task's rows in the store's order
+    group_pairs_by_key(ByTask, Groups),
+    findall(T, kb_call(triple(T, rdf:type, TC), any), All0),
+    sort(All0, All),
+    list_to_assoc(Groups, RowsOf),
+    findall(T, ( member(T, All),
+                 ( get_assoc(T, RowsOf, Rows0) -> true ; Rows0 = [] ),
+                 rows_call(T, Rows0, C1), C1 = Call ),
+            Tasks).
 
 %!  times_done(+Call, -Actions) is det.
 %   `action(Begin, End, Action)` for every action that executed Call, by begin.

@@ -16,6 +16,10 @@ pyswip's traps (toolchain-facts §2) shape the code: outputs are always fresh va
 unified in Prolog, exceptions inside foreign predicates are caught here and handed over as
 ``error(Message)`` (pyswip would turn them into silent failure), no ``Prolog.query`` runs
 inside a foreign predicate, and every use of pyswip holds one process-wide lock.
+
+Why this module is large: every foreign predicate Prolog calls (matching, inserting, the
+facts' scopes, annotations, poses) lives here, beside the state and lock they share, so that
+pyswip and its traps stay in one module.
 """
 
 from __future__ import annotations
@@ -30,15 +34,15 @@ from typing import TYPE_CHECKING, Any
 
 from oracle.errors import PrologError, StoreError
 from oracle.paths import prolog_dir
-from oracle.store import Cmp, Scope, Store, TriplePattern, Triple, Var
+from oracle.store import Annotation, Cmp, Scope, Store, TriplePattern, Triple, Var
 
 if TYPE_CHECKING:
     from oracle.ontology import OdbOntology
 
 #: The Prolog modules under ``paths.prolog_dir()``, in load order (KnowRob's layout: lang/, model/; the
 #: odb extension in odb/); each is imported into ``user`` so a typed query sees its exports.
-MODULES = ("neem_store", "lang/triple", "lang/scope", "lang/query", "lang/holds", "lang/temporal",
-           "model/rdfs", "model/event", "model/object", "model/situation", "model/action", "model/interval",
+MODULES = ("neem_store", "lang/triple", "lang/scope", "lang/query", "lang/holds", "lang/temporal", "lang/db",
+           "model/rdfs", "model/event", "model/object", "model/situation", "model/action", "model/interval", "model/tf",
            "odb/names", "odb/calls", "odb/events", "odb/decisions", "odb/history", "answers", "batch_toplevel")
 #: Rows per chunk handed to Prolog by one solution of py_match/2.
 CHUNK = 5000
@@ -48,7 +52,8 @@ _STATE: dict[str, Any] = {"bridge": None, "loaded": False, "request": None}
 _GENERATORS: dict[int, Iterator[str]] = {}
 _NEXT_KEY = [1]
 #: How many times Prolog called into Python (crossings), per foreign predicate.
-CROSSINGS = {"py_match": 0, "py_insert": 0, "py_request": 0}
+CROSSINGS = {"py_match": 0, "py_insert": 0, "py_request": 0, "py_scopes": 0, "py_annotations": 0, "py_annotate": 0,
+             "py_tf": 0}
 
 
 # -- values ------------------------------------------------------------------------------
@@ -213,6 +218,90 @@ def py_insert(req: Any, out: Any) -> bool:
     return True
 
 
+def _scope_number(value: Any) -> float:
+    if hasattr(value, "to_decimal"):
+        return float(value.to_decimal())
+    return float(value)
+
+
+def py_scopes(req: Any, out: Any) -> bool:
+    """The time scopes ``[Since, Until]`` of the documents stating one ground triple (any time,
+    KnowRob's p*/o* semantics): what ``G during [S, U]`` with S and U free binds."""
+    CROSSINGS["py_scopes"] += 1
+    try:
+        bridge = _STATE["bridge"]
+        if bridge is None:
+            raise PrologError("no store is connected to Prolog")
+        neem, s, p, o = (_plain(x) for x in req)
+        rows = []
+        for doc in bridge.store.find(neem, s, p, o):
+            time = doc.get("scope", {}).get("time", {})
+            since = _scope_number(time.get("since", 0.0))
+            until = _scope_number(time.get("until", math.inf))
+            rows.append(f"[{term_text(since)},{term_text(until)}]")
+        out.unify("[" + ",".join(rows) + "]")
+    except Exception as error:
+        out.unify(_error_text(error))
+    return True
+
+
+def py_annotations(req: Any, out: Any) -> bool:
+    """Annotations ``[S, P, Value]`` of a subject and/or property (``''`` for any)."""
+    CROSSINGS["py_annotations"] += 1
+    try:
+        bridge = _STATE["bridge"]
+        if bridge is None:
+            raise PrologError("no store is connected to Prolog")
+        neem, s, p = (_plain(x) for x in req)
+        rows = (
+            f"[{term_text(a.s)},{term_text(a.p)},{term_text(a.v)}]"
+            for a in bridge.store.annotations(neem, s or None, p or None)
+        )
+        out.unify("[" + ",".join(rows) + "]")
+    except Exception as error:
+        out.unify(_error_text(error))
+    return True
+
+
+def py_annotate(req: Any, out: Any) -> bool:
+    """Store ``[S, P, Value]`` rows in the NEEM's annotations collection (load_owl/1)."""
+    CROSSINGS["py_annotate"] += 1
+    try:
+        bridge = _STATE["bridge"]
+        if bridge is None:
+            raise PrologError("no store is connected to Prolog")
+        neem = _plain(req[0])
+        rows = [Annotation(_plain(s), _plain(p), _plain(v)) for s, p, v in req[1:]]
+        bridge.store.insert_annotations(neem, rows)
+        out.unify("[]")
+    except Exception as error:
+        out.unify(_error_text(error))
+    return True
+
+
+def py_tf(req: Any, out: Any) -> bool:
+    """The latest transform of a tf frame stamped at or before a time (-1: any time), as
+    ``[[Stamp, RefFrame, X, Y, Z, QX, QY, QZ, QW]]`` or ``[]``."""
+    from oracle.neem.tf import pose_at
+
+    CROSSINGS["py_tf"] += 1
+    try:
+        bridge = _STATE["bridge"]
+        if bridge is None:
+            raise PrologError("no store is connected to Prolog")
+        neem, frame, at = _plain(req[0]), _plain(req[1]), req[2]
+        found = pose_at(bridge.store, neem, frame, None if at == -1 else float(at))
+        if found is None:
+            out.unify("[]")
+        else:
+            stamp, pose = found
+            values = [stamp, pose.frame, *pose.position, *pose.rotation]
+            out.unify("[[" + ",".join(term_text(v) for v in values) + "]]")
+    except Exception as error:
+        out.unify(_error_text(error))
+    return True
+
+
 def py_request(out: Any) -> bool:
     CROSSINGS["py_request"] += 1
     request = _STATE["request"]
@@ -231,6 +320,10 @@ def _ensure_loaded() -> None:
     Prolog.register_foreign(py_match, arity=2, module="neem_store", nondeterministic=True)
     Prolog.register_foreign(py_insert, arity=2, module="neem_store")
     Prolog.register_foreign(py_request, arity=1, module="neem_store")
+    Prolog.register_foreign(py_scopes, arity=2, module="neem_store")
+    Prolog.register_foreign(py_annotations, arity=2, module="neem_store")
+    Prolog.register_foreign(py_annotate, arity=2, module="neem_store")
+    Prolog.register_foreign(py_tf, arity=2, module="neem_store")
     folder = prolog_dir()
     for name in MODULES:
         path = folder / f"{name}.pl"

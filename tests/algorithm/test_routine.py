@@ -64,6 +64,27 @@ def test_one_step_history_ranks_the_repeated_action_first():
     assert [t.score for t in ranking] == sorted(t.score for t in ranking)  # -log2 p: lower is better
 
 
+def test_a_history_of_idle_steps_only_knows_no_action():
+    model = RoutineOracle(kitchen()).fit([idle(), idle()])
+    ranking = model.rank(OFFERED)
+    assert ranking.options() == OFFERED and all(t.order == -1 for t in ranking)
+    assert [t.probability for t in ranking] == pytest.approx([1 / len(OFFERED)] * len(OFFERED))
+    after = model.partial_fit(act(ROUTINE[0], OFFERED)).rank(OFFERED)
+    assert after[0].option == ROUTINE[0] and after[0].situations == (2,)  # history position after the gaps
+
+
+def test_many_exact_repetitions_outrank_one_closer_looking_match():
+    # after pick(red) the user poured 5 times and placed once; the single place is the latest
+    a, b, _, d = ROUTINE
+    history = [s for _ in range(5) for s in (act(a), act(b))] + [act(a), act(d)]
+    ranking = RoutineOracle(kitchen()).fit(history + [act(a)]).rank((d, b))
+    assert ranking.options() == (b, d)
+    assert (ranking[0].order, ranking[0].n_similar, ranking[0].situations) == (1, 5, (1, 3, 5, 7, 9))
+    assert (ranking[1].order, ranking[1].n_similar, ranking[1].situations) == (1, 1, (11,))
+    assert ranking[0].context == ranking[1].context == (str(a),)
+    assert ranking[0].probability > 4 * ranking[1].probability
+
+
 def test_a_repeated_routine_is_learned_exactly_with_its_context_and_chain():
     history = [act(o, OFFERED) for _ in range(4) for o in ROUTINE] + [act(o, OFFERED) for o in ROUTINE[:3]]
     ranking = RoutineOracle(kitchen()).fit(history).rank(OFFERED)

@@ -21,7 +21,7 @@ from oracle.neem.lifecycle import persist
 from oracle.neem.query import executed_actions, summarize_neem
 from oracle.neem.writer import NeemLogger
 from oracle.namespaces import DUL, OWL, SOMA
-from oracle.store import RDF_TYPE, TriplePattern, Var
+from oracle.store import RDF_TYPE, Scope, TriplePattern, Var
 from oracle.store.model import HIERARCHY
 from oracle.store.sqlite import SQLiteStore
 from oracle.store.tbox import tbox_from_graph
@@ -121,7 +121,7 @@ def test_time_of_day_follows_the_wall_clock(logger, store, onto):
         assert logger.action("pick(green_mug)", moment).part_of_day == part
 
 
-def test_available_tasks_are_imagined_plans_sharing_the_executed_task(logger, store):
+def test_available_tasks_are_imagined_plans_of_the_executed_call(logger, store, onto):
     a = logger.action("pour(thermos, green_mug)", T0, available=["pick(green_mug)", "pour(thermos, green_mug)"])
     neem = logger.neem_id
     assert str(SOMA.MentalAction) in objects_of(store, neem, a.imagining, RDF_TYPE)
@@ -132,7 +132,38 @@ def test_available_tasks_are_imagined_plans_sharing_the_executed_task(logger, st
         TriplePattern(Var("P"), RDF_TYPE, str(SOMA.ActionExecutionPlan)),
         TriplePattern(Var("P"), str(SOMA.isPlanFor), Var("T")),
     ]))  # fmt: skip
-    assert len(rows) == 2 and a.task in {r["T"] for r in rows}  # the executed task was one of the options
+    assert len(rows) == 2
+    # the executed task is the action's own individual, of the class of one of the options
+    plan_classes = {c for r in rows for c in objects_of(store, neem, r["T"], RDF_TYPE)}
+    assert a.task not in {r["T"] for r in rows} and onto.iri("pour") in plan_classes
+    assert onto.iri("pour") in objects_of(store, neem, a.task, RDF_TYPE)
+
+
+def test_each_action_executes_its_own_task_with_roles_scoped_to_the_action(logger, store, onto):
+    first = logger.action("pour(thermos, green_mug)", T0, T0 + timedelta(seconds=12))
+    second = logger.action("pour(thermos, green_mug)", T0 + timedelta(seconds=60), T0 + timedelta(seconds=70))
+    later = logger.action("pick(green_mug)", T0 + timedelta(seconds=100))
+    neem = logger.neem_id
+    tasks = {a.iri: objects_of(store, neem, a.iri, str(DUL.executesTask)) for a in (first, second)}
+    assert len({t for ts in tasks.values() for t in ts}) == 2  # one task individual per action
+    idle_task = objects_of(store, neem, later.idle, str(DUL.executesTask))
+    assert idle_task and not set(idle_task) & {t for ts in tasks.values() for t in ts}
+    for action in (first, second):
+        rows = list(store.match(neem, [
+            TriplePattern(action.task, str(DUL.isTaskOf), Var("R")),
+            TriplePattern(Var("R"), str(DUL.classifies), logger.object_iri("thermos")),
+        ]))  # fmt: skip
+        (role,) = {r["R"] for r in rows}
+        (doc,) = store.find(neem, s=role, p=str(DUL.classifies), exact=True)
+        scope = doc["scope"]["time"]
+        assert (float(str(scope["since"])), float(str(scope["until"]))) == (action.begin, action.end)
+        # the participation itself holds always, as neem-interface's has_participant
+        (part,) = store.find(neem, s=action.iri, p=str(DUL.hasParticipant), o=logger.object_iri("thermos"), exact=True)
+        assert float(str(part["scope"]["time"]["since"])) == 0.0
+    # a role of the first pour does not classify the thermos during the second one
+    during_second = {d["s"] for d in store.find(neem, p=str(DUL.classifies), o=logger.object_iri("thermos"),
+                                                scope=Scope(second.begin + 1, second.begin + 1))}  # fmt: skip
+    assert len(during_second) == 1
 
 
 def test_preference_order_ranks_plans(logger, store):
@@ -352,18 +383,31 @@ def test_a_logged_neem_survives_export_and_load(tmp_path, onto, small_tbox):
     (loaded,) = load_dump(other, tmp_path / "dump")
     assert list(executed_actions(other, loaded)) == list(executed_actions(store, logger.neem_id))
     assert summarize_neem(other, loaded).actions == 3
+    # per-action task individuals and their roles' scopes survive the round trip
+    def role_scopes(st, neem):
+        return sorted(
+            (d["s"], float(str(d["scope"]["time"]["since"])), float(str(d["scope"]["time"]["until"])))
+            for d in st.find(neem, p=str(DUL.classifies), exact=True)
+            if float(str(d["scope"]["time"]["since"])) > 0
+        )
+    scoped = role_scopes(store, logger.neem_id)
+    assert len(scoped) == 3 and scoped == role_scopes(other, loaded)  # pour: 2 roles, pick: 1
+    for st, neem in ((store, logger.neem_id), (other, loaded)):
+        executed = [d["o"] for a in executed_actions(st, neem) for d in st.find(neem, s=a.iri, p=str(DUL.executesTask))]
+        assert len(executed) == len(set(executed)) == 3  # one task individual per action (idle included)
 
 
 def test_a_repeated_available_set_writes_only_the_new_mental_action(tmp_path, onto, small_tbox):
-    """Plans, tasks and roles are shared: the second time the same options are available only
-    the MentalAction, its interval and its imagines_situation links are new."""
+    """Plans and their tasks and roles are shared: the second time the same options are
+    available only the MentalAction, its own Imagining task, its interval and its
+    imagines_situation links are new."""
     store = SQLiteStore(tmp_path / "s.sqlite")
     logger = NeemLogger.create(store, onto, user="alice", tbox=small_tbox)
     options = ["pick(green_mug)", "pour(thermos, green_mug)", "pick(thermos)"]
     logger.available(options, T0)
     before = store.count(logger.neem_id)
     second = logger.available(options, T0 + timedelta(seconds=5))
-    assert store.count(logger.neem_id) - before == 4 + 4 + len(options)  # action, interval, links
+    assert store.count(logger.neem_id) - before == 4 + 2 + 4 + len(options)  # action, task, interval, links
     plans = objects_of(store, logger.neem_id, second, logger.vocab.imagines_situation)
     assert len(plans) == len(options) and all(p.startswith(logger.ns + "Plan_") for p in plans)
     store.close()

@@ -28,9 +28,12 @@ def test_knowrob_query_on_logged_neem(sqlite_bridge):
 
 def test_roles_and_time_of_day(sqlite_bridge):
     rows = sqlite_bridge.query(
-        "once((executes_task(A, T), instance_of(T, odb:pour))), findall(R, (has_role(_, R), task_role(T, R)), Rs),"
+        "once((executes_task(A, T), instance_of(T, odb:pour))),"
+        " findall(R, (has_role(_, R) during A, task_role(T, R)), Rs),"
+        " findall(R, (has_role(_, R), task_role(T, R)), Now),"
         " event_time_of_day(A, Part)")
-    assert len(rows[0]["Rs"]) == 2 and rows[0]["Part"] == "Morning"
+    # the roles classify their objects during the action only (KnowRob's has_role(O, R) during A)
+    assert len(rows[0]["Rs"]) == 2 and rows[0]["Now"] == [] and rows[0]["Part"] == "Morning"
 
 
 def test_why_not_ranked_lower_and_user_choice(sqlite_bridge):

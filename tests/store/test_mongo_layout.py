@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from bson.decimal128 import Decimal128
+from bson.objectid import ObjectId
 
 from oracle.store import RDF_TYPE, Triple, TriplePattern, Var
 from oracle.store.mongo import TRIPLE_INDEXES, compile_pipeline
@@ -20,7 +21,13 @@ def test_collections_indexes_one_and_meta(tmp_path):
     assert len(TRIPLE_INDEXES) == 15 and set(TRIPLE_INDEXES) <= keys
     (one,) = store.db["one"].find({}, {"_id": 0})
     assert one == {"v_scope": {"time": {"since": Decimal128("0"), "until": Decimal128("Infinity")}}}
-    assert store.db["meta"].find_one({"_id": "5fc8ff968f880006aa208e19"})["created_by"] == "alice"
+    # openEASE looks a NEEM up by find_one({"_id": ObjectId(id)})
+    assert store.db["meta"].find_one({"_id": ObjectId("5fc8ff968f880006aa208e19")})["created_by"] == "alice"
+    assert [info.id for info in store.neems()] == ["5fc8ff968f880006aa208e19"]
+    store.update_meta("5fc8ff968f880006aa208e19", description="mornings")
+    assert store.db["meta"].count_documents({}) == 1 and store.neem("5fc8ff968f880006aa208e19").meta["description"] == "mornings"
+    store.create_neem("alice", user="alice")  # other ids stay strings
+    assert store.db["meta"].find_one({"_id": "alice"})["created_by"] == "alice"
 
 
 def test_restored_collections_without_meta_are_listed(tmp_path):
@@ -53,3 +60,17 @@ def test_numbers_written_as_decimal128_are_found_by_a_double(tmp_path):
     (doc,) = store.db["n_triples"].find({})
     assert doc["o"] == Decimal128("12.5")
     assert list(store.match("n", [TriplePattern(Var("I"), X + "begin", 12.5)])) == [{"I": X + "i"}]
+
+
+def test_meta_has_the_fields_openease_reads(tmp_path):
+    from datetime import datetime
+
+    from oracle.store.meta import OPENEASE_FIELDS
+
+    store = make_store("mongomock", tmp_path)
+    store.create_neem("5fc8ff968f880006aa208e19", user="alice", meta={"description": "kitchen mornings"})
+    doc = store.db["meta"].find_one({"_id": ObjectId("5fc8ff968f880006aa208e19")})
+    assert set(OPENEASE_FIELDS) <= set(doc)  # openEASE's NEEM list reads these without a default
+    assert doc["name"] == "5fc8ff968f880006aa208e19" and doc["description"] == "kitchen mornings"
+    assert datetime.fromisoformat(doc["created_at"]).tzinfo is not None and isinstance(doc["url"], str)
+    assert doc["visibility"] is False and "image" not in doc  # an absent image shows openEASE's cover

@@ -47,8 +47,28 @@ def test_the_default_store_is_the_server_at_neem_mongo_uri(monkeypatch):
 
 
 def test_without_neem_mongo_uri_the_default_store_is_sqlite(monkeypatch, tmp_path):
-    monkeypatch.delenv("NEEM_MONGO_URI", raising=False)
+    from oracle.store import KNOWROB_MONGO_ENV
+
+    for name in ("NEEM_MONGO_URI", *KNOWROB_MONGO_ENV):
+        monkeypatch.delenv(name, raising=False)
     monkeypatch.setenv("XDG_DATA_HOME", str(tmp_path))
     monkeypatch.setenv("HOME", str(tmp_path))
     with open_store(None) as store:
         assert isinstance(store, SQLiteStore)
+
+
+def test_knowrobs_connection_variables_name_the_server(monkeypatch):
+    from oracle.store import KNOWROB_MONGO_ENV, mongo_uri_from_env
+
+    env = dict(zip(KNOWROB_MONGO_ENV, ["db.lab", "ro@bot", "p:w/d", "27018"]))
+    assert mongo_uri_from_env(env) == "mongodb://ro%40bot:p%3Aw%2Fd@db.lab:27018"
+    assert mongo_uri_from_env({**env, "NEEM_MONGO_URI": "mongodb://h:1"}) == "mongodb://h:1"  # ours first
+    assert mongo_uri_from_env({k: v for k, v in env.items() if k != "KNOWROB_MONGO_PASS"}) is None  # all four
+    mongomock_ng = pytest.importorskip("mongomock_ng")
+    monkeypatch.delenv("NEEM_MONGO_URI", raising=False)
+    for name, value in env.items():
+        monkeypatch.setenv(name, value)
+    monkeypatch.setattr("pymongo.MongoClient", mongomock_ng.MongoClient)
+    with open_store("mongodb") as store:
+        assert isinstance(store, MongoStore)
+        assert "p:w/d" not in store.location  # the password is masked

@@ -8,9 +8,10 @@ they would share private state. Reading back lives in ``neem.query``, persisting
 
 One NEEM per user. Every public call validates first and then writes one transaction, so bad
 input raises before anything is written and a killed process loses at most the call in flight.
-Task, role, plan and object individuals are descriptions shared by every event of the NEEM that
-uses them (DUL concepts), so the task an action executes is the very task its plan imagined and
-its preference ranked; events (actions, intervals) get fresh individuals. See docs/store.md.
+Every action executes its own task individual with its own roles, as neem-interface writes them,
+and the roles classify their objects only during the action (``has_role(O, R) during A``). Plans
+(what an imagining found available, what a preference ranked) define one shared task description
+per call. Objects and agents are shared by every event of the NEEM. See docs/store.md.
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ import time
 import uuid
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from typing import Any
 from datetime import datetime, timezone
 
 from oracle.chains import TaskCall, parse_call
@@ -28,6 +30,7 @@ from oracle.errors import ChainSyntaxError, LoggingError, OntologyError, StoreEr
 from oracle.neem import terms as T
 from oracle.neem.lifecycle import wipe_temporary_neems
 from oracle.neem.query import summarize_neem, summary_after
+from oracle.neem.tf import Pose, frame_name, tf_document
 from oracle.ontology.model import OdbOntology
 from oracle.ontology.provenance import META_KEY as ONTOLOGY_KEY, check_logged_with, record_of
 from oracle.store import RDF_TYPE, Store, Triple, TriplePattern, Var
@@ -125,6 +128,8 @@ class NeemLogger:
         #: How many calls (actions, perceptions, ...) are durably in the store.
         self.committed = 0
         self._buffer: list[Triple] = []
+        self._tf: list[dict[str, Any]] = []  # transforms of perceptions, written with the triples
+        self._tf_seq = 0
         self._buffered_calls = 0
         self.onto = onto
         self.neem_id = neem_id
@@ -286,7 +291,8 @@ class NeemLogger:
         return call
 
     def _task(self, call: TaskCall, out: _Out, since: float) -> str:
-        """The task individual of a call with its roles (``Role dul:classifies Object``)."""
+        """The task a plan of a call defines, with its roles (``Role dul:classifies Object``):
+        one description per call, shared by every imagining and preference that names it."""
         key = self._keys.get(call)
         if key is None:
             key = self._keys[call] = _slug(str(call).replace(", ", "__").replace("(", "__").replace(")", ""))
@@ -308,6 +314,27 @@ class NeemLogger:
             out.append(Triple(role, RDF_TYPE, T.NAMED_INDIVIDUAL))
             out.append(Triple(task, T.IS_TASK_OF, role))
             out.append(Triple(role, T.CLASSIFIES, obj))
+        return task
+
+    def _executed_task(self, call: TaskCall, begin: Instant, end: Instant, out: _Out) -> str:
+        """A fresh task individual for one action, with one role per argument; the role
+        classifies its object during the action only (neem-interface's
+        ``has_role(Obj, Role) during Action``), the task's type and roles hold always."""
+        task = self._event("Task")
+        out.append(Triple(task, RDF_TYPE, self.onto.task_iri(call.task)))
+        out.append(Triple(task, RDF_TYPE, T.NAMED_INDIVIDUAL))
+        try:
+            roles = self.onto.task_roles(call.task, len(call.args))
+        except OntologyError as error:
+            raise LoggingError(str(error)) from None
+        for arg, role_class in zip(call.args, roles):
+            if role_class is None:
+                continue
+            role = self._event("Role")
+            out.append(Triple(role, RDF_TYPE, role_class))
+            out.append(Triple(role, RDF_TYPE, T.NAMED_INDIVIDUAL))
+            out.append(Triple(task, T.IS_TASK_OF, role))
+            out.append(Triple(role, T.CLASSIFIES, self.object_iri(arg), since=begin.seconds, until=end.seconds))
         return task
 
     def _plan(self, call: TaskCall, out: _Out, since: float) -> str:
@@ -341,9 +368,11 @@ class NeemLogger:
         out.append(Triple(interval, T.END, end.seconds))
         return interval
 
-    def _mental(self, task_class: str, task_key: str, at: Instant, out: _Out) -> str:
+    def _mental(self, task_class: str, at: Instant, out: _Out) -> str:
         action = self._event("MentalAction")
-        task = self._individual(f"{self.ns}Task_{task_key}", task_class, out)
+        task = self._event("Task")  # one task per action, mental ones too
+        out.append(Triple(task, RDF_TYPE, task_class))
+        out.append(Triple(task, RDF_TYPE, T.NAMED_INDIVIDUAL))
         out.append(Triple(action, RDF_TYPE, T.MENTAL_ACTION))
         out.append(Triple(action, T.EXECUTES, task))
         out.append(Triple(action, T.PERFORMED_BY, self._agent("robot", out)))
@@ -380,12 +409,19 @@ class NeemLogger:
         return _instant(max(begins)), _instant(max(ends))
 
     # -- public API -------------------------------------------------------------------------
-    def perceive(self, obj: str, at: Moment) -> str:
-        """The robot perceives an odb object; its type triple is scoped from the first perception."""
+    def perceive(self, obj: str, at: Moment, pose: Pose | None = None) -> str:
+        """The robot perceives an odb object; its type triple is scoped from the first perception.
+        With a ``pose`` (thesis future work: raw technical data) the object's transform at that
+        moment goes into the NEEM's tf collection, frame = the object IRI's local name."""
         when = _instant(at)
         self._check_time(when, f"perception of {obj!r}")
+        if pose is not None and not isinstance(pose, Pose):
+            raise LoggingError(f"perception of {obj!r}: pose must be a Pose, got {type(pose).__name__}")
         out = _Out()
         iri = self._object(obj, out, when.seconds)
+        if pose is not None:
+            self._tf_seq += 1
+            self._tf.append(tf_document(frame_name(iri), pose, when.seconds, self._tf_seq))
         self._write(out)
         return iri
 
@@ -401,7 +437,7 @@ class NeemLogger:
         return action
 
     def _imagining(self, calls: Sequence[TaskCall], when: Instant, out: _Out) -> str:
-        action = self._mental(T.IMAGINING, "imagining", when, out)
+        action = self._mental(T.IMAGINING, when, out)
         imagines, plans = self._imagines, self._plans
         for call in calls:
             plan = plans.get(call)
@@ -445,12 +481,12 @@ class NeemLogger:
         if self._last_end is not None and is_idle_gap(self._last_end.seconds, start.seconds, self.idle_threshold):
             idle = self._idle(self._last_end, start, out)
         imagining = self._imagining(options, start, out) if options is not None else None
-        task = self._task(call, out, start.seconds)
+        for arg in call.args:  # objects first: an unknown one raises before the task is built
+            out.append(Triple(iri, T.PARTICIPANT, self._object(arg, out, start.seconds)))
+        task = self._executed_task(call, start, stop, out)
         out.append(Triple(iri, RDF_TYPE, T.ACTION))
         out.append(Triple(iri, RDF_TYPE, T.NAMED_INDIVIDUAL))
         out.append(Triple(iri, T.EXECUTES, task))
-        for arg in call.args:
-            out.append(Triple(iri, T.PARTICIPANT, self._object(arg, out, start.seconds)))
         out.append(Triple(iri, T.PERFORMED_BY, self._agent(performed_by, out)))
         out.append(Triple(iri, T.HAS_INTERVAL, self._interval(start, stop, out)))
         self._write(out)
@@ -461,7 +497,9 @@ class NeemLogger:
 
     def _idle(self, begin: Instant, end: Instant, out: _Out) -> str:
         idle = self._event("Action")
-        task = self._individual(f"{self.ns}Task_idle", self.vocab.idle_task, out)
+        task = self._event("Task")
+        out.append(Triple(task, RDF_TYPE, self.vocab.idle_task))
+        out.append(Triple(task, RDF_TYPE, T.NAMED_INDIVIDUAL))
         out.append(Triple(idle, RDF_TYPE, T.ACTION))
         out.append(Triple(idle, RDF_TYPE, T.NAMED_INDIVIDUAL))
         out.append(Triple(idle, T.EXECUTES, task))
@@ -482,7 +520,7 @@ class NeemLogger:
         when = _instant(at)
         resolved = [(self._resolve(call), float(score)) for call, score in ranking]
         out = _Out()
-        action = self._mental(T.REASONING, "reasoning", when, out)
+        action = self._mental(T.REASONING, when, out)
         order = self._event("PreferenceOrder")
         out.append(Triple(action, self.vocab.imagines_preference, order))
         out.append(Triple(order, RDF_TYPE, T.PREFERENCE_ORDER))
@@ -509,13 +547,15 @@ class NeemLogger:
 
         A commit that fails (or is interrupted) drops the buffered calls: they are never
         counted in ``committed``, which only ever counts what is in the store."""
-        buffer, calls = self._buffer, self._buffered_calls
-        self._buffer, self._buffered_calls = [], 0
-        if buffer:
+        buffer, tf, calls = self._buffer, self._tf, self._buffered_calls
+        self._buffer, self._tf, self._buffered_calls = [], [], 0
+        if buffer or tf:
             try:
                 summary = summary_after(self._summary, buffer)
                 with self.store.transaction():
                     self.store.insert(self.neem_id, buffer)
+                    if tf:
+                        self.store.write_documents(self.neem_id, "tf", tf)
                     mark = self.store.write_mark(self.neem_id)
                     self.store.update_meta(self.neem_id, **{SUMMARY_KEY: {**summary, "mark": mark}})
                 self._summary = summary
@@ -546,7 +586,7 @@ class NeemLogger:
         if self._replaces is None:
             self.flush()
             return
-        self._buffer, self._buffered_calls = [], 0
+        self._buffer, self._tf, self._buffered_calls = [], [], 0
         self.store.drop_neem(self.neem_id)
         self.neem_id, self._replaces = self._replaces, None
 

@@ -7,6 +7,7 @@ else talks to the ``Store`` interface (docs/store.md).
 from __future__ import annotations
 
 import os
+from collections.abc import Mapping
 from typing import Any
 from pathlib import Path
 
@@ -29,6 +30,23 @@ from oracle.store.model import (
 
 #: Environment variable naming the MongoDB server used by ``--store mongodb`` and the tests.
 MONGO_ENV = "NEEM_MONGO_URI"
+#: KnowRob 2.x's connection variables (``mng_client``): used when all four are set and
+#: $NEEM_MONGO_URI is not, as KnowRob builds ``mongodb://USER:PASS@HOST:PORT`` from them.
+KNOWROB_MONGO_ENV = ("KNOWROB_MONGO_HOST", "KNOWROB_MONGO_USER", "KNOWROB_MONGO_PASS", "KNOWROB_MONGO_PORT")
+
+
+def mongo_uri_from_env(env: Mapping[str, str] | None = None) -> str | None:
+    """The MongoDB URI the environment names: $NEEM_MONGO_URI, else KnowRob's four variables."""
+    env = os.environ if env is None else env
+    uri = env.get(MONGO_ENV)
+    if uri:
+        return uri
+    host, user, password, port = (env.get(name, "") for name in KNOWROB_MONGO_ENV)
+    if not (host and user and password and port):
+        return None
+    from urllib.parse import quote
+
+    return f"mongodb://{quote(user, safe='')}:{quote(password, safe='')}@{host}:{port}"
 
 
 def default_store_path() -> Path:
@@ -47,7 +65,8 @@ def open_store(
 ) -> Store:
     """Open the store a ``--store`` value names.
 
-    None: the server at $NEEM_MONGO_URI when it is set, else the default SQLite file;
+    None: the server at $NEEM_MONGO_URI when it is set (or KnowRob's KNOWROB_MONGO_HOST, _USER,
+    _PASS and _PORT, all four), else the default SQLite file;
     ``mongodb://...``: that server (database from the URI path, else ``roslog``); ``mongodb``:
     the server at $NEEM_MONGO_URI; ``sqlite:///PATH`` or a plain path: a SQLite file, created
     0600 if missing unless ``create`` is False (commands that only read pass False, so a typo'd
@@ -55,7 +74,7 @@ def open_store(
     opens a SQLite file without writing anything, so a reader never waits for a writer.
     """
     if spec is None:
-        uri = os.environ.get(MONGO_ENV)
+        uri = mongo_uri_from_env()
         if uri:
             return open_mongo(uri, number_format=number_format)
         from oracle.store.sqlite import SQLiteStore
@@ -63,9 +82,12 @@ def open_store(
         return SQLiteStore(default_store_path(), number_format, create=create, read_only=read_only)
     text = os.fspath(spec)
     if text in ("mongodb", "mongo"):
-        uri = os.environ.get(MONGO_ENV)
+        uri = mongo_uri_from_env()
         if not uri:
-            raise StoreError(f"--store {text}: set {MONGO_ENV} to the server's mongodb:// URI")
+            raise StoreError(
+                f"--store {text}: set {MONGO_ENV} to the server's mongodb:// URI "
+                f"(or KnowRob's {', '.join(KNOWROB_MONGO_ENV)})"
+            )
         return open_mongo(uri, number_format=number_format)
     if text.startswith(("mongodb://", "mongodb+srv://")):
         return open_mongo(text, number_format=number_format)
@@ -103,5 +125,5 @@ def open_mongo(uri: str, *, number_format: NumberFormat = "decimal128", timeout_
 __all__ = [
     "INFINITY", "COLLECTION_KINDS", "MONGO_ENV", "RDF_TYPE", "SUBCLASS_OF", "SUBPROPERTY_OF", "TAXONOMIC",
     "Annotation", "Cmp", "NeemInfo", "NumberFormat", "Scope", "Store", "Triple", "TriplePattern", "Var",
-    "check_neem_id", "default_store_path", "open_mongo", "open_store",
+    "KNOWROB_MONGO_ENV", "check_neem_id", "default_store_path", "mongo_uri_from_env", "open_mongo", "open_store",
 ]  # fmt: skip

@@ -13,13 +13,14 @@ from abc import ABC, abstractmethod
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from contextlib import AbstractContextManager
 from dataclasses import dataclass, field
-from datetime import datetime, timezone
+from datetime import datetime
 from typing import Any
 
 from bson.decimal128 import Decimal128
 
 from oracle.errors import StoreError
-from oracle.store.validate import check_document, check_meta
+from oracle.store.meta import new_meta
+from oracle.store.validate import check_document
 from oracle.store.model import (
     HIERARCHY,
     TAXONOMIC,
@@ -89,17 +90,6 @@ class NeemInfo:
 SUMMARY_KEY = "summary"
 
 
-def new_meta(user: str | None, temporary: bool, extra: Mapping[str, Any] | None = None) -> dict[str, Any]:
-    meta: dict[str, Any] = {
-        "created_by": user,
-        "created_at": datetime.now(timezone.utc).isoformat(timespec="seconds"),
-        "temporary": temporary,
-    }
-    meta.update(extra or {})
-    check_meta(meta, "registry entry")
-    return meta
-
-
 class Store(ABC):
     """A set of NEEMs in the KnowRob 2.x layout; see docs/store.md.
 
@@ -137,7 +127,7 @@ class Store(ABC):
         check_neem_id(neem_id)
         if self.has_neem(neem_id):
             raise StoreError(f"{self.location}: NEEM {neem_id!r} already exists")
-        record = new_meta(user, temporary, meta)
+        record = new_meta(user, temporary, meta, name=neem_id)
         self._create_neem(neem_id, record)
         self._hierarchies.pop(neem_id, None)
         return NeemInfo.from_meta(neem_id, record)
@@ -293,7 +283,8 @@ class Store(ABC):
             if batch:
                 self._insert_documents(neem_id, kind, batch)
                 count += len(batch)
-        self._hierarchies.pop(neem_id, None)
+        if kind == "triples":  # only triples carry the taxonomy
+            self._hierarchies.pop(neem_id, None)
         return count
 
     def _insert_triples(self, neem_id: str, closed: list[Closed], builder: DocumentBuilder) -> None:

@@ -14,6 +14,7 @@ from datetime import datetime, timezone
 from typing import Any
 
 from bson.decimal128 import Decimal128
+from bson.objectid import ObjectId
 
 from oracle.errors import StoreError
 from oracle.store.base import COLLECTION_KINDS, STAGING, NeemInfo, Store
@@ -51,6 +52,17 @@ INDEXES: dict[str, tuple[tuple[str, ...], ...]] = {
 ONE_DOCUMENT = {"v_scope": {"time": {"since": Decimal128("0"), "until": Decimal128("Infinity")}}}
 
 
+def meta_key(neem_id: str) -> str | ObjectId:
+    """The registry ``_id`` of a NEEM: an ObjectId when the id is one (24 hex digits), as
+    openEASE looks NEEMs up (``find_one({"_id": ObjectId(id)})``), else the id itself."""
+    return ObjectId(neem_id) if ObjectId.is_valid(neem_id) and len(neem_id) == 24 else neem_id
+
+
+def _meta_filter(neem_id: str) -> dict[str, Any]:
+    # Entries written before ids became ObjectIds keep the string form.
+    return {"_id": {"$in": [neem_id, meta_key(neem_id)]}}
+
+
 class MongoStore(Store):
     """NEEMs in a MongoDB database (or a pymongo-compatible test double)."""
 
@@ -83,8 +95,8 @@ class MongoStore(Store):
     # -- registry ---------------------------------------------------------------------------
     def _registry(self) -> dict[str, NeemInfo]:
         """Every NEEM, hidden staging ones included."""
-        infos = {doc["_id"]: NeemInfo.from_meta(doc["_id"], {k: v for k, v in doc.items() if k != "_id"})
-                 for doc in self.db[META].find({}) if isinstance(doc.get("_id"), str)}  # fmt: skip
+        infos = {str(doc["_id"]): NeemInfo.from_meta(str(doc["_id"]), {k: v for k, v in doc.items() if k != "_id"})
+                 for doc in self.db[META].find({}) if isinstance(doc.get("_id"), (str, ObjectId))}  # fmt: skip
         # NEEMs restored with mongorestore have collections but no meta entry.
         for name in self.db.list_collection_names():
             if name.endswith("_triples"):
@@ -109,7 +121,7 @@ class MongoStore(Store):
     def has_neem(self, neem_id: str) -> bool:
         if neem_id in self._present:
             return True
-        found = bool(self.db[META].count_documents({"_id": neem_id}, limit=1)) or (
+        found = bool(self.db[META].count_documents(_meta_filter(neem_id), limit=1)) or (
             f"{neem_id}_triples" in self.db.list_collection_names()
         )
         if found:
@@ -121,12 +133,12 @@ class MongoStore(Store):
             coll = self.db.create_collection(f"{neem_id}_{kind}")
             for keys in INDEXES[kind]:
                 coll.create_index([(key, 1) for key in keys])
-        self.db[META].insert_one({"_id": neem_id, **record})
+        self.db[META].insert_one({"_id": meta_key(neem_id), **record})
 
     def _drop_neem(self, neem_id: str) -> None:
         for kind in COLLECTION_KINDS:
             self._coll(neem_id, kind).drop()
-        self.db[META].delete_one({"_id": neem_id})
+        self.db[META].delete_one(_meta_filter(neem_id))
         self._present.discard(neem_id)
 
     def _rename_neem(self, neem_id: str, new_id: str, info: NeemInfo) -> None:
@@ -134,14 +146,17 @@ class MongoStore(Store):
         for kind in COLLECTION_KINDS:
             if f"{neem_id}_{kind}" in names:
                 self._coll(neem_id, kind).rename(f"{new_id}_{kind}")
-        self.db[META].delete_one({"_id": neem_id})
-        self.db[META].insert_one({"_id": new_id, **dict(info.meta)})
+        self.db[META].delete_one(_meta_filter(neem_id))
+        self.db[META].insert_one({"_id": meta_key(new_id), **dict(info.meta)})
         self._present.discard(neem_id)
 
     def update_meta(self, neem_id: str, **fields: Any) -> NeemInfo:
         meta = dict(self.neem(neem_id).meta)
         meta.update(fields)
-        self.db[META].replace_one({"_id": neem_id}, {"_id": neem_id, **meta}, upsert=True)
+        key = meta_key(neem_id)
+        self.db[META].replace_one({"_id": key}, {"_id": key, **meta}, upsert=True)
+        if key != neem_id:  # an entry written with the string form: the ObjectId one replaces it
+            self.db[META].delete_one({"_id": neem_id})
         return NeemInfo.from_meta(neem_id, meta)
 
     # -- writing ----------------------------------------------------------------------------

@@ -1,0 +1,144 @@
+:- module(kb_db,
+    [ load_owl/1,               % +URL
+      load_owl/2,               % +URL, +Options
+      annotation/3,             % ?Subject, ?Property, ?Value
+      has_label/2,              % ?Resource, ?Label
+      has_comment/2             % ?Resource, ?Comment
+    ]).
+/** <module> Ontology files into the store, and annotations (KnowRob 2.x src/lang/db.pl)
+
+load_owl/1,2 reads an OWL file (RDF/XML, Turtle or N-Triples, by the file's extension)
+and writes its statements into the current store as KnowRob's load_owl does: triples with
+universal scope (their `p*`/`o*` closures are made by the store), literals by their XSD
+type (integers as integers, decimals and doubles as floats, booleans as `true`/`false`,
+other values as atoms), and annotation values (rdfs:label, rdfs:comment, rdfs:seeAlso,
+owl:versionInfo and any owl:AnnotationProperty) into the annotations collection instead
+of the triples, English or untagged ones only. annotation/3, has_label/2 and
+has_comment/2 read them back.
+
+    ?- load_owl('ontology/soma-extract.owl').
+    ?- load_owl('file:///data/test.ttl', [graph(test)]).
+
+A `package://Pkg/Path` URL (a ROS package) is resolved through the multifile hook
+kb_db:package_path/2; without ROS there is none, so such a URL is an error naming it.
+*/
+
+:- use_module(library(error)).
+:- use_module(library(lists)).
+:- use_module(library(apply)).
+:- use_module(library(option)).
+:- use_module(library(semweb/rdf_db), [rdf_load/2, rdf/4, rdf_unload_graph/1]).
+:- use_module(library(semweb/turtle), []).
+:- use_module('../neem_store', [store_insert/2, store_insert_annotations/1, store_annotation/3]).
+:- use_module(triple, [kb_iri/2]).
+
+%!  package_path(+Package, -Directory) is semidet.
+%   Where a ROS package's files are (multifile and dynamic: a ROS set-up adds its packages).
+:- multifile package_path/2.
+:- dynamic package_path/2.
+
+%!  load_owl(+URL) is det.
+%!  load_owl(+URL, +Options) is det.
+%   Put the statements of the OWL file at URL (a path, `file://...` or `package://...`) into
+%   the store. Options: `graph(G)` and `parent_graph(P)` are accepted as KnowRob has them;
+%   the stores here keep no graph hierarchy, so they do not change what is written.
+load_owl(URL) :-
+    load_owl(URL, []).
+load_owl(URL, Options) :-
+    must_be(list, Options),
+    owl_file(URL, File),
+    gensym(kb_db_load_, Graph),
+    setup_call_cleanup(
+        rdf_load(File, [graph(Graph), silent(true)]),
+        load_graph(Graph),
+        rdf_unload_graph(Graph)).
+
+owl_file(URL, _) :-
+    var(URL), !,
+    instantiation_error(URL).
+owl_file(URL, File) :-
+    text_to_string(URL, S),
+    (   string_concat("package://", Rest, S)
+    ->  (   sub_string(Rest, B, _, A, "/"), !,
+            sub_string(Rest, 0, B, _, Pkg), sub_string(Rest, _, A, 0, Path),
+            atom_string(PkgA, Pkg), package_path(PkgA, Dir)
+        ->  atomic_list_concat([Dir, '/', Path], File0)
+        ;   domain_error(ros_package_url, URL)
+        )
+    ;   string_concat("file://", Path, S)
+    ->  atom_string(File0, Path)
+    ;   atom_string(File0, S)
+    ),
+    (   exists_file(File0)
+    ->  File = File0
+    ;   existence_error(owl_file, URL)
+    ).
+
+load_graph(Graph) :-
+    findall(S-P-O, rdf(S, P, O, Graph), Statements),
+    foldl(statement, Statements, []-[], Ts-As),
+    Inf is inf,
+    findall(triple(S, P, O, 0.0, Inf), member(t(S, P, O), Ts), Triples0),
+    reverse(Triples0, Triples),
+    reverse(As, Annotations),
+    store_insert(Triples, union),
+    store_insert_annotations(Annotations).
+
+%   A statement as a triple t(S,P,O) or an annotation(S,P,V), or dropped (non-English
+%   annotation values, as KnowRob).
+statement(S-P-O, Ts-As, Ts1-As1) :-
+    (   annotation_property(P, O)
+    ->  Ts1 = Ts,
+        (   annotation_value(O, V) -> As1 = [annotation(S, P, V)|As] ; As1 = As )
+    ;   value(O, V),
+        Ts1 = [t(S, P, V)|Ts], As1 = As
+    ).
+
+annotation_property(P, _) :-
+    memberchk(P, ['http://www.w3.org/2000/01/rdf-schema#label',
+                  'http://www.w3.org/2000/01/rdf-schema#comment',
+                  'http://www.w3.org/2000/01/rdf-schema#seeAlso',
+                  'http://www.w3.org/2002/07/owl#versionInfo']), !.
+annotation_property(P, _) :-
+    rdf(P, 'http://www.w3.org/1999/02/22-rdf-syntax-ns#type',
+        'http://www.w3.org/2002/07/owl#AnnotationProperty', _), !.
+
+annotation_value(literal(lang(L, V)), V) :- !, memberchk(L, [en, 'en-US', 'en-GB']).
+annotation_value(literal(type(_, V)), V) :- !.
+annotation_value(literal(V), V) :- !.
+annotation_value(IRI, IRI).
+
+%   An RDF object as the store's value.
+value(literal(type(Type, Lex)), V) :- !, typed_value(Type, Lex, V).
+value(literal(lang(_, V)), V) :- !.
+value(literal(V), V) :- !.
+value(V, V).
+
+typed_value(Type, Lex, V) :-
+    atom_concat('http://www.w3.org/2001/XMLSchema#', Local, Type),
+    xsd_kind(Local, Kind),
+    catch(convert(Kind, Lex, V), _, fail), !.
+typed_value(_, Lex, Lex).
+
+xsd_kind(L, integer) :-
+    memberchk(L, [integer, int, long, short, byte, nonNegativeInteger, positiveInteger,
+                  nonPositiveInteger, negativeInteger, unsignedInt, unsignedLong,
+                  unsignedShort, unsignedByte]), !.
+xsd_kind(L, float) :- memberchk(L, [decimal, double, float]), !.
+xsd_kind(boolean, boolean).
+
+convert(integer, Lex, V) :- atom_number(Lex, N), V is integer(N).
+convert(float, Lex, V) :- atom_number(Lex, N), V is float(N).
+convert(boolean, Lex, V) :- ( memberchk(Lex, [true, '1']) -> V = true ; V = false ).
+
+%!  annotation(?Subject, ?Property, ?Value) is nondet.
+%   An annotation value of Subject (labels, comments, ...), from the annotations collection.
+annotation(S0, P0, V) :-
+    kb_iri(S0, S), kb_iri(P0, P),
+    store_annotation(S, P, V).
+
+%!  has_label(?Resource, ?Label) is nondet.
+has_label(R, L) :- annotation(R, rdfs:label, L).
+
+%!  has_comment(?Resource, ?Comment) is nondet.
+has_comment(R, C) :- annotation(R, rdfs:comment, C).

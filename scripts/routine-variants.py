@@ -1,0 +1,124 @@
+"""Replay a chains file with routine predictors of other constructor parameters, beside the n-gram.
+
+usage: python scripts/routine-variants.py CHAINS [--odb DIR --mapping YAML] [NAME=JSON ...]
+Each NAME=JSON builds ``RoutineOracle(distances, **JSON)`` (e.g. 'fixed={"tuning": "fixed"}');
+without any, a fixed set of alternatives to the defaults is replayed. Prints Top-1/3/5 per
+predictor and Top-1/Top-3 per kind of step: the exact 3-token context was already followed by
+the truth ("exact"), the action was done before but not after that context ("known"), the user's
+first use of the action ("first"), right after an idle gap ("after idle"). Development runs use
+the persona tuning split, never a test split (docs/algorithm.md, "What did not help").
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections import Counter
+from collections.abc import Sequence
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
+from oracle.algorithm.records import Option, Step  # noqa: E402
+from oracle.algorithm.routine import RoutineOracle  # noqa: E402
+from oracle.calls import opening_tasks  # noqa: E402
+from oracle.evaluation.baselines import BASELINES  # noqa: E402
+from oracle.evaluation.replay import load_users, replay  # noqa: E402
+from oracle.ontology import OdbOntology, build_ontology  # noqa: E402
+
+ALTERNATIVES = {
+    "default": {},
+    "orders 2,3,5": {"orders": [2, 3, 5]},
+    "orders 1-5": {"orders": [1, 2, 3, 4, 5]},
+    "temperatures 0.5,1,2": {"temperatures": [0.5, 1.0, 2.0]},
+    "streams idle+through": {"orders": [2, 3, 5], "streams": ["idle", "through"]},
+    "time_of_day_penalty 2": {"time_of_day_penalty": 2.0},
+    "context_depth 1": {"context_depth": 1},
+    "context_depth 5": {"context_depth": 5},
+    "context_decay 1": {"context_decay": 1.0},
+    "mixture": {"tuning": "mixture"},
+    "fixed (3, 0.5, n0 0)": {"orders": [3], "temperatures": [0.5], "lowest_orders": [0], "tuning": "fixed"},
+    "fixed (3, 0.5, n0 1)": {"orders": [3], "temperatures": [0.5], "lowest_orders": [1], "tuning": "fixed"},
+}
+
+
+class Routine:
+    """A RoutineOracle of given parameters behind the replay's Method interface."""
+
+    def __init__(self, ontology: OdbOntology, name: str, params: dict) -> None:
+        self.name, self.params = name, params
+        self.distances, self.opening = ontology.distances(), opening_tasks(ontology)
+        self.reset()
+
+    def reset(self) -> None:
+        params = {k: tuple(v) if isinstance(v, list) else v for k, v in self.params.items()}
+        self.model = RoutineOracle(self.distances, opening_tasks=self.opening, **params).fit([])
+
+    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None) -> list[Option]:
+        return list(self.model.rank(list(candidates), time_of_day, tree_roots=0).options())
+
+    def observe(self, step: Step) -> None:
+        self.model.partial_fit(step)
+
+
+class Kinds:
+    """Ranks nothing; labels each predicted step by what the history knew of its truth."""
+
+    name = "kinds"
+
+    def __init__(self) -> None:
+        self.labels: list[set[str]] = []
+        self.reset()
+
+    def reset(self) -> None:
+        self.tokens: list[object] = []
+        self.done: Counter[object] = Counter()
+        self.followed: set[tuple] = set()
+
+    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None) -> list[Option]:
+        return list(candidates)
+
+    def observe(self, step: Step) -> None:
+        token = "idle" if step.idle else step.option
+        context = tuple(self.tokens[-3:])
+        if not step.idle:
+            kind = "first" if not self.done[token] else "exact" if (context, token) in self.followed else "known"
+            self.labels.append({"all", kind} | ({"after idle"} if self.tokens and self.tokens[-1] == "idle" else set()))
+            self.done[token] += 1
+        if len(context) == 3:
+            self.followed.add((context, token))
+        self.tokens.append(token)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("chains")
+    parser.add_argument("--odb")
+    parser.add_argument("--mapping")
+    parser.add_argument("variants", nargs="*", metavar="NAME=JSON")
+    args = parser.parse_intermixed_args()
+    chosen = dict(v.split("=", 1) for v in args.variants)
+    variants = {name: json.loads(text) for name, text in chosen.items()} if chosen else ALTERNATIVES
+    ontology = build_ontology(args.odb, args.mapping, None)
+    users = load_users(args.chains)
+    kinds = Kinds()
+    methods = [*(Routine(ontology, name, params) for name, params in variants.items()), BASELINES["ngram"](), kinds]
+    result = replay(ontology, users, methods, 0)
+    names = [m.name for m in methods[:-1]]
+    groups = ("all", "exact", "known", "first", "after idle")
+    shares = {g: sum(g in labels for labels in kinds.labels) / len(kinds.labels) for g in groups}
+    print(f"{args.chains}: {len(users)} users, {len(result.outcomes)} predictions; share of steps: "
+          + ", ".join(f"{g} {100 * shares[g]:.1f} %" for g in groups[1:]) + "\n")
+    print("| predictor | Top-1 | Top-3 | Top-5 | " + " | ".join(f"{g} Top-1/3" for g in groups[1:]) + " |")
+    print("| --- | ---: | ---: | ---: | " + " | ".join("---:" for _ in groups[1:]) + " |")
+    def rate(name: str, group: str, k: int) -> float:
+        ranks = [o.ranks[name] for o, labels in zip(result.outcomes, kinds.labels) if group in labels]
+        return sum(1 for r in ranks if r is not None and r <= k) / max(1, len(ranks))
+
+    for name in names:
+        print(f"| {name} | " + " | ".join(f"{rate(name, 'all', k):.3f}" for k in (1, 3, 5)) + " | "
+              + " | ".join(f"{rate(name, g, 1):.3f}/{rate(name, g, 3):.3f}" for g in groups[1:]) + " |")
+
+
+if __name__ == "__main__":
+    main()
