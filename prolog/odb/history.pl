@@ -37,6 +37,11 @@ situation, the one the next ranking is for.
 %   pass over the actions in begin order that merges the imaginings (also in begin order)
 %   and looks parts of day and calls up in AVL trees: O(n log n) in the rows read.
 situation_history(Situations) :-
+    situation_history(Situations, _).
+
+%   situation_history(-Situations, -Calls): also the AVL tree of task individual -> call
+%   the rows were made from (every call in Situations but `idle` is one of its values).
+situation_history(Situations, Calls) :-
     odb_iri('IdleTask', Idle),
     kb_findall(B-A-T-E-C, ( executes_task(A, T), triple(T, rdf:type, C), event_interval(A, B, E) ),
                any, Typed),
@@ -47,9 +52,16 @@ situation_history(Situations) :-
                    member(P, ['Morning', 'Midday', 'Evening', 'Night']), odb_iri(P, PC) ), Parts),
     % From the imagined plans: with one Imagining task per mental action, SQLite's own join
     % order starting from the task type is ~13x slower (1,000 actions).
-    kb_findall(B-T, ( holds(M, odb:imagines_situation, Plan), executes_task(M, MT),
-                      instance_of(MT, soma:'Imagining'), event_interval(M, B, _),
-                      plan_defines_task(Plan, T) ), any, Imagined0),
+    kb_findall(B-Plan, ( holds(M, odb:imagines_situation, Plan), executes_task(M, MT),
+                         instance_of(MT, soma:'Imagining'), event_interval(M, B, _) ),
+               any, ImaginedPlans),
+    % The few plans' tasks once, not once per (imagining, plan) row: the same join, in Prolog.
+    kb_findall(Plan-T, plan_defines_task(Plan, T), any, PlanTasks0),
+    sort(PlanTasks0, PlanTasks),
+    group_pairs_by_key(PlanTasks, TasksByPlan),
+    list_to_assoc(TasksByPlan, TasksOf),
+    findall(B-T, ( member(B-Plan, ImaginedPlans), get_assoc(Plan, TasksOf, PlanTs), member(T, PlanTs) ),
+            Imagined0),
     sort(Imagined0, Imagined),
     findall(T, ( member(_-_-T-_-C, Actions), C \== Idle ), Ts0),
     findall(T, member(_-T, Imagined), Ts1),
@@ -100,16 +112,26 @@ advance(Groups, _, Latest, Groups, Latest).
 %   objects, calls written in the chain syntax `pour(thermos,green_mug)`; one crossing for
 %   the Python side.
 situation_history_json(JSON) :-
-    situation_history(Situations),
-    maplist(situation_dict, Situations, Dicts),
+    situation_history(Situations, Calls),
+    % Each distinct call is written once (a long NEEM repeats a few hundred calls ~20 times
+    % per action in the available sets).
+    assoc_to_values(Calls, CallList),
+    sort([idle|CallList], Distinct),
+    findall(C-X, ( member(C, Distinct), format(atom(X), '~w', [C]) ), TextPairs),
+    list_to_assoc(TextPairs, Texts),
+    maplist(situation_dict(Texts), Situations, Dicts),
     with_output_to(string(JSON), json_write_dict(current_output, Dicts, [width(0)])).
 
-situation_dict(situation(B, E, Call, Part, Avail), _{begin:B, end:E, call:CallText, part:Part, available:AvailJ}) :-
-    format(atom(CallText), '~w', [Call]),
+situation_dict(Texts, situation(B, E, Call, Part, Avail),
+               _{begin:B, end:E, call:CallText, part:Part, available:AvailJ}) :-
+    get_assoc(Call, Texts, CallText),
     (   Avail == none
     ->  AvailJ = null
-    ;   findall(X, ( member(C, Avail), format(atom(X), '~w', [C]) ), AvailJ)
+    ;   maplist(call_text(Texts), Avail, AvailJ)
     ).
+
+call_text(Texts, Call, Text) :-
+    get_assoc(Call, Texts, Text).
 
 %!  latest_situation(-Begin, -Calls) is semidet.
 %   The latest imagined situation of the NEEM: when it began and the calls it found

@@ -150,12 +150,31 @@ def _decode_request(
 def _chunks(store: Store, req: Sequence[Any]) -> Iterator[str]:
     neem, patterns, scope, limit, n_vars, order = _decode_request(req)
     names = [f"v{i}" for i in range(n_vars)]
-    rows = store.match(neem, patterns, scope=scope, limit=limit, order=order)
+    # Only the variables Prolog keeps are converted; an IRI's text is made once per query
+    # (a history read returns each task and plan IRI thousands of times).
+    rows = store.match(neem, patterns, scope=scope, limit=limit, order=order, select=names)
+    texts: dict[str, str] = {}
+    numbers: dict[float, str] = {}
+
+    def text(value: Any) -> str:
+        kind = type(value)
+        if kind is str:
+            known = texts.get(value)
+            if known is None:
+                known = texts[value] = quote_atom(value)
+            return known
+        if kind is float and value != 0.0:  # 0.0 == -0.0, but their texts differ
+            known = numbers.get(value)
+            if known is None:
+                known = numbers[value] = term_text(value)
+            return known
+        return term_text(value)
+
     while True:
         batch = list(islice(rows, CHUNK))
         if not batch:
             return
-        yield "[" + ",".join("[" + ",".join(term_text(row[n]) for n in names) + "]" for row in batch) + "]"
+        yield "[" + ",".join("[" + ",".join([text(row[n]) for n in names]) + "]" for row in batch) + "]"
         if len(batch) < CHUNK:
             return
 

@@ -67,6 +67,18 @@ def steps_from_history(ontology: OdbOntology, rows: Iterable[dict]) -> list[Step
     """The oracle's history from the Prolog bridge's ``situation_history`` rows (begin order)."""
     from oracle.chains import parse_call
 
+    # A long NEEM repeats a few dozen calls and available sets thousands of times: each is
+    # read once (Options are immutable, so the steps may share them).
+    options_of: dict[str, Option] = {}
+    labels: dict[str, str] = {}
+    sets: dict[tuple[str, ...], tuple[Option, ...]] = {}
+
+    def option(text: str) -> Option:
+        known = options_of.get(text)
+        if known is None:
+            known = options_of[text] = option_of(ontology, parse_call(text))
+        return known
+
     steps: list[Step] = []
     for row in rows:
         part = row.get("part")
@@ -74,10 +86,16 @@ def steps_from_history(ontology: OdbOntology, rows: Iterable[dict]) -> list[Step
         if row["call"] == "idle":
             steps.append(Step(ontology.vocab.idle_task, time_of_day=part, idle=True, label="idle"))
             continue
-        call = parse_call(row["call"])
-        option = option_of(ontology, call)
-        options = tuple(option_of(ontology, parse_call(c)) for c in row.get("available") or ())
-        steps.append(Step(option.task, option.target, option.reference, options, part, False, str(call)))
+        text = row["call"]
+        done = option(text)
+        label = labels.get(text)
+        if label is None:
+            label = labels[text] = str(parse_call(text))
+        key = tuple(row.get("available") or ())
+        options = sets.get(key)
+        if options is None:
+            options = sets[key] = tuple(option(c) for c in key)
+        steps.append(Step(done.task, done.target, done.reference, options, part, False, label))
     return steps
 
 

@@ -101,6 +101,16 @@ def test_match_joins_patterns_in_one_query(store):
     assert rows == [{"A": X + "a1", "O": X + "cup1", "T": 10.5}]
 
 
+def test_match_select_keeps_the_rows_and_only_the_named_variables(store):
+    world(store)
+    patterns = [TriplePattern(Var("A"), X + "hasParticipant", Var("O")), TriplePattern(Var("A"), X + "begin", Var("T"))]
+    every = list(store.match("n1", patterns))
+    kept = list(store.match("n1", patterns, select=["T"]))
+    assert kept == [{"T": row["T"]} for row in every] and len(kept) >= 2
+    with pytest.raises(StoreError, match="'Z', which no pattern binds"):
+        store.match("n1", patterns, select=["Z"])
+
+
 def test_match_free_object_binds_asserted_type_and_bound_object_uses_closure(store):
     world(store)
     rows = list(store.match("n1", [TriplePattern(X + "cup1", RDF_TYPE, Var("C"))]))

@@ -8,7 +8,7 @@ import stat
 import pytest
 
 from oracle.errors import StoreError
-from oracle.store import RDF_TYPE, SUBCLASS_OF, Triple, TriplePattern, open_store
+from oracle.store import RDF_TYPE, SUBCLASS_OF, Triple, TriplePattern, Var, open_store
 from oracle.store.sql import SqlCompiler
 from oracle.store.sqlite import SQLiteStore
 
@@ -47,6 +47,29 @@ def test_pattern_queries_use_an_index(tmp_path, pattern):
     ).fetchall()
     outer = [row[-1] for row in plan if "t0" in row[-1]]
     assert outer and all("USING" in detail for detail in outer), plan
+
+
+def _index_columns(store, table):
+    rows = store._conn.execute("SELECT sql FROM sqlite_master WHERE type='index' AND tbl_name=? AND sql IS NOT NULL",
+                               (table,)).fetchall()
+    return sorted(sql[sql.index(" ON "):].replace(f'"{table}"', "T") for (sql,) in rows)
+
+
+def test_a_renamed_neem_keeps_its_indexes_and_its_old_id_can_be_taken_again(tmp_path):
+    store = SQLiteStore(tmp_path / "s.sqlite")
+    store.create_neem("n1")
+    store.insert("n1", [Triple(X + "c", RDF_TYPE, X + "Cup")])
+    made = _index_columns(store, "n1_triples")
+    assert len(made) == 4
+    store.rename_neem("n1", "n2")
+    assert _index_columns(store, "n2_triples") == made
+    store.create_neem("n1")  # its index names were taken by n2's: it gets others
+    assert _index_columns(store, "n1_triples") == made
+    store.rename_neem("n1", "n3")
+    store.create_neem("n1")
+    assert _index_columns(store, "n1_triples") == _index_columns(store, "n3_triples") == made
+    assert list(store.match("n2", [TriplePattern(X + "c", RDF_TYPE, Var("C"))])) == [{"C": X + "Cup"}]
+    assert store._conn.execute("PRAGMA integrity_check").fetchone() == ("ok",)
 
 
 def test_unknown_store_specs_are_errors(monkeypatch):

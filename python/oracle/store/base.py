@@ -371,6 +371,7 @@ class Store(ABC):
         scope: Scope | None = None,
         limit: int | None = None,
         order: Sequence[tuple[str, bool]] = (),
+        select: Sequence[str] | None = None,
     ) -> Iterator[dict[str, Any]]:
         """Solutions of a conjunction of patterns, computed by the database in ONE query.
 
@@ -379,9 +380,12 @@ class Store(ABC):
         MongoDB one aggregation on ``one`` with a ``$lookup`` per pattern, as mongolog does.
         ``order`` is ``[(variable, descending), ...]`` over numeric variables, applied before
         ``limit`` by the database ("the latest decision before T" is one row, not a scan).
+        ``select`` names the variables the caller keeps (all of them when None): the others
+        are joined on but never converted to Python values; the solutions are the same rows.
         """
         validate_patterns(patterns)
-        return self._match(neem_id, patterns, scope, limit, validate_order(patterns, order))
+        kept = None if select is None else validate_select(patterns, select)
+        return self._match(neem_id, patterns, scope, limit, validate_order(patterns, order), kept)
 
     @abstractmethod
     def _match(
@@ -391,6 +395,7 @@ class Store(ABC):
         scope: Scope | None,
         limit: int | None,
         order: Sequence[tuple[str, bool]],
+        select: Sequence[str] | None = None,
     ) -> Iterator[dict[str, Any]]: ...
 
     def annotations(self, neem_id: str, s: str | None = None, p: str | None = None) -> Iterator[Annotation]:
@@ -407,6 +412,16 @@ class Store(ABC):
 
     def __exit__(self, *exc: object) -> None:
         self.close()
+
+
+def validate_select(patterns: Sequence[TriplePattern], select: Sequence[str]) -> list[str]:
+    """The variables a caller keeps, each one a variable of the patterns."""
+    names = {name for pattern in patterns for name in pattern.variables()}
+    kept = list(dict.fromkeys(select))
+    for name in kept:
+        if name not in names:
+            raise StoreError(f"select names {name!r}, which no pattern binds")
+    return kept
 
 
 def validate_patterns(patterns: Sequence[TriplePattern]) -> None:

@@ -230,11 +230,14 @@ class MongoStore(Store):
         scope: Scope | None,
         limit: int | None,
         order: Sequence[tuple[str, bool]],
+        select: Sequence[str] | None = None,
     ) -> Iterator[dict[str, Any]]:
         if not self.has_neem(neem_id):
             raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
         pipeline = compile_pipeline(f"{neem_id}_triples", patterns, scope, limit, self.number_format, order)
         names = sorted({name for pattern in patterns for name in pattern.variables()})
+        if select is not None:
+            names = [name for name in names if name in select]
         for row in self.db["one"].aggregate(pipeline):
             yield {name: decode_value(row.get(f"v_{name}")) for name in names}
 

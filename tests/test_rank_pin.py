@@ -1,0 +1,66 @@
+"""The ranking ``rank`` writes back on a 10,000-action NEEM, pinned to what the implementation
+before the speed work wrote (a digest it produced, stored below): a faster history read, store
+projection or fit must not change a single call, rank, score or predicted chain.
+
+The NEEM is one simulated persona (``generate --seed 3``), cut at 10,000 actions and imported
+through the CLI as a user would; the ranking is read back from the store through Prolog.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+pytestmark = [pytest.mark.slow,
+              pytest.mark.skipif(shutil.which("swipl") is None, reason="SWI-Prolog (swipl) is not installed; run make setup")]
+
+ACTIONS = 10_000
+#: sha256 of ``ranking_digest_text`` as the implementation of commit 4f2f506 wrote it.
+EXPECTED = "bee1418ffd8ebc561c27063c629f5db2588b585c0595369cf14b971fb098df40"
+
+
+def _oracle(*argv: str, env: dict[str, str]) -> str:
+    done = subprocess.run([sys.executable, "-m", "oracle", *argv], check=True, capture_output=True, text=True, env=env)
+    return done.stdout
+
+
+def ranking_digest_text(tmp: Path) -> str:
+    """What the pin hashes: rank's JSON without its timing and the written individual's random
+    id, then the ranking as Prolog reads it back from the store (call, rank, score)."""
+    env = {**os.environ, "NEEM_ORACLE_CACHE": str(tmp / "cache")}
+    gen = tmp / "gen"
+    _oracle("generate", "--personas", "1", "--days", str(ACTIONS // 35 + 30), "--seed", "3", "--out", str(gen), env=env)
+    rows = [json.loads(line) for name in ("tune.jsonl", "test.jsonl") for line in (gen / name).read_text().splitlines() if line]
+    assert len(rows) >= ACTIONS
+    chains = tmp / "u.jsonl"
+    chains.write_text("".join(json.dumps({**row, "user": "u"}) + "\n" for row in rows[:ACTIONS]))
+    store = tmp / "s.sqlite"
+    _oracle("import", str(chains), "--store", str(store), "--commit-every", "1000", env=env)
+    ranked = json.loads(_oracle("rank", "--store", str(store), "--neem", "u", "--json", env=env))
+    assert ranked["written"] and ranked["note"] is None
+    for key in ("ms", "written"):
+        ranked.pop(key)
+    goal = "odb_decisions:latest_preference(_, B, R), format('~q~n', [B-R])"
+    back = _oracle("prolog", "--store", str(store), "--neem", "u", "-g", goal, env=env)
+    return json.dumps(ranked, sort_keys=True) + "\n" + back
+
+
+def test_the_ranking_written_back_at_10k_actions_is_the_one_before_the_speed_work(tmp_path):
+    text = ranking_digest_text(tmp_path)
+    assert hashlib.sha256(text.encode()).hexdigest() == EXPECTED, text[:2000]
+
+
+if __name__ == "__main__":  # print the digest of the implementation on sys.path
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp_name:
+        text = ranking_digest_text(Path(tmp_name))
+    print(text)
+    print(hashlib.sha256(text.encode()).hexdigest())
