@@ -246,7 +246,7 @@ def _dead_pid() -> int:
 
 
 def test_hidden_neems_of_dead_builders_are_dropped_by_the_next_writer(store, onto):
-    from oracle.store.base import STAGED_BY
+    from oracle.store.staging import STAGED_BY
 
     dead = store.create_staging("alice", user="alice")
     store.update_meta(dead, **{STAGED_BY: {**store.neem(dead).meta[STAGED_BY], "pid": _dead_pid()}})
@@ -313,7 +313,7 @@ def test_a_chains_file_is_private_complete_and_never_written_through_a_link(tmp_
 def test_a_builder_killed_inside_the_swap_leaves_the_old_neem_or_the_new_one(store, onto, tmp_path):
     # MongoDB has no transaction: swap_in drops the old NEEM, then renames the new one. Both
     # moments a kill can fall between are set up by hand; the next writer must repair either.
-    from oracle.store.base import READY, STAGED_BY
+    from oracle.store.staging import READY, STAGED_BY
 
     import_chains(store, onto, write(tmp_path / "a.jsonl", rows("alice", 4)))
     old = content(store, "alice")

@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import os
 import re
-import socket
 from abc import ABC, abstractmethod
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from contextlib import AbstractContextManager
@@ -45,10 +44,6 @@ Closed = tuple[Triple, tuple[Any, ...], tuple[Any, ...]]
 
 #: Registry field marking a NEEM under construction (value: the NEEM it will replace).
 STAGING = "staging_for"
-#: Registry field of a staging NEEM: the process building it ({"host": ..., "pid": ...}).
-STAGED_BY = "staged_by"
-#: Registry field of a complete staging NEEM about to replace its target (see store.staging).
-READY = "ready_to_swap"
 
 _NEEM_ID = re.compile(r"^[A-Za-z0-9][A-Za-z0-9\-]{0,63}$")
 
@@ -162,14 +157,13 @@ class Store(ABC):
 
     # -- replacing a NEEM atomically --------------------------------------------------------
     def create_staging(self, target: str, *, user: str | None = None, meta: Mapping[str, Any] | None = None) -> str:
-        """A new, hidden NEEM to build ``target`` (or its replacement) in: ``neems()`` does not
-        list it; ``swap_in`` makes it ``target``. A process killed meanwhile leaves ``target`` as
-        it was (and a hidden NEEM behind, never listed nor read)."""
-        from oracle.store.staging import drop_abandoned  # what dead builders left (store/staging.py)
+        """A new, hidden NEEM to build ``target`` (or its replacement) in, which ``swap_in`` makes
+        ``target``; a process killed meanwhile leaves ``target`` as it was (see store.staging)."""
+        from oracle.store.staging import STAGED_BY, builder, drop_abandoned
         check_neem_id(target)
         drop_abandoned(self)
         staging = f"staging-{os.urandom(6).hex()}"  # the prefix is how backends find them (staging_neems)
-        extra = {**(meta or {}), STAGING: target, STAGED_BY: {"host": socket.gethostname(), "pid": os.getpid()}}
+        extra = {**(meta or {}), STAGING: target, STAGED_BY: builder()}
         temporary = bool(extra.pop("temporary", False))
         self.create_neem(staging, user=user, temporary=temporary, meta=extra)
         return staging
@@ -182,6 +176,7 @@ class Store(ABC):
         """Make the complete NEEM ``staging`` visible as ``target``, replacing an existing one only
         if ``replace`` (else StoreError: another process took the id meanwhile). One transaction
         on SQLite; on MongoDB a rename per collection (KnowRob has no transactions)."""
+        from oracle.store.staging import READY, STAGED_BY
         with self.transaction():
             if self.has_neem(target):
                 if not replace:
@@ -440,8 +435,7 @@ def validate_patterns(patterns: Sequence[TriplePattern]) -> None:
 
 
 def check_literal(term: Any) -> None:
-    """A constant of a query is a plain value: a dict such as ``{"$gt": ""}`` would be a
-    MongoDB operator, and a list a set of values, so both are refused (issue 16)."""
+    """A query constant is a plain value: a dict (``{"$gt": ""}``, a MongoDB operator) or a list is refused."""
     if term is not None and not isinstance(term, (str, int, float, bool, Decimal128, datetime)):
         raise StoreError(f"a query constant must be a string, number, boolean or date, got {term!r}")
 

@@ -20,7 +20,8 @@ from bson import json_util
 from bson.codec_options import DEFAULT_CODEC_OPTIONS, DatetimeConversion
 
 from oracle.errors import StoreError
-from oracle.store.base import COLLECTION_KINDS, READY, STAGED_BY, STAGING, SUMMARY_KEY, Store, check_neem_id
+from oracle.store.base import COLLECTION_KINDS, STAGING, SUMMARY_KEY, Store, check_neem_id
+from oracle.store.staging import READY, STAGED_BY
 from oracle.store.validate import check_meta
 from oracle.store.mongo import DEFAULT_DB, INDEXES
 

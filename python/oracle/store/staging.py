@@ -13,10 +13,21 @@ import os
 import socket
 from datetime import datetime, timezone
 
-from oracle.store.base import READY, STAGED_BY, STAGING, Store
+from oracle.store.base import STAGING, Store
+
+#: Registry field of a staging NEEM: the process building it ({"host": ..., "pid": ...}).
+STAGED_BY = "staged_by"
+#: Registry field of a complete staging NEEM about to replace its target: if its builder dies
+#: once the old NEEM is dropped (MongoDB has no transaction), the next writer finishes the swap.
+READY = "ready_to_swap"
 
 #: A staging NEEM whose builder cannot be checked (another host) is abandoned after this long.
 ABANDONED_AFTER_S = 24 * 3600
+
+
+def builder() -> dict[str, object]:
+    """What a staging NEEM records of the process building it."""
+    return {"host": socket.gethostname(), "pid": os.getpid()}
 
 
 def drop_abandoned(store: Store) -> list[str]:
