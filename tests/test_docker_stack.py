@@ -565,3 +565,11 @@ def test_docs_name_what_the_stack_defines(compose, env_example):
         assert target in docs, target
     for note in ("MONGO_PORT=27018", "AVX", "MONGO_IMAGE=mongo:4.4"):
         assert note in docs, note
+
+
+def test_containers_gain_no_privileges_and_have_resource_limits(compose):
+    for name, service in compose["services"].items():
+        assert "no-new-privileges:true" in service.get("security_opt", []), name
+        assert service.get("mem_limit") and service.get("pids_limit"), name
+    for name in ORACLE_SERVICES:
+        assert compose["services"][name]["cap_drop"] == ["ALL"], name

@@ -219,9 +219,11 @@ def read_chains(path: Path | str) -> Iterator[ChainRow]:
 
 
 def write_chains(rows: Iterable[ChainRow], path: Path | str) -> int:
-    """Write rows as JSONL; return how many were written."""
+    """Write rows as JSONL (a person's day: 0600, complete or not at all); return how many were written."""
+    from oracle.files import private_file
+
     count = 0
-    with Path(path).open("w", encoding="utf-8") as handle:
+    with private_file(path) as handle:
         for row in rows:
             handle.write(json.dumps(row.to_json(), ensure_ascii=False) + "\n")
             count += 1

@@ -109,3 +109,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 130
     except BrokenPipeError:
         return 0
+    except OSError as error:
+        # The machine's fault, not a bug: a full disk, a read-only or vanished folder. Commands
+        # that write a person's data turn these into their own errors; this catches the rest
+        # (a report, a settings file) in one line too.
+        from oracle.store.uri import mask_credentials
+
+        where = f"{error.filename}: " if error.filename else ""
+        print(f"error: {mask_credentials(where + (error.strerror or str(error)))}", file=sys.stderr)
+        return 1

@@ -17,9 +17,10 @@ from oracle.neem.importing import import_chains
 from oracle.neem.lifecycle import wipe_temporary_neems
 from oracle.neem.writer import NeemLogger
 from oracle.store import COLLECTION_KINDS, open_store
-from oracle.store.dump import export_neem, load_dump
+from oracle.store.dump import export_all, export_neem, load_dump
 from oracle.store.mongo import MongoStore
 from oracle.store.sqlite import SQLiteStore
+from oracle.store.staging import drop_abandoned
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -202,3 +203,133 @@ def test_no_message_shows_a_password(uri, capsys, monkeypatch):
     err = capsys.readouterr().err
     password = uri.split("://", 1)[1].rsplit("@", 1)[0].split(":", 1)[1]
     assert password not in err, err
+
+
+def _two_neem_dump(store, onto, tmp_path: Path) -> Path:
+    import_chains(store, onto, write(tmp_path / "ab.jsonl", rows("alice", 4) + rows("bob", 4, start_minute=30)))
+    export_neem(store, "alice", tmp_path / "two" / "alice")
+    export_neem(store, "bob", tmp_path / "two" / "bob")
+    store.drop_neem("alice")
+    store.drop_neem("bob")
+    return tmp_path / "two"
+
+
+def test_a_dump_of_two_neems_loads_both_or_neither(store, onto, tmp_path):
+    dump = _two_neem_dump(store, onto, tmp_path)
+    bson_file = dump / "bob" / "triples" / "roslog" / "triples.bson"
+    whole = bson_file.read_bytes()
+    bson_file.write_bytes(whole[: len(whole) - 7])  # alice's folder sorts first and is fine
+    with pytest.raises(StoreError, match="truncated or corrupt"):
+        load_dump(store, dump)
+    assert store.neems() == [] and store.staging_neems() == []
+    bson_file.write_bytes(whole)
+    assert load_dump(store, dump) == ["alice", "bob"]
+    assert [info.id for info in store.neems()] == ["alice", "bob"]
+
+
+def test_two_folders_holding_one_neem_id_are_refused(store, onto, tmp_path):
+    dump = _two_neem_dump(store, onto, tmp_path)
+    meta = json.loads((dump / "bob" / "meta.json").read_text())
+    (dump / "bob" / "meta.json").write_text(json.dumps({**meta, "id": "alice"}))
+    with pytest.raises(StoreError, match="both hold NEEM 'alice'"):
+        load_dump(store, dump, replace=True)
+    assert store.neems() == [] and store.staging_neems() == []
+
+
+def _dead_pid() -> int:
+    import subprocess
+    import sys
+
+    child = subprocess.Popen([sys.executable, "-c", "pass"])
+    child.wait()
+    return child.pid
+
+
+def test_hidden_neems_of_dead_builders_are_dropped_by_the_next_writer(store, onto):
+    from oracle.store.staging import STAGED_BY
+
+    dead = store.create_staging("alice", user="alice")
+    store.update_meta(dead, **{STAGED_BY: {**store.neem(dead).meta[STAGED_BY], "pid": _dead_pid()}})
+    elsewhere = store.create_staging("bob", user="bob")
+    store.update_meta(elsewhere, **{STAGED_BY: {"host": "another-host", "pid": 1}})
+    old = store.create_staging("carol", user="carol")
+    store.update_meta(old, **{STAGED_BY: {"host": "another-host", "pid": 1}, "created_at": "2020-01-01T00:00:00+00:00"})
+    alive = store.create_staging("dave", user="dave")  # this very process: still building it
+    assert {info.id for info in store.staging_neems()} == {elsewhere, alive}
+    assert store.neems() == []
+    # A session start wipes temporary NEEMs and, with them, what killed processes left.
+    store.update_meta(alive, **{STAGED_BY: {"host": store.neem(alive).meta[STAGED_BY]["host"], "pid": _dead_pid()}})
+    wipe_temporary_neems(store)
+    assert [info.id for info in store.staging_neems()] == [elsewhere]
+
+
+def test_a_loaded_neem_takes_the_space_an_imported_one_does_and_dumps_back_byte_for_byte(onto, tmp_path):
+    imported = tmp_path / "imported.sqlite"
+    with SQLiteStore(imported) as s:
+        import_chains(s, onto, ROOT / "ontology" / "sample-chains.jsonl")
+        export_all(s, tmp_path / "dump")
+    loaded = tmp_path / "loaded.sqlite"
+    with SQLiteStore(loaded) as s:
+        load_dump(s, tmp_path / "dump")
+        export_all(s, tmp_path / "again")
+    for store in (imported, loaded):  # fold the write-ahead log in, so file sizes compare
+        with sqlite3.connect(store) as raw:
+            raw.execute("PRAGMA wal_checkpoint(TRUNCATE)")
+    assert loaded.stat().st_size <= 1.1 * imported.stat().st_size, (loaded.stat().st_size, imported.stat().st_size)
+    first = {p.relative_to(tmp_path / "dump"): p.read_bytes() for p in (tmp_path / "dump").rglob("*") if p.is_file()}
+    second = {p.relative_to(tmp_path / "again"): p.read_bytes() for p in (tmp_path / "again").rglob("*") if p.is_file()}
+    assert first == second
+
+
+def test_a_chains_file_is_private_complete_and_never_written_through_a_link(tmp_path):
+    from oracle.chains import read_chains, write_chains
+
+    rows = list(read_chains(ROOT / "ontology" / "sample-chains.jsonl"))
+    out = tmp_path / "new" / "deeper" / "chains.jsonl"
+    previous = os.umask(0)
+    try:
+        assert write_chains(rows, out) == len(rows)
+    finally:
+        os.umask(previous)
+    assert stat.S_IMODE(out.stat().st_mode) == 0o600
+    assert all(stat.S_IMODE(p.stat().st_mode) == 0o700 for p in (tmp_path / "new", tmp_path / "new" / "deeper"))
+    victim = tmp_path / "victim"
+    victim.write_text("keep")
+    os.symlink(victim, tmp_path / "link.jsonl")
+    with pytest.raises(OSError, match="symbolic link"):
+        write_chains(rows, tmp_path / "link.jsonl")
+    assert victim.read_text() == "keep"
+
+    def failing():  # noqa: ANN202 - a source that breaks mid-way (as a full disk would)
+        yield from rows[:5]
+        raise OSError(28, "No space left on device")
+
+    with pytest.raises(OSError, match="No space"):
+        write_chains(failing(), out)
+    assert len(list(read_chains(out))) == len(rows)  # the earlier file, whole
+    assert sorted(p.name for p in out.parent.iterdir()) == ["chains.jsonl"]
+
+
+def test_a_builder_killed_inside_the_swap_leaves_the_old_neem_or_the_new_one(store, onto, tmp_path):
+    # MongoDB has no transaction: swap_in drops the old NEEM, then renames the new one. Both
+    # moments a kill can fall between are set up by hand; the next writer must repair either.
+    from oracle.store.staging import READY, STAGED_BY
+
+    import_chains(store, onto, write(tmp_path / "a.jsonl", rows("alice", 4)))
+    old = content(store, "alice")
+    dead = {"host": __import__("socket").gethostname(), "pid": _dead_pid()}
+    before_drop = store.create_staging("alice", user="alice")
+    store.update_meta(before_drop, **{STAGED_BY: dead, READY: True})
+    drop_abandoned(store)  # the old NEEM is still there: the half-done replacement goes
+    assert content(store, "alice") == old and store.staging_neems() == []
+
+    logger = NeemLogger.create(store, onto, user="alice", replace=True)
+    for i in range(7):
+        logger.action("open(fridge)", 1_740_988_800 + 60 * i)
+    logger.flush()
+    store.update_meta(logger.neem_id, **{STAGED_BY: dead, READY: True})
+    new = content(store, logger.neem_id)
+    store.drop_neem("alice")  # killed right after dropping the old NEEM
+    drop_abandoned(store)
+    assert [info.id for info in store.neems()] == ["alice"] and content(store, "alice") == new
+    assert store.staging_neems() == [] and READY not in {k for k, v in store.neem("alice").meta.items() if v}

@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
+import signal
 import sys
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 from oracle.commands.common import NUMBERS, ONTOLOGY_OPTIONS, STORE, add_options, bounded_int, ontology_from
@@ -31,11 +34,11 @@ def run(args: argparse.Namespace) -> int:
 
     onto = ontology_from(args)
     plans = check_chains(onto, args.chains, no_clock=args.no_clock)  # before the store is opened: a bad file creates nothing
-    with open_store(args.store, number_format=args.numbers) as store:
+    with open_store(args.store, number_format=args.numbers) as store, _first_ctrl_c_between_rows() as stop:
         report: dict[str, int] = {}
         try:
             import_chains(store, onto, args.chains, replace=args.replace, report=report, commit_every=args.commit_every,
-                          session=args.session, plans=plans, no_clock=args.no_clock)
+                          session=args.session, plans=plans, no_clock=args.no_clock, stop=stop)
         except NeemOracleError:
             _print(report)
             raise
@@ -45,6 +48,27 @@ def run(args: argparse.Namespace) -> int:
             return 130
         _print(report)
     return 0
+
+
+@contextlib.contextmanager
+def _first_ctrl_c_between_rows() -> Iterator[Callable[[], bool]]:
+    """The first Ctrl-C is noted and acted on between two rows (so the count printed is what
+    the store holds); a second one interrupts at once."""
+    pressed: list[bool] = []
+
+    def note(signum: int, frame: object) -> None:
+        pressed.append(True)
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+
+    try:
+        previous = signal.signal(signal.SIGINT, note)
+    except ValueError:  # not the main thread: Ctrl-C is not ours to handle
+        yield lambda: False
+        return
+    try:
+        yield lambda: bool(pressed)
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 def _print(report: dict[str, int]) -> None:

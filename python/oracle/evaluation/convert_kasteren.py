@@ -124,9 +124,11 @@ def write_mapping(path: Path, namespace: str, soma_odb_map: Mapping[str, str], a
 
 
 def prepare_out(out: Path | str) -> Path:
+    from oracle.files import private_folder
+
     out = Path(out)
     try:
-        out.mkdir(parents=True, exist_ok=True)
+        private_folder(out)  # it will hold a person's days: 0700
     except OSError as error:
         raise NeemOracleError(f"{out}: cannot create output folder ({error.strerror})") from None
     return out

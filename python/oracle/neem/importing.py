@@ -10,6 +10,7 @@ file order (docs/time.md, "Logs without a clock").
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from datetime import datetime
 from pathlib import Path
@@ -105,6 +106,7 @@ def import_chains(
     session: bool = False,
     plans: dict[str, _UserPlan] | None = None,
     no_clock: bool = False,
+    stop: Callable[[], bool] | None = None,
 ) -> dict[str, int]:
     """Log a chains JSONL file, one NEEM per user; return {NEEM id: actions committed}.
 
@@ -120,6 +122,8 @@ def import_chains(
     ``plans`` is what ``check_chains`` returned for this file, when the caller checked it.
     With ``no_clock`` the rows have no times: a user's n-th action (from 0) spans positions n to
     n + 1 of the sequence clock, and the NEEMs are marked as having no clock.
+    ``stop`` is asked before each row; when it says True (Ctrl-C was pressed) the import ends
+    there with KeyboardInterrupt, between two rows, so ``report`` counts exactly what is stored.
     """
     if commit_every < 1:
         raise LoggingError(f"commit_every must be at least 1, got {commit_every}")
@@ -134,6 +138,8 @@ def import_chains(
         if session:
             wipe_temporary_neems(store)
         for row in read_chains(path):
+            if stop is not None and stop():
+                raise KeyboardInterrupt
             where = f"{path}:{row.line}"
             logger = loggers.get(row.user)
             if logger is None:
@@ -160,6 +166,7 @@ def import_chains(
             if row.line == plans[row.user].last_line:
                 logger.close()  # the user's rows end here: commit (and swap in a replacement) now
                 report[name] = logger.committed
+                del loggers[row.user]  # done: its caches need not stay in memory (many users)
             else:
                 report[name] = logger.committed
         done = True

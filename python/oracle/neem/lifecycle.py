@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from oracle.store import NeemInfo, Store
+from oracle.store.staging import drop_abandoned
 
 
 def persist(store: Store, neem_id: str, name: str) -> NeemInfo:
@@ -12,7 +13,9 @@ def persist(store: Store, neem_id: str, name: str) -> NeemInfo:
 
 
 def wipe_temporary_neems(store: Store) -> list[str]:
-    """Privacy (thesis 3.5): drop every NEEM still marked temporary (a session never persisted)."""
+    """Privacy (thesis 3.5): drop every NEEM still marked temporary (a session never persisted),
+    and the hidden half-built NEEMs that killed imports and loads left behind."""
+    drop_abandoned(store)
     dropped = [info.id for info in store.neems() if info.temporary]
     for neem_id in dropped:
         store.drop_neem(neem_id)

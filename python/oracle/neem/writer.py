@@ -543,26 +543,30 @@ class NeemLogger:
             self.flush()
 
     def flush(self) -> int:
-        """Commit what is buffered as one transaction; return how many calls are committed."""
-        if self._buffer or self._tf:
+        """Commit what is buffered as one transaction; return how many calls are committed.
+
+        A commit that fails (or is interrupted) drops the buffered calls: they are never
+        counted in ``committed``, which only ever counts what is in the store."""
+        buffer, tf, calls = self._buffer, self._tf, self._buffered_calls
+        self._buffer, self._tf, self._buffered_calls = [], [], 0
+        if buffer or tf:
             try:
-                summary = summary_after(self._summary, self._buffer)
+                summary = summary_after(self._summary, buffer)
                 with self.store.transaction():
-                    self.store.insert(self.neem_id, self._buffer)
-                    if self._tf:
-                        self.store.write_documents(self.neem_id, "tf", self._tf)
+                    self.store.insert(self.neem_id, buffer)
+                    if tf:
+                        self.store.write_documents(self.neem_id, "tf", tf)
                     mark = self.store.write_mark(self.neem_id)
                     self.store.update_meta(self.neem_id, **{SUMMARY_KEY: {**summary, "mark": mark}})
                 self._summary = summary
-            except StoreError as error:
+            except BaseException as error:
                 # The in-memory view may now name individuals that were never stored.
                 self._known.clear()
                 self._plans.clear()
-                raise LoggingError(f"NEEM {self.neem_id!r}: {error}") from None
-            finally:
-                self._buffer, self._tf = [], []
-        self.committed += self._buffered_calls
-        self._buffered_calls = 0
+                if isinstance(error, StoreError):
+                    raise LoggingError(f"NEEM {self.neem_id!r}: {error}") from None
+                raise
+        self.committed += calls
         return self.committed
 
     @property

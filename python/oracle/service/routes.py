@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import threading
 import time
-from typing import Any, Literal
+from typing import Annotated, Any, Literal
 
 from fastapi import APIRouter, BackgroundTasks, Query, Request
 from fastapi.responses import HTMLResponse, JSONResponse, StreamingResponse
@@ -27,7 +27,7 @@ class NewNeem(BaseModel):
 
 class Seen(BaseModel):
     name: str = Field(description="odb object name, e.g. red_mug")
-    pose: list[float] | None = Field(None, min_length=3, max_length=7,
+    pose: list[Annotated[float, Field(allow_inf_nan=False)]] | None = Field(None, min_length=3, max_length=7,
                                      description="x, y, z [, qx, qy, qz, qw] in the robot's frame")
 
 

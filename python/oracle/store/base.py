@@ -157,27 +157,34 @@ class Store(ABC):
 
     # -- replacing a NEEM atomically --------------------------------------------------------
     def create_staging(self, target: str, *, user: str | None = None, meta: Mapping[str, Any] | None = None) -> str:
-        """A new, hidden NEEM to build ``target`` (or its replacement) in: ``neems()`` does not
-        list it; ``swap_in`` makes it ``target``. A process killed meanwhile leaves ``target`` as
-        it was (and a hidden NEEM behind, never listed nor read)."""
+        """A new, hidden NEEM to build ``target`` (or its replacement) in, which ``swap_in`` makes
+        ``target``; a process killed meanwhile leaves ``target`` as it was (see store.staging)."""
+        from oracle.store.staging import STAGED_BY, builder, drop_abandoned
         check_neem_id(target)
-        staging = f"staging-{os.urandom(6).hex()}"
-        extra = {**(meta or {}), STAGING: target}
+        drop_abandoned(self)
+        staging = f"staging-{os.urandom(6).hex()}"  # the prefix is how backends find them (staging_neems)
+        extra = {**(meta or {}), STAGING: target, STAGED_BY: builder()}
         temporary = bool(extra.pop("temporary", False))
         self.create_neem(staging, user=user, temporary=temporary, meta=extra)
         return staging
+
+    @abstractmethod
+    def staging_neems(self) -> list[NeemInfo]:
+        """The hidden NEEMs under construction (``create_staging``), which ``neems()`` leaves out."""
 
     def swap_in(self, staging: str, target: str, *, replace: bool = True, **fields: Any) -> NeemInfo:
         """Make the complete NEEM ``staging`` visible as ``target``, replacing an existing one only
         if ``replace`` (else StoreError: another process took the id meanwhile). One transaction
         on SQLite; on MongoDB a rename per collection (KnowRob has no transactions)."""
+        from oracle.store.staging import READY, STAGED_BY
         with self.transaction():
             if self.has_neem(target):
                 if not replace:
                     raise StoreError(f"{self.location}: NEEM {target!r} already exists")
+                self.update_meta(staging, **{READY: True})
                 self.drop_neem(target)
             self.rename_neem(staging, target)
-            return self.update_meta(target, **{STAGING: None, **fields})
+            return self.update_meta(target, **{STAGING: None, STAGED_BY: None, READY: None, **fields})
 
     # -- writing ----------------------------------------------------------------------------
     @abstractmethod
@@ -428,8 +435,7 @@ def validate_patterns(patterns: Sequence[TriplePattern]) -> None:
 
 
 def check_literal(term: Any) -> None:
-    """A constant of a query is a plain value: a dict such as ``{"$gt": ""}`` would be a
-    MongoDB operator, and a list a set of values, so both are refused (issue 16)."""
+    """A query constant is a plain value: a dict (``{"$gt": ""}``, a MongoDB operator) or a list is refused."""
     if term is not None and not isinstance(term, (str, int, float, bool, Decimal128, datetime)):
         raise StoreError(f"a query constant must be a string, number, boolean or date, got {term!r}")
 

@@ -7,7 +7,7 @@ the registry entry. Documents are copied unchanged, so dump -> load -> dump is t
 
 from __future__ import annotations
 
-import errno
+import contextlib
 import os
 import re
 import struct
@@ -21,6 +21,7 @@ from bson.codec_options import DEFAULT_CODEC_OPTIONS, DatetimeConversion
 
 from oracle.errors import StoreError
 from oracle.store.base import COLLECTION_KINDS, STAGING, SUMMARY_KEY, Store, check_neem_id
+from oracle.store.staging import READY, STAGED_BY
 from oracle.store.validate import check_meta
 from oracle.store.mongo import DEFAULT_DB, INDEXES
 
@@ -47,17 +48,17 @@ def _mkdir(path: Path, top: Path) -> None:
             os.chmod(folder, 0o700)
 
 
-def _open_private(path: Path) -> BinaryIO:
-    """Dumps hold personal data (thesis 3.5): files are 0600, also when an existing 0644 file is
-    overwritten, and a symlink planted at the path is refused, never followed."""
-    try:
-        fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_TRUNC | os.O_NOFOLLOW, 0o600)
-    except OSError as error:
-        if error.errno == errno.ELOOP:
-            raise StoreError(f"{path}: is a symbolic link; refusing to write through it") from None
-        raise
+def _open_private(path: Path) -> tuple[BinaryIO, Path]:
+    """A new 0600 file beside ``path`` that ``_commit`` later moves onto it, and its name.
+
+    Dumps hold personal data (thesis 3.5): files are 0600, also where an existing 0644 file is
+    replaced, and a symlink planted at the path is refused, never followed."""
+    if path.is_symlink():
+        raise StoreError(f"{path}: is a symbolic link; refusing to write through it")
+    temporary = path.with_name(f".{path.name}.{os.urandom(4).hex()}.part")
+    fd = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW, 0o600)
     os.fchmod(fd, 0o600)
-    return os.fdopen(fd, "wb")
+    return os.fdopen(fd, "wb"), temporary
 
 
 def metadata(collection: str, kind: str) -> dict[str, Any]:
@@ -79,28 +80,48 @@ def write_dump(
 
     Without ``prefix`` collections are named ``triples`` etc., which is what a default KnowRob
     (``collection_prefix: ''``) restores with remember/1; with it, ``<prefix>_triples``.
+    Every file is written aside and moved into place only when all are complete: a full disk
+    or an error mid-way leaves an earlier dump in ``out`` as it was.
     """
     out = Path(out)
     counts: dict[str, int] = {}
+    written: list[tuple[Path, Path]] = []  # (finished temporary file, its place)
+    moved = 0
+
+    def private(path: Path) -> BinaryIO:
+        handle, temporary = _open_private(path)
+        written.append((temporary, path))
+        return handle
+
     try:
         for kind in COLLECTION_KINDS:
             collection = f"{prefix}_{kind}" if prefix else kind
             folder = out / kind / db_name
             _mkdir(folder, out)
             count = 0
-            with _open_private(folder / f"{collection}.bson") as handle:
+            with private(folder / f"{collection}.bson") as handle:
                 for doc in documents.get(kind, ()):
                     handle.write(bson.encode(doc, codec_options=_CODEC))
                     count += 1
-            with _open_private(folder / f"{collection}.metadata.json") as handle:
+                os.fsync(handle.fileno())
+            with private(folder / f"{collection}.metadata.json") as handle:
                 handle.write(json_util.dumps(metadata(collection, kind), json_options=_CANONICAL).encode())
             counts[kind] = count
         if meta is not None:
             _mkdir(out, out)
-            with _open_private(out / META_FILE) as handle:
+            with private(out / META_FILE) as handle:
                 handle.write(json_util.dumps(dict(meta), indent=2, sort_keys=True).encode() + b"\n")
+                os.fsync(handle.fileno())
+        for temporary, path in written:
+            os.replace(temporary, path)  # replaces a file (or a link planted since), never writes through it
+            moved += 1
     except OSError as error:
-        raise StoreError(f"{out}: cannot write the dump ({error.strerror or error})") from None
+        kept = "; nothing was replaced" if moved == 0 else ""
+        raise StoreError(f"{out}: cannot write the dump ({error.strerror or error}){kept}") from None
+    finally:
+        for temporary, _ in written:
+            with contextlib.suppress(FileNotFoundError):
+                os.unlink(temporary)
     return counts
 
 
@@ -108,11 +129,17 @@ def export_neem(store: Store, neem_id: str, out: Path | str, *, db_name: str = D
     """Write one NEEM as a KnowRob dump folder."""
     info = store.neem(neem_id)
     # The kept summary belongs to this store's write marks, not to the dump.
-    meta = {k: v for k, v in info.meta.items() if k not in ("temporary", STAGING, COUNTS_KEY, SUMMARY_KEY)}
+    meta = {k: v for k, v in info.meta.items() if k not in ("temporary", STAGING, STAGED_BY, READY, COUNTS_KEY, SUMMARY_KEY)}
     meta["id"] = neem_id
     meta[COUNTS_KEY] = {kind: store.count(neem_id, kind) for kind in COLLECTION_KINDS}
     docs = {kind: store.read_documents(neem_id, kind) for kind in COLLECTION_KINDS}
-    return write_dump(out, docs, meta, db_name)
+    try:
+        return write_dump(out, docs, meta, db_name)
+    finally:
+        for reader in docs.values():
+            close = getattr(reader, "close", None)
+            if close is not None:
+                close()  # a dump that failed mid-way leaves no read open on the store
 
 
 def export_all(store: Store, out: Path | str, *, db_name: str = DEFAULT_DB) -> dict[str, dict[str, int]]:
@@ -206,22 +233,28 @@ def load_dump(store: Store, path: Path | str, *, neem_id: str | None = None, rep
         raise StoreError(f"{root}: no triples/annotations/tf/inferred .bson files found")
     if neem_id is not None and len(groups) > 1:
         raise StoreError(f"{root}: holds {len(groups)} NEEMs; --neem names only one")
-    plans = []
+    plans: list[tuple[str, dict[str, Path], dict[str, Any], Path]] = []
     for (folder, prefix), files in sorted(groups.items(), key=lambda item: (str(item[0][0]), item[0][1] or "")):
         meta = _read_meta(folder)
         target = neem_id or prefix or meta.pop("id", None) or _SAFE.sub("-", folder.resolve().name).strip("-")
-        meta.pop("id", None)
-        meta.pop(SUMMARY_KEY, None)
+        for key in ("id", SUMMARY_KEY, STAGING, STAGED_BY, READY):
+            meta.pop(key, None)
         check_neem_id(target)
         if store.has_neem(target) and not replace:
             raise StoreError(f"{store.location}: NEEM {target!r} already exists (load with --replace)")
+        twin = next((other for other in plans if other[0] == target), None)
+        if twin is not None:
+            raise StoreError(f"{root}: {twin[3]} and {folder} both hold NEEM {target!r}; load them one at a time")
         plans.append((target, files, meta, folder))
-    loaded: list[str] = []
-    for target, files, meta, folder in plans:
-        counts = meta.pop(COUNTS_KEY, None)
-        meta["temporary"] = False
-        staging = store.create_staging(target, user=meta.get("created_by"), meta=meta)
-        try:
+    # Every NEEM is staged before any is swapped in, and the swaps are one transaction (on
+    # SQLite): a bad second NEEM leaves the store as it was, not with the first one loaded.
+    staged: list[str] = []
+    try:
+        for target, files, meta, folder in plans:
+            counts = meta.pop(COUNTS_KEY, None)
+            meta["temporary"] = False
+            staging = store.create_staging(target, user=meta.get("created_by"), meta=meta)
+            staged.append(staging)
             for kind in COLLECTION_KINDS:
                 if kind in files:
                     docs = _Documents(files[kind])
@@ -232,12 +265,15 @@ def load_dump(store: Store, path: Path | str, *, neem_id: str | None = None, rep
                             f"{files[kind]}: holds {docs.count} documents but {folder / META_FILE} counts {expected};"
                             " the dump is cut or altered"
                         )
-            store.swap_in(staging, target)
-        except BaseException:
-            store.drop_neem(staging)  # the old NEEM, if any, was never touched
-            raise
-        loaded.append(target)
-    return loaded
+        with store.transaction():
+            for staging, (target, *_) in zip(staged, plans):
+                store.swap_in(staging, target, replace=replace)
+    except BaseException:
+        for staging in staged:
+            if store.has_neem(staging):
+                store.drop_neem(staging)  # the old NEEM, if any, was never touched
+        raise
+    return [target for target, *_ in plans]
 
 
 def _read_meta(folder: Path) -> dict[str, Any]:

@@ -108,6 +108,10 @@ class MongoStore(Store):
         infos = self._registry()
         return [infos[key] for key in sorted(infos) if not infos[key].meta.get(STAGING)]  # replacements being built are hidden
 
+    def staging_neems(self) -> list[NeemInfo]:
+        infos = self._registry()
+        return [infos[key] for key in sorted(infos) if infos[key].meta.get(STAGING)]
+
     def neem(self, neem_id: str) -> NeemInfo:
         info = self._registry().get(neem_id)
         if info is None:

@@ -66,6 +66,8 @@ from oracle.store.sql import (
 )
 
 SCHEMA_VERSION = "3"
+#: Terms whose ids a writer keeps in memory (about 100 bytes each) before it starts over.
+TERM_CACHE = 50_000
 
 def _python_value(value: Any, kind: int) -> Any:
     if kind == K_BOOL:
@@ -156,8 +158,12 @@ class _Cursor:
             raise StoreError(f"{self.location}: {_reason(error)}") from None
 
     def __iter__(self) -> Iterator[Any]:
+        # Not ``yield from``: a generator abandoned mid-way (an export that failed on a full
+        # disk) would then close the cursor when collected, after the store closed, and print
+        # a traceback ("Cannot operate on a closed database") instead of staying quiet.
         try:
-            yield from self.cursor
+            for row in self.cursor:  # noqa: UP028 - see above
+                yield row
         except sqlite3.Error as error:
             raise StoreError(f"{self.location}: {_reason(error)}") from None
 
@@ -233,11 +239,14 @@ class SQLiteStore(Store):
         so ``neems`` or ``why-not`` never wait for, nor block, an ``import`` or ``load``."""
         try:
             uri = "file:" + urllib.parse.quote(str(self.path.resolve())) + "?mode=ro"
-            conn = sqlite3.connect(uri, uri=True, isolation_level=None, check_same_thread=False)
-            conn.execute("PRAGMA busy_timeout=10000")
-            conn.execute("PRAGMA query_only=1")
-            conn.execute("PRAGMA cache_size=-65536")
-            row = conn.execute("SELECT value FROM store_info WHERE key='schema'").fetchone()
+            try:
+                conn, row = self._open_read_only(uri)
+            except sqlite3.OperationalError:
+                if os.access(self.path.parent, os.W_OK):
+                    raise
+                # A store on read-only media (a mounted backup): SQLite cannot make the WAL's
+                # shared-memory file there, and nobody can change the file, so it is read as is.
+                conn, row = self._open_read_only(uri + "&immutable=1")
         except sqlite3.DatabaseError as error:
             reason = "not a NEEM store" if "no such table" in str(error) or "not a database" in str(error) else str(error)
             raise StoreError(f"{self.path}: cannot open the NEEM store ({reason})") from None
@@ -245,6 +254,18 @@ class SQLiteStore(Store):
         if version != SCHEMA_VERSION:
             raise StoreError(f"{self.path}: store schema {version}, this version reads {SCHEMA_VERSION}")
         return conn
+
+    @staticmethod
+    def _open_read_only(uri: str) -> tuple[sqlite3.Connection, Any]:
+        conn = sqlite3.connect(uri, uri=True, isolation_level=None, check_same_thread=False)
+        try:
+            conn.execute("PRAGMA busy_timeout=10000")
+            conn.execute("PRAGMA query_only=1")
+            conn.execute("PRAGMA cache_size=-65536")
+            return conn, conn.execute("SELECT value FROM store_info WHERE key='schema'").fetchone()
+        except BaseException:
+            conn.close()
+            raise
 
     def _connect(self) -> sqlite3.Connection:
         try:
@@ -265,6 +286,9 @@ class SQLiteStore(Store):
             conn.execute("PRAGMA busy_timeout=10000")  # concurrent writers wait instead of failing
             # temp_store stays FILE: with MEMORY, dropping a NEEM (import --replace) kept its
             # statement journal in memory, +270 MiB at 50,000 actions; sorts are as fast.
+            # A dropped or wiped NEEM's pages are overwritten, not just freed: its documents
+            # cannot be read back from the file (most builds default to it; this one need not).
+            conn.execute("PRAGMA secure_delete=ON")
             # Fewer, larger checkpoints: each one fsyncs, commits themselves do not.
             conn.execute("PRAGMA wal_autocheckpoint=8192")
             conn.execute("PRAGMA cache_size=-65536")
@@ -327,10 +351,19 @@ class SQLiteStore(Store):
             self._conn.execute("COMMIT")
 
     # -- registry ---------------------------------------------------------------------------
-    def neems(self) -> list[NeemInfo]:
+    def _registry(self) -> list[NeemInfo]:
         rows = self._conn.execute("SELECT id, meta FROM neems ORDER BY id").fetchall()
+        return [NeemInfo.from_meta(neem_id, self._meta(neem_id, meta)) for neem_id, meta in rows]
+
+    def neems(self) -> list[NeemInfo]:
+        return [info for info in self._registry() if not info.meta.get(STAGING)]  # replacements being built are hidden
+
+    def staging_neems(self) -> list[NeemInfo]:
+        # Staging ids all start with "staging-" (Store.create_staging): a range on the primary
+        # key, so every new NEEM of an import of many users does not decode the whole registry.
+        rows = self._conn.execute("SELECT id, meta FROM neems WHERE id >= 'staging-' AND id < 'staging.'").fetchall()
         infos = [NeemInfo.from_meta(neem_id, self._meta(neem_id, meta)) for neem_id, meta in rows]
-        return [info for info in infos if not info.meta.get(STAGING)]  # replacements being built are hidden
+        return [info for info in infos if info.meta.get(STAGING)]
 
     def _meta(self, neem_id: str, blob: bytes) -> dict[str, Any]:
         try:
@@ -403,6 +436,12 @@ class SQLiteStore(Store):
                 tid = _rowid(cursor)
             else:
                 tid = self._conn.execute("SELECT id FROM terms WHERE value=?", (value,)).fetchone()[0]
+            if len(self._tids) >= TERM_CACHE:
+                # Every event is a new term: an import of a million rows would otherwise keep
+                # millions of them in memory. The cache starts over (ids are in the table).
+                self._tids.clear()
+                self._tvals.clear()
+                self._all_terms = False
             self._tids[value] = tid
             self._tvals[tid] = value
         return tid
@@ -549,8 +588,27 @@ class SQLiteStore(Store):
         since = self._seconds(time_.get("since"))
         until = self._seconds(time_.get("until"))
         oid = doc["_id"].binary if isinstance(doc["_id"], ObjectId) else b""
-        return (oid, self._tid(s) if type(s) is str else None, self._tid(p) if type(p) is str else None, sql_o, kind,
-                pstar_cid, ostar_cid, doc.get("graph"), since, until, None, raw or bson.encode(doc, codec_options=_CODEC))  # fmt: skip
+        row = (oid, self._tid(s) if type(s) is str else None, self._tid(p) if type(p) is str else None, sql_o, kind,
+               pstar_cid, ostar_cid, doc.get("graph"), since, until, None, raw or bson.encode(doc, codec_options=_CODEC))  # fmt: skip
+        return self._without_raw(row)
+
+    def _without_raw(self, row: tuple[Any, ...]) -> tuple[Any, ...]:
+        """The row without its BSON copy when the columns rebuild the very same bytes (every
+        document this program wrote): a loaded NEEM then takes the space an imported one does."""
+        oid, s, p, _o, _ok, pstar, ostar, graph, since, until, _sk, raw = row
+        if len(oid) != 12 or s is None or p is None or pstar is None or ostar is None or since is None or until is None:
+            return row
+        if graph is not None and type(graph) is not str:
+            return row
+        for sk in (SK_DECIMAL, SK_DOUBLE):
+            lean = (*row[:10], sk, None)
+            try:
+                same = bson.encode(self._document(lean), codec_options=_CODEC) == raw
+            except Exception:  # noqa: BLE001 - any value the columns cannot rebuild: keep the copy
+                return row
+            if same:
+                return lean
+        return row
 
     def _insert_documents(self, neem_id: str, kind: str, docs: list[dict[str, Any]]) -> None:
         self._require(neem_id)

@@ -340,9 +340,11 @@ def generate(out: Path | str, personas: int = 105, days: int = 7, seed: int = 0,
     if personas < 1 or days < 1:
         raise NeemOracleError(f"need at least one persona and one day, got --personas {personas} --days {days}")
     world = load_world() if world is None else world
+    from oracle.files import private_folder
+
     out = Path(out)
     try:
-        out.mkdir(parents=True, exist_ok=True)
+        private_folder(out)
     except OSError as error:
         raise NeemOracleError(f"{out}: cannot create output folder ({error.strerror})") from None
     people = make_personas(personas, seed)

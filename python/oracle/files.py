@@ -1,0 +1,46 @@
+"""Files that hold a person's data (chains, dumps): private, complete, never written through a link.
+
+A file is written beside its place as ``.NAME.XXXX.part`` (0600, created exclusively, never
+through a symlink) and moved onto its place only when complete, so a full disk or a kill leaves
+an earlier file as it was; folders the writer creates are 0700 whatever the umask.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import errno
+import os
+from collections.abc import Iterator
+from pathlib import Path
+from typing import TextIO
+
+
+def private_folder(path: Path) -> Path:
+    """``path`` and the missing folders above it, each created 0700 (existing ones are left as they are)."""
+    missing = [folder for folder in [path, *path.parents] if not folder.exists()]
+    for folder in reversed(missing):
+        folder.mkdir(mode=0o700)
+        os.chmod(folder, 0o700)  # the umask may have taken bits away; it never adds any
+    return path
+
+
+@contextlib.contextmanager
+def private_file(path: Path | str) -> Iterator[TextIO]:
+    """Write ``path`` privately and atomically (see the module's docstring); OSError on failure,
+    with the place untouched."""
+    path = Path(path)
+    if path.is_symlink():
+        raise OSError(errno.ELOOP, "is a symbolic link; refusing to write through it", str(path))
+    private_folder(path.parent)
+    temporary = path.with_name(f".{path.name}.{os.urandom(4).hex()}.part")
+    fd = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW, 0o600)
+    try:
+        os.fchmod(fd, 0o600)
+        with os.fdopen(fd, "w", encoding="utf-8") as handle:
+            yield handle
+            handle.flush()
+            os.fsync(handle.fileno())
+        os.replace(temporary, path)
+    finally:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(temporary)
