@@ -254,13 +254,18 @@ store_match(Patterns, Scope) :-
     store_match(Patterns, Scope, []).
 
 store_match(Patterns0, Scope, Options) :-
+    checked_query(Patterns0, Scope, Patterns, Backend),
+    match(Backend, Patterns, Scope, Options).
+
+%   A store query checked (non-empty list of patterns, a scope) with its comparisons bound,
+%   and the backend that answers it.
+checked_query(Patterns0, Scope, Patterns, Backend) :-
     must_be(list, Patterns0),
     Patterns0 \== [],
     maplist(check_pattern, Patterns0),
     check_scope(Scope),
     maplist(bound_comparison, Patterns0, Patterns),
-    backend_(Backend),
-    match(Backend, Patterns, Scope, Options).
+    backend_(Backend).
 
 %!  store_match_scoped(+Patterns, +Scope, -FactScope) is nondet.
 %   store_match/2 that also says when the matched facts hold together: FactScope is
@@ -268,12 +273,7 @@ store_match(Patterns0, Scope, Options) :-
 %   solution per combination of documents, as mongolog's `v_scope`; empty intersections
 %   are dropped). What `G during [S,U]` with S and U free and kb_call/3 report.
 store_match_scoped(Patterns0, Scope, FactScope) :-
-    must_be(list, Patterns0),
-    Patterns0 \== [],
-    maplist(check_pattern, Patterns0),
-    check_scope(Scope),
-    maplist(bound_comparison, Patterns0, Patterns),
-    backend_(Backend),
+    checked_query(Patterns0, Scope, Patterns, Backend),
     Inf is inf,
     (   Backend == memory
     ->  mem_conj_scoped(Patterns, Scope, scope(0.0, Inf), FactScope)

@@ -299,12 +299,7 @@ class NeemLogger:
         task = f"{self.ns}Task_{key}"
         if task in self._known or not self._new(task, out):
             return task
-        out.append(Triple(task, RDF_TYPE, self.onto.task_iri(call.task)))
-        out.append(Triple(task, RDF_TYPE, T.NAMED_INDIVIDUAL))
-        try:
-            roles = self.onto.task_roles(call.task, len(call.args))
-        except OntologyError as error:
-            raise LoggingError(str(error)) from None
+        roles = self._typed_task(task, call, out)
         for index, (arg, role_class) in enumerate(zip(call.args, roles)):
             obj = self._object(arg, out, since)
             if role_class is None:
@@ -316,17 +311,21 @@ class NeemLogger:
             out.append(Triple(role, T.CLASSIFIES, obj))
         return task
 
+    def _typed_task(self, task: str, call: TaskCall, out: _Out) -> list[str | None]:
+        """Type ``task`` with the call's task class; the SOMA role class of each argument."""
+        out.append(Triple(task, RDF_TYPE, self.onto.task_iri(call.task)))
+        out.append(Triple(task, RDF_TYPE, T.NAMED_INDIVIDUAL))
+        try:
+            return list(self.onto.task_roles(call.task, len(call.args)))
+        except OntologyError as error:
+            raise LoggingError(str(error)) from None
+
     def _executed_task(self, call: TaskCall, begin: Instant, end: Instant, out: _Out) -> str:
         """A fresh task individual for one action, with one role per argument; the role
         classifies its object during the action only (neem-interface's
         ``has_role(Obj, Role) during Action``), the task's type and roles hold always."""
         task = self._event("Task")
-        out.append(Triple(task, RDF_TYPE, self.onto.task_iri(call.task)))
-        out.append(Triple(task, RDF_TYPE, T.NAMED_INDIVIDUAL))
-        try:
-            roles = self.onto.task_roles(call.task, len(call.args))
-        except OntologyError as error:
-            raise LoggingError(str(error)) from None
+        roles = self._typed_task(task, call, out)
         for arg, role_class in zip(call.args, roles):
             if role_class is None:
                 continue
