@@ -11,6 +11,7 @@ import contextlib
 import gc
 import hashlib
 import io
+import json
 import os
 import signal
 import sys
@@ -92,3 +93,18 @@ def store_state(path: Path) -> str:
         if part.exists() and part.stat().st_size > 0:
             digest.update(suffix.encode() + part.read_bytes())
     return digest.hexdigest()
+
+
+def sample_chains(out: Path, per_user: int, users: int = 2) -> Path:
+    """The first ``per_user`` rows of the first ``users`` users of the packaged sample chains,
+    written to ``out``: the valid file the corpus cases start from."""
+    root = Path(__file__).resolve().parents[2]
+    rows: list[str] = []
+    counts: dict[str, int] = {}
+    for line in (root / "ontology" / "sample-chains.jsonl").read_text().splitlines():
+        user = json.loads(line)["user"]
+        counts[user] = counts.get(user, 0) + 1
+        if counts[user] <= per_user and len(counts) <= users:
+            rows.append(line)
+    out.write_text("\n".join(rows) + "\n")
+    return out

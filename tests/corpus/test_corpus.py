@@ -8,7 +8,6 @@ fragment, leak no password, and leave the store's bytes as they were.
 
 from __future__ import annotations
 
-import json
 import os
 import shlex
 import shutil
@@ -20,7 +19,7 @@ from pathlib import Path
 import pytest
 
 from tests.corpus.built import BUILT, corrupt
-from tests.corpus.harness import run_cli, store_state
+from tests.corpus.harness import run_cli, sample_chains, store_state
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parents[1]
@@ -82,15 +81,7 @@ def test_the_corpus_is_large_enough():
 def world(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
     """A store with two NEEMs of 25 actions each, a valid chains file and a dump of one NEEM."""
     root = tmp_path_factory.mktemp("corpus")
-    rows: list[str] = []
-    counts: dict[str, int] = {}
-    for line in (ROOT / "ontology" / "sample-chains.jsonl").read_text().splitlines():
-        user = json.loads(line)["user"]
-        counts[user] = counts.get(user, 0) + 1
-        if counts[user] <= 25 and len(counts) <= 2:
-            rows.append(line)
-    good = root / "good.jsonl"
-    good.write_text("\n".join(rows) + "\n")
+    good = sample_chains(root / "good.jsonl", 25)
     store = root / "base.sqlite"
     done = run_cli(["import", str(good), "--store", str(store)])
     assert done.code == 0, done

@@ -20,7 +20,7 @@ import pytest
 from oracle.store import COLLECTION_KINDS
 from oracle.store.mongo import MongoStore
 from tests.corpus.built import BUILT
-from tests.corpus.harness import run_cli
+from tests.corpus.harness import run_cli, sample_chains
 from tests.corpus.test_corpus import CASES, ROOT, SECRETS, Case, _one_ontology  # noqa: F401 - a session fixture
 
 WRITING = ("import", "load", "mapping", "odb")
@@ -41,15 +41,7 @@ def server(tmp_path_factory: pytest.TempPathFactory) -> dict[str, object]:
     from oracle.ontology import build_ontology
 
     root = tmp_path_factory.mktemp("corpus-mongo")
-    rows: list[str] = []
-    counts: dict[str, int] = {}
-    for line in (ROOT / "ontology" / "sample-chains.jsonl").read_text().splitlines():
-        user = json.loads(line)["user"]
-        counts[user] = counts.get(user, 0) + 1
-        if counts[user] <= 8 and len(counts) <= 2:
-            rows.append(line)
-    good = root / "good.jsonl"
-    good.write_text("\n".join(rows) + "\n")
+    good = sample_chains(root / "good.jsonl", 8)
     client = mongomock.MongoClient()
     store = _Shared(client, "roslog")
     import_chains(store, build_ontology(), good, commit_every=50)
