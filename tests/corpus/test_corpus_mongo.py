@@ -21,7 +21,7 @@ from oracle.store import COLLECTION_KINDS
 from oracle.store.mongo import MongoStore
 from tests.corpus.built import BUILT
 from tests.corpus.harness import run_cli, sample_chains
-from tests.corpus.test_corpus import CASES, ROOT, SECRETS, Case, _one_ontology  # noqa: F401 - a session fixture
+from tests.corpus.test_corpus import CASES, SECRETS, Case, _one_ontology  # noqa: F401 - a session fixture
 
 WRITING = ("import", "load", "mapping", "odb")
 MONGO_CASES = [c for c in CASES if c.entry in WRITING or (c.entry == "built" and c.name.startswith("import"))]
