@@ -179,6 +179,14 @@ def _chunks(store: Store, req: Sequence[Any]) -> Iterator[str]:
             return
 
 
+def _connected() -> Bridge:
+    """The bridge whose store Prolog's foreign predicates read (PrologError when none is)."""
+    bridge: Bridge | None = _STATE["bridge"]
+    if bridge is None:
+        raise PrologError("no store is connected to Prolog")
+    return bridge
+
+
 def py_match(req: Any, out: Any, handle: Any) -> Any:
     from pyswip.core import PL_FIRST_CALL, PL_PRUNED, PL_REDO, PL_foreign_context, PL_foreign_control, PL_retry
 
@@ -188,11 +196,8 @@ def py_match(req: Any, out: Any, handle: Any) -> Any:
         return True
     if control == PL_FIRST_CALL:
         CROSSINGS["py_match"] += 1
-        bridge = _STATE["bridge"]
         try:
-            if bridge is None:
-                raise PrologError("no store is connected to Prolog")
-            chunks = _chunks(bridge.store, req)
+            chunks = _chunks(_connected().store, req)
             first = next(chunks, "[]")
         except Exception as error:  # handed to Prolog: pyswip would make it silent failure
             out.unify(_error_text(error))
@@ -222,9 +227,7 @@ def py_match(req: Any, out: Any, handle: Any) -> Any:
 def py_insert(req: Any, out: Any) -> bool:
     CROSSINGS["py_insert"] += 1
     try:
-        bridge = _STATE["bridge"]
-        if bridge is None:
-            raise PrologError("no store is connected to Prolog")
+        bridge = _connected()
         neem = _plain(req[0])
         triples = [
             Triple(_plain(s), _plain(p), _plain(o), since=float(since), until=float(until))
@@ -248,9 +251,7 @@ def py_scopes(req: Any, out: Any) -> bool:
     KnowRob's p*/o* semantics): what ``G during [S, U]`` with S and U free binds."""
     CROSSINGS["py_scopes"] += 1
     try:
-        bridge = _STATE["bridge"]
-        if bridge is None:
-            raise PrologError("no store is connected to Prolog")
+        bridge = _connected()
         neem, s, p, o = (_plain(x) for x in req)
         rows = []
         for doc in bridge.store.find(neem, s, p, o):
@@ -268,9 +269,7 @@ def py_annotations(req: Any, out: Any) -> bool:
     """Annotations ``[S, P, Value]`` of a subject and/or property (``''`` for any)."""
     CROSSINGS["py_annotations"] += 1
     try:
-        bridge = _STATE["bridge"]
-        if bridge is None:
-            raise PrologError("no store is connected to Prolog")
+        bridge = _connected()
         neem, s, p = (_plain(x) for x in req)
         rows = (
             f"[{term_text(a.s)},{term_text(a.p)},{term_text(a.v)}]"
@@ -286,9 +285,7 @@ def py_annotate(req: Any, out: Any) -> bool:
     """Store ``[S, P, Value]`` rows in the NEEM's annotations collection (load_owl/1)."""
     CROSSINGS["py_annotate"] += 1
     try:
-        bridge = _STATE["bridge"]
-        if bridge is None:
-            raise PrologError("no store is connected to Prolog")
+        bridge = _connected()
         neem = _plain(req[0])
         rows = [Annotation(_plain(s), _plain(p), _plain(v)) for s, p, v in req[1:]]
         bridge.store.insert_annotations(neem, rows)
@@ -305,9 +302,7 @@ def py_tf(req: Any, out: Any) -> bool:
 
     CROSSINGS["py_tf"] += 1
     try:
-        bridge = _STATE["bridge"]
-        if bridge is None:
-            raise PrologError("no store is connected to Prolog")
+        bridge = _connected()
         neem, frame, at = _plain(req[0]), _plain(req[1]), req[2]
         found = pose_at(bridge.store, neem, frame, None if at == -1 else float(at))
         if found is None:
