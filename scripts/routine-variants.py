@@ -1,6 +1,6 @@
 """Replay a chains file with routine predictors of other constructor parameters, beside the n-gram.
 
-usage: python scripts/routine-variants.py CHAINS [--odb DIR --mapping YAML] [NAME=JSON ...]
+usage: python scripts/routine-variants.py CHAINS [--odb DIR --mapping YAML] [--baselines A,B] [NAME=JSON ...]
 Each NAME=JSON builds ``RoutineOracle(distances, **JSON)`` (e.g. 'fixed={"tuning": "fixed"}');
 without any, a fixed set of alternatives to the defaults is replayed. Prints Top-1/3/5 per
 predictor and Top-1/Top-3 per kind of step: the exact 3-token context was already followed by
@@ -95,6 +95,7 @@ def main() -> None:
     parser.add_argument("chains")
     parser.add_argument("--odb")
     parser.add_argument("--mapping")
+    parser.add_argument("--baselines", default="ngram", help="comma-separated baselines to replay beside")
     parser.add_argument("variants", nargs="*", metavar="NAME=JSON")
     args = parser.parse_intermixed_args()
     chosen = dict(v.split("=", 1) for v in args.variants)
@@ -102,7 +103,8 @@ def main() -> None:
     ontology = build_ontology(args.odb, args.mapping, None)
     users = load_users(args.chains)
     kinds = Kinds()
-    methods = [*(Routine(ontology, name, params) for name, params in variants.items()), BASELINES["ngram"](), kinds]
+    methods = [*(Routine(ontology, name, params) for name, params in variants.items()), 
+               *(BASELINES[b.strip()]() for b in args.baselines.split(",") if b.strip()), kinds]
     result = replay(ontology, users, methods, 0)
     names = [m.name for m in methods[:-1]]
     groups = ("all", "exact", "known", "first", "after idle")

@@ -14,7 +14,9 @@ from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import PRESETS, Hyperparameters
 from oracle.algorithm.predictors import DEFAULT, PREDICTORS, make_predictor, predictor_spec
 from oracle.algorithm.reference import overall_distance
+from oracle.algorithm.contexts import ContextCounts
 from oracle.algorithm.routine import RoutineOracle, RoutineTask
+from oracle.algorithm.selftune import VariantWeights
 from oracle.algorithm.similarity import class_rows, option_distances
 from oracle.algorithm.records import Option, Step
 from oracle.errors import SettingsError
@@ -160,10 +162,25 @@ def test_vectorised_algorithm_2_equals_the_reference(a, b):
 def test_self_tuning_follows_the_variant_that_predicted_the_user_best():
     steps = synthetic_history(200, seed=6)
     model = RoutineOracle(random_matrix(6), orders=(0, 3), temperatures=(1.0,), lowest_orders=(0,)).fit(steps)
-    assert model.variants_ == (("idle", 0, 1.0, 0), ("idle", 3, 1.0, 0))
+    assert model.variants_ == (("idle", 0, 1.0, 0, True, False), ("idle", 3, 1.0, 0, True, False))
     assert model.weights_.hits[1] > model.weights_.hits[0]  # the routine is sequential
     assert model.weights_.weights("leader").tolist() == [0.0, 1.0]
+    assert model.weights_.weights("leader", 2.0).tolist() == [0.0, 1.0]  # clearly better: it leads
+    assert model.weights_.weights("leader", 1e6).tolist() == [1.0, 0.0]  # not by a million errors
     assert model.weights_.weights("fixed").tolist() == [1.0, 0.0]
+
+
+def test_a_variant_must_beat_the_first_by_the_margin_to_lead():
+    weights = VariantWeights(2)
+    even = [np.array([0.6, 0.4]), np.array([0.4, 0.6])]
+    weights.update(even, 1)   # the second variant was right once, the first not: a lead of 2/3
+    weights.update(even, 0)   # ... then the first was right: no lead
+    weights.update(even, 1)
+    assert weights.hits[1] - weights.hits[0] == pytest.approx(1 / 3)
+    assert weights.weights("leader").tolist() == [0.0, 1.0]
+    # lead 1/3 against sqrt(3 * (1/3)^2) = 0.577 standard units: one, not two, margins ahead
+    assert weights.weights("leader", 0.5).tolist() == [0.0, 1.0]
+    assert weights.weights("leader", 2.0).tolist() == [1.0, 0.0]
 
 
 def test_parameters_follow_the_estimator_contract():
@@ -173,7 +190,8 @@ def test_parameters_follow_the_estimator_contract():
     with pytest.raises(SettingsError, match="unknown parameter"):
         model.set_params(nope=1)
     for bad in ({"orders": ()}, {"temperatures": (0.0,)}, {"streams": ("sideways",)}, {"tuning": "best"},
-                {"penalty": -1.0}, {"context_depth": 1.5}, {"lowest_orders": (2,)}):
+                {"penalty": -1.0}, {"context_depth": 1.5}, {"lowest_orders": (2,)},
+                {"timed": ()}, {"timed": (1,)}, {"timed_from": -1}, {"discounts": ("yes",)}, {"switch_margin": -1.0}):
         with pytest.raises(SettingsError):
             RoutineOracle(kitchen(), **bad).fit([])
     fitted = RoutineOracle(kitchen()).fit([])
@@ -197,3 +215,37 @@ def test_the_registry_names_the_default_and_the_exact_thesis_oracle():
     assert predictor_spec(" Thesis ").name == "thesis"
     with pytest.raises(SettingsError, match="known: routine, routine-fixed, routine-mixture, thesis"):
         make_predictor("bayes", matrix)
+
+
+def test_timed_contexts_refine_a_context_by_the_part_of_day():
+    counts = ContextCounts(1, timed_from=1)
+    for token, part in ((7, 0), (1, 0), (7, 2), (2, 2), (7, 0), (1, 0), (7, 2), (2, 2), (7, 0)):
+        counts.add(token, part)
+    base = np.full(2, 0.5)
+    plain = counts.blend([1, 2], base, 1, 1).probabilities
+    assert plain[0] == pytest.approx(plain[1])  # after 7: once 1, once 2 ... twice each
+    morning = counts.blend([1, 2], base, 1, 1, part=0).probabilities
+    evening = counts.blend([1, 2], base, 1, 1, part=2).probabilities
+    assert morning[0] > morning[1] and evening[1] > evening[0]
+    assert counts.blend([1, 2], base, 1, 1, part=3).probabilities.tolist() == plain.tolist()  # never at night
+    untimed = ContextCounts(1)
+    for token, part in ((7, 0), (1, 0), (7, 2), (2, 2)):
+        untimed.add(token, part)
+    assert untimed.blend([1, 2], base, 1, 1, part=0).probabilities.tolist() == \
+        untimed.blend([1, 2], base, 1, 1).probabilities.tolist()
+
+
+def test_the_discounted_blend_is_absolute_discounting_with_the_estimated_discount():
+    counts = ContextCounts(1)
+    for token in (5, 1, 5, 1, 5, 2, 5, 3, 5):
+        counts.add(token)
+    base = np.array([0.1, 0.1, 0.1, 0.7])   # candidates 1, 2, 3 and 4 (never seen after 5)
+    ppm = counts.blend([1, 2, 3, 4], base, 1, 1).probabilities
+    discounted = counts.blend([1, 2, 3, 4], base, 1, 1, discount=True).probabilities
+    # D = n1 / (n1 + 2 n2) over the order-1 pairs: (5,2), (2,5), (5,3), (3,5) once, (5,1), (1,5) twice
+    d = 4 / (4 + 2 * 2)
+    assert counts.levels[1].discount() == pytest.approx(d)
+    assert discounted == pytest.approx([(2 - d + d * 3 * 0.1) / 4, (1 - d + d * 3 * 0.1) / 4,
+                                        (1 - d + d * 3 * 0.1) / 4, d * 3 * 0.7 / 4])
+    assert float(discounted.sum()) == pytest.approx(float(ppm.sum())) == pytest.approx(1.0)
+    assert discounted.tolist() != ppm.tolist()

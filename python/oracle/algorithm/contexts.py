@@ -2,14 +2,15 @@
 
 A token is an option id (>= 0) or ``IDLE``. ``ContextCounts`` counts, for every context of
 1..``max_order`` tokens, which token followed it, and how often each action was done at all
-(order 0). ``blend`` turns them into a distribution over candidates by PPM-C without exclusion,
-starting from a given base distribution instead of the uniform one.
+(order 0). ``blend`` turns them into a distribution over candidates by PPM-C without exclusion
+(or, with ``discount``, by interpolated absolute discounting), starting from a given base
+distribution instead of the uniform one.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -26,24 +27,68 @@ class Blend:
     count: np.ndarray      # how often, at that order
 
 
+@dataclass
+class _Level:
+    """Follower counts of the contexts of one order, with its count-of-counts (for the discount)."""
+
+    tables: dict[tuple[int, ...], dict[int, int]] = field(default_factory=dict)
+    totals: dict[tuple[int, ...], int] = field(default_factory=dict)
+    once: int = 0    # (context, follower) pairs seen exactly once
+    twice: int = 0   # ... exactly twice
+
+    def count(self, context: tuple[int, ...], token: int) -> None:
+        followers = self.tables.setdefault(context, {})
+        seen = followers.get(token, 0)
+        followers[token] = seen + 1
+        self.totals[context] = self.totals.get(context, 0) + 1
+        self.once += (seen == 0) - (seen == 1)
+        self.twice += (seen == 1) - (seen == 2)
+
+    def discount(self) -> float:
+        """Ney-Essen-Kneser ``D = n1 / (n1 + 2 n2)`` of this order; 0.5 before any repetition."""
+        if self.once + self.twice == 0 or self.once == 0:
+            return 0.5
+        return self.once / (self.once + 2 * self.twice)
+
+    def apply(self, context: tuple[int, ...], candidates: Sequence[int], probs: np.ndarray,
+              discount: bool) -> tuple[np.ndarray, np.ndarray] | None:
+        """The next blended distribution from ``probs`` and the candidates' counts, or None (unseen)."""
+        followers = self.tables.get(context)
+        if not followers:
+            return None
+        seen = np.array([followers.get(c, 0) for c in candidates], dtype=np.float64)
+        kinds, total = len(followers), self.totals[context]
+        if discount:
+            d = self.discount()
+            return (np.maximum(seen - d, 0.0) + d * kinds * probs) / total, seen
+        return (seen + kinds * probs) / (total + kinds), seen
+
+
 class ContextCounts:
-    """Follower counts of every context of 1..max_order tokens, kept incrementally."""
+    """Follower counts of every context of 1..max_order tokens, kept incrementally.
 
-    def __init__(self, max_order: int) -> None:
+    With ``timed_from`` >= 0, every context of that order or more is counted a second time keyed
+    by the part of day of the token that followed it (``(part,) + context``), so that ``blend`` can
+    put "this context at this part of day" right above "this context".
+    """
+
+    def __init__(self, max_order: int, timed_from: int = -1) -> None:
         self.max_order = max_order
+        self.timed_from = timed_from
         self.tokens: list[int] = []
-        self.tables: list[dict[tuple[int, ...], dict[int, int]]] = [{} for _ in range(max_order + 1)]
-        self.totals: list[dict[tuple[int, ...], int]] = [{} for _ in range(max_order + 1)]
+        self.levels = [_Level() for _ in range(max_order + 1)]
+        self.timed = [_Level() for _ in range(max_order + 1)]
 
-    def add(self, token: int) -> None:
+    def add(self, token: int, part: int = -1) -> None:
+        """Count ``token`` after every current context; ``part`` is its part of day (-1 unknown)."""
         history = self.tokens
         for n in range(0 if token != IDLE else 1, self.max_order + 1):  # idle is no action: no order-0 count
             if len(history) < n:
                 break
             context = tuple(history[len(history) - n:]) if n else ()
-            followers = self.tables[n].setdefault(context, {})
-            followers[token] = followers.get(token, 0) + 1
-            self.totals[n][context] = self.totals[n].get(context, 0) + 1
+            self.levels[n].count(context, token)
+            if 0 <= self.timed_from <= n and part >= 0:
+                self.timed[n].count((part, *context), token)
         history.append(token)
 
     def context(self, n: int) -> tuple[int, ...] | None:
@@ -52,9 +97,13 @@ class ContextCounts:
             return ()
         return tuple(self.tokens[-n:]) if len(self.tokens) >= n else None
 
-    def blend(self, candidates: Sequence[int], base: np.ndarray, max_order: int, min_order: int = 0) -> Blend:
+    def blend(self, candidates: Sequence[int], base: np.ndarray, max_order: int, min_order: int = 0,
+              part: int = -1, discount: bool = False) -> Blend:
         """``P_n(c) = (n(ctx_n, c) + u_n P_{n-1}(c)) / (N(ctx_n) + u_n)`` from ``P_{-1} = base`` up to
-        ``max_order``; an unseen context leaves the distribution as it is (PPM-C, no exclusion)."""
+        ``max_order``; an unseen context leaves the distribution as it is (PPM-C, no exclusion).
+        With ``discount``: ``P_n(c) = (max(n(ctx_n, c) - D_n, 0) + D_n u_n P_{n-1}(c)) / N(ctx_n)``.
+        When ``part`` is known (>= 0) and the counts are timed, the level ``(part,) + ctx_n``
+        follows each timed level ``ctx_n`` in the same way (the explanation keeps the untimed levels)."""
         probs = base.astype(np.float64, copy=True)
         order = np.full(len(candidates), -1, dtype=np.int64)
         count = np.zeros(len(candidates), dtype=np.int64)
@@ -62,13 +111,15 @@ class ContextCounts:
             context = self.context(n)
             if context is None:
                 break
-            followers = self.tables[n].get(context)
-            if not followers:
+            step = self.levels[n].apply(context, candidates, probs, discount)
+            if step is None:
                 continue
-            seen = np.array([followers.get(c, 0) for c in candidates], dtype=np.float64)
-            kinds = len(followers)
-            probs = (seen + kinds * probs) / (self.totals[n][context] + kinds)
+            probs, seen = step
             hit = seen > 0
             order[hit] = n
             count[hit] = seen[hit].astype(np.int64)
+            if part >= 0 and 0 <= self.timed_from <= n:
+                timed = self.timed[n].apply((part, *context), candidates, probs, discount)
+                if timed is not None:
+                    probs = timed[0]
         return Blend(probs, order, count)

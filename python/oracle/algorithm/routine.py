@@ -55,8 +55,8 @@ class RoutineTask(RankedTask):
 class _Stream:
     """One token stream: its context counts and each past action's predecessor tokens."""
 
-    def __init__(self, max_order: int, depth: int) -> None:
-        self.counts = ContextCounts(max_order)
+    def __init__(self, max_order: int, depth: int, timed_from: int) -> None:
+        self.counts = ContextCounts(max_order, timed_from)
         self.depth = depth
         self.before = Rows(depth)     # per past action: predecessors 1..depth (START padded)
 
@@ -74,15 +74,17 @@ class RoutineOracle(EstimatorParams):
     ("leader": the best so far, "mixture": posterior weights, "fixed": the first variant).
     """
 
-    _param_names = ("distances", "opening_tasks", "orders", "temperatures", "lowest_orders", "streams", "context_depth",
+    _param_names = ("distances", "opening_tasks", "orders", "temperatures", "lowest_orders", "timed", "timed_from",
+                    "discounts", "streams", "context_depth", "switch_margin",
                     "context_decay", "tuning", "task_factor", "object_factor", "penalty",
                     "time_of_day_penalty", "event_horizon_forward")
 
     def __init__(self, distances: Any = None, *, opening_tasks: frozenset[str] = frozenset(),
                  orders: tuple[int, ...] = (3, 5), temperatures: tuple[float, ...] = (0.5, 2.0),
-                 lowest_orders: tuple[int, ...] = (0, 1),
+                 lowest_orders: tuple[int, ...] = (0, 1), timed: tuple[bool, ...] = (True,),
+                 timed_from: int = 1, discounts: tuple[bool, ...] = (False,),
                  streams: tuple[str, ...] = ("idle",), context_depth: int = 3, context_decay: float = 0.5,
-                 tuning: str = "leader", task_factor: float = THESIS_DEFAULTS.task_factor,
+                 tuning: str = "leader", switch_margin: float = 2.0, task_factor: float = THESIS_DEFAULTS.task_factor,
                  object_factor: float = THESIS_DEFAULTS.object_factor, penalty: float = THESIS_DEFAULTS.penalty,
                  time_of_day_penalty: float = THESIS_DEFAULTS.time_of_day_penalty,
                  event_horizon_forward: int = THESIS_DEFAULTS.event_horizon_forward) -> None:
@@ -91,10 +93,14 @@ class RoutineOracle(EstimatorParams):
         self.orders = orders
         self.temperatures = temperatures
         self.lowest_orders = lowest_orders
+        self.timed = timed
+        self.timed_from = timed_from
+        self.discounts = discounts
         self.streams = streams
         self.context_depth = context_depth
         self.context_decay = context_decay
         self.tuning = tuning
+        self.switch_margin = switch_margin
         self.task_factor = task_factor
         self.object_factor = object_factor
         self.penalty = penalty
@@ -110,6 +116,12 @@ class RoutineOracle(EstimatorParams):
         if not self.lowest_orders or any(isinstance(n, bool) or not isinstance(n, int) or n not in (0, 1)
                                          for n in self.lowest_orders):
             raise SettingsError(f"{name}: lowest_orders must be 0 or 1, got {self.lowest_orders!r}")
+        if not self.timed or any(not isinstance(t, bool) for t in self.timed):
+            raise SettingsError(f"{name}: timed must be True or False values, got {self.timed!r}")
+        if not self.discounts or any(not isinstance(t, bool) for t in self.discounts):
+            raise SettingsError(f"{name}: discounts must be True or False values, got {self.discounts!r}")
+        if isinstance(self.timed_from, bool) or not isinstance(self.timed_from, int) or self.timed_from < 0:
+            raise SettingsError(f"{name}: timed_from must be a whole number >= 0, got {self.timed_from!r}")
         if not self.temperatures or any(not (isinstance(t, (int, float)) and math.isfinite(t) and t > 0)
                                         for t in self.temperatures):
             raise SettingsError(f"{name}: temperatures must be positive numbers, got {self.temperatures!r}")
@@ -119,7 +131,7 @@ class RoutineOracle(EstimatorParams):
             raise SettingsError(f"{name}: tuning must be one of {', '.join(TUNINGS)}, got {self.tuning!r}")
         if not isinstance(self.context_depth, int) or self.context_depth < 0:
             raise SettingsError(f"{name}: context_depth must be a whole number >= 0, got {self.context_depth!r}")
-        for value, what in ((self.context_decay, "context_decay"), (self.task_factor, "task_factor"),
+        for value, what in ((self.context_decay, "context_decay"), (self.switch_margin, "switch_margin"), (self.task_factor, "task_factor"),
                             (self.object_factor, "object_factor"), (self.penalty, "penalty"),
                             (self.time_of_day_penalty, "time_of_day_penalty")):
             if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value < 0:
@@ -128,14 +140,16 @@ class RoutineOracle(EstimatorParams):
     def fit(self, history: Iterable[Step]) -> RoutineOracle:
         self._validate()
         self._raw_params = tuple(self.get_params().values())
-        self.variants_ = tuple(product(self.streams, self.orders, self.temperatures, self.lowest_orders))
+        self.variants_ = tuple(product(self.streams, self.orders, self.temperatures, self.lowest_orders,
+                                      self.timed, self.discounts))
         self.weights_ = VariantWeights(len(self.variants_))
         self._values = np.asarray(self.distances.values, dtype=np.float64)
         self.options_: list[Option] = []
         self._ids: dict[Option, int] = {}
         self._classes = np.empty((0, 3), dtype=np.int64)
         self._table = np.zeros((0, 0))
-        self._streams = {s: _Stream(max(self.orders), self.context_depth) for s in self.streams}
+        self._streams = {s: _Stream(max(self.orders), self.context_depth,
+                                        self.timed_from if any(self.timed) else -1) for s in self.streams}
         self._executed = Rows(1)        # per past action: option id
         self._tod = Rows(1)             # per past action: time-of-day code, -1 unknown
         self._position = Rows(1)        # per past action: its position in the history
@@ -208,9 +222,10 @@ class RoutineOracle(EstimatorParams):
             self._executed.append(token)
             self._tod.append(_TOD.get(step.time_of_day or "", -1))
             self._position.append(position)
+        part = _TOD.get(step.time_of_day or "", -1)
         for name, stream in self._streams.items():
             if name == "idle" or token != IDLE:
-                stream.counts.add(token)
+                stream.counts.add(token, part)
         self._step_ids.append(token)
         self._next.append(-1)
         self.n_steps_ = position + 1
@@ -237,14 +252,14 @@ class RoutineOracle(EstimatorParams):
         context = {name: context_distance(table, s.recent(), s.before.view, self.penalty, self.context_decay)
                    for name, s in self._streams.items() if any(v[0] == name for v in chosen)}
         base: dict[tuple[str, float], np.ndarray] = {}
-        blends: dict[tuple[str, int, float, int], Blend] = {}
+        blends: dict[tuple[str, int, float, int, bool, bool], Blend] = {}
         probabilities = []
-        for stream, order, tau, lowest in chosen:
+        for stream, order, tau, lowest, timed, discount in chosen:
             if (stream, tau) not in base:
                 base[stream, tau] = normalised(similarity_mass(cand, executed, context[stream], differs, tau,
                                                                self.time_of_day_penalty))
-            blend = blends[stream, order, tau, lowest] = self._streams[stream].counts.blend(
-                ids, base[stream, tau], order, lowest)
+            blend = blends[stream, order, tau, lowest, timed, discount] = self._streams[stream].counts.blend(
+                ids, base[stream, tau], order, lowest, now_code if timed else -1, discount)
             probabilities.append(blend.probabilities)
         return probabilities, [blends[v] for v in chosen], cand
 
@@ -256,7 +271,7 @@ class RoutineOracle(EstimatorParams):
         offered, now = offered_options(current, time_of_day)
         if not offered:
             return Ranking(())
-        weights = self.weights_.weights(self.tuning)
+        weights = self.weights_.weights(self.tuning, self.switch_margin)
         used = np.flatnonzero(weights > 0).tolist()  # the leader alone, unless mixing
         probabilities, blends, cand = self._variant_probabilities(offered, now, used)
         mixed = np.zeros(len(offered))

@@ -25,24 +25,36 @@ class VariantWeights:
     def __init__(self, n_variants: int) -> None:
         self.scores = np.zeros(n_variants)
         self.hits = np.zeros(n_variants)
+        self.spread = np.zeros(n_variants)   # sum over steps of (hit_v - hit_0)^2
         self.steps = 0
 
     def update(self, probabilities: Sequence[np.ndarray], truth: int) -> None:
         """Score every variant's distribution over the offered options on the option done."""
+        first = 0.0
         for v, p in enumerate(probabilities):
             self.scores[v] += math.log(max(float(p[truth]), FLOOR))
             # rank as ``rank`` orders: by probability, ties by the order offered
             better = int(np.count_nonzero(p > p[truth])) + int(np.count_nonzero(p[:truth] == p[truth]))
-            self.hits[v] += ((better < 1) + (better < 3) + (better < 5)) / 3.0
+            hit = ((better < 1) + (better < 3) + (better < 5)) / 3.0
+            first = hit if v == 0 else first
+            self.hits[v] += hit
+            self.spread[v] += (hit - first) ** 2
         self.steps += 1
 
-    def weights(self, tuning: str) -> np.ndarray:
+    def weights(self, tuning: str, margin: float = 0.0) -> np.ndarray:
+        """All weight on one variant ("leader", "fixed") or the posterior ("mixture"). With
+        ``margin`` z > 0 the leader is chosen among the variants whose lead over the first one is
+        z standard errors or more, ``hits_v - hits_0 > z sqrt(sum_t (hit_vt - hit_0t)^2)`` (the
+        first is always eligible): a variant must beat the default clearly to replace it."""
         n = self.scores.size
         out = np.zeros(n)
         if tuning == "fixed" or self.steps == 0:
             out[0] = 1.0
         elif tuning == "leader":
-            out[int(np.argmax(self.hits))] = 1.0  # ties: the earlier (default) variant
+            lead = self.hits - self.hits[0]
+            eligible = lead > margin * np.sqrt(self.spread)
+            eligible[0] = True
+            out[int(np.argmax(np.where(eligible, self.hits, -np.inf)))] = 1.0  # ties: the earlier variant
         else:
             shifted = self.scores - self.scores.max()
             out = np.exp(shifted)
