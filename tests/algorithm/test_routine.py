@@ -249,3 +249,28 @@ def test_the_discounted_blend_is_absolute_discounting_with_the_estimated_discoun
                                         (1 - d + d * 3 * 0.1) / 4, d * 3 * 0.7 / 4])
     assert float(discounted.sum()) == pytest.approx(float(ppm.sum())) == pytest.approx(1.0)
     assert discounted.tolist() != ppm.tolist()
+
+
+def test_at_order_0_the_counts_of_this_part_of_day_replace_the_overall_counts():
+    counts = ContextCounts(0, timed_from=0)
+    for token, part in ((1, 0), (1, 0), (1, 0), (2, 2)):
+        counts.add(token, part)
+    base = np.full(2, 0.5)
+    plain = counts.blend([1, 2], base, 0).probabilities
+    evening = counts.blend([1, 2], base, 0, part=2)
+    assert plain[0] > plain[1] and evening.probabilities[1] > evening.probabilities[0]
+    assert evening.probabilities == pytest.approx([0.25, 0.75])   # (0 + 1 * 0.5) / 2, (1 + 0.5) / 2
+    assert evening.order.tolist() == [0, 0] and evening.count.tolist() == [3, 1]   # explained untimed
+    assert counts.blend([1, 2], base, 0, part=3).probabilities.tolist() == plain.tolist()  # nothing at night yet
+
+
+def test_the_routine_predictor_counts_what_the_user_does_at_this_part_of_day():
+    morning, evening = Option(POUR, THERMOS, RED), Option(OPEN_, DRAWER)
+    steps = [act(morning, (morning, evening), "Morning") for _ in range(6)]
+    steps += [act(evening, (morning, evening), "Evening") for _ in range(3)]
+    only_counts = {"orders": (0,), "lowest_orders": (0,)}
+    timed = RoutineOracle(kitchen(), **only_counts).fit(steps)
+    untimed = RoutineOracle(kitchen(), timed=(False,), **only_counts).fit(steps)
+    assert timed.rank((morning, evening), "Evening").options()[0] == evening
+    assert timed.rank((morning, evening), "Morning").options()[0] == morning
+    assert untimed.rank((morning, evening), "Evening").options()[0] == morning   # done twice as often

@@ -69,7 +69,8 @@ class ContextCounts:
 
     With ``timed_from`` >= 0, every context of that order or more is counted a second time keyed
     by the part of day of the token that followed it (``(part,) + context``), so that ``blend`` can
-    put "this context at this part of day" right above "this context".
+    put "this context at this part of day" right above "this context"; at order 0 the part-of-day
+    counts replace the overall ones (``blend``).
     """
 
     def __init__(self, max_order: int, timed_from: int = -1) -> None:
@@ -102,8 +103,10 @@ class ContextCounts:
         """``P_n(c) = (n(ctx_n, c) + u_n P_{n-1}(c)) / (N(ctx_n) + u_n)`` from ``P_{-1} = base`` up to
         ``max_order``; an unseen context leaves the distribution as it is (PPM-C, no exclusion).
         With ``discount``: ``P_n(c) = (max(n(ctx_n, c) - D_n, 0) + D_n u_n P_{n-1}(c)) / N(ctx_n)``.
-        When ``part`` is known (>= 0) and the counts are timed, the level ``(part,) + ctx_n``
-        follows each timed level ``ctx_n`` in the same way (the explanation keeps the untimed levels)."""
+        When ``part`` is known (>= 0) and the counts are timed from order ``t``, the level
+        ``(part,) + ctx_n`` follows each level ``ctx_n``, n >= max(t, 1), in the same way; at order 0
+        (t = 0) it replaces the level ``()`` unless nothing was done at this part of day yet. The
+        explanation (``order``, ``count``) keeps the untimed levels."""
         probs = base.astype(np.float64, copy=True)
         order = np.full(len(candidates), -1, dtype=np.int64)
         count = np.zeros(len(candidates), dtype=np.int64)
@@ -111,15 +114,23 @@ class ContextCounts:
             context = self.context(n)
             if context is None:
                 break
-            step = self.levels[n].apply(context, candidates, probs, discount)
-            if step is None:
+            timed = part >= 0 and 0 <= self.timed_from <= n
+            plain = self.levels[n].apply(context, candidates, probs, discount)
+            if plain is None:
                 continue
-            probs, seen = step
+            seen = plain[1]
             hit = seen > 0
             order[hit] = n
             count[hit] = seen[hit].astype(np.int64)
-            if part >= 0 and 0 <= self.timed_from <= n:
-                timed = self.timed[n].apply((part, *context), candidates, probs, discount)
-                if timed is not None:
-                    probs = timed[0]
+            if n == 0 and timed:
+                # order 0 at a known part of day: the user's counts at this part of day replace
+                # the overall counts (Q already lends evidence across parts of day)
+                refined = self.timed[0].apply((part,), candidates, probs, discount)
+                probs = plain[0] if refined is None else refined[0]
+                continue
+            probs = plain[0]
+            if timed:
+                refined = self.timed[n].apply((part, *context), candidates, probs, discount)
+                if refined is not None:
+                    probs = refined[0]
         return Blend(probs, order, count)

@@ -82,7 +82,7 @@ class RoutineOracle(EstimatorParams):
     def __init__(self, distances: Any = None, *, opening_tasks: frozenset[str] = frozenset(),
                  orders: tuple[int, ...] = (3, 5), temperatures: tuple[float, ...] = (0.5, 2.0),
                  lowest_orders: tuple[int, ...] = (0, 1), timed: tuple[bool, ...] = (True,),
-                 timed_from: int = 1, discounts: tuple[bool, ...] = (False,),
+                 timed_from: int = 0, discounts: tuple[bool, ...] = (False,),
                  streams: tuple[str, ...] = ("idle",), context_depth: int = 3, context_decay: float = 0.5,
                  tuning: str = "leader", switch_margin: float = 2.0, task_factor: float = THESIS_DEFAULTS.task_factor,
                  object_factor: float = THESIS_DEFAULTS.object_factor, penalty: float = THESIS_DEFAULTS.penalty,
