@@ -28,17 +28,19 @@ from oracle.ontology import OdbOntology, build_ontology  # noqa: E402
 
 ALTERNATIVES = {
     "default": {},
-    "orders 2,3,5": {"orders": [2, 3, 5]},
-    "orders 1-5": {"orders": [1, 2, 3, 4, 5]},
-    "temperatures 0.5,1,2": {"temperatures": [0.5, 1.0, 2.0]},
-    "streams idle+through": {"orders": [2, 3, 5], "streams": ["idle", "through"]},
-    "time_of_day_penalty 2": {"time_of_day_penalty": 2.0},
-    "context_depth 1": {"context_depth": 1},
-    "context_depth 5": {"context_depth": 5},
-    "context_decay 1": {"context_decay": 1.0},
+    "before: untimed, margin 0": {"timed": [False], "switch_margin": 0.0},
+    "untimed": {"timed": [False]},
+    "margin 0": {"switch_margin": 0.0},
+    "margin 1": {"switch_margin": 1.0},
+    "timed from order 1": {"timed_from": 1},
+    "timed + untimed variants": {"timed": [True, False]},
+    "discount variants": {"discounts": [False, True]},
+    "orders 3,5,2,1": {"orders": [3, 5, 2, 1]},
+    "temperatures 0.25,2": {"temperatures": [0.25, 2.0]},
+    "context_decay 0.3": {"context_decay": 0.3},
+    "time_of_day_penalty 1": {"time_of_day_penalty": 1.0},
+    "fixed": {"tuning": "fixed"},
     "mixture": {"tuning": "mixture"},
-    "fixed (3, 0.5, n0 0)": {"orders": [3], "temperatures": [0.5], "lowest_orders": [0], "tuning": "fixed"},
-    "fixed (3, 0.5, n0 1)": {"orders": [3], "temperatures": [0.5], "lowest_orders": [1], "tuning": "fixed"},
 }
 
 
@@ -95,7 +97,7 @@ def main() -> None:
     parser.add_argument("chains")
     parser.add_argument("--odb")
     parser.add_argument("--mapping")
-    parser.add_argument("--baselines", default="ngram", help="comma-separated baselines to replay beside")
+    parser.add_argument("--baselines", default="ngram,bigram,kn3", help="comma-separated baselines to replay beside")
     parser.add_argument("variants", nargs="*", metavar="NAME=JSON")
     args = parser.parse_intermixed_args()
     chosen = dict(v.split("=", 1) for v in args.variants)

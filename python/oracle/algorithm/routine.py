@@ -1,10 +1,11 @@
 """The routine predictor (the default): exact-context counts of the user's own actions, backed off
 to ontology similarity of past situations, self-tuned on the user's own history.
 
-For each variant ``v = (stream, order, tau)`` the probability of a candidate is PPM-C over the
-user's exact contexts whose lowest level is the similarity distribution ``Q`` of ``kernel``; the
-variants are averaged with weights proportional to how well each predicted the user's past steps
-(``selftune``). docs/algorithm.md, "Routine predictor", gives every formula and the reasons.
+For each variant ``v = (stream, order, tau, n0, timed, discount)`` the probability of a candidate
+is PPM-C over the user's exact contexts (and the same contexts at this part of day) whose lowest
+level is the similarity distribution ``Q`` of ``kernel``; the predictor ranks with the variant
+that predicted the user's past steps best (``selftune``). docs/algorithm.md, "Routine predictor",
+gives every formula and the reasons.
 """
 
 from __future__ import annotations
@@ -70,8 +71,10 @@ class RoutineOracle(EstimatorParams):
 
     ``distances`` is the DistanceMatrix; ``task_factor``, ``object_factor``, ``penalty`` and
     ``time_of_day_penalty`` are the thesis's Table 4.2 values, used in the same roles;
-    ``orders``, ``temperatures`` and ``streams`` span the variants that ``tuning`` weighs
-    ("leader": the best so far, "mixture": posterior weights, "fixed": the first variant).
+    ``orders``, ``temperatures``, ``lowest_orders``, ``timed`` (part-of-day contexts from order
+    ``timed_from``), ``discounts`` and ``streams`` span the variants that ``tuning`` weighs
+    ("leader": the best so far that leads the first variant by ``switch_margin`` standard errors,
+    "mixture": posterior weights, "fixed": the first variant).
     """
 
     _param_names = ("distances", "opening_tasks", "orders", "temperatures", "lowest_orders", "timed", "timed_from",

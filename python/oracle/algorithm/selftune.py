@@ -5,7 +5,8 @@ what the user did is added to that variant's score. "mixture" weighs the variant
 ``softmax(score)`` (the Bayesian posterior of the variants under a uniform prior). "leader" keeps a
 second score, the variant's hits as the user's tablet would show them (truth at rank 1, in the top
 3, in the top 5, each counting 1/3), and puts all weight on the best so far (follow the leader;
-ties go to the earlier variant). "fixed" always uses the first variant.
+ties go to the earlier variant) among the variants that lead the first one by a margin of
+standard errors. "fixed" always uses the first variant.
 """
 
 from __future__ import annotations
