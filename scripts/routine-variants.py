@@ -97,7 +97,7 @@ def main() -> None:
     parser.add_argument("chains")
     parser.add_argument("--odb")
     parser.add_argument("--mapping")
-    parser.add_argument("--baselines", default="ngram,bigram,kn3", help="comma-separated baselines to replay beside")
+    parser.add_argument("--baselines", default="ngram", help="comma-separated baselines to replay beside")
     parser.add_argument("variants", nargs="*", metavar="NAME=JSON")
     args = parser.parse_intermixed_args()
     chosen = dict(v.split("=", 1) for v in args.variants)
