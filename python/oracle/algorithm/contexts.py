@@ -45,8 +45,8 @@ class _Level:
         self.twice += (seen == 1) - (seen == 2)
 
     def discount(self) -> float:
-        """Ney-Essen-Kneser ``D = n1 / (n1 + 2 n2)`` of this order; 0.5 before any repetition."""
-        if self.once + self.twice == 0 or self.once == 0:
+        """Ney-Essen-Kneser ``D = n1 / (n1 + 2 n2)`` of this order; 0.5 while no pair was seen exactly once."""
+        if self.once == 0:
             return 0.5
         return self.once / (self.once + 2 * self.twice)
 

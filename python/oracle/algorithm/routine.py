@@ -134,8 +134,8 @@ class RoutineOracle(EstimatorParams):
             raise SettingsError(f"{name}: tuning must be one of {', '.join(TUNINGS)}, got {self.tuning!r}")
         if not isinstance(self.context_depth, int) or self.context_depth < 0:
             raise SettingsError(f"{name}: context_depth must be a whole number >= 0, got {self.context_depth!r}")
-        for value, what in ((self.context_decay, "context_decay"), (self.switch_margin, "switch_margin"), (self.task_factor, "task_factor"),
-                            (self.object_factor, "object_factor"), (self.penalty, "penalty"),
+        for value, what in ((self.context_decay, "context_decay"), (self.switch_margin, "switch_margin"),
+                            (self.task_factor, "task_factor"), (self.object_factor, "object_factor"), (self.penalty, "penalty"),
                             (self.time_of_day_penalty, "time_of_day_penalty")):
             if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value < 0:
                 raise SettingsError(f"{name}: {what} must be a number >= 0, got {value!r}")
