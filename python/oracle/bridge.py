@@ -382,9 +382,10 @@ class Bridge:
     def __init__(self, store: Store, neem_id: str, ontology: OdbOntology | None = None) -> None:
         from pyswip import Atom
 
+        from oracle.store.ids import resolve_neem
+
         self.store = store
-        self.neem_id = neem_id
-        store.neem(neem_id)  # StoreError when the NEEM does not exist
+        self.neem_id = neem_id = resolve_neem(store, neem_id)  # an id or an alias; StoreError when neither
         with _LOCK:
             _attach_engine()
             _ensure_loaded()

@@ -29,10 +29,11 @@ def open_target(args: argparse.Namespace, *, write: bool = False) -> Target:
     ``--neem`` and the ontology the NEEM was logged with."""
     from oracle.ontology.provenance import ontology_for
     from oracle.store import open_store
+    from oracle.store.ids import resolve_neem
 
     store = open_store(args.store, create=False, read_only=not write)
     try:
-        neem_id = args.neem if args.neem is not None else default_neem(store)
+        neem_id = resolve_neem(store, args.neem) if args.neem is not None else default_neem(store)
         info = store.neem(neem_id)
         given = ontology_from(args) if any(getattr(args, name, None) is not None for name in ONTOLOGY_DESTS) else None
         onto = ontology_for(neem_id, info.meta, given, lambda: ontology_from(args))

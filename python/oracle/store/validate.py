@@ -15,7 +15,7 @@ from oracle.errors import StoreError
 
 #: Registry fields and the types a reader expects of them (None allowed for each).
 _META_TYPES: dict[str, tuple[type, ...]] = {"created_by": (str,), "created_at": (str,), "temporary": (bool,),
-                                            "id": (str,), "name": (str,)}  # fmt: skip
+                                            "id": (str,), "name": (str,), "alias": (str,)}  # fmt: skip
 _MAX_DEPTH = 64
 
 
