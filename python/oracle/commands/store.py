@@ -92,7 +92,8 @@ def run_neems(args: argparse.Namespace) -> int:
     print(f"{'NEEM':<{wid}}  {'name':<{wname}}  {'user':<{wuser}}  {'actions':>7}  {'begin':<25}  {'end':<25}  kept")
     for row in rows:
         print(
-            f"{row.id:<{wid}}  {row.name or '-':<{wname}}  {row.user or '-':<{wuser}}  {row.actions:>7}  {_iso(row.begin, clocked[row.id]) or '-':<25}"
+            f"{row.id:<{wid}}  {row.name or '-':<{wname}}"
+            f"  {row.user or '-':<{wuser}}  {row.actions:>7}  {_iso(row.begin, clocked[row.id]) or '-':<25}"
             f"  {_iso(row.end, clocked[row.id]) or '-':<25}  {'no' if row.temporary else 'yes'}"
         )
     return 0
