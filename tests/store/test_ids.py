@@ -86,3 +86,13 @@ def test_cli_reading_commands_take_the_alias_or_the_id(tmp_path, capsys):
         assert expected in err and len(err.strip().splitlines()) == 1
     assert main(["export", "--store", str(db), "--neem", second, "--out", str(tmp_path / "d")]) == 0
     assert capsys.readouterr().out.startswith(f"{second}: ")
+
+
+def test_two_builders_that_picked_one_name_do_not_both_land(store):
+    first = store.create_staging(new_neem_id(), meta={ALIAS_KEY: "alice"})
+    second_target = new_neem_id()
+    second = store.create_staging(second_target, meta={ALIAS_KEY: "alice"})
+    store.swap_in(first, store.neem(first).meta["staging_for"])
+    with pytest.raises(StoreError, match="the name 'alice' is taken by NEEM"):
+        store.swap_in(second, second_target, replace=False)
+    assert [alias for alias in (i.meta.get(ALIAS_KEY) for i in store.neems())] == ["alice"]

@@ -18,6 +18,7 @@ from typing import Any
 from bson.decimal128 import Decimal128
 
 from oracle.errors import StoreError
+from oracle.store.ids import check_alias_free
 from oracle.store.meta import new_meta
 from oracle.store.validate import check_document
 from oracle.store.model import (
@@ -178,6 +179,7 @@ class Store(ABC):
         on SQLite; on MongoDB a rename per collection (KnowRob has no transactions)."""
         from oracle.store.staging import READY, STAGED_BY
         with self.transaction():
+            check_alias_free(self, staging, target)  # two builders may have picked one name
             if self.has_neem(target):
                 if not replace:
                     raise StoreError(f"{self.location}: NEEM {target!r} already exists")

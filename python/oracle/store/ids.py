@@ -69,6 +69,16 @@ def resolve_neem(store: Store, name: str) -> str:
     return info.id
 
 
+def check_alias_free(store: Store, staging: str, target: str) -> None:
+    """The alias of the NEEM being swapped in as ``target`` names no other NEEM (StoreError)."""
+    alias = store.neem(staging).meta.get(ALIAS_KEY)
+    if not isinstance(alias, str):
+        return
+    other = next((info for info in store.neems() if info.id != target and alias in (info.id, alias_of(info))), None)
+    if other is not None:
+        raise StoreError(f"{store.location}: the name {alias!r} is taken by NEEM {other.id!r} (choose another name)")
+
+
 def unique_alias(store: Store, base: str) -> str:
     """``base``, or ``base-2``, ``base-3``... : the first that names no NEEM yet."""
     infos = store.neems()
