@@ -295,6 +295,18 @@ class Store(ABC):
     def _propagate(self, neem_id: str, subject: str, gained: tuple[Any, ...]) -> None:
         """Append ``gained`` to ``o*`` of taxonomic and ``p*`` of other documents containing ``subject``."""
 
+    # -- changing stored documents (store.project: kb_project's merge, until/since, kb_unproject)
+    @abstractmethod
+    def _overlapping(self, neem_id: str, s: Term, p: Term, o: Term, scope: Scope | None) -> list[tuple[Any, float, float]]:
+        """(key, since, until) of the documents with these asserted s, p, o (None: any) whose
+        scope overlaps ``scope`` (None: any time); the key addresses the document below."""
+
+    @abstractmethod
+    def _rescope(self, neem_id: str, key: Any, since: float, until: float) -> None: ...
+
+    @abstractmethod
+    def _delete_triples(self, neem_id: str, keys: Sequence[Any]) -> None: ...
+
     # -- hierarchy --------------------------------------------------------------------------
     def hierarchy(self, neem_id: str) -> Hierarchy:
         """The NEEM's taxonomy, read once from its subClassOf/subPropertyOf documents."""
