@@ -121,11 +121,11 @@ store_reset :-
 %!  store_insert(+Triples) is det.
 %!  store_insert(+Triples, +Merge) is det.
 %   Write a list of `triple(S,P,O,Since,Until)` into the current backend (kb_project/1).
-%   Merge (memory backend; the Python stores only append) says what happens to a stored
-%   triple with the same S, P, O whose scope overlaps the new one: `union` (the default,
-%   KnowRob's kb_project) replaces both by one triple over the union of their scopes;
-%   `intersect` (KnowRob's `until`/`since` projection) narrows the stored triple to the
-%   intersection instead of adding the new one.
+%   Merge says what happens to a stored triple with the same S, P, O whose scope overlaps
+%   the new one: `union` (the default, KnowRob's kb_project) replaces both by one triple
+%   over the union of their scopes; `intersect` (KnowRob's `until`/`since` projection)
+%   narrows the stored triple to the intersection instead of adding the new one. Both
+%   backends do it (the Python stores in python/oracle/store/project.py).
 store_insert(Triples) :-
     store_insert(Triples, union).
 
@@ -135,7 +135,7 @@ store_insert(Triples, Merge) :-
     maplist(check_insert, Triples),
     (   backend_(python(Neem))
     ->  maplist(insert_row, Triples, Rows),
-        neem_store:py_insert([Neem|Rows], Reply),
+        neem_store:py_insert([Neem, Merge|Rows], Reply),
         reply_rows(Reply, _)
     ;   forall(member(T, Triples), mem_insert(Merge, T))
     ).
@@ -164,15 +164,25 @@ retractall_overlapping(S, P, O, Since, Until) :-
            erase(Ref)).
 
 %!  store_retract(+Patterns) is det.
-%   Delete every stored triple matching one of the `t(S,P,O)` patterns (kb_unproject/1).
-%   Only the memory backend deletes: the Python stores offer no delete, so there it is an
-%   error.
+%   Delete every stored triple matching one of the `t(S,P,O)` patterns (kb_unproject/1);
+%   an unbound term matches any value.
 store_retract(Patterns) :-
     must_be(list, Patterns),
     maplist(check_pattern, Patterns),
-    (   backend_(python(_))
-    ->  throw(error(neem_store_error('kb_unproject: the NEEM stores are append-only (no delete)'), _))
+    (   backend_(python(Neem))
+    ->  maplist(retract_row, Patterns, Rows),
+        neem_store:py_retract([Neem|Rows], Reply),
+        reply_rows(Reply, _)
     ;   forall(member(t(S, P, O), Patterns), retractall(mem_triple(S, P, O, _, _)))
+    ).
+
+retract_row(t(S, P, O), [S1, P1, O1]) :-
+    maplist(retract_term, [S, P, O], [S1, P1, O1]).
+
+retract_term(T, R) :-
+    (   var(T) -> R = []
+    ;   atomic(T) -> R = [T]
+    ;   domain_error(retract_value, T)
     ).
 
 %!  store_annotation(?Subject, ?Property, ?Value) is nondet.

@@ -7,7 +7,9 @@ registers three foreign predicates in module ``neem_store`` and nothing else tou
     one conjunction of triple patterns -> ``Store.match`` (one SQL join / one aggregation
     pipeline); each solution of the predicate is a chunk of up to ``CHUNK`` rows.
 ``py_insert(+Request, -Reply)``
-    kb_project's triples -> ``Store.insert``.
+    kb_project's triples -> ``store.project`` (merged with or narrowing the stored scopes).
+``py_retract(+Request, -Reply)``
+    kb_unproject's patterns -> ``store.project.retract``.
 ``py_request(-Request)``
     the arguments of the question Python is asking, so values reach Prolog as terms and
     never as query text.
@@ -52,7 +54,7 @@ _STATE: dict[str, Any] = {"bridge": None, "loaded": False, "request": None}
 _GENERATORS: dict[int, Iterator[str]] = {}
 _NEXT_KEY = [1]
 #: How many times Prolog called into Python (crossings), per foreign predicate.
-CROSSINGS = {"py_match": 0, "py_insert": 0, "py_request": 0, "py_scopes": 0, "py_annotations": 0, "py_annotate": 0,
+CROSSINGS = {"py_match": 0, "py_insert": 0, "py_retract": 0, "py_request": 0, "py_scopes": 0, "py_annotations": 0, "py_annotate": 0,
              "py_tf": 0}
 
 
@@ -225,15 +227,36 @@ def py_match(req: Any, out: Any, handle: Any) -> Any:
 
 
 def py_insert(req: Any, out: Any) -> bool:
+    """``[Neem, Merge | [S, P, O, Since, Until]...]``: kb_project's triples, ``Merge`` being
+    ``union`` or ``intersect`` (store.project)."""
+    from oracle.store.project import project
+
     CROSSINGS["py_insert"] += 1
     try:
         bridge = _connected()
-        neem = _plain(req[0])
+        neem, merge = _plain(req[0]), _plain(req[1])
         triples = [
             Triple(_plain(s), _plain(p), _plain(o), since=float(since), until=float(until))
-            for s, p, o, since, until in req[1:]
+            for s, p, o, since, until in req[2:]
         ]
-        bridge.store.insert(neem, triples)
+        project(bridge.store, neem, triples, merge)
+        out.unify("[]")
+    except Exception as error:
+        out.unify(_error_text(error))
+    return True
+
+
+def py_retract(req: Any, out: Any) -> bool:
+    """``[Neem | [[S], [P], [O]]...]``: kb_unproject's patterns, ``[]`` for any value."""
+    from oracle.store.project import retract
+
+    CROSSINGS["py_retract"] += 1
+    try:
+        bridge = _connected()
+        neem = _plain(req[0])
+        for pattern in req[1:]:
+            s, p, o = (_plain(term[0]) if term else None for term in pattern)
+            retract(bridge.store, neem, s, p, o)
         out.unify("[]")
     except Exception as error:
         out.unify(_error_text(error))
@@ -333,6 +356,7 @@ def _ensure_loaded() -> None:
 
     Prolog.register_foreign(py_match, arity=2, module="neem_store", nondeterministic=True)
     Prolog.register_foreign(py_insert, arity=2, module="neem_store")
+    Prolog.register_foreign(py_retract, arity=2, module="neem_store")
     Prolog.register_foreign(py_request, arity=1, module="neem_store")
     Prolog.register_foreign(py_scopes, arity=2, module="neem_store")
     Prolog.register_foreign(py_annotations, arity=2, module="neem_store")
