@@ -2,6 +2,10 @@
 
 Closure and propagation are computed here once, in Python, so SQLite and MongoDB hold the very
 same documents; a backend only stores documents, finds them, and rewrites closures on request.
+
+Why this module is large: it is the one contract both backends implement (registry, atomic
+replacement, inserting with closures, reading, and the primitives store/project.py changes
+stored documents with); split, a backend could satisfy half of it.
 """
 
 from __future__ import annotations
