@@ -301,9 +301,12 @@ class Store(ABC):
 
     # -- changing stored documents (store.project: kb_project's merge, until/since, kb_unproject)
     @abstractmethod
-    def _overlapping(self, neem_id: str, s: Term, p: Term, o: Term, scope: Scope | None) -> list[tuple[Any, float, float]]:
-        """(key, since, until) of the documents with these asserted s, p, o (None: any) whose
-        scope overlaps ``scope`` (None: any time); the key addresses the document below."""
+    def _overlapping(
+        self, neem_id: str, s: Term, p: Term, o: Term, scope: Scope | None, graph: str | None = None
+    ) -> list[tuple[Any, float, float]]:
+        """(key, since, until) of the documents with these asserted s, p, o (None: any) in
+        ``graph`` (None: any) whose scope overlaps ``scope`` (None: any time); the key
+        addresses the document for the two methods below."""
 
     @abstractmethod
     def _rescope(self, neem_id: str, key: Any, since: float, until: float) -> None: ...

@@ -174,10 +174,12 @@ class MongoStore(Store):
         coll.update_many({"o*": subject, "p": {"$in": taxonomic}}, {"$addToSet": {"o*": {"$each": list(gained)}}})
         coll.update_many({"p*": subject, "p": {"$nin": taxonomic}}, {"$addToSet": {"p*": {"$each": list(gained)}}})
 
-    def _overlapping(self, neem_id: str, s: Any, p: Any, o: Any, scope: Scope | None) -> list[tuple[Any, float, float]]:
+    def _overlapping(
+        self, neem_id: str, s: Any, p: Any, o: Any, scope: Scope | None, graph: str | None = None
+    ) -> list[tuple[Any, float, float]]:
         if not self.has_neem(neem_id):
             raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
-        query = _pattern_filter(TriplePattern(s, p, o), self.number_format, exact=True)
+        query = _pattern_filter(TriplePattern(s, p, o, graph), self.number_format, exact=True)
         query.update(_scope_filter(scope, self.number_format))
         found = []
         for doc in self._coll(neem_id, "triples").find(query, {"_id": 1, "scope": 1}):

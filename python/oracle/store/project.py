@@ -19,7 +19,8 @@ Merge = Literal["union", "intersect"]
 def project(store: Store, neem_id: str, triples: Iterable[Triple], merge: Merge = "union") -> int:
     """Write ``triples`` as KnowRob's kb_project does; return how many new documents were stored.
 
-    A triple with no stored document of the same s, p and o whose scope overlaps its own is
+    A triple with no stored document of the same s, p and o in its graph (each ontology graph
+    keeps its own copy of a fact, as KnowRob's load_owl does) whose scope overlaps its own is
     stored as new. Otherwise, with ``union``, the first overlapping document gets the union of
     the scopes and the others are deleted; with ``intersect`` each overlapping document is
     narrowed to its intersection with the new scope and nothing is added. One transaction on
@@ -39,8 +40,8 @@ def project(store: Store, neem_id: str, triples: Iterable[Triple], merge: Merge 
     pending: dict[tuple[Any, ...], list[Triple]] = {}
     with store.transaction():
         for triple in batch:
-            key = (triple.s, triple.p, type(triple.o), triple.o)
-            stored = store._overlapping(neem_id, triple.s, triple.p, triple.o, Scope(triple.since, triple.until))
+            key = (triple.s, triple.p, type(triple.o), triple.o, triple.graph)
+            stored = store._overlapping(neem_id, triple.s, triple.p, triple.o, Scope(triple.since, triple.until), triple.graph)
             waiting = pending.setdefault(key, [])
             mates = [t for t in waiting if t.since <= triple.until and t.until >= triple.since]
             others = [t for t in waiting if not (t.since <= triple.until and t.until >= triple.since)]
@@ -62,14 +63,15 @@ def project(store: Store, neem_id: str, triples: Iterable[Triple], merge: Merge 
         return store.insert(neem_id, new) if new else 0
 
 
-def retract(store: Store, neem_id: str, s: Any = None, p: Any = None, o: Any = None) -> int:
-    """Delete the documents whose asserted s, p and o match (None: any), as kb_unproject;
-    return how many. The closures of other documents are left as they are (KnowRob does the
+def retract(store: Store, neem_id: str, s: Any = None, p: Any = None, o: Any = None, graph: str | None = None) -> int:
+    """Delete the documents whose asserted s, p and o match (None: any) in ``graph`` (None:
+    any; KnowRob's drop_graph is ``retract(store, neem, graph=G)``), as kb_unproject; return
+    how many. The closures of other documents are left as they are (KnowRob does the
     same), so retracting a subClassOf triple does not shrink the ``o*`` already stored."""
     for term in (s, p, o):
         check_literal(term)
     with store.transaction():
-        found = [doc for doc, _, _ in store._overlapping(neem_id, s, p, o, None)]
+        found = [doc for doc, _, _ in store._overlapping(neem_id, s, p, o, None, graph)]
         if found:
             store._delete_triples(neem_id, found)
             store._hierarchies.pop(neem_id, None)

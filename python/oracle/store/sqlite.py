@@ -666,10 +666,12 @@ class SQLiteStore(Store):
                     updates.append((new_cid, bson.encode(doc, codec_options=_CODEC), rowid))
                 self._conn.executemany(f"UPDATE {table} SET {column}=?, raw=? WHERE id=?", updates)
 
-    def _overlapping(self, neem_id: str, s: Any, p: Any, o: Any, scope: Scope | None) -> list[tuple[Any, float, float]]:
+    def _overlapping(
+        self, neem_id: str, s: Any, p: Any, o: Any, scope: Scope | None, graph: str | None = None
+    ) -> list[tuple[Any, float, float]]:
         self._require(neem_id)
         query = SqlCompiler(self, _table(neem_id, "triples"), scope)
-        query.add(TriplePattern(s, p, o), exact=True)
+        query.add(TriplePattern(s, p, o, graph), exact=True)
         sql = f"SELECT t0.id, t0.since, t0.until FROM {query.from_clause()} WHERE {query.where()} ORDER BY t0.id"
         return [(rowid, 0.0 if since is None else since, math.inf if until is None else until)
                 for rowid, since, until in self._conn.execute(sql, query.params).fetchall()]  # fmt: skip
