@@ -36,7 +36,7 @@ from oracle.ontology.provenance import META_KEY as ONTOLOGY_KEY, check_logged_wi
 from oracle.store import RDF_TYPE, Store, Triple, TriplePattern, Var
 from oracle.store.base import SUMMARY_KEY
 from oracle.store.ids import ALIAS_KEY, alias_of, check_alias, find_neem, is_object_id, new_neem_id, unique_alias
-from oracle.store.tbox import TBox, load_tbox, tbox_from_graph
+from oracle.store.tbox import TBox, load_tbox, tbox_for
 from oracle.timeline import IDLE_THRESHOLD_S, Instant, Moment, TimeValueError, has_clock, is_idle_gap, sequence_instant
 
 _SLUG = re.compile(r"[^A-Za-z0-9_\-]+")
@@ -223,7 +223,7 @@ class NeemLogger:
         created = store.create_staging(neem_id, user=user, meta={**extra, "temporary": temporary})
         staging: str | None = created
         try:
-            load_tbox(store, created, tbox if tbox is not None else tbox_from_graph(onto.graph))
+            load_tbox(store, created, tbox if tbox is not None else tbox_for(onto))
             if not hidden and not (replace and store.has_neem(neem_id)):
                 store.swap_in(created, neem_id, replace=False)
                 staging = None
