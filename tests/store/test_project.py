@@ -46,9 +46,11 @@ def test_an_overlapping_projection_extends_the_stored_scope(neem):
     assert scopes(neem) == [(10.0, 30.0)]
     assert project(neem, "n", [fact(40, 50)]) == 1  # apart: a second document
     assert scopes(neem) == [(10.0, 30.0), (40.0, 50.0)]
+    neem.update_meta("n", **{SUMMARY_KEY: {"actions": 0, "mark": neem.write_mark("n")}})
     assert project(neem, "n", [fact(25, 45)]) == 0  # bridges both: one document is left
     assert scopes(neem) == [(10.0, 50.0)]
     assert neem.count("n") == 1
+    assert neem.neem("n").meta.get(SUMMARY_KEY) is None  # a delete drops the kept summary
 
 
 def test_a_projection_of_another_value_is_another_fact(neem):

@@ -38,6 +38,7 @@ def project(store: Store, neem_id: str, triples: Iterable[Triple], merge: Merge 
             raise StoreError(f"scope of {triple} ends before it starts")
     #: New facts not stored yet, by (s, p, o): what a later triple of the batch merges with.
     pending: dict[tuple[Any, ...], list[Triple]] = {}
+    deleted = False
     with store.transaction():
         for triple in batch:
             key = (triple.s, triple.p, type(triple.o), triple.o, triple.graph)
@@ -55,12 +56,17 @@ def project(store: Store, neem_id: str, triples: Iterable[Triple], merge: Merge 
             until = max([triple.until, *(u for _, _, u in stored), *(t.until for t in mates)])
             if stored:
                 store._rescope(neem_id, stored[0][0], since, until)
-                store._delete_triples(neem_id, [doc for doc, _, _ in stored[1:]])
+                if len(stored) > 1:
+                    store._delete_triples(neem_id, [doc for doc, _, _ in stored[1:]])
+                    deleted = True
                 pending[key] = others
             else:
                 pending[key] = [*others, _scoped(triple, since, until)]
         new = [t for ts in pending.values() for t in ts]
-        return store.insert(neem_id, new) if new else 0
+        count = store.insert(neem_id, new) if new else 0
+        if deleted:  # a delete may bring the write mark back to a value a kept summary has seen
+            store.update_meta(neem_id, **{SUMMARY_KEY: None})
+        return count
 
 
 def retract(store: Store, neem_id: str, s: Any = None, p: Any = None, o: Any = None, graph: str | None = None) -> int:
