@@ -96,3 +96,17 @@ def test_two_builders_that_picked_one_name_do_not_both_land(store):
     with pytest.raises(StoreError, match="the name 'alice' is taken by NEEM"):
         store.swap_in(second, second_target, replace=False)
     assert [alias for alias in (i.meta.get(ALIAS_KEY) for i in store.neems())] == ["alice"]
+
+
+def test_a_dump_with_a_bad_name_is_refused_and_changes_nothing(store, tmp_path):
+    import json
+
+    hex_id = new_neem_id()
+    store.create_neem(hex_id, meta={ALIAS_KEY: "alice"})
+    export_neem(store, hex_id, tmp_path / "dump")
+    meta = json.loads((tmp_path / "dump" / "meta.json").read_text())
+    (tmp_path / "dump" / "meta.json").write_text(json.dumps({**meta, ALIAS_KEY: "a b"}))
+    store.drop_neem(hex_id)
+    with pytest.raises(StoreError, match=r"meta\.json: invalid NEEM name 'a b'"):
+        load_dump(store, tmp_path / "dump")
+    assert store.neems() == [] and store.staging_neems() == []
