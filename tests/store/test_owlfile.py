@@ -78,7 +78,7 @@ def test_a_file_without_an_ontology_is_refused(tmp_path):
 def soma_onto():
     from oracle.ontology import build_ontology
 
-    return build_ontology(soma_dir=find_soma())
+    return build_ontology(None, None, find_soma())  # positional: the corpus suite wraps build_ontology
 
 
 @pytest.mark.parametrize("backend", ["sqlite", "mongomock"])
