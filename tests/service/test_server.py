@@ -256,6 +256,14 @@ def test_simulate_command_drives_the_service_and_reports_latencies(server):
     assert call(server, "/api/neems/sim-cli/choice")[1]["task"] == str(rows[-1].action)
     _, latest = call(server, "/api/neems/sim-cli/situation")
     assert latest["history"] >= len(rows) - 1 and latest["ranking"]
+    # a second run by the same name drives the same NEEM (no second one, no "already exists")
+    from oracle.service.robot import drive
+
+    later = [row for row in persona_rows(2, 3, 2)[1] if row.time > rows[-1].time][:2]
+    announced: list[str] = []
+    again = drive(server, "p2", later, "sim-cli", announce=announced.append)
+    assert again.errors == [] and announced == [made.group(1)]
+    assert [n["id"] for n in call(server, "/api/neems")[1] if n["name"] == "sim-cli"] == [made.group(1)]
 
 
 @pytest.mark.parametrize("args,message", [
