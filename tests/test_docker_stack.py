@@ -600,7 +600,8 @@ def test_make_n_up_prints_the_compose_command():
     assert "docker compose -f docker/docker-compose.yml -f docker/host-port.yml --env-file docker/.env up -d" in host.stdout
     down = subprocess.run([MAKE, "-n", "down"], cwd=ROOT, capture_output=True, text=True, timeout=30)
     assert "docker compose -f docker/docker-compose.yml -f docker/host-port.yml --env-file" in down.stdout
-    assert down.stdout.rstrip().endswith(" down")
+    down_commands = [line for line in down.stdout.splitlines() if not line.startswith("make[")]
+    assert down_commands[-1].endswith(" down")
 
 
 @needs_make
