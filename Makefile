@@ -4,7 +4,7 @@ VENV ?= .venv
 PY := $(VENV)/bin/python
 PLT := $(sort $(shell find prolog -name '*.plt'))
 
-.PHONY: setup test lint test-python test-prolog bench demo up down test-mongo clean help
+.PHONY: setup test lint test-python test-prolog bench demo up up-host down test-mongo clean help
 
 help:
 	@echo "make setup      install python3-venv and SWI-Prolog (Debian) if missing, create $(VENV), install the package"
@@ -12,7 +12,7 @@ help:
 	@echo "make lint       ruff and mypy (config in pyproject.toml)"
 	@echo "make bench      benchmarks (printed figures)"
 	@echo "make demo       the main job on the embedded default store"
-	@echo "make up/down    docker compose dev stack with MongoDB (needs a Docker engine)"
+	@echo "make up/down    docker compose dev stack with MongoDB (needs a Docker engine); make up-host: MongoDB also on 127.0.0.1"
 	@echo "make test-mongo the whole suite against the MongoDB at NEEM_MONGO_URI"
 
 setup:
@@ -49,18 +49,20 @@ bench:
 demo:
 	$(PY) -m oracle demo
 
-up:
-	@command -v docker >/dev/null 2>&1 || { echo "make up: docker not found; install Docker Engine with the compose plugin (docs/docker.md)" >&2; exit 1; }
-	@docker compose version >/dev/null 2>&1 || { echo "make up: the docker compose plugin is missing (docs/docker.md)" >&2; exit 1; }
-	@test -f docker/.env || { echo "make up: docker/.env is missing; run: cp docker/.env.example docker/.env  and set its passwords" >&2; exit 1; }
-	@! grep -q '=change-me' docker/.env || { echo "make up: docker/.env still has change-me passwords; set real ones first" >&2; exit 1; }
-	docker compose -f docker/docker-compose.yml --env-file docker/.env up -d --build
+COMPOSE = docker compose -f docker/docker-compose.yml
+up up-host:
+	@command -v docker >/dev/null 2>&1 || { echo "make $@: docker not found; install Docker Engine with the compose plugin (docs/docker.md)" >&2; exit 1; }
+	@docker compose version >/dev/null 2>&1 || { echo "make $@: the docker compose plugin is missing (docs/docker.md)" >&2; exit 1; }
+	@test -f docker/.env || { cp docker/.env.example docker/.env && echo "make $@: made docker/.env from docker/.env.example (no secrets in it)"; }
+	@! grep -q 'PASSWORD=' docker/.env || { echo "make $@: docker/.env holds a password; move it into docker/secrets/ (docs/docker.md) and delete the line" >&2; exit 1; }
+	@python3 scripts/docker-secrets.py docker/secrets
+	$(COMPOSE) $(if $(filter up-host,$@),-f docker/host-port.yml) --env-file docker/.env up -d --build
 	@echo "NEEMs in the stack's MongoDB:"
-	@docker compose -f docker/docker-compose.yml --env-file docker/.env run --rm --no-deps oracle neems
+	@$(COMPOSE) --env-file docker/.env run --rm --no-deps oracle neems
 
 down:
 	@command -v docker >/dev/null 2>&1 || { echo "make down: docker not found" >&2; exit 1; }
-	docker compose -f docker/docker-compose.yml --env-file $$( [ -f docker/.env ] && echo docker/.env || echo docker/.env.example ) down
+	$(COMPOSE) -f docker/host-port.yml --env-file $$( [ -f docker/.env ] && echo docker/.env || echo docker/.env.example ) down
 
 test-mongo:
 	@$(PY) scripts/check-mongo.py -- $(PY) -m pytest -q

@@ -1,7 +1,7 @@
 """One-shot loader of the compose stack: import the sample chains into an empty NEEM store.
 
-Run as ``python /app/load-samples.py [CHAINS.jsonl]`` with ``NEEM_MONGO_URI`` set (which ``import``
-then writes to: it is the default store). ``docker compose up``
+Run as ``python /app/load-samples.py [CHAINS.jsonl]`` with ``NEEM_MONGO_URI`` (and
+``NEEM_MONGO_PASSWORD_FILE``) set, which ``import`` then writes to: it is the default store. ``docker compose up``
 starts this container again on every run, so it imports only while the database holds no NEEM yet
 (a NEEM is a collection prefix: ``<neem>_triples``, KnowRob 2.x layout); otherwise it does nothing.
 """
@@ -34,10 +34,18 @@ def main(argv: Sequence[str] | None = None, client_factory=None) -> int:
         from oracle.paths import data_dir
 
         chains = data_dir() / "sample-chains.jsonl"
-    uri = os.environ.get("NEEM_MONGO_URI")
-    if not uri:
+    if not os.environ.get("NEEM_MONGO_URI"):
         print("load-samples: NEEM_MONGO_URI is not set", file=sys.stderr)
         return 2
+    from oracle.errors import StoreError
+    from oracle.store import mongo_uri_from_env
+
+    try:
+        uri = mongo_uri_from_env()  # with the password of NEEM_MONGO_PASSWORD_FILE
+    except StoreError as error:
+        print(f"load-samples: {error}", file=sys.stderr)
+        return 2
+    assert uri is not None
     if not chains.is_file():
         print(f"load-samples: {chains}: no such file", file=sys.stderr)
         return 1
@@ -50,7 +58,9 @@ def main(argv: Sequence[str] | None = None, client_factory=None) -> int:
         db = client.get_default_database(default=DEFAULT_DB)
         existing = neem_collections(db.list_collection_names())
     except PyMongoError as error:
-        print(f"load-samples: cannot read the store ({type(error).__name__}: {error})", file=sys.stderr)
+        from oracle.store.uri import scrub
+
+        print(f"load-samples: cannot read the store ({type(error).__name__}: {scrub(str(error), uri)})", file=sys.stderr)
         return 1
     if existing:
         print(f"load-samples: {db.name} already holds {len(existing)} NEEM(s); nothing imported")

@@ -11,6 +11,10 @@
       store_match_scoped/3,     % +Patterns, +Scope, -FactScope
       store_insert/1,           % +Triples
       store_insert/2,           % +Triples, +Merge
+      store_insert/3,           % +Triples, +Merge, +Graph
+      store_graph_version/2,    % +Graph, -Version
+      store_set_graph_version/3, % +Ontology, +Version, +Graph
+      store_drop_graph/1,       % +Graph
       store_retract/1,          % +Patterns
       store_annotation/3,       % ?Subject, ?Property, ?Value
       store_insert_annotations/1, % +Annotations
@@ -52,6 +56,7 @@ A question scope is `scope(Since, Until)`: a fact is visible when its own scope 
 :- dynamic mem_triple/5.        % S, P, O, Since, Until
 :- dynamic mem_annotation/3.    % S, P, Value
 :- dynamic mem_tf/3.            % ChildFrame, Stamp, [RefFrame, [X,Y,Z], [QX,QY,QZ,QW]]
+:- dynamic mem_version/3.       % Graph, Ontology, Version
 
 backend_(memory).
 
@@ -116,28 +121,70 @@ store_reset :-
     retractall(mem_triple(_,_,_,_,_)),
     retractall(mem_annotation(_,_,_)),
     retractall(mem_tf(_,_,_)),
+    retractall(mem_version(_,_,_)),
     store_use_memory.
 
 %!  store_insert(+Triples) is det.
 %!  store_insert(+Triples, +Merge) is det.
 %   Write a list of `triple(S,P,O,Since,Until)` into the current backend (kb_project/1).
-%   Merge (memory backend; the Python stores only append) says what happens to a stored
-%   triple with the same S, P, O whose scope overlaps the new one: `union` (the default,
-%   KnowRob's kb_project) replaces both by one triple over the union of their scopes;
-%   `intersect` (KnowRob's `until`/`since` projection) narrows the stored triple to the
-%   intersection instead of adding the new one.
+%   Merge says what happens to a stored triple with the same S, P, O whose scope overlaps
+%   the new one: `union` (the default, KnowRob's kb_project) replaces both by one triple
+%   over the union of their scopes; `intersect` (KnowRob's `until`/`since` projection)
+%   narrows the stored triple to the intersection instead of adding the new one. Both
+%   backends do it (the Python stores in python/oracle/store/project.py).
 store_insert(Triples) :-
     store_insert(Triples, union).
 
 store_insert(Triples, Merge) :-
+    store_insert(Triples, Merge, user).
+
+%!  store_insert(+Triples, +Merge, +Graph) is det.
+%   store_insert/2 into the named graph Graph (KnowRob's `graph` of a document: `user` for
+%   kb_project, the ontology's name for load_owl). A fact merges with its copies in the same
+%   graph. The memory backend keeps no graphs.
+store_insert(Triples, Merge, Graph) :-
     must_be(list, Triples),
     must_be(oneof([union, intersect]), Merge),
+    must_be(atom, Graph),
     maplist(check_insert, Triples),
     (   backend_(python(Neem))
     ->  maplist(insert_row, Triples, Rows),
-        neem_store:py_insert([Neem|Rows], Reply),
+        neem_store:py_insert([Neem, Merge, Graph|Rows], Reply),
         reply_rows(Reply, _)
     ;   forall(member(T, Triples), mem_insert(Merge, T))
+    ).
+
+%!  store_graph_version(+Graph, -Version) is semidet.
+%   Version is the `tripledbVersionString` marker of named graph Graph (KnowRob's
+%   get_ontology_version/2): what load_owl compares with the file's version.
+store_graph_version(Graph, Version) :-
+    must_be(atom, Graph),
+    (   backend_(python(Neem))
+    ->  neem_store:py_graph([Neem, get, Graph, '', ''], Reply),
+        reply_rows(Reply, [[_, Version]|_])
+    ;   once(mem_version(Graph, _, Version))
+    ).
+
+%!  store_set_graph_version(+Ontology, +Version, +Graph) is det.
+%   Record that Graph holds version Version of ontology Ontology (KnowRob's
+%   set_ontology_version/3: a document without scope or closures).
+store_set_graph_version(Ontology, Version, Graph) :-
+    must_be(atom, Ontology), must_be(atomic, Version), must_be(atom, Graph),
+    (   backend_(python(Neem))
+    ->  neem_store:py_graph([Neem, set, Graph, Ontology, Version], Reply),
+        reply_rows(Reply, _)
+    ;   assertz(mem_version(Graph, Ontology, Version))
+    ).
+
+%!  store_drop_graph(+Graph) is det.
+%   Delete every triple of named graph Graph, its version marker with them (KnowRob's
+%   drop_graph/1). The memory backend keeps no graphs: it forgets the marker only.
+store_drop_graph(Graph) :-
+    must_be(atom, Graph),
+    (   backend_(python(Neem))
+    ->  neem_store:py_graph([Neem, drop, Graph, '', ''], Reply),
+        reply_rows(Reply, _)
+    ;   retractall(mem_version(Graph, _, _))
     ).
 
 mem_insert(Merge, triple(S, P, O, Since, Until)) :-
@@ -164,15 +211,25 @@ retractall_overlapping(S, P, O, Since, Until) :-
            erase(Ref)).
 
 %!  store_retract(+Patterns) is det.
-%   Delete every stored triple matching one of the `t(S,P,O)` patterns (kb_unproject/1).
-%   Only the memory backend deletes: the Python stores offer no delete, so there it is an
-%   error.
+%   Delete every stored triple matching one of the `t(S,P,O)` patterns (kb_unproject/1);
+%   an unbound term matches any value.
 store_retract(Patterns) :-
     must_be(list, Patterns),
     maplist(check_pattern, Patterns),
-    (   backend_(python(_))
-    ->  throw(error(neem_store_error('kb_unproject: the NEEM stores are append-only (no delete)'), _))
+    (   backend_(python(Neem))
+    ->  maplist(retract_row, Patterns, Rows),
+        neem_store:py_retract([Neem|Rows], Reply),
+        reply_rows(Reply, _)
     ;   forall(member(t(S, P, O), Patterns), retractall(mem_triple(S, P, O, _, _)))
+    ).
+
+retract_row(t(S, P, O), [S1, P1, O1]) :-
+    maplist(retract_term, [S, P, O], [S1, P1, O1]).
+
+retract_term(T, R) :-
+    (   var(T) -> R = []
+    ;   atomic(T) -> R = [T]
+    ;   domain_error(retract_value, T)
     ).
 
 %!  store_annotation(?Subject, ?Property, ?Value) is nondet.

@@ -3,7 +3,8 @@
     python scripts/check-mongo.py [--env-file docker/.env] [--timeout 3] [-- COMMAND ...]
 
 The URI is ``NEEM_MONGO_URI`` from the environment or, when that is unset, the local compose stack's
-built from the env file (root account, database ``NEEM_TEST_DB``, 127.0.0.1:``MONGO_PORT``). If no
+built from the env file (root account with the password of ``docker/secrets/mongo_root_password``,
+database ``NEEM_TEST_DB``, 127.0.0.1:``MONGO_PORT``, which ``make up-host`` publishes). If no
 server answers a ping within the timeout, one line goes to stderr and the exit code is 1. Otherwise
 COMMAND (if given) replaces this process with ``NEEM_MONGO_URI`` set in its environment.
 """
@@ -37,13 +38,18 @@ def read_env_file(path: Path) -> dict[str, str]:
     return values
 
 
-def stack_uri(env: Mapping[str, str]) -> str:
-    """URI of the local compose stack's MongoDB for the test suite (root account, test database)."""
+def stack_uri(env: Mapping[str, str], secrets_dir: Path) -> str:
+    """URI of the local compose stack's MongoDB for the test suite (root account, test database;
+    the root password from the stack's secrets file)."""
     user = quote(env.get("MONGO_ROOT_USER", "root"), safe="")
-    password = quote(env.get("MONGO_ROOT_PASSWORD", ""), safe="")
+    secret = secrets_dir / "mongo_root_password"
+    try:
+        password = secret.read_text().rstrip("\r\n")
+    except OSError:
+        raise LookupError(f"{os.path.relpath(secret)} is missing (`make up-host` makes it)") from None
     port = env.get("MONGO_PORT", "27017")
     database = env.get("NEEM_TEST_DB", "roslog_test")
-    return f"mongodb://{user}:{password}@127.0.0.1:{port}/{database}?authSource=admin"
+    return f"mongodb://{user}:{quote(password, safe='')}@127.0.0.1:{port}/{database}?authSource=admin"
 
 
 def redact(uri: str) -> str:
@@ -56,10 +62,10 @@ def resolve_uri(environ: Mapping[str, str], env_file: Path) -> str:
     if uri:
         return uri
     if env_file.is_file():
-        return stack_uri(read_env_file(env_file))
+        return stack_uri(read_env_file(env_file), env_file.parent / "secrets")
     raise LookupError(
         f"NEEM_MONGO_URI is not set and {os.path.relpath(env_file)} is missing "
-        "(run `cp docker/.env.example docker/.env` and `make up`, or set NEEM_MONGO_URI)"
+        "(start the stack with its loopback port: `make up-host`, or set NEEM_MONGO_URI)"
     )
 
 
@@ -100,7 +106,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     problem = ping(uri, args.timeout)
     if problem is not None:
         print(
-            f"test-mongo: no MongoDB at {redact(uri)}: {problem}; start one with `make up` or set NEEM_MONGO_URI",
+            f"test-mongo: no MongoDB at {redact(uri)}: {problem}; start one with `make up-host` or set NEEM_MONGO_URI",
             file=sys.stderr,
         )
         return 1

@@ -13,7 +13,8 @@ def test_demo_logs_ranks_writes_back_and_answers(tmp_path, capsys):
     assert main(["demo", "--store", str(store), "--days", "3"]) == 0
     out = capsys.readouterr().out
     assert "ranking written back as" in out and "why not" in out and "predicted chain:" in out
-    assert [n.id for n in open_store(store).neems()] == ["demo"]
-    # running it again replaces the demo NEEM instead of piling up copies
+    (first,) = [(n.id, n.meta["alias"]) for n in open_store(store).neems()]
+    assert first[1] == "demo"
+    # running it again replaces the demo NEEM (same id, same name) instead of piling up copies
     assert main(["demo", "--store", str(store), "--days", "2"]) == 0
-    assert [n.id for n in open_store(store).neems()] == ["demo"]
+    assert [(n.id, n.meta["alias"]) for n in open_store(store).neems()] == [first]

@@ -27,6 +27,7 @@ import yaml
 ROOT = Path(__file__).resolve().parent.parent
 DOCKER = ROOT / "docker"
 COMPOSE_FILE = DOCKER / "docker-compose.yml"
+HOST_PORT_FILE = DOCKER / "host-port.yml"
 ENV_EXAMPLE = DOCKER / ".env.example"
 DOCKERFILE = DOCKER / "Dockerfile"
 DOCS = ROOT / "docs" / "docker.md"
@@ -49,6 +50,11 @@ def load_script(path: Path, name: str):
 @pytest.fixture(scope="module")
 def compose() -> dict:
     return yaml.safe_load(COMPOSE_FILE.read_text())
+
+
+@pytest.fixture(scope="module")
+def host_port() -> dict:
+    return yaml.safe_load(HOST_PORT_FILE.read_text())
 
 
 @pytest.fixture(scope="module")
@@ -80,7 +86,7 @@ def final_stage() -> list[tuple[str, str]]:
 def test_compose_names_the_services_volume_and_image(compose):
     services = compose["services"]
     assert set(services) == SERVICES
-    assert services["mongo"]["image"] == "${MONGO_IMAGE:-mongo:7}"
+    assert services["mongo"]["image"] == "${MONGO_IMAGE:-mongo:7.0.28}"
     assert f"{VOLUME}:/data/db" in services["mongo"]["volumes"]
     assert VOLUME in compose["volumes"]
     assert "./mongo-init:/docker-entrypoint-initdb.d:ro" in services["mongo"]["volumes"]
@@ -100,16 +106,19 @@ def test_mongo_has_auth_and_a_mongosh_ping_healthcheck(compose):
     mongo = compose["services"]["mongo"]
     env = mongo["environment"]
     assert env["MONGO_INITDB_ROOT_USERNAME"].startswith("${MONGO_ROOT_USER:?")
-    assert env["MONGO_INITDB_ROOT_PASSWORD"].startswith("${MONGO_ROOT_PASSWORD:?")
+    assert env["MONGO_INITDB_ROOT_PASSWORD_FILE"] == "/run/secrets/mongo_root_password"
+    assert env["NEEM_APP_PASSWORD_FILE"] == "/run/secrets/neem_app_password"
     test = " ".join(mongo["healthcheck"]["test"])
     assert "mongosh" in test and "ping" in test
 
 
 def test_oracle_services_use_the_roslog_uri_with_authsource_admin(compose):
     for name in ORACLE_SERVICES:
-        uri = compose["services"][name]["environment"]["NEEM_MONGO_URI"]
-        assert uri.startswith("mongodb://${NEEM_APP_USER")
-        assert uri.endswith("@mongo:27017/${NEEM_DB:-roslog}?authSource=admin")
+        env = compose["services"][name]["environment"]
+        uri = env["NEEM_MONGO_URI"]
+        assert re.fullmatch(r"mongodb://\$\{NEEM_APP_USER:\?[^}]*\}@mongo:27017/\$\{NEEM_DB:-roslog\}\?authSource=admin", uri), uri
+        assert env["NEEM_MONGO_PASSWORD_FILE"] == "/run/secrets/neem_app_password"
+        assert compose["services"][name]["secrets"] == ["neem_app_password"]
 
 
 def test_startup_order_mongo_healthy_then_samples_then_oracle(compose):
@@ -123,25 +132,46 @@ def test_startup_order_mongo_healthy_then_samples_then_oracle(compose):
     assert loader["restart"] == "no"
 
 
-def test_ports_bind_loopback_only(compose):
-    published = []
+def test_the_stack_publishes_no_port_and_the_opt_in_binds_loopback_only(compose, host_port):
     for name, service in compose["services"].items():
         assert service.get("network_mode") != "host", name
-        for port in service.get("ports", []):
-            assert isinstance(port, str) and port.startswith("127.0.0.1:"), (name, port)
-            published.append(name)
-    assert published == ["mongo"]
+        assert "ports" not in service, name
+    assert set(host_port) == {"services"} and set(host_port["services"]) == {"mongo"}
+    assert host_port["services"]["mongo"]["ports"] == ["127.0.0.1:${MONGO_PORT:-27017}:27017"]
+    assert host_port["services"]["mongo"]["networks"] == ["default", "store"]
 
 
-def test_oracle_containers_have_no_route_out(compose):
-    assert compose["networks"]["store"]["internal"] is True
-    for name in ORACLE_SERVICES:
-        assert compose["services"][name]["networks"] == ["store"]
-    assert "store" in compose["services"]["mongo"]["networks"]
+def test_no_container_has_a_route_out(compose):
+    assert compose["networks"] == {"store": {"internal": True}}
+    for name, service in compose["services"].items():
+        assert service["networks"] == ["store"], name
+
+
+def test_passwords_reach_the_containers_as_secrets_files_only(compose):
+    assert compose["secrets"] == {
+        "mongo_root_password": {"file": "./secrets/mongo_root_password"},
+        "neem_app_password": {"file": "./secrets/neem_app_password"},
+    }
+    for name, service in compose["services"].items():
+        for key, value in service.get("environment", {}).items():
+            if "PASSWORD" in key:
+                assert key.endswith("_FILE") and value.startswith("/run/secrets/"), (name, key)
+                assert value.rsplit("/", 1)[1] in service["secrets"], (name, key)
+            assert "PASSWORD" not in str(value), (name, key)
+
+
+def test_images_are_pinned_to_exact_releases(compose):
+    image = compose["services"]["mongo"]["image"]
+    assert re.fullmatch(r"\$\{MONGO_IMAGE:-mongo:\d+\.\d+\.\d+\}", image), image
+    froms = [args.split()[0] for word, args in dockerfile_instructions() if word == "FROM"]
+    assert froms and all(re.fullmatch(r"debian:bookworm-\d{8}-slim", f) for f in froms), froms
+    assert len(set(froms)) == 1  # build and final stage on the same base
+    documented = DOCS.read_text()
+    assert froms[0] in documented and image.split(":-")[1].rstrip("}") in documented
 
 
 def test_every_compose_variable_is_in_env_example(compose, env_example):
-    used = set(re.findall(r"\$\{([A-Z_][A-Z0-9_]*)", COMPOSE_FILE.read_text()))
+    used = set(re.findall(r"\$\{([A-Z_][A-Z0-9_]*)", COMPOSE_FILE.read_text() + HOST_PORT_FILE.read_text()))
     assert used, "no ${VAR} in the compose file?"
     assert used <= set(env_example), used - set(env_example)
 
@@ -171,11 +201,12 @@ def test_env_file_is_ignored_and_not_committed():
     assert ignored.returncode == 0, "docker/.env is not git-ignored"
 
 
-def test_env_example_holds_placeholders_only(env_example):
-    secrets = {k: v for k, v in env_example.items() if "PASSWORD" in k}
-    assert set(secrets) == {"MONGO_ROOT_PASSWORD", "NEEM_APP_PASSWORD"}
-    assert all(v.startswith("change-me") for v in secrets.values()), secrets
+def test_env_example_holds_no_password(env_example):
+    assert not [k for k in env_example if "PASSWORD" in k or "SECRET" in k]
     assert env_example["NEEM_DB"] == "roslog"
+    ignored = subprocess.run(["git", "check-ignore", "-q", "docker/secrets/neem_app_password"], cwd=ROOT)
+    if (ROOT / ".git").exists():
+        assert ignored.returncode == 0, "docker/secrets/ is not git-ignored"
 
 
 def test_build_context_never_carries_env_files():
@@ -204,7 +235,8 @@ def _ignored(path: str, patterns: list[str]) -> bool:
 def test_legacy_builder_keeps_venv_git_and_env_out():
     assert not (DOCKER / "Dockerfile.dockerignore").exists(), "BuildKit would prefer it; keep one file"
     patterns = [line.strip() for line in DOCKERIGNORE.read_text().splitlines() if line.strip() and not line.startswith("#")]
-    for secret in (".venv/bin/python", ".git/HEAD", "docker/.env", "docker/.env.example", "build/lib/x.py"):
+    for secret in (".venv/bin/python", ".git/HEAD", "docker/.env", "docker/.env.example", "build/lib/x.py",
+                   "docker/secrets/mongo_root_password"):
         assert _ignored(secret, patterns), secret
     for needed in ("pyproject.toml", "setup.py", "python/oracle/cli.py", "ontology/mapping.yaml",
                    "prolog/neem_store.pl", "LICENSE", "docker/load-samples.py"):
@@ -248,7 +280,7 @@ def test_loader_defaults_to_the_packaged_sample_chains(loader, capsys):
 
 def test_dockerfile_base_packages_and_entrypoint():
     instructions = dockerfile_instructions()
-    assert [args.split()[0] for word, args in instructions if word == "FROM"] == ["debian:bookworm-slim"] * 2
+    assert [args.split()[0] for word, args in instructions if word == "FROM"] == ["debian:bookworm-20250811-slim"] * 2
     installs = [args for word, args in instructions if word == "RUN" and "apt-get install" in args]
     assert installs and all("--no-install-recommends" in args for args in installs)
     final = final_stage()
@@ -332,7 +364,7 @@ function database(name) {
            createUser: (spec) => { users[spec.user] = spec; calls.push(["createUser", name, spec]); },
            getCollection: (c) => collection(name, c) };
 }
-const context = { process: { env: JSON.parse(process.argv[3]) }, print: () => {},
+const context = { process: { env: JSON.parse(process.argv[3]) }, require, print: () => {},
                   NumberDecimal: (s) => ({ $numberDecimal: s }),
                   db: { getSiblingDB: database } };
 const code = fs.readFileSync(process.argv[2], "utf8");
@@ -351,12 +383,19 @@ def run_init_script(tmp_path, env: dict) -> subprocess.CompletedProcess:
     return subprocess.run([node, str(harness), str(script), json.dumps(env)], capture_output=True, text=True, timeout=30)
 
 
+def secret_file(tmp_path, text="p@ss/w:rd\n"):
+    path = tmp_path / "neem_app_password"
+    path.write_text(text)
+    return str(path)
+
+
 def test_init_script_creates_app_user_and_one_collection_once(tmp_path):
-    done = run_init_script(tmp_path, {"NEEM_DB": "roslog", "NEEM_APP_USER": "neem", "NEEM_APP_PASSWORD": "pw"})
+    env = {"NEEM_DB": "roslog", "NEEM_APP_USER": "neem", "NEEM_APP_PASSWORD_FILE": secret_file(tmp_path)}
+    done = run_init_script(tmp_path, env)
     assert done.returncode == 0, done.stderr
     calls = json.loads(done.stdout)
     assert calls == [
-        ["createUser", "admin", {"user": "neem", "pwd": "pw", "roles": [{"role": "readWrite", "db": "roslog"}]}],
+        ["createUser", "admin", {"user": "neem", "pwd": "p@ss/w:rd", "roles": [{"role": "readWrite", "db": "roslog"}]}],
         ["insert", "roslog.one",
          {"v_scope": {"time": {"since": {"$numberDecimal": "0"}, "until": {"$numberDecimal": "Infinity"}}}}],
     ]
@@ -367,12 +406,13 @@ def test_init_script_runs_in_the_legacy_mongo_shell_of_mongo_4_4(tmp_path):
     node = shutil.which("node")
     if node is None:
         pytest.skip("node is not installed here (mongosh scripts are JavaScript)")
-    legacy = FAKE_MONGOSH.replace("process: { env: JSON.parse(process.argv[3]) },",
-                                  "_getEnv: (k) => JSON.parse(process.argv[3])[k] || \"\",")
+    legacy = FAKE_MONGOSH.replace("process: { env: JSON.parse(process.argv[3]) }, require,",
+                                  "_getEnv: (k) => JSON.parse(process.argv[3])[k] || \"\", "
+                                  "cat: (p) => fs.readFileSync(p, \"utf8\"),")
     assert legacy != FAKE_MONGOSH
     harness = tmp_path / "legacy.js"
     harness.write_text(legacy)
-    env = {"NEEM_DB": "roslog", "NEEM_APP_USER": "neem", "NEEM_APP_PASSWORD": "pw"}
+    env = {"NEEM_DB": "roslog", "NEEM_APP_USER": "neem", "NEEM_APP_PASSWORD_FILE": secret_file(tmp_path, "pw\r\n")}
     done = subprocess.run([node, str(harness), str(DOCKER / "mongo-init" / "10-neem-app.js"), json.dumps(env)],
                           capture_output=True, text=True, timeout=30)
     assert done.returncode == 0, done.stderr
@@ -383,7 +423,7 @@ def test_init_script_runs_in_the_legacy_mongo_shell_of_mongo_4_4(tmp_path):
 def test_init_script_refuses_without_app_credentials(tmp_path):
     done = run_init_script(tmp_path, {"NEEM_DB": "roslog"})
     assert done.returncode != 0
-    assert "NEEM_APP_USER and NEEM_APP_PASSWORD must be set" in done.stderr
+    assert "NEEM_APP_USER and NEEM_APP_PASSWORD_FILE" in done.stderr
 
 
 class FakeDatabase:
@@ -430,6 +470,27 @@ def test_loader_leaves_a_store_with_neems_alone(loader, tmp_path, capsys):
     assert loader.main([str(chains)], client_factory=fake_client(names)) == 0
     assert loader.calls == []
     assert "roslog already holds 1 NEEM(s)" in capsys.readouterr().out
+
+
+def test_loader_connects_with_the_password_of_the_secrets_file(loader, monkeypatch, tmp_path, capsys):
+    secret = tmp_path / "neem_app_password"
+    secret.write_text("p@ss\n")
+    monkeypatch.setenv("NEEM_MONGO_URI", "mongodb://neem@mongo:27017/roslog?authSource=admin")
+    monkeypatch.setenv("NEEM_MONGO_PASSWORD_FILE", str(secret))
+    seen = []
+    base = fake_client(["one"])
+
+    def factory(uri, **options):
+        seen.append(uri)
+        return base(uri, **options)
+
+    chains = tmp_path / "sample-chains.jsonl"
+    chains.write_text("")
+    assert loader.main([str(chains)], client_factory=factory) == 0
+    assert seen == ["mongodb://neem:p%40ss@mongo:27017/roslog?authSource=admin"]
+    monkeypatch.setenv("NEEM_MONGO_PASSWORD_FILE", str(tmp_path / "missing"))
+    assert loader.main([str(chains)], client_factory=factory) == 2
+    assert "NEEM_MONGO_PASSWORD_FILE" in capsys.readouterr().err
 
 
 def test_loader_reports_a_missing_chains_file(loader, tmp_path, capsys):
@@ -512,13 +573,17 @@ def test_make_test_mongo_runs_pytest_through_the_check():
     assert re.search(r"scripts/check-mongo\.py -- \S*python -m pytest", done.stdout), done.stdout
 
 
-def test_check_mongo_builds_the_stack_uri_from_the_env_file(tmp_path):
+def test_check_mongo_builds_the_stack_uri_from_the_env_and_secrets_files(tmp_path):
     check = load_script(ROOT / "scripts" / "check-mongo.py", "check_mongo")
     env_file = tmp_path / "env"
-    env_file.write_text("# c\nMONGO_ROOT_USER=root\nMONGO_ROOT_PASSWORD='p@ss/word'\nMONGO_PORT=27018\n")
+    env_file.write_text("# c\nMONGO_ROOT_USER='root'\nMONGO_PORT=27018\n")
+    with pytest.raises(LookupError, match="mongo_root_password is missing"):
+        check.resolve_uri({}, env_file)
+    (tmp_path / "secrets").mkdir()
+    (tmp_path / "secrets" / "mongo_root_password").write_text("p@ss/word\n")
     assert check.resolve_uri({}, env_file) == "mongodb://root:p%40ss%2Fword@127.0.0.1:27018/roslog_test?authSource=admin"
     assert check.resolve_uri({"NEEM_MONGO_URI": "mongodb://h/x"}, env_file) == "mongodb://h/x"
-    with pytest.raises(LookupError, match="cp docker/.env.example docker/.env"):
+    with pytest.raises(LookupError, match="make up-host"):
         check.resolve_uri({}, tmp_path / "missing")
 
 
@@ -526,11 +591,17 @@ def test_check_mongo_builds_the_stack_uri_from_the_env_file(tmp_path):
 def test_make_n_up_prints_the_compose_command():
     done = subprocess.run([MAKE, "-n", "up"], cwd=ROOT, capture_output=True, text=True, timeout=30)
     assert done.returncode == 0, done.stderr
-    assert "docker compose -f docker/docker-compose.yml --env-file docker/.env up -d" in done.stdout
+    assert "docker compose -f docker/docker-compose.yml  --env-file docker/.env up -d" in done.stdout
+    assert "host-port.yml" not in done.stdout  # plain `up` publishes no port
+    assert "python3 scripts/docker-secrets.py docker/secrets" in done.stdout
     commands = [line for line in done.stdout.splitlines() if not line.startswith("make[")]  # under make: "Entering directory"
     assert commands[-1].endswith("run --rm --no-deps oracle neems")  # the NEEM list comes last
+    host = subprocess.run([MAKE, "-n", "up-host"], cwd=ROOT, capture_output=True, text=True, timeout=30)
+    assert "docker compose -f docker/docker-compose.yml -f docker/host-port.yml --env-file docker/.env up -d" in host.stdout
     down = subprocess.run([MAKE, "-n", "down"], cwd=ROOT, capture_output=True, text=True, timeout=30)
-    assert "docker compose -f docker/docker-compose.yml --env-file" in down.stdout and " down" in down.stdout
+    assert "docker compose -f docker/docker-compose.yml -f docker/host-port.yml --env-file" in down.stdout
+    down_commands = [line for line in down.stdout.splitlines() if not line.startswith("make[")]
+    assert down_commands[-1].endswith(" down")
 
 
 @needs_make
@@ -542,16 +613,61 @@ def test_make_up_without_docker_says_so(tmp_path):
 
 
 @needs_make
-def test_make_up_without_env_file_suggests_the_copy(tmp_path):
-    if (DOCKER / ".env").exists():
-        pytest.skip("docker/.env exists in this checkout")
-    fake = tmp_path / "docker"
-    fake.write_text("#!/bin/sh\nexit 0\n")
-    fake.chmod(0o755)
-    env = {**os.environ, "PATH": f"{tmp_path}:{os.environ['PATH']}"}
-    done = subprocess.run([MAKE, "up"], cwd=ROOT, env=env, capture_output=True, text=True, timeout=30)
-    assert done.returncode != 0
-    assert "cp docker/.env.example docker/.env" in done.stderr
+def test_make_up_makes_env_and_secrets_files_then_calls_compose(tmp_path):
+    """`make up` in a copy of the repository's docker files, with a fake docker that logs its argv."""
+    work = tmp_path / "repo"
+    (work / "scripts").mkdir(parents=True)
+    shutil.copy(ROOT / "Makefile", work / "Makefile")
+    shutil.copy(ROOT / "scripts" / "docker-secrets.py", work / "scripts")
+    shutil.copytree(DOCKER, work / "docker", ignore=shutil.ignore_patterns(".env", "secrets"))
+    bin_dir, log = tmp_path / "bin", tmp_path / "docker.log"
+    bin_dir.mkdir()
+    (bin_dir / "docker").write_text(f'#!/bin/sh\necho "$*" >> {log}\nexit 0\n')
+    (bin_dir / "docker").chmod(0o755)
+    env = {**os.environ, "PATH": f"{bin_dir}:{os.environ['PATH']}"}
+    done = subprocess.run([MAKE, "-s", "up"], cwd=work, env=env, capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert (work / "docker" / ".env").read_text() == ENV_EXAMPLE.read_text()
+    secrets_dir = work / "docker" / "secrets"
+    assert secrets_dir.stat().st_mode & 0o777 == 0o700
+    passwords = {}
+    for name in ("mongo_root_password", "neem_app_password"):
+        path = secrets_dir / name
+        assert path.stat().st_mode & 0o777 == 0o644
+        passwords[name] = path.read_text()
+        assert re.fullmatch(r"[A-Za-z0-9_-]{32}\n", passwords[name])
+        assert passwords[name].strip() not in done.stdout + done.stderr  # never printed
+    assert passwords["mongo_root_password"] != passwords["neem_app_password"]
+    calls = log.read_text().splitlines()
+    assert any(c.startswith("compose -f docker/docker-compose.yml") and c.endswith("up -d --build") for c in calls), calls
+    again = subprocess.run([MAKE, "-s", "up"], cwd=work, env=env, capture_output=True, text=True, timeout=60)
+    assert again.returncode == 0, again.stderr
+    assert {n: (secrets_dir / n).read_text() for n in passwords} == passwords  # kept, not renewed
+    (work / "docker" / ".env").write_text("MONGO_ROOT_PASSWORD=Xq7-stale\n")
+    refused = subprocess.run([MAKE, "-s", "up"], cwd=work, env=env, capture_output=True, text=True, timeout=60)
+    assert refused.returncode != 0 and "docker/.env holds a password" in refused.stderr
+    assert "Xq7-stale" not in refused.stderr
+
+
+def test_docker_secrets_refuses_symlinks_and_keeps_own_passwords(tmp_path):
+    script = load_script(ROOT / "scripts" / "docker-secrets.py", "docker_secrets")
+    folder = tmp_path / "secrets"
+    folder.mkdir(mode=0o755)
+    (folder / "neem_app_password").write_text("mine\n")
+    made = script.make_secrets(folder)
+    assert [p.name for p in made] == ["mongo_root_password"]
+    assert (folder / "neem_app_password").read_text() == "mine\n"
+    assert folder.stat().st_mode & 0o777 == 0o700
+    target = tmp_path / "elsewhere"
+    target.write_text("x")
+    (folder / "mongo_root_password").unlink()
+    (folder / "mongo_root_password").symlink_to(target)
+    with pytest.raises(OSError, match="symlink"):
+        script.make_secrets(folder)
+    assert target.read_text() == "x"
+    link = tmp_path / "link"
+    link.symlink_to(folder)
+    assert script.main([str(link)]) == 1
 
 
 # --- docs ---------------------------------------------------------------------------------------

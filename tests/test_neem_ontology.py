@@ -8,6 +8,7 @@ from pathlib import Path
 
 import pytest
 
+from oracle.store.ids import resolve_neem
 from oracle.cli import main
 from oracle.paths import data_dir
 from oracle.store import open_store
@@ -40,7 +41,8 @@ def own_ontology(tmp_path, capsys) -> Path:
 
 def _neem_state(path: Path) -> tuple[int, dict]:
     with open_store(path) as store:
-        return store.count("ada"), dict(store.neem("ada").meta)
+        ada = resolve_neem(store, "ada")
+        return store.count(ada), dict(store.neem(ada).meta)
 
 
 def test_commands_use_the_ontology_the_neem_was_logged_with(tmp_path, own_ontology, capsys):

@@ -44,9 +44,13 @@ def ranking_digest_text(tmp: Path) -> str:
     chains = tmp / "u.jsonl"
     chains.write_text("".join(json.dumps({**row, "user": "u"}) + "\n" for row in rows[:ACTIONS]))
     store = tmp / "s.sqlite"
-    _oracle("import", str(chains), "--store", str(store), "--commit-every", "1000", env=env)
+    imported = _oracle("import", str(chains), "--store", str(store), "--commit-every", "1000", env=env)
+    neem_id, name, _ = imported.strip().split("\t")
     ranked = json.loads(_oracle("rank", "--store", str(store), "--neem", "u", "--json", env=env))
     assert ranked["written"] and ranked["note"] is None
+    # the NEEM's id is a fresh ObjectId: the pin keeps its name, as before ids were ObjectIds
+    assert name == "u" and ranked["neem"] == neem_id
+    ranked["neem"] = name
     for key in ("ms", "written"):
         ranked.pop(key)
     goal = "odb_decisions:latest_preference(_, B, R), format('~q~n', [B-R])"

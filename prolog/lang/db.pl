@@ -19,6 +19,13 @@ has_comment/2 read them back.
     ?- load_owl('ontology/soma-extract.owl').
     ?- load_owl('file:///data/test.ttl', [graph(test)]).
 
+As KnowRob, each file goes into its own named graph (the file's base name without extension,
+or `graph(G)`) with a `tripledbVersionString` marker holding the file's version (its
+modification time, KnowRob's file_version/2). A file whose version the graph already records
+is not loaded again; a changed one replaces its graph (KnowRob's drop_graph/1, then the load).
+The NEEMs logged with `--soma DIR` carry the same markers, so loading the same file here, or
+in KnowRob, finds it loaded.
+
 A `package://Pkg/Path` URL (a ROS package) is resolved through the multifile hook
 kb_db:package_path/2; without ROS there is none, so such a URL is an error naming it.
 */
@@ -29,7 +36,8 @@ kb_db:package_path/2; without ROS there is none, so such a URL is an error namin
 :- use_module(library(option)).
 :- use_module(library(semweb/rdf_db), [rdf_load/2, rdf/4, rdf_unload_graph/1]).
 :- use_module(library(semweb/turtle), []).
-:- use_module('../neem_store', [store_insert/2, store_insert_annotations/1, store_annotation/3]).
+:- use_module('../neem_store', [store_insert/3, store_insert_annotations/1, store_annotation/3,
+                                 store_graph_version/2, store_set_graph_version/3, store_drop_graph/1]).
 :- use_module(triple, [kb_iri/2]).
 
 %!  package_path(+Package, -Directory) is semidet.
@@ -40,18 +48,34 @@ kb_db:package_path/2; without ROS there is none, so such a URL is an error namin
 %!  load_owl(+URL) is det.
 %!  load_owl(+URL, +Options) is det.
 %   Put the statements of the OWL file at URL (a path, `file://...` or `package://...`) into
-%   the store. Options: `graph(G)` and `parent_graph(P)` are accepted as KnowRob has them;
-%   the stores here keep no graph hierarchy, so they do not change what is written.
+%   the store, in the named graph of the file unless that graph records the file's version
+%   already. Options: `graph(G)` names the graph (as KnowRob's load_owl/3 with a ground graph);
+%   `parent_graph(P)` is accepted as KnowRob has it, the stores keep no graph hierarchy.
 load_owl(URL) :-
     load_owl(URL, []).
 load_owl(URL, Options) :-
     must_be(list, Options),
     owl_file(URL, File),
-    gensym(kb_db_load_, Graph),
-    setup_call_cleanup(
-        rdf_load(File, [graph(Graph), silent(true)]),
-        load_graph(Graph),
-        rdf_unload_graph(Graph)).
+    file_base_name(File, Base),
+    file_name_extension(Name, _, Base),
+    option(graph(OntoGraph), Options, Name),
+    must_be(atom, OntoGraph),
+    file_version(File, Stamp),
+    (   store_graph_version(OntoGraph, Recorded),
+        catch(atom_number(Recorded, Stamp), _, fail)
+    ->  true                    % unchanged since it was loaded (KnowRob: ontology_detected)
+    ;   store_drop_graph(OntoGraph),
+        gensym(kb_db_load_, Graph),
+        setup_call_cleanup(
+            rdf_load(File, [graph(Graph), silent(true)]),
+            load_graph(Graph, OntoGraph, File, Stamp),
+            rdf_unload_graph(Graph))
+    ).
+
+%   KnowRob's file_version/2 of a local file: its modification time (the number KnowRob
+%   compares a graph's recorded version with, after reading that version as a number).
+file_version(File, Stamp) :-
+    set_time_file(File, [modified(Stamp)], []).
 
 owl_file(URL, _) :-
     var(URL), !,
@@ -74,15 +98,22 @@ owl_file(URL, File) :-
     ;   existence_error(owl_file, URL)
     ).
 
-load_graph(Graph) :-
+load_graph(Graph, OntoGraph, File, Stamp) :-
     findall(S-P-O, rdf(S, P, O, Graph), Statements),
     foldl(statement, Statements, []-[], Ts-As),
     Inf is inf,
     findall(triple(S, P, O, 0.0, Inf), member(t(S, P, O), Ts), Triples0),
     reverse(Triples0, Triples),
     reverse(As, Annotations),
-    store_insert(Triples, union),
-    store_insert_annotations(Annotations).
+    store_insert(Triples, union, OntoGraph),
+    store_insert_annotations(Annotations),
+    (   rdf(Ontology, 'http://www.w3.org/1999/02/22-rdf-syntax-ns#type',
+            'http://www.w3.org/2002/07/owl#Ontology', Graph)
+    ->  true
+    ;   atom_concat('file://', File, Ontology)  % KnowRob refuses a file without one
+    ),
+    atom_number(Version, Stamp),
+    store_set_graph_version(Ontology, Version, OntoGraph).
 
 %   A statement as a triple t(S,P,O) or an annotation(S,P,V), or dropped (non-English
 %   annotation values, as KnowRob).

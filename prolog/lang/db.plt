@@ -46,4 +46,39 @@ test(package_url_through_the_hook, [nondet, setup(store_reset),
     f('Rex', R), f('Man', M),
     kb_call(triple(R, rdf:type, M)).
 
+% A copy of a fixture in a temporary file, so its modification time can be changed.
+fixture_copy(Name, Copy) :-
+    fixture(Name, F),
+    tmp_file(kb_db, Tmp), atom_concat(Tmp, '.ttl', Copy),
+    copy_file(F, Copy).
+
+test(version_marker_of_the_file, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    fixture_copy(family, F),
+    load_owl(F),
+    file_base_name(F, B), file_name_extension(G, _, B),
+    store_graph_version(G, V),
+    set_time_file(F, [modified(T)], []),
+    atom_number(V, T),                           % KnowRob's comparison
+    delete_file(F).
+
+test(an_unchanged_file_is_not_loaded_again, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    fixture_copy(family, F),
+    load_owl(F),
+    f('Rex', R), f('Man', M),
+    kb_unproject(triple(R, rdf:type, M)),
+    load_owl(F),                                 % same version: nothing is loaded
+    \+ kb_call(triple(R, rdf:type, M)),
+    set_time_file(F, [], [modified(1000000000)]),
+    load_owl(F),                                 % changed: loaded again, new marker
+    kb_call(triple(R, rdf:type, M)),
+    file_base_name(F, B), file_name_extension(G, _, B),
+    store_graph_version(G, V), atom_number(V, 1000000000.0),
+    delete_file(F).
+
+test(graph_option_names_the_graph, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    fixture_copy(family, F),
+    load_owl(F, [graph(test)]),
+    store_graph_version(test, _),
+    delete_file(F).
+
 :- end_tests(kb_db).

@@ -7,7 +7,9 @@ registers three foreign predicates in module ``neem_store`` and nothing else tou
     one conjunction of triple patterns -> ``Store.match`` (one SQL join / one aggregation
     pipeline); each solution of the predicate is a chunk of up to ``CHUNK`` rows.
 ``py_insert(+Request, -Reply)``
-    kb_project's triples -> ``Store.insert``.
+    kb_project's triples -> ``store.project`` (merged with or narrowing the stored scopes).
+``py_retract(+Request, -Reply)``
+    kb_unproject's patterns -> ``store.project.retract``.
 ``py_request(-Request)``
     the arguments of the question Python is asking, so values reach Prolog as terms and
     never as query text.
@@ -52,8 +54,8 @@ _STATE: dict[str, Any] = {"bridge": None, "loaded": False, "request": None}
 _GENERATORS: dict[int, Iterator[str]] = {}
 _NEXT_KEY = [1]
 #: How many times Prolog called into Python (crossings), per foreign predicate.
-CROSSINGS = {"py_match": 0, "py_insert": 0, "py_request": 0, "py_scopes": 0, "py_annotations": 0, "py_annotate": 0,
-             "py_tf": 0}
+CROSSINGS = {"py_match": 0, "py_insert": 0, "py_retract": 0, "py_graph": 0, "py_request": 0, "py_scopes": 0,
+             "py_annotations": 0, "py_annotate": 0, "py_tf": 0}
 
 
 # -- values ------------------------------------------------------------------------------
@@ -225,15 +227,63 @@ def py_match(req: Any, out: Any, handle: Any) -> Any:
 
 
 def py_insert(req: Any, out: Any) -> bool:
+    """``[Neem, Merge, Graph | [S, P, O, Since, Until]...]``: kb_project's triples into a named
+    graph, ``Merge`` being ``union`` or ``intersect`` (store.project)."""
+    from oracle.store.project import project
+
     CROSSINGS["py_insert"] += 1
     try:
         bridge = _connected()
-        neem = _plain(req[0])
+        neem, merge, graph = _plain(req[0]), _plain(req[1]), _plain(req[2])
         triples = [
-            Triple(_plain(s), _plain(p), _plain(o), since=float(since), until=float(until))
-            for s, p, o, since, until in req[1:]
+            Triple(_plain(s), _plain(p), _plain(o), graph, float(since), float(until))
+            for s, p, o, since, until in req[3:]
         ]
-        bridge.store.insert(neem, triples)
+        project(bridge.store, neem, triples, merge)
+        out.unify("[]")
+    except Exception as error:
+        out.unify(_error_text(error))
+    return True
+
+
+def py_graph(req: Any, out: Any) -> bool:
+    """``[Neem, Op, Graph, Ontology, Version]``: a named graph's version marker (``get`` ->
+    ``[[Ontology, Version]...]``, ``set``) or the graph dropped (``drop``), as KnowRob's
+    get_ontology_version/set_ontology_version/drop_graph."""
+    from oracle.store.model import VERSION_PREDICATE, version_document
+    from oracle.store.project import retract
+
+    CROSSINGS["py_graph"] += 1
+    try:
+        store = _connected().store
+        neem, op, graph, ontology, version = (_plain(x) for x in req)
+        rows = []
+        if op == "get":
+            docs = store.find(neem, p=VERSION_PREDICATE, graph=graph, exact=True)
+            rows = [f"[{term_text(d['s'])},{term_text(str(d['o']))}]" for d in docs]
+        elif op == "set":
+            store.write_documents(neem, "triples", [version_document(ontology, str(version), graph)])
+        elif op == "drop":
+            retract(store, neem, graph=graph)
+        else:
+            raise PrologError(f"unknown graph operation {op!r}")
+        out.unify("[" + ",".join(rows) + "]")
+    except Exception as error:
+        out.unify(_error_text(error))
+    return True
+
+
+def py_retract(req: Any, out: Any) -> bool:
+    """``[Neem | [[S], [P], [O]]...]``: kb_unproject's patterns, ``[]`` for any value."""
+    from oracle.store.project import retract
+
+    CROSSINGS["py_retract"] += 1
+    try:
+        bridge = _connected()
+        neem = _plain(req[0])
+        for pattern in req[1:]:
+            s, p, o = (_plain(term[0]) if term else None for term in pattern)
+            retract(bridge.store, neem, s, p, o)
         out.unify("[]")
     except Exception as error:
         out.unify(_error_text(error))
@@ -333,6 +383,8 @@ def _ensure_loaded() -> None:
 
     Prolog.register_foreign(py_match, arity=2, module="neem_store", nondeterministic=True)
     Prolog.register_foreign(py_insert, arity=2, module="neem_store")
+    Prolog.register_foreign(py_retract, arity=2, module="neem_store")
+    Prolog.register_foreign(py_graph, arity=2, module="neem_store")
     Prolog.register_foreign(py_request, arity=1, module="neem_store")
     Prolog.register_foreign(py_scopes, arity=2, module="neem_store")
     Prolog.register_foreign(py_annotations, arity=2, module="neem_store")
@@ -382,9 +434,10 @@ class Bridge:
     def __init__(self, store: Store, neem_id: str, ontology: OdbOntology | None = None) -> None:
         from pyswip import Atom
 
+        from oracle.store.ids import resolve_neem
+
         self.store = store
-        self.neem_id = neem_id
-        store.neem(neem_id)  # StoreError when the NEEM does not exist
+        self.neem_id = neem_id = resolve_neem(store, neem_id)  # an id or an alias; StoreError when neither
         with _LOCK:
             _attach_engine()
             _ensure_loaded()

@@ -378,7 +378,7 @@ for name, new in [("underscore", "a_b"), ("empty", ""), ("dotdot", "../x"), ("to
     CLI.append((f"persist-as-{name}", f"persist --store {{store}} --neem p000-tea-red-yogurt --as {shlex.quote(new)}", "NEEM"))
 for name, args, expected in [
     ("load-missing", "load {tmp}/nothing --store {store}", "not a folder"), ("load-file", "load {good} --store {store}", "not a folder"),
-    ("load-empty-folder", "load {tmp} --store {store}", "no triples"), ("load-neem-bad-id", "load {dump} --neem a_b --store {store}", "invalid NEEM id"),
+    ("load-empty-folder", "load {tmp} --store {store}", "no triples"), ("load-neem-bad-id", "load {dump} --neem a_b --store {store}", "invalid NEEM name"),
     ("load-existing", "load {dump} --neem p000-tea-red-yogurt --store {store}", "already exists"),
     ("export-out-is-file", "export --store {store} --neem p000-tea-red-yogurt --out {good}", "cannot write"),
     ("export-out-dev-null", "export --store {store} --neem p000-tea-red-yogurt --out /dev/null", "cannot write"),

@@ -175,7 +175,7 @@ def _import_and_evaluate(out: Path, tmp_path: Path) -> tuple[int, str]:
 
     with open_store(tmp_path / "s.sqlite") as store:
         (info,) = store.neems()
-        return summarize(store, info.id).actions, info.id
+        return summarize(store, info.id).actions, info.meta["alias"]  # its name (the id is an ObjectId)
 
 
 def test_overlapping_kasteren_firings_import(tmp_path, capsys):

@@ -62,8 +62,10 @@ def _state(store: Path) -> tuple[dict[str, int], dict[str, int]]:
         if raw.execute("SELECT count(*) FROM sqlite_master WHERE name='neems'").fetchone()[0] == 0:
             return {}, {}
     with open_store(store, read_only=True) as s:
-        actions = {info.id: summarize_neem(s, info.id).actions for info in s.neems()}
-        tbox = {info.id: sum(1 for d in s.read_documents(info.id, "triples") if d.get("graph") != "user") for info in s.neems()}
+        # keyed by the NEEM's name (the user's): ids are ObjectIds
+        actions = {info.meta["alias"]: summarize_neem(s, info.id).actions for info in s.neems()}
+        tbox = {info.meta["alias"]: sum(1 for d in s.read_documents(info.id, "triples") if d.get("graph") != "user")
+                for info in s.neems()}  # fmt: skip
     return actions, tbox
 
 
@@ -114,7 +116,8 @@ def test_ctrl_c_reports_how_many_actions_were_committed_and_they_are_there(tmp_p
     lines_err = err.strip().splitlines()
     assert len(lines_err) == 1 and lines_err[0].startswith("interrupted: "), err
     reported = int(lines_err[0].split()[1])
-    per_neem = {line.split("\t")[0]: int(line.split("\t")[1].split()[0]) for line in out.splitlines() if "\t" in line}
+    # import prints id, name, actions
+    per_neem = {line.split("\t")[1]: int(line.split("\t")[2].split()[0]) for line in out.splitlines() if "\t" in line}
     assert sum(per_neem.values()) == reported and 0 < reported < 1200, (reported, per_neem)
     actions, _ = _state(store)
     # Every row reported committed is in the store, and no more (rows are 10 s apart: no idle actions).

@@ -10,6 +10,7 @@ from pathlib import Path
 
 import pytest
 
+from oracle.store.ids import resolve_neem
 from oracle.cli import main
 from oracle.errors import LoggingError
 from oracle.store import RDF_TYPE, open_store
@@ -53,17 +54,18 @@ def test_no_clock_logs_each_user_in_file_order_on_positions(tmp_path, capsys):
     spec = str(tmp_path / "s.sqlite")
     rows = [{"user": u, "action": a} for a in ACTIONS[:4] for u in ("ada", "bo")]
     assert main(["import", str(timeless(tmp_path, rows)), "--store", spec, "--no-clock", *ONTOLOGY]) == 0
-    assert capsys.readouterr().out.splitlines() == ["ada\t4 actions", "bo\t4 actions"]
+    assert [line.split("\t", 1)[1] for line in capsys.readouterr().out.splitlines()] == ["ada\t4 actions", "bo\t4 actions"]
     store = open_store(spec)
-    assert store.neem("ada").meta["clock"] == "sequence"
-    spans = [(a.begin, a.end) for a in executed_actions(store, "ada")]
+    ada, bo = resolve_neem(store, "ada"), resolve_neem(store, "bo")
+    assert store.neem(ada).meta["clock"] == "sequence"
+    spans = [(a.begin, a.end) for a in executed_actions(store, ada)]
     assert spans == [(0.0, 1.0), (1.0, 2.0), (2.0, 3.0), (3.0, 4.0)]  # each action meets the next: no idle
-    intervals = {d["s"] for d in store.find("ada", p=RDF_TYPE, o=T.TIME_INTERVAL, exact=True)}
-    types = {d["o"] for d in store.find("ada", p=RDF_TYPE) if d["s"] in intervals}
+    intervals = {d["s"] for d in store.find(ada, p=RDF_TYPE, o=T.TIME_INTERVAL, exact=True)}
+    types = {d["o"] for d in store.find(ada, p=RDF_TYPE) if d["s"] in intervals}
     assert types == {T.TIME_INTERVAL}  # no odb:TimeOfDay part: the log has no clock
     assert main(["neems", "--store", spec, "--json"]) == 0
     listed = {row["id"]: (row["begin"], row["end"]) for row in json.loads(capsys.readouterr().out)}
-    assert listed["bo"] == ("position 0", "position 4")
+    assert listed[bo] == ("position 0", "position 4")
 
 
 def test_a_neem_without_a_clock_refuses_clock_times_and_keeps_what_it_has(tmp_path):
@@ -74,13 +76,14 @@ def test_a_neem_without_a_clock_refuses_clock_times_and_keeps_what_it_has(tmp_pa
     spec = str(tmp_path / "s.sqlite")
     assert main(["import", str(timeless(tmp_path)), "--store", spec, "--no-clock", *ONTOLOGY]) == 0
     store = open_store(spec)
-    before = count_actions(store, "ada")
+    ada = resolve_neem(store, "ada")
+    before = count_actions(store, ada)
     onto = build_ontology(EXAMPLES / "odb", EXAMPLES / "mapping.yaml")
-    logger = NeemLogger(store, onto, "ada")
+    logger = NeemLogger(store, onto, ada)
     with pytest.raises(LoggingError, match="has no clock"):
         logger.action("pick(mug)", datetime(2026, 3, 2, 8, 0))
     logger.close()
-    assert count_actions(store, "ada") == before
+    assert count_actions(store, ada) == before
 
 
 @needs_prolog
@@ -122,4 +125,5 @@ def test_a_dump_keeps_the_neem_without_a_clock(tmp_path):
     assert main(["import", str(timeless(tmp_path)), "--store", spec, "--no-clock", *ONTOLOGY]) == 0
     assert main(["export", "--store", spec, "--neem", "ada", "--out", str(tmp_path / "dump")]) == 0
     assert main(["load", str(tmp_path / "dump"), "--store", other]) == 0
-    assert open_store(other).neem("ada").meta["clock"] == "sequence"
+    ada = resolve_neem(open_store(spec), "ada")
+    assert open_store(other).neem(ada).meta["clock"] == "sequence"  # the same id, the same clock

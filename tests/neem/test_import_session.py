@@ -23,7 +23,8 @@ def test_next_session_wipes_unpersisted_neems(tmp_path, capsys):
     second = capsys.readouterr().out.strip().splitlines()[-1].split("\t")[0]
     assert main(["import", str(chains(tmp_path, "cy")), "--store", str(store), "--session"]) == 0
     ids = {n.id: n.temporary for n in open_store(store).neems()}
-    assert ids.get("kept") is False and second not in ids  # kept survives, the unpersisted one is wiped
+    assert ids.get(first) is False and second not in ids  # kept survives, the unpersisted one is wiped
+    assert open_store(store).neem(first).meta["alias"] == "kept"
     assert sum(ids.values()) == 1  # only the newest session remains temporary
 
 
@@ -55,10 +56,12 @@ def _session_workflow(spec: str, tmp_path, capsys) -> None:
     assert main(["import", str(ada), "--store", spec, "--session"]) == 0
     latest = capsys.readouterr().out.strip().splitlines()[-1].split("\t")[0]
     assert main(["neems", "--store", spec, "--json"]) == 0
-    rows = {row["id"]: row for row in json.loads(capsys.readouterr().out)}
+    listed = json.loads(capsys.readouterr().out)
+    rows = {row["name"]: row for row in listed}
     assert {"ada", "ada-monday", "ada-tuesday"} <= set(rows) and len(rows) == 4
     assert all(row["actions"] == 1 for row in rows.values())
-    assert [i for i, row in rows.items() if row["temporary"]] == [latest]
+    assert [row["id"] for row in listed if row["temporary"]] == [latest]
+    assert rows["ada-tuesday"]["id"] == session  # persisting names a NEEM, its id stays
 
 
 def test_session_workflow_on_sqlite(tmp_path, capsys):

@@ -22,6 +22,7 @@ from oracle.neem.query import executed_actions, summarize_neem
 from oracle.neem.writer import NeemLogger
 from oracle.namespaces import DUL, OWL, SOMA
 from oracle.store import RDF_TYPE, Scope, TriplePattern, Var
+from oracle.store.ids import alias_of, is_object_id, resolve_neem
 from oracle.store.model import HIERARCHY
 from oracle.store.sqlite import SQLiteStore
 from oracle.store.tbox import tbox_from_graph
@@ -251,8 +252,9 @@ def test_sessions_are_temporary_until_persisted(store, onto, tbox_for):
     second.action("pick(green_mug)", T0)
     persist(store, second.neem_id, "alice-monday")
     NeemLogger.start_session(store, onto, user="bob", tbox=tbox)
-    kept = store.neem("alice-monday")
-    assert not kept.temporary and summarize_neem(store, "alice-monday").actions == 1
+    kept = store.neem(resolve_neem(store, "alice-monday"))
+    assert kept.id == second.neem_id  # persisting names the NEEM; its id stays
+    assert not kept.temporary and summarize_neem(store, kept.id).actions == 1
     assert len(store.neems()) == 2
 
 
@@ -282,8 +284,9 @@ def write_jsonl(path: Path, rows) -> Path:
 
 def test_import_logs_one_neem_per_user(tmp_path, store, onto, tbox_for):
     report = import_chains(store, onto, write_jsonl(tmp_path / "c.jsonl", CHAINS), tbox=tbox_for)
-    assert report == {"alice": 2, "bob": 1}
-    alice = summarize_neem(store, "alice")
+    assert report == {resolve_neem(store, "alice"): 2, resolve_neem(store, "bob"): 1}
+    assert all(is_object_id(neem_id) for neem_id in report)
+    alice = summarize_neem(store, resolve_neem(store, "alice"))
     assert alice.user == "alice" and alice.actions == 3  # pour, idle (50 s), pick
     assert alice.begin == datetime(2024, 5, 6, 8, tzinfo=timezone.utc).timestamp()
 
@@ -303,20 +306,32 @@ def test_cli_import_neems_export_load_persist(tmp_path, capsys):
     db = str(tmp_path / "cli.sqlite")
     chains = write_jsonl(tmp_path / "c.jsonl", CHAINS)
     assert main(["import", str(chains), "--store", db]) == 0
-    assert capsys.readouterr().out.split() == ["alice", "2", "actions", "bob", "1", "actions"]
+    printed = [line.split("\t") for line in capsys.readouterr().out.splitlines()]
+    assert [(name, count) for _, name, count in printed] == [("alice", "2 actions"), ("bob", "1 actions")]
+    alice, bob = (neem_id for neem_id, _, _ in printed)
+    assert is_object_id(alice) and is_object_id(bob)
     assert main(["neems", "--store", db, "--json"]) == 0
     listing = json.loads(capsys.readouterr().out)
-    assert [(n["id"], n["user"], n["actions"]) for n in listing] == [("alice", "alice", 3), ("bob", "bob", 1)]
+    assert [(n["id"], n["name"], n["user"], n["actions"]) for n in listing] == [(alice, "alice", "alice", 3),
+                                                                               (bob, "bob", "bob", 1)]
     assert main(["export", "--store", db, "--out", str(tmp_path / "dump")]) == 0
     capsys.readouterr()
-    assert main(["load", str(tmp_path / "dump" / "bob"), "--neem", "bob-copy", "--store", f"sqlite://{tmp_path}/other.sqlite"]) == 0
-    assert capsys.readouterr().out.strip() == "bob-copy"
+    other = f"sqlite://{tmp_path}/other.sqlite"
+    assert main(["load", str(tmp_path / "dump" / bob), "--neem", "bob-copy", "--store", other]) == 0
+    copy = capsys.readouterr().out.strip()
+    assert is_object_id(copy) and copy != bob  # a new NEEM named bob-copy
+    assert main(["load", str(tmp_path / "dump" / bob), "--store", other]) == 0
+    assert capsys.readouterr().out.strip() == bob  # a dump keeps its id
     assert main(["persist", "--neem", "bob", "--as", "bob-kept", "--store", db]) == 0
-    assert capsys.readouterr().out.strip() == "bob-kept"
+    assert capsys.readouterr().out.strip() == bob
     assert main(["neems", "--store", db, "--json"]) == 0
-    assert [n["id"] for n in json.loads(capsys.readouterr().out)] == ["alice", "bob-kept"]
+    assert [(n["id"], n["name"]) for n in json.loads(capsys.readouterr().out)] == [(alice, "alice"), (bob, "bob-kept")]
+    assert main(["export", "--store", db, "--neem", "bob-kept", "--out", str(tmp_path / "kept")]) == 0
+    assert capsys.readouterr().out.startswith(f"{bob}: ")
     assert main(["persist", "--neem", "nobody", "--as", "x", "--store", db]) == 1
     assert "no NEEM 'nobody'" in capsys.readouterr().err
+    assert main(["persist", "--neem", bob, "--as", "alice", "--store", db]) == 1
+    assert f"taken by NEEM {alice!r}" in capsys.readouterr().err
 
 
 CRASH_SCRIPT = textwrap.dedent(
@@ -353,7 +368,7 @@ def test_a_killed_logger_loses_at_most_the_action_in_flight(tmp_path, onto):
     proc.wait()
     reported.extend(line.split()[1] for line in proc.stdout.read().splitlines() if line.startswith("committed"))
     store = SQLiteStore(db)
-    views = {v.iri.rsplit("_", 1)[1]: v for v in executed_actions(store, "crash")}
+    views = {v.iri.rsplit("_", 1)[1]: v for v in executed_actions(store, resolve_neem(store, "crash"))}
     missing = [name for name in reported if name not in views]
     assert not missing
     assert len(views) <= len(reported) + 1
@@ -367,7 +382,9 @@ def test_neem_ids_are_made_from_any_user_name(tmp_path, onto, small_tbox):
     store = SQLiteStore(tmp_path / "s.sqlite")
     first = NeemLogger.create(store, onto, user="Ann_B. Smith", tbox=small_tbox)
     second = NeemLogger.create(store, onto, user="Ann_B. Smith", tbox=small_tbox)
-    assert (first.neem_id, second.neem_id) == ("Ann-B-Smith", "Ann-B-Smith-2")
+    assert is_object_id(first.neem_id) and is_object_id(second.neem_id) and first.neem_id != second.neem_id
+    assert [alias_of(store.neem(n)) for n in (first.neem_id, second.neem_id)] == ["Ann-B-Smith", "Ann-B-Smith-2"]
+    assert store.neem(second.neem_id).meta["name"] == "Ann-B-Smith-2"  # what openEASE lists
     assert store.neem(second.neem_id).user == "Ann_B. Smith"
 
 

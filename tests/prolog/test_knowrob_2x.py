@@ -82,13 +82,6 @@ def test_free_interval_bound_to_fact_scope(bridge):
     assert rows == [("+4934", 34.0)]
 
 
-#: Restated KnowRob tests that cannot pass on the append-only Python stores: they delete a
-#: triple (kb_unproject), narrow a stored scope (until) or ask about the union of two
-#: overlapping projections (KnowRob merges the documents; the stores keep both).
-APPEND_ONLY = {"retract triple", "assert to triplestore and check if triple exists", "extend time scope",
-               "during(+Triple,+Overlapping)", "until(+Triple,+Instant)"}
-
-
 def test_knowrob_2x_own_tests_on_the_python_stores(bridge):
     """The same 73 tests with every unit on a fresh NEEM of the store (SQLite, mongomock-ng)."""
     from pyswip import Atom, Prolog
@@ -113,5 +106,25 @@ def test_knowrob_2x_own_tests_on_the_python_stores(bridge):
     failed = {name.decode() if isinstance(name, bytes) else str(name) for name in row["F"]}
     print(f"KnowRob 2.x tests on {type(bridge.store).__name__}: {row['P']}/{row['T']}, failed: {sorted(failed)}")
     assert row["T"] == 73
-    assert failed <= APPEND_ONLY, failed - APPEND_ONLY
-    assert row["P"] == 73 - len(failed) and 60 - len(failed) >= 54  # none of lang/scope's fail
+    assert failed == set()  # merging, narrowing and deleting included (store.project)
+    assert row["P"] == 73
+
+
+def test_kb_project_merges_narrows_and_unprojects_in_the_store(bridge):
+    """kb_project's union, until's narrowing and kb_unproject reach the stored documents (one
+    document per fact, its scope changed in place), not only the answers."""
+    fact = f"triple('{SWRL}Lea', '{SWRL}hasNumber', '+4934')"
+
+    def stored() -> list[tuple[float, float]]:
+        docs = bridge.store.find("k", f"{SWRL}Lea", f"{SWRL}hasNumber", "+4934", exact=True)
+        return sorted((float(str(d["scope"]["time"]["since"])), float(str(d["scope"]["time"]["until"]))) for d in docs)
+
+    bridge.query(f"kb_project({fact} during [10, 20])")
+    bridge.query(f"kb_project({fact} during [15, 34])")
+    assert stored() == [(10.0, 34.0)]
+    bridge.query(f"kb_project({fact} until 30)")
+    assert stored() == [(10.0, 30.0)]
+    bridge.query(f"kb_project({fact} during [50, 60])")
+    assert stored() == [(10.0, 30.0), (50.0, 60.0)]
+    bridge.query(f"kb_unproject(triple('{SWRL}Lea', '{SWRL}hasNumber', _))")
+    assert stored() == [] and bridge.solutions(f"{fact} during [S, U]", ["S", "U"]) == []

@@ -14,7 +14,9 @@ pytestmark = pytest.mark.usefixtures("onto")
 def neem(client) -> str:
     response = client.post("/api/neems", json={"user": "ada", "neem": "ada"})
     assert response.status_code == 201, response.text
-    return "ada"
+    made = response.json()
+    assert made["name"] == "ada" and len(made["id"]) == 24 and made["id"] != "ada"  # an ObjectId, named ada
+    return "ada"  # the tests address the NEEM by its name; test_the_id_and_the_name_reach_one_session by both
 
 
 def test_situation_answers_ranking_and_chain_and_writes_the_preference(client, neem):
@@ -182,12 +184,12 @@ def test_a_perceived_pose_goes_into_the_neem_and_prolog_says_where_the_object_wa
 ])
 def test_bad_input_is_a_one_line_4xx_and_changes_nothing(client, neem, ctx, path, body, status, needle):
     client.post(f"/api/neems/{neem}/actions", json={"call": "pick(apple)", "begin": at(0, 0), "end": at(0, 2)})
-    count = ctx.thread.call(lambda: ctx.engine.store.count(neem))
+    count = ctx.thread.call(lambda: ctx.engine.store.count(ctx.engine.resolve(neem)))
     response = client.post(path, json=body)
     assert response.status_code == status, response.text
     error = response.json()["error"]
     assert needle in error and "\n" not in error
-    assert ctx.thread.call(lambda: ctx.engine.store.count(neem)) == count
+    assert ctx.thread.call(lambda: ctx.engine.store.count(ctx.engine.resolve(neem))) == count
     assert client.get("/api/neems").status_code == 200  # still serving
 
 
@@ -204,13 +206,25 @@ def test_bad_input_is_a_one_line_4xx_and_changes_nothing(client, neem, ctx, path
     ("POST", "/api/neems/ada/situation", 422, "JSON"),  # a body that is not JSON
 ])
 def test_every_other_refusal_is_one_line_too(client, neem, ctx, method, path, status, needle):
-    count = ctx.thread.call(lambda: ctx.engine.store.count(neem))
+    count = ctx.thread.call(lambda: ctx.engine.store.count(ctx.engine.resolve(neem)))
     response = client.request(method, path, content=b"{not json", headers={"Content-Type": "application/json"})
     assert response.status_code == status, response.text
     error = response.json()["error"]
     assert needle in error and "\n" not in error
-    assert ctx.thread.call(lambda: ctx.engine.store.count(neem)) == count
+    assert ctx.thread.call(lambda: ctx.engine.store.count(ctx.engine.resolve(neem))) == count
     assert ctx.thread.call(lambda: (ctx.engine.session(neem).latest, ctx.engine.session(neem).choice)) == (None, None)
+
+
+def test_the_id_and_the_name_reach_one_session(client, neem, ctx):
+    neem_id = next(n["id"] for n in client.get("/api/neems").json() if n["name"] == neem)
+    client.post(f"/api/neems/{neem}/actions", json={"call": "pick(apple)", "begin": at(0, 0), "end": at(0, 2)})
+    answer = client.post(f"/api/neems/{neem_id}/actions", json={"call": "pick(red_mug)", "begin": at(0, 3), "end": at(0, 4)})
+    assert answer.json()["neem"] == neem_id and answer.json()["history"] == 2  # one session, whichever name is used
+    assert ctx.thread.call(lambda: ctx.engine.session(neem) is ctx.engine.session(neem_id))
+    query = {"query": "kb_call(executes_task(A, T))", "limit": 100}
+    by_name = client.post("/api/prolog", json={**query, "neem": neem}).json()["solutions"]
+    by_id = client.post("/api/prolog", json={**query, "neem": neem_id}).json()["solutions"]
+    assert len(by_name) == 2 and by_name == by_id  # Prolog reads the one NEEM either names
 
 
 def test_prolog_pages_solutions_and_binds_values_as_terms(client, neem):

@@ -215,11 +215,11 @@ def test_page_reconnects_after_the_service_restarts_and_catches_up(tmp_path, bro
     base = f"http://127.0.0.1:{port}"
     process = start_server(store, port)
     try:
-        call(base, "/api/neems", {"user": "eli", "neem": "eli"})
+        eli = call(base, "/api/neems", {"user": "eli", "neem": "eli"})[1]["id"]
         call(base, "/api/neems/eli/situation", {"available": ["pick(red_mug)", "open(fridge)"], "at": at(0, 0)})
         page = browser.new_page(viewport={"width": 1024, "height": 768}, bypass_csp=True)
-        fetched: list[str] = []
-        page.on("request", lambda r: fetched.append(r.url) if r.url.endswith("/api/neems/eli/situation") else None)
+        fetched: list[str] = []  # the page names the NEEM by its id
+        page.on("request", lambda r: fetched.append(r.url) if r.url.endswith(f"/api/neems/{eli}/situation") else None)
         page.goto(base + "/?neem=eli")
         page.wait_for_function("document.body.dataset.live === 'yes'")
         assert page.locator("#link").is_hidden()
@@ -244,7 +244,9 @@ def test_simulate_command_drives_the_service_and_reports_latencies(server):
     result = subprocess.run([sys.executable, "-m", "oracle", "simulate", "--serve", server, "--persona", "2",
                              "--days", "1", "--neem", "sim-cli"], cwd=ROOT, capture_output=True, text=True, timeout=600)
     assert result.returncode == 0, result.stdout + result.stderr
-    assert result.stdout.splitlines()[0] == f"driving NEEM sim-cli: the page is {server}/?neem=sim-cli"
+    made = re.fullmatch(rf"driving NEEM ([0-9a-f]{{24}}): the page is {re.escape(server)}/\?neem=\1", result.stdout.splitlines()[0])
+    assert made, result.stdout
+    assert [n["id"] for n in call(server, "/api/neems")[1] if n["name"] == "sim-cli"] == [made.group(1)]
     summary = re.search(r"^1 robot\(s\) drove (\d+) steps in [\d.]+ s; 0 errors$", result.stdout, re.M)
     assert summary, result.stdout
     _, rows = persona_rows(2, 3, 1)
@@ -254,6 +256,14 @@ def test_simulate_command_drives_the_service_and_reports_latencies(server):
     assert call(server, "/api/neems/sim-cli/choice")[1]["task"] == str(rows[-1].action)
     _, latest = call(server, "/api/neems/sim-cli/situation")
     assert latest["history"] >= len(rows) - 1 and latest["ranking"]
+    # a second run by the same name drives the same NEEM (no second one, no "already exists")
+    from oracle.service.robot import drive
+
+    later = [row for row in persona_rows(2, 3, 2)[1] if row.time > rows[-1].time][:2]
+    announced: list[str] = []
+    again = drive(server, "p2", later, "sim-cli", announce=announced.append)
+    assert again.errors == [] and announced == [made.group(1)]
+    assert [n["id"] for n in call(server, "/api/neems")[1] if n["name"] == "sim-cli"] == [made.group(1)]
 
 
 @pytest.mark.parametrize("args,message", [

@@ -61,10 +61,11 @@ def test_export_writes_knowrob_names_and_types(store, tmp_path):
 def test_export_load_export_is_identical(store, tmp_path):
     small_neem(store)
     export_neem(store, "n1", tmp_path / "a")
-    assert load_dump(store, tmp_path / "a", neem_id="copy") == ["copy"]
-    export_neem(store, "copy", tmp_path / "b")
+    (copy,) = load_dump(store, tmp_path / "a", neem_id="copy")  # a new NEEM named copy
+    assert copy != "n1" and store.neem(copy).meta["alias"] == "copy"
+    export_neem(store, copy, tmp_path / "b")
     assert bson_files(tmp_path / "a") == bson_files(tmp_path / "b")
-    assert store.neem("copy").user == "alice"
+    assert store.neem(copy).user == "alice"
 
 
 def test_load_into_the_other_backend_is_identical(tmp_path):
@@ -161,7 +162,7 @@ def test_dump_load_dump_is_the_identity(tmp_path_factory, triples, annotations):
     annotations = [{"_id": ObjectId(), **a} for a in annotations]
     write_dump(root / "a", {"triples": triples, "annotations": annotations}, meta={"created_by": "x"})
     store = SQLiteStore(root / "s.sqlite")
-    load_dump(store, root / "a", neem_id="n")
-    export_neem(store, "n", root / "b")
+    (neem_id,) = load_dump(store, root / "a", neem_id="n")
+    export_neem(store, neem_id, root / "b")
     assert bson_files(root / "a") == bson_files(root / "b")
     store.close()

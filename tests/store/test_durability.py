@@ -18,6 +18,7 @@ from oracle.neem.lifecycle import wipe_temporary_neems
 from oracle.neem.writer import NeemLogger
 from oracle.store import COLLECTION_KINDS, open_store
 from oracle.store.dump import export_all, export_neem, load_dump
+from oracle.store.ids import alias_of, resolve_neem
 from oracle.store.mongo import MongoStore
 from oracle.store.sqlite import SQLiteStore
 from oracle.store.staging import drop_abandoned
@@ -52,6 +53,11 @@ def onto():
     return build_ontology()
 
 
+def neem_of(store, name: str) -> str:
+    """The id of the NEEM called ``name`` (ids are ObjectIds, the user's name is the alias)."""
+    return resolve_neem(store, name)
+
+
 def content(store, neem_id: str) -> dict[str, int]:
     return {kind: store.count(neem_id, kind) for kind in COLLECTION_KINDS}
 
@@ -69,7 +75,8 @@ def test_the_durability_promise_is_stated():
 
 def test_import_replace_keeps_the_old_neem_until_the_new_one_is_complete(store, onto, tmp_path, monkeypatch):
     import_chains(store, onto, write(tmp_path / "a.jsonl", rows("alice", 6)), commit_every=2)
-    before = content(store, "alice")
+    alice = neem_of(store, "alice")
+    before = content(store, alice)
     calls = {"n": 0}
     original = NeemLogger.action
 
@@ -82,31 +89,32 @@ def test_import_replace_keeps_the_old_neem_until_the_new_one_is_complete(store, 
     monkeypatch.setattr(NeemLogger, "action", failing)
     with pytest.raises(LoggingError, match="disk full"):
         import_chains(store, onto, write(tmp_path / "b.jsonl", rows("alice", 9)), replace=True, commit_every=2)
-    assert [info.id for info in store.neems()] == ["alice"]
-    assert content(store, "alice") == before
+    assert [info.id for info in store.neems()] == [alice]
+    assert content(store, alice) == before
     monkeypatch.setattr(NeemLogger, "action", original)
     import_chains(store, onto, write(tmp_path / "b.jsonl", rows("alice", 9)), replace=True, commit_every=2)
-    assert [info.id for info in store.neems()] == ["alice"]
-    assert content(store, "alice")["triples"] > before["triples"]
+    assert [(info.id, alias_of(info)) for info in store.neems()] == [(alice, "alice")]  # the replacement keeps id and name
+    assert content(store, alice)["triples"] > before["triples"]
 
 
 def test_load_replace_with_a_cut_dump_keeps_the_old_neem(store, onto, tmp_path):
     import_chains(store, onto, write(tmp_path / "a.jsonl", rows("alice", 6)))
-    export_neem(store, "alice", tmp_path / "dump")
-    before = content(store, "alice")
+    alice = neem_of(store, "alice")
+    export_neem(store, alice, tmp_path / "dump")
+    before = content(store, alice)
     bson_file = tmp_path / "dump" / "triples" / "roslog" / "triples.bson"
     data = bson_file.read_bytes()
     bson_file.write_bytes(data[: len(data) // 2])
     with pytest.raises(StoreError, match="truncated or corrupt"):
         load_dump(store, tmp_path / "dump", replace=True)
-    assert content(store, "alice") == before
+    assert content(store, alice) == before
     # Cut exactly at a document boundary: only meta.json's count tells.
     first = int.from_bytes(data[:4], "little")
     bson_file.write_bytes(data[:first])
     with pytest.raises(StoreError, match="counts"):
         load_dump(store, tmp_path / "dump", replace=True)
-    assert content(store, "alice") == before
-    assert [info.id for info in store.neems()] == ["alice"]
+    assert content(store, alice) == before
+    assert [info.id for info in store.neems()] == [alice]
 
 
 def test_duplicate_ids_are_refused_whatever_the_commit_interval(store, onto):
@@ -129,7 +137,7 @@ def test_a_session_import_in_progress_is_not_wiped_by_another_session(store, ont
     logger.action("open(fridge)", 1_740_988_800)
     assert wipe_temporary_neems(store) == []  # the other session's start
     logger.close()
-    assert [info.id for info in store.neems()] == ["alice"]
+    assert [(info.id, alias_of(info)) for info in store.neems()] == [(logger.neem_id, "alice")]
 
 
 def test_mongo_filter_values_are_literals(onto):
@@ -139,7 +147,7 @@ def test_mongo_filter_values_are_literals(onto):
     logger.close()
     for bad in ({"$gt": ""}, {"$ne": None}, ["a", "b"]):
         with pytest.raises(StoreError, match="query constant"):
-            list(store.find("alice", s=bad))
+            list(store.find(logger.neem_id, s=bad))
 
 
 def test_readers_do_not_wait_for_a_writer(tmp_path, onto, capsys):
@@ -151,7 +159,7 @@ def test_readers_do_not_wait_for_a_writer(tmp_path, onto, capsys):
     writer.execute("INSERT INTO store_info VALUES ('busy', 'yes')")
     try:
         assert main(["neems", "--store", str(path), "--json"]) == 0
-        assert [n["id"] for n in json.loads(capsys.readouterr().out)] == ["alice"]
+        assert [n["name"] for n in json.loads(capsys.readouterr().out)] == ["alice"]
     finally:
         writer.execute("ROLLBACK")
         writer.close()
@@ -171,6 +179,7 @@ def test_a_store_readable_by_others_is_made_private_when_opened_for_writing(tmp_
 def test_export_is_private_and_never_follows_a_symlink(tmp_path, onto):
     store = SQLiteStore(tmp_path / "s.sqlite")
     import_chains(store, onto, write(tmp_path / "a.jsonl", rows("alice", 2)))
+    alice = neem_of(store, "alice")
     out = tmp_path / "out"
     (out / "triples" / "roslog").mkdir(parents=True)
     old = out / "triples" / "roslog" / "triples.metadata.json"
@@ -180,13 +189,13 @@ def test_export_is_private_and_never_follows_a_symlink(tmp_path, onto):
     victim.write_text("keep")
     os.symlink(victim, out / "triples" / "roslog" / "triples.bson")
     with pytest.raises(StoreError, match="symbolic link"):
-        export_neem(store, "alice", out)
+        export_neem(store, alice, out)
     assert victim.read_text() == "keep"
     os.remove(out / "triples" / "roslog" / "triples.bson")
     previous = os.umask(0)
     try:
-        export_neem(store, "alice", out / "deeper" / "dump")
-        export_neem(store, "alice", out)
+        export_neem(store, alice, out / "deeper" / "dump")
+        export_neem(store, alice, out)
     finally:
         os.umask(previous)
     for path in [out, *out.rglob("*")]:
@@ -205,17 +214,18 @@ def test_no_message_shows_a_password(uri, capsys, monkeypatch):
     assert password not in err, err
 
 
-def _two_neem_dump(store, onto, tmp_path: Path) -> Path:
+def _two_neem_dump(store, onto, tmp_path: Path) -> tuple[Path, str, str]:
     import_chains(store, onto, write(tmp_path / "ab.jsonl", rows("alice", 4) + rows("bob", 4, start_minute=30)))
-    export_neem(store, "alice", tmp_path / "two" / "alice")
-    export_neem(store, "bob", tmp_path / "two" / "bob")
-    store.drop_neem("alice")
-    store.drop_neem("bob")
-    return tmp_path / "two"
+    alice, bob = neem_of(store, "alice"), neem_of(store, "bob")
+    export_neem(store, alice, tmp_path / "two" / "alice")
+    export_neem(store, bob, tmp_path / "two" / "bob")
+    store.drop_neem(alice)
+    store.drop_neem(bob)
+    return tmp_path / "two", alice, bob
 
 
 def test_a_dump_of_two_neems_loads_both_or_neither(store, onto, tmp_path):
-    dump = _two_neem_dump(store, onto, tmp_path)
+    dump, alice, bob = _two_neem_dump(store, onto, tmp_path)
     bson_file = dump / "bob" / "triples" / "roslog" / "triples.bson"
     whole = bson_file.read_bytes()
     bson_file.write_bytes(whole[: len(whole) - 7])  # alice's folder sorts first and is fine
@@ -223,15 +233,15 @@ def test_a_dump_of_two_neems_loads_both_or_neither(store, onto, tmp_path):
         load_dump(store, dump)
     assert store.neems() == [] and store.staging_neems() == []
     bson_file.write_bytes(whole)
-    assert load_dump(store, dump) == ["alice", "bob"]
-    assert [info.id for info in store.neems()] == ["alice", "bob"]
+    assert load_dump(store, dump) == [alice, bob]  # each keeps its id
+    assert [(info.id, alias_of(info)) for info in store.neems()] == [(alice, "alice"), (bob, "bob")]
 
 
 def test_two_folders_holding_one_neem_id_are_refused(store, onto, tmp_path):
-    dump = _two_neem_dump(store, onto, tmp_path)
+    dump, alice, _ = _two_neem_dump(store, onto, tmp_path)
     meta = json.loads((dump / "bob" / "meta.json").read_text())
-    (dump / "bob" / "meta.json").write_text(json.dumps({**meta, "id": "alice"}))
-    with pytest.raises(StoreError, match="both hold NEEM 'alice'"):
+    (dump / "bob" / "meta.json").write_text(json.dumps({**meta, "id": alice}))
+    with pytest.raises(StoreError, match=f"both hold NEEM '{alice}'"):
         load_dump(store, dump, replace=True)
     assert store.neems() == [] and store.staging_neems() == []
 
@@ -316,12 +326,13 @@ def test_a_builder_killed_inside_the_swap_leaves_the_old_neem_or_the_new_one(sto
     from oracle.store.staging import READY, STAGED_BY
 
     import_chains(store, onto, write(tmp_path / "a.jsonl", rows("alice", 4)))
-    old = content(store, "alice")
+    alice = neem_of(store, "alice")
+    old = content(store, alice)
     dead = {"host": __import__("socket").gethostname(), "pid": _dead_pid()}
-    before_drop = store.create_staging("alice", user="alice")
+    before_drop = store.create_staging(alice, user="alice")
     store.update_meta(before_drop, **{STAGED_BY: dead, READY: True})
     drop_abandoned(store)  # the old NEEM is still there: the half-done replacement goes
-    assert content(store, "alice") == old and store.staging_neems() == []
+    assert content(store, alice) == old and store.staging_neems() == []
 
     logger = NeemLogger.create(store, onto, user="alice", replace=True)
     for i in range(7):
@@ -329,7 +340,7 @@ def test_a_builder_killed_inside_the_swap_leaves_the_old_neem_or_the_new_one(sto
     logger.flush()
     store.update_meta(logger.neem_id, **{STAGED_BY: dead, READY: True})
     new = content(store, logger.neem_id)
-    store.drop_neem("alice")  # killed right after dropping the old NEEM
+    store.drop_neem(alice)  # killed right after dropping the old NEEM
     drop_abandoned(store)
-    assert [info.id for info in store.neems()] == ["alice"] and content(store, "alice") == new
-    assert store.staging_neems() == [] and READY not in {k for k, v in store.neem("alice").meta.items() if v}
+    assert [info.id for info in store.neems()] == [alice] and content(store, alice) == new
+    assert store.staging_neems() == [] and READY not in {k for k, v in store.neem(alice).meta.items() if v}

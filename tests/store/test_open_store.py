@@ -72,3 +72,47 @@ def test_knowrobs_connection_variables_name_the_server(monkeypatch):
     with open_store("mongodb") as store:
         assert isinstance(store, MongoStore)
         assert "p:w/d" not in store.location  # the password is masked
+
+
+def test_the_password_comes_from_neem_mongo_password_file(tmp_path):
+    from oracle.store import mongo_uri_from_env
+
+    secret = tmp_path / "pw"
+    secret.write_text("p@ss/w:rd%\n")
+    env = {"NEEM_MONGO_URI": "mongodb://neem@mongo:27017/roslog?authSource=admin", "NEEM_MONGO_PASSWORD_FILE": str(secret)}
+    assert mongo_uri_from_env(env) == "mongodb://neem:p%40ss%2Fw%3Ard%25@mongo:27017/roslog?authSource=admin"
+    assert mongo_uri_from_env({**env, "NEEM_MONGO_URI": "mongodb://neem@h1:1,h2:2"}) == "mongodb://neem:p%40ss%2Fw%3Ard%25@h1:1,h2:2"
+
+
+@pytest.mark.parametrize(
+    ("uri", "content", "message"),
+    [
+        ("mongodb://mongo:27017/roslog", "pw\n", "names no user"),
+        ("mongodb://neem:inline-pw@mongo/roslog", "pw\n", "already holds a password"),
+        ("mongodb://neem@mongo/roslog", None, "cannot read it"),
+        ("mongodb://neem@mongo/roslog", "", "one password on one line"),
+        ("mongodb://neem@mongo/roslog", "two\nlines\n", "one password on one line"),
+        ("mongodb://neem@mongo/roslog", b"\xff\xfe-secret", "not UTF-8"),
+        ("mongodb://neem@mongo/roslog", "s" * 5000, "longer than 4096"),
+    ],
+)
+def test_a_bad_password_file_is_one_line_that_never_shows_a_password(tmp_path, uri, content, message):
+    from oracle.store import mongo_uri_from_env
+
+    secret = tmp_path / "pw"
+    if isinstance(content, bytes):
+        secret.write_bytes(content)
+    elif content is not None:
+        secret.write_text(content)
+    with pytest.raises(StoreError, match=message) as caught:
+        mongo_uri_from_env({"NEEM_MONGO_URI": uri, "NEEM_MONGO_PASSWORD_FILE": str(secret)})
+    text = str(caught.value)
+    assert "\n" not in text and "inline-pw" not in text and "secret" not in text and "sss" not in text
+
+
+def test_a_command_with_a_bad_password_file_exits_with_one_line(monkeypatch, tmp_path, capsys):
+    monkeypatch.setenv("NEEM_MONGO_URI", "mongodb://neem@127.0.0.1:1/roslog")
+    monkeypatch.setenv("NEEM_MONGO_PASSWORD_FILE", str(tmp_path / "missing"))
+    assert main(["neems"]) != 0
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "NEEM_MONGO_PASSWORD_FILE" in err and "cannot read it" in err

@@ -86,6 +86,11 @@ def _sqlite_floor(store: Path, neem: str, actions: int, indexes: bool) -> tuple[
     """Wall and CPU seconds plain sqlite3 takes to insert the rows ``import`` wrote into the NEEM's triples
     table, into a fresh file with the same table (and, with ``indexes``, the same indexes),
     committing every COMMIT_EVERY actions' worth of rows."""
+    from oracle.store import open_store
+    from oracle.store.ids import resolve_neem
+
+    with open_store(store, read_only=True) as opened:
+        neem = resolve_neem(opened, neem)  # the NEEM's tables are named by its id, not its name
     source = sqlite3.connect(store)
     table = f'"{neem}_triples"'
     columns = "oid, s, p, o, ok, pstar, ostar, graph, since, until, sk, raw"

@@ -243,7 +243,7 @@ def history_figures(quick: bool = False) -> list[dict]:
             bridge = Bridge(store, neem, onto)
             history: list = []
             wall, cpu = _timed(lambda: history.append(len(bridge.history())))
-            _, floor = _timed(lambda: _sql_floor(path, neem))
+            _, floor = _timed(lambda: _sql_floor(path, bridge.neem_id))  # tables are named by the id
             ratio = cpu["median"] / floor["median"]
             print(f"history read, {n:>6,} actions ({history[-1]} rows): wall {_fmt(wall)} s, cpu {_fmt(cpu)} s"
                   f" (min/median/max); SQL floor cpu {_fmt(floor)} s; cpu/floor {ratio:.1f}x")

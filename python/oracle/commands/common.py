@@ -40,7 +40,7 @@ NUMBERS = Option(("--numbers",), {
     "choices": ("decimal128", "double"), "default": "decimal128",
     "help": "how new numbers are written: Decimal128 (KnowRob 2.x, default) or double (KnowRob 3)",
 })
-NEEM = Option(("--neem",), {"metavar": "ID", "help": "NEEM id (needed when the store holds several)"})
+NEEM = Option(("--neem",), {"metavar": "ID", "help": "NEEM id or name (needed when the store holds several)"})
 JSON = Option(("--json",), {"action": "store_true", "help": "print the result as JSON"})
 AT = Option(("--at",), {
     "help": "time of the decision: unix seconds or ISO-8601, a time without zone read as UTC "

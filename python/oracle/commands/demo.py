@@ -43,6 +43,7 @@ def run(args: argparse.Namespace) -> int:
     from oracle.ontology import build_with_report
     from oracle.ranking import rank_neem
     from oracle.store import open_store
+    from oracle.store.ids import find_neem
     from oracle.world.generate import simulate
     from oracle.world.personas import make_persona
     from oracle.world.worldfile import load_world
@@ -60,7 +61,8 @@ def run(args: argparse.Namespace) -> int:
     history = [r for r in rows if _time(r).date() != last_day]
     now = next(r for r in rows if _time(r).date() == last_day)
     store = open_store(args.store)
-    if store.has_neem("demo") and store.neem("demo").meta.get("origin") != DEMO_ORIGIN:
+    old = find_neem(store, "demo")
+    if old is not None and old.meta.get("origin") != DEMO_ORIGIN:
         raise NeemOracleError(
             f"{store.location} already holds a NEEM 'demo' that the demo did not write; keep it: run the demo"
             " with --store OTHER.sqlite, or rename it first (persist --neem demo --as NAME)"

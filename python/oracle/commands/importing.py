@@ -8,9 +8,13 @@ import signal
 import sys
 from collections.abc import Callable, Iterator
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from oracle.commands.common import NUMBERS, ONTOLOGY_OPTIONS, STORE, add_options, bounded_int, ontology_from
 from oracle.errors import NeemOracleError
+
+if TYPE_CHECKING:
+    from oracle.store import Store
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -40,13 +44,13 @@ def run(args: argparse.Namespace) -> int:
             import_chains(store, onto, args.chains, replace=args.replace, report=report, commit_every=args.commit_every,
                           session=args.session, plans=plans, no_clock=args.no_clock, stop=stop)
         except NeemOracleError:
-            _print(report)
+            _print(report, store)
             raise
         except KeyboardInterrupt:
-            _print(report)
+            _print(report, store)
             print(f"interrupted: {sum(report.values())} actions committed", file=sys.stderr)
             return 130
-        _print(report)
+        _print(report, store)
     return 0
 
 
@@ -71,6 +75,12 @@ def _first_ctrl_c_between_rows() -> Iterator[Callable[[], bool]]:
         signal.signal(signal.SIGINT, previous)
 
 
-def _print(report: dict[str, int]) -> None:
+def _print(report: dict[str, int], store: Store) -> None:
+    """Each NEEM's id, name and committed actions (a NEEM still hidden has its name in staging)."""
+    from oracle.store.base import STAGING
+    from oracle.store.ids import ALIAS_KEY, alias_of
+
+    names = {info.id: alias_of(info) for info in store.neems()}
+    names.update((str(info.meta.get(STAGING)), info.meta.get(ALIAS_KEY)) for info in store.staging_neems())
     for neem_id, count in report.items():
-        print(f"{neem_id}\t{count} actions")
+        print(f"{neem_id}\t{names.get(neem_id) or '-'}\t{count} actions")

@@ -37,11 +37,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 def run_export(args: argparse.Namespace) -> int:
     from oracle.store import open_store
     from oracle.store.dump import export_all, export_neem
+    from oracle.store.ids import resolve_neem
 
     with open_store(args.store, number_format=args.numbers, read_only=True) as store:
         if args.neem is not None:
-            counts = export_neem(store, args.neem, args.out)
-            print(f"{args.neem}: {counts['triples']} triples -> {args.out}")
+            neem_id = resolve_neem(store, args.neem)
+            counts = export_neem(store, neem_id, args.out)
+            print(f"{neem_id}: {counts['triples']} triples -> {args.out}")
         else:
             for neem_id, counts in export_all(store, args.out).items():
                 print(f"{neem_id}: {counts['triples']} triples -> {args.out / neem_id}")
@@ -85,11 +87,13 @@ def run_neems(args: argparse.Namespace) -> int:
                           for row in rows], indent=2))
         return 0
     wid = max([4] + [len(row.id) for row in rows])
+    wname = max([4] + [len(row.name or "-") for row in rows])
     wuser = max([4] + [len(row.user or "-") for row in rows])
-    print(f"{'NEEM':<{wid}}  {'user':<{wuser}}  {'actions':>7}  {'begin':<25}  {'end':<25}  kept")
+    print(f"{'NEEM':<{wid}}  {'name':<{wname}}  {'user':<{wuser}}  {'actions':>7}  {'begin':<25}  {'end':<25}  kept")
     for row in rows:
         print(
-            f"{row.id:<{wid}}  {row.user or '-':<{wuser}}  {row.actions:>7}  {_iso(row.begin, clocked[row.id]) or '-':<25}"
+            f"{row.id:<{wid}}  {row.name or '-':<{wname}}"
+            f"  {row.user or '-':<{wuser}}  {row.actions:>7}  {_iso(row.begin, clocked[row.id]) or '-':<25}"
             f"  {_iso(row.end, clocked[row.id]) or '-':<25}  {'no' if row.temporary else 'yes'}"
         )
     return 0

@@ -29,13 +29,15 @@ def open_target(args: argparse.Namespace, *, write: bool = False) -> Target:
     ``--neem`` and the ontology the NEEM was logged with."""
     from oracle.ontology.provenance import ontology_for
     from oracle.store import open_store
+    from oracle.store.ids import alias_of, resolve_neem
 
     store = open_store(args.store, create=False, read_only=not write)
     try:
-        neem_id = args.neem if args.neem is not None else default_neem(store)
+        neem_id = resolve_neem(store, args.neem) if args.neem is not None else default_neem(store)
         info = store.neem(neem_id)
         given = ontology_from(args) if any(getattr(args, name, None) is not None for name in ONTOLOGY_DESTS) else None
-        onto = ontology_for(neem_id, info.meta, given, lambda: ontology_from(args))
+        name = alias_of(info) or neem_id  # messages name the NEEM as the user knows it
+        onto = ontology_for(name, info.meta, given, lambda: ontology_from(args))
     except BaseException:
         store.close()
         raise
@@ -45,10 +47,14 @@ def open_target(args: argparse.Namespace, *, write: bool = False) -> Target:
 def default_neem(store: Store) -> str:
     """The store's only NEEM. With several, guessing (say, the newest) would answer about the
     wrong user without a word, so the user is asked to choose."""
-    ids = [info.id for info in store.neems()]
+    from oracle.store.ids import alias_of
+
+    infos = store.neems()
+    ids = [info.id for info in infos]
     if not ids:
         raise StoreError(f"{store.location}: the store holds no NEEM; log one first")
     if len(ids) > 1:
-        shown = ", ".join(ids[:6]) + (", ..." if len(ids) > 6 else "")
+        names = [alias_of(info) or info.id for info in infos]
+        shown = ", ".join(names[:6]) + (", ..." if len(names) > 6 else "")
         raise StoreError(f"{store.location} holds {len(ids)} NEEMs ({shown}); choose one with --neem")
     return ids[0]

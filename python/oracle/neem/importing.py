@@ -21,7 +21,7 @@ from oracle.neem.lifecycle import wipe_temporary_neems
 from oracle.neem.writer import NeemLogger, check_call, check_performer
 from oracle.ontology.model import OdbOntology
 from oracle.store import Store
-from oracle.store.tbox import TBox, tbox_from_graph
+from oracle.store.tbox import TBox, tbox_for
 from oracle.timeline import CLOCK_KEY, IDLE_THRESHOLD_S, SEQUENCE_CLOCK, Instant, TimeValueError, seconds_of, sequence_instant
 
 @dataclass
@@ -131,7 +131,7 @@ def import_chains(
     positions: dict[str, int] = {}
     report = {} if report is None else report
     loggers: dict[str, NeemLogger] = {}
-    tbox = tbox if tbox is not None else tbox_from_graph(onto.graph)
+    tbox = tbox if tbox is not None else tbox_for(onto)
     where = str(path)
     done = False
     try:

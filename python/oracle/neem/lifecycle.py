@@ -2,14 +2,21 @@
 
 from __future__ import annotations
 
+from oracle.errors import StoreError
 from oracle.store import NeemInfo, Store
+from oracle.store.ids import ALIAS_KEY, check_alias, find_neem, resolve_neem
 from oracle.store.staging import drop_abandoned
 
 
-def persist(store: Store, neem_id: str, name: str) -> NeemInfo:
-    """Keep a NEEM (thesis 3.5): it gets the id ``name`` and survives the next session start."""
-    store.rename_neem(neem_id, name)
-    return store.update_meta(name, temporary=False, name=name)
+def persist(store: Store, neem: str, name: str) -> NeemInfo:
+    """Keep a NEEM (``neem``: its id or alias; thesis 3.5): it keeps its id, is called ``name``
+    from now on, and survives the next session start."""
+    neem_id = resolve_neem(store, neem)
+    check_alias(name)
+    other = find_neem(store, name)
+    if other is not None and other.id != neem_id:
+        raise StoreError(f"{store.location}: the name {name!r} is taken by NEEM {other.id!r}")
+    return store.update_meta(neem_id, temporary=False, name=name, **{ALIAS_KEY: name})
 
 
 def wipe_temporary_neems(store: Store) -> list[str]:

@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING, Any
 
 from oracle.neem import terms as T
 from oracle.errors import StoreError
+from oracle.store.ids import alias_of
 from oracle.store import RDF_TYPE, NeemInfo, Store, Triple, TriplePattern, Var
 from oracle.store.base import SUMMARY_KEY
 from oracle.timeline import TIME_OF_DAY_NAMES
@@ -69,6 +70,8 @@ class NeemSummary:
     begin: float | None
     end: float | None
     temporary: bool
+    #: The NEEM's alias (``--neem`` takes it or the id), None for a NEEM without one.
+    name: str | None = None
 
 
 def summarize_neem(store: Store, neem_id: str, info: NeemInfo | None = None) -> NeemSummary:
@@ -81,13 +84,14 @@ def summarize_neem(store: Store, neem_id: str, info: NeemInfo | None = None) -> 
     mark = store.write_mark(neem_id)
     kept = info.meta.get(SUMMARY_KEY)
     if isinstance(kept, dict) and kept.get("mark") == mark:
-        return NeemSummary(neem_id, info.user, int(kept["actions"]), kept.get("begin"), kept.get("end"), info.temporary)
+        return NeemSummary(neem_id, info.user, int(kept["actions"]), kept.get("begin"), kept.get("end"), info.temporary,
+                           alias_of(info))
     actions, begin, end = count_actions(store, neem_id)
     try:
         store.update_meta(neem_id, **{SUMMARY_KEY: {"actions": actions, "begin": begin, "end": end, "mark": mark}})
     except StoreError:
         pass  # a store opened read-only lists what it reads, it just cannot keep the summary
-    return NeemSummary(neem_id, info.user, actions, begin, end, info.temporary)
+    return NeemSummary(neem_id, info.user, actions, begin, end, info.temporary, alias_of(info))
 
 
 def count_actions(store: Store, neem_id: str) -> tuple[int, float | None, float | None]:

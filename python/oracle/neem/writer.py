@@ -35,7 +35,8 @@ from oracle.ontology.model import OdbOntology
 from oracle.ontology.provenance import META_KEY as ONTOLOGY_KEY, check_logged_with, record_of
 from oracle.store import RDF_TYPE, Store, Triple, TriplePattern, Var
 from oracle.store.base import SUMMARY_KEY
-from oracle.store.tbox import TBox, load_tbox, tbox_from_graph
+from oracle.store.ids import ALIAS_KEY, alias_of, check_alias, find_neem, is_object_id, new_neem_id, unique_alias
+from oracle.store.tbox import TBox, load_tbox, tbox_for
 from oracle.timeline import IDLE_THRESHOLD_S, Instant, Moment, TimeValueError, has_clock, is_idle_gap, sequence_instant
 
 _SLUG = re.compile(r"[^A-Za-z0-9_\-]+")
@@ -104,6 +105,26 @@ def check_call(onto: OdbOntology, call: TaskCall) -> None:
     try:
         onto.task_roles(call.task, len(call.args))
     except OntologyError as error:
+        raise LoggingError(str(error)) from None
+
+
+def _place(store: Store, user: str, name: str | None, replace: bool) -> tuple[str, str | None]:
+    """The id and alias of a NEEM ``create`` makes: ``name`` (an id or alias) or the user's name
+    when None; a name of a NEEM that exists means that NEEM, only with ``replace``."""
+    try:
+        if name is None:
+            base = _NEEM_SLUG.sub("-", user).strip("-")[:48] or "user"
+            existing = find_neem(store, base) if replace else None
+            if existing is not None:
+                return existing.id, alias_of(existing)
+            return new_neem_id(), unique_alias(store, base)
+        existing = find_neem(store, name)
+        if existing is not None:
+            if not replace:
+                raise LoggingError(f"NEEM {name!r} already exists (replace it, or choose another name)")
+            return existing.id, alias_of(existing)
+        return (name, None) if is_object_id(name) else (new_neem_id(), check_alias(name))
+    except StoreError as error:
         raise LoggingError(str(error)) from None
 
 
@@ -180,25 +201,20 @@ class NeemLogger:
         hidden: bool = False,
         meta: dict[str, object] | None = None,
     ) -> NeemLogger:
-        """A new NEEM for ``user`` holding the ontology's TBox (id: the user's name, made unique).
+        """A new NEEM for ``user`` holding the ontology's TBox: its id a fresh ObjectId, its alias
+        ``neem_id`` or the user's name made unique (an existing NEEM of that name or id is an
+        error, or with ``replace`` the NEEM replaced, which keeps its id and alias).
 
         With ``replace`` (of an existing NEEM) or ``hidden`` the NEEM stays out of listings until
         ``close()``: the old one is untouched until then, and a concurrent session start does
         not wipe a temporary NEEM still being imported."""
         if not isinstance(user, str) or not user.strip():
             raise LoggingError("a NEEM needs a user name")
-        if neem_id is None:
-            base = _NEEM_SLUG.sub("-", user).strip("-")[:48] or "user"
-            neem_id, n = base, 1
-            while store.has_neem(neem_id) and not replace:
-                n += 1
-                neem_id = f"{base}-{n}"
-        elif not replace and store.has_neem(neem_id):
-            raise LoggingError(f"NEEM {neem_id!r} already exists (replace it, or choose another id)")
         if commit_every < 1:
             raise LoggingError(f"commit_every must be at least 1, got {commit_every}")
+        neem_id, alias = _place(store, user, neem_id, replace)
         recorded = record_of(onto)  # readers use the same ontology by default
-        extra = {**(meta or {}), "name": neem_id}
+        extra = {**(meta or {}), "name": alias or neem_id, ALIAS_KEY: alias}
         if recorded is not None:
             extra[ONTOLOGY_KEY] = recorded.to_meta()
         # The NEEM is built hidden and made visible with its TBox in one step: a NEEM without its
@@ -207,7 +223,7 @@ class NeemLogger:
         created = store.create_staging(neem_id, user=user, meta={**extra, "temporary": temporary})
         staging: str | None = created
         try:
-            load_tbox(store, created, tbox if tbox is not None else tbox_from_graph(onto.graph))
+            load_tbox(store, created, tbox if tbox is not None else tbox_for(onto))
             if not hidden and not (replace and store.has_neem(neem_id)):
                 store.swap_in(created, neem_id, replace=False)
                 staging = None

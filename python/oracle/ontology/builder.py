@@ -83,6 +83,14 @@ def _build(odb_dir: Path, mapping: Path, soma_dir: Path | str | None) -> tuple[O
     return onto, report
 
 
+def generated_graph(odb_dir: Path | str | None = None, mapping: Path | str | None = None) -> Graph:
+    """The odb ontology's own axioms, without the upper ontology they attach to (what a NEEM
+    stores beside the official SOMA/DUL files, each of which goes in as its own graph)."""
+    odb_path = Path(odb_dir).expanduser() if odb_dir is not None else DEFAULT_ODB
+    mapping_path = Path(mapping).expanduser() if mapping is not None else DEFAULT_MAPPING
+    return _generate(read_odb(odb_path), load_mapping(mapping_path), Graph())[0]
+
+
 def _check_upper_iris(maps: Mapping, upper: Graph, what: str) -> None:
     known = declared_entities(upper)
     external = [(f"soma_odb_map.{o}", c) for o, c in maps.object_map.items()]

@@ -44,6 +44,12 @@ def load_upper(soma_dir: Path | str | None = None) -> Graph:
     return graph
 
 
+def official_files(soma_dir: Path | str) -> list[Path]:
+    """The official files of ``soma_dir`` that ``load_upper`` reads, in load order (imports first)."""
+    directory = Path(soma_dir)
+    return [directory / name for name in OFFICIAL_FILES if (directory / name).exists()]
+
+
 def declared_entities(graph: Graph) -> frozenset[str]:
     """IRIs declared as classes or properties in a graph."""
     kinds = (OWL.Class, OWL.ObjectProperty, OWL.DatatypeProperty, OWL.AnnotationProperty)

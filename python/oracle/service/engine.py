@@ -21,12 +21,13 @@ from oracle.algorithm.predictors import DEFAULT
 from oracle.answers import something_else_sentence, what_next_sentence, why_not_sentence
 from oracle.bridge import Bridge
 from oracle.paths import prolog_dir
-from oracle.errors import LoggingError, NeemOracleError, StoreError
+from oracle.errors import NeemOracleError, StoreError
 from oracle.neem.writer import NeemLogger
 from oracle.timeline import Instant
 from oracle.ontology import OdbOntology
 from oracle.service.session import NeemSession, make_predictor, moment_of
 from oracle.store import Store
+from oracle.store.ids import alias_of, find_neem
 
 T = TypeVar("T")
 LOG = logging.getLogger("oracle.service")
@@ -88,8 +89,8 @@ class Engine:
 
     # -- NEEMs --------------------------------------------------------------------------------
     def neems(self) -> list[dict[str, Any]]:
-        return [{"id": info.id, "user": info.user, "created_at": info.created_at, "temporary": info.temporary}
-                for info in self.store.neems()]
+        return [{"id": info.id, "name": alias_of(info), "user": info.user, "created_at": info.created_at,
+                 "temporary": info.temporary} for info in self.store.neems()]
 
     def newest(self) -> str | None:
         """The newest NEEM (the page's default when the service was given none)."""
@@ -97,12 +98,20 @@ class Engine:
         return max(infos, key=lambda info: (info.created_at or "", info.id)).id if infos else None
 
     def create(self, user: str, neem: str | None) -> dict[str, Any]:
-        if neem is not None and self.store.has_neem(neem):
-            raise LoggingError(f"NEEM {neem!r} already exists")
+        """A new NEEM (``neem``: its name; an existing NEEM of that name or id is a LoggingError)."""
         logger = NeemLogger.create(self.store, self.ontology, user=user, neem_id=neem, commit_every=NEVER)
         self.sessions[logger.neem_id] = NeemSession(logger.neem_id, logger, self.ontology,
                                                     make_predictor(self.ontology, self.settings, self.method), [])
-        return {"id": logger.neem_id, "user": user}
+        return {"id": logger.neem_id, "name": alias_of(self.store.neem(logger.neem_id)), "user": user}
+
+    def resolve(self, neem: str) -> str:
+        """The id of the NEEM a request names by id or alias (NotFound when none)."""
+        if neem in self.sessions:
+            return neem
+        found = find_neem(self.store, neem)
+        if found is None:
+            raise NotFound(f"no NEEM {neem!r} in the store")
+        return found.id
 
     def bridge(self, neem: str) -> Bridge:
         """The one bridge, pointed at ``neem`` (Prolog reads one NEEM at a time)."""
@@ -110,12 +119,14 @@ class Engine:
             self._bridge = Bridge(self.store, neem, self.ontology)
         return self._bridge
 
-    def session(self, neem: str) -> NeemSession:
-        """The NEEM's live session, opened on first use: one history read, one fit."""
-        session = self.sessions.get(neem)
+    def session(self, name: str) -> NeemSession:
+        """The NEEM's live session (``name``: its id or alias), opened on first use: one history
+        read, one fit."""
+        session = self.sessions.get(name)
         if session is None:
-            if not self.store.has_neem(neem):
-                raise NotFound(f"no NEEM {neem!r} in the store")
+            neem = self.resolve(name)
+            if neem in self.sessions:
+                return self.sessions[neem]
             history = self.bridge(neem).history()
             logger = NeemLogger(self.store, self.ontology, neem, commit_every=NEVER)
             session = NeemSession(neem, logger, self.ontology, make_predictor(self.ontology, self.settings, self.method), history)
@@ -140,17 +151,16 @@ class Engine:
         session = self.session(neem)
         call = session.calls([task], "task")[0]
         when = None if at is None else Instant.of(moment_of(at, "at")).seconds
-        answer = self.bridge(neem).why_not(call.task, list(call.args), when)
+        answer = self.bridge(session.neem).why_not(call.task, list(call.args), when)
         return {"sentence": why_not_sentence(answer), "answer": answer}
 
     def what_next(self, neem: str) -> dict[str, Any]:
-        self.session(neem)
-        answer = self.bridge(neem).what_next()
+        answer = self.bridge(self.session(neem).neem).what_next()
         return {"sentence": what_next_sentence(answer), "answer": answer}
 
     def something_else(self, neem: str, task: str | None) -> dict[str, Any]:
         session = self.session(neem)
-        bridge = self.bridge(neem)
+        bridge = self.bridge(session.neem)
         if task:
             call = session.calls([task], "task")[0]
             answer = bridge.something_else(call.task, list(call.args))
@@ -163,8 +173,7 @@ class Engine:
                seconds: float) -> dict[str, Any]:
         from pyswip import Atom
 
-        self.session(neem)  # a NotFound error for a missing NEEM
-        bridge = self.bridge(neem)
+        bridge = self.bridge(self.session(neem).neem)  # a NotFound error for a missing NEEM
         if not self._query_loaded:
             bridge.ask("neem_store:py_request(R), R = [F], use_module(user:F)", [Atom(str(QUERY_MODULE))])
             self._query_loaded = True

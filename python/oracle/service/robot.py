@@ -43,8 +43,12 @@ def drive(url: str, user: str, rows: list[Any], neem: str | None, token: str | N
     result = Drive()
     try:
         try:
-            existing = {n["id"] for n in client.get("/api/neems")}
-            if neem is None or neem not in existing:
+            listed = client.get("/api/neems")
+            # an existing NEEM is reused whether ``neem`` is its id or its name
+            existing = {n["name"]: n["id"] for n in listed if n.get("name")} | {n["id"]: n["id"] for n in listed}
+            if neem is not None and neem in existing:
+                neem = existing[neem]
+            else:
                 neem = client.post("/api/neems", {"user": user, "neem": neem})["id"]
         except ServiceError as error:
             result.errors.append(str(error))

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import threading
 import time
-from typing import Annotated, Any, Literal
+from typing import TYPE_CHECKING, Annotated, Any, Literal
 
 from fastapi import APIRouter, BackgroundTasks, Query, Request
 from fastapi.responses import HTMLResponse, JSONResponse, StreamingResponse
@@ -15,6 +15,9 @@ from pydantic import BaseModel, Field
 
 from oracle.service.events import Event
 from oracle.service.page import render_page
+
+if TYPE_CHECKING:
+    from oracle.service.session import NeemSession
 
 Time = float | str | None
 router = APIRouter()
@@ -99,10 +102,11 @@ async def perception(neem: str, body: Perception, request: Request) -> dict[str,
     ctx = _ctx(request)
     seen = [(o.name, o.pose) for o in body.objects]
 
-    def job() -> list[str]:
-        return ctx.engine.session(neem).perceive(seen, body.at)
+    def job() -> tuple[str, list[str]]:
+        session = ctx.engine.session(neem)
+        return session.neem, session.perceive(seen, body.at)
 
-    iris = await ctx.thread.run(job)
+    neem, iris = await ctx.thread.run(job)  # events and answers name the NEEM by its id
     data = {"objects": [name for name, _ in seen], "logged": iris}
     ctx.hub.publish(Event("perception", neem, data))
     return {"neem": neem, **data}
@@ -117,13 +121,13 @@ async def situation(neem: str, body: SituationIn, request: Request, background: 
     ctx = _ctx(request)
     queued = time.perf_counter()
 
-    def job() -> tuple[Any, Any, dict[str, Any], float, float]:
+    def job() -> tuple[str, Any, Any, dict[str, Any], float, float]:
         started = time.perf_counter()
         session = ctx.engine.session(neem)
         found, ranking, ms = session.situation(body.available, body.at)
-        return found, ranking, session.describe(found, ranking, ms), started, time.perf_counter()
+        return session.neem, found, ranking, session.describe(found, ranking, ms), started, time.perf_counter()
 
-    found, ranking, answer, started, done = await ctx.thread.run(job)
+    neem, found, ranking, answer, started, done = await ctx.thread.run(job)
     timing = f"queue;dur={(started - queued) * 1000:.3f}, engine;dur={(done - started) * 1000:.3f}"
     write = lambda: ctx.engine.session(neem).write_situation(found, ranking)  # noqa: E731
     if ctx.write_behind:
@@ -167,26 +171,31 @@ async def action(neem: str, body: ActionIn, request: Request) -> dict[str, Any]:
     `end`. A gap of the logger's idle threshold before it is logged as an idle action."""
     ctx = _ctx(request)
 
-    def job() -> dict[str, Any]:
+    def job() -> tuple[str, dict[str, Any]]:
         session = ctx.engine.session(neem)
-        if body.phase == "begin":
-            if body.call is None:
-                raise _missing("call")
-            opened = session.begin(body.call, body.at, body.performed_by, body.id)
-            return {"id": opened.key, "call": str(opened.call), "open": True}
-        if body.phase == "end":
-            logged = session.end(body.id, body.call, body.at)
-        else:
-            if body.call is None:
-                raise _missing("call")
-            logged = session.log(body.call, body.begin, body.end, body.performed_by)
-        return {"id": logged.iri, "call": str(logged.call), "begin": logged.begin, "end": logged.end,
-                "time_of_day": logged.part_of_day, "idle": logged.idle, "open": False,
-                "history": session.predictor.n_steps_}
+        return session.neem, _logged_action(session, body)
 
-    answer = await ctx.thread.run(job)
+    neem, answer = await ctx.thread.run(job)
     ctx.hub.publish(Event("action", neem, answer))
     return {"neem": neem, **answer}
+
+
+def _logged_action(session: NeemSession, body: ActionIn) -> dict[str, Any]:
+    """What ``POST .../actions`` logs, and its answer."""
+    if body.phase == "begin":
+        if body.call is None:
+            raise _missing("call")
+        opened = session.begin(body.call, body.at, body.performed_by, body.id)
+        return {"id": opened.key, "call": str(opened.call), "open": True}
+    if body.phase == "end":
+        logged = session.end(body.id, body.call, body.at)
+    else:
+        if body.call is None:
+            raise _missing("call")
+        logged = session.log(body.call, body.begin, body.end, body.performed_by)
+    return {"id": logged.iri, "call": str(logged.call), "begin": logged.begin, "end": logged.end,
+            "time_of_day": logged.part_of_day, "idle": logged.idle, "open": False,
+            "history": session.predictor.n_steps_}
 
 
 def _missing(field: str) -> Exception:
@@ -201,14 +210,14 @@ async def choice(neem: str, body: ChoiceIn, request: Request) -> dict[str, Any]:
     .../choice). The NEEM records it when the robot executes it, as the next action."""
     ctx = _ctx(request)
 
-    def job() -> dict[str, Any]:
+    def job() -> tuple[str, dict[str, Any]]:
         session = ctx.engine.session(neem)
         task = str(session.calls([body.task], "task")[0])
         workflow = [str(c) for c in session.calls(body.workflow, "workflow")] if body.workflow else None
         session.choice = {"task": task, "workflow": workflow}
-        return session.choice
+        return session.neem, session.choice
 
-    made = await ctx.thread.run(job)
+    neem, made = await ctx.thread.run(job)
     ctx.hub.publish(Event("choice", neem, made))
     return {"neem": neem, **made}
 
@@ -268,6 +277,8 @@ async def prolog(body: PrologIn, request: Request) -> dict[str, Any]:
 async def events(request: Request, neem: str | None = Query(None, description="only this NEEM's events")) -> StreamingResponse:
     """Server-Sent Events: `situation` (a new ranking), `action`, `perception`, `choice`, `neem`."""
     ctx = _ctx(request)
+    if neem is not None:  # events name NEEMs by id
+        neem = await ctx.thread.run(ctx.engine.resolve, neem)
     return StreamingResponse(_until_closed(request, ctx.hub.stream(neem, ctx.stopping)), media_type="text/event-stream",
                              headers={"Cache-Control": "no-store", "X-Accel-Buffering": "no"})
 
@@ -286,7 +297,10 @@ async def page(request: Request, neem: str | None = None) -> HTMLResponse:
 
     def job() -> tuple[str | None, dict[str, Any] | None]:
         chosen = neem or ctx.default_neem or ctx.engine.newest()
-        return chosen, (ctx.engine.session(chosen).latest if chosen else None)
+        if chosen is None:
+            return None, None
+        session = ctx.engine.session(chosen)
+        return session.neem, session.latest
 
     chosen, state = await ctx.thread.run(job)
     html = render_page(chosen, state, ctx.token)

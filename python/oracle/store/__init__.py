@@ -13,6 +13,7 @@ from pathlib import Path
 
 from oracle.errors import StoreError
 from oracle.store.base import COLLECTION_KINDS, NeemInfo, Store, check_neem_id
+from oracle.store.uri import PASSWORD_FILE_ENV, PasswordFileError, with_password_file
 from oracle.store.model import (
     INFINITY,
     RDF_TYPE,
@@ -36,11 +37,18 @@ KNOWROB_MONGO_ENV = ("KNOWROB_MONGO_HOST", "KNOWROB_MONGO_USER", "KNOWROB_MONGO_
 
 
 def mongo_uri_from_env(env: Mapping[str, str] | None = None) -> str | None:
-    """The MongoDB URI the environment names: $NEEM_MONGO_URI, else KnowRob's four variables."""
+    """The MongoDB URI the environment names: $NEEM_MONGO_URI (with the password read from
+    $NEEM_MONGO_PASSWORD_FILE when that is set), else KnowRob's four variables."""
     env = os.environ if env is None else env
     uri = env.get(MONGO_ENV)
     if uri:
-        return uri
+        password_file = env.get(PASSWORD_FILE_ENV)
+        if not password_file:
+            return uri
+        try:
+            return with_password_file(uri, password_file)
+        except PasswordFileError as error:
+            raise StoreError(str(error)) from None
     host, user, password, port = (env.get(name, "") for name in KNOWROB_MONGO_ENV)
     if not (host and user and password and port):
         return None

@@ -2,6 +2,10 @@
 
 Closure and propagation are computed here once, in Python, so SQLite and MongoDB hold the very
 same documents; a backend only stores documents, finds them, and rewrites closures on request.
+
+Why this module is large: it is the one contract both backends implement (registry, atomic
+replacement, inserting with closures, reading, and the primitives store/project.py changes
+stored documents with); split, a backend could satisfy half of it.
 """
 
 from __future__ import annotations
@@ -18,6 +22,7 @@ from typing import Any
 from bson.decimal128 import Decimal128
 
 from oracle.errors import StoreError
+from oracle.store.ids import check_alias_free
 from oracle.store.meta import new_meta
 from oracle.store.validate import check_document
 from oracle.store.model import (
@@ -178,6 +183,7 @@ class Store(ABC):
         on SQLite; on MongoDB a rename per collection (KnowRob has no transactions)."""
         from oracle.store.staging import READY, STAGED_BY
         with self.transaction():
+            check_alias_free(self, staging, target)  # two builders may have picked one name
             if self.has_neem(target):
                 if not replace:
                     raise StoreError(f"{self.location}: NEEM {target!r} already exists")
@@ -292,6 +298,21 @@ class Store(ABC):
     @abstractmethod
     def _propagate(self, neem_id: str, subject: str, gained: tuple[Any, ...]) -> None:
         """Append ``gained`` to ``o*`` of taxonomic and ``p*`` of other documents containing ``subject``."""
+
+    # -- changing stored documents (store.project: kb_project's merge, until/since, kb_unproject)
+    @abstractmethod
+    def _overlapping(
+        self, neem_id: str, s: Term, p: Term, o: Term, scope: Scope | None, graph: str | None = None
+    ) -> list[tuple[Any, float, float]]:
+        """(key, since, until) of the documents with these asserted s, p, o (None: any) in
+        ``graph`` (None: any) whose scope overlaps ``scope`` (None: any time); the key
+        addresses the document for the two methods below."""
+
+    @abstractmethod
+    def _rescope(self, neem_id: str, key: Any, since: float, until: float) -> None: ...
+
+    @abstractmethod
+    def _delete_triples(self, neem_id: str, keys: Sequence[Any]) -> None: ...
 
     # -- hierarchy --------------------------------------------------------------------------
     def hierarchy(self, neem_id: str) -> Hierarchy:

@@ -21,6 +21,7 @@ from bson.codec_options import DEFAULT_CODEC_OPTIONS, DatetimeConversion
 
 from oracle.errors import StoreError
 from oracle.store.base import COLLECTION_KINDS, STAGING, SUMMARY_KEY, Store, check_neem_id
+from oracle.store.ids import ALIAS_KEY, alias_of, check_alias, find_neem, is_object_id, new_neem_id
 from oracle.store.staging import READY, STAGED_BY
 from oracle.store.validate import check_meta
 from oracle.store.mongo import DEFAULT_DB, INDEXES
@@ -218,8 +219,10 @@ class _Documents:
 def load_dump(store: Store, path: Path | str, *, neem_id: str | None = None, replace: bool = False) -> list[str]:
     """Load every NEEM found under ``path`` (a NEEM folder, a folder of them, or a hub dump).
 
-    The id is ``neem_id`` (only when one NEEM is found), else the collection prefix, else the
-    ``id`` in meta.json, else the folder name. Return the ids loaded.
+    The id is the collection prefix, else the ``id`` in meta.json, else the folder name (a dump
+    keeps its id). ``neem_id`` (only when one NEEM is found) names the NEEM to load it as: the
+    NEEM of that id or alias, else that id (24 hex digits), else a new NEEM with a fresh id and
+    that alias. Return the ids loaded.
 
     Each NEEM is loaded into a hidden staging NEEM and swapped in under its id only when every
     document was read, checked and counted (meta.json's ``documents``, when present, must match):
@@ -236,7 +239,9 @@ def load_dump(store: Store, path: Path | str, *, neem_id: str | None = None, rep
     plans: list[tuple[str, dict[str, Path], dict[str, Any], Path]] = []
     for (folder, prefix), files in sorted(groups.items(), key=lambda item: (str(item[0][0]), item[0][1] or "")):
         meta = _read_meta(folder)
-        target = neem_id or prefix or meta.pop("id", None) or _SAFE.sub("-", folder.resolve().name).strip("-")
+        target = prefix or meta.pop("id", None) or _SAFE.sub("-", folder.resolve().name).strip("-")
+        if neem_id is not None:
+            target = _named_target(store, neem_id, meta)
         for key in ("id", SUMMARY_KEY, STAGING, STAGED_BY, READY):
             meta.pop(key, None)
         check_neem_id(target)
@@ -274,6 +279,19 @@ def load_dump(store: Store, path: Path | str, *, neem_id: str | None = None, rep
                 store.drop_neem(staging)  # the old NEEM, if any, was never touched
         raise
     return [target for target, *_ in plans]
+
+
+def _named_target(store: Store, name: str, meta: dict[str, Any]) -> str:
+    """The id ``load --neem NAME`` loads under; a new alias goes into ``meta``."""
+    existing = find_neem(store, name)
+    if existing is not None:  # it keeps its id and its alias
+        meta[ALIAS_KEY] = alias_of(existing)
+        return existing.id
+    if is_object_id(name):
+        return name
+    meta[ALIAS_KEY] = check_alias(name)
+    meta["name"] = name
+    return new_neem_id()
 
 
 def _read_meta(folder: Path) -> dict[str, Any]:

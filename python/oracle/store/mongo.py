@@ -174,6 +174,31 @@ class MongoStore(Store):
         coll.update_many({"o*": subject, "p": {"$in": taxonomic}}, {"$addToSet": {"o*": {"$each": list(gained)}}})
         coll.update_many({"p*": subject, "p": {"$nin": taxonomic}}, {"$addToSet": {"p*": {"$each": list(gained)}}})
 
+    def _overlapping(
+        self, neem_id: str, s: Any, p: Any, o: Any, scope: Scope | None, graph: str | None = None
+    ) -> list[tuple[Any, float, float]]:
+        if not self.has_neem(neem_id):
+            raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
+        query = _pattern_filter(TriplePattern(s, p, o, graph), self.number_format, exact=True)
+        query.update(_scope_filter(scope, self.number_format))
+        found = []
+        for doc in self._coll(neem_id, "triples").find(query, {"_id": 1, "scope": 1}):
+            time = (doc.get("scope") or {}).get("time") or {}
+            since, until = time.get("since", 0.0), time.get("until", math.inf)
+            # the key keeps the document's number type, so a new scope is written alike
+            kind = "double" if isinstance(since, float) and isinstance(until, float) else "decimal128"
+            found.append(((doc["_id"], kind), _float(since), _float(until)))
+        return found
+
+    def _rescope(self, neem_id: str, key: Any, since: float, until: float) -> None:
+        doc_id, kind = key
+        scope = {"scope.time.since": encode_number(since, kind), "scope.time.until": encode_number(until, kind)}
+        self._coll(neem_id, "triples").update_one({"_id": doc_id}, {"$set": scope})  # one atomic update
+
+    def _delete_triples(self, neem_id: str, keys: Sequence[Any]) -> None:
+        if keys:
+            self._coll(neem_id, "triples").delete_many({"_id": {"$in": [doc_id for doc_id, _ in keys]}})
+
     def _hierarchy_source(self, neem_id: str) -> tuple[list[tuple[str, tuple[Any, ...]]], set[Any]]:
         coll = self._coll(neem_id, "triples")
         edges = [
@@ -207,8 +232,9 @@ class MongoStore(Store):
         return int(self._coll(neem_id, kind).count_documents({}))
 
     def write_mark(self, neem_id: str) -> int:
-        # The collection's document count from its metadata: triples are never deleted one
-        # by one, so it grows with every insert; count_documents would scan.
+        # The collection's document count from its metadata (count_documents would scan): it
+        # moves with every insert; a scope merge (store.project) deletes only copies of a fact
+        # it keeps, and kb_unproject drops the kept summary itself.
         return int(self._coll(neem_id, "triples").estimated_document_count())
 
     def _find(
@@ -245,6 +271,10 @@ class MongoStore(Store):
 def _value_condition(value: Any) -> Any:
     forms = query_values(value)
     return forms[0] if len(forms) == 1 else {"$in": forms}
+
+
+def _float(value: Any) -> float:
+    return float(value.to_decimal()) if isinstance(value, Decimal128) else float(value)
 
 
 def _pattern_filter(pattern: TriplePattern, number_format: NumberFormat, exact: bool = False) -> dict[str, Any]:

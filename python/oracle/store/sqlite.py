@@ -666,6 +666,31 @@ class SQLiteStore(Store):
                     updates.append((new_cid, bson.encode(doc, codec_options=_CODEC), rowid))
                 self._conn.executemany(f"UPDATE {table} SET {column}=?, raw=? WHERE id=?", updates)
 
+    def _overlapping(
+        self, neem_id: str, s: Any, p: Any, o: Any, scope: Scope | None, graph: str | None = None
+    ) -> list[tuple[Any, float, float]]:
+        self._require(neem_id)
+        query = SqlCompiler(self, _table(neem_id, "triples"), scope)
+        query.add(TriplePattern(s, p, o, graph), exact=True)
+        sql = f"SELECT t0.id, t0.since, t0.until FROM {query.from_clause()} WHERE {query.where()} ORDER BY t0.id"
+        return [(rowid, 0.0 if since is None else since, math.inf if until is None else until)
+                for rowid, since, until in self._conn.execute(sql, query.params).fetchall()]  # fmt: skip
+
+    def _rescope(self, neem_id: str, key: Any, since: float, until: float) -> None:
+        table = _table(neem_id, "triples")
+        (raw,) = self._conn.execute(f"SELECT raw FROM {table} WHERE id=?", (key,)).fetchone()
+        if raw is not None:  # a loaded document keeps its bytes: its scope changes in them too
+            doc = bson.decode(raw, codec_options=_CODEC)
+            time_ = doc.setdefault("scope", {}).setdefault("time", {})
+            kind: NumberFormat = "double" if isinstance(time_.get("since"), float) else "decimal128"
+            time_["since"], time_["until"] = encode_number(since, kind), encode_number(until, kind)
+            raw = bson.encode(doc, codec_options=_CODEC)
+        self._conn.execute(f"UPDATE {table} SET since=?, until=?, raw=? WHERE id=?", (since, until, raw, key))
+
+    def _delete_triples(self, neem_id: str, keys: Sequence[Any]) -> None:
+        table = _table(neem_id, "triples")
+        self._conn.executemany(f"DELETE FROM {table} WHERE id=?", [(key,) for key in keys])
+
     def _hierarchy_source(self, neem_id: str) -> tuple[list[tuple[str, tuple[Any, ...]]], set[Any]]:
         table = _table(neem_id, "triples")
         edges = [
@@ -702,8 +727,9 @@ class SQLiteStore(Store):
         return int(self._conn.execute(f"SELECT count(*) FROM {_table(neem_id, kind)}").fetchone()[0])
 
     def write_mark(self, neem_id: str) -> int:
-        # Triple rows are never deleted, only a whole NEEM: the last rowid grows with every
-        # insert and is read from the end of the table's b-tree, not by counting.
+        # The last rowid grows with every insert and is read from the end of the table's
+        # b-tree, not by counting; a scope merge (store.project) deletes only copies of a fact
+        # it keeps, and kb_unproject drops the kept summary itself.
         self._require(neem_id)
         return int(self._conn.execute(f"SELECT coalesce(max(id), 0) FROM {_table(neem_id, 'triples')}").fetchone()[0])
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import hashlib
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from rdflib import BNode, Graph, Literal, URIRef
 from rdflib.namespace import OWL, RDF, RDFS, XSD
@@ -16,6 +17,9 @@ from rdflib.namespace import OWL, RDF, RDFS, XSD
 from oracle.namespaces import DUL, SOMA
 from oracle.store.base import Store
 from oracle.store.model import HIERARCHY, VERSION_PREDICATE, Annotation, Triple, Value, version_document
+
+if TYPE_CHECKING:
+    from oracle.ontology.model import OdbOntology
 
 _ANNOTATION_PROPERTIES = frozenset(str(p) for p in (RDFS.comment, RDFS.label, RDFS.seeAlso, OWL.versionInfo))
 _INTEGER_TYPES = frozenset(
@@ -36,8 +40,15 @@ class TBox:
 
     triples: tuple[Triple, ...]
     annotations: tuple[Annotation, ...]
-    markers: tuple[tuple[str, str], ...]  # (ontology IRI, graph name)
-    version: str
+    #: (ontology IRI, graph name, version): KnowRob's ``tripledbVersionString`` marker per graph.
+    markers: tuple[tuple[str, str, str], ...]
+
+    @staticmethod
+    def combined(parts: list[TBox]) -> TBox:
+        """Several ontologies as one load (parents first across all of them, see _hierarchy_first)."""
+        triples = [t for part in parts for t in part.triples]
+        return TBox(tuple(_hierarchy_first(triples)), tuple(a for part in parts for a in part.annotations),
+                    tuple(m for part in parts for m in part.markers))  # fmt: skip
 
 
 def graph_name(iri: str, default: str) -> str:
@@ -92,9 +103,12 @@ def _hierarchy_first(triples: list[Triple]) -> list[Triple]:
     return edges + rest
 
 
-def tbox_from_graph(graph: Graph, default_graph: str | None = None) -> TBox:
-    """Convert an rdflib graph; subjects in SOMA/DUL go to graphs ``SOMA``/``DUL``, the rest
-    to the ontology's own name (the last path segment of its owl:Ontology IRI)."""
+def tbox_from_graph(graph: Graph, default_graph: str | None = None, *, one_graph: bool = False,
+                    version: str | None = None) -> TBox:
+    """Convert an rdflib graph; subjects in SOMA/DUL go to graphs ``SOMA``/``DUL`` (all to
+    ``default_graph`` with ``one_graph``, as KnowRob loads one file), the rest to the ontology's
+    own name (the last path segment of its owl:Ontology IRI). Each graph gets a version marker:
+    ``version``, else a digest of the triples."""
     ontologies = sorted(str(s) for s in graph.subjects(RDF.type, OWL.Ontology) if isinstance(s, URIRef))
     if default_graph is None:
         default_graph = ontologies[0].rstrip("/#").rsplit("/", 1)[-1] if ontologies else "ontology"
@@ -124,26 +138,44 @@ def tbox_from_graph(graph: Graph, default_graph: str | None = None) -> TBox:
                 annotations.append(Annotation(subject, prop, node(o)))
             continue
         value: Value = _literal_value(o) if isinstance(o, Literal) else node(o)
-        name = graph_name(subject, default_graph)
+        name = default_graph if one_graph else graph_name(subject, default_graph)
         triples.append(Triple(subject, prop, value, graph=name))
-    digest = hashlib.sha1()
-    for t in triples:
-        digest.update(f"{t.s}\x1f{t.p}\x1f{t.o!r}\n".encode())
+    if version is None:
+        digest = hashlib.sha1()
+        for t in triples:
+            digest.update(f"{t.s}\x1f{t.p}\x1f{t.o!r}\n".encode())
+        version = digest.hexdigest()
     graphs = sorted({t.graph for t in triples})
-    markers = tuple((base if g == default_graph else next(ns for ns, n in _KNOWN_GRAPHS if n == g).rstrip("#"), g)
+    markers = tuple((base if g == default_graph else next(ns for ns, n in _KNOWN_GRAPHS if n == g).rstrip("#"), g, version)
                     for g in graphs)  # fmt: skip
-    return TBox(tuple(_hierarchy_first(triples)), tuple(annotations), markers, digest.hexdigest())
+    return TBox(tuple(_hierarchy_first(triples)), tuple(annotations), markers)
 
 
 def load_tbox(store: Store, neem_id: str, tbox: TBox) -> int:
-    """Store the TBox in a NEEM unless its version marker says it is already there."""
-    present = {doc.get("o") for doc in store.find(neem_id, p=VERSION_PREDICATE, exact=True)}
-    if tbox.version in present:
+    """Store the TBox in a NEEM unless its version markers say it is already there."""
+    present = {(doc.get("graph"), doc.get("o")) for doc in store.find(neem_id, p=VERSION_PREDICATE, exact=True)}
+    if all((graph, version) in present for _, graph, version in tbox.markers):
         return 0
     with store.transaction():
         count = store.insert(neem_id, tbox.triples)
         store.insert_annotations(neem_id, tbox.annotations)
         store.write_documents(
-            neem_id, "triples", [version_document(iri, tbox.version, graph) for iri, graph in tbox.markers]
+            neem_id, "triples", [version_document(iri, version, graph) for iri, graph, version in tbox.markers]
         )
     return count
+
+
+def tbox_for(onto: OdbOntology) -> TBox:
+    """What a NEEM logged with ``onto`` stores. Built with ``--soma DIR``: the official files
+    as KnowRob's load_owl loads each (its own graph, every axiom and annotation, the version
+    marker KnowRob compares; store/owlfile.py) and the odb's own axioms in graph ``odb``. Else
+    the ontology's graph (the core extract and the odb), as before."""
+    source = onto.source
+    if source is None or source.soma is None or source.owl is not None:
+        return tbox_from_graph(onto.graph)
+    from oracle.ontology.builder import generated_graph
+    from oracle.ontology.upper import official_files
+    from oracle.store.owlfile import tbox_from_file
+
+    own = tbox_from_graph(generated_graph(source.odb, source.mapping), one_graph=True)
+    return TBox.combined([*(tbox_from_file(path) for path in official_files(source.soma)), own])

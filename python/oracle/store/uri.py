@@ -42,3 +42,45 @@ def scrub(message: str, uri: str) -> str:
 def mask_credentials(text: str) -> str:
     """Mask the userinfo of every ``scheme://user:password@`` in free text."""
     return _USERINFO.sub(lambda match: f"{match.group('scheme')}***@", text)
+
+
+#: Environment variable naming a file that holds the password of $NEEM_MONGO_URI's user (a compose
+#: secret such as /run/secrets/neem_app_password), so the password never sits in the environment.
+PASSWORD_FILE_ENV = "NEEM_MONGO_PASSWORD_FILE"
+
+
+class PasswordFileError(ValueError):
+    """The password file cannot be used with the URI (the message never holds the password)."""
+
+
+def with_password_file(uri: str, path: str) -> str:
+    """``uri`` (``mongodb://USER@host/...``, no password) with the password read from ``path``
+    put in, percent-encoded (so a password may hold ``@``, ``/`` or ``:``).
+
+    The file holds the password alone; one trailing newline is dropped."""
+    from urllib.parse import quote
+
+    scheme, sep, rest = uri.partition("://")
+    authority = rest.split("/", 1)[0]
+    if not sep or "@" not in authority:
+        raise PasswordFileError(f"{PASSWORD_FILE_ENV} is set but the URI {mask_uri(uri)} names no user (mongodb://USER@HOST)")
+    userinfo, host = authority.rsplit("@", 1)
+    if ":" in userinfo:
+        raise PasswordFileError(f"{PASSWORD_FILE_ENV} is set but the URI {mask_uri(uri)} already holds a password")
+    try:
+        with open(path, "rb") as handle:
+            raw = handle.read(4097)
+    except OSError as error:
+        raise PasswordFileError(f"{PASSWORD_FILE_ENV}={path}: cannot read it ({error.strerror or type(error).__name__})") from None
+    if len(raw) > 4096:
+        raise PasswordFileError(f"{PASSWORD_FILE_ENV}={path}: longer than 4096 bytes; it must hold the password alone")
+    try:
+        password = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        raise PasswordFileError(f"{PASSWORD_FILE_ENV}={path}: not UTF-8 text") from None
+    password = password[:-1] if password.endswith("\n") else password
+    password = password[:-1] if password.endswith("\r") else password
+    if not password or "\n" in password:
+        raise PasswordFileError(f"{PASSWORD_FILE_ENV}={path}: must hold one password on one line")
+    tail = rest[len(authority):]
+    return f"{scheme}://{userinfo}:{quote(password, safe='')}@{host}{tail}"

@@ -15,7 +15,7 @@ from oracle.errors import StoreError
 
 #: Registry fields and the types a reader expects of them (None allowed for each).
 _META_TYPES: dict[str, tuple[type, ...]] = {"created_by": (str,), "created_at": (str,), "temporary": (bool,),
-                                            "id": (str,), "name": (str,)}  # fmt: skip
+                                            "id": (str,), "name": (str,), "alias": (str,)}  # fmt: skip
 _MAX_DEPTH = 64
 
 
@@ -105,6 +105,14 @@ def check_meta(meta: Mapping[str, Any], where: str) -> None:
         value = meta.get(field)
         if value is not None and not isinstance(value, types):
             raise StoreError(f"{where}: {field!r} must be a {types[0].__name__}, got {_short(value)}")
+    alias = meta.get("alias")
+    if isinstance(alias, str):
+        from oracle.store.ids import check_alias
+
+        try:
+            check_alias(alias)
+        except StoreError as error:
+            raise StoreError(f"{where}: {error}") from None
     user = meta.get("created_by")
     if isinstance(user, str) and not (user.strip() and user.isprintable() and len(user) <= 200):
         raise StoreError(f"{where}: 'created_by' {user[:40]!r} must be 1-200 printable characters")
