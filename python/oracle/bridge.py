@@ -141,7 +141,8 @@ def _decode_request(
                 terms.append(Cmp(_plain(op), number, Var(f"v{index}")))
             else:
                 terms.append(_plain(value))
-        patterns.append(TriplePattern(*terms, graph=graphs))
+        s, p, o = terms
+        patterns.append(TriplePattern(s, p, o, graphs))
     if s0 == -1 and s1 == -1:
         scope = None
     else:
