@@ -9,6 +9,7 @@
       store_match/2,            % +Patterns, +Scope
       store_match/3,            % +Patterns, +Scope, +Options
       store_match_scoped/3,     % +Patterns, +Scope, -FactScope
+      store_in_graphs/2,        % +Graphs, :Goal
       store_insert/1,           % +Triples
       store_insert/2,           % +Triples, +Merge
       store_insert/3,           % +Triples, +Merge, +Graph
@@ -52,8 +53,10 @@ A question scope is `scope(Since, Until)`: a fact is visible when its own scope 
 :- use_module(library(apply)).
 :- use_module(library(pairs)).
 
+:- meta_predicate store_in_graphs(+, 0).
+
 :- dynamic backend_/1.
-:- dynamic mem_triple/5.        % S, P, O, Since, Until
+:- dynamic mem_triple/6.        % S, P, O, Since, Until, Graph
 :- dynamic mem_annotation/3.    % S, P, Value
 :- dynamic mem_tf/3.            % ChildFrame, Stamp, [RefFrame, [X,Y,Z], [QX,QY,QZ,QW]]
 :- dynamic mem_version/3.       % Graph, Ontology, Version
@@ -111,14 +114,14 @@ store_assert(triple(S, P, O), Since, Until) :-
     !,
     must_be(atom, S), must_be(atom, P), must_be(atomic, O),
     must_be(number, Since), must_be(number, Until),
-    assertz(mem_triple(S, P, O, Since, Until)).
+    assertz(mem_triple(S, P, O, Since, Until, user)).
 store_assert(Triple, _, _) :-
     type_error(triple, Triple).
 
 %!  store_reset is det.
 %   Forget every asserted triple and go back to the memory backend.
 store_reset :-
-    retractall(mem_triple(_,_,_,_,_)),
+    retractall(mem_triple(_,_,_,_,_,_)),
     retractall(mem_annotation(_,_,_)),
     retractall(mem_tf(_,_,_)),
     retractall(mem_version(_,_,_)),
@@ -141,7 +144,7 @@ store_insert(Triples, Merge) :-
 %!  store_insert(+Triples, +Merge, +Graph) is det.
 %   store_insert/2 into the named graph Graph (KnowRob's `graph` of a document: `user` for
 %   kb_project, the ontology's name for load_owl). A fact merges with its copies in the same
-%   graph. The memory backend keeps no graphs.
+%   graph.
 store_insert(Triples, Merge, Graph) :-
     must_be(list, Triples),
     must_be(oneof([union, intersect]), Merge),
@@ -151,7 +154,7 @@ store_insert(Triples, Merge, Graph) :-
     ->  maplist(insert_row, Triples, Rows),
         neem_store:py_insert([Neem, Merge, Graph|Rows], Reply),
         reply_rows(Reply, _)
-    ;   forall(member(T, Triples), mem_insert(Merge, T))
+    ;   forall(member(T, Triples), mem_insert(Merge, Graph, T))
     ).
 
 %!  store_graph_version(+Graph, -Version) is semidet.
@@ -178,36 +181,37 @@ store_set_graph_version(Ontology, Version, Graph) :-
 
 %!  store_drop_graph(+Graph) is det.
 %   Delete every triple of named graph Graph, its version marker with them (KnowRob's
-%   drop_graph/1). The memory backend keeps no graphs: it forgets the marker only.
+%   drop_graph/1).
 store_drop_graph(Graph) :-
     must_be(atom, Graph),
     (   backend_(python(Neem))
     ->  neem_store:py_graph([Neem, drop, Graph, '', ''], Reply),
         reply_rows(Reply, _)
-    ;   retractall(mem_version(Graph, _, _))
+    ;   retractall(mem_version(Graph, _, _)),
+        retractall(mem_triple(_, _, _, _, _, Graph))
     ).
 
-mem_insert(Merge, triple(S, P, O, Since, Until)) :-
-    findall(S1-U1, ( mem_triple(S, P, O, S1, U1), S1 =< Until, U1 >= Since ), Overlaps),
+mem_insert(Merge, G, triple(S, P, O, Since, Until)) :-
+    findall(S1-U1, ( mem_triple(S, P, O, S1, U1, G), S1 =< Until, U1 >= Since ), Overlaps),
     (   Overlaps == []
-    ->  assertz(mem_triple(S, P, O, Since, Until))
+    ->  assertz(mem_triple(S, P, O, Since, Until, G))
     ;   Merge == union
-    ->  retractall_overlapping(S, P, O, Since, Until),
+    ->  retractall_overlapping(S, P, O, Since, Until, G),
         pairs_keys_values(Overlaps, Ss, Us),
         foldl(num_min, Ss, Since, Since1), foldl(num_max, Us, Until, Until1),
-        assertz(mem_triple(S, P, O, Since1, Until1))
-    ;   retractall_overlapping(S, P, O, Since, Until),
+        assertz(mem_triple(S, P, O, Since1, Until1, G))
+    ;   retractall_overlapping(S, P, O, Since, Until, G),
         forall(member(S1-U1, Overlaps),
                ( num_max(S1, Since, Since1), num_min(U1, Until, Until1),
-                 assertz(mem_triple(S, P, O, Since1, Until1)) ))
+                 assertz(mem_triple(S, P, O, Since1, Until1, G)) ))
     ).
 
 %   min/max by comparison: `is max(inf, inf)` raises float_overflow in SWI-Prolog.
 num_min(A, B, M) :- ( A =< B -> M = A ; M = B ).
 num_max(A, B, M) :- ( A >= B -> M = A ; M = B ).
 
-retractall_overlapping(S, P, O, Since, Until) :-
-    forall(( clause(mem_triple(S, P, O, S1, U1), true, Ref), S1 =< Until, U1 >= Since ),
+retractall_overlapping(S, P, O, Since, Until, G) :-
+    forall(( clause(mem_triple(S, P, O, S1, U1, G), true, Ref), S1 =< Until, U1 >= Since ),
            erase(Ref)).
 
 %!  store_retract(+Patterns) is det.
@@ -220,7 +224,7 @@ store_retract(Patterns) :-
     ->  maplist(retract_row, Patterns, Rows),
         neem_store:py_retract([Neem|Rows], Reply),
         reply_rows(Reply, _)
-    ;   forall(member(t(S, P, O), Patterns), retractall(mem_triple(S, P, O, _, _)))
+    ;   forall(member(t(S, P, O), Patterns), retractall(mem_triple(S, P, O, _, _, _)))
     ).
 
 retract_row(t(S, P, O), [S1, P1, O1]) :-
@@ -339,10 +343,32 @@ store_match_scoped(Patterns0, Scope, FactScope) :-
         foldl(doc_scope(Neem, Scope), Patterns, scope(0.0, Inf), FactScope)
     ).
 
+%!  store_in_graphs(+Graphs, :Goal) is nondet.
+%   Goal with every store query (store_match/2,3, store_match_scoped/3) reading only the
+%   documents of the named graphs in the list Graphs (KnowRob's `graph` field filter,
+%   `$in` its super-graphs); `all` reads every graph. Queries outside Goal are not
+%   filtered: the filter is undone when Goal exits and restored when it is retried.
+store_in_graphs(Graphs, Goal) :-
+    (   Graphs == all -> true
+    ;   must_be(list(atom), Graphs),
+        ( Graphs == [] -> domain_error(non_empty_graph_list, Graphs) ; true )
+    ),
+    (   nb_current(neem_store_graphs, Old) -> true ; Old = all ),
+    b_setval(neem_store_graphs, Graphs),
+    call(Goal),
+    b_setval(neem_store_graphs, Old).
+
+%   The graphs the current query reads; fails when it reads all of them. (A key first
+%   created by b_setval/2 reads `[]` once backtracked over: no filter either.)
+query_graphs(Graphs) :-
+    nb_current(neem_store_graphs, Graphs),
+    Graphs \== all, Graphs \== [].
+
 %   The scope of one matched (now ground) pattern's document, intersected with Acc.
 doc_scope(Neem, Scope, t(S, P, O0), Acc, FS) :-
     (   nonvar(O0), O0 = cmp(_, _, O) -> true ; O = O0 ),
-    neem_store:py_scopes([Neem, S, P, O], Reply),
+    (   query_graphs(Graphs) -> Request = [Neem, S, P, O, Graphs] ; Request = [Neem, S, P, O] ),
+    neem_store:py_scopes(Request, Reply),
     reply_rows(Reply, Rows),
     member([Since, Until], Rows),
     in_scope(Scope, Since, Until),
@@ -402,7 +428,11 @@ match(memory, Patterns, Scope, Options) :-
 match(python(Neem), Patterns, Scope, Options) :-
     term_variables(Patterns, All),
     selected_first(Options, All, Vars, Order0),
-    maplist(encode_pattern(Order0), Patterns, Encoded),
+    maplist(encode_pattern(Order0), Patterns, Encoded0),
+    (   query_graphs(Graphs)
+    ->  maplist(graph_cells(Graphs), Encoded0, Encoded)
+    ;   Encoded = Encoded0
+    ),
     encode_scope(Scope, S0, S1),
     (   option_limit(Options, N) -> true ; N = -1 ),
     option_order(Options, Keys),
@@ -467,6 +497,9 @@ sort_rows(I, Keys, Rows0, Rows) :-
 %   store's Scope (see python/oracle/bridge.py).
 encode_scope(any, -1, -1).
 encode_scope(scope(S, U), S, U).
+
+%   The graph filter as two more cells of an encoded pattern: `g` and the list of graphs.
+graph_cells(Graphs, Cells0, Cells) :- append(Cells0, [g, Graphs], Cells).
 
 %   A pattern slot as two list cells: kind (v, c) and value (variable index or constant).
 encode_pattern(Vars, t(S,P,O), [SK,SV,PK,PV,OK,OV]) :-
@@ -540,15 +573,15 @@ mem_pattern(S, P, C, Scope, Since, Until) :-
 mem_pattern(S, P, O, Scope, Since, Until) :-
     atom(P), store_taxonomic(P), !,
     (   var(O)
-    ->  mem_triple(S, P, O, Since, Until)
-    ;   mem_triple(S, P, O0, Since, Until),
+    ->  mem_visible(S, P, O, Since, Until)
+    ;   mem_visible(S, P, O0, Since, Until),
         mem_closure(O0, Closure),
         memberchk(O, Closure)
     ),
     in_scope(Scope, Since, Until).
 mem_pattern(S, P, O, Scope, Since, Until) :-
     atom(P), !,
-    mem_triple(S, P0, O, Since, Until),
+    mem_visible(S, P0, O, Since, Until),
     (   P0 == P
     ->  true
     ;   \+ store_taxonomic(P0),
@@ -557,8 +590,16 @@ mem_pattern(S, P, O, Scope, Since, Until) :-
     ),
     in_scope(Scope, Since, Until).
 mem_pattern(S, P, O, Scope, Since, Until) :-
-    mem_triple(S, P, O, Since, Until),
+    mem_visible(S, P, O, Since, Until),
     in_scope(Scope, Since, Until).
+
+%   A stored triple in one of the graphs the query reads (store_in_graphs/2).
+mem_visible(S, P, O, Since, Until) :-
+    (   query_graphs(Graphs)
+    ->  mem_triple(S, P, O, Since, Until, G),
+        memberchk(G, Graphs)
+    ;   mem_triple(S, P, O, Since, Until, _)
+    ).
 
 compare_value(<, X, A) :- X < A.
 compare_value(=<, X, A) :- X =< A.
@@ -579,7 +620,7 @@ mem_closure_([], Seen, Seen).
 mem_closure_([T|Ts], Seen0, Seen) :-
     findall(Parent,
             ( ( subclass_of_iri(E) ; subproperty_of_iri(E) ),
-              mem_triple(T, E, Parent, _, _),
+              mem_triple(T, E, Parent, _, _, _),
               \+ memberchk(Parent, Seen0) ),
             Parents0),
     list_to_set(Parents0, Parents),

@@ -39,6 +39,7 @@ kb_db:package_path/2; without ROS there is none, so such a URL is an error namin
 :- use_module('../neem_store', [store_insert/3, store_insert_annotations/1, store_annotation/3,
                                  store_graph_version/2, store_set_graph_version/3, store_drop_graph/1]).
 :- use_module(triple, [kb_iri/2]).
+:- use_module(subgraph, [add_subgraph/2]).
 
 %!  package_path(+Package, -Directory) is semidet.
 %   Where a ROS package's files are (multifile and dynamic: a ROS set-up adds its packages).
@@ -50,7 +51,8 @@ kb_db:package_path/2; without ROS there is none, so such a URL is an error namin
 %   Put the statements of the OWL file at URL (a path, `file://...` or `package://...`) into
 %   the store, in the named graph of the file unless that graph records the file's version
 %   already. Options: `graph(G)` names the graph (as KnowRob's load_owl/3 with a ground graph);
-%   `parent_graph(P)` is accepted as KnowRob has it, the stores keep no graph hierarchy.
+%   `parent_graph(P)` puts the graph below P in the graph hierarchy (default `common`, as
+%   KnowRob: a query in the graph also reads P; kb_subgraph), loaded or not.
 load_owl(URL) :-
     load_owl(URL, []).
 load_owl(URL, Options) :-
@@ -60,6 +62,8 @@ load_owl(URL, Options) :-
     file_name_extension(Name, _, Base),
     option(graph(OntoGraph), Options, Name),
     must_be(atom, OntoGraph),
+    option(parent_graph(Parent), Options, common),
+    must_be(atom, Parent),
     file_version(File, Stamp),
     (   store_graph_version(OntoGraph, Recorded),
         catch(atom_number(Recorded, Stamp), _, fail)
@@ -70,7 +74,8 @@ load_owl(URL, Options) :-
             rdf_load(File, [graph(Graph), silent(true)]),
             load_graph(Graph, OntoGraph, File, Stamp),
             rdf_unload_graph(Graph))
-    ).
+    ),
+    add_subgraph(OntoGraph, Parent).
 
 %   KnowRob's file_version/2 of a local file: its modification time (the number KnowRob
 %   compares a graph's recorded version with, after reading that version as a number).

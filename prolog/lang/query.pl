@@ -35,7 +35,9 @@ kb_project/1 asserts statements built from the same vocabulary (see kb_project/1
 :- use_module(library(error)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
-:- use_module('../neem_store', [store_match/2, store_match/3, store_match_scoped/3, store_insert/2, store_retract/1]).
+:- use_module('../neem_store', [store_match/2, store_match/3, store_match_scoped/3, store_insert/3,
+                                 store_retract/1, store_in_graphs/2]).
+:- use_module(subgraph, [graph_filter/2]).
 :- use_module(triple, [kb_iri/2, iri_term/1, triple_steps/6, unit_factor/2]).
 :- use_module(scope, [current_scope/1, scope_check/1, scope_overlaps/3, runtime_scope/3,
                        scope_term/2, scope_dict/2, universal_scope/1]).
@@ -78,19 +80,17 @@ kb_call(Goal, QScope, FScope) :-
     scope_dict(scope(S, U), FScope).
 
 %!  kb_call(:Goal, +QueryScope, -FactScope, +Options) is nondet.
-%   kb_call/3 with KnowRob's options: `graph(user)` and `graph('*')` (KnowRob's default, no
-%   graph filter) are accepted; another graph is a domain error, as the stores keep no graph
-%   hierarchy to filter by.
+%   kb_call/3 with KnowRob's option `graph(G)`: the store documents of G and the graphs above
+%   it (kb_subgraph). `graph(user)`, the default, and `graph('*')` read every graph;
+%   `graph(=(G))` reads G alone; a graph nothing is stored in gives no solutions.
 kb_call(Goal, QScope, FScope, Options) :-
-    graph_options(Options),
-    kb_call(Goal, QScope, FScope).
-
-graph_options(Options) :-
     must_be(list, Options),
-    (   memberchk(graph(G), Options), \+ memberchk(G, [user, '*'])
-    ->  domain_error(graph_without_hierarchy, G)
-    ;   true
-    ).
+    option_graph(Options, user, G),
+    graph_filter(G, Filter),
+    store_in_graphs(Filter, kb_call(Goal, QScope, FScope)).
+
+option_graph(Options, Default, G) :-
+    (   memberchk(graph(G0), Options) -> G = G0 ; G = Default ).
 
 %   kb_call_scoped(:Goal, +Scope, -FactScope): kb_call/2 threading the facts' scope.
 kb_call_scoped(Goal, Scope, FS) :-
@@ -387,15 +387,25 @@ kb_project(Statement, Scope0) :-
     kb_project_(Statement, S, U).
 
 %!  kb_project(+Statement, +Scope, +Options) is det.
-%   kb_project/2 with KnowRob's options (`graph(user)`, `graph('*')`; see kb_call/4).
-kb_project(Statement, Scope, Options) :-
-    graph_options(Options),
-    kb_project(Statement, Scope).
+%   kb_project/2 with KnowRob's option `graph(G)`: the statements go into named graph G
+%   (default `user`, as kb_project/1,2) and merge with their copies there. `graph('*')`
+%   names no graph to write to: a domain error.
+kb_project(Statement, Scope0, Options) :-
+    must_be(list, Options),
+    option_graph(Options, user, G),
+    must_be(atom, G),
+    (   G == '*' -> domain_error(graph_to_write, G) ; true ),
+    scope_term(Scope0, Scope),
+    (   Scope = scope(S, U) -> true ; S = 0.0, U is inf ),
+    kb_project_(Statement, S, U, G).
 
 kb_project_(Statement, S, U) :-
+    kb_project_(Statement, S, U, user).
+
+kb_project_(Statement, S, U, Graph) :-
     (   narrowing(Statement) -> Merge = intersect ; Merge = union ),
     project(Statement, S, U, Triples, []),
-    store_insert(Triples, Merge).
+    store_insert(Triples, Merge, Graph).
 
 narrowing(_:G) :- !, narrowing(G).
 narrowing(until(_, _)).

@@ -47,10 +47,10 @@ test(bad_scope, [error(type_error(scope, later))]) :-
 test(project_merges_overlapping_scopes, [nondet, setup(store_reset), cleanup(store_reset)]) :-
     kb_project(triple(s, p, o), scope(10, 20)),
     kb_project(triple(s, p, o), scope(5, 12)),
-    findall(S-U, neem_store:mem_triple(s, p, o, S, U), L), L == [5.0-20.0],
+    findall(S-U, neem_store:mem_triple(s, p, o, S, U, user), L), L == [5.0-20.0],
     kb_call(triple(s, p, o), scope(6, 19)),
     kb_project(triple(s, p, o), scope(30, 40)),
-    findall(S-U, neem_store:mem_triple(s, p, o, S, U), L2), msort(L2, [5.0-20.0, 30.0-40.0]).
+    findall(S-U, neem_store:mem_triple(s, p, o, S, U, user), L2), msort(L2, [5.0-20.0, 30.0-40.0]).
 
 test(until_narrows, [nondet, setup(store_reset), cleanup(store_reset)]) :-
     kb_project(triple(q, region, green)),
@@ -59,7 +59,7 @@ test(until_narrows, [nondet, setup(store_reset), cleanup(store_reset)]) :-
     kb_call(triple(q, region, red)),
     \+ kb_call(triple(q, region, green)),
     kb_call(triple(q, region, green) during [200, 250]),
-    findall(U, neem_store:mem_triple(q, region, green, _, U), [300.0]).
+    findall(U, neem_store:mem_triple(q, region, green, _, U, user), [300.0]).
 
 test(project_during_event, [nondet, setup(store_reset), cleanup(store_reset)]) :-
     kb_project(event_interval(act, 10.0, 20.0)),
@@ -109,9 +109,34 @@ test(free_event_of_during_bound_at_runtime, [nondet, setup(store_reset), cleanup
 
 test(options_graph, [nondet, setup(store_reset), cleanup(store_reset)]) :-
     kb_project(triple(s, p, o), dict{}, [graph(user)]),
+    kb_project(triple(s, p, o2), dict{}, [graph(onto)]),
     kb_call(triple(s, p, o), dict{}, _, [graph('*')]),
-    catch(kb_call(triple(s, p, o), dict{}, _, [graph(soma)]), E, true),
-    E = error(domain_error(graph_without_hierarchy, soma), _).
+    findall(O, kb_call(triple(s, p, O), dict{}, _, [graph(user)]), All), msort(All, [o, o2]),
+    findall(O, kb_call(triple(s, p, O), dict{}, _, [graph(onto)]), [o2]),
+    findall(O, kb_call(triple(s, p, O), dict{}, _, [graph(=(user))]), [o]),
+    \+ kb_call(triple(s, p, _), dict{}, _, [graph(nothing_here)]),
+    findall(O, kb_call(triple(s, p, O)), All2), msort(All2, [o, o2]).   % no filter left behind
+
+test(options_graph_filter_undone_between_solutions, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project(triple(s, p, o), dict{}, [graph(user)]),
+    kb_project(triple(a, p, b), dict{}, [graph(onto)]),
+    kb_project(triple(a, p, c), dict{}, [graph(onto)]),
+    findall(O-N, ( kb_call(triple(a, p, O), dict{}, _, [graph(onto)]),
+                   aggregate_all(count, kb_call(triple(_, p, _)), N) ), Rows),
+    msort(Rows, [b-3, c-3]).
+
+test(project_into_graph_merges_there, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project(triple(s, p, o), scope(10, 20), [graph(onto)]),
+    kb_project(triple(s, p, o), scope(5, 12), [graph(onto)]),
+    kb_project(triple(s, p, o), scope(5, 12)),
+    findall(G-S-U, neem_store:mem_triple(s, p, o, S, U, G), L),
+    msort(L, [onto-5.0-20.0, user-5.0-12.0]).
+
+test(project_graph_star, [error(domain_error(graph_to_write, '*'))]) :-
+    kb_project(triple(s, p, o), dict{}, [graph('*')]).
+
+test(unknown_graph_option_value, [error(type_error(atom, f(x)))]) :-
+    kb_call(true, dict{}, _, [graph(f(x))]).
 
 test(term_values, [nondet, setup(store_reset), cleanup(store_reset)]) :-
     kb_project(triple(lecturer, hairColor, term([255, 99, 71]))),

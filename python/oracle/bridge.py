@@ -129,16 +129,20 @@ def _decode_request(
     patterns = []
     for enc in req[6:]:
         terms: list[Any] = []
+        graphs: tuple[str, ...] | None = None
         for kind, value in zip(enc[0::2], enc[1::2]):
             kind = _plain(kind)
-            if kind == "v":
+            if kind == "g":  # the graphs a kb_call graph(G) option reads (neem_store)
+                graphs = tuple(str(_plain(g)) for g in value)
+            elif kind == "v":
                 terms.append(Var(f"v{value}"))
             elif kind == "cmp":  # cmp(Op, Number, Var), checked by neem_store
                 op, number, index = value
                 terms.append(Cmp(_plain(op), number, Var(f"v{index}")))
             else:
                 terms.append(_plain(value))
-        patterns.append(TriplePattern(*terms))
+        s, p, o = terms
+        patterns.append(TriplePattern(s, p, o, graphs))
     if s0 == -1 and s1 == -1:
         scope = None
     else:
@@ -298,13 +302,17 @@ def _scope_number(value: Any) -> float:
 
 def py_scopes(req: Any, out: Any) -> bool:
     """The time scopes ``[Since, Until]`` of the documents stating one ground triple (any time,
-    KnowRob's p*/o* semantics): what ``G during [S, U]`` with S and U free binds."""
+    KnowRob's p*/o* semantics): what ``G during [S, U]`` with S and U free binds. A fifth
+    element lists the graphs read (a kb_call graph(G) option)."""
     CROSSINGS["py_scopes"] += 1
     try:
         bridge = _connected()
-        neem, s, p, o = (_plain(x) for x in req)
+        neem, s, p, o = (_plain(x) for x in req[:4])
+        graphs = {str(_plain(g)) for g in req[4]} if len(req) > 4 else None
         rows = []
         for doc in bridge.store.find(neem, s, p, o):
+            if graphs is not None and doc.get("graph") not in graphs:
+                continue
             time = doc.get("scope", {}).get("time", {})
             since = _scope_number(time.get("since", 0.0))
             until = _scope_number(time.get("until", math.inf))

@@ -138,7 +138,9 @@ class TriplePattern:
     s: Term = None
     p: Term = None
     o: Term = None
-    graph: str | None = None
+    #: The named graph of the documents read: one name, a tuple of names (any of them: a
+    #: graph and its super-graphs, KnowRob's ``graph`` filter) or None (every graph).
+    graph: str | tuple[str, ...] | None = None
 
     def variables(self) -> tuple[str, ...]:
         o = self.o.var if isinstance(self.o, Cmp) else self.o

@@ -287,7 +287,7 @@ def _pattern_filter(pattern: TriplePattern, number_format: NumberFormat, exact: 
             if term is not None and not isinstance(term, Var):
                 query[field] = _value_condition(term)
         if pattern.graph is not None:
-            query["graph"] = pattern.graph
+            query["graph"] = _graph_condition(pattern.graph)
         return query
     if pattern.s is not None and not isinstance(pattern.s, Var):
         query["s"] = pattern.s
@@ -296,8 +296,12 @@ def _pattern_filter(pattern: TriplePattern, number_format: NumberFormat, exact: 
     if pattern.o is not None and not isinstance(pattern.o, (Var, Cmp)):
         query["o*" if taxonomic else "o"] = _value_condition(pattern.o)
     if pattern.graph is not None:
-        query["graph"] = pattern.graph
+        query["graph"] = _graph_condition(pattern.graph)
     return query
+
+
+def _graph_condition(graph: str | tuple[str, ...]) -> Any:
+    return graph if isinstance(graph, str) else {"$in": list(graph)}
 
 
 def _scope_filter(scope: Scope | None, number_format: NumberFormat) -> dict[str, Any]:

@@ -196,9 +196,12 @@ class SqlCompiler:
         self.params.append(float(o.value))
 
     def _filters(self, a: str, pattern: TriplePattern) -> None:
-        if pattern.graph is not None:
+        if isinstance(pattern.graph, str):
             self.conds.append(f"{a}.graph=?")
             self.params.append(pattern.graph)
+        elif pattern.graph is not None:
+            self.conds.append(f"{a}.graph IN ({','.join('?' * len(pattern.graph))})")
+            self.params.extend(pattern.graph)
         if self.scope is not None:
             self.conds.append(f"({a}.since IS NULL OR {a}.since<=?) AND ({a}.until IS NULL OR {a}.until>=?)")
             self.params.extend([self.scope.until, self.scope.since])
