@@ -5,6 +5,7 @@
       kb_call_stepwise/2,       % :Goal, +Scope
       kb_compile/3,             % +Goal, +Scope, -Plan
       kb_findall/4,             % +Template, :Goal, +Scope, -List
+      kb_group/5,               % +Key, +Var, :Goal, +Scope, -Groups
       kb_call/3,                % :Goal, +QueryScope, -FactScope
       kb_call/4,                % :Goal, +QueryScope, -FactScope, +Options
       kb_project/1,             % +Statement
@@ -35,6 +36,7 @@ kb_project/1 asserts statements built from the same vocabulary (see kb_project/1
 :- use_module(library(error)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
+:- use_module(library(pairs)).
 :- use_module('../neem_store', [store_match/2, store_match/3, store_match_scoped/3, store_insert/2, store_retract/1]).
 :- use_module(triple, [kb_iri/2, iri_term/1, triple_steps/6, unit_factor/2]).
 :- use_module(scope, [current_scope/1, scope_check/1, scope_overlaps/3, runtime_scope/3,
@@ -42,7 +44,7 @@ kb_project/1 asserts statements built from the same vocabulary (see kb_project/1
 
 :- meta_predicate
     kb_call(0), kb_call(0, +), kb_call(0, +, -), kb_call(0, +, -, +), kb_call_stepwise(0), kb_call_stepwise(0, +),
-    kb_findall(?, 0, +, -).
+    kb_findall(?, 0, +, -), kb_group(?, ?, 0, +, -).
 
 %!  kb_scoped_goal(+Goal, +Scope, -Call) is semidet.
 %   Goal is not made of triples but depends on the question scope (e.g. is_at/2 reads tf
@@ -120,6 +122,30 @@ kb_findall(Template, Goal, Scope, List) :-
         maplist(expand_pattern, Ts, Ts1),
         findall(Template, ( store_match(Ts1, S, [select(Keep)]), run_plan(Rest) ), List)
     ;   findall(Template, run_plan(Plan), List)
+    ).
+
+%!  kb_group(+Key, +Var, :Goal, +Scope, -Groups) is det.
+%   Groups is the sorted list of `Key-Values`, one per distinct Key of the solutions of
+%   kb_call(Goal, Scope), Values the sorted list (duplicates kept) of Var's values in them:
+%   what `findall(Key-Var, ...)`, msort/2 and group_pairs_by_key/2 give. When Goal compiles
+%   to one store query binding Key and Var, the store groups the rows, so each group crosses
+%   once however many values it holds (a history read's imaginings with their plans).
+kb_group(Key, Var, Goal, Scope, Groups) :-
+    must_be(var, Var),
+    kb_compile(Goal, Scope, compiled, Plan),
+    (   Plan = [match(Ts, S)],
+        term_variables(Ts, All),
+        term_variables(Key, KeyVars),
+        forall(member(V, [Var|KeyVars]), ( member(X, All), X == V )),
+        \+ ( member(V, KeyVars), V == Var )
+    ->  maplist(expand_pattern, Ts, Ts1),
+        findall(Key-Values,
+                ( store_match(Ts1, S, [select(Key-Var), group(Var, Values0)]), msort(Values0, Values) ),
+                Pairs),
+        keysort(Pairs, Groups)
+    ;   findall(Key-Var, run_plan(Plan), Pairs),
+        msort(Pairs, Sorted),
+        group_pairs_by_key(Sorted, Groups)
     ).
 
 %!  kb_compile(+Goal, +Scope, -Plan) is det.

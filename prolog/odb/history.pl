@@ -17,7 +17,7 @@ situation, the one the next ranking is for.
 :- use_module(library(pairs)).
 :- use_module(library(assoc)).
 :- use_module(library(http/json)).
-:- use_module('../lang/query', [kb_call/2, kb_findall/4]).
+:- use_module('../lang/query', [kb_call/2, kb_findall/4, kb_group/5]).
 :- use_module('../lang/triple', [kb_iri/2]).
 :- use_module('../model/rdfs', []).
 :- use_module('../model/event', []).
@@ -50,27 +50,33 @@ situation_history(Situations, Calls) :-
     kb_findall(A-PC, ( has_time_interval(A, I), triple(I, rdf:type, PC) ), any, IntervalTypes),
     findall(A-P, ( member(A-PC, IntervalTypes),
                    member(P, ['Morning', 'Midday', 'Evening', 'Night']), odb_iri(P, PC) ), Parts),
-    % From the imagined plans: with one Imagining task per mental action, SQLite's own join
-    % order starting from the task type is ~13x slower (1,000 actions).
-    kb_findall(B-Plan, ( holds(M, odb:imagines_situation, Plan), executes_task(M, MT),
-                         instance_of(MT, soma:'Imagining'), event_interval(M, B, _) ),
-               any, ImaginedPlans),
+    % Each imagining's begin with its plans, grouped by the store (one row per begin, not one
+    % per imagined plan). The mental action's own patterns come first: SQLite then joins its
+    % interval before fanning out to the ~20 plans (4x faster at 10,000 actions).
+    kb_group(B, Plan, ( executes_task(M, MT), instance_of(MT, soma:'Imagining'),
+                        event_interval(M, B, _), holds(M, odb:imagines_situation, Plan) ),
+             any, ImaginedPlans),
     % The few plans' tasks once, not once per (imagining, plan) row: the same join, in Prolog.
     kb_findall(Plan-T, plan_defines_task(Plan, T), any, PlanTasks0),
     sort(PlanTasks0, PlanTasks),
     group_pairs_by_key(PlanTasks, TasksByPlan),
     list_to_assoc(TasksByPlan, TasksOf),
-    findall(B-T, ( member(B-Plan, ImaginedPlans), get_assoc(Plan, TasksOf, PlanTs), member(T, PlanTs) ),
-            Imagined0),
-    sort(Imagined0, Imagined),
+    % Imaginings whose plans define no task are no situation (as if not imagined).
+    findall(B-Ts, ( member(B-Plans, ImaginedPlans), plans_tasks(TasksOf, Plans, Ts), Ts \== [] ), ByBegin),
+    findall(Plan, ( member(_-Plans, ImaginedPlans), member(Plan, Plans) ), Used0),
+    sort(Used0, Used),
+    plans_tasks(TasksOf, Used, Ts1),
     findall(T, ( member(_-_-T-_-C, Actions), C \== Idle ), Ts0),
-    findall(T, member(_-T, Imagined), Ts1),
     append(Ts0, Ts1, Ts),
     task_calls(Ts, CallPairs),
     list_to_assoc(CallPairs, Calls),
     first_values(Parts, PartOf),
-    group_pairs_by_key(Imagined, ByBegin),
     history_rows(Actions, inf, Idle, PartOf, ByBegin, none, Calls, Situations).
+
+%   The sorted tasks the plans define.
+plans_tasks(TasksOf, Plans, Ts) :-
+    findall(T, ( member(Plan, Plans), get_assoc(Plan, TasksOf, PlanTs), member(T, PlanTs) ), Ts0),
+    sort(Ts0, Ts).
 
 odb_or_idle(Idle, _-_-_-_-C) :-
     (   C == Idle -> true ; odb_iri(_, C) ).

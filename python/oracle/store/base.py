@@ -19,7 +19,7 @@ from bson.decimal128 import Decimal128
 
 from oracle.errors import StoreError
 from oracle.store.meta import new_meta
-from oracle.store.validate import check_document
+from oracle.store.validate import check_document, validate_group
 from oracle.store.model import (
     HIERARCHY,
     TAXONOMIC,
@@ -367,6 +367,7 @@ class Store(ABC):
         limit: int | None = None,
         order: Sequence[tuple[str, bool]] = (),
         select: Sequence[str] | None = None,
+        group: str | None = None,
     ) -> Iterator[dict[str, Any]]:
         """Solutions of a conjunction of patterns, computed by the database in ONE query.
 
@@ -377,10 +378,16 @@ class Store(ABC):
         ``limit`` by the database ("the latest decision before T" is one row, not a scan).
         ``select`` names the variables the caller keeps (all of them when None): the others
         are joined on but never converted to Python values; the solutions are the same rows.
+        ``group`` names a kept variable whose values are collected: one dict per distinct
+        combination of the other kept variables, ``group`` mapped to the list of its values in
+        those solutions (duplicates kept; groups and values in no fixed order).
         """
         validate_patterns(patterns)
         kept = None if select is None else validate_select(patterns, select)
-        return self._match(neem_id, patterns, scope, limit, validate_order(patterns, order), kept)
+        checked = validate_order(patterns, order)
+        if group is not None:
+            kept = validate_group(patterns, kept, group, limit, checked)
+        return self._match(neem_id, patterns, scope, limit, checked, kept, group)
 
     @abstractmethod
     def _match(
@@ -391,6 +398,7 @@ class Store(ABC):
         limit: int | None,
         order: Sequence[tuple[str, bool]],
         select: Sequence[str] | None = None,
+        group: str | None = None,
     ) -> Iterator[dict[str, Any]]: ...
 
     def annotations(self, neem_id: str, s: str | None = None, p: str | None = None) -> Iterator[Annotation]:

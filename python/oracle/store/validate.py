@@ -5,13 +5,14 @@ cannot read). A message names the document and the field."""
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from datetime import datetime
 from typing import Any
 
 from bson.decimal128 import Decimal128
 
 from oracle.errors import StoreError
+from oracle.store.model import TriplePattern
 
 #: Registry fields and the types a reader expects of them (None allowed for each).
 _META_TYPES: dict[str, tuple[type, ...]] = {"created_by": (str,), "created_at": (str,), "temporary": (bool,),
@@ -119,3 +120,20 @@ def check_meta(meta: Mapping[str, Any], where: str) -> None:
 def _short(value: Any) -> str:
     text = repr(value)
     return text if len(text) <= 40 else text[:37] + "..."
+
+
+def validate_group(
+    patterns: Sequence[TriplePattern], kept: list[str] | None, group: str, limit: int | None,
+    order: Sequence[tuple[str, bool]],
+) -> list[str]:
+    """The kept variables of a grouped match, ``group`` last: it must be a variable of the
+    patterns (and kept, when ``select`` names some); a limit or an order would cut or sort rows
+    that no longer exist after grouping, so neither may come with it."""
+    names = sorted({name for pattern in patterns for name in pattern.variables()})
+    if kept is None:
+        kept = names
+    if group not in kept:
+        raise StoreError(f"group names {group!r}, which {'no pattern binds' if group not in names else 'select drops'}")
+    if limit is not None or order:
+        raise StoreError("a grouped match takes no limit or order")
+    return [name for name in kept if name != group] + [group]
