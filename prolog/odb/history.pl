@@ -43,9 +43,10 @@ situation_history(Situations) :-
 %   the rows were made from (every call in Situations but `idle` is one of its values).
 situation_history(Situations, Calls) :-
     odb_iri('IdleTask', Idle),
-    kb_findall(B-A-T-E-C, ( executes_task(A, T), triple(T, rdf:type, C), event_interval(A, B, E) ),
-               any, Typed),
-    include(odb_or_idle(Idle), Typed, Actions0),
+    % Each action with its task's types, grouped by the store (a logged task has two).
+    kb_group(B-A-T-E, C, ( executes_task(A, T), triple(T, rdf:type, C), event_interval(A, B, E) ),
+             any, Typed),
+    findall(B-A-T-E-C, ( member(B-A-T-E-Cs, Typed), member(C, Cs), odb_or_idle(Idle, C) ), Actions0),
     sort(Actions0, Actions),
     kb_findall(A-PC, ( has_time_interval(A, I), triple(I, rdf:type, PC) ), any, IntervalTypes),
     findall(A-P, ( member(A-PC, IntervalTypes),
@@ -61,8 +62,6 @@ situation_history(Situations, Calls) :-
     sort(PlanTasks0, PlanTasks),
     group_pairs_by_key(PlanTasks, TasksByPlan),
     list_to_assoc(TasksByPlan, TasksOf),
-    % Imaginings whose plans define no task are no situation (as if not imagined).
-    findall(B-Ts, ( member(B-Plans, ImaginedPlans), plans_tasks(TasksOf, Plans, Ts), Ts \== [] ), ByBegin),
     findall(Plan, ( member(_-Plans, ImaginedPlans), member(Plan, Plans) ), Used0),
     sort(Used0, Used),
     plans_tasks(TasksOf, Used, Ts1),
@@ -70,16 +69,36 @@ situation_history(Situations, Calls) :-
     append(Ts0, Ts1, Ts),
     task_calls(Ts, CallPairs),
     list_to_assoc(CallPairs, Calls),
+    empty_assoc(Memo),
+    imagined_calls(ImaginedPlans, TasksOf, Calls, Memo, ByBegin),
     first_values(Parts, PartOf),
     history_rows(Actions, inf, Idle, PartOf, ByBegin, none, Calls, Situations).
+
+odb_or_idle(Idle, C) :-
+    (   C == Idle -> true ; odb_iri(_, C) ).
 
 %   The sorted tasks the plans define.
 plans_tasks(TasksOf, Plans, Ts) :-
     findall(T, ( member(Plan, Plans), get_assoc(Plan, TasksOf, PlanTs), member(T, PlanTs) ), Ts0),
     sort(Ts0, Ts).
 
-odb_or_idle(Idle, _-_-_-_-C) :-
-    (   C == Idle -> true ; odb_iri(_, C) ).
+%   imagined_calls(+Imaginings, +TasksOf, +Calls, +Memo, -ByBegin): each imagining's begin
+%   with the sorted calls of its plans' tasks, each distinct set of plans worked out once
+%   (Memo). An imagining whose plans define no task is no situation (as if not imagined).
+imagined_calls([], _, _, _, []).
+imagined_calls([B-Plans|Groups], TasksOf, Calls, Memo0, ByBegin) :-
+    (   get_assoc(Plans, Memo0, Avail)
+    ->  Memo = Memo0
+    ;   plans_tasks(TasksOf, Plans, Ts),
+        (   Ts == []
+        ->  Avail = none
+        ;   findall(AC, ( member(T, Ts), get_assoc(T, Calls, AC) ), Avail0),
+            sort(Avail0, Avail)
+        ),
+        put_assoc(Plans, Memo0, Avail, Memo)
+    ),
+    (   Avail == none -> ByBegin = Rest ; ByBegin = [B-Avail|Rest] ),
+    imagined_calls(Groups, TasksOf, Calls, Memo, Rest).
 
 %   Key-Value pairs as an AVL tree keeping the first value of a key (memberchk/2's answer).
 first_values(Pairs, Assoc) :-
@@ -90,8 +109,8 @@ put_first(K-V, A0, A) :-
     (   get_assoc(K, A0, _) -> A = A0 ; put_assoc(K, A0, V, A) ).
 
 %   history_rows(+Actions, +PrevBegin, +Idle, +PartOf, +Imaginings, +Latest, +Calls, -Rows):
-%   Imaginings are the groups not yet passed (ascending begin), Latest the last group that
-%   began at or before the previous action (`none` before the first one).
+%   Imaginings are the begin-calls pairs not yet passed (ascending begin), Latest the last
+%   one that began at or before the previous action (`none` before the first one).
 history_rows([], _, _, _, _, _, _, []).
 history_rows([B-A-T-E-C|Actions], Prev, Idle, PartOf, Groups0, Latest0, Calls,
              [situation(B, E, Call, Part, Avail)|Rows]) :-
@@ -99,15 +118,14 @@ history_rows([B-A-T-E-C|Actions], Prev, Idle, PartOf, Groups0, Latest0, Calls,
     (   get_assoc(A, PartOf, Part0) -> Part = Part0 ; Part = none ),
     advance(Groups0, B, Latest0, Groups, Latest),
     (   C \== Idle,
-        Latest = Bi-AvTs,
+        Latest = Bi-Avail0,
         ( Prev == inf ; Bi > Prev )
-    ->  findall(AC, ( member(AT, AvTs), get_assoc(AT, Calls, AC) ), Avail0),
-        sort(Avail0, Avail)
+    ->  Avail = Avail0
     ;   Avail = none
     ),
     history_rows(Actions, B, Idle, PartOf, Groups, Latest, Calls, Rows).
 
-%   Pass the imagining groups that began at or before B; the last one passed is the latest.
+%   Pass the imaginings that began at or before B; the last one passed is the latest.
 advance([Bi-Ts|Groups0], B, _, Groups, Latest) :-
     Bi =< B, !,
     advance(Groups0, B, Bi-Ts, Groups, Latest).
