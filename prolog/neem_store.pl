@@ -251,8 +251,10 @@ insert_row(triple(S,P,O,Since,Until), [S,P,O,Since,Until]).
 %   backend binds them all), for callers that collect a few variables of many rows;
 %   `group(Var, Values)` (with select(Term), no limit or order): one solution per distinct
 %   binding of Term's other variables, Var left free and Values the list of its values in
-%   those rows (duplicates kept, in no fixed order), grouped by the store. Terms must be
-%   variables or atomic values.
+%   those rows (duplicates kept, in no fixed order), grouped by the store; `plan(written)`:
+%   the store joins the patterns in the order written (SQLite has no statistics to plan a
+%   long join by; MongoDB's pipeline is always in that order). Terms must be variables or
+%   atomic values.
 store_match(Patterns, Scope) :-
     store_match(Patterns, Scope, []).
 
@@ -333,7 +335,8 @@ match(Backend, Patterns, Scope, Options) :-
     group_option(Options, Patterns, Var, Keep, Keys),
     (   Backend = python(_)
     ->  maplist(replace_var(Var, Values), Patterns, Patterns1),
-        match(Backend, Patterns1, Scope, [select(Keep-Values), group_last])
+        (   memberchk(plan(written), Options) -> Plan = [plan(written)] ; Plan = [] ),
+        match(Backend, Patterns1, Scope, [select(Keep-Values), group_last|Plan])
     ;   findall(Keys-Var, mem_conj(Patterns, Scope), Pairs),
         msort(Pairs, Sorted),
         group_pairs_by_key(Sorted, Groups),
@@ -366,7 +369,8 @@ match(python(Neem), Patterns, Scope, Options) :-
     maplist(encode_key(Order0), Keys, Order),
     length(Vars, NVars),
     (   memberchk(group_last, Options) -> Group is NVars-1 ; Group = -1 ),
-    neem_store:py_match([Neem, S0, S1, N, NVars, Order, Group|Encoded], Reply),
+    (   memberchk(plan(written), Options) -> Plan = written ; Plan = store ),
+    neem_store:py_match([Neem, S0, S1, N, NVars, Order, Group, Plan|Encoded], Reply),
     reply_rows(Reply, Rows),
     member(Vars, Rows).
 

@@ -3,6 +3,7 @@
       task_call/2,                % +TaskIndividual, -Call
       task_calls/2,               % +Tasks, -Pairs
       call_tasks/2,               % +Call, -TaskIndividuals
+      call_task_times/3,          % +Call, +Tasks, -Times
       action_call/4,              % ?Action, ?Call, ?Begin, ?End
       times_done/2,               % +Call, -Actions
       chain_before/3              % +Action, +N, -Calls
@@ -18,7 +19,8 @@ odb object classes. Its call is the chain term `pick(banana)` (odb_names).
 :- use_module(library(apply)).
 :- use_module(library(pairs)).
 :- use_module(library(assoc)).
-:- use_module('../lang/query', [kb_call/2, kb_findall/4]).
+:- use_module(library(ordsets)).
+:- use_module('../lang/query', [kb_call/2, kb_findall/4, kb_findall/5]).
 :- use_module('../lang/triple', [kb_iri/2]).
 :- use_module('../model/rdfs', []).
 :- use_module('../model/event', []).
@@ -152,17 +154,41 @@ first_odb(Types, C) :-
 %!  call_tasks(+Call, -Tasks) is det.
 %   The task individuals whose call is Call (the logger makes one per action, and one per
 %   call for the plans). Only the tasks of the call's class with a role classifying an object
-%   of the first argument's class are read (one store query; a call without arguments: every
-%   task of its class), then each one's call as task_call/2 reads it.
+%   of the first argument's class are read, with the rows task_call/2 reads of each, in one
+%   store query joined in the order written, from the object's class (a call without
+%   arguments: every task of its class, then each one's call).
 call_tasks(Call, Tasks) :-
+    candidate_tasks(Call, T, Candidates),
+    (   Call =.. [_, _|_]
+    ->  % A task without role rows has a call without arguments: only tasks with rows count.
+        task_role_rows(T, C, R, RC, OC, Goal),
+        kb_findall(T-(C-R-RC-OC), ( Candidates, Goal ), any, [plan(written)], Rows),
+        sort(1, @=<, Rows, ByTask),         % stable: each task's rows in the store's order
+        group_pairs_by_key(ByTask, Groups),
+        findall(T1, ( member(T1-Rows1, Groups), rows_call(T1, Rows1, C1), C1 = Call ), Tasks)
+    ;   findall(T, kb_call(Candidates, any), Ts0),
+        sort(Ts0, Ts),
+        findall(T, ( member(T, Ts), task_call(T, C), C = Call ), Tasks)
+    ).
+
+%   candidate_tasks(+Call, ?T, -Goal): Goal binds T to the tasks of the call's class with a
+%   role classifying an object of the first argument's class (every task of the class when
+%   there is no argument): a superset of the tasks whose call is Call.
+candidate_tasks(Call, T, Goal) :-
     call_classes(Call, TC, OCs),
     (   OCs = [OC1|_]
-    ->  findall(T, kb_call(( triple(O1, rdf:type, OC1), has_role(O1, R1), task_role(T, R1),
-                             triple(T, rdf:type, TC) ), any), Ts0)
-    ;   findall(T, kb_call(triple(T, rdf:type, TC), any), Ts0)
-    ),
-    sort(Ts0, Ts),
-    findall(T, ( member(T, Ts), task_call(T, C), C = Call ), Tasks).
+    ->  Goal = ( triple(O1, rdf:type, OC1), has_role(O1, R1), task_role(T, R1), triple(T, rdf:type, TC) )
+    ;   Goal = triple(T, rdf:type, TC)
+    ).
+
+%!  call_task_times(+Call, +Tasks, -Times) is det.
+%   `Begin-End` of every action that executed one of Tasks, tasks whose call is Call
+%   (call_tasks/2): one store query over the actions of Call's candidate tasks.
+call_task_times(Call, Tasks, Times) :-
+    list_to_ord_set(Tasks, Set),
+    candidate_tasks(Call, T, Candidates),
+    kb_findall(T-B-E, ( Candidates, executes_task(A, T), event_interval(A, B, E) ), any, [plan(written)], Rows),
+    findall(B-E, ( member(T1-B-E, Rows), ord_memberchk(T1, Set) ), Times).
 
 %!  times_done(+Call, -Actions) is det.
 %   `action(Begin, End, Action)` for every action that executed Call, by begin.

@@ -120,13 +120,14 @@ def _error_text(error: BaseException) -> str:
 # -- the foreign predicates --------------------------------------------------------------
 def _decode_request(
     req: Sequence[Any],
-) -> tuple[str, list[TriplePattern], Scope | None, int | None, int, list[tuple[str, bool]], str | None]:
+) -> tuple[str, list[TriplePattern], Scope | None, int | None, int, list[tuple[str, bool]], str | None, bool]:
     neem = _plain(req[0])
     s0, s1, limit, n_vars = req[1], req[2], req[3], req[4]
     order = [(f"v{index}", _plain(direction) == "desc") for index, direction in req[5]]
     group = None if req[6] == -1 else f"v{req[6]}"
+    written = _plain(req[7]) == "written"
     patterns = []
-    for enc in req[7:]:
+    for enc in req[8:]:
         terms: list[Any] = []
         for kind, value in zip(enc[0::2], enc[1::2]):
             kind = _plain(kind)
@@ -145,15 +146,16 @@ def _decode_request(
         # the store tests overlap (since =< scope.until, until >= scope.since), so the ends
         # are handed over swapped.
         scope = Scope(since=float(s1), until=float(s0))
-    return neem, patterns, scope, (None if limit == -1 else int(limit)), int(n_vars), order, group
+    return neem, patterns, scope, (None if limit == -1 else int(limit)), int(n_vars), order, group, written
 
 
 def _chunks(store: Store, req: Sequence[Any]) -> Iterator[str]:
-    neem, patterns, scope, limit, n_vars, order, group = _decode_request(req)
+    neem, patterns, scope, limit, n_vars, order, group, written = _decode_request(req)
     names = [f"v{i}" for i in range(n_vars)]
     # Only the variables Prolog keeps are converted; an IRI's text is made once per query
     # (a history read returns each task and plan IRI thousands of times).
-    rows = store.match(neem, patterns, scope=scope, limit=limit, order=order, select=names, group=group)
+    rows = store.match(neem, patterns, scope=scope, limit=limit, order=order, select=names, group=group,
+                       written_order=written)
     texts: dict[str, str] = {}
     numbers: dict[float, str] = {}
 

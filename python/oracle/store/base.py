@@ -368,6 +368,7 @@ class Store(ABC):
         order: Sequence[tuple[str, bool]] = (),
         select: Sequence[str] | None = None,
         group: str | None = None,
+        written_order: bool = False,
     ) -> Iterator[dict[str, Any]]:
         """Solutions of a conjunction of patterns, computed by the database in ONE query.
 
@@ -381,13 +382,15 @@ class Store(ABC):
         ``group`` names a kept variable whose values are collected: one dict per distinct
         combination of the other kept variables, ``group`` mapped to the list of its values in
         those solutions (duplicates kept; groups and values in no fixed order).
+        ``written_order`` joins the patterns in the order given (MongoDB's pipeline always
+        does; SQLite, without statistics, may otherwise start from a large index range).
         """
         validate_patterns(patterns)
         kept = None if select is None else validate_select(patterns, select)
         checked = validate_order(patterns, order)
         if group is not None:
             kept = validate_group(patterns, kept, group, limit, checked)
-        return self._match(neem_id, patterns, scope, limit, checked, kept, group)
+        return self._match(neem_id, patterns, scope, limit, checked, kept, group, written_order)
 
     @abstractmethod
     def _match(
@@ -399,6 +402,7 @@ class Store(ABC):
         order: Sequence[tuple[str, bool]],
         select: Sequence[str] | None = None,
         group: str | None = None,
+        written_order: bool = False,
     ) -> Iterator[dict[str, Any]]: ...
 
     def annotations(self, neem_id: str, s: str | None = None, p: str | None = None) -> Iterator[Annotation]:

@@ -232,6 +232,7 @@ class MongoStore(Store):
         order: Sequence[tuple[str, bool]],
         select: Sequence[str] | None = None,
         group: str | None = None,
+        written_order: bool = False,  # the pipeline's $lookups are always in the written order
     ) -> Iterator[dict[str, Any]]:
         if not self.has_neem(neem_id):
             raise StoreError(f"{self.location}: no NEEM {neem_id!r}")

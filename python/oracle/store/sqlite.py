@@ -89,6 +89,18 @@ def _quote(name: str) -> str:
     return '"' + name.replace('"', '""') + '"'
 
 
+def _joined_in_order(patterns: Sequence[TriplePattern]) -> set[int]:
+    """The patterns sharing a variable with one before them (joined to it, in written order)."""
+    seen: set[str] = set()
+    joined = set()
+    for i, pattern in enumerate(patterns):
+        names = set(pattern.variables())
+        if names & seen:
+            joined.add(i)
+        seen |= names
+    return joined
+
+
 def _grouped(rows: list[Any], names: list[str], out: Callable[[Any, int], Any]) -> Iterator[dict[str, Any]]:
     """Rows of (value, kind) column pairs grouped by all but the last pair, whose values are
     collected in row order. Grouped here, not by SQL GROUP BY: SQLite's text and JSON forms
@@ -790,10 +802,16 @@ class SQLiteStore(Store):
         order: Sequence[tuple[str, bool]],
         select: Sequence[str] | None = None,
         group: str | None = None,
+        written_order: bool = False,
     ) -> Iterator[dict[str, Any]]:
         self._require(neem_id)
         query = SqlCompiler(self, _table(neem_id, "triples"), scope)
-        plan, joined = join_order(patterns, order[0][0]) if order else ([], set())
+        if order:
+            plan, joined = join_order(patterns, order[0][0])
+        elif written_order:
+            plan, joined = list(range(len(patterns))), _joined_in_order(patterns)
+        else:
+            plan, joined = [], set()
         first = plan[0] if plan else -1
         for i, pattern in enumerate(patterns):
             query.inline_closures = i == first
@@ -807,13 +825,25 @@ class SQLiteStore(Store):
         else:
             select = ", ".join(f"{query.bound[n][0]}, {query.bound[n][1] or K_STR}" for n in names)
         keys = [f"{query.bound[name][0]} {'DESC' if descending else 'ASC'}" for name, descending in order]
-        keys += [f"{alias}.id" for alias in query.aliases]
-        source = query.from_clause() if not order else query.ordered_from_clause(plan)
+        # In the written order the rows are sorted after the join ("+": SQLite would otherwise
+        # scan the first table in id order to skip the sort, instead of using its index).
+        mark = "+" if written_order and not order else ""
+        keys += [f"{mark}{alias}.id" for alias in query.aliases]
+        source = query.ordered_from_clause(plan) if plan else query.from_clause()
         sql = f"SELECT {select} FROM {source} WHERE {query.where()} ORDER BY {', '.join(keys)}"
         if limit is not None:
             sql += f" LIMIT {int(limit)}"
         out = self._out
-        rows = self._conn.execute(sql, query.params).fetchall()
+        if mark:
+            # The plan is the caller's: no automatic index (SQLite without statistics would build
+            # one over the whole table for a lookup the (o, p) index answers).
+            self._conn.execute("PRAGMA automatic_index = OFF")
+            try:
+                rows = self._conn.execute(sql, query.params).fetchall()
+            finally:
+                self._conn.execute("PRAGMA automatic_index = ON")
+        else:
+            rows = self._conn.execute(sql, query.params).fetchall()
         if group is not None:
             yield from _grouped(rows, names, out)
             return
