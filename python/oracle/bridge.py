@@ -30,6 +30,7 @@ import threading
 from collections.abc import Iterator, Sequence
 from datetime import datetime
 from itertools import islice
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from oracle.errors import PrologError, StoreError
@@ -349,14 +350,52 @@ def _ensure_loaded() -> None:
     Prolog.register_foreign(py_annotate, arity=2, module="neem_store")
     Prolog.register_foreign(py_tf, arity=2, module="neem_store")
     folder = prolog_dir()
-    for name in MODULES:
-        path = folder / f"{name}.pl"
+    paths = [folder / f"{name}.pl" for name in MODULES]
+    for path in paths:
         if not path.exists():
             raise PrologError(f"{path}: Prolog module missing")
-        _STATE["request"] = [Atom(str(path))]
-        _run("neem_store:py_request(R), R = [F], use_module(user:F)")
+    if not _load_compiled(folder, paths):
+        for path in paths:
+            _STATE["request"] = [Atom(str(path))]
+            _run("neem_store:py_request(R), R = [F], use_module(user:F)")
     _STATE["request"] = None
     _STATE["loaded"] = True
+
+
+def _load_compiled(folder: Path, paths: list[Path]) -> bool:
+    """Load the modules from the user's cache of compiled modules (oracle.modulecache), compiling
+    them into it first when the entry for their content is missing; False when the cache cannot
+    be used (the caller loads the sources)."""
+    from pyswip import Atom
+
+    from oracle import modulecache
+
+    version = str(_run("current_prolog_flag(version, V)")[0]["V"])
+    try:
+        compiled = modulecache.compiled_path(folder, version)
+        # Loaded means every module's source file is known to Prolog afterwards.
+        files = [Atom(str(path.resolve())) for path in paths]
+        if compiled.is_file():
+            _STATE["request"] = [Atom(str(compiled)), files]
+            try:
+                if not _run("neem_store:py_request(R), R = [F, Fs], catch(load_files(user:F, []), _, fail),"
+                            " forall(member(S, Fs), source_file(S))"):
+                    raise PrologError(f"{compiled}: does not load")
+            except PrologError:
+                modulecache.discard(compiled)  # damaged: the sources are loaded, and compiled next time
+                raise
+            return True
+        loader = modulecache.prepare(compiled, paths, quote_atom)
+        # qcompile loads the modules, as use_module would, and writes the .qlf beside the loader.
+        _STATE["request"] = [Atom(str(loader)), files]
+        if not _run("neem_store:py_request(R), R = [F, Fs], qcompile(user:F, [include(user)]),"
+                    " forall(member(S, Fs), source_file(S))"):
+            modulecache.discard(loader)
+            raise PrologError(f"{loader}: does not compile")
+        modulecache.publish(loader, compiled)
+        return True
+    except (OSError, PrologError):
+        return False  # the cache is an optimisation: a read-only or damaged one loads the sources
 
 
 def _attach_engine() -> None:

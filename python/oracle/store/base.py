@@ -19,7 +19,7 @@ from bson.decimal128 import Decimal128
 
 from oracle.errors import StoreError
 from oracle.store.meta import new_meta
-from oracle.store.validate import check_document, validate_group
+from oracle.store.validate import check_document, validate_group, validate_order, validate_select
 from oracle.store.model import (
     HIERARCHY,
     TAXONOMIC,
@@ -421,16 +421,6 @@ class Store(ABC):
         self.close()
 
 
-def validate_select(patterns: Sequence[TriplePattern], select: Sequence[str]) -> list[str]:
-    """The variables a caller keeps, each one a variable of the patterns."""
-    names = {name for pattern in patterns for name in pattern.variables()}
-    kept = list(dict.fromkeys(select))
-    for name in kept:
-        if name not in names:
-            raise StoreError(f"select names {name!r}, which no pattern binds")
-    return kept
-
-
 def validate_patterns(patterns: Sequence[TriplePattern]) -> None:
     if not patterns:
         raise StoreError("a query needs at least one triple pattern")
@@ -450,13 +440,3 @@ def check_literal(term: Any) -> None:
     """A query constant is a plain value: a dict (``{"$gt": ""}``, a MongoDB operator) or a list is refused."""
     if term is not None and not isinstance(term, (str, int, float, bool, Decimal128, datetime)):
         raise StoreError(f"a query constant must be a string, number, boolean or date, got {term!r}")
-
-
-def validate_order(patterns: Sequence[TriplePattern], order: Sequence[tuple[str, bool]]) -> list[tuple[str, bool]]:
-    names = {name for pattern in patterns for name in pattern.variables()}
-    checked = []
-    for name, descending in order:
-        if name not in names:
-            raise StoreError(f"cannot order by {name!r}: no pattern binds it")
-        checked.append((name, bool(descending)))
-    return checked

@@ -1,6 +1,7 @@
 """The door check: documents and registry entries from outside (dumps, callers) that a reader
 could not read are refused before they are stored (issue 16: a store never holds a row a reader
-cannot read). A message names the document and the field."""
+cannot read). A message names the document and the field. The same door for a query: its
+selected, ordered and grouped variables must be the patterns' own."""
 
 from __future__ import annotations
 
@@ -137,3 +138,23 @@ def validate_group(
     if limit is not None or order:
         raise StoreError("a grouped match takes no limit or order")
     return [name for name in kept if name != group] + [group]
+
+
+def validate_select(patterns: Sequence[TriplePattern], select: Sequence[str]) -> list[str]:
+    """The variables a caller keeps, each one a variable of the patterns."""
+    names = {name for pattern in patterns for name in pattern.variables()}
+    kept = list(dict.fromkeys(select))
+    for name in kept:
+        if name not in names:
+            raise StoreError(f"select names {name!r}, which no pattern binds")
+    return kept
+
+
+def validate_order(patterns: Sequence[TriplePattern], order: Sequence[tuple[str, bool]]) -> list[tuple[str, bool]]:
+    names = {name for pattern in patterns for name in pattern.variables()}
+    checked = []
+    for name, descending in order:
+        if name not in names:
+            raise StoreError(f"cannot order by {name!r}: no pattern binds it")
+        checked.append((name, bool(descending)))
+    return checked
