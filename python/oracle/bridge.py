@@ -521,8 +521,16 @@ class Bridge:
 
     def history(self) -> list[dict[str, Any]]:
         """odb_history:situation_history/1 in one crossing: every executed action in begin order
-        as ``{"begin", "end", "call", "part", "available"}`` (calls in the chain syntax)."""
-        return self._json("odb_history:situation_history_json")
+        as ``{"begin", "end", "call", "part", "available"}`` (calls in the chain syntax). The
+        situations that found the same set available share one list (Prolog writes each set once)."""
+        reply = self._json("odb_history:situation_history_json")
+        sets = reply["sets"]
+        rows: list[dict[str, Any]] = reply["situations"]
+        for row in rows:
+            index = row["available"]
+            if index is not None:
+                row["available"] = sets[index]
+        return rows
 
     def latest_situation(self) -> dict[str, Any] | None:
         """The latest imagined situation as ``{"begin", "available"}``, or None."""
