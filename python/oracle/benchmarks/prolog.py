@@ -246,7 +246,7 @@ def history_figures(quick: bool = False) -> list[dict]:
     with tempfile.TemporaryDirectory() as tmp:
         start = time.perf_counter()
         path = _chains_store(Path(tmp), sizes)
-        print(f"imported NEEMs of {', '.join(map(str, sizes))} actions in {time.perf_counter() - start:.0f} s")
+        print(f"imported NEEMs of {', '.join(map(str, sizes))} actions in {time.perf_counter() - start:.0f} s", flush=True)
         store = open_store(path)
         for n in sizes:
             neem = f"u{n}"
@@ -256,7 +256,7 @@ def history_figures(quick: bool = False) -> list[dict]:
             _, floor = _timed(lambda: _sql_floor(path, neem))
             ratio = cpu["median"] / floor["median"]
             print(f"history read, {n:>6,} actions ({history[-1]} rows): wall {_fmt(wall)} s, cpu {_fmt(cpu)} s"
-                  f" (min/median/max); SQL floor cpu {_fmt(floor)} s; cpu/floor {ratio:.1f}x")
+                  f" (min/median/max); SQL floor cpu {_fmt(floor)} s; cpu/floor {ratio:.1f}x", flush=True)
             bridge.why_not("pick", ["banana"])  # the first question loads nothing more; time the ones after
             why_wall, why_cpu = _timed(lambda: bridge.why_not("pick", ["banana"]), 5)
             _, cross_cpu = _timed(lambda: _crossing(bridge), 5)
@@ -264,7 +264,7 @@ def history_figures(quick: bool = False) -> list[dict]:
             print(f"why_not(pick(banana)) in process, {n:>6,} actions: wall {_fmt(why_wall, 1000, 1)} ms,"
                   f" cpu {_fmt(why_cpu, 1000, 1)} ms (min/median/max of 5); floor, one one-row store query:"
                   f" cpu {_fmt(cross_cpu, 1000, 1)} ms; {why_ratio:.1f}x floor"
-                  f" (target <= {50 if n <= 10000 else 200} ms)")
+                  f" (target <= {50 if n <= 10000 else 200} ms)", flush=True)
             cli = _rank_cli(path, neem)
             # Floor of a rank from start to exit: the interpreter starting and exiting, plus the
             # plain SQL read of the rows the history needs (both measured in this run).
@@ -272,7 +272,7 @@ def history_figures(quick: bool = False) -> list[dict]:
             rank_ratio = cli["rank_cpu"]["median"] / rank_floor
             print(f"rank start to exit, {n:>6,} actions: wall {_fmt(cli['rank_wall'])} s, cpu {_fmt(cli['rank_cpu'])} s"
                   f" (min/median/max of 3); floor (python -c pass cpu {_fmt(cli['start_cpu'])} s + SQL floor)"
-                  f" {rank_floor:.3f} s cpu; {rank_ratio:.1f}x floor cpu (target < {1 if n <= 10000 else 4} s)")
+                  f" {rank_floor:.3f} s cpu; {rank_ratio:.1f}x floor cpu (target < {1 if n <= 10000 else 4} s)", flush=True)
             medians["history_cpu"].append(cpu["median"])
             medians["rank_wall"].append(cli["rank_wall"]["median"])
             medians["rank_cpu"].append(cli["rank_cpu"]["median"])
@@ -291,14 +291,14 @@ def history_figures(quick: bool = False) -> list[dict]:
                 same = bridge.query(f"use_module('{fixture}'), odb_history:situation_history(New),"
                                     " history_reference:situation_history_reference(Old),"
                                     " ( New == Old -> S = true ; S = false )")[0]["S"]
-                print(f"history read at 10,000 actions equals the first implementation's: {same}")
+                print(f"history read at 10,000 actions equals the first implementation's: {same}", flush=True)
                 rows.append({"area": "prolog", "name": "history equals reference", "actions": n, "equal": same == "true"})
             bridge.close()
         for key, label in (("history_cpu", "history read cpu"), ("rank_wall", "rank wall"), ("rank_cpu", "rank cpu"),
                            ("floor", "SQL floor")):
             k = _exponent(sizes, medians[key])
             if k is not None:
-                print(f"growth exponent, {label}, {sizes[-2]:,} -> {sizes[-1]:,}: {k:.2f} (n log n ~ 1.1)")
+                print(f"growth exponent, {label}, {sizes[-2]:,} -> {sizes[-1]:,}: {k:.2f} (n log n ~ 1.1)", flush=True)
                 rows.append({"area": "prolog", "name": f"growth {label}", "exponent": k,
                              "sizes": sizes[-2:]})
         store.close()
