@@ -39,10 +39,10 @@ Reason terms of why_not/2,3 (each a separate solution, most telling first):
 :- use_module(model/rdfs, []).
 :- use_module(model/event, []).
 :- use_module(odb/names, [odb_iri/2]).
-:- use_module(odb/calls, [task_call/2, call_tasks/2, times_done/2]).
+:- use_module(odb/calls, [task_call/2, call_tasks/2, call_task_times/3, times_done/2]).
 :- use_module(odb/events, [perceived_at/2]).
 :- use_module(odb/decisions, [decision_at/3, imagined_available/2, latest_decision/4, preference_at/3,
-                              latest_preference/3, action_time/5]).
+                              latest_preference/3]).
 
 %!  why_not(+Call, -Reason) is nondet.
 %   Why Call was not done lately: at the latest decision the robot made.
@@ -62,15 +62,17 @@ why_not(Call, At, Reason) :-
     check_call(Call),
     must_be(number, At),
     call_tasks(Call, Tasks),
-    (   action_time(Tasks, =<(At), >=(At), min, B)
-    ->  Reason = done(Call, B)
+    call_task_times(Call, Tasks, Times),
+    (   findall(B, ( member(B-E, Times), number(B), number(E), B =< At, E >= At ), Bs), Bs \== []
+    ->  min_list(Bs, B),
+        Reason = done(Call, B)
     ;   decision_at(situation, At, M)
     ->  once(kb_call(event_interval(M, When, _), any)),
-        reasons_at(Call, At, M, When, Tasks, Reason)
-    ;   later_earlier(Call, At, Tasks, Reason)
+        reasons_at(Call, At, M, When, Times, Reason)
+    ;   later_earlier(Call, At, Times, Reason)
     ).
 
-reasons_at(Call, At, M, When, Tasks, Reason) :-
+reasons_at(Call, At, M, When, Times, Reason) :-
     imagined_available(M, Available),
     (   \+ memberchk(Call, Available)
     ->  missing_reason(Call, When, Why),
@@ -86,7 +88,7 @@ reasons_at(Call, At, M, When, Tasks, Reason) :-
     ->  R2 = [user_chose(Other, OB)]
     ;   R2 = []
     ),
-    findall(R, later_earlier(Call, At, Tasks, R), R3),
+    findall(R, later_earlier(Call, At, Times, R), R3),
     append([R1, R2, R3], Reasons),
     member(Reason, Reasons).
 
@@ -97,11 +99,13 @@ missing_reason(Call, When, object_not_perceived(Obj)) :-
 missing_reason(_, _, precondition_failed).
 
 %   done_later: the first begin after At; else done_earlier: the latest begin of an action
-%   that ended before At.
-later_earlier(Call, At, Tasks, done_later(Call, B)) :-
-    action_time(Tasks, >(At), _, asc, B), !.
-later_earlier(Call, At, Tasks, done_earlier(Call, B)) :-
-    action_time(Tasks, _, <(At), desc, B), !.
+%   that ended before At (Times: the Begin-End of the call's actions).
+later_earlier(Call, At, Times, done_later(Call, B)) :-
+    findall(B0, ( member(B0-_, Times), number(B0), B0 > At ), Bs), Bs \== [], !,
+    min_list(Bs, B).
+later_earlier(Call, At, Times, done_earlier(Call, B)) :-
+    findall(B0, ( member(B0-E, Times), number(E), E < At ), Bs), Bs \== [], !,
+    max_list(Bs, B).
 
 %!  chosen_after(+Time, -Call, -Begin) is semidet.
 %   The first non-idle task executed at or after Time: executions in begin order, fetched

@@ -309,8 +309,13 @@ insert_row(triple(S,P,O,Since,Until), [S,P,O,Since,Until]).
 %   Solve the conjunction of `t(S,P,O)` patterns in ONE store query, binding their
 %   variables. Options: `limit(N)`, `order(Keys)` and `select(Term)`: only the variables of
 %   Term are bound by a solution (the store does not send the others back; the memory
-%   backend binds them all), for callers that collect a few variables of many rows. Terms
-%   must be variables or atomic values.
+%   backend binds them all), for callers that collect a few variables of many rows;
+%   `group(Var, Values)` (with select(Term), no limit or order): one solution per distinct
+%   binding of Term's other variables, Var left free and Values the list of its values in
+%   those rows (duplicates kept, in no fixed order), grouped by the store; `plan(written)`:
+%   the store joins the patterns in the order written (SQLite has no statistics to plan a
+%   long join by; MongoDB's pipeline is always in that order). Terms must be variables or
+%   atomic values.
 store_match(Patterns, Scope) :-
     store_match(Patterns, Scope, []).
 
@@ -408,6 +413,18 @@ check_scope(any) :- !.
 check_scope(scope(S, U)) :- number(S), number(U), !.
 check_scope(X) :- type_error(scope, X).
 
+match(Backend, Patterns, Scope, Options) :-
+    memberchk(group(Var, Values), Options), !,
+    group_option(Options, Patterns, Var, Keep, Keys),
+    (   Backend = python(_)
+    ->  maplist(replace_var(Var, Values), Patterns, Patterns1),
+        (   memberchk(plan(written), Options) -> Plan = [plan(written)] ; Plan = [] ),
+        match(Backend, Patterns1, Scope, [select(Keep-Values), group_last|Plan])
+    ;   findall(Keys-Var, mem_conj(Patterns, Scope), Pairs),
+        msort(Pairs, Sorted),
+        group_pairs_by_key(Sorted, Groups),
+        member(Keys-Values, Groups)
+    ).
 match(memory, Patterns, Scope, Options) :-
     option_order(Options, Keys),
     Keys \== [], !,
@@ -438,9 +455,44 @@ match(python(Neem), Patterns, Scope, Options) :-
     option_order(Options, Keys),
     maplist(encode_key(Order0), Keys, Order),
     length(Vars, NVars),
-    neem_store:py_match([Neem, S0, S1, N, NVars, Order|Encoded], Reply),
+    (   memberchk(group_last, Options) -> Group is NVars-1 ; Group = -1 ),
+    (   memberchk(plan(written), Options) -> Plan = written ; Plan = store ),
+    neem_store:py_match([Neem, S0, S1, N, NVars, Order, Group, Plan|Encoded], Reply),
     reply_rows(Reply, Rows),
     member(Vars, Rows).
+
+%   replace_var(+Var, +New, +Term, -Term1): Term with the variable Var replaced by New (the
+%   grouped variable of the python backend, selected last, comes back bound to its list of
+%   values; Var itself stays free, as on the memory backend).
+replace_var(Var, New, T, New) :-
+    T == Var, !.
+replace_var(Var, New, T, T1) :-
+    compound(T), !,
+    T =.. [F|As],
+    maplist(replace_var(Var, New), As, As1),
+    T1 =.. [F|As1].
+replace_var(_, _, T, T).
+
+%   group(Var, Values) checked: Var a variable of the patterns, kept by select(Term), and
+%   neither limit nor order given; Keep is Term without Var, Keys its variables.
+group_option(Options, Patterns, Var, Keep, Keys) :-
+    (   var(Var), term_variables(Patterns, All), occurs_in(All, Var)
+    ->  true
+    ;   domain_error(pattern_variable, Var)
+    ),
+    (   memberchk(select(Term), Options)
+    ->  term_variables(Term, TermVars),
+        (   occurs_in(TermVars, Var) -> true ; domain_error(selected_variable, Var) )
+    ;   TermVars = All
+    ),
+    (   ( memberchk(limit(_), Options) ; memberchk(order(_), Options) )
+    ->  domain_error(group_without_limit_or_order, Options)
+    ;   true
+    ),
+    exclude(==(Var), TermVars, KeyVars0),
+    include(occurs_in(All), KeyVars0, KeyVars),
+    Keep = KeyVars,
+    Keys = KeyVars.
 
 %   select(Keep): only the variables of Keep come back (the bridge returns the first NVars
 %   variables of the numbering, so these are numbered first); the others are existential.

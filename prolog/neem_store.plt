@@ -53,6 +53,23 @@ test(limit, [setup(setup), cleanup(store_reset)]) :-
     findall(X, store_match([t(X, T, Thing)], any, [limit(1)]), Xs),
     length(Xs, 1).
 
+test(group_collects_the_values_of_each_key, [setup(setup), cleanup(store_reset)]) :-
+    maplist(ex, [a, b, hasPart, 'Cup', 'it''s (odd)'], [A, B, HasPart, Cup, Odd]), type(T),
+    findall(X-Ys, store_match([t(X, HasPart, Y)], any, [select(X-Y), group(Y, Ys)]), Groups),
+    Groups = [A-Ys], msort(Ys, [B, Odd]),
+    findall(C-Xs, store_match([t(X, T, C)], any, [select(C-X), group(X, Xs)]), Groups2),
+    memberchk(Cup-Cs, Groups2), msort(Cs, [A, Odd]).
+
+test(group_variable_must_be_selected, [setup(setup), cleanup(store_reset),
+                                       error(domain_error(selected_variable, _))]) :-
+    type(T),
+    store_match([t(X, T, C)], any, [select(X), group(C, _)]).
+
+test(group_takes_no_limit, [setup(setup), cleanup(store_reset),
+                            error(domain_error(group_without_limit_or_order, _))]) :-
+    type(T),
+    store_match([t(X, T, C)], any, [select(X-C), group(C, _), limit(1)]).
+
 test(bad_pattern, [error(type_error(atomic_or_var, f(x)))]) :-
     store_match([t(f(x), _, _)], any).
 

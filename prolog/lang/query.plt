@@ -24,6 +24,14 @@ test(compiled_equals_stepwise, [nondet, setup(load_test_episode), cleanup(store_
     findall(A-T-R-O-C, kb_call_stepwise(G, any), L2),
     msort(L1, S), msort(L2, S), S \== [].
 
+test(group_equals_findall_grouped, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
+    forall(member(G-K-V, [ ( executes_task(A, T), has_participant(A, O) )-(A-T)-O,
+                           ( has_participant(A, O), atom(O) )-A-O ]),   % one match; match + filter
+           ( kb_group(K, V, G, any, Groups),
+             findall(K-V, kb_call(G, any), Pairs), msort(Pairs, Sorted),
+             group_pairs_by_key(Sorted, Expected),
+             assertion(Groups == Expected), Groups \== [] )).
+
 test(compile_one_match_per_conjunction, [nondet]) :-
     kb_compile(( is_action(A), executes_task(A, T), event_interval(A, _, _), T \== x ), any, Plan),
     Plan = [match(Ps, any), call(_)], length(Ps, 5).

@@ -3,6 +3,7 @@
       task_call/2,                % +TaskIndividual, -Call
       task_calls/2,               % +Tasks, -Pairs
       call_tasks/2,               % +Call, -TaskIndividuals
+      call_task_times/3,          % +Call, +Tasks, -Times
       action_call/4,              % ?Action, ?Call, ?Begin, ?End
       times_done/2,               % +Call, -Actions
       chain_before/3              % +Action, +N, -Calls
@@ -18,7 +19,8 @@ odb object classes. Its call is the chain term `pick(banana)` (odb_names).
 :- use_module(library(apply)).
 :- use_module(library(pairs)).
 :- use_module(library(assoc)).
-:- use_module('../lang/query', [kb_call/2, kb_findall/4]).
+:- use_module(library(ordsets)).
+:- use_module('../lang/query', [kb_call/2, kb_findall/4, kb_findall/5]).
 :- use_module('../lang/triple', [kb_iri/2]).
 :- use_module('../model/rdfs', []).
 :- use_module('../model/event', []).
@@ -96,35 +98,97 @@ action_call(A, Call, B, E) :-
     memberchk(T1-Call, Calls).
 
 %!  task_calls(+Tasks, -Pairs) is det.
-%   `Task-Call` for each distinct task individual: one store query for the roles of every
-%   task (each task's rows in the order task_call/2 reads them, so the same calls), plus one
-%   per task without roles.
+%   `Task-Call` for each distinct task individual, the call task_call/2 gives. The rows it
+%   reads are the product of a task's types, its role-object pairs, the role's types and
+%   the object's types (~11 rows per role in a logged NEEM); they are read as their four
+%   factors (four store queries, each in the store's order) and joined here, plus one query
+%   per task without typed roles.
 task_calls(Ts, Pairs) :-
     sort(Ts, Distinct),
-    task_role_rows(T, C, R, RC, OC, Goal),
-    kb_findall(T-(C-R-RC-OC), Goal, any, Rows),
-    sort(1, @=<, Rows, ByTask),             % stable: each task's rows in the store's order
-    group_pairs_by_key(ByTask, Groups),
-    list_to_assoc(Groups, RowsOf),
-    findall(T-C, ( member(T, Distinct),
-                   ( get_assoc(T, RowsOf, Rows0) -> true ; Rows0 = [] ),
-                   rows_call(T, Rows0, C) ),
-            Pairs).
+    kb_findall(T-(R-O), ( task_role(T, R), has_role(O, R) ), any, TROs),
+    kb_findall(T-C, ( task_role(T, _), triple(T, rdf:type, C) ), any, TCs),
+    kb_findall(R-RC, ( task_role(_, R), triple(R, rdf:type, RC) ), any, RCs),
+    kb_findall(O-OC, ( has_role(O, _), triple(O, rdf:type, OC) ), any, OCs),
+    ordered_groups(TROs, RolesOf),
+    append([TCs, RCs, OCs], Typed),
+    ordered_groups(Typed, TypesOf),
+    findall(T-C, ( member(T, Distinct), task_call_from(TypesOf, RolesOf, T, C) ), Pairs).
+
+%   Key-Value pairs as an AVL tree of Key -> Values in their first order (duplicates kept).
+ordered_groups(Pairs, Assoc) :-
+    sort(1, @=<, Pairs, ByKey),             % stable: each key's values in the store's order
+    group_pairs_by_key(ByKey, Groups),
+    list_to_assoc(Groups, Assoc).
+
+%   A task's call from the factors of task_role_rows/6: the rows that exist are those of a
+%   type of T and a role-object pair whose role and object are typed; without one, the call
+%   of a task without roles. The call's class is the first odb type of T; the roles are those
+%   of pairs whose object has an odb type, each role's classes all its types, its object the
+%   first odb type of its first such object (the first row task_call/2 meets).
+task_call_from(TypesOf, RolesOf, T, Call) :-
+    types_of(TypesOf, T, TTs),
+    (   get_assoc(T, RolesOf, ROs0) -> true ; ROs0 = [] ),
+    include(typed_pair(TypesOf), ROs0, ROs),
+    (   ( TTs == [] ; ROs == [] )
+    ->  rows_call(T, [], Call)
+    ;   first_odb(TTs, C),
+        findall(R-RC-OC, ( member(R-O, ROs), types_of(TypesOf, O, OTs), first_odb(OTs, OC),
+                           types_of(TypesOf, R, RTs), member(RC, RTs) ),
+                RoleRows),
+        RoleRows \== [],
+        role_args(C, RoleRows, Args),
+        odb_iri(Name, C),
+        Call =.. [Name|Args]
+    ).
+
+types_of(TypesOf, X, Types) :-
+    (   get_assoc(X, TypesOf, Types0) -> Types = Types0 ; Types = [] ).
+
+typed_pair(TypesOf, R-O) :-
+    get_assoc(R, TypesOf, _),
+    get_assoc(O, TypesOf, _).
+
+first_odb(Types, C) :-
+    member(C, Types), odb_iri(_, C), !.
 
 %!  call_tasks(+Call, -Tasks) is det.
 %   The task individuals whose call is Call (the logger makes one per action, and one per
 %   call for the plans). Only the tasks of the call's class with a role classifying an object
-%   of the first argument's class are read (one store query; a call without arguments: every
-%   task of its class), then each one's call as task_call/2 reads it.
+%   of the first argument's class are read, with the rows task_call/2 reads of each, in one
+%   store query joined in the order written, from the object's class (a call without
+%   arguments: every task of its class, then each one's call).
 call_tasks(Call, Tasks) :-
+    candidate_tasks(Call, T, Candidates),
+    (   Call =.. [_, _|_]
+    ->  % A task without role rows has a call without arguments: only tasks with rows count.
+        task_role_rows(T, C, R, RC, OC, Goal),
+        kb_findall(T-(C-R-RC-OC), ( Candidates, Goal ), any, [plan(written)], Rows),
+        sort(1, @=<, Rows, ByTask),         % stable: each task's rows in the store's order
+        group_pairs_by_key(ByTask, Groups),
+        findall(T1, ( member(T1-Rows1, Groups), rows_call(T1, Rows1, C1), C1 = Call ), Tasks)
+    ;   findall(T, kb_call(Candidates, any), Ts0),
+        sort(Ts0, Ts),
+        findall(T, ( member(T, Ts), task_call(T, C), C = Call ), Tasks)
+    ).
+
+%   candidate_tasks(+Call, ?T, -Goal): Goal binds T to the tasks of the call's class with a
+%   role classifying an object of the first argument's class (every task of the class when
+%   there is no argument): a superset of the tasks whose call is Call.
+candidate_tasks(Call, T, Goal) :-
     call_classes(Call, TC, OCs),
     (   OCs = [OC1|_]
-    ->  findall(T, kb_call(( triple(O1, rdf:type, OC1), has_role(O1, R1), task_role(T, R1),
-                             triple(T, rdf:type, TC) ), any), Ts0)
-    ;   findall(T, kb_call(triple(T, rdf:type, TC), any), Ts0)
-    ),
-    sort(Ts0, Ts),
-    findall(T, ( member(T, Ts), task_call(T, C), C = Call ), Tasks).
+    ->  Goal = ( triple(O1, rdf:type, OC1), has_role(O1, R1), task_role(T, R1), triple(T, rdf:type, TC) )
+    ;   Goal = triple(T, rdf:type, TC)
+    ).
+
+%!  call_task_times(+Call, +Tasks, -Times) is det.
+%   `Begin-End` of every action that executed one of Tasks, tasks whose call is Call
+%   (call_tasks/2): one store query over the actions of Call's candidate tasks.
+call_task_times(Call, Tasks, Times) :-
+    list_to_ord_set(Tasks, Set),
+    candidate_tasks(Call, T, Candidates),
+    kb_findall(T-B-E, ( Candidates, executes_task(A, T), event_interval(A, B, E) ), any, [plan(written)], Rows),
+    findall(B-E, ( member(T1-B-E, Rows), ord_memberchk(T1, Set) ), Times).
 
 %!  times_done(+Call, -Actions) is det.
 %   `action(Begin, End, Action)` for every action that executed Call, by begin.

@@ -59,8 +59,9 @@ latest_decision(Kind, Test, M, B) :-
     % A decision executes a task of Kind's class: without one there is none, and the ordered
     % query need not walk every interval by begin to find that out (1.6 s at 50,000 actions
     % when a NEEM has no preference yet). The logger makes one such task per kind.
+    % (Written order: the class's closure ids then drive the type index.)
     decision_patterns(Kind, _, _, [_, t(T, Type, C)|_]),
-    once(store_match([t(T, Type, C)], any, [limit(1)])),
+    once(store_match([t(T, Type, C)], any, [limit(1), plan(written)])),
     latest_decision_(Kind, Test, 4, M, B).
 
 latest_decision_(Kind, Test, N, M, B) :-

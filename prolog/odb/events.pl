@@ -14,6 +14,7 @@ scopes an object's type triple from its first perception.
 :- use_module(library(error)).
 :- use_module(library(lists)).
 :- use_module('../lang/query', [kb_call/2]).
+:- use_module('../neem_store', [store_match/3]).
 :- use_module('../lang/triple', [kb_iri/2]).
 :- use_module('../model/rdfs', []).
 :- use_module('../model/event', []).
@@ -45,4 +46,7 @@ idle_action(A, B, E) :-
 perceived_at(Name, Time) :-
     must_be(atom, Name), must_be(number, Time),
     odb_iri(Name, C),
-    once(kb_call(instance_of(_, C), scope(Time, Time))).
+    % instance_of(_, C) during Time, as one row of the store (in the written order the
+    % class's closure ids drive the type index, not a scan of every type triple).
+    kb_iri(rdf:type, Type),
+    once(store_match([t(_, Type, C)], scope(Time, Time), [limit(1), plan(written)])).

@@ -1,6 +1,7 @@
 :- begin_tests(odb_history).
 
 :- use_module(history).
+:- use_module(library(http/json)).
 :- use_module('../neem_store').
 :- use_module('../fixtures/test_episode').
 :- use_module('../fixtures/history_reference').
@@ -16,7 +17,9 @@ test(situation_history, [nondet, setup(load_test_episode), cleanup(store_reset)]
     C3 == pick(apple), P3 == 'Midday', A3 == [pick(apple)].
 
 test(situation_history_json, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
-    situation_history_json(J), sub_string(J, _, _, _, "\"call\":\"pour(thermos,green_mug)\"").
+    situation_history_json(J), sub_string(J, _, _, _, "\"call\":\"pour(thermos,green_mug)\""),
+    atom_json_dict(J, D, []), D.situations = [S1, S2, _], S1.available == 0, S2.available == null,
+    D.sets = [["pick(apple)", "pour(thermos,green_mug)"]|_].
 
 test(latest_situation, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
     latest_situation(B, C), B =:= 200, C == [pick(apple)],

@@ -32,6 +32,7 @@ import threading
 from collections.abc import Iterator, Sequence
 from datetime import datetime
 from itertools import islice
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from oracle.errors import PrologError, StoreError
@@ -122,12 +123,14 @@ def _error_text(error: BaseException) -> str:
 # -- the foreign predicates --------------------------------------------------------------
 def _decode_request(
     req: Sequence[Any],
-) -> tuple[str, list[TriplePattern], Scope | None, int | None, int, list[tuple[str, bool]]]:
+) -> tuple[str, list[TriplePattern], Scope | None, int | None, int, list[tuple[str, bool]], str | None, bool]:
     neem = _plain(req[0])
     s0, s1, limit, n_vars = req[1], req[2], req[3], req[4]
     order = [(f"v{index}", _plain(direction) == "desc") for index, direction in req[5]]
+    group = None if req[6] == -1 else f"v{req[6]}"
+    written = _plain(req[7]) == "written"
     patterns = []
-    for enc in req[6:]:
+    for enc in req[8:]:
         terms: list[Any] = []
         graphs: tuple[str, ...] | None = None
         for kind, value in zip(enc[0::2], enc[1::2]):
@@ -150,15 +153,16 @@ def _decode_request(
         # the store tests overlap (since =< scope.until, until >= scope.since), so the ends
         # are handed over swapped.
         scope = Scope(since=float(s1), until=float(s0))
-    return neem, patterns, scope, (None if limit == -1 else int(limit)), int(n_vars), order
+    return neem, patterns, scope, (None if limit == -1 else int(limit)), int(n_vars), order, group, written
 
 
 def _chunks(store: Store, req: Sequence[Any]) -> Iterator[str]:
-    neem, patterns, scope, limit, n_vars, order = _decode_request(req)
+    neem, patterns, scope, limit, n_vars, order, group, written = _decode_request(req)
     names = [f"v{i}" for i in range(n_vars)]
     # Only the variables Prolog keeps are converted; an IRI's text is made once per query
     # (a history read returns each task and plan IRI thousands of times).
-    rows = store.match(neem, patterns, scope=scope, limit=limit, order=order, select=names)
+    rows = store.match(neem, patterns, scope=scope, limit=limit, order=order, select=names, group=group,
+                       written_order=written)
     texts: dict[str, str] = {}
     numbers: dict[float, str] = {}
 
@@ -176,11 +180,18 @@ def _chunks(store: Store, req: Sequence[Any]) -> Iterator[str]:
             return known
         return term_text(value)
 
+    def cell(value: Any) -> str:
+        """A grouped variable's list of values, or one value."""
+        if type(value) is list:
+            return "[" + ",".join([text(item) for item in value]) + "]"
+        return text(value)
+
+    convert = text if group is None else cell
     while True:
         batch = list(islice(rows, CHUNK))
         if not batch:
             return
-        yield "[" + ",".join("[" + ",".join([text(row[n]) for n in names]) + "]" for row in batch) + "]"
+        yield "[" + ",".join("[" + ",".join([convert(row[n]) for n in names]) + "]" for row in batch) + "]"
         if len(batch) < CHUNK:
             return
 
@@ -399,14 +410,52 @@ def _ensure_loaded() -> None:
     Prolog.register_foreign(py_annotate, arity=2, module="neem_store")
     Prolog.register_foreign(py_tf, arity=2, module="neem_store")
     folder = prolog_dir()
-    for name in MODULES:
-        path = folder / f"{name}.pl"
+    paths = [folder / f"{name}.pl" for name in MODULES]
+    for path in paths:
         if not path.exists():
             raise PrologError(f"{path}: Prolog module missing")
-        _STATE["request"] = [Atom(str(path))]
-        _run("neem_store:py_request(R), R = [F], use_module(user:F)")
+    if not _load_compiled(folder, paths):
+        for path in paths:
+            _STATE["request"] = [Atom(str(path))]
+            _run("neem_store:py_request(R), R = [F], use_module(user:F)")
     _STATE["request"] = None
     _STATE["loaded"] = True
+
+
+def _load_compiled(folder: Path, paths: list[Path]) -> bool:
+    """Load the modules from the user's cache of compiled modules (oracle.modulecache), compiling
+    them into it first when the entry for their content is missing; False when the cache cannot
+    be used (the caller loads the sources)."""
+    from pyswip import Atom
+
+    from oracle import modulecache
+
+    version = str(_run("current_prolog_flag(version, V)")[0]["V"])
+    try:
+        compiled = modulecache.compiled_path(folder, version)
+        # Loaded means every module's source file is known to Prolog afterwards.
+        files = [Atom(str(path.resolve())) for path in paths]
+        if compiled.is_file():
+            _STATE["request"] = [Atom(str(compiled)), files]
+            try:
+                if not _run("neem_store:py_request(R), R = [F, Fs], catch(load_files(user:F, []), _, fail),"
+                            " forall(member(S, Fs), source_file(S))"):
+                    raise PrologError(f"{compiled}: does not load")
+            except PrologError:
+                modulecache.discard(compiled)  # damaged: the sources are loaded, and compiled next time
+                raise
+            return True
+        loader = modulecache.prepare(compiled, paths, quote_atom)
+        # qcompile loads the modules, as use_module would, and writes the .qlf beside the loader.
+        _STATE["request"] = [Atom(str(loader)), files]
+        if not _run("neem_store:py_request(R), R = [F, Fs], qcompile(user:F, [include(user)]),"
+                    " forall(member(S, Fs), source_file(S))"):
+            modulecache.discard(loader)
+            raise PrologError(f"{loader}: does not compile")
+        modulecache.publish(loader, compiled)
+        return True
+    except (OSError, PrologError):
+        return False  # the cache is an optimisation: a read-only or damaged one loads the sources
 
 
 def _attach_engine() -> None:
@@ -533,8 +582,16 @@ class Bridge:
 
     def history(self) -> list[dict[str, Any]]:
         """odb_history:situation_history/1 in one crossing: every executed action in begin order
-        as ``{"begin", "end", "call", "part", "available"}`` (calls in the chain syntax)."""
-        return self._json("odb_history:situation_history_json")
+        as ``{"begin", "end", "call", "part", "available"}`` (calls in the chain syntax). The
+        situations that found the same set available share one list (Prolog writes each set once)."""
+        reply = self._json("odb_history:situation_history_json")
+        sets = reply["sets"]
+        rows: list[dict[str, Any]] = reply["situations"]
+        for row in rows:
+            index = row["available"]
+            if index is not None:
+                row["available"] = sets[index]
+        return rows
 
     def latest_situation(self) -> dict[str, Any] | None:
         """The latest imagined situation as ``{"begin", "available"}``, or None."""

@@ -72,6 +72,15 @@ def test_compiled_conjunction_is_one_crossing(sqlite_bridge):
     assert sorted(compiled) == sorted(stepwise) and compiled
 
 
+def test_kb_group_is_findall_grouped_and_one_crossing(sqlite_bridge):
+    goal = "( executes_task(A, T), has_participant(A, O) )"
+    before = bridge_module.CROSSINGS["py_match"]
+    grouped = sqlite_bridge.query(f"kb_query:kb_group(A-T, O, {goal}, any, G)")[0]["G"]
+    assert bridge_module.CROSSINGS["py_match"] - before == 1
+    expected = sqlite_bridge.query(f"findall((A-T)-O, kb_call({goal}, any), P), msort(P, S), group_pairs_by_key(S, G)")
+    assert grouped == expected[0]["G"] and any("," in str(group) for group in grouped)
+
+
 @pytest.mark.parametrize("name", ["it's", 'a "quoted" name', "x), halt, (y", "spa ce", "ünïcødé ✓", "back\\slash\nnl"])
 def test_names_are_data(tmp_path, name):
     store = open_store(tmp_path / "s.sqlite")

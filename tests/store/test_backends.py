@@ -111,6 +111,25 @@ def test_match_select_keeps_the_rows_and_only_the_named_variables(store):
         store.match("n1", patterns, select=["Z"])
 
 
+def test_match_group_collects_one_variable_per_combination_of_the_others(store):
+    world(store)
+    store.insert("n1", [Triple(X + "a1", X + "hasParticipant", X + "cup2"), Triple(X + "a2", X + "begin", 20.25)])
+    patterns = [TriplePattern(Var("A"), X + "hasParticipant", Var("O")), TriplePattern(Var("A"), X + "begin", Var("T"))]
+    every = list(store.match("n1", patterns))
+    expected: dict = {}
+    for row in every:
+        expected.setdefault((row["A"], row["T"]), []).append(row["O"])
+    grouped = list(store.match("n1", patterns, select=["A", "T", "O"], group="O"))
+    assert len(grouped) == len(expected) >= 3 and any(len(values) > 1 for values in expected.values())
+    assert {(row["A"], row["T"]): sorted(row["O"]) for row in grouped} == {k: sorted(v) for k, v in expected.items()}
+    alone = list(store.match("n1", patterns, select=["O"], group="O"))
+    assert len(alone) == 1 and sorted(alone[0]["O"]) == sorted(row["O"] for row in every)
+    with pytest.raises(StoreError, match="'O', which select drops"):
+        store.match("n1", patterns, select=["A"], group="O")
+    with pytest.raises(StoreError, match="no limit or order"):
+        store.match("n1", patterns, group="O", limit=1)
+
+
 def test_match_free_object_binds_asserted_type_and_bound_object_uses_closure(store):
     world(store)
     rows = list(store.match("n1", [TriplePattern(X + "cup1", RDF_TYPE, Var("C"))]))

@@ -24,7 +24,7 @@ from bson.decimal128 import Decimal128
 from oracle.errors import StoreError
 from oracle.store.ids import check_alias_free
 from oracle.store.meta import new_meta
-from oracle.store.validate import check_document
+from oracle.store.validate import check_document, validate_group, validate_order, validate_select
 from oracle.store.model import (
     HIERARCHY,
     TAXONOMIC,
@@ -388,6 +388,8 @@ class Store(ABC):
         limit: int | None = None,
         order: Sequence[tuple[str, bool]] = (),
         select: Sequence[str] | None = None,
+        group: str | None = None,
+        written_order: bool = False,
     ) -> Iterator[dict[str, Any]]:
         """Solutions of a conjunction of patterns, computed by the database in ONE query.
 
@@ -398,10 +400,18 @@ class Store(ABC):
         ``limit`` by the database ("the latest decision before T" is one row, not a scan).
         ``select`` names the variables the caller keeps (all of them when None): the others
         are joined on but never converted to Python values; the solutions are the same rows.
+        ``group`` names a kept variable whose values are collected: one dict per distinct
+        combination of the other kept variables, ``group`` mapped to the list of its values in
+        those solutions (duplicates kept; groups and values in no fixed order).
+        ``written_order`` joins the patterns in the order given (MongoDB's pipeline always
+        does; SQLite, without statistics, may otherwise start from a large index range).
         """
         validate_patterns(patterns)
         kept = None if select is None else validate_select(patterns, select)
-        return self._match(neem_id, patterns, scope, limit, validate_order(patterns, order), kept)
+        checked = validate_order(patterns, order)
+        if group is not None:
+            kept = validate_group(patterns, kept, group, limit, checked)
+        return self._match(neem_id, patterns, scope, limit, checked, kept, group, written_order)
 
     @abstractmethod
     def _match(
@@ -412,6 +422,8 @@ class Store(ABC):
         limit: int | None,
         order: Sequence[tuple[str, bool]],
         select: Sequence[str] | None = None,
+        group: str | None = None,
+        written_order: bool = False,
     ) -> Iterator[dict[str, Any]]: ...
 
     def annotations(self, neem_id: str, s: str | None = None, p: str | None = None) -> Iterator[Annotation]:
@@ -428,16 +440,6 @@ class Store(ABC):
 
     def __exit__(self, *exc: object) -> None:
         self.close()
-
-
-def validate_select(patterns: Sequence[TriplePattern], select: Sequence[str]) -> list[str]:
-    """The variables a caller keeps, each one a variable of the patterns."""
-    names = {name for pattern in patterns for name in pattern.variables()}
-    kept = list(dict.fromkeys(select))
-    for name in kept:
-        if name not in names:
-            raise StoreError(f"select names {name!r}, which no pattern binds")
-    return kept
 
 
 def validate_patterns(patterns: Sequence[TriplePattern]) -> None:
@@ -459,13 +461,3 @@ def check_literal(term: Any) -> None:
     """A query constant is a plain value: a dict (``{"$gt": ""}``, a MongoDB operator) or a list is refused."""
     if term is not None and not isinstance(term, (str, int, float, bool, Decimal128, datetime)):
         raise StoreError(f"a query constant must be a string, number, boolean or date, got {term!r}")
-
-
-def validate_order(patterns: Sequence[TriplePattern], order: Sequence[tuple[str, bool]]) -> list[tuple[str, bool]]:
-    names = {name for pattern in patterns for name in pattern.variables()}
-    checked = []
-    for name, descending in order:
-        if name not in names:
-            raise StoreError(f"cannot order by {name!r}: no pattern binds it")
-        checked.append((name, bool(descending)))
-    return checked

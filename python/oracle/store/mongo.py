@@ -257,6 +257,8 @@ class MongoStore(Store):
         limit: int | None,
         order: Sequence[tuple[str, bool]],
         select: Sequence[str] | None = None,
+        group: str | None = None,
+        written_order: bool = False,  # the pipeline's $lookups are always in the written order
     ) -> Iterator[dict[str, Any]]:
         if not self.has_neem(neem_id):
             raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
@@ -264,6 +266,15 @@ class MongoStore(Store):
         names = sorted({name for pattern in patterns for name in pattern.variables()})
         if select is not None:
             names = [name for name in names if name in select]
+        if group is not None:
+            keys = [name for name in names if name != group]
+            pipeline.append({"$group": {"_id": {f"v_{name}": f"$v_{name}" for name in keys} if keys else None,
+                                        "values": {"$push": f"$v_{group}"}}})  # fmt: skip
+            for row in self.db["one"].aggregate(pipeline):
+                solution = {name: decode_value(row["_id"].get(f"v_{name}")) for name in keys}
+                solution[group] = [decode_value(value) for value in row["values"]]
+                yield solution
+            return
         for row in self.db["one"].aggregate(pipeline):
             yield {name: decode_value(row.get(f"v_{name}")) for name in names}
 

@@ -1,17 +1,19 @@
 """The door check: documents and registry entries from outside (dumps, callers) that a reader
 could not read are refused before they are stored (issue 16: a store never holds a row a reader
-cannot read). A message names the document and the field."""
+cannot read). A message names the document and the field. The same door for a query: its
+selected, ordered and grouped variables must be the patterns' own."""
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from datetime import datetime
 from typing import Any
 
 from bson.decimal128 import Decimal128
 
 from oracle.errors import StoreError
+from oracle.store.model import TriplePattern
 
 #: Registry fields and the types a reader expects of them (None allowed for each).
 _META_TYPES: dict[str, tuple[type, ...]] = {"created_by": (str,), "created_at": (str,), "temporary": (bool,),
@@ -127,3 +129,40 @@ def check_meta(meta: Mapping[str, Any], where: str) -> None:
 def _short(value: Any) -> str:
     text = repr(value)
     return text if len(text) <= 40 else text[:37] + "..."
+
+
+def validate_group(
+    patterns: Sequence[TriplePattern], kept: list[str] | None, group: str, limit: int | None,
+    order: Sequence[tuple[str, bool]],
+) -> list[str]:
+    """The kept variables of a grouped match, ``group`` last: it must be a variable of the
+    patterns (and kept, when ``select`` names some); a limit or an order would cut or sort rows
+    that no longer exist after grouping, so neither may come with it."""
+    names = sorted({name for pattern in patterns for name in pattern.variables()})
+    if kept is None:
+        kept = names
+    if group not in kept:
+        raise StoreError(f"group names {group!r}, which {'no pattern binds' if group not in names else 'select drops'}")
+    if limit is not None or order:
+        raise StoreError("a grouped match takes no limit or order")
+    return [name for name in kept if name != group] + [group]
+
+
+def validate_select(patterns: Sequence[TriplePattern], select: Sequence[str]) -> list[str]:
+    """The variables a caller keeps, each one a variable of the patterns."""
+    names = {name for pattern in patterns for name in pattern.variables()}
+    kept = list(dict.fromkeys(select))
+    for name in kept:
+        if name not in names:
+            raise StoreError(f"select names {name!r}, which no pattern binds")
+    return kept
+
+
+def validate_order(patterns: Sequence[TriplePattern], order: Sequence[tuple[str, bool]]) -> list[tuple[str, bool]]:
+    names = {name for pattern in patterns for name in pattern.variables()}
+    checked = []
+    for name, descending in order:
+        if name not in names:
+            raise StoreError(f"cannot order by {name!r}: no pattern binds it")
+        checked.append((name, bool(descending)))
+    return checked
