@@ -15,6 +15,7 @@ The query compiler, which needs none of it but term ids, lives in ``store.sql``.
 
 from __future__ import annotations
 
+import heapq
 import math
 import os
 import sqlite3
@@ -25,6 +26,7 @@ import urllib.parse
 from collections.abc import Collection, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from functools import partial
+from operator import itemgetter
 from datetime import datetime, timezone
 from pathlib import Path
 from typing import Any
@@ -60,12 +62,16 @@ from oracle.store.sql import (
     K_LONG,
     K_STR,
     TAXONOMIC_SQL,
+    Side,
     SqlCompiler,
     join_order,
     sql_value,
 )
 
-SCHEMA_VERSION = "3"
+SCHEMA_VERSION = "4"
+#: Schemas this version reads: 3 is 4 without side tables (opened for writing, it becomes 4,
+#: so an older version, which would not see side tables, refuses it from then on).
+READS_SCHEMAS = ("3", SCHEMA_VERSION)
 #: Terms whose ids a writer keeps in memory (about 100 bytes each) before it starts over.
 TERM_CACHE = 50_000
 
@@ -115,12 +121,24 @@ _TRIPLE_INDEXES = (
 TERM_SCAN_AFTER = 2000
 
 
-def _indexes(neem_id: str, taken: Collection[str] = ()) -> list[tuple[str, str]]:
+#: The side table of a NEEM (``Side``): the triples of its side property, same columns as
+#: the triples table, indexed by subject only (the reads: an imagining's plans, or all of them).
+SIDE = "side"
+_TRIPLE_COLUMNS = (
+    "(id INTEGER PRIMARY KEY, oid BLOB NOT NULL, s, p, o, ok INTEGER,"
+    " pstar INTEGER, ostar INTEGER, graph, since REAL, until REAL, sk INTEGER, raw BLOB)"
+)
+_INSERT_COLUMNS = "id, oid, s, p, o, ok, pstar, ostar, graph, since, until, sk"
+
+
+def _indexes(neem_id: str, taken: Collection[str] = (), side: bool = False) -> list[tuple[str, str]]:
     """(name, CREATE INDEX statement) of every index of a NEEM's tables, each name made
     unique against ``taken`` (the store's index names: a renamed NEEM keeps its old ones)."""
     t = partial(_table, neem_id)
     made = [(f"{neem_id}_triples_{name}", f"ON {t('triples')}({cols}){where}") for name, cols, where in _TRIPLE_INDEXES]
     made += [(f"{neem_id}_annotations_sp", f"ON {t('annotations')}(s, p)"), (f"{neem_id}_tf_cs", f"ON {t('tf')}(child, stamp)")]
+    if side:
+        made.append((f"{neem_id}_side_s", f"ON {t(SIDE)}(s)"))
     unique = [(name if name not in taken else f"{name}_{os.urandom(4).hex()}", target) for name, target in made]
     return [(name, f"CREATE INDEX {_quote(name)} {target}") for name, target in unique]
 
@@ -217,6 +235,8 @@ class SQLiteStore(Store):
         self.read_only = read_only
         if (read_only or not create) and not self.path.is_file():
             raise StoreError(f"{self.path}: no NEEM store there (check --store; 'import' or 'load' creates one)")
+        #: False for a schema 3 file opened read-only (no side tables there).
+        self._has_sides = True
         self._conn = _Connection(self._connect_read_only() if read_only else self._connect(), self.location)
         self._depth = 0
         self._cids: dict[Any, int] = {}
@@ -251,8 +271,9 @@ class SQLiteStore(Store):
             reason = "not a NEEM store" if "no such table" in str(error) or "not a database" in str(error) else str(error)
             raise StoreError(f"{self.path}: cannot open the NEEM store ({reason})") from None
         version = None if row is None else row[0]
-        if version != SCHEMA_VERSION:
+        if version not in READS_SCHEMAS:
             raise StoreError(f"{self.path}: store schema {version}, this version reads {SCHEMA_VERSION}")
+        self._has_sides = version == SCHEMA_VERSION
         return conn
 
     @staticmethod
@@ -301,7 +322,9 @@ class SQLiteStore(Store):
                     PRIMARY KEY(cid, pos)) WITHOUT ROWID;
                 CREATE INDEX IF NOT EXISTS closure_member_value ON closure_member(value, cid);
                 CREATE TABLE IF NOT EXISTS terms(id INTEGER PRIMARY KEY, value TEXT NOT NULL UNIQUE);
-                INSERT OR IGNORE INTO store_info VALUES ('schema', '3');
+                CREATE TABLE IF NOT EXISTS side_tables(neem TEXT PRIMARY KEY, p INTEGER NOT NULL, pstars TEXT NOT NULL);
+                INSERT OR IGNORE INTO store_info VALUES ('schema', '4');
+                UPDATE store_info SET value='4' WHERE key='schema' AND value='3';
                 """
             )
             conn.executemany("INSERT OR IGNORE INTO terms VALUES (?, ?)", _RESERVED_TERMS)
@@ -385,34 +408,38 @@ class SQLiteStore(Store):
             raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
         return NeemInfo.from_meta(neem_id, self._meta(neem_id, row[0]))
 
-    def _create_neem(self, neem_id: str, record: dict[str, Any]) -> None:
+    def _create_neem(self, neem_id: str, record: dict[str, Any], side_property: str | None) -> None:
         t = partial(_table, neem_id)
         with self.transaction():
             self._conn.execute("INSERT INTO neems VALUES (?, ?)", (neem_id, bson.encode(record)))
-            self._conn.execute(
-                f"CREATE TABLE {t('triples')}(id INTEGER PRIMARY KEY, oid BLOB NOT NULL, s, p, o, ok INTEGER,"
-                " pstar INTEGER, ostar INTEGER, graph, since REAL, until REAL, sk INTEGER, raw BLOB)"
-            )
+            self._conn.execute(f"CREATE TABLE {t('triples')}{_TRIPLE_COLUMNS}")
+            if side_property is not None:
+                self._conn.execute(f"CREATE TABLE {t(SIDE)}{_TRIPLE_COLUMNS}")
+                self._conn.execute("INSERT INTO side_tables VALUES (?, ?, '')", (neem_id, self._tid(side_property)))
             self._conn.execute(f"CREATE TABLE {t('annotations')}(id INTEGER PRIMARY KEY, s, p, doc BLOB NOT NULL)")
             self._conn.execute(
                 f"CREATE TABLE {t('tf')}(id INTEGER PRIMARY KEY, child, stamp REAL, doc BLOB NOT NULL)"
             )
             self._conn.execute(f"CREATE TABLE {t('inferred')}(id INTEGER PRIMARY KEY, doc BLOB NOT NULL)")
             taken = {name for (name,) in self._conn.execute("SELECT name FROM sqlite_master WHERE type='index'")}
-            for _, sql in _indexes(neem_id, taken):
+            for _, sql in _indexes(neem_id, taken, side=side_property is not None):
                 self._conn.execute(sql)
 
     def _drop_neem(self, neem_id: str) -> None:
         with self.transaction():
-            for kind in COLLECTION_KINDS:
+            for kind in (*COLLECTION_KINDS, SIDE):
                 self._conn.execute(f"DROP TABLE IF EXISTS {_table(neem_id, kind)}")
             self._conn.execute("DELETE FROM neems WHERE id=?", (neem_id,))
+            self._conn.execute("DELETE FROM side_tables WHERE neem=?", (neem_id,))
         self._present.discard(neem_id)
 
     def _rename_neem(self, neem_id: str, new_id: str, info: NeemInfo) -> None:
         with self.transaction():
             for kind in COLLECTION_KINDS:
                 self._conn.execute(f"ALTER TABLE {_table(neem_id, kind)} RENAME TO {_table(new_id, kind)}")
+            if self._side_row(neem_id) is not None:
+                self._conn.execute(f"ALTER TABLE {_table(neem_id, SIDE)} RENAME TO {_table(new_id, SIDE)}")
+                self._conn.execute("UPDATE side_tables SET neem=? WHERE neem=?", (new_id, neem_id))
             # The indexes go with their tables under their old names (SQLite cannot rename an
             # index, and rebuilding them cost minutes and ~200 MiB at 50,000 actions): a NEEM
             # created later under an id whose names are taken gets other names (_indexes).
@@ -521,6 +548,66 @@ class SQLiteStore(Store):
             members = self._members[cid] = tuple(bson.decode(row[0])["c"])
         return members
 
+    # -- the side table ---------------------------------------------------------------------
+    def _side_row(self, neem_id: str) -> tuple[int, str] | None:
+        """(term id of the side property, its rows' p* closure ids) of a NEEM with a side table."""
+        if not self._has_sides:
+            return None
+        row = self._conn.execute("SELECT p, pstars FROM side_tables WHERE neem=?", (neem_id,)).fetchone()
+        return None if row is None else (int(row[0]), str(row[1]))
+
+    def _side(self, neem_id: str) -> Side | None:
+        """What the query compiler needs to know of a NEEM's side table (None: it has none)."""
+        row = self._side_row(neem_id)
+        if row is None:
+            return None
+        main = _table(neem_id, "triples")
+
+        def main_has(term: int) -> bool:
+            # The (pstar, o) index answers this with a probe per closure holding the term.
+            probe = (f"SELECT 1 FROM {main} WHERE pstar IN (SELECT cid FROM closure_member WHERE value=?)"
+                     f" AND p NOT IN {TAXONOMIC_SQL} LIMIT 1")  # fmt: skip
+            return self._conn.execute(probe, (term,)).fetchone() is not None
+
+        closures = tuple(self._closure(int(cid)) for cid in row[1].split(",") if cid)
+        return Side(_table(neem_id, SIDE), row[0], closures, main_has)
+
+    def _note_side_closures(self, neem_id: str, known: str, cids: set[int]) -> None:
+        """Record the p* closures side rows now hold (the compiler asks which terms they contain)."""
+        have = {int(cid) for cid in known.split(",") if cid}
+        if not cids <= have:
+            text = ",".join(str(cid) for cid in sorted(have | cids))
+            self._conn.execute("UPDATE side_tables SET pstars=? WHERE neem=?", (text, neem_id))
+
+    def _next_id(self, neem_id: str) -> int:
+        """The id the next triple of a NEEM with a side table gets: ids run across both tables,
+        so a dump reads them back in insertion order."""
+        main, side = _table(neem_id, "triples"), _table(neem_id, SIDE)
+        row = self._conn.execute(
+            f"SELECT max((SELECT coalesce(max(id), 0) FROM {main}), (SELECT coalesce(max(id), 0) FROM {side}))"
+        ).fetchone()
+        return int(row[0]) + 1
+
+    def _insert_rows(self, neem_id: str, rows: list[tuple[Any, ...]], columns: str) -> None:
+        """Rows (``columns`` without ``id``) into the triples table, or split with the side table."""
+        side = self._side_row(neem_id)
+        marks = ", ".join("?" * (columns.count(",") + 1))
+        if side is None:
+            self._conn.executemany(f"INSERT INTO {_table(neem_id, 'triples')}({columns}) VALUES ({marks})", rows)
+            return
+        side_p = side[0]
+        first = self._next_id(neem_id)
+        main_rows: list[tuple[Any, ...]] = []
+        side_rows: list[tuple[Any, ...]] = []
+        for i, row in enumerate(rows, start=first):
+            (side_rows if row[2] == side_p else main_rows).append((i, *row))
+        insert = f"({'id, ' + columns}) VALUES (?, {marks})"
+        if main_rows:
+            self._conn.executemany(f"INSERT INTO {_table(neem_id, 'triples')}{insert}", main_rows)
+        if side_rows:
+            self._conn.executemany(f"INSERT INTO {_table(neem_id, SIDE)}{insert}", side_rows)
+            self._note_side_closures(neem_id, side[1], {row[6] for row in side_rows})
+
     # -- writing ----------------------------------------------------------------------------
     def _seconds(self, value: Any) -> float | None:
         if isinstance(value, Decimal128):
@@ -559,11 +646,7 @@ class SQLiteStore(Store):
             rows.append((prefix + counter.to_bytes(3, "big"), tids.get(triple.s) or tid(triple.s), tids.get(p) or tid(p), sql_o, kind,
                          cid(pstar), ostar_cid, triple.graph, triple.since, triple.until, scope_kind))  # fmt: skip
         self._counter = counter
-        self._conn.executemany(
-            f"INSERT INTO {_table(neem_id, 'triples')}(oid, s, p, o, ok, pstar, ostar, graph, since, until, sk)"
-            " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-            rows,
-        )
+        self._insert_rows(neem_id, rows, "oid, s, p, o, ok, pstar, ostar, graph, since, until, sk")
 
     def _triple_row(self, doc: Mapping[str, Any]) -> tuple[Any, ...]:
         """Columns of a document stored as given (kept whole in ``raw`` for an exact dump)."""
@@ -616,11 +699,7 @@ class SQLiteStore(Store):
         try:
             if kind == "triples":
                 rows = [self._triple_row(doc) for doc in docs]
-                self._conn.executemany(
-                    f"INSERT INTO {table}(oid, s, p, o, ok, pstar, ostar, graph, since, until, sk, raw)"
-                    " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-                    rows,
-                )
+                self._insert_rows(neem_id, rows, "oid, s, p, o, ok, pstar, ostar, graph, since, until, sk, raw")
             elif kind == "annotations":
                 self._conn.executemany(
                     f"INSERT INTO {table}(s, p, doc) VALUES (?, ?, ?)",
@@ -644,7 +723,15 @@ class SQLiteStore(Store):
             raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
 
     def _propagate(self, neem_id: str, subject: str, gained: tuple[Any, ...]) -> None:
-        table = _table(neem_id, "triples")
+        side = self._side_row(neem_id)
+        for table in (_table(neem_id, "triples"), *(() if side is None else (_table(neem_id, SIDE),))):
+            self._propagate_in(table, subject, gained)
+        if side is not None:
+            held = [self._closure(int(cid)) for cid in side[1].split(",") if cid]
+            grown = {self._cid(extend_closure(members, gained)) for members in held if subject in members}
+            self._note_side_closures(neem_id, side[1], grown)
+
+    def _propagate_in(self, table: str, subject: str, gained: tuple[Any, ...]) -> None:
         subject_id = self.known_term_id(subject)
         cids = [row[0] for row in self._conn.execute("SELECT DISTINCT cid FROM closure_member WHERE value=?", (subject_id,))]
         for cid in cids:
@@ -674,11 +761,14 @@ class SQLiteStore(Store):
                 f"SELECT s, ostar FROM {table} WHERE p IN {_HIERARCHY_SQL} AND ostar > 0 AND s IS NOT NULL ORDER BY id"
             ).fetchall()
         ]
+        tables = [table]
+        if self._side_row(neem_id) is not None:
+            tables.append(_table(neem_id, SIDE))
+        held = " UNION ".join(f"SELECT ostar FROM {t} UNION SELECT pstar FROM {t}" for t in tables)
         used = {
             self._tval(value)
             for (value,) in self._conn.execute(
-                f"SELECT DISTINCT value FROM closure_member WHERE value IS NOT NULL AND cid IN"
-                f" (SELECT ostar FROM {table} UNION SELECT pstar FROM {table})"
+                f"SELECT DISTINCT value FROM closure_member WHERE value IS NOT NULL AND cid IN ({held})"
             ).fetchall()
         }
         return edges, used
@@ -689,9 +779,13 @@ class SQLiteStore(Store):
             raise StoreError(f"unknown collection kind {kind!r}")
         self._require(neem_id)
         if kind == "triples":
-            cursor = self._conn.execute(f"SELECT {_DOC_COLUMNS} FROM {_table(neem_id, kind)} AS t0 ORDER BY id")
-            for row in cursor:
-                yield self._document(row)
+            tables = [_table(neem_id, kind)]
+            if self._side_row(neem_id) is not None:
+                tables.append(_table(neem_id, SIDE))
+            # Each table in id order, merged: the documents in the order they were inserted.
+            cursors = [self._conn.execute(f"SELECT t0.id, {_DOC_COLUMNS} FROM {t} AS t0 ORDER BY id") for t in tables]
+            for row in heapq.merge(*cursors, key=itemgetter(0)):
+                yield self._document(row[1:])
             return
         cursor = self._conn.execute(f"SELECT doc FROM {_table(neem_id, kind)} ORDER BY id")
         for (blob,) in cursor:
@@ -699,20 +793,25 @@ class SQLiteStore(Store):
 
     def _count(self, neem_id: str, kind: str) -> int:
         self._require(neem_id)
-        return int(self._conn.execute(f"SELECT count(*) FROM {_table(neem_id, kind)}").fetchone()[0])
+        count = int(self._conn.execute(f"SELECT count(*) FROM {_table(neem_id, kind)}").fetchone()[0])
+        if kind == "triples" and self._side_row(neem_id) is not None:
+            count += int(self._conn.execute(f"SELECT count(*) FROM {_table(neem_id, SIDE)}").fetchone()[0])
+        return count
 
     def write_mark(self, neem_id: str) -> int:
         # Triple rows are never deleted, only a whole NEEM: the last rowid grows with every
         # insert and is read from the end of the table's b-tree, not by counting.
         self._require(neem_id)
+        if self._side_row(neem_id) is not None:
+            return self._next_id(neem_id) - 1
         return int(self._conn.execute(f"SELECT coalesce(max(id), 0) FROM {_table(neem_id, 'triples')}").fetchone()[0])
 
     def _find(
         self, neem_id: str, pattern: TriplePattern, scope: Scope | None, limit: int | None, exact: bool
     ) -> Iterator[dict[str, Any]]:
-        query = SqlCompiler(self, _table(neem_id, "triples"), scope)
-        query.add(pattern, exact=exact)
         self._require(neem_id)
+        query = SqlCompiler(self, _table(neem_id, "triples"), scope, self._side(neem_id))
+        query.add(pattern, exact=exact)
         sql = f"SELECT {_DOC_COLUMNS} FROM {query.from_clause()} WHERE {query.where()} ORDER BY t0.id"
         if limit is not None:
             sql += f" LIMIT {int(limit)}"
@@ -765,7 +864,7 @@ class SQLiteStore(Store):
         select: Sequence[str] | None = None,
     ) -> Iterator[dict[str, Any]]:
         self._require(neem_id)
-        query = SqlCompiler(self, _table(neem_id, "triples"), scope)
+        query = SqlCompiler(self, _table(neem_id, "triples"), scope, self._side(neem_id))
         plan, joined = join_order(patterns, order[0][0]) if order else ([], set())
         first = plan[0] if plan else -1
         for i, pattern in enumerate(patterns):
