@@ -61,6 +61,7 @@ from oracle.store.sql import (
     K_DOUBLE,
     K_LONG,
     K_STR,
+    NON_TAXONOMIC_SQL,
     TAXONOMIC_SQL,
     Side,
     SqlCompiler,
@@ -113,7 +114,7 @@ _TRIPLE_INDEXES = (
     ("sp", "s, p", ""),
     ("op", "o, p", ""),
     ("postar", "p, ostar", " WHERE ostar > 0"),
-    ("pstaro", "pstar, o", f" WHERE p NOT IN {TAXONOMIC_SQL}"),
+    ("pstaro", "pstar, o", f" WHERE {NON_TAXONOMIC_SQL}"),
 )
 
 
@@ -473,6 +474,32 @@ class SQLiteStore(Store):
             self._tvals[tid] = value
         return tid
 
+    def _intern(self, values: Collection[str]) -> None:
+        """Ids for many terms at once (a logged action brings ~8 new event IRIs): the stored
+        ones read in chunks, the new ones numbered after the last and inserted in one
+        statement, where ``_tid`` would run two statements per term. Only inside a write
+        transaction (BEGIN IMMEDIATE: no other writer can number terms meanwhile)."""
+        if not values:
+            return
+        missing = list(values)
+        found: dict[str, int] = {}
+        for i in range(0, len(missing), 500):
+            chunk = missing[i : i + 500]
+            marks = ", ".join("?" * len(chunk))
+            found.update(self._conn.execute(f"SELECT value, id FROM terms WHERE value IN ({marks})", chunk).fetchall())
+        new = [value for value in missing if value not in found]
+        if new:
+            first = int(self._conn.execute("SELECT coalesce(max(id), 0) + 1 FROM terms").fetchone()[0])
+            numbered = list(enumerate(new, start=first))
+            self._conn.executemany("INSERT INTO terms(id, value) VALUES (?, ?)", numbered)
+            found.update((value, key) for key, value in numbered)
+        if len(self._tids) + len(found) > TERM_CACHE:
+            self._tids.clear()  # as in _tid: memory stays bounded over a long import
+            self._tvals.clear()
+            self._all_terms = False
+        self._tids.update(found)
+        self._tvals.update((key, value) for value, key in found.items())
+
     def known_term_id(self, value: str) -> int:
         """The id of a term for a query; -1 (matching nothing) when the store never saw it."""
         tid = self._tids.get(value)
@@ -566,7 +593,7 @@ class SQLiteStore(Store):
         def main_has(term: int) -> bool:
             # The (pstar, o) index answers this with a probe per closure holding the term.
             probe = (f"SELECT 1 FROM {main} WHERE pstar IN (SELECT cid FROM closure_member WHERE value=?)"
-                     f" AND p NOT IN {TAXONOMIC_SQL} LIMIT 1")  # fmt: skip
+                     f" AND p NOT IN {TAXONOMIC_SQL} AND {NON_TAXONOMIC_SQL} LIMIT 1")  # fmt: skip
             return self._conn.execute(probe, (term,)).fetchone() is not None
 
         closures = tuple(self._closure(int(cid)) for cid in row[1].split(",") if cid)
@@ -580,31 +607,30 @@ class SQLiteStore(Store):
             self._conn.execute("UPDATE side_tables SET pstars=? WHERE neem=?", (text, neem_id))
 
     def _next_id(self, neem_id: str) -> int:
-        """The id the next triple of a NEEM with a side table gets: ids run across both tables,
+        """The id the next triple of a NEEM gets: with a side table, ids run across both tables,
         so a dump reads them back in insertion order."""
-        main, side = _table(neem_id, "triples"), _table(neem_id, SIDE)
+        main = _table(neem_id, "triples")
+        if self._side_row(neem_id) is None:
+            return int(self._conn.execute(f"SELECT coalesce(max(id), 0) + 1 FROM {main}").fetchone()[0])
+        side = _table(neem_id, SIDE)
         row = self._conn.execute(
             f"SELECT max((SELECT coalesce(max(id), 0) FROM {main}), (SELECT coalesce(max(id), 0) FROM {side}))"
         ).fetchone()
         return int(row[0]) + 1
 
     def _insert_rows(self, neem_id: str, rows: list[tuple[Any, ...]], columns: str) -> None:
-        """Rows (``columns`` without ``id``) into the triples table, or split with the side table."""
+        """Rows of documents (``columns`` without ``id``) into the triples table, those of the
+        side property into the side table; ids run across both (``_next_id``)."""
         side = self._side_row(neem_id)
-        marks = ", ".join("?" * (columns.count(",") + 1))
-        if side is None:
-            self._conn.executemany(f"INSERT INTO {_table(neem_id, 'triples')}({columns}) VALUES ({marks})", rows)
-            return
-        side_p = side[0]
-        first = self._next_id(neem_id)
+        side_p = -1 if side is None else side[0]
         main_rows: list[tuple[Any, ...]] = []
         side_rows: list[tuple[Any, ...]] = []
-        for i, row in enumerate(rows, start=first):
+        for i, row in enumerate(rows, start=self._next_id(neem_id)):
             (side_rows if row[2] == side_p else main_rows).append((i, *row))
-        insert = f"({'id, ' + columns}) VALUES (?, {marks})"
+        insert = f"(id, {columns}) VALUES (?, {', '.join('?' * (columns.count(',') + 1))})"
         if main_rows:
             self._conn.executemany(f"INSERT INTO {_table(neem_id, 'triples')}{insert}", main_rows)
-        if side_rows:
+        if side is not None and side_rows:
             self._conn.executemany(f"INSERT INTO {_table(neem_id, SIDE)}{insert}", side_rows)
             self._note_side_closures(neem_id, side[1], {row[6] for row in side_rows})
 
@@ -624,29 +650,53 @@ class SQLiteStore(Store):
         self._require(neem_id)
         decimal = builder.number_format == "decimal128"
         float_kind, scope_kind = (K_DECIMAL, SK_DECIMAL) if decimal else (K_DOUBLE, SK_DOUBLE)
-        cid = self._cid
         tids = self._tids
+        strings = {x for triple, _, _ in closed for x in triple[:3] if type(x) is str}
+        self._intern(strings.difference(tids))
         tid = self._tid
+        cid = self._cid
+        # A batch holds few distinct closures, each one tuple object (Store._insert_closed):
+        # looked up by identity, they are not hashed again per row.
+        cids: dict[int, int] = {}
+        side = self._side_row(neem_id)
+        side_p = -1 if side is None else side[0]
+        main_rows: list[tuple[Any, ...]] = []
+        side_rows: list[tuple[Any, ...]] = []
+        row_id = self._next_id(neem_id)
         # ObjectId bytes: this second, the store's random part, then a counter per row.
         prefix = struct.pack(">I", int(time.time())) + self._random
         counter = self._counter
-        rows = []
         sql_o: Any
         for triple, pstar, ostar in closed:
+            s_, p, o, graph, since, until = triple
             counter = (counter + 1) & 0xFFFFFF
-            o = triple.o
             if type(o) is str:
                 sql_o, kind = tids.get(o) or tid(o), K_STR
             elif type(o) is float:
                 sql_o, kind = o, float_kind
             else:
                 sql_o, kind = self._sql_term(encode_value(o, builder.number_format))
-            p = triple.p
-            ostar_cid = cid(ostar) if p in TAXONOMIC else 0
-            rows.append((prefix + counter.to_bytes(3, "big"), tids.get(triple.s) or tid(triple.s), tids.get(p) or tid(p), sql_o, kind,
-                         cid(pstar), ostar_cid, triple.graph, triple.since, triple.until, scope_kind))  # fmt: skip
+            pstar_cid = cids.get(id(pstar))
+            if pstar_cid is None:
+                pstar_cid = cids[id(pstar)] = cid(pstar)
+            if p in TAXONOMIC:
+                ostar_cid = cids.get(id(ostar))
+                if ostar_cid is None:
+                    ostar_cid = cids[id(ostar)] = cid(ostar)
+            else:
+                ostar_cid = 0
+            p_id = tids.get(p) or tid(p)
+            (side_rows if p_id == side_p else main_rows).append(
+                (row_id, prefix + counter.to_bytes(3, "big"), tids.get(s_) or tid(s_), p_id, sql_o, kind, pstar_cid,
+                 ostar_cid, graph, since, until, scope_kind))  # fmt: skip
+            row_id += 1
         self._counter = counter
-        self._insert_rows(neem_id, rows, "oid, s, p, o, ok, pstar, ostar, graph, since, until, sk")
+        insert = f"({_INSERT_COLUMNS}) VALUES ({', '.join('?' * 12)})"
+        if main_rows:
+            self._conn.executemany(f"INSERT INTO {_table(neem_id, 'triples')}{insert}", main_rows)
+        if side is not None and side_rows:
+            self._conn.executemany(f"INSERT INTO {_table(neem_id, SIDE)}{insert}", side_rows)
+            self._note_side_closures(neem_id, side[1], {row[6] for row in side_rows})
 
     def _triple_row(self, doc: Mapping[str, Any]) -> tuple[Any, ...]:
         """Columns of a document stored as given (kept whole in ``raw`` for an exact dump)."""
@@ -737,13 +787,13 @@ class SQLiteStore(Store):
         for cid in cids:
             new_cid = self._cid(extend_closure(self._closure(cid), gained))
             for column, field, taxonomic in (("ostar", "o*", True), ("pstar", "p*", False)):
-                op = "IN" if taxonomic else "NOT IN"
+                which = f"p IN {TAXONOMIC_SQL}" if taxonomic else f"p NOT IN {TAXONOMIC_SQL} AND {NON_TAXONOMIC_SQL}"
                 self._conn.execute(
-                    f"UPDATE {table} SET {column}=? WHERE {column}=? AND raw IS NULL AND p {op} {TAXONOMIC_SQL}",
+                    f"UPDATE {table} SET {column}=? WHERE {column}=? AND raw IS NULL AND {which}",
                     (new_cid, cid),
                 )
                 rows = self._conn.execute(
-                    f"SELECT id, raw FROM {table} WHERE {column}=? AND raw IS NOT NULL AND p {op} {TAXONOMIC_SQL}",
+                    f"SELECT id, raw FROM {table} WHERE {column}=? AND raw IS NOT NULL AND {which}",
                     (cid,),
                 ).fetchall()
                 updates = []
@@ -802,9 +852,7 @@ class SQLiteStore(Store):
         # Triple rows are never deleted, only a whole NEEM: the last rowid grows with every
         # insert and is read from the end of the table's b-tree, not by counting.
         self._require(neem_id)
-        if self._side_row(neem_id) is not None:
-            return self._next_id(neem_id) - 1
-        return int(self._conn.execute(f"SELECT coalesce(max(id), 0) FROM {_table(neem_id, 'triples')}").fetchone()[0])
+        return self._next_id(neem_id) - 1
 
     def _find(
         self, neem_id: str, pattern: TriplePattern, scope: Scope | None, limit: int | None, exact: bool
