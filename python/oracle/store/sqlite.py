@@ -651,8 +651,9 @@ class SQLiteStore(Store):
         decimal = builder.number_format == "decimal128"
         float_kind, scope_kind = (K_DECIMAL, SK_DECIMAL) if decimal else (K_DOUBLE, SK_DOUBLE)
         tids = self._tids
-        strings = {x for triple, _, _ in closed for x in triple[:3] if type(x) is str}
-        self._intern(strings.difference(tids))
+        # New terms numbered in sorted order: event IRIs of one kind then grow with time, as
+        # the logger mints them, and their index entries land near the end of the indexes.
+        self._intern(sorted({x for triple, _, _ in closed for x in triple[:3] if type(x) is str}.difference(tids)))
         tid = self._tid
         cid = self._cid
         # A batch holds few distinct closures, each one tuple object (Store._insert_closed):
