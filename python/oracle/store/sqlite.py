@@ -323,7 +323,7 @@ class SQLiteStore(Store):
                     PRIMARY KEY(cid, pos)) WITHOUT ROWID;
                 CREATE INDEX IF NOT EXISTS closure_member_value ON closure_member(value, cid);
                 CREATE TABLE IF NOT EXISTS terms(id INTEGER PRIMARY KEY, value TEXT NOT NULL UNIQUE);
-                CREATE TABLE IF NOT EXISTS side_tables(neem TEXT PRIMARY KEY, p INTEGER NOT NULL, pstars TEXT NOT NULL);
+                CREATE TABLE IF NOT EXISTS side_tables(neem TEXT PRIMARY KEY, p INTEGER NOT NULL, closures TEXT NOT NULL);
                 INSERT OR IGNORE INTO store_info VALUES ('schema', '4');
                 UPDATE store_info SET value='4' WHERE key='schema' AND value='3';
                 """
@@ -577,10 +577,10 @@ class SQLiteStore(Store):
 
     # -- the side table ---------------------------------------------------------------------
     def _side_row(self, neem_id: str) -> tuple[int, str] | None:
-        """(term id of the side property, its rows' p* closure ids) of a NEEM with a side table."""
+        """(term id of the side property, the closure ids its rows hold) of a NEEM with a side table."""
         if not self._has_sides:
             return None
-        row = self._conn.execute("SELECT p, pstars FROM side_tables WHERE neem=?", (neem_id,)).fetchone()
+        row = self._conn.execute("SELECT p, closures FROM side_tables WHERE neem=?", (neem_id,)).fetchone()
         return None if row is None else (int(row[0]), str(row[1]))
 
     def _side(self, neem_id: str) -> Side | None:
@@ -599,12 +599,14 @@ class SQLiteStore(Store):
         closures = tuple(self._closure(int(cid)) for cid in row[1].split(",") if cid)
         return Side(_table(neem_id, SIDE), row[0], closures, main_has)
 
-    def _note_side_closures(self, neem_id: str, known: str, cids: set[int]) -> None:
-        """Record the p* closures side rows now hold (the compiler asks which terms they contain)."""
+    def _note_side_closures(self, neem_id: str, known: str, closures: Collection[int | None]) -> None:
+        """Record the closures side rows now hold (their p*, and an o* that is not just [o]): the
+        compiler asks which terms they contain, the taxonomy which terms are used."""
         have = {int(cid) for cid in known.split(",") if cid}
+        cids = {cid for cid in closures if cid}  # 0: the trivial [o]; None: a document without one
         if not cids <= have:
             text = ",".join(str(cid) for cid in sorted(have | cids))
-            self._conn.execute("UPDATE side_tables SET pstars=? WHERE neem=?", (text, neem_id))
+            self._conn.execute("UPDATE side_tables SET closures=? WHERE neem=?", (text, neem_id))
 
     def _next_id(self, neem_id: str) -> int:
         """The id the next triple of a NEEM gets: with a side table, ids run across both tables,
@@ -632,7 +634,7 @@ class SQLiteStore(Store):
             self._conn.executemany(f"INSERT INTO {_table(neem_id, 'triples')}{insert}", main_rows)
         if side is not None and side_rows:
             self._conn.executemany(f"INSERT INTO {_table(neem_id, SIDE)}{insert}", side_rows)
-            self._note_side_closures(neem_id, side[1], {row[6] for row in side_rows})
+            self._note_side_closures(neem_id, side[1], {cid for row in side_rows for cid in row[6:8]})
 
     # -- writing ----------------------------------------------------------------------------
     def _seconds(self, value: Any) -> float | None:
@@ -697,7 +699,7 @@ class SQLiteStore(Store):
             self._conn.executemany(f"INSERT INTO {_table(neem_id, 'triples')}{insert}", main_rows)
         if side is not None and side_rows:
             self._conn.executemany(f"INSERT INTO {_table(neem_id, SIDE)}{insert}", side_rows)
-            self._note_side_closures(neem_id, side[1], {row[6] for row in side_rows})
+            self._note_side_closures(neem_id, side[1], {cid for row in side_rows for cid in row[6:8]})
 
     def _triple_row(self, doc: Mapping[str, Any]) -> tuple[Any, ...]:
         """Columns of a document stored as given (kept whole in ``raw`` for an exact dump)."""
@@ -812,16 +814,16 @@ class SQLiteStore(Store):
                 f"SELECT s, ostar FROM {table} WHERE p IN {_HIERARCHY_SQL} AND ostar > 0 AND s IS NOT NULL ORDER BY id"
             ).fetchall()
         ]
-        tables = [table]
-        if self._side_row(neem_id) is not None:
-            tables.append(_table(neem_id, SIDE))
-        held = " UNION ".join(f"SELECT ostar FROM {t} UNION SELECT pstar FROM {t}" for t in tables)
         used = {
             self._tval(value)
             for (value,) in self._conn.execute(
-                f"SELECT DISTINCT value FROM closure_member WHERE value IS NOT NULL AND cid IN ({held})"
+                f"SELECT DISTINCT value FROM closure_member WHERE value IS NOT NULL AND cid IN"
+                f" (SELECT ostar FROM {table} UNION SELECT pstar FROM {table})"
             ).fetchall()
         }
+        side = self._side_row(neem_id)
+        if side is not None:  # the closures its rows hold are recorded: no scan of the side table
+            used.update(v for cid in side[1].split(",") if cid for v in self._closure(int(cid)) if type(v) is str)
         return edges, used
 
     # -- reading ----------------------------------------------------------------------------
