@@ -65,6 +65,7 @@ from oracle.store.sql import (
     Side,
     SqlCompiler,
     join_order,
+    non_taxonomic,
     sql_value,
 )
 
@@ -113,7 +114,7 @@ _TRIPLE_INDEXES = (
     ("sp", "s, p", ""),
     ("op", "o, p", ""),
     ("postar", "p, ostar", " WHERE ostar > 0"),
-    ("pstaro", "pstar, o", f" WHERE p NOT IN {TAXONOMIC_SQL}"),
+    ("pstaro", "pstar, o", f" WHERE {non_taxonomic('p')}"),
 )
 
 
@@ -592,7 +593,7 @@ class SQLiteStore(Store):
         def main_has(term: int) -> bool:
             # The (pstar, o) index answers this with a probe per closure holding the term.
             probe = (f"SELECT 1 FROM {main} WHERE pstar IN (SELECT cid FROM closure_member WHERE value=?)"
-                     f" AND p NOT IN {TAXONOMIC_SQL} LIMIT 1")  # fmt: skip
+                     f" AND p NOT IN {TAXONOMIC_SQL} AND {non_taxonomic('p')} LIMIT 1")  # fmt: skip
             return self._conn.execute(probe, (term,)).fetchone() is not None
 
         closures = tuple(self._closure(int(cid)) for cid in row[1].split(",") if cid)
@@ -789,7 +790,7 @@ class SQLiteStore(Store):
         for cid in cids:
             new_cid = self._cid(extend_closure(self._closure(cid), gained))
             for column, field, taxonomic in (("ostar", "o*", True), ("pstar", "p*", False)):
-                which = f"p {'IN' if taxonomic else 'NOT IN'} {TAXONOMIC_SQL}"
+                which = f"p IN {TAXONOMIC_SQL}" if taxonomic else f"p NOT IN {TAXONOMIC_SQL} AND {non_taxonomic('p')}"
                 self._conn.execute(
                     f"UPDATE {table} SET {column}=? WHERE {column}=? AND raw IS NULL AND {which}",
                     (new_cid, cid),
