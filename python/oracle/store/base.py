@@ -115,25 +115,12 @@ class Store(ABC):
     def has_neem(self, neem_id: str) -> bool:
         return any(info.id == neem_id for info in self.neems())
 
-    def create_neem(
-        self,
-        neem_id: str,
-        *,
-        user: str | None = None,
-        temporary: bool = False,
-        meta: Mapping[str, Any] | None = None,
-        side_property: str | None = None,
-    ) -> NeemInfo:
-        """Create the empty collections (with KnowRob's indexes) and the registry entry.
-
-        ``side_property`` names a non-taxonomic property whose triples come many to a subject
-        (an imagining's plans): a backend may keep them apart with fewer indexes (SQLite does,
-        docs/store.md); every query and dump sees the same documents either way."""
+    def create_neem(self, neem_id: str, *, user: str | None = None, temporary: bool = False,
+                    meta: Mapping[str, Any] | None = None, side_property: str | None = None) -> NeemInfo:  # fmt: skip
+        """Create the empty collections (KnowRob's indexes) and the registry entry; see SQLiteStore for ``side_property``."""
         check_neem_id(neem_id)
         if self.has_neem(neem_id):
             raise StoreError(f"{self.location}: NEEM {neem_id!r} already exists")
-        if side_property is not None and (not isinstance(side_property, str) or side_property in TAXONOMIC):
-            raise StoreError(f"a side property must be a non-taxonomic property IRI, got {side_property!r}")
         record = new_meta(user, temporary, meta, name=neem_id)
         self._create_neem(neem_id, record, side_property)
         self._hierarchies.pop(neem_id, None)
@@ -168,14 +155,8 @@ class Store(ABC):
         """Change registry fields such as ``temporary``."""
 
     # -- replacing a NEEM atomically --------------------------------------------------------
-    def create_staging(
-        self,
-        target: str,
-        *,
-        user: str | None = None,
-        meta: Mapping[str, Any] | None = None,
-        side_property: str | None = None,
-    ) -> str:
+    def create_staging(self, target: str, *, user: str | None = None, meta: Mapping[str, Any] | None = None,
+                       side_property: str | None = None) -> str:  # fmt: skip
         """A new, hidden NEEM to build ``target`` (or its replacement) in, which ``swap_in`` makes
         ``target``; a process killed meanwhile leaves ``target`` as it was (see store.staging)."""
         from oracle.store.staging import STAGED_BY, builder, drop_abandoned

@@ -410,6 +410,11 @@ class SQLiteStore(Store):
         return NeemInfo.from_meta(neem_id, self._meta(neem_id, row[0]))
 
     def _create_neem(self, neem_id: str, record: dict[str, Any], side_property: str | None) -> None:
+        """A NEEM's tables; with ``side_property`` (a non-taxonomic property with many triples
+        per subject, an imagining's plans) also its side table (docs/store.md): its triples are
+        kept apart with one index, every query and dump sees the same documents."""
+        if side_property is not None and (not isinstance(side_property, str) or side_property in TAXONOMIC):
+            raise StoreError(f"a side property must be a non-taxonomic property IRI, got {side_property!r}")
         t = partial(_table, neem_id)
         with self.transaction():
             self._conn.execute("INSERT INTO neems VALUES (?, ?)", (neem_id, bson.encode(record)))
