@@ -143,3 +143,15 @@ def test_union_projections_hold_exactly_the_union_of_the_scopes(tmp_path_factory
         t = tick / 2
         assert any(s <= t <= u for s, u in stored) == any(s <= t <= u for s, u in spans), (t, stored, spans)
     store.close()
+
+
+def test_facts_of_a_side_table_property_merge_and_retract_like_any(store):
+    """On SQLite a NEEM may keep one property's triples in a side table; a projection still
+    finds and widens the stored copy there, and a retraction deletes it there."""
+    store.create_neem("s", side_property=FACT[1])
+    assert project(store, "s", [fact(10, 20)]) == 1
+    assert project(store, "s", [fact(15, 30)]) == 0
+    assert scopes(store, "s") == [(10.0, 30.0)]
+    assert store.count("s") == 1
+    retract(store, "s", FACT[0], FACT[1], FACT[2])
+    assert scopes(store, "s") == [] and store.count("s") == 0

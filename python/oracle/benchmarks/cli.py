@@ -33,6 +33,32 @@ IMPORT_REPEAT = 3
 COMMIT_EVERY = 1000
 
 
+#: Runs argv[2:] and writes its CPU seconds and peak RSS (KiB) to argv[1]. A child started
+#: from the bench itself reports the bench's own RSS as its peak: Linux keeps the high-water
+#: mark of the image a process had before exec (subprocess forks the bench, ~250 MiB after
+#: the floors read the rows of a 50,000-action NEEM). From this small launcher it is ~10 MiB.
+_MEASURED = """
+import os, sys
+pid = os.fork()
+if pid == 0:
+    os.execv(sys.argv[2], sys.argv[2:])
+_, status, usage = os.wait4(pid, 0)
+with open(sys.argv[1], "w") as out:
+    out.write(f"{usage.ru_utime + usage.ru_stime} {usage.ru_maxrss}")
+sys.exit(os.waitstatus_to_exitcode(status))
+"""
+
+
+def _run_measured(argv: list[str], env: dict[str, str]) -> tuple[float, float, int]:
+    """Wall seconds of ``argv`` run through ``_MEASURED``, and the CPU seconds and peak RSS
+    (KiB) of that command alone."""
+    with tempfile.TemporaryDirectory() as tmp:
+        report = Path(tmp) / "usage"
+        wall, _, _ = _run([sys.executable, "-c", _MEASURED, str(report), *argv], env)
+        cpu, peak = report.read_text().split()
+    return wall, float(cpu), int(peak)
+
+
 def _run(argv: list[str], env: dict[str, str]) -> tuple[float, float, int]:
     """Wall seconds, CPU seconds and peak RSS (KiB) of one child process run to exit."""
     start = time.perf_counter()
@@ -83,8 +109,9 @@ def _chain_file(tmp: Path, rows: list[str], n: int) -> Path:
 
 
 def _sqlite_floor(store: Path, neem: str, actions: int, indexes: bool) -> tuple[float, float]:
-    """Wall and CPU seconds plain sqlite3 takes to insert the rows ``import`` wrote into the NEEM's triples
-    table, into a fresh file with the same table (and, with ``indexes``, the same indexes),
+    """Wall and CPU seconds plain sqlite3 takes to insert the rows ``import`` wrote into the NEEM's triple
+    tables (the triples table and, when the NEEM has one, its side table), into a fresh file with
+    the same tables (and, with ``indexes``, the same indexes), in the order they were written,
     committing every COMMIT_EVERY actions' worth of rows."""
     from oracle.store import open_store
     from oracle.store.ids import resolve_neem
@@ -92,26 +119,34 @@ def _sqlite_floor(store: Path, neem: str, actions: int, indexes: bool) -> tuple[
     with open_store(store, read_only=True) as opened:
         neem = resolve_neem(opened, neem)  # the NEEM's tables are named by its id, not its name
     source = sqlite3.connect(store)
-    table = f'"{neem}_triples"'
-    columns = "oid, s, p, o, ok, pstar, ostar, graph, since, until, sk, raw"
-    rows = source.execute(f"SELECT {columns} FROM {table} ORDER BY id").fetchall()
-    schema = source.execute("SELECT sql FROM sqlite_master WHERE name=?", (f"{neem}_triples",)).fetchone()[0]
-    index_sql = [sql for (sql,) in source.execute(
-        "SELECT sql FROM sqlite_master WHERE type='index' AND tbl_name=? AND sql IS NOT NULL", (f"{neem}_triples",))]
+    columns = "id, oid, s, p, o, ok, pstar, ostar, graph, since, until, sk, raw"
+    names = [name for (name,) in source.execute(
+        "SELECT name FROM sqlite_master WHERE type='table' AND name IN (?, ?)", (f"{neem}_triples", f"{neem}_side"))]
+    schemas, index_sql, tagged = [], [], []
+    for name in names:
+        schemas.append(source.execute("SELECT sql FROM sqlite_master WHERE name=?", (name,)).fetchone()[0])
+        index_sql += [sql for (sql,) in source.execute(
+            "SELECT sql FROM sqlite_master WHERE type='index' AND tbl_name=? AND sql IS NOT NULL", (name,))]
+        tagged += [(row[0], name, row) for row in source.execute(f'SELECT {columns} FROM "{name}"')]
     source.close()
+    tagged.sort(key=lambda item: item[0])
     with tempfile.TemporaryDirectory() as tmp:
         conn = sqlite3.connect(Path(tmp) / "floor.sqlite", isolation_level=None)
         conn.execute("PRAGMA journal_mode=WAL")
         conn.execute("PRAGMA synchronous=NORMAL")
-        conn.execute(schema)
+        for sql in schemas:
+            conn.execute(sql)
         for sql in index_sql if indexes else ():
             conn.execute(sql)
-        per_commit = max(1, len(rows) * COMMIT_EVERY // max(actions, 1))
-        insert = f"INSERT INTO {table}({columns}) VALUES ({', '.join('?' * 12)})"
+        per_commit = max(1, len(tagged) * COMMIT_EVERY // max(actions, 1))
+        inserts = {name: f'INSERT INTO "{name}"({columns}) VALUES ({", ".join("?" * 13)})' for name in names}
+        commits = [[(inserts[name], [row for _, table, row in tagged[i:i + per_commit] if table == name]) for name in names]
+                   for i in range(0, len(tagged), per_commit)]  # fmt: skip
         start, cpu = time.perf_counter(), time.process_time()
-        for i in range(0, len(rows), per_commit):
+        for batches in commits:
             conn.execute("BEGIN")
-            conn.executemany(insert, rows[i:i + per_commit])
+            for insert, rows in batches:
+                conn.executemany(insert, rows)
             conn.execute("COMMIT")
         elapsed, cpu = time.perf_counter() - start, time.process_time() - cpu
         conn.close()
@@ -148,7 +183,7 @@ def run(quick: bool = False) -> list[dict]:
             path = _chain_file(tmp, chains, n)
             walls, cpus, rss = [], [], []
             for _attempt in range(IMPORT_REPEAT):
-                wall, cpu, peak = _run([py, "-m", "oracle", "import", str(path), "--store", str(store), "--replace",
+                wall, cpu, peak = _run_measured([py, "-m", "oracle", "import", str(path), "--store", str(store), "--replace",
                                         "--commit-every", str(COMMIT_EVERY)], env)  # fmt: skip
                 walls.append(wall)
                 cpus.append(cpu)

@@ -115,16 +115,15 @@ def summary_after(summary: dict[str, Any], triples: Iterable[Triple]) -> dict[st
     """A summary moved on by triples written by the logger (which types executed actions
     exactly ``dul:Action`` and mental ones ``soma:MentalAction``)."""
     actions, begin, end = summary["actions"], summary["begin"], summary["end"]
-    for triple in triples:
-        p = triple.p
+    for _, p, o, _, _, _ in triples:  # a Triple is a plain 6-tuple: unpacked, not read by name
         if p == RDF_TYPE:
-            if triple.o == T.ACTION:
+            if o == T.ACTION:
                 actions += 1
-        elif p == T.BEGIN and isinstance(triple.o, (int, float)):
-            begin = triple.o if begin is None else min(begin, triple.o)
-            end = triple.o if end is None else max(end, triple.o)
-        elif p == T.END and isinstance(triple.o, (int, float)):
-            end = triple.o if end is None else max(end, triple.o)
+        elif p == T.BEGIN and isinstance(o, (int, float)):
+            begin = o if begin is None else min(begin, o)
+            end = o if end is None else max(end, o)
+        elif p == T.END and isinstance(o, (int, float)):
+            end = o if end is None else max(end, o)
     return {"actions": actions, "begin": begin, "end": end}
 
 

@@ -220,7 +220,10 @@ class NeemLogger:
         # The NEEM is built hidden and made visible with its TBox in one step: a NEEM without its
         # TBox (wrong closures) is never listed, even if the process is killed meanwhile. When it
         # replaces one, it stays hidden until ``close()``: the old NEEM is untouched until then.
-        created = store.create_staging(neem_id, user=user, meta={**extra, "temporary": temporary})
+        # An imagining's ~20 plans are half of what an action writes: the store may keep them
+        # apart with fewer indexes (SQLite's side table, docs/store.md).
+        created = store.create_staging(neem_id, user=user, meta={**extra, "temporary": temporary},
+                                       side_property=onto.vocab.imagines_situation)  # fmt: skip
         staging: str | None = created
         try:
             load_tbox(store, created, tbox if tbox is not None else tbox_for(onto))

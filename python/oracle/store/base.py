@@ -120,20 +120,19 @@ class Store(ABC):
     def has_neem(self, neem_id: str) -> bool:
         return any(info.id == neem_id for info in self.neems())
 
-    def create_neem(
-        self, neem_id: str, *, user: str | None = None, temporary: bool = False, meta: Mapping[str, Any] | None = None
-    ) -> NeemInfo:
-        """Create the empty collections (with KnowRob's indexes) and the registry entry."""
+    def create_neem(self, neem_id: str, *, user: str | None = None, temporary: bool = False,
+                    meta: Mapping[str, Any] | None = None, side_property: str | None = None) -> NeemInfo:  # fmt: skip
+        """Create the empty collections (KnowRob's indexes) and the registry entry; see SQLiteStore for ``side_property``."""
         check_neem_id(neem_id)
         if self.has_neem(neem_id):
             raise StoreError(f"{self.location}: NEEM {neem_id!r} already exists")
         record = new_meta(user, temporary, meta, name=neem_id)
-        self._create_neem(neem_id, record)
+        self._create_neem(neem_id, record, side_property)
         self._hierarchies.pop(neem_id, None)
         return NeemInfo.from_meta(neem_id, record)
 
     @abstractmethod
-    def _create_neem(self, neem_id: str, record: dict[str, Any]) -> None: ...
+    def _create_neem(self, neem_id: str, record: dict[str, Any], side_property: str | None) -> None: ...
 
     def drop_neem(self, neem_id: str) -> None:
         """Delete a NEEM and everything in it."""
@@ -161,7 +160,8 @@ class Store(ABC):
         """Change registry fields such as ``temporary``."""
 
     # -- replacing a NEEM atomically --------------------------------------------------------
-    def create_staging(self, target: str, *, user: str | None = None, meta: Mapping[str, Any] | None = None) -> str:
+    def create_staging(self, target: str, *, user: str | None = None, meta: Mapping[str, Any] | None = None,
+                       side_property: str | None = None) -> str:  # fmt: skip
         """A new, hidden NEEM to build ``target`` (or its replacement) in, which ``swap_in`` makes
         ``target``; a process killed meanwhile leaves ``target`` as it was (see store.staging)."""
         from oracle.store.staging import STAGED_BY, builder, drop_abandoned
@@ -170,7 +170,7 @@ class Store(ABC):
         staging = f"staging-{os.urandom(6).hex()}"  # the prefix is how backends find them (staging_neems)
         extra = {**(meta or {}), STAGING: target, STAGED_BY: builder()}
         temporary = bool(extra.pop("temporary", False))
-        self.create_neem(staging, user=user, temporary=temporary, meta=extra)
+        self.create_neem(staging, user=user, temporary=temporary, meta=extra, side_property=side_property)
         return staging
 
     @abstractmethod

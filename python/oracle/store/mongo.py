@@ -128,7 +128,8 @@ class MongoStore(Store):
             self._present.add(neem_id)
         return found
 
-    def _create_neem(self, neem_id: str, record: dict[str, Any]) -> None:
+    def _create_neem(self, neem_id: str, record: dict[str, Any], side_property: str | None) -> None:
+        del side_property  # KnowRob's layout: every triple in the one collection
         for kind in COLLECTION_KINDS:
             coll = self.db.create_collection(f"{neem_id}_{kind}")
             for keys in INDEXES[kind]:

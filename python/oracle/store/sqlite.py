@@ -15,6 +15,7 @@ The query compiler, which needs none of it but term ids, lives in ``store.sql``.
 
 from __future__ import annotations
 
+import heapq
 import math
 import os
 import sqlite3
@@ -25,6 +26,7 @@ import urllib.parse
 from collections.abc import Callable, Collection, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from functools import partial
+from operator import itemgetter
 from datetime import datetime, timezone
 from pathlib import Path
 from typing import Any
@@ -60,12 +62,17 @@ from oracle.store.sql import (
     K_LONG,
     K_STR,
     TAXONOMIC_SQL,
+    Side,
     SqlCompiler,
     join_order,
+    non_taxonomic,
     sql_value,
 )
 
-SCHEMA_VERSION = "3"
+SCHEMA_VERSION = "4"
+#: Schemas this version reads: 3 is 4 without side tables (opened for writing, it becomes 4,
+#: so an older version, which would not see side tables, refuses it from then on).
+READS_SCHEMAS = ("3", SCHEMA_VERSION)
 #: Terms whose ids a writer keeps in memory (about 100 bytes each) before it starts over.
 TERM_CACHE = 50_000
 
@@ -145,7 +152,7 @@ _TRIPLE_INDEXES = (
     ("sp", "s, p", ""),
     ("op", "o, p", ""),
     ("postar", "p, ostar", " WHERE ostar > 0"),
-    ("pstaro", "pstar, o", f" WHERE p NOT IN {TAXONOMIC_SQL}"),
+    ("pstaro", "pstar, o", f" WHERE {non_taxonomic('p')}"),
 )
 
 
@@ -153,12 +160,24 @@ _TRIPLE_INDEXES = (
 TERM_SCAN_AFTER = 2000
 
 
-def _indexes(neem_id: str, taken: Collection[str] = ()) -> list[tuple[str, str]]:
+#: The side table of a NEEM (``Side``): the triples of its side property, same columns as
+#: the triples table, indexed by subject only (the reads: an imagining's plans, or all of them).
+SIDE = "side"
+_TRIPLE_COLUMNS = (
+    "(id INTEGER PRIMARY KEY, oid BLOB NOT NULL, s, p, o, ok INTEGER,"
+    " pstar INTEGER, ostar INTEGER, graph, since REAL, until REAL, sk INTEGER, raw BLOB)"
+)
+_INSERT_COLUMNS = "id, oid, s, p, o, ok, pstar, ostar, graph, since, until, sk"
+
+
+def _indexes(neem_id: str, taken: Collection[str] = (), side: bool = False) -> list[tuple[str, str]]:
     """(name, CREATE INDEX statement) of every index of a NEEM's tables, each name made
     unique against ``taken`` (the store's index names: a renamed NEEM keeps its old ones)."""
     t = partial(_table, neem_id)
     made = [(f"{neem_id}_triples_{name}", f"ON {t('triples')}({cols}){where}") for name, cols, where in _TRIPLE_INDEXES]
     made += [(f"{neem_id}_annotations_sp", f"ON {t('annotations')}(s, p)"), (f"{neem_id}_tf_cs", f"ON {t('tf')}(child, stamp)")]
+    if side:
+        made.append((f"{neem_id}_side_s", f"ON {t(SIDE)}(s)"))
     unique = [(name if name not in taken else f"{name}_{os.urandom(4).hex()}", target) for name, target in made]
     return [(name, f"CREATE INDEX {_quote(name)} {target}") for name, target in unique]
 
@@ -255,6 +274,8 @@ class SQLiteStore(Store):
         self.read_only = read_only
         if (read_only or not create) and not self.path.is_file():
             raise StoreError(f"{self.path}: no NEEM store there (check --store; 'import' or 'load' creates one)")
+        #: False for a schema 3 file opened read-only (no side tables there).
+        self._has_sides = True
         self._conn = _Connection(self._connect_read_only() if read_only else self._connect(), self.location)
         self._depth = 0
         self._cids: dict[Any, int] = {}
@@ -289,8 +310,9 @@ class SQLiteStore(Store):
             reason = "not a NEEM store" if "no such table" in str(error) or "not a database" in str(error) else str(error)
             raise StoreError(f"{self.path}: cannot open the NEEM store ({reason})") from None
         version = None if row is None else row[0]
-        if version != SCHEMA_VERSION:
+        if version not in READS_SCHEMAS:
             raise StoreError(f"{self.path}: store schema {version}, this version reads {SCHEMA_VERSION}")
+        self._has_sides = version == SCHEMA_VERSION
         return conn
 
     @staticmethod
@@ -339,7 +361,9 @@ class SQLiteStore(Store):
                     PRIMARY KEY(cid, pos)) WITHOUT ROWID;
                 CREATE INDEX IF NOT EXISTS closure_member_value ON closure_member(value, cid);
                 CREATE TABLE IF NOT EXISTS terms(id INTEGER PRIMARY KEY, value TEXT NOT NULL UNIQUE);
-                INSERT OR IGNORE INTO store_info VALUES ('schema', '3');
+                CREATE TABLE IF NOT EXISTS side_tables(neem TEXT PRIMARY KEY, p INTEGER NOT NULL, closures TEXT NOT NULL);
+                INSERT OR IGNORE INTO store_info VALUES ('schema', '4');
+                UPDATE store_info SET value='4' WHERE key='schema' AND value='3';
                 """
             )
             conn.executemany("INSERT OR IGNORE INTO terms VALUES (?, ?)", _RESERVED_TERMS)
@@ -423,34 +447,43 @@ class SQLiteStore(Store):
             raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
         return NeemInfo.from_meta(neem_id, self._meta(neem_id, row[0]))
 
-    def _create_neem(self, neem_id: str, record: dict[str, Any]) -> None:
+    def _create_neem(self, neem_id: str, record: dict[str, Any], side_property: str | None) -> None:
+        """A NEEM's tables; with ``side_property`` (a non-taxonomic property with many triples
+        per subject, an imagining's plans) also its side table (docs/store.md): its triples are
+        kept apart with one index, every query and dump sees the same documents."""
+        if side_property is not None and (not isinstance(side_property, str) or side_property in TAXONOMIC):
+            raise StoreError(f"a side property must be a non-taxonomic property IRI, got {side_property!r}")
         t = partial(_table, neem_id)
         with self.transaction():
             self._conn.execute("INSERT INTO neems VALUES (?, ?)", (neem_id, bson.encode(record)))
-            self._conn.execute(
-                f"CREATE TABLE {t('triples')}(id INTEGER PRIMARY KEY, oid BLOB NOT NULL, s, p, o, ok INTEGER,"
-                " pstar INTEGER, ostar INTEGER, graph, since REAL, until REAL, sk INTEGER, raw BLOB)"
-            )
+            self._conn.execute(f"CREATE TABLE {t('triples')}{_TRIPLE_COLUMNS}")
+            if side_property is not None:
+                self._conn.execute(f"CREATE TABLE {t(SIDE)}{_TRIPLE_COLUMNS}")
+                self._conn.execute("INSERT INTO side_tables VALUES (?, ?, '')", (neem_id, self._tid(side_property)))
             self._conn.execute(f"CREATE TABLE {t('annotations')}(id INTEGER PRIMARY KEY, s, p, doc BLOB NOT NULL)")
             self._conn.execute(
                 f"CREATE TABLE {t('tf')}(id INTEGER PRIMARY KEY, child, stamp REAL, doc BLOB NOT NULL)"
             )
             self._conn.execute(f"CREATE TABLE {t('inferred')}(id INTEGER PRIMARY KEY, doc BLOB NOT NULL)")
             taken = {name for (name,) in self._conn.execute("SELECT name FROM sqlite_master WHERE type='index'")}
-            for _, sql in _indexes(neem_id, taken):
+            for _, sql in _indexes(neem_id, taken, side=side_property is not None):
                 self._conn.execute(sql)
 
     def _drop_neem(self, neem_id: str) -> None:
         with self.transaction():
-            for kind in COLLECTION_KINDS:
+            for kind in (*COLLECTION_KINDS, SIDE):
                 self._conn.execute(f"DROP TABLE IF EXISTS {_table(neem_id, kind)}")
             self._conn.execute("DELETE FROM neems WHERE id=?", (neem_id,))
+            self._conn.execute("DELETE FROM side_tables WHERE neem=?", (neem_id,))
         self._present.discard(neem_id)
 
     def _rename_neem(self, neem_id: str, new_id: str, info: NeemInfo) -> None:
         with self.transaction():
             for kind in COLLECTION_KINDS:
                 self._conn.execute(f"ALTER TABLE {_table(neem_id, kind)} RENAME TO {_table(new_id, kind)}")
+            if self._side_row(neem_id) is not None:
+                self._conn.execute(f"ALTER TABLE {_table(neem_id, SIDE)} RENAME TO {_table(new_id, SIDE)}")
+                self._conn.execute("UPDATE side_tables SET neem=? WHERE neem=?", (new_id, neem_id))
             # The indexes go with their tables under their old names (SQLite cannot rename an
             # index, and rebuilding them cost minutes and ~200 MiB at 50,000 actions): a NEEM
             # created later under an id whose names are taken gets other names (_indexes).
@@ -483,6 +516,32 @@ class SQLiteStore(Store):
             self._tids[value] = tid
             self._tvals[tid] = value
         return tid
+
+    def _intern(self, values: Collection[str]) -> None:
+        """Ids for many terms at once (a logged action brings ~8 new event IRIs): the stored
+        ones read in chunks, the new ones numbered after the last and inserted in one
+        statement, where ``_tid`` would run two statements per term. Only inside a write
+        transaction (BEGIN IMMEDIATE: no other writer can number terms meanwhile)."""
+        if not values:
+            return
+        missing = list(values)
+        found: dict[str, int] = {}
+        for i in range(0, len(missing), 500):
+            chunk = missing[i : i + 500]
+            marks = ", ".join("?" * len(chunk))
+            found.update(self._conn.execute(f"SELECT value, id FROM terms WHERE value IN ({marks})", chunk).fetchall())
+        new = [value for value in missing if value not in found]
+        if new:
+            first = int(self._conn.execute("SELECT coalesce(max(id), 0) + 1 FROM terms").fetchone()[0])
+            numbered = list(enumerate(new, start=first))
+            self._conn.executemany("INSERT INTO terms(id, value) VALUES (?, ?)", numbered)
+            found.update((value, key) for key, value in numbered)
+        if len(self._tids) + len(found) > TERM_CACHE:
+            self._tids.clear()  # as in _tid: memory stays bounded over a long import
+            self._tvals.clear()
+            self._all_terms = False
+        self._tids.update(found)
+        self._tvals.update((key, value) for value, key in found.items())
 
     def known_term_id(self, value: str) -> int:
         """The id of a term for a query; -1 (matching nothing) when the store never saw it."""
@@ -559,6 +618,67 @@ class SQLiteStore(Store):
             members = self._members[cid] = tuple(bson.decode(row[0])["c"])
         return members
 
+    # -- the side table ---------------------------------------------------------------------
+    def _side_row(self, neem_id: str) -> tuple[int, str] | None:
+        """(term id of the side property, the closure ids its rows hold) of a NEEM with a side table."""
+        if not self._has_sides:
+            return None
+        row = self._conn.execute("SELECT p, closures FROM side_tables WHERE neem=?", (neem_id,)).fetchone()
+        return None if row is None else (int(row[0]), str(row[1]))
+
+    def _side(self, neem_id: str) -> Side | None:
+        """What the query compiler needs to know of a NEEM's side table (None: it has none)."""
+        row = self._side_row(neem_id)
+        if row is None:
+            return None
+        main = _table(neem_id, "triples")
+
+        def main_has(term: int) -> bool:
+            # The (pstar, o) index answers this with a probe per closure holding the term.
+            probe = (f"SELECT 1 FROM {main} WHERE pstar IN (SELECT cid FROM closure_member WHERE value=?)"
+                     f" AND p NOT IN {TAXONOMIC_SQL} AND {non_taxonomic('p')} LIMIT 1")  # fmt: skip
+            return self._conn.execute(probe, (term,)).fetchone() is not None
+
+        closures = tuple(self._closure(int(cid)) for cid in row[1].split(",") if cid)
+        return Side(_table(neem_id, SIDE), row[0], closures, main_has)
+
+    def _note_side_closures(self, neem_id: str, known: str, closures: Collection[int | None]) -> None:
+        """Record the closures side rows now hold (their p*, and an o* that is not just [o]): the
+        compiler asks which terms they contain, the taxonomy which terms are used."""
+        have = {int(cid) for cid in known.split(",") if cid}
+        cids = {cid for cid in closures if cid}  # 0: the trivial [o]; None: a document without one
+        if not cids <= have:
+            text = ",".join(str(cid) for cid in sorted(have | cids))
+            self._conn.execute("UPDATE side_tables SET closures=? WHERE neem=?", (text, neem_id))
+
+    def _next_id(self, neem_id: str) -> int:
+        """The id the next triple of a NEEM gets: with a side table, ids run across both tables,
+        so a dump reads them back in insertion order."""
+        main = _table(neem_id, "triples")
+        if self._side_row(neem_id) is None:
+            return int(self._conn.execute(f"SELECT coalesce(max(id), 0) + 1 FROM {main}").fetchone()[0])
+        side = _table(neem_id, SIDE)
+        row = self._conn.execute(
+            f"SELECT max((SELECT coalesce(max(id), 0) FROM {main}), (SELECT coalesce(max(id), 0) FROM {side}))"
+        ).fetchone()
+        return int(row[0]) + 1
+
+    def _insert_rows(self, neem_id: str, rows: list[tuple[Any, ...]], columns: str) -> None:
+        """Rows of documents (``columns`` without ``id``) into the triples table, those of the
+        side property into the side table; ids run across both (``_next_id``)."""
+        side = self._side_row(neem_id)
+        side_p = -1 if side is None else side[0]
+        main_rows: list[tuple[Any, ...]] = []
+        side_rows: list[tuple[Any, ...]] = []
+        for i, row in enumerate(rows, start=self._next_id(neem_id)):
+            (side_rows if row[2] == side_p else main_rows).append((i, *row))
+        insert = f"(id, {columns}) VALUES (?, {', '.join('?' * (columns.count(',') + 1))})"
+        if main_rows:
+            self._conn.executemany(f"INSERT INTO {_table(neem_id, 'triples')}{insert}", main_rows)
+        if side is not None and side_rows:
+            self._conn.executemany(f"INSERT INTO {_table(neem_id, SIDE)}{insert}", side_rows)
+            self._note_side_closures(neem_id, side[1], {cid for row in side_rows for cid in row[6:8]})
+
     # -- writing ----------------------------------------------------------------------------
     def _seconds(self, value: Any) -> float | None:
         if isinstance(value, Decimal128):
@@ -575,33 +695,54 @@ class SQLiteStore(Store):
         self._require(neem_id)
         decimal = builder.number_format == "decimal128"
         float_kind, scope_kind = (K_DECIMAL, SK_DECIMAL) if decimal else (K_DOUBLE, SK_DOUBLE)
-        cid = self._cid
         tids = self._tids
+        # New terms numbered in sorted order: event IRIs of one kind then grow with time, as
+        # the logger mints them, and their index entries land near the end of the indexes.
+        self._intern(sorted({x for triple, _, _ in closed for x in triple[:3] if type(x) is str}.difference(tids)))
         tid = self._tid
+        cid = self._cid
+        # A batch holds few distinct closures, each one tuple object (Store._insert_closed):
+        # looked up by identity, they are not hashed again per row.
+        cids: dict[int, int] = {}
+        side = self._side_row(neem_id)
+        side_p = -1 if side is None else side[0]
+        main_rows: list[tuple[Any, ...]] = []
+        side_rows: list[tuple[Any, ...]] = []
+        row_id = self._next_id(neem_id)
         # ObjectId bytes: this second, the store's random part, then a counter per row.
         prefix = struct.pack(">I", int(time.time())) + self._random
         counter = self._counter
-        rows = []
         sql_o: Any
         for triple, pstar, ostar in closed:
+            s_, p, o, graph, since, until = triple
             counter = (counter + 1) & 0xFFFFFF
-            o = triple.o
             if type(o) is str:
                 sql_o, kind = tids.get(o) or tid(o), K_STR
             elif type(o) is float:
                 sql_o, kind = o, float_kind
             else:
                 sql_o, kind = self._sql_term(encode_value(o, builder.number_format))
-            p = triple.p
-            ostar_cid = cid(ostar) if p in TAXONOMIC else 0
-            rows.append((prefix + counter.to_bytes(3, "big"), tids.get(triple.s) or tid(triple.s), tids.get(p) or tid(p), sql_o, kind,
-                         cid(pstar), ostar_cid, triple.graph, triple.since, triple.until, scope_kind))  # fmt: skip
+            pstar_cid = cids.get(id(pstar))
+            if pstar_cid is None:
+                pstar_cid = cids[id(pstar)] = cid(pstar)
+            if p in TAXONOMIC:
+                ostar_cid = cids.get(id(ostar))
+                if ostar_cid is None:
+                    ostar_cid = cids[id(ostar)] = cid(ostar)
+            else:
+                ostar_cid = 0
+            p_id = tids.get(p) or tid(p)
+            (side_rows if p_id == side_p else main_rows).append(
+                (row_id, prefix + counter.to_bytes(3, "big"), tids.get(s_) or tid(s_), p_id, sql_o, kind, pstar_cid,
+                 ostar_cid, graph, since, until, scope_kind))  # fmt: skip
+            row_id += 1
         self._counter = counter
-        self._conn.executemany(
-            f"INSERT INTO {_table(neem_id, 'triples')}(oid, s, p, o, ok, pstar, ostar, graph, since, until, sk)"
-            " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-            rows,
-        )
+        insert = f"({_INSERT_COLUMNS}) VALUES ({', '.join('?' * 12)})"
+        if main_rows:
+            self._conn.executemany(f"INSERT INTO {_table(neem_id, 'triples')}{insert}", main_rows)
+        if side is not None and side_rows:
+            self._conn.executemany(f"INSERT INTO {_table(neem_id, SIDE)}{insert}", side_rows)
+            self._note_side_closures(neem_id, side[1], {cid for row in side_rows for cid in row[6:8]})
 
     def _triple_row(self, doc: Mapping[str, Any]) -> tuple[Any, ...]:
         """Columns of a document stored as given (kept whole in ``raw`` for an exact dump)."""
@@ -654,11 +795,7 @@ class SQLiteStore(Store):
         try:
             if kind == "triples":
                 rows = [self._triple_row(doc) for doc in docs]
-                self._conn.executemany(
-                    f"INSERT INTO {table}(oid, s, p, o, ok, pstar, ostar, graph, since, until, sk, raw)"
-                    " VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)",
-                    rows,
-                )
+                self._insert_rows(neem_id, rows, "oid, s, p, o, ok, pstar, ostar, graph, since, until, sk, raw")
             elif kind == "annotations":
                 self._conn.executemany(
                     f"INSERT INTO {table}(s, p, doc) VALUES (?, ?, ?)",
@@ -682,19 +819,27 @@ class SQLiteStore(Store):
             raise StoreError(f"{self.location}: no NEEM {neem_id!r}")
 
     def _propagate(self, neem_id: str, subject: str, gained: tuple[Any, ...]) -> None:
-        table = _table(neem_id, "triples")
+        side = self._side_row(neem_id)
+        for table in (_table(neem_id, "triples"), *(() if side is None else (_table(neem_id, SIDE),))):
+            self._propagate_in(table, subject, gained)
+        if side is not None:
+            held = [self._closure(int(cid)) for cid in side[1].split(",") if cid]
+            grown = {self._cid(extend_closure(members, gained)) for members in held if subject in members}
+            self._note_side_closures(neem_id, side[1], grown)
+
+    def _propagate_in(self, table: str, subject: str, gained: tuple[Any, ...]) -> None:
         subject_id = self.known_term_id(subject)
         cids = [row[0] for row in self._conn.execute("SELECT DISTINCT cid FROM closure_member WHERE value=?", (subject_id,))]
         for cid in cids:
             new_cid = self._cid(extend_closure(self._closure(cid), gained))
             for column, field, taxonomic in (("ostar", "o*", True), ("pstar", "p*", False)):
-                op = "IN" if taxonomic else "NOT IN"
+                which = f"p IN {TAXONOMIC_SQL}" if taxonomic else f"p NOT IN {TAXONOMIC_SQL} AND {non_taxonomic('p')}"
                 self._conn.execute(
-                    f"UPDATE {table} SET {column}=? WHERE {column}=? AND raw IS NULL AND p {op} {TAXONOMIC_SQL}",
+                    f"UPDATE {table} SET {column}=? WHERE {column}=? AND raw IS NULL AND {which}",
                     (new_cid, cid),
                 )
                 rows = self._conn.execute(
-                    f"SELECT id, raw FROM {table} WHERE {column}=? AND raw IS NOT NULL AND p {op} {TAXONOMIC_SQL}",
+                    f"SELECT id, raw FROM {table} WHERE {column}=? AND raw IS NOT NULL AND {which}",
                     (cid,),
                 ).fetchall()
                 updates = []
@@ -708,15 +853,25 @@ class SQLiteStore(Store):
         self, neem_id: str, s: Any, p: Any, o: Any, scope: Scope | None, graph: str | None = None
     ) -> list[tuple[Any, float, float]]:
         self._require(neem_id)
-        query = SqlCompiler(self, _table(neem_id, "triples"), scope)
+        query = SqlCompiler(self, _table(neem_id, "triples"), scope, self._side(neem_id))
         query.add(TriplePattern(s, p, o, graph), exact=True)
         sql = f"SELECT t0.id, t0.since, t0.until FROM {query.from_clause()} WHERE {query.where()} ORDER BY t0.id"
         return [(rowid, 0.0 if since is None else since, math.inf if until is None else until)
                 for rowid, since, until in self._conn.execute(sql, query.params).fetchall()]  # fmt: skip
 
+    def _tables_of(self, neem_id: str) -> tuple[str, ...]:
+        """The NEEM's triple tables (ids run across both: a row's id names it in either)."""
+        side = () if self._side_row(neem_id) is None else (_table(neem_id, SIDE),)
+        return (_table(neem_id, "triples"), *side)
+
     def _rescope(self, neem_id: str, key: Any, since: float, until: float) -> None:
-        table = _table(neem_id, "triples")
-        (raw,) = self._conn.execute(f"SELECT raw FROM {table} WHERE id=?", (key,)).fetchone()
+        for table in self._tables_of(neem_id):
+            found = self._conn.execute(f"SELECT raw FROM {table} WHERE id=?", (key,)).fetchone()
+            if found is not None:
+                break
+        else:
+            raise StoreError(f"{self.location}: no stored fact {key!r} in NEEM {neem_id!r}")
+        (raw,) = found
         if raw is not None:  # a loaded document keeps its bytes: its scope changes in them too
             doc = bson.decode(raw, codec_options=_CODEC)
             time_ = doc.setdefault("scope", {}).setdefault("time", {})
@@ -726,8 +881,8 @@ class SQLiteStore(Store):
         self._conn.execute(f"UPDATE {table} SET since=?, until=?, raw=? WHERE id=?", (since, until, raw, key))
 
     def _delete_triples(self, neem_id: str, keys: Sequence[Any]) -> None:
-        table = _table(neem_id, "triples")
-        self._conn.executemany(f"DELETE FROM {table} WHERE id=?", [(key,) for key in keys])
+        for table in self._tables_of(neem_id):
+            self._conn.executemany(f"DELETE FROM {table} WHERE id=?", [(key,) for key in keys])
 
     def _hierarchy_source(self, neem_id: str) -> tuple[list[tuple[str, tuple[Any, ...]]], set[Any]]:
         table = _table(neem_id, "triples")
@@ -744,6 +899,9 @@ class SQLiteStore(Store):
                 f" (SELECT ostar FROM {table} UNION SELECT pstar FROM {table})"
             ).fetchall()
         }
+        side = self._side_row(neem_id)
+        if side is not None:  # the closures its rows hold are recorded: no scan of the side table
+            used.update(v for cid in side[1].split(",") if cid for v in self._closure(int(cid)) if type(v) is str)
         return edges, used
 
     # -- reading ----------------------------------------------------------------------------
@@ -752,9 +910,13 @@ class SQLiteStore(Store):
             raise StoreError(f"unknown collection kind {kind!r}")
         self._require(neem_id)
         if kind == "triples":
-            cursor = self._conn.execute(f"SELECT {_DOC_COLUMNS} FROM {_table(neem_id, kind)} AS t0 ORDER BY id")
-            for row in cursor:
-                yield self._document(row)
+            tables = [_table(neem_id, kind)]
+            if self._side_row(neem_id) is not None:
+                tables.append(_table(neem_id, SIDE))
+            # Each table in id order, merged: the documents in the order they were inserted.
+            cursors = [self._conn.execute(f"SELECT t0.id, {_DOC_COLUMNS} FROM {t} AS t0 ORDER BY id") for t in tables]
+            for row in heapq.merge(*cursors, key=itemgetter(0)):
+                yield self._document(row[1:])
             return
         cursor = self._conn.execute(f"SELECT doc FROM {_table(neem_id, kind)} ORDER BY id")
         for (blob,) in cursor:
@@ -762,21 +924,24 @@ class SQLiteStore(Store):
 
     def _count(self, neem_id: str, kind: str) -> int:
         self._require(neem_id)
-        return int(self._conn.execute(f"SELECT count(*) FROM {_table(neem_id, kind)}").fetchone()[0])
+        count = int(self._conn.execute(f"SELECT count(*) FROM {_table(neem_id, kind)}").fetchone()[0])
+        if kind == "triples" and self._side_row(neem_id) is not None:
+            count += int(self._conn.execute(f"SELECT count(*) FROM {_table(neem_id, SIDE)}").fetchone()[0])
+        return count
 
     def write_mark(self, neem_id: str) -> int:
         # The last rowid grows with every insert and is read from the end of the table's
         # b-tree, not by counting; a scope merge (store.project) deletes only copies of a fact
         # it keeps, and kb_unproject drops the kept summary itself.
         self._require(neem_id)
-        return int(self._conn.execute(f"SELECT coalesce(max(id), 0) FROM {_table(neem_id, 'triples')}").fetchone()[0])
+        return self._next_id(neem_id) - 1
 
     def _find(
         self, neem_id: str, pattern: TriplePattern, scope: Scope | None, limit: int | None, exact: bool
     ) -> Iterator[dict[str, Any]]:
-        query = SqlCompiler(self, _table(neem_id, "triples"), scope)
-        query.add(pattern, exact=exact)
         self._require(neem_id)
+        query = SqlCompiler(self, _table(neem_id, "triples"), scope, self._side(neem_id))
+        query.add(pattern, exact=exact)
         sql = f"SELECT {_DOC_COLUMNS} FROM {query.from_clause()} WHERE {query.where()} ORDER BY t0.id"
         if limit is not None:
             sql += f" LIMIT {int(limit)}"
@@ -831,7 +996,7 @@ class SQLiteStore(Store):
         written_order: bool = False,
     ) -> Iterator[dict[str, Any]]:
         self._require(neem_id)
-        query = SqlCompiler(self, _table(neem_id, "triples"), scope)
+        query = SqlCompiler(self, _table(neem_id, "triples"), scope, self._side(neem_id))
         if order:
             plan, joined = join_order(patterns, order[0][0])
         elif written_order:
