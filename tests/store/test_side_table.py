@@ -105,9 +105,9 @@ def test_a_dump_of_a_side_table_neem_is_the_same_documents_in_the_same_order(tmp
     export_neem(sided, "n", tmp_path / "d1")
     export_neem(plain, "n", tmp_path / "p1")
     loaded = SQLiteStore(tmp_path / "loaded.sqlite")
-    load_dump(loaded, tmp_path / "d1", neem_id="n")
-    assert list(loaded.read_documents("n", "triples")) == list(sided.read_documents("n", "triples"))
-    export_neem(loaded, "n", tmp_path / "d2")
+    (loaded_id,) = load_dump(loaded, tmp_path / "d1", neem_id="n")  # a fresh id, alias "n"
+    assert list(loaded.read_documents(loaded_id, "triples")) == list(sided.read_documents("n", "triples"))
+    export_neem(loaded, loaded_id, tmp_path / "d2")
     first, again = (path / "triples" / "roslog" / "triples.bson" for path in (tmp_path / "d1", tmp_path / "d2"))
     assert first.read_bytes() == again.read_bytes()
     assert _docs(sided.read_documents("n", "triples")) == _docs(plain.read_documents("n", "triples"))
