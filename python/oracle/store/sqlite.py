@@ -673,6 +673,12 @@ class SQLiteStore(Store):
         for i, row in enumerate(rows, start=self._next_id(neem_id)):
             (side_rows if row[2] == side_p else main_rows).append((i, *row))
         insert = f"(id, {columns}) VALUES (?, {', '.join('?' * (columns.count(',') + 1))})"
+        self._write_rows(neem_id, side, insert, main_rows, side_rows)
+
+    def _write_rows(self, neem_id: str, side: tuple[int, str] | None, insert: str,
+                    main_rows: list[tuple[Any, ...]], side_rows: list[tuple[Any, ...]]) -> None:
+        """Rows (id first) into the triples table and the side table; the closures the side
+        rows hold are recorded (``_note_side_closures``)."""
         if main_rows:
             self._conn.executemany(f"INSERT INTO {_table(neem_id, 'triples')}{insert}", main_rows)
         if side is not None and side_rows:
@@ -737,12 +743,7 @@ class SQLiteStore(Store):
                  ostar_cid, graph, since, until, scope_kind))  # fmt: skip
             row_id += 1
         self._counter = counter
-        insert = f"({_INSERT_COLUMNS}) VALUES ({', '.join('?' * 12)})"
-        if main_rows:
-            self._conn.executemany(f"INSERT INTO {_table(neem_id, 'triples')}{insert}", main_rows)
-        if side is not None and side_rows:
-            self._conn.executemany(f"INSERT INTO {_table(neem_id, SIDE)}{insert}", side_rows)
-            self._note_side_closures(neem_id, side[1], {cid for row in side_rows for cid in row[6:8]})
+        self._write_rows(neem_id, side, f"({_INSERT_COLUMNS}) VALUES ({', '.join('?' * 12)})", main_rows, side_rows)
 
     def _triple_row(self, doc: Mapping[str, Any]) -> tuple[Any, ...]:
         """Columns of a document stored as given (kept whole in ``raw`` for an exact dump)."""
