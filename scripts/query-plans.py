@@ -55,12 +55,14 @@ def main() -> None:
         for call in calls:
             subprocess.run([py, "-c", TRACED, str(trace), *call, "--store", str(store)], check=True,
                            stdout=subprocess.DEVNULL, env=env)  # fmt: skip
+        conn = sqlite3.connect(store)
+        # The import built the NEEM under a staging id; the store names its tables by the id it gave.
+        (table,) = conn.execute("SELECT name FROM sqlite_master WHERE type='table' AND name LIKE '%\\_triples' ESCAPE '\\'").fetchone()
         shapes: dict[str, str] = {}
         for sql in trace.read_text().splitlines():
-            sql = re.sub(r'"staging-[0-9a-f]+_', '"u_', sql)  # the import built the NEEM under a staging id
+            sql = re.sub(r'"staging-[0-9a-f]+_', '"' + table.removesuffix("triples"), sql)
             if sql.startswith("SELECT") and ('_triples"' in sql or '_side"' in sql):
                 shapes.setdefault(re.sub(r"'[^']*'", "S", re.sub(r"\b\d+(\.\d+)?\b", "N", sql)), sql)
-        conn = sqlite3.connect(store)
         uses: Counter[str] = Counter()
         scans: list[tuple[str, str]] = []
         for sql in shapes.values():

@@ -49,6 +49,23 @@ def test_pattern_queries_use_an_index(tmp_path, pattern):
     assert outer and all("USING" in detail for detail in outer), plan
 
 
+
+@pytest.mark.parametrize("cls", ["Cup", "Item"])  # one closure id, several
+def test_an_inlined_class_test_seeks_by_its_closure_ids_not_every_type_triple(tmp_path, cls):
+    store = SQLiteStore(tmp_path / "s.sqlite")
+    store.create_neem("n1")
+    store.insert("n1", [Triple(X + "Cup", SUBCLASS_OF, X + "Item"), Triple(X + "Plate", SUBCLASS_OF, X + "Item"),
+                        Triple(X + "c", RDF_TYPE, X + "Cup"), Triple(X + "p", RDF_TYPE, X + "Plate"),
+                        Triple(X + "o", RDF_TYPE, X + "Other")])  # fmt: skip
+    query = SqlCompiler(store, '"n1_triples"', None)
+    query.inline_closures = True
+    query.add(TriplePattern(Var("S"), RDF_TYPE, X + cls))
+    sql = f"SELECT t0.s FROM {query.from_clause()} WHERE {query.where()} ORDER BY t0.id"
+    plan = " ".join(row[-1] for row in store._conn.execute("EXPLAIN QUERY PLAN " + sql, query.params))
+    assert "ostar>? AND ostar<?" in plan, plan  # a bounded seek, not the whole "ostar > 0" range
+    expected = {"Cup": [X + "c"], "Item": [X + "c", X + "p"]}[cls]
+    assert [store._tval(s) for (s,) in store._conn.execute(sql, query.params)] == expected
+
 def _index_columns(store, table):
     rows = store._conn.execute("SELECT sql FROM sqlite_master WHERE type='index' AND tbl_name=? AND sql IS NOT NULL",
                                (table,)).fetchall()

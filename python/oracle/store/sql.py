@@ -177,6 +177,9 @@ class SqlCompiler:
             # The closure ids as literals: an ordered query can then scan the (pstar, o)
             # index by o, where a subquery makes SQLite fall back to the (o, p) index.
             cids = self.store.closures_containing(self._iri(value))
+            if column.endswith("ostar"):
+                self._inline_ostar(column, cids)
+                return
             if len(cids) == 1:
                 self.conds.append(f"{column}=? AND {column} > 0")
             else:
@@ -191,6 +194,17 @@ class SqlCompiler:
         self.conds.append(f"{column} IN (SELECT cid FROM closure_member WHERE value={expr}) AND {column} > 0")
         if kind is not None:
             self.conds.append(f"{kind}={K_STR}")
+
+    def _inline_ostar(self, column: str, cids: list[int]) -> None:
+        """An ``o*`` test with literal closure ids. ``column > 0`` lets SQLite use the partial
+        (p, ostar) index, but SQLite then seeks by that range (every type triple) rather than
+        by the ids, even by one id; a range from the least id to the greatest is the seek it
+        takes instead (why-not on 10,000 actions: the first pick-task row ~14 ms -> ~1 ms, the
+        candidate calls of a task ~8 ms -> ~0.4 ms)."""
+        low, high = min(cids, default=0), max(cids, default=0)
+        test = f"{column}=?" if len(cids) == 1 else f"{column} IN ({', '.join('?' * len(cids))})"
+        self.conds.append(f"{test} AND {column} >= ? AND {column} <= ? AND {column} > 0")
+        self.params.extend([*cids, low, high])
 
     def add(self, pattern: TriplePattern, exact: bool = False) -> None:
         a = f"t{len(self.aliases)}"
