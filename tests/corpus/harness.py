@@ -108,3 +108,19 @@ def sample_chains(out: Path, per_user: int, users: int = 2) -> Path:
             rows.append(line)
     out.write_text("\n".join(rows) + "\n")
     return out
+
+
+#: Passwords the corpus's inputs carry; no message may show one.
+SECRETS = ("s3cret", "p@ss", "pa/ss", "pa:ss", "s3cr%zzet")
+
+
+def assert_refused(outcome: Outcome, expected: str) -> None:
+    """A refused input: no traceback, a failing exit, one line on stderr holding ``expected``,
+    and no password in any output."""
+    assert outcome.crash is None, f"traceback:\n{outcome.crash}"
+    assert outcome.code not in (0, -1), f"exit {outcome.code}; stdout {outcome.stdout[:300]!r}"
+    lines = outcome.stderr.strip().splitlines()
+    assert len(lines) == 1, f"expected one line on stderr, got {len(lines)}: {outcome.stderr[:600]!r}"
+    assert expected in lines[0], lines[0]
+    for secret in SECRETS:
+        assert secret not in outcome.stderr + outcome.stdout
