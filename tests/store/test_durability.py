@@ -344,3 +344,31 @@ def test_a_builder_killed_inside_the_swap_leaves_the_old_neem_or_the_new_one(sto
     drop_abandoned(store)
     assert [info.id for info in store.neems()] == [alice] and content(store, alice) == new
     assert store.staging_neems() == [] and READY not in {k for k, v in store.neem(alice).meta.items() if v}
+
+
+def test_a_builder_killed_between_two_collection_renames_loses_nothing(tmp_path, onto):
+    # On MongoDB a NEEM's four collections are renamed one by one. A kill after some of them
+    # leaves the new NEEM split across the two names; the next writer must finish the rename
+    # rather than drop the staging half (which would lose the rest of the new NEEM).
+    from oracle.store.staging import READY, STAGED_BY
+
+    store = MongoStore(mongomock.MongoClient(), "split")
+    import_chains(store, onto, write(tmp_path / "a.jsonl", rows("alice", 4)))
+    alice = neem_of(store, "alice")
+    logger = NeemLogger.create(store, onto, user="alice", replace=True)
+    for i in range(7):
+        logger.action("open(fridge)", 1_740_988_800 + 60 * i)
+    logger.flush()
+    staging = logger.neem_id
+    new = content(store, staging)
+    dead = {"host": __import__("socket").gethostname(), "pid": _dead_pid()}
+    store.update_meta(staging, **{STAGED_BY: dead, READY: True})
+    store.drop_neem(alice)
+    for kind in COLLECTION_KINDS[:2]:  # killed after two of the renames
+        store.db[f"{staging}_{kind}"].rename(f"{alice}_{kind}")
+    fresh = MongoStore(store.client, "split")  # the next process
+    drop_abandoned(fresh)
+    assert [info.id for info in fresh.neems()] == [alice] and content(fresh, alice) == new
+    assert resolve_neem(fresh, "alice") == alice and fresh.neem(alice).user == "alice"  # its registry entry too
+    assert fresh.staging_neems() == [] and not {k for k, v in fresh.neem(alice).meta.items() if v} & {READY, STAGED_BY}
+    assert not [name for name in fresh.db.list_collection_names() if name.startswith(staging)]

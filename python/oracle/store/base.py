@@ -155,6 +155,18 @@ class Store(ABC):
     @abstractmethod
     def _rename_neem(self, neem_id: str, new_id: str, info: NeemInfo) -> None: ...
 
+    def interrupted_rename(self, neem_id: str, new_id: str) -> bool:
+        """Whether renaming ``neem_id`` to ``new_id`` stopped half-way, leaving the NEEM split
+        across both names (a kill between MongoDB's per-collection renames); never where a
+        rename is one transaction."""
+        del neem_id, new_id
+        return False
+
+    def finish_rename(self, neem_id: str, new_id: str) -> None:
+        """Move what an interrupted rename (``interrupted_rename``) left under ``neem_id``."""
+        self._rename_neem(neem_id, new_id, self.neem(neem_id))
+        self._hierarchies.pop(neem_id, None)
+
     @abstractmethod
     def update_meta(self, neem_id: str, **fields: Any) -> NeemInfo:
         """Change registry fields such as ``temporary``."""

@@ -151,6 +151,11 @@ class MongoStore(Store):
         self.db[META].insert_one({"_id": meta_key(new_id), **dict(info.meta)})
         self._present.discard(neem_id)
 
+    def interrupted_rename(self, neem_id: str, new_id: str) -> bool:
+        names = set(self.db.list_collection_names())
+        moved = any(f"{neem_id}_{kind}" not in names and f"{new_id}_{kind}" in names for kind in COLLECTION_KINDS)
+        return moved and not self.db[META].count_documents(_meta_filter(new_id), limit=1)
+
     def update_meta(self, neem_id: str, **fields: Any) -> NeemInfo:
         meta = dict(self.neem(neem_id).meta)
         meta.update(fields)

@@ -4,7 +4,8 @@ A staging NEEM (``Store.create_staging``) records the process building it. A kil
 import or load leaves it behind, never listed nor read; it holds personal data nobody could see,
 list or wipe, so the next writer drops it once that process is gone (one made on another host
 after a day). One that was ready to replace a NEEM already dropped (a kill inside ``swap_in`` on
-MongoDB, which has no transactions) is swapped in instead.
+MongoDB, which has no transactions, also one between the renames of its collections) is swapped
+in instead.
 """
 
 from __future__ import annotations
@@ -43,9 +44,17 @@ def drop_abandoned(store: Store) -> list[str]:
         if not abandoned:
             continue
         target = info.meta.get(STAGING)
-        if info.meta.get(READY) and isinstance(target, str) and not store.has_neem(target):
-            # Killed between dropping the old NEEM and renaming the new one: finish the swap.
-            store.rename_neem(info.id, target)
+        if info.meta.get(READY) and isinstance(target, str):
+            # Killed between dropping the old NEEM and renaming the new one, or in the middle
+            # of renaming its collections: finish the swap.
+            if not store.has_neem(target):
+                store.rename_neem(info.id, target)
+            elif store.interrupted_rename(info.id, target):
+                store.finish_rename(info.id, target)
+            else:  # the old NEEM is still there: the half-done replacement goes
+                store.drop_neem(info.id)
+                dropped.append(info.id)
+                continue
             store.update_meta(target, **{STAGING: None, STAGED_BY: None, READY: None})
             continue
         store.drop_neem(info.id)
