@@ -121,7 +121,7 @@ def parse_row(obj: object, where: str = "<row>") -> ChainRow:
         if obj.get("available") is not None:
             if not isinstance(obj["available"], list):
                 raise ChainSyntaxError("'available' must be a list of actions")
-            available = tuple(parse_call(item) for item in obj["available"])
+            available = tuple(map(parse_call, obj["available"]))
     except ChainSyntaxError as error:
         raise ChainSyntaxError(f"{where}: {error}") from None
     time = _moment(obj, "time", where)

@@ -50,8 +50,8 @@ from oracle.store.model import (
     Hierarchy,
     NumberFormat,
     Scope,
-    Triple,
     TriplePattern,
+    TripleRow,
     encode_number,
     encode_value,
     extend_closure,
@@ -708,7 +708,7 @@ class SQLiteStore(Store):
             return cached
         return unix_seconds(value)
 
-    def _insert_closed(self, neem_id: str, triples: Iterable[Triple], hierarchy: Hierarchy,
+    def _insert_closed(self, neem_id: str, triples: Iterable[TripleRow], hierarchy: Hierarchy,
                        builder: DocumentBuilder) -> int:  # fmt: skip
         """A batch without subClassOf/subPropertyOf triples (every batch the logger writes)
         goes straight to rows, each closure looked up once per distinct property and class;
@@ -731,7 +731,7 @@ class SQLiteStore(Store):
         self._write_triples(neem_id, [triple for triple, _, _ in closed], pstars.__getitem__,
                             lambda o: ostars[(type(o), o)], builder)  # fmt: skip
 
-    def _write_triples(self, neem_id: str, batch: list[Triple], pstar_of: Callable[[str], tuple[Any, ...]],
+    def _write_triples(self, neem_id: str, batch: list[TripleRow], pstar_of: Callable[[str], tuple[Any, ...]],
                        ostar_of: Callable[[Any], tuple[Any, ...]], builder: DocumentBuilder) -> None:  # fmt: skip
         """Rows straight from triples (a document is rebuilt from its columns when read), in one
         pass: ``pstar_of(p)`` (non-taxonomic ``p``) and ``ostar_of(o)`` (the object of a
