@@ -741,8 +741,8 @@ class SQLiteStore(Store):
         float_kind, scope_kind = (K_DECIMAL, SK_DECIMAL) if decimal else (K_DOUBLE, SK_DOUBLE)
         # New terms numbered in sorted order: event IRIs of one kind then grow with time, as
         # the logger mints them, and their index entries land near the end of the indexes.
-        strings = {s for s, _, _, _, _, _ in batch}
-        strings.update(o for _, _, o, _, _, _ in batch if type(o) is str)
+        strings = set(map(itemgetter(0), batch))
+        strings.update(o for o in set(map(itemgetter(2), batch)) if type(o) is str)
         ids = self._term_ids(sorted(strings))
         cid = self._cid
         side = self._side_row(neem_id)
@@ -751,13 +751,16 @@ class SQLiteStore(Store):
         side_rows: list[tuple[Any, ...]] = []
         # Per property: its id, its p* closure id, whether it is taxonomic, the table it goes to.
         props: dict[str, tuple[int, int, bool, Callable[[tuple[Any, ...]], None]]] = {}
-        ostars: dict[Any, int] = {}  # closure id of the o* of a taxonomic triple's object
-        row_id = self._next_id(neem_id)
+        # The o* closure id of a taxonomic triple's object: an IRI, or another value by
+        # (type, value), so that 1, 1.0 and True are not one key.
+        classes: dict[str, int] = {}
+        values: dict[tuple[type, Any], int] = {}
+        first = self._next_id(neem_id)
         # ObjectId bytes: this second, the store's random part, then a counter per row.
         prefix = struct.pack(">I", int(time.time())) + self._random
-        counter = self._counter
+        offset = self._counter + 1 - first  # row ``first`` gets the counter after the last one
         sql_o: Any
-        for triple in batch:
+        for row_id, triple in enumerate(batch, first):
             s_, p, o, graph, since, until = triple
             if since > until:
                 raise ValueError(f"scope of {triple} ends before it starts")
@@ -768,23 +771,22 @@ class SQLiteStore(Store):
                 prop = props[p] = (p_id, cid((p,) if taxonomic else pstar_of(p)), taxonomic,
                                    side_rows.append if p_id == side_p else main_rows.append)  # fmt: skip
             p_id, pstar_cid, taxonomic, append = prop
-            counter = (counter + 1) & 0xFFFFFF
+            ostar_cid = 0
             if type(o) is str:
                 sql_o, kind = ids[o], K_STR
-            elif type(o) is float:
-                sql_o, kind = o, float_kind
+                if taxonomic:
+                    ostar_cid = classes.get(o, 0) or classes.setdefault(o, cid(ostar_of(o)))
             else:
-                sql_o, kind = self._sql_term(encode_value(o, builder.number_format))
-            ostar_cid = 0
-            if taxonomic:
-                key = (type(o), o)  # 1, 1.0 and True are one dict key, not one closure
-                ostar_cid = ostars.get(key, 0)
-                if not ostar_cid:
-                    ostar_cid = ostars[key] = cid(ostar_of(o))
-            append((row_id, prefix + counter.to_bytes(3, "big"), ids[s_], p_id, sql_o, kind, pstar_cid, ostar_cid,
-                    graph, since, until, scope_kind))  # fmt: skip
-            row_id += 1
-        self._counter = counter
+                if type(o) is float:
+                    sql_o, kind = o, float_kind
+                else:
+                    sql_o, kind = self._sql_term(encode_value(o, builder.number_format))
+                if taxonomic:
+                    key = (type(o), o)
+                    ostar_cid = values.get(key, 0) or values.setdefault(key, cid(ostar_of(o)))
+            append((row_id, prefix + ((offset + row_id) & 0xFFFFFF).to_bytes(3, "big"), ids[s_], p_id, sql_o, kind,
+                    pstar_cid, ostar_cid, graph, since, until, scope_kind))  # fmt: skip
+        self._counter = (offset + first + len(batch) - 1) & 0xFFFFFF
         side_closures = {prop[1] for prop in props.values() if prop[0] == side_p}
         self._write_rows(neem_id, side, f"({_INSERT_COLUMNS}) VALUES ({', '.join('?' * 12)})", main_rows, side_rows,
                          side_closures)  # fmt: skip
