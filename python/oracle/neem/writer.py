@@ -180,6 +180,10 @@ class NeemLogger:
         self._object_iris: dict[str, str] = {}
         self._task_classes: dict[TaskCall, tuple[str, tuple[str | None, ...]]] = {}
         self._parts: dict[str, str] = {}
+        #: The plans of an available set logged before, by the identity of its tuple, which is
+        #: kept here so that no other object has that id meanwhile: the rows of a chains file
+        #: share one tuple per distinct set (oracle.chains), a persona meets a few hundred.
+        self._sets: dict[int, tuple[object, list[str]]] = {}
         self._imagines = self.vocab.imagines_situation
         # Event ids in ObjectId's layout (seconds, 5 random bytes, counter), made without
         # ObjectId's per-call lock and pid check.
@@ -477,19 +481,28 @@ class NeemLogger:
         resolved = [self._resolve(call) for call in calls]
         self._check_time(when, "available tasks")
         out = _Out()
-        action = self._imagining(resolved, when, out)
+        action, _ = self._imagining(resolved, when, out)
         self._write(out)
         return action
 
-    def _imagining(self, calls: Sequence[TaskCall], when: Instant, out: _Out) -> str:
+    def _imagining(self, calls: Sequence[TaskCall], when: Instant, out: _Out,
+                   known: list[str] | None = None) -> tuple[str, list[str]]:  # fmt: skip
+        """The imagining of ``calls`` (or of the plans ``known``, all stored or buffered);
+        returns it and the plans it imagines."""
         action = self._mental(T.IMAGINING, when, out)
-        imagines, plans = self._imagines, self._plans
+        imagines = self._imagines
+        if known is not None:
+            out.extend([(action, imagines, plan, USER_GRAPH, 0.0, INFINITY) for plan in known])
+            return action, known
+        plans = self._plans
+        chosen = []
         for call in calls:
             plan = plans.get(call)
             if plan is None:
                 plan = self._plan(call, out, when.seconds)
-            out.add(action, imagines, plan)
-        return action
+            chosen.append(plan)
+            out.append((action, imagines, plan, USER_GRAPH, 0.0, INFINITY))
+        return action, chosen
 
     def action(
         self,
@@ -509,8 +522,10 @@ class NeemLogger:
         if stop.seconds < start.seconds:
             raise LoggingError(f"{call}: ends ({stop.seconds:.3f}) before it starts ({start.seconds:.3f})")
         self._check_time(start, f"action {call}")
-        options = None
-        if available is not None:
+        options: list[TaskCall] = []
+        entry = self._sets.get(id(available)) if available is not None else None
+        known_plans = entry[1] if entry is not None and entry[0] is available else None
+        if available is not None and known_plans is None:
             known = self._resolved.get  # most options were checked before: skip the call
             options = [known(c) or self._resolve(c) for c in available]
         if action_id is not None:
@@ -525,7 +540,7 @@ class NeemLogger:
         idle = None
         if self._last_end is not None and is_idle_gap(self._last_end.seconds, start.seconds, self.idle_threshold):
             idle = self._idle(self._last_end, start, out)
-        imagining = self._imagining(options, start, out) if options is not None else None
+        imagining, plans = self._imagining(options, start, out, known_plans) if available is not None else (None, [])
         for arg in call.args:  # objects first: an unknown one raises before the task is built
             out.add(iri, T.PARTICIPANT, self._object(arg, out, start.seconds))
         task = self._executed_task(call, start, stop, out)
@@ -535,6 +550,10 @@ class NeemLogger:
         out.add(iri, T.PERFORMED_BY, self._agent(performed_by, out))
         out.add(iri, T.HAS_INTERVAL, self._interval(start, stop, out))
         self._write(out)
+        if known_plans is None and type(available) is tuple:  # immutable: the same set next time
+            if len(self._sets) >= 4096:
+                self._sets.clear()
+            self._sets[id(available)] = (available, plans)
         self._last_begin = start
         if self._last_end is None or stop.seconds > self._last_end.seconds:
             self._last_end = stop
@@ -608,6 +627,7 @@ class NeemLogger:
                 # The in-memory view may now name individuals that were never stored.
                 self._known.clear()
                 self._plans.clear()
+                self._sets.clear()
                 if isinstance(error, StoreError):
                     raise LoggingError(f"NEEM {self.neem_id!r}: {error}") from None
                 raise
