@@ -77,11 +77,12 @@ SCHEMA_VERSION = "4"
 #: Schemas this version reads: 3 is 4 without side tables (opened for writing, it becomes 4,
 #: so an older version, which would not see side tables, refuses it from then on).
 READS_SCHEMAS = ("3", SCHEMA_VERSION)
-#: Side rows one INSERT statement writes: SQLite then runs a statement per 80 rows instead of
-#: per row, a third less CPU for the side table (one index). Not for the triples table: with
-#: its partial indexes, grouped INSERTs measured slower (docs/store.md). 80 rows of 13
-#: columns stay below 999 parameters, the limit of SQLite builds before 3.32.
-SIDE_ROWS_PER_INSERT = 80
+#: Rows one INSERT statement writes into a table with one plain index (side rows, new terms):
+#: SQLite then runs a statement per 80 rows instead of one per row, a third less CPU there.
+#: Not into the triples table: with its partial indexes, grouped INSERTs measured slower
+#: (docs/store.md). 80 rows of 13 columns stay below 999 parameters, the limit of SQLite
+#: builds before 3.32.
+GROUPED_ROWS = 80
 #: Terms whose ids a writer keeps in memory (about 100 bytes each) before it starts over.
 TERM_CACHE = 50_000
 
@@ -545,7 +546,7 @@ class SQLiteStore(Store):
         if new:
             first = int(self._conn.execute("SELECT coalesce(max(id), 0) + 1 FROM terms").fetchone()[0])
             numbered = list(enumerate(new, start=first))
-            self._conn.executemany("INSERT INTO terms(id, value) VALUES (?, ?)", numbered)
+            self._insert_many("terms", "id, value", numbered, GROUPED_ROWS)
             found.update((value, key) for key, value in numbered)
         if found:
             if len(tids) + len(found) > TERM_CACHE:
@@ -697,7 +698,7 @@ class SQLiteStore(Store):
         if main_rows:
             self._insert_many(_table(neem_id, "triples"), columns, main_rows, 1)
         if side is not None and side_rows:
-            self._insert_many(_table(neem_id, SIDE), columns, side_rows, SIDE_ROWS_PER_INSERT)
+            self._insert_many(_table(neem_id, SIDE), columns, side_rows, GROUPED_ROWS)
             if side_closures is None:
                 side_closures = {cid for row in side_rows for cid in row[6:8]}
             self._note_side_closures(neem_id, side[1], side_closures)
