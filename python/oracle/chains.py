@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 from datetime import datetime, timedelta
 from pathlib import Path
+from typing import Any
 
 from oracle.errors import ChainSyntaxError
 from oracle.timeline import TimeValueError, check_seconds, parse_iso, seconds_of
@@ -72,6 +73,21 @@ def _parse_call(text: str) -> TaskCall:
     return TaskCall(task, args)
 
 
+def _parse_calls(items: list[Any]) -> tuple[TaskCall, ...]:
+    """The calls of an available list; raise ChainSyntaxError on the first bad one."""
+    try:
+        return _parse_texts(tuple(items))  # a non-string raises in parse_call, uncached
+    except TypeError:  # an unhashable item (a list, an object): parse_call names it
+        return tuple(map(parse_call, items))
+
+
+@lru_cache(maxsize=1 << 12)
+def _parse_texts(texts: tuple[str, ...]) -> tuple[TaskCall, ...]:
+    # A persona meets the same few hundred available sets again and again: one look-up for
+    # the whole set, and every row with that set shares one tuple of calls.
+    return tuple(map(parse_call, texts))
+
+
 @dataclass(frozen=True)
 class ChainRow:
     """One line of a chains JSONL file."""
@@ -121,7 +137,7 @@ def parse_row(obj: object, where: str = "<row>") -> ChainRow:
         if obj.get("available") is not None:
             if not isinstance(obj["available"], list):
                 raise ChainSyntaxError("'available' must be a list of actions")
-            available = tuple(parse_call(item) for item in obj["available"])
+            available = _parse_calls(obj["available"])
     except ChainSyntaxError as error:
         raise ChainSyntaxError(f"{where}: {error}") from None
     time = _moment(obj, "time", where)

@@ -48,9 +48,13 @@ EARLIEST_S = 0.0
 LATEST_S = 221845392000.0  # 9000-01-01T00:00:00Z
 
 
+def _in_range(seconds: float) -> bool:
+    return math.isfinite(seconds) and EARLIEST_S <= seconds < LATEST_S
+
+
 def check_seconds(seconds: float, what: str = "a time") -> float:
     """``seconds`` if it lies in [EARLIEST_S, LATEST_S); else TimeValueError naming ``what``."""
-    if not (math.isfinite(seconds) and EARLIEST_S <= seconds < LATEST_S):
+    if not _in_range(seconds):
         raise TimeValueError(f"{what} must lie between 1970-01-01 and 9000-01-01 (UTC), got {seconds!r} seconds")
     return seconds
 
@@ -93,7 +97,8 @@ def seconds_of(moment: datetime) -> float:
         seconds = aware.timestamp()
     except (OverflowError, ValueError):  # year 1 at +05:00 is before year 1 in UTC
         seconds = -math.inf
-    return check_seconds(seconds, moment.isoformat())
+    # The text naming the time is made only for the error (an import checks 4 times per row).
+    return seconds if _in_range(seconds) else check_seconds(seconds, moment.isoformat())
 
 
 def part_of_day_at(seconds: float) -> str:

@@ -435,3 +435,35 @@ def test_event_iris_are_unique_and_grow_with_time(logger):
     ids = [iri.rsplit("_", 1)[1] for iri in iris]
     assert len(set(iris)) == 50 and all(len(i) == 24 and int(i, 16) >= 0 for i in ids)
     assert ids == sorted(ids)  # appended at the end of the indexes
+
+
+def test_an_available_set_met_again_is_logged_as_a_new_equal_list_is(tmp_path, onto, small_tbox):
+    """The logger remembers the plans of an available tuple it logged (an import's rows share
+    one tuple per distinct set): the documents are the ones an equal new list gives, and a
+    failed commit makes it forget them, so the plans are written again with the next action."""
+    from oracle.chains import parse_call
+    from oracle.errors import StoreError
+
+    options = tuple(parse_call(c) for c in ("pick(green_mug)", "pour(thermos, green_mug)", "pick(thermos)"))
+
+    def log(store, same):
+        logger = NeemLogger.create(store, onto, user="alice", tbox=small_tbox)
+        for i in range(3):
+            logger.action("pick(green_mug)", T0 + timedelta(seconds=10 * i), available=options if same else list(options))
+        return [(d["s"].rsplit("_", 1)[0], d["p"], str(d["o"]).rsplit("_", 1)[0]) for d in store.read_documents(logger.neem_id, "triples")]
+
+    assert log(SQLiteStore(tmp_path / "a.sqlite"), True) == log(SQLiteStore(tmp_path / "b.sqlite"), False)
+
+    store = SQLiteStore(tmp_path / "c.sqlite")
+    logger = NeemLogger.create(store, onto, user="alice", tbox=small_tbox, commit_every=2)
+    logger.action("pick(green_mug)", T0, available=options)  # buffered: its plans are new
+    insert = store.insert
+    store.insert = lambda *args: (_ for _ in ()).throw(StoreError("disk full"))  # type: ignore[method-assign]
+    with pytest.raises(LoggingError, match="disk full"):
+        logger.action("pick(green_mug)", T0 + timedelta(seconds=1), available=options)
+    store.insert = insert  # type: ignore[method-assign]
+    logger.action("pick(green_mug)", T0 + timedelta(seconds=2), available=options)
+    logger.flush()
+    plans = {d["o"] for d in store.find(logger.neem_id, p=logger.vocab.imagines_situation)}
+    assert len(plans) == 3
+    assert all(objects_of(store, logger.neem_id, plan, RDF_TYPE) for plan in plans)  # written again, typed

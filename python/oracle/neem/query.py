@@ -13,7 +13,8 @@ from typing import TYPE_CHECKING, Any
 from oracle.neem import terms as T
 from oracle.errors import StoreError
 from oracle.store.ids import alias_of
-from oracle.store import RDF_TYPE, NeemInfo, Store, Triple, TriplePattern, Var
+from oracle.store import RDF_TYPE, NeemInfo, Store, TriplePattern, Var
+from oracle.store.model import TripleRow
 from oracle.store.base import SUMMARY_KEY
 from oracle.timeline import TIME_OF_DAY_NAMES
 
@@ -111,11 +112,11 @@ def count_actions(store: Store, neem_id: str) -> tuple[int, float | None, float 
     )
 
 
-def summary_after(summary: dict[str, Any], triples: Iterable[Triple]) -> dict[str, Any]:
+def summary_after(summary: dict[str, Any], triples: Iterable[TripleRow]) -> dict[str, Any]:
     """A summary moved on by triples written by the logger (which types executed actions
     exactly ``dul:Action`` and mental ones ``soma:MentalAction``)."""
     actions, begin, end = summary["actions"], summary["begin"], summary["end"]
-    for _, p, o, _, _, _ in triples:  # a Triple is a plain 6-tuple: unpacked, not read by name
+    for _, p, o, _, _, _ in triples:  # unpacked, not read by name: the logger writes plain tuples
         if p == RDF_TYPE:
             if o == T.ACTION:
                 actions += 1

@@ -33,8 +33,9 @@ from oracle.neem.query import summarize_neem, summary_after
 from oracle.neem.tf import Pose, frame_name, tf_document
 from oracle.ontology.model import OdbOntology
 from oracle.ontology.provenance import META_KEY as ONTOLOGY_KEY, check_logged_with, record_of
-from oracle.store import RDF_TYPE, Store, Triple, TriplePattern, Var
+from oracle.store import RDF_TYPE, Store, TriplePattern, Var
 from oracle.store.base import SUMMARY_KEY
+from oracle.store.model import INFINITY, USER_GRAPH, TripleRow, Value
 from oracle.store.ids import ALIAS_KEY, alias_of, check_alias, find_neem, is_object_id, new_neem_id, unique_alias
 from oracle.store.tbox import TBox, load_tbox, tbox_for
 from oracle.timeline import IDLE_THRESHOLD_S, Instant, Moment, TimeValueError, has_clock, is_idle_gap, sequence_instant
@@ -65,12 +66,18 @@ class LoggedAction:
     imagining: str | None = None
 
 
-class _Out(list[Triple]):
-    """Triples of one call, before they are written, and the individuals they create."""
+class _Out(list[TripleRow]):
+    """Triples of one call, before they are written, and the individuals they create.
+
+    They are plain ``(s, p, o, graph, since, until)`` tuples, as ``Store.insert`` takes them: a
+    call writes ~50, and a tuple costs a third of a ``Triple`` to make."""
 
     def __init__(self) -> None:
         super().__init__()
         self.created: set[str] = set()
+
+    def add(self, s: str, p: str, o: Value, since: float = 0.0, until: float = INFINITY) -> None:
+        self.append((s, p, o, USER_GRAPH, since, until))
 
 
 def _slug(text: str) -> str:
@@ -148,7 +155,7 @@ class NeemLogger:
         self.commit_every = commit_every
         #: How many calls (actions, perceptions, ...) are durably in the store.
         self.committed = 0
-        self._buffer: list[Triple] = []
+        self._buffer: list[TripleRow] = []
         self._tf: list[dict[str, Any]] = []  # transforms of perceptions, written with the triples
         self._tf_seq = 0
         self._buffered_calls = 0
@@ -169,6 +176,14 @@ class NeemLogger:
         #: 20 plans that were logged before costs 20 dictionary look-ups, not 20 checks.
         self._resolved: dict[TaskCall | str, TaskCall] = {}
         self._plans: dict[TaskCall, str] = {}
+        #: Looked up once: objects' IRIs, calls' task class and role classes, parts of day.
+        self._object_iris: dict[str, str] = {}
+        self._task_classes: dict[TaskCall, tuple[str, tuple[str | None, ...]]] = {}
+        self._parts: dict[str, str] = {}
+        #: The plans of an available set logged before, by the identity of its tuple, which is
+        #: kept here so that no other object has that id meanwhile: the rows of a chains file
+        #: share one tuple per distinct set (oracle.chains), a persona meets a few hundred.
+        self._sets: dict[int, tuple[object, list[str]]] = {}
         self._imagines = self.vocab.imagines_situation
         # Event ids in ObjectId's layout (seconds, 5 random bytes, counter), made without
         # ObjectId's per-call lock and pid check.
@@ -274,19 +289,27 @@ class NeemLogger:
 
     def _individual(self, iri: str, cls_iri: str, out: _Out, since: float = 0.0) -> str:
         if self._new(iri, out):
-            out.append(Triple(iri, RDF_TYPE, cls_iri, since=since))
-            out.append(Triple(iri, RDF_TYPE, T.NAMED_INDIVIDUAL, since=since))
+            out.add(iri, RDF_TYPE, cls_iri, since)
+            out.add(iri, RDF_TYPE, T.NAMED_INDIVIDUAL, since)
         return iri
 
     def object_iri(self, name: str) -> str:
-        return f"{self.ns}Object_{_slug(name)}"
+        iri = self._object_iris.get(name)
+        if iri is None:
+            iri = f"{self.ns}Object_{_slug(name)}"
+            if len(self._object_iris) < 100_000:
+                self._object_iris[name] = iri
+        return iri
 
     def _object(self, name: str, out: _Out, since: float) -> str:
+        iri = self.object_iri(name)
+        if iri in self._known:  # typed already: the class need not be looked up again
+            return iri
         try:
             cls_iri = self.onto.object_iri(name)
         except OntologyError as error:
             raise LoggingError(str(error)) from None
-        return self._individual(self.object_iri(name), cls_iri, out, since)
+        return self._individual(iri, cls_iri, out, since)
 
     def _agent(self, who: str, out: _Out) -> str:
         if who == "robot":
@@ -324,20 +347,25 @@ class NeemLogger:
             if role_class is None:
                 continue
             role = f"{self.ns}Role_{key}__{index}"
-            out.append(Triple(role, RDF_TYPE, role_class))
-            out.append(Triple(role, RDF_TYPE, T.NAMED_INDIVIDUAL))
-            out.append(Triple(task, T.IS_TASK_OF, role))
-            out.append(Triple(role, T.CLASSIFIES, obj))
+            out.add(role, RDF_TYPE, role_class)
+            out.add(role, RDF_TYPE, T.NAMED_INDIVIDUAL)
+            out.add(task, T.IS_TASK_OF, role)
+            out.add(role, T.CLASSIFIES, obj)
         return task
 
-    def _typed_task(self, task: str, call: TaskCall, out: _Out) -> list[str | None]:
+    def _typed_task(self, task: str, call: TaskCall, out: _Out) -> tuple[str | None, ...]:
         """Type ``task`` with the call's task class; the SOMA role class of each argument."""
-        out.append(Triple(task, RDF_TYPE, self.onto.task_iri(call.task)))
-        out.append(Triple(task, RDF_TYPE, T.NAMED_INDIVIDUAL))
-        try:
-            return list(self.onto.task_roles(call.task, len(call.args)))
-        except OntologyError as error:
-            raise LoggingError(str(error)) from None
+        known = self._task_classes.get(call)
+        if known is None:
+            try:
+                known = (self.onto.task_iri(call.task), self.onto.task_roles(call.task, len(call.args)))
+            except OntologyError as error:
+                raise LoggingError(str(error)) from None
+            if len(self._task_classes) < 100_000:
+                self._task_classes[call] = known
+        out.add(task, RDF_TYPE, known[0])
+        out.add(task, RDF_TYPE, T.NAMED_INDIVIDUAL)
+        return known[1]
 
     def _executed_task(self, call: TaskCall, begin: Instant, end: Instant, out: _Out) -> str:
         """A fresh task individual for one action, with one role per argument; the role
@@ -349,10 +377,10 @@ class NeemLogger:
             if role_class is None:
                 continue
             role = self._event("Role")
-            out.append(Triple(role, RDF_TYPE, role_class))
-            out.append(Triple(role, RDF_TYPE, T.NAMED_INDIVIDUAL))
-            out.append(Triple(task, T.IS_TASK_OF, role))
-            out.append(Triple(role, T.CLASSIFIES, self.object_iri(arg), since=begin.seconds, until=end.seconds))
+            out.add(role, RDF_TYPE, role_class)
+            out.add(role, RDF_TYPE, T.NAMED_INDIVIDUAL)
+            out.add(task, T.IS_TASK_OF, role)
+            out.add(role, T.CLASSIFIES, self.object_iri(arg), begin.seconds, end.seconds)
         return task
 
     def _plan(self, call: TaskCall, out: _Out, since: float) -> str:
@@ -366,9 +394,9 @@ class NeemLogger:
         task = self._task(call, out, since)
         plan = f"{self.ns}Plan_{task[len(self.ns) + len('Task_'):]}"
         if self._new(plan, out):
-            out.append(Triple(plan, RDF_TYPE, T.PLAN))
-            out.append(Triple(plan, RDF_TYPE, T.NAMED_INDIVIDUAL))
-            out.append(Triple(plan, T.PLAN_FOR, task))
+            out.add(plan, RDF_TYPE, T.PLAN)
+            out.add(plan, RDF_TYPE, T.NAMED_INDIVIDUAL)
+            out.add(plan, T.PLAN_FOR, task)
         return plan
 
     def _interval(self, begin: Instant, end: Instant, out: _Out) -> str:
@@ -379,22 +407,25 @@ class NeemLogger:
             raise LoggingError(f"NEEM {self._public_id} has a clock: a sequence position is no time" if self.clocked else
                                f"NEEM {self._public_id} has no clock (logged from a time-less log): give positions, not times")
         interval = self._event("TimeInterval")
-        out.append(Triple(interval, RDF_TYPE, T.TIME_INTERVAL))
+        out.add(interval, RDF_TYPE, T.TIME_INTERVAL)
         if begin.part_of_day is not None:
-            out.append(Triple(interval, RDF_TYPE, self.vocab.part_of_day(begin.part_of_day)))
-        out.append(Triple(interval, T.BEGIN, begin.seconds))
-        out.append(Triple(interval, T.END, end.seconds))
+            part = self._parts.get(begin.part_of_day)
+            if part is None:
+                part = self._parts[begin.part_of_day] = self.vocab.part_of_day(begin.part_of_day)
+            out.add(interval, RDF_TYPE, part)
+        out.add(interval, T.BEGIN, begin.seconds)
+        out.add(interval, T.END, end.seconds)
         return interval
 
     def _mental(self, task_class: str, at: Instant, out: _Out) -> str:
         action = self._event("MentalAction")
         task = self._event("Task")  # one task per action, mental ones too
-        out.append(Triple(task, RDF_TYPE, task_class))
-        out.append(Triple(task, RDF_TYPE, T.NAMED_INDIVIDUAL))
-        out.append(Triple(action, RDF_TYPE, T.MENTAL_ACTION))
-        out.append(Triple(action, T.EXECUTES, task))
-        out.append(Triple(action, T.PERFORMED_BY, self._agent("robot", out)))
-        out.append(Triple(action, T.HAS_INTERVAL, self._interval(at, at, out)))
+        out.add(task, RDF_TYPE, task_class)
+        out.add(task, RDF_TYPE, T.NAMED_INDIVIDUAL)
+        out.add(action, RDF_TYPE, T.MENTAL_ACTION)
+        out.add(action, T.EXECUTES, task)
+        out.add(action, T.PERFORMED_BY, self._agent("robot", out))
+        out.add(action, T.HAS_INTERVAL, self._interval(at, at, out))
         return action
 
     # -- checks -----------------------------------------------------------------------------
@@ -450,19 +481,28 @@ class NeemLogger:
         resolved = [self._resolve(call) for call in calls]
         self._check_time(when, "available tasks")
         out = _Out()
-        action = self._imagining(resolved, when, out)
+        action, _ = self._imagining(resolved, when, out)
         self._write(out)
         return action
 
-    def _imagining(self, calls: Sequence[TaskCall], when: Instant, out: _Out) -> str:
+    def _imagining(self, calls: Sequence[TaskCall], when: Instant, out: _Out,
+                   known: list[str] | None = None) -> tuple[str, list[str]]:  # fmt: skip
+        """The imagining of ``calls`` (or of the plans ``known``, all stored or buffered);
+        returns it and the plans it imagines."""
         action = self._mental(T.IMAGINING, when, out)
-        imagines, plans = self._imagines, self._plans
+        imagines = self._imagines
+        if known is not None:
+            out.extend([(action, imagines, plan, USER_GRAPH, 0.0, INFINITY) for plan in known])
+            return action, known
+        plans = self._plans
+        chosen = []
         for call in calls:
             plan = plans.get(call)
             if plan is None:
                 plan = self._plan(call, out, when.seconds)
-            out.append(Triple(action, imagines, plan))
-        return action
+            chosen.append(plan)
+            out.append((action, imagines, plan, USER_GRAPH, 0.0, INFINITY))
+        return action, chosen
 
     def action(
         self,
@@ -482,8 +522,10 @@ class NeemLogger:
         if stop.seconds < start.seconds:
             raise LoggingError(f"{call}: ends ({stop.seconds:.3f}) before it starts ({start.seconds:.3f})")
         self._check_time(start, f"action {call}")
-        options = None
-        if available is not None:
+        options: list[TaskCall] = []
+        entry = self._sets.get(id(available)) if available is not None else None
+        known_plans = entry[1] if entry is not None and entry[0] is available else None
+        if available is not None and known_plans is None:
             known = self._resolved.get  # most options were checked before: skip the call
             options = [known(c) or self._resolve(c) for c in available]
         if action_id is not None:
@@ -498,16 +540,20 @@ class NeemLogger:
         idle = None
         if self._last_end is not None and is_idle_gap(self._last_end.seconds, start.seconds, self.idle_threshold):
             idle = self._idle(self._last_end, start, out)
-        imagining = self._imagining(options, start, out) if options is not None else None
+        imagining, plans = self._imagining(options, start, out, known_plans) if available is not None else (None, [])
         for arg in call.args:  # objects first: an unknown one raises before the task is built
-            out.append(Triple(iri, T.PARTICIPANT, self._object(arg, out, start.seconds)))
+            out.add(iri, T.PARTICIPANT, self._object(arg, out, start.seconds))
         task = self._executed_task(call, start, stop, out)
-        out.append(Triple(iri, RDF_TYPE, T.ACTION))
-        out.append(Triple(iri, RDF_TYPE, T.NAMED_INDIVIDUAL))
-        out.append(Triple(iri, T.EXECUTES, task))
-        out.append(Triple(iri, T.PERFORMED_BY, self._agent(performed_by, out)))
-        out.append(Triple(iri, T.HAS_INTERVAL, self._interval(start, stop, out)))
+        out.add(iri, RDF_TYPE, T.ACTION)
+        out.add(iri, RDF_TYPE, T.NAMED_INDIVIDUAL)
+        out.add(iri, T.EXECUTES, task)
+        out.add(iri, T.PERFORMED_BY, self._agent(performed_by, out))
+        out.add(iri, T.HAS_INTERVAL, self._interval(start, stop, out))
         self._write(out)
+        if known_plans is None and type(available) is tuple:  # immutable: the same set next time
+            if len(self._sets) >= 4096:
+                self._sets.clear()
+            self._sets[id(available)] = (available, plans)
         self._last_begin = start
         if self._last_end is None or stop.seconds > self._last_end.seconds:
             self._last_end = stop
@@ -516,13 +562,13 @@ class NeemLogger:
     def _idle(self, begin: Instant, end: Instant, out: _Out) -> str:
         idle = self._event("Action")
         task = self._event("Task")
-        out.append(Triple(task, RDF_TYPE, self.vocab.idle_task))
-        out.append(Triple(task, RDF_TYPE, T.NAMED_INDIVIDUAL))
-        out.append(Triple(idle, RDF_TYPE, T.ACTION))
-        out.append(Triple(idle, RDF_TYPE, T.NAMED_INDIVIDUAL))
-        out.append(Triple(idle, T.EXECUTES, task))
-        out.append(Triple(idle, T.PERFORMED_BY, self._agent("robot", out)))
-        out.append(Triple(idle, T.HAS_INTERVAL, self._interval(begin, end, out)))
+        out.add(task, RDF_TYPE, self.vocab.idle_task)
+        out.add(task, RDF_TYPE, T.NAMED_INDIVIDUAL)
+        out.add(idle, RDF_TYPE, T.ACTION)
+        out.add(idle, RDF_TYPE, T.NAMED_INDIVIDUAL)
+        out.add(idle, T.EXECUTES, task)
+        out.add(idle, T.PERFORMED_BY, self._agent("robot", out))
+        out.add(idle, T.HAS_INTERVAL, self._interval(begin, end, out))
         return idle
 
     def preference(self, ranking: Sequence[tuple[TaskCall | str, float]], at: Moment) -> str:
@@ -540,16 +586,16 @@ class NeemLogger:
         out = _Out()
         action = self._mental(T.REASONING, when, out)
         order = self._event("PreferenceOrder")
-        out.append(Triple(action, self.vocab.imagines_preference, order))
-        out.append(Triple(order, RDF_TYPE, T.PREFERENCE_ORDER))
-        out.append(Triple(order, RDF_TYPE, T.ORDER))
+        out.add(action, self.vocab.imagines_preference, order)
+        out.add(order, RDF_TYPE, T.PREFERENCE_ORDER)
+        out.add(order, RDF_TYPE, T.ORDER)
         for rank, (call, score) in enumerate(resolved, start=1):
             element = f"{order}_{rank}"
-            out.append(Triple(element, RDF_TYPE, T.ORDERED_ELEMENT))
-            out.append(Triple(order, T.ORDERS, element))
-            out.append(Triple(element, T.ENCAPSULATES, self._plan(call, out, when.seconds)))
-            out.append(Triple(element, self.vocab.has_rank, rank))
-            out.append(Triple(element, self.vocab.has_score, score))
+            out.add(element, RDF_TYPE, T.ORDERED_ELEMENT)
+            out.add(order, T.ORDERS, element)
+            out.add(element, T.ENCAPSULATES, self._plan(call, out, when.seconds))
+            out.add(element, self.vocab.has_rank, rank)
+            out.add(element, self.vocab.has_score, score)
         self._write(out)
         return order
 
@@ -581,6 +627,7 @@ class NeemLogger:
                 # The in-memory view may now name individuals that were never stored.
                 self._known.clear()
                 self._plans.clear()
+                self._sets.clear()
                 if isinstance(error, StoreError):
                     raise LoggingError(f"NEEM {self.neem_id!r}: {error}") from None
                 raise

@@ -35,8 +35,8 @@ from oracle.store.model import (
     NumberFormat,
     Scope,
     Term,
-    Triple,
     TriplePattern,
+    TripleRow,
     Var,
     annotation_document,
 )
@@ -45,7 +45,7 @@ from oracle.store.model import (
 COLLECTION_KINDS: tuple[str, ...] = ("triples", "annotations", "tf", "inferred")
 
 #: A triple with its ``p*`` and ``o*``, ready to store.
-Closed = tuple[Triple, tuple[Any, ...], tuple[Any, ...]]
+Closed = tuple[TripleRow, tuple[Any, ...], tuple[Any, ...]]
 
 #: Registry field marking a NEEM under construction (value: the NEEM it will replace).
 STAGING = "staging_for"
@@ -209,8 +209,9 @@ class Store(ABC):
     def transaction(self) -> AbstractContextManager[None]:
         """Group writes so they commit together (SQLite) or run as they come (MongoDB)."""
 
-    def insert(self, neem_id: str, triples: Iterable[Triple]) -> int:
-        """Store triples with KnowRob's ``p*``/``o*`` closure; return how many were stored.
+    def insert(self, neem_id: str, triples: Iterable[TripleRow]) -> int:
+        """Store triples (``Triple``s or plain tuples of the same six values) with KnowRob's
+        ``p*``/``o*`` closure; return how many were stored.
 
         A subClassOf/subPropertyOf triple also extends the closures of stored documents that pass
         through its subject, as kb_project does, so load order does not change the result.
@@ -226,7 +227,7 @@ class Store(ABC):
         return count
 
     def _insert_closed(
-        self, neem_id: str, triples: Iterable[Triple], hierarchy: Hierarchy, builder: DocumentBuilder
+        self, neem_id: str, triples: Iterable[TripleRow], hierarchy: Hierarchy, builder: DocumentBuilder
     ) -> int:
         # The closures of DocumentBuilder.closures, inlined: a batch uses few properties and
         # classes, so p* per property and o* per class are looked up once per batch, until a
@@ -239,7 +240,7 @@ class Store(ABC):
         ostars: dict[str, tuple[Any, ...]] = {}
         with self.transaction():
             for triple in triples:
-                _, p, o, _, since, until = triple
+                s, p, o, _, since, until = triple
                 if since > until:
                     raise ValueError(f"scope of {triple} ends before it starts")
                 if p not in TAXONOMIC:
@@ -258,14 +259,14 @@ class Store(ABC):
                 if p in HIERARCHY and isinstance(o, str):
                     pstars.clear()
                     ostars.clear()
-                    _, gained = hierarchy.add_edge(triple.s, o)
-                    if gained and triple.s in hierarchy.used:
+                    _, gained = hierarchy.add_edge(s, o)
+                    if gained and s in hierarchy.used:
                         self._insert_triples(neem_id, pending, builder)
                         count += len(pending)
                         pending = []
                         append = pending.append
-                        self._propagate(neem_id, triple.s, gained)
-                        hierarchy.patch_closures(triple.s, gained)
+                        self._propagate(neem_id, s, gained)
+                        hierarchy.patch_closures(s, gained)
                         hierarchy.used.update(gained)
             if pending:
                 self._insert_triples(neem_id, pending, builder)

@@ -37,6 +37,10 @@ NUMBER_FORMATS: tuple[str, ...] = ("decimal128", "double")
 Value = str | float | int | bool | datetime
 
 
+#: The graph of the facts a NEEM's logger writes (KnowRob's default ``user`` graph).
+USER_GRAPH = "user"
+
+
 class Triple(tuple):  # type: ignore[type-arg]
     """One assertion to store; ``since``/``until`` are unix seconds of its time scope.
 
@@ -49,7 +53,7 @@ class Triple(tuple):  # type: ignore[type-arg]
     __slots__ = ()
 
     def __new__(
-        cls, s: str, p: str, o: Value, graph: str = "user", since: float = 0.0, until: float = INFINITY
+        cls, s: str, p: str, o: Value, graph: str = USER_GRAPH, since: float = 0.0, until: float = INFINITY
     ) -> Triple:
         return tuple.__new__(cls, (s, p, o, graph, since, until))
 
@@ -66,6 +70,11 @@ class Triple(tuple):  # type: ignore[type-arg]
     def __repr__(self) -> str:
         s, p, o, graph, since, until = self
         return f"Triple(s={s!r}, p={p!r}, o={o!r}, graph={graph!r}, since={since!r}, until={until!r})"
+
+
+#: What ``Store.insert`` takes: a ``Triple``, or its six values as a plain tuple in the same
+#: order (the logger's hot path: a tuple is cheaper to make than a ``Triple``).
+TripleRow = tuple[str, str, Value, str, float, float]
 
 
 @dataclass(frozen=True)
@@ -300,33 +309,33 @@ class DocumentBuilder:
                 self._scope_cache[key] = cached
         return cached
 
-    def closures(self, triple: Triple) -> tuple[tuple[Any, ...], tuple[Any, ...]]:
+    def closures(self, triple: TripleRow) -> tuple[tuple[Any, ...], tuple[Any, ...]]:
         """(p*, o*) of a triple as kb_project computes them (knowrob-2x-facts §5)."""
-        if triple.since > triple.until:
+        _, p, o, _, since, until = triple
+        if since > until:
             raise ValueError(f"scope of {triple} ends before it starts")
-        p = triple.p
         if p in TAXONOMIC:
-            o = triple.o
             return (p,), (self.hierarchy.closure(o) if type(o) is str else (o,))
-        return self.hierarchy.closure(p), (triple.o,)
+        return self.hierarchy.closure(p), (o,)
 
     def document(
-        self, triple: Triple, closures: tuple[tuple[Any, ...], tuple[Any, ...]] | None = None
+        self, triple: TripleRow, closures: tuple[tuple[Any, ...], tuple[Any, ...]] | None = None
     ) -> dict[str, Any]:
         """The document KnowRob's kb_project would insert for ``triple`` (without propagation).
 
         It has no ``_id``: the database assigns one on insert, as for KnowRob's documents.
         """
+        s, p, o, graph, since, until = triple
         pstar, ostar = closures if closures is not None else self.closures(triple)
-        value = encode_value(triple.o, self.number_format)
+        value = encode_value(o, self.number_format)
         return {
-            "s": triple.s,
-            "p": triple.p,
+            "s": s,
+            "p": p,
             "o": value,
             "p*": list(pstar),
-            "o*": [encode_value(v, self.number_format) for v in ostar] if ostar != (triple.o,) else [value],
-            "graph": triple.graph,
-            "scope": self.scope(triple.since, triple.until),
+            "o*": [encode_value(v, self.number_format) for v in ostar] if ostar != (o,) else [value],
+            "graph": graph,
+            "scope": self.scope(since, until),
         }
 
 
