@@ -172,16 +172,15 @@ def _chunks(store: Store, req: Sequence[Any]) -> Iterator[str]:
 
 def _compact(chunk: MatchChunk, grouped: bool) -> str:
     """The reply text of one chunk (see ``_chunks``); positions count from 1, as arg/3 does."""
-    texts = ",".join([term_text(value) for value in chunk.values])
+    values = chunk.values
+    texts = ",".join([quote_atom(v) if type(v) is str else term_text(v) for v in values])
     table = f"d({texts})" if texts else "d"
-
-    def cells(row: tuple[Any, ...]) -> str:
-        return ",".join([str(p + 1) for p in row[:-1]] + ["[" + ",".join([str(p + 1) for p in row[-1]]) + "]"])
-
+    pos = [str(i) for i in range(1, len(values) + 1)]  # each position's text made once
     if grouped:
-        body = "],[".join([cells(row) for row in chunk.rows])
+        body = "],[".join([",".join([pos[p] for p in row[:-1]] + ["[" + ",".join([pos[p] for p in row[-1]]) + "]"])
+                           for row in chunk.rows])
     else:
-        body = "],[".join([",".join([str(p + 1) for p in row]) for row in chunk.rows])
+        body = "],[".join([",".join([pos[p] for p in row]) for row in chunk.rows])
     return f"r({table},[[{body}]])" if chunk.rows else f"r({table},[])"
 
 
@@ -574,13 +573,12 @@ class Bridge:
         as ``{"begin", "end", "call", "part", "available"}`` (calls in the chain syntax). The
         situations that found the same set available share one list (Prolog writes each set once)."""
         reply = self._json("odb_history:situation_history_json")
-        sets = reply["sets"]
-        rows: list[dict[str, Any]] = reply["situations"]
-        for row in rows:
-            index = row["available"]
-            if index is not None:
-                row["available"] = sets[index]
-        return rows
+        calls: list[str] = reply["calls"]
+        sets = [[calls[i] for i in indexes] for indexes in reply["sets"]]
+        flat = reply["rows"]
+        return [{"begin": flat[i], "end": flat[i + 1], "call": calls[flat[i + 2]], "part": flat[i + 3],
+                 "available": sets[flat[i + 4]] if flat[i + 4] >= 0 else None}
+                for i in range(0, len(flat), 5)]
 
     def latest_situation(self) -> dict[str, Any] | None:
         """The latest imagined situation as ``{"begin", "available"}``, or None."""

@@ -7,6 +7,7 @@ Prolog bridge writes (and Prolog reads) each IRI once per chunk instead of once 
 
 from __future__ import annotations
 
+from collections import defaultdict
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -126,15 +127,13 @@ def _grouped_chunks(rows: list[Sequence[Any]], where: list[int], size: int,
     # Grouped here, not by SQL GROUP BY: SQLite's text forms of a REAL round it to 15 digits,
     # and the raw columns group exactly (0.0 and -0.0 apart, by their text, if a key holds one).
     signed = any(0 in {row[c] for row in rows} for c in range(0, width, 2))
-    groups: dict[tuple[Any, ...], list[Sequence[Any]]] = {}
-    for row in rows:
-        key: tuple[Any, ...] = tuple(row[:width])
-        if signed:
-            key += tuple(repr(row[c]) for c in range(0, width, 2))
-        bucket = groups.get(key)
-        if bucket is None:
-            bucket = groups[key] = []
-        bucket.append(row)
+    groups: defaultdict[tuple[Any, ...], list[Sequence[Any]]] = defaultdict(list)
+    if signed:
+        for row in rows:
+            groups[tuple(row[:width]) + tuple(repr(row[c]) for c in range(0, width, 2))].append(row)
+    else:
+        for row in rows:
+            groups[tuple(row[:width])].append(row)
     keys = list(groups)
     for start in range(0, len(keys), size):
         batch = keys[start:start + size]
