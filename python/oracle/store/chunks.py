@@ -63,16 +63,17 @@ def chunks_from_solutions(solutions: Iterable[dict[str, Any]], names: list[str],
         yield MatchChunk(index.values, rows)
 
 
-#: Told the new distinct raw values of one kind before they are converted (to look them up at once).
-Prefetch = Callable[[int, list[Any]], None]
+#: Converts the new distinct raw values of one kind at once (a store looks its term ids up in
+#: one query); ``out`` converts one value.
+Convert = Callable[[int, list[Any]], list[Any]]
 
 
 class _RawIndex:
-    """Positions of distinct raw SQL (value, kind) cells, each converted once by ``out``."""
+    """Positions of distinct raw SQL (value, kind) cells, each converted once."""
 
-    def __init__(self, out: Callable[[Any, int], Any], prefetch: Prefetch | None = None) -> None:
+    def __init__(self, out: Callable[[Any, int], Any], convert: Convert | None = None) -> None:
         self.out = out
-        self.prefetch = prefetch
+        self.convert: Convert = convert or (lambda kind, values: [out(value, kind) for value in values])
         self.values: list[Any] = []
         self._by_kind: dict[int, dict[Any, int]] = {}
 
@@ -86,11 +87,10 @@ class _RawIndex:
             if 0 not in distinct and len({type(value) for value in distinct}) <= 1:
                 known = self._by_kind.setdefault(kind, {})
                 new = [value for value in distinct if value not in known]
-                if self.prefetch is not None and new:
-                    self.prefetch(kind, new)
-                for value in new:
-                    known[value] = len(self.values)
-                    self.values.append(self.out(value, kind))
+                if new:
+                    start = len(self.values)
+                    self.values.extend(self.convert(kind, new))
+                    known.update(zip(new, range(start, start + len(new))))
                 return [known[value] for value in values]
         return [self._cell(value, kind) for value, kind in zip(values, kinds)]
 
@@ -105,24 +105,24 @@ class _RawIndex:
 
 
 def raw_chunks(rows: list[Sequence[Any]], where: list[int], grouped: bool, size: int,
-               out: Callable[[Any, int], Any], prefetch: Prefetch | None = None) -> Iterator[MatchChunk]:
+               out: Callable[[Any, int], Any], convert: Convert | None = None) -> Iterator[MatchChunk]:
     """SQL rows of (value, kind) column pairs as chunks of up to ``size`` rows; ``where`` gives,
     per kept variable in the order asked, its column pair. Grouped: the last column's values
     are collected per distinct combination of the others (``Store.match``'s ``group``), which
-    must come first in the rows; each group is one row of the chunk. ``prefetch(kind, values)``
-    is told the new distinct raw values of a column before ``out`` converts them one by one."""
+    must come first in the rows; each group is one row of the chunk. ``convert(kind, values)``,
+    if given, converts a column's new distinct values at once, ``out`` any other value."""
     if not grouped:
         for start in range(0, len(rows), size):
             batch = rows[start:start + size]
-            index = _RawIndex(out, prefetch)
+            index = _RawIndex(out, convert)
             columns = [index.column([r[2 * c] for r in batch], [r[2 * c + 1] for r in batch]) for c in where]
             yield MatchChunk(index.values, list(zip(*columns)) if columns else [()] * len(batch))
         return
-    yield from _grouped_chunks(rows, where, size, out, prefetch)
+    yield from _grouped_chunks(rows, where, size, out, convert)
 
 
 def _grouped_chunks(rows: list[Sequence[Any]], where: list[int], size: int,
-                    out: Callable[[Any, int], Any], prefetch: Prefetch | None) -> Iterator[MatchChunk]:
+                    out: Callable[[Any, int], Any], convert: Convert | None) -> Iterator[MatchChunk]:
     width = 2 * (len(where) - 1)
     # Grouped here, not by SQL GROUP BY: SQLite's text forms of a REAL round it to 15 digits,
     # and the raw columns group exactly (0.0 and -0.0 apart, by their text, if a key holds one).
@@ -137,7 +137,7 @@ def _grouped_chunks(rows: list[Sequence[Any]], where: list[int], size: int,
     keys = list(groups)
     for start in range(0, len(keys), size):
         batch = keys[start:start + size]
-        index = _RawIndex(out, prefetch)
+        index = _RawIndex(out, convert)
         columns: list[Any] = [index.column([k[2 * c] for k in batch], [k[2 * c + 1] for k in batch])
                                     for c in where[:-1]]
         members = [groups[k] for k in batch]

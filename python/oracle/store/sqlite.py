@@ -1006,15 +1006,18 @@ class SQLiteStore(Store):
         # id becomes its IRI once per chunk, not once per cell.
         names, rows = self._match_rows(neem_id, patterns, scope, limit, order, kept, group, written_order)
         where = [names.index(name) for name in kept]
-        return raw_chunks(rows, where, group is not None, size, self._out, self._prefetch_terms)
+        return raw_chunks(rows, where, group is not None, size, self._out, self._convert)
 
-    def _prefetch_terms(self, kind: int, values: list[Any]) -> None:
-        """Read the IRIs of many term ids at once, in id order (a chunk brings up to ~20,000 new
-        ones: one query instead of one each, or a scan of every NEEM's terms)."""
+    def _convert(self, kind: int, values: list[Any]) -> list[Any]:
+        """Raw values of one kind as plain values; term ids looked up at once, in id order (a
+        chunk brings up to ~20,000 new ones: one query instead of one each, or a scan of every
+        NEEM's terms)."""
         import json
 
+        if kind in (K_DOUBLE, K_DECIMAL):
+            return [None if value is None else float(value) for value in values]
         if kind != K_STR:
-            return
+            return [self._out(value, kind) for value in values]
         tvals = self._tvals
         missing = sorted(v for v in values if type(v) is int and v not in tvals)
         for start in range(0, len(missing), 5000):
@@ -1022,6 +1025,7 @@ class SQLiteStore(Store):
             for key, text in self._conn.execute("SELECT id, value FROM terms WHERE id IN (SELECT value FROM json_each(?))",
                                                 (batch,)):
                 tvals[key] = text
+        return [tvals[value] if value in tvals else self._out(value, kind) for value in values]
 
     def _match_rows(
         self,
