@@ -458,8 +458,9 @@ match(python(Neem), Patterns, Scope, Options) :-
     (   memberchk(group_last, Options) -> Group is NVars-1 ; Group = -1 ),
     (   memberchk(plan(written), Options) -> Plan = written ; Plan = store ),
     neem_store:py_match([Neem, S0, S1, N, NVars, Order, Group, Plan|Encoded], Reply),
-    reply_rows(Reply, Rows),
-    member(Vars, Rows).
+    match_reply(Reply, Table, Rows),
+    member(Row, Rows),
+    row_values(Row, Table, Vars).
 
 %   replace_var(+Var, +New, +Term, -Term1): Term with the variable Var replaced by New (the
 %   grouped variable of the python backend, selected last, comes back bound to its list of
@@ -569,9 +570,38 @@ encode_term(_, X, c, X).
 nth0_var([V|Vs], X, I0, I) :-
     (   V == X -> I = I0 ; I1 is I0+1, nth0_var(Vs, X, I1, I) ).
 
-%   A chunk of solutions arrives as the text of a list of rows, each row a list of quoted
-%   atoms and numbers (5x cheaper than a pyswip list, toolchain-facts §2). It is read as
-%   data, never called, and must be a ground list; an error arrives as `error(Message)`.
+%   A chunk of py_match/2 solutions arrives as the text `r(d(V1, ..., Vk), Rows)`: each
+%   distinct value (quoted atom or number) once, and each row a list of positions in d/k
+%   (a grouped variable's values: a list of positions). A history read repeats each IRI
+%   many times; small integers are read 7x faster than the quoted atoms. It is read as
+%   data, never called; an error arrives as `error(Message)`.
+match_reply(Reply, Table, Rows) :-
+    term_string(T, Reply),
+    (   T = r(Table, Rows), ground(T), is_list(Rows)
+    ->  true
+    ;   T = error(Message)
+    ->  throw(error(neem_store_error(Message), _))
+    ;   throw(error(neem_store_error(unexpected_reply(T)), _))
+    ).
+
+%   The values of one compact row; a position outside the table is a broken reply.
+row_values([], _, []).
+row_values([I|Is], Table, [V|Vs]) :-
+    cell_value(I, Table, V),
+    row_values(Is, Table, Vs).
+
+cell_value(I, Table, V) :-
+    integer(I), !,
+    (   arg(I, Table, V0) -> V = V0 ; throw(error(neem_store_error(unexpected_reply(I)), _)) ).
+cell_value(Is, Table, Vs) :-
+    is_list(Is), !,
+    row_values(Is, Table, Vs).
+cell_value(X, _, _) :-
+    throw(error(neem_store_error(unexpected_reply(X)), _)).
+
+%   Other replies arrive as the text of a list of rows, each row a list of quoted atoms and
+%   numbers (5x cheaper than a pyswip list, toolchain-facts §2). It is read as data, never
+%   called, and must be a ground list; an error arrives as `error(Message)`.
 reply_rows(Reply, Rows) :-
     term_string(T, Reply),
     (   T = error(Message)

@@ -82,4 +82,20 @@ test(insert_memory, [cleanup(store_reset)]) :-
     store_match([t(s, p, X)], scope(1.0, 2.0)),
     X == o.
 
+test(compact_reply_rows_are_positions_in_its_table) :-
+    neem_store:match_reply("r(d('http://x#a', 2.5, -0.0), [[1,2],[3,[1,3]]])", Table, Rows),
+    findall(Vs, ( member(Row, Rows), neem_store:row_values(Row, Table, Vs) ), Values),
+    Values == [['http://x#a', 2.5], [-0.0, ['http://x#a', -0.0]]].
+
+test(compact_reply_position_outside_its_table,
+     [error(neem_store_error(unexpected_reply(3)), _)]) :-
+    neem_store:match_reply("r(d(a, b), [[1,3]])", Table, [Row]),
+    neem_store:row_values(Row, Table, _).
+
+test(compact_reply_error_and_garbage) :-
+    catch(neem_store:match_reply("error('no store')", _, _), error(neem_store_error(M), _), true),
+    M == 'no store',
+    catch(neem_store:match_reply("r(d(a), [[X]])", _, _), error(neem_store_error(U), _), true),
+    U = unexpected_reply(_).
+
 :- end_tests(neem_store).

@@ -17,9 +17,11 @@ test(situation_history, [nondet, setup(load_test_episode), cleanup(store_reset)]
     C3 == pick(apple), P3 == 'Midday', A3 == [pick(apple)].
 
 test(situation_history_json, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
-    situation_history_json(J), sub_string(J, _, _, _, "\"call\":\"pour(thermos,green_mug)\""),
-    atom_json_dict(J, D, []), D.situations = [S1, S2, _], S1.available == 0, S2.available == null,
-    D.sets = [["pick(apple)", "pour(thermos,green_mug)"]|_].
+    situation_history_json(J),
+    atom_json_dict(J, D, []),
+    D.rows = [101, 110, C1, "Morning", 0, _, _, C2, _, -1, _, _, C3, "Midday", 1],
+    nth0(C1, D.calls, "pour(thermos,green_mug)"), nth0(C2, D.calls, "idle"), nth0(C3, D.calls, "pick(apple)"),
+    D.sets = [Set0, [C3]], maplist([I, T]>>nth0(I, D.calls, T), Set0, ["pick(apple)", "pour(thermos,green_mug)"]).
 
 test(latest_situation, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
     latest_situation(B, C), B =:= 200, C == [pick(apple)],

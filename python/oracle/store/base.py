@@ -22,6 +22,7 @@ from typing import Any
 from bson.decimal128 import Decimal128
 
 from oracle.errors import StoreError
+from oracle.store.chunks import MatchChunk, chunks_from_solutions
 from oracle.store.ids import check_alias_free
 from oracle.store.meta import new_meta
 from oracle.store.validate import check_document, validate_group, validate_order, validate_select
@@ -425,6 +426,34 @@ class Store(ABC):
         if group is not None:
             kept = validate_group(patterns, kept, group, limit, checked)
         return self._match(neem_id, patterns, scope, limit, checked, kept, group, written_order)
+
+    def match_chunks(
+        self,
+        neem_id: str,
+        patterns: Sequence[TriplePattern],
+        select: Sequence[str],
+        *,
+        scope: Scope | None = None,
+        limit: int | None = None,
+        order: Sequence[tuple[str, bool]] = (),
+        group: str | None = None,
+        written_order: bool = False,
+        size: int = 5000,
+    ) -> Iterator[MatchChunk]:
+        """``match``'s solutions as chunks of up to ``size`` rows (store.chunks): each row the
+        positions of the values of ``select`` in that order, ``group`` (selected) last."""
+        validate_patterns(patterns)
+        kept = validate_select(patterns, select)
+        checked = validate_order(patterns, order)
+        if group is not None:
+            kept = validate_group(patterns, kept, group, limit, checked)
+        return self._match_chunks(neem_id, patterns, scope, limit, checked, kept, group, written_order, size)
+
+    def _match_chunks(self, neem_id: str, patterns: Sequence[TriplePattern], scope: Scope | None,
+                      limit: int | None, order: Sequence[tuple[str, bool]], kept: list[str], group: str | None,
+                      written_order: bool, size: int) -> Iterator[MatchChunk]:
+        solutions = self._match(neem_id, patterns, scope, limit, order, kept, group, written_order)
+        return chunks_from_solutions(solutions, kept, group is not None, size)
 
     @abstractmethod
     def _match(

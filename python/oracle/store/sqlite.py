@@ -72,6 +72,7 @@ from oracle.store.sql import (
     non_taxonomic,
     sql_value,
 )
+from oracle.store.chunks import MatchChunk, raw_chunks
 
 SCHEMA_VERSION = "4"
 #: Schemas this version reads: 3 is 4 without side tables (opened for writing, it becomes 4,
@@ -120,28 +121,13 @@ def _joined_in_order(patterns: Sequence[TriplePattern]) -> set[int]:
 
 def _grouped(rows: list[Any], names: list[str], out: Callable[[Any, int], Any]) -> Iterator[dict[str, Any]]:
     """Rows of (value, kind) column pairs grouped by all but the last pair, whose values are
-    collected in row order. Grouped here, not by SQL GROUP BY: SQLite's text and JSON forms
-    of a REAL round it to 15 digits, and the raw columns group exactly (a history read's 200,000
-    imagined plans become 10,000 groups, each key converted once)."""
-    width = 2 * (len(names) - 1)
-    groups: dict[tuple[Any, ...], list[tuple[Any, ...]]] = {}
-    for row in rows:
-        key = row[:width]
-        bucket = groups.get(key)
-        if bucket is None:
-            bucket = groups[key] = []
-        bucket.append(row[width:])
-    # Each distinct collected value converted once (the plans of 10,000 imaginings are ~300).
-    converted: dict[tuple[Any, ...], Any] = {}
-    for values in groups.values():
-        for pair in values:
-            if pair not in converted:
-                converted[pair] = out(pair[0], pair[1])
-    last = names[-1]
-    for key, values in groups.items():
-        solution = {name: out(key[2 * i], key[2 * i + 1]) for i, name in enumerate(names[:-1])}
-        solution[last] = [converted[pair] for pair in values]
-        yield solution
+    collected (store.chunks.raw_chunks: each distinct value converted once)."""
+    for chunk in raw_chunks(rows, list(range(len(names))), True, max(len(rows), 1), out):
+        values = chunk.values
+        for row in chunk.rows:
+            solution = {name: values[p] for name, p in zip(names[:-1], row)}
+            solution[names[-1]] = [values[p] for p in row[-1]]
+            yield solution
 
 
 def _table(neem_id: str, kind: str) -> str:
@@ -1060,6 +1046,64 @@ class SQLiteStore(Store):
         group: str | None = None,
         written_order: bool = False,
     ) -> Iterator[dict[str, Any]]:
+        names, rows = self._match_rows(neem_id, patterns, scope, limit, order, select, group, written_order)
+        out = self._out
+        if group is not None:
+            yield from _grouped(rows, names, out)
+            return
+        for row in rows:
+            yield {name: out(row[2 * i], row[2 * i + 1]) for i, name in enumerate(names)}
+
+    def _match_chunks(
+        self,
+        neem_id: str,
+        patterns: Sequence[TriplePattern],
+        scope: Scope | None,
+        limit: int | None,
+        order: Sequence[tuple[str, bool]],
+        kept: list[str],
+        group: str | None,
+        written_order: bool,
+        size: int,
+    ) -> Iterator[MatchChunk]:
+        # The raw (value, kind) columns are indexed as they come from SQL: each distinct term
+        # id becomes its IRI once per chunk, not once per cell.
+        names, rows = self._match_rows(neem_id, patterns, scope, limit, order, kept, group, written_order)
+        where = [names.index(name) for name in kept]
+        return raw_chunks(rows, where, group is not None, size, self._out, self._convert)
+
+    def _convert(self, kind: int, values: list[Any]) -> list[Any]:
+        """Raw values of one kind as plain values; term ids looked up at once, in id order (a
+        chunk brings up to ~20,000 new ones: one query instead of one each, or a scan of every
+        NEEM's terms)."""
+        import json
+
+        if kind in (K_DOUBLE, K_DECIMAL):
+            return [None if value is None else float(value) for value in values]
+        if kind != K_STR:
+            return [self._out(value, kind) for value in values]
+        tvals = self._tvals
+        missing = sorted(v for v in values if type(v) is int and v not in tvals)
+        for start in range(0, len(missing), 5000):
+            batch = json.dumps(missing[start:start + 5000])
+            for key, text in self._conn.execute("SELECT id, value FROM terms WHERE id IN (SELECT value FROM json_each(?))",
+                                                (batch,)):
+                tvals[key] = text
+        return [tvals[value] if value in tvals else self._out(value, kind) for value in values]
+
+    def _match_rows(
+        self,
+        neem_id: str,
+        patterns: Sequence[TriplePattern],
+        scope: Scope | None,
+        limit: int | None,
+        order: Sequence[tuple[str, bool]],
+        select: Sequence[str] | None,
+        group: str | None,
+        written_order: bool,
+    ) -> tuple[list[str], list[Any]]:
+        """The kept variables (``group`` last) and the rows of one SQL join, each row a
+        (value, kind) pair per variable."""
         self._require(neem_id)
         query = SqlCompiler(self, _table(neem_id, "triples"), scope, self._side(neem_id))
         if order:
@@ -1077,19 +1121,21 @@ class SQLiteStore(Store):
         if group is not None:
             names.append(group)
         if not names:
-            select = "1"
+            columns = "1"
         else:
-            select = ", ".join(f"{query.bound[n][0]}, {query.bound[n][1] or K_STR}" for n in names)
+            columns = ", ".join(f"{query.bound[n][0]}, {query.bound[n][1] or K_STR}" for n in names)
         keys = [f"{query.bound[name][0]} {'DESC' if descending else 'ASC'}" for name, descending in order]
         # In the written order the rows are sorted after the join ("+": SQLite would otherwise
         # scan the first table in id order to skip the sort, instead of using its index).
         mark = "+" if written_order and not order else ""
-        keys += [f"{mark}{alias}.id" for alias in query.aliases]
+        if group is None:  # groups come in no fixed order (Store.match): no sort of the rows
+            keys += [f"{mark}{alias}.id" for alias in query.aliases]
         source = query.ordered_from_clause(plan) if plan else query.from_clause()
-        sql = f"SELECT {select} FROM {source} WHERE {query.where()} ORDER BY {', '.join(keys)}"
+        sql = f"SELECT {columns} FROM {source} WHERE {query.where()}"
+        if keys:
+            sql += f" ORDER BY {', '.join(keys)}"
         if limit is not None:
             sql += f" LIMIT {int(limit)}"
-        out = self._out
         if mark:
             # The plan is the caller's: no automatic index (SQLite without statistics would build
             # one over the whole table for a lookup the (o, p) index answers).
@@ -1100,11 +1146,7 @@ class SQLiteStore(Store):
                 self._conn.execute("PRAGMA automatic_index = ON")
         else:
             rows = self._conn.execute(sql, query.params).fetchall()
-        if group is not None:
-            yield from _grouped(rows, names, out)
-            return
-        for row in rows:
-            yield {name: out(row[2 * i], row[2 * i + 1]) for i, name in enumerate(names)}
+        return names, rows
 
     def annotations(self, neem_id: str, s: str | None = None, p: str | None = None) -> Iterator[Annotation]:
         self._require(neem_id)
