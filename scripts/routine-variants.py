@@ -1,8 +1,11 @@
 """Replay a chains file with routine predictors of other constructor parameters, beside the n-gram.
 
-usage: python scripts/routine-variants.py CHAINS [--odb DIR --mapping YAML] [--baselines A,B] [NAME=JSON ...]
+usage: python scripts/routine-variants.py CHAINS [--odb DIR --mapping YAML] [--baselines A,B|all]
+       [--alternatives first|conditions] [NAME=JSON ...]
 Each NAME=JSON builds ``RoutineOracle(distances, **JSON)`` (e.g. 'fixed={"tuning": "fixed"}');
-without any, a fixed set of alternatives to the defaults is replayed. Prints Top-1/3/5 per
+without any, a fixed set of alternatives to the defaults is replayed (``--alternatives``: the
+first round's, or those tried on the condition-matched sets). ``--baselines all`` replays every
+baseline and adds a row with the best of them per k. Prints Top-1/3/5 per
 predictor and Top-1/Top-3 per kind of step: the exact 3-token context was already followed by
 the truth ("exact"), the action was done before but not after that context ("known"), the user's
 first use of the action ("first"), right after an idle gap ("after idle"). Development runs use
@@ -42,6 +45,19 @@ ALTERNATIVES = {
     "fixed": {"tuning": "fixed"},
     "mixture": {"tuning": "mixture"},
 }
+
+#: tried on the nine development sets with the condition-matched ones (docs/algorithm.md)
+CONDITIONS = {
+    "default": {},
+    "timed gate z 1.645": {"timed_gate": 1.645},
+    "timed gate z 0": {"timed_gate": 0.0},
+    "exclusion": {"exclusion": True},
+    "timed gate z 1.645 + exclusion": {"timed_gate": 1.645, "exclusion": True},
+    "timed + untimed variants": {"timed": [True, False]},
+    "orders 3,5,2": {"orders": [3, 5, 2]},
+    "discount variants": {"discounts": [False, True]},
+}
+ROUNDS = {"first": ALTERNATIVES, "conditions": CONDITIONS}
 
 
 class Routine:
@@ -97,16 +113,18 @@ def main() -> None:
     parser.add_argument("chains")
     parser.add_argument("--odb")
     parser.add_argument("--mapping")
-    parser.add_argument("--baselines", default="ngram", help="comma-separated baselines to replay beside")
+    parser.add_argument("--baselines", default="ngram", help="comma-separated baselines to replay beside, or all")
+    parser.add_argument("--alternatives", choices=sorted(ROUNDS), default="first")
     parser.add_argument("variants", nargs="*", metavar="NAME=JSON")
     args = parser.parse_intermixed_args()
     chosen = dict(v.split("=", 1) for v in args.variants)
-    variants = {name: json.loads(text) for name, text in chosen.items()} if chosen else ALTERNATIVES
+    variants = {name: json.loads(text) for name, text in chosen.items()} if chosen else ROUNDS[args.alternatives]
+    baselines = list(BASELINES) if args.baselines == "all" else [b.strip() for b in args.baselines.split(",") if b.strip()]
     ontology = build_ontology(args.odb, args.mapping, None)
     users = load_users(args.chains)
     kinds = Kinds()
-    methods = [*(Routine(ontology, name, params) for name, params in variants.items()), 
-               *(BASELINES[b.strip()]() for b in args.baselines.split(",") if b.strip()), kinds]
+    methods = [*(Routine(ontology, name, params) for name, params in variants.items()),
+               *(BASELINES[b]() for b in baselines), kinds]
     result = replay(ontology, users, methods, 0)
     names = [m.name for m in methods[:-1]]
     groups = ("all", "exact", "known", "first", "after idle")
@@ -122,6 +140,10 @@ def main() -> None:
     for name in names:
         print(f"| {name} | " + " | ".join(f"{rate(name, 'all', k):.3f}" for k in (1, 3, 5)) + " | "
               + " | ".join(f"{rate(name, g, 1):.3f}/{rate(name, g, 3):.3f}" for g in groups[1:]) + " |")
+    if args.baselines == "all":
+        best = {k: max(baselines, key=lambda b, k=k: rate(b, "all", k)) for k in (1, 3, 5)}
+        print("| best baseline | " + " | ".join(f"{rate(best[k], 'all', k):.3f} {best[k]}" for k in (1, 3, 5))
+              + " |" + " |" * (len(groups) - 1))
 
 
 if __name__ == "__main__":

@@ -72,13 +72,15 @@ class RoutineOracle(EstimatorParams):
     ``distances`` is the DistanceMatrix; ``task_factor``, ``object_factor``, ``penalty`` and
     ``time_of_day_penalty`` are the thesis's Table 4.2 values, used in the same roles;
     ``orders``, ``temperatures``, ``lowest_orders``, ``timed`` (part-of-day contexts from order
-    ``timed_from``), ``discounts`` and ``streams`` span the variants that ``tuning`` weighs
+    ``timed_from``; with ``timed_gate`` only where they differ beyond noise), ``discounts`` and
+    ``streams`` span the variants that ``tuning`` weighs; ``exclusion`` lets the lowest counted
+    level escape only to the options it did not count
     ("leader": the best so far that leads the first variant by ``switch_margin`` standard errors,
     "mixture": posterior weights, "fixed": the first variant).
     """
 
     _param_names = ("distances", "opening_tasks", "orders", "temperatures", "lowest_orders", "timed", "timed_from",
-                    "discounts", "streams", "context_depth", "switch_margin",
+                    "discounts", "streams", "timed_gate", "exclusion", "context_depth", "switch_margin",
                     "context_decay", "tuning", "task_factor", "object_factor", "penalty",
                     "time_of_day_penalty", "event_horizon_forward")
 
@@ -86,7 +88,8 @@ class RoutineOracle(EstimatorParams):
                  orders: tuple[int, ...] = (3, 5), temperatures: tuple[float, ...] = (0.5, 2.0),
                  lowest_orders: tuple[int, ...] = (0, 1), timed: tuple[bool, ...] = (True,),
                  timed_from: int = 0, discounts: tuple[bool, ...] = (False,),
-                 streams: tuple[str, ...] = ("idle",), context_depth: int = 3, context_decay: float = 0.5,
+                 streams: tuple[str, ...] = ("idle",), timed_gate: float | None = None, exclusion: bool = False,
+                 context_depth: int = 3, context_decay: float = 0.5,
                  tuning: str = "leader", switch_margin: float = 2.0, task_factor: float = THESIS_DEFAULTS.task_factor,
                  object_factor: float = THESIS_DEFAULTS.object_factor, penalty: float = THESIS_DEFAULTS.penalty,
                  time_of_day_penalty: float = THESIS_DEFAULTS.time_of_day_penalty,
@@ -100,6 +103,8 @@ class RoutineOracle(EstimatorParams):
         self.timed_from = timed_from
         self.discounts = discounts
         self.streams = streams
+        self.timed_gate = timed_gate
+        self.exclusion = exclusion
         self.context_depth = context_depth
         self.context_decay = context_decay
         self.tuning = tuning
@@ -130,6 +135,12 @@ class RoutineOracle(EstimatorParams):
             raise SettingsError(f"{name}: temperatures must be positive numbers, got {self.temperatures!r}")
         if not self.streams or any(s not in STREAMS for s in self.streams):
             raise SettingsError(f"{name}: streams must be among {', '.join(STREAMS)}, got {self.streams!r}")
+        if self.timed_gate is not None and (isinstance(self.timed_gate, bool) or not isinstance(self.timed_gate, (int, float))
+                                            or not math.isfinite(self.timed_gate)):
+            raise SettingsError(f"{name}: timed_gate must be a number (a standard normal quantile) or None, "
+                                f"got {self.timed_gate!r}")
+        if not isinstance(self.exclusion, bool):
+            raise SettingsError(f"{name}: exclusion must be True or False, got {self.exclusion!r}")
         if self.tuning not in TUNINGS:
             raise SettingsError(f"{name}: tuning must be one of {', '.join(TUNINGS)}, got {self.tuning!r}")
         if not isinstance(self.context_depth, int) or self.context_depth < 0:
@@ -262,7 +273,8 @@ class RoutineOracle(EstimatorParams):
                 base[stream, tau] = normalised(similarity_mass(cand, executed, context[stream], differs, tau,
                                                                self.time_of_day_penalty))
             blend = blends[stream, order, tau, lowest, timed, discount] = self._streams[stream].counts.blend(
-                ids, base[stream, tau], order, lowest, now_code if timed else -1, discount)
+                ids, base[stream, tau], order, lowest, now_code if timed else -1, discount, self.timed_gate,
+                self.exclusion)
             probabilities.append(blend.probabilities)
         return probabilities, [blends[v] for v in chosen], cand
 
