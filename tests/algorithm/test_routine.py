@@ -161,8 +161,9 @@ def test_vectorised_algorithm_2_equals_the_reference(a, b):
 
 def test_self_tuning_follows_the_variant_that_predicted_the_user_best():
     steps = synthetic_history(200, seed=6)
-    model = RoutineOracle(random_matrix(6), orders=(0, 3), temperatures=(1.0,), lowest_orders=(0,)).fit(steps)
-    assert model.variants_ == (("idle", 0, 1.0, 0, True, False), ("idle", 3, 1.0, 0, True, False))
+    model = RoutineOracle(random_matrix(6), orders=(0, 3), temperatures=(1.0,), lowest_orders=(0,),
+                          novelty=(False,)).fit(steps)
+    assert model.variants_ == (("idle", 0, 1.0, 0, True, False, False), ("idle", 3, 1.0, 0, True, False, False))
     assert model.weights_.hits[1] > model.weights_.hits[0]  # the routine is sequential
     assert model.weights_.weights("leader").tolist() == [0.0, 1.0]
     assert model.weights_.weights("leader", 2.0).tolist() == [0.0, 1.0]  # clearly better: it leads
@@ -322,7 +323,8 @@ def test_exclusion_gives_the_never_done_options_the_estimate_of_a_novel_action()
         counts.blend([1, 2], np.full(2, 0.5), 0).probabilities.tolist()
 
 
-@pytest.mark.parametrize("options", [{"timed_gate": 1.645}, {"exclusion": True}, {"timed_gate": 0.0, "exclusion": True}])
+@pytest.mark.parametrize("options", [{"timed_gate": 1.645}, {"exclusion": True}, {"timed_gate": 0.0, "exclusion": True},
+                                     {"novelty": (True,)}, {"novelty": (False, True), "timed_gate": 1.645}])
 def test_the_new_options_on_empty_and_tiny_histories(options):
     empty = RoutineOracle(kitchen(), **options).fit([]).rank(OFFERED)
     assert empty.options() == OFFERED
@@ -337,6 +339,7 @@ def test_the_new_options_on_empty_and_tiny_histories(options):
 
 
 def test_the_new_options_are_validated():
-    for bad in ({"timed_gate": True}, {"timed_gate": "high"}, {"timed_gate": math.inf}, {"exclusion": 1}):
+    for bad in ({"timed_gate": True}, {"timed_gate": "high"}, {"timed_gate": math.inf}, {"exclusion": 1},
+                {"novelty": True}, {"novelty": ()}, {"novelty": (1,)}):
         with pytest.raises(SettingsError):
             RoutineOracle(kitchen(), **bad).fit([])

@@ -133,7 +133,7 @@ class ContextCounts:
 
     def blend(self, candidates: Sequence[int], base: np.ndarray, max_order: int, min_order: int = 0,
               part: int = -1, discount: bool = False, gate: float | None = None,
-              exclusion: bool = False) -> Blend:
+              exclusion: bool = False, novelty: bool = False) -> Blend:
         """``P_n(c) = (n(ctx_n, c) + u_n P_{n-1}(c)) / (N(ctx_n) + u_n)`` from ``P_{-1} = base`` up to
         ``max_order``; an unseen context leaves the distribution as it is (PPM-C, no exclusion).
         With ``discount``: ``P_n(c) = (max(n(ctx_n, c) - D_n, 0) + D_n u_n P_{n-1}(c)) / N(ctx_n)``.
@@ -144,11 +144,25 @@ class ContextCounts:
         quantile) a part-of-day level is used only where its followers ``differs`` from those of
         the same context at the other parts of day. With ``exclusion`` the lowest level applied
         escapes only to the candidates it did not count (``_Level.apply``): the options never done
-        (at order 0) share the estimate ``u / (N + u)`` of a novel action by ``base``."""
+        (at order 0) share the estimate ``u / (N + u)`` of a novel action by ``base``. With
+        ``novelty`` the order-0 stage is two-staged: a novel action (one never done) comes next with
+        the PPM-C estimate ``q = u_0 / (N_0 + u_0)`` and is then chosen by ``base`` among the
+        never-done candidates; otherwise (``1 - q``) the order-0 level ranks the done candidates,
+        escaping to ``base`` restricted to them (below the order-1 contexts when the order-0
+        level is not used)."""
         probs = base.astype(np.float64, copy=True)
         order = np.full(len(candidates), -1, dtype=np.int64)
         count = np.zeros(len(candidates), dtype=np.int64)
         applied = False
+        novel_part: np.ndarray | None = None
+        done_share = 1.0
+        if novelty:
+            split = self._novelty(candidates, probs)
+            if split is not None:
+                probs, novel_part, done_share = split
+                if min_order > 0:
+                    probs = done_share * probs + novel_part
+                    novel_part = None
         for n in range(min_order, min(max_order, self.max_order) + 1):
             context = self.context(n)
             if context is None:
@@ -174,10 +188,38 @@ class ContextCounts:
                 refined = self.timed[0].apply((part,), candidates, probs, discount, lowest)
                 assert refined is not None
                 probs = refined[0]
+            else:
+                probs = plain[0]
+            if n == 0 and novel_part is not None:
+                probs = done_share * probs + novel_part
+                novel_part = None
+            if n == 0:
                 continue
-            probs = plain[0]
             if timed:
                 refined = self.timed[n].apply((part, *context), candidates, probs, discount)
                 if refined is not None:
                     probs = refined[0]
+        if novel_part is not None:   # the order-0 level was never reached (cannot happen: it has counts)
+            probs = done_share * probs + novel_part
         return Blend(probs, order, count)
+
+    def _novelty(self, candidates: Sequence[int], base: np.ndarray) -> tuple[np.ndarray, np.ndarray, float] | None:
+        """``base`` restricted to the done candidates, ``q * base`` restricted to the never-done ones,
+        and ``1 - q``; None unless both kinds are offered."""
+        done = self.levels[0].tables.get(())
+        if not done:
+            return None
+        mask = np.array([c in done for c in candidates], dtype=bool)
+        if mask.all() or not mask.any():
+            return None
+        q = len(done) / (self.levels[0].totals[()] + len(done))
+        return _within(base, mask), q * _within(base, ~mask), 1.0 - q
+
+
+def _within(probs: np.ndarray, mask: np.ndarray) -> np.ndarray:
+    """``probs`` restricted to ``mask`` and normalised (uniform there when it has no mass)."""
+    part = np.where(mask, probs, 0.0)
+    mass = float(part.sum())
+    if mass > 0:
+        return part / mass
+    return mask / float(mask.sum())
