@@ -19,6 +19,7 @@ import json
 import sys
 from collections import Counter
 from collections.abc import Sequence
+from typing import Any
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
@@ -30,7 +31,7 @@ from oracle.evaluation.replay import load_users, replay  # noqa: E402
 from oracle.ontology import OdbOntology, build_ontology  # noqa: E402
 
 #: the first round, against the default of that round (no novelty variants: pinned off in every row)
-FIRST_ROUND = {
+FIRST_ROUND: dict[str, dict[str, Any]] = {
     "default": {},
     "before: untimed, margin 0": {"timed": [False], "switch_margin": 0.0},
     "untimed": {"timed": [False]},
@@ -46,11 +47,11 @@ FIRST_ROUND = {
     "fixed": {"tuning": "fixed"},
     "mixture": {"tuning": "mixture"},
 }
-ALTERNATIVES = {name: {"novelty": [False], **params} for name, params in FIRST_ROUND.items()}
+ALTERNATIVES: dict[str, dict[str, Any]] = {name: {"novelty": [False], **params} for name, params in FIRST_ROUND.items()}
 
 #: tried on the nine development sets with the condition-matched ones (docs/algorithm.md); the
 #: first row is the default before them, each row names its parameters in full against today's defaults
-CONDITIONS = {
+CONDITIONS: dict[str, dict[str, Any]] = {
     "before: no novelty variants": {"novelty": [False]},
     "default: novelty variants": {},
     "novelty only": {"novelty": [True]},
@@ -64,19 +65,19 @@ CONDITIONS = {
     "orders 3,5,2": {"novelty": [False], "orders": [3, 5, 2]},
     "discount variants": {"novelty": [False], "discounts": [False, True]},
 }
-ROUNDS = {"first": ALTERNATIVES, "conditions": CONDITIONS}
+ROUNDS: dict[str, dict[str, dict[str, Any]]] = {"first": ALTERNATIVES, "conditions": CONDITIONS}
 
 
 class Routine:
     """A RoutineOracle of given parameters behind the replay's Method interface."""
 
-    def __init__(self, ontology: OdbOntology, name: str, params: dict) -> None:
+    def __init__(self, ontology: OdbOntology, name: str, params: dict[str, Any]) -> None:
         self.name, self.params = name, params
         self.distances, self.opening = ontology.distances(), opening_tasks(ontology)
         self.reset()
 
     def reset(self) -> None:
-        params = {k: tuple(v) if isinstance(v, list) else v for k, v in self.params.items()}
+        params: dict[str, Any] = {k: tuple(v) if isinstance(v, list) else v for k, v in self.params.items()}
         self.model = RoutineOracle(self.distances, opening_tasks=self.opening, **params).fit([])
 
     def rank(self, candidates: Sequence[Option], time_of_day: str | None = None) -> list[Option]:
@@ -148,10 +149,12 @@ def main() -> None:
         print(f"| {name} | " + " | ".join(f"{rate(name, 'all', k):.3f}" for k in (1, 3, 5)) + " | "
               + " | ".join(f"{rate(name, g, 1):.3f}/{rate(name, g, 3):.3f}" for g in groups[1:]) + " |")
     if args.baselines == "all":
-        best = {k: max(baselines, key=lambda b, k=k: rate(b, "all", k)) for k in (1, 3, 5)}
+        best = {k: max(baselines, key=lambda b: rate(b, "all", k)) for k in (1, 3, 5)}
         print("| best baseline | " + " | ".join(f"{rate(best[k], 'all', k):.3f} {best[k]}" for k in (1, 3, 5))
               + " |" + " |" * (len(groups) - 1))
 
+    if len(variants) < 2:
+        return
     first = names[0]
     print(f"\ndifference to {first!r}, points (100 x fraction; the adoption rule: none below -0.1):\n")
     print("| predictor | Top-1 | Top-3 | Top-5 |\n| --- | ---: | ---: | ---: |")
