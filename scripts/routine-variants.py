@@ -156,7 +156,7 @@ def main() -> None:
     if len(variants) < 2:
         return
     first = names[0]
-    print(f"\ndifference to {first!r}, points (100 x fraction; the adoption rule: none below -0.1):\n")
+    print(f"\ndifference to {first!r}, points (100 x fraction):\n")
     print("| predictor | Top-1 | Top-3 | Top-5 |\n| --- | ---: | ---: | ---: |")
     for name in names[1:len(variants)]:
         print(f"| {name} | " + " | ".join(f"{100 * (rate(name, 'all', k) - rate(first, 'all', k)):+.2f}"
