@@ -343,3 +343,25 @@ def test_the_new_options_are_validated():
                 {"novelty": True}, {"novelty": ()}, {"novelty": (1,)}):
         with pytest.raises(SettingsError):
             RoutineOracle(kitchen(), **bad).fit([])
+
+
+def test_novelty_gives_the_never_done_options_the_estimate_of_a_novel_action_and_keeps_q_among_the_rest():
+    counts = ContextCounts(1)
+    for token in (1, 1, 2):
+        counts.add(token)
+    base = np.array([0.45, 0.45, 0.05, 0.05])   # candidates 1, 2 done; 3, 4 never done
+    # order 0: q = u / (N + u) = 2 / 5; the done part escapes to base restricted to the done ones
+    novel = counts.blend([1, 2, 3, 4], base, 0, novelty=True).probabilities
+    assert novel == pytest.approx([0.6 * (2 + 2 * 0.5) / 5, 0.6 * (1 + 2 * 0.5) / 5, 0.4 * 0.5, 0.4 * 0.5])
+    # without the order-0 level the split sits under the first context (here unseen: it stays)
+    assert counts.blend([1, 2, 3, 4], base, 1, 1, novelty=True).probabilities == pytest.approx([0.3, 0.3, 0.2, 0.2])
+    # an offer of done options only, or of never-done options only, is blended as without novelty
+    for offer, b in (([1, 2], np.array([0.7, 0.3])), ([3, 4], np.array([0.7, 0.3]))):
+        assert counts.blend(offer, b, 1, novelty=True).probabilities.tolist() == counts.blend(offer, b, 1).probabilities.tolist()
+    assert ContextCounts(1).blend([1, 2], np.full(2, 0.5), 1, novelty=True).probabilities.tolist() == [0.5, 0.5]
+
+
+def test_the_default_has_novelty_variants_after_the_plain_ones():
+    model = RoutineOracle(kitchen()).fit([])
+    assert len(model.variants_) == 16 and model.variants_[0][-1] is False
+    assert [v[-1] for v in model.variants_[:2]] == [False, True]
