@@ -1,8 +1,11 @@
 """Replay a chains file with routine predictors of other constructor parameters, beside the n-gram.
 
-usage: python scripts/routine-variants.py CHAINS [--odb DIR --mapping YAML] [--baselines A,B] [NAME=JSON ...]
+usage: python scripts/routine-variants.py CHAINS [--odb DIR --mapping YAML] [--baselines A,B|all]
+       [--alternatives first|conditions] [NAME=JSON ...]
 Each NAME=JSON builds ``RoutineOracle(distances, **JSON)`` (e.g. 'fixed={"tuning": "fixed"}');
-without any, a fixed set of alternatives to the defaults is replayed. Prints Top-1/3/5 per
+without any, a fixed set of alternatives to the defaults is replayed (``--alternatives``: the
+first round's, or those tried on the condition-matched sets). ``--baselines all`` replays every
+baseline and adds a row with the best of them per k. Prints Top-1/3/5 per
 predictor and Top-1/Top-3 per kind of step: the exact 3-token context was already followed by
 the truth ("exact"), the action was done before but not after that context ("known"), the user's
 first use of the action ("first"), right after an idle gap ("after idle"). Development runs use
@@ -16,6 +19,7 @@ import json
 import sys
 from collections import Counter
 from collections.abc import Sequence
+from typing import Any
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
@@ -26,7 +30,8 @@ from oracle.evaluation.baselines import BASELINES  # noqa: E402
 from oracle.evaluation.replay import load_users, replay  # noqa: E402
 from oracle.ontology import OdbOntology, build_ontology  # noqa: E402
 
-ALTERNATIVES = {
+#: the first round, against the default of that round (no novelty variants: pinned off in every row)
+FIRST_ROUND: dict[str, dict[str, Any]] = {
     "default": {},
     "before: untimed, margin 0": {"timed": [False], "switch_margin": 0.0},
     "untimed": {"timed": [False]},
@@ -42,18 +47,37 @@ ALTERNATIVES = {
     "fixed": {"tuning": "fixed"},
     "mixture": {"tuning": "mixture"},
 }
+ALTERNATIVES: dict[str, dict[str, Any]] = {name: {"novelty": [False], **params} for name, params in FIRST_ROUND.items()}
+
+#: tried on the nine development sets with the condition-matched ones (docs/algorithm.md); the
+#: first row is the default before them, each row names its parameters in full against today's defaults
+CONDITIONS: dict[str, dict[str, Any]] = {
+    "before: no novelty variants": {"novelty": [False]},
+    "default: novelty variants": {},
+    "novelty only": {"novelty": [True]},
+    "novelty variants, margin 1": {"switch_margin": 1.0},
+    "novelty variants + timed gate z 1.645": {"timed_gate": 1.645},
+    "timed gate z 1.645": {"novelty": [False], "timed_gate": 1.645},
+    "timed gate z 0": {"novelty": [False], "timed_gate": 0.0},
+    "exclusion": {"novelty": [False], "exclusion": True},
+    "timed gate z 1.645 + exclusion": {"novelty": [False], "timed_gate": 1.645, "exclusion": True},
+    "timed + untimed variants": {"novelty": [False], "timed": [True, False]},
+    "orders 3,5,2": {"novelty": [False], "orders": [3, 5, 2]},
+    "discount variants": {"novelty": [False], "discounts": [False, True]},
+}
+ROUNDS: dict[str, dict[str, dict[str, Any]]] = {"first": ALTERNATIVES, "conditions": CONDITIONS}
 
 
 class Routine:
     """A RoutineOracle of given parameters behind the replay's Method interface."""
 
-    def __init__(self, ontology: OdbOntology, name: str, params: dict) -> None:
+    def __init__(self, ontology: OdbOntology, name: str, params: dict[str, Any]) -> None:
         self.name, self.params = name, params
         self.distances, self.opening = ontology.distances(), opening_tasks(ontology)
         self.reset()
 
     def reset(self) -> None:
-        params = {k: tuple(v) if isinstance(v, list) else v for k, v in self.params.items()}
+        params: dict[str, Any] = {k: tuple(v) if isinstance(v, list) else v for k, v in self.params.items()}
         self.model = RoutineOracle(self.distances, opening_tasks=self.opening, **params).fit([])
 
     def rank(self, candidates: Sequence[Option], time_of_day: str | None = None) -> list[Option]:
@@ -97,16 +121,18 @@ def main() -> None:
     parser.add_argument("chains")
     parser.add_argument("--odb")
     parser.add_argument("--mapping")
-    parser.add_argument("--baselines", default="ngram", help="comma-separated baselines to replay beside")
+    parser.add_argument("--baselines", default="ngram", help="comma-separated baselines to replay beside, or all")
+    parser.add_argument("--alternatives", choices=sorted(ROUNDS), default="first")
     parser.add_argument("variants", nargs="*", metavar="NAME=JSON")
     args = parser.parse_intermixed_args()
     chosen = dict(v.split("=", 1) for v in args.variants)
-    variants = {name: json.loads(text) for name, text in chosen.items()} if chosen else ALTERNATIVES
+    variants = {name: json.loads(text) for name, text in chosen.items()} if chosen else ROUNDS[args.alternatives]
+    baselines = list(BASELINES) if args.baselines == "all" else [b.strip() for b in args.baselines.split(",") if b.strip()]
     ontology = build_ontology(args.odb, args.mapping, None)
     users = load_users(args.chains)
     kinds = Kinds()
-    methods = [*(Routine(ontology, name, params) for name, params in variants.items()), 
-               *(BASELINES[b.strip()]() for b in args.baselines.split(",") if b.strip()), kinds]
+    methods = [*(Routine(ontology, name, params) for name, params in variants.items()),
+               *(BASELINES[b]() for b in baselines), kinds]
     result = replay(ontology, users, methods, 0)
     names = [m.name for m in methods[:-1]]
     groups = ("all", "exact", "known", "first", "after idle")
@@ -122,6 +148,19 @@ def main() -> None:
     for name in names:
         print(f"| {name} | " + " | ".join(f"{rate(name, 'all', k):.3f}" for k in (1, 3, 5)) + " | "
               + " | ".join(f"{rate(name, g, 1):.3f}/{rate(name, g, 3):.3f}" for g in groups[1:]) + " |")
+    if args.baselines == "all":
+        best = {k: max(baselines, key=lambda b: rate(b, "all", k)) for k in (1, 3, 5)}
+        print("| best baseline | " + " | ".join(f"{rate(best[k], 'all', k):.3f} {best[k]}" for k in (1, 3, 5))
+              + " |" + " |" * (len(groups) - 1))
+
+    if len(variants) < 2:
+        return
+    first = names[0]
+    print(f"\ndifference to {first!r}, points (100 x fraction):\n")
+    print("| predictor | Top-1 | Top-3 | Top-5 |\n| --- | ---: | ---: | ---: |")
+    for name in names[1:len(variants)]:
+        print(f"| {name} | " + " | ".join(f"{100 * (rate(name, 'all', k) - rate(first, 'all', k)):+.2f}"
+                                          for k in (1, 3, 5)) + " |")
 
 
 if __name__ == "__main__":

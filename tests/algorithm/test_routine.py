@@ -161,8 +161,9 @@ def test_vectorised_algorithm_2_equals_the_reference(a, b):
 
 def test_self_tuning_follows_the_variant_that_predicted_the_user_best():
     steps = synthetic_history(200, seed=6)
-    model = RoutineOracle(random_matrix(6), orders=(0, 3), temperatures=(1.0,), lowest_orders=(0,)).fit(steps)
-    assert model.variants_ == (("idle", 0, 1.0, 0, True, False), ("idle", 3, 1.0, 0, True, False))
+    model = RoutineOracle(random_matrix(6), orders=(0, 3), temperatures=(1.0,), lowest_orders=(0,),
+                          novelty=(False,)).fit(steps)
+    assert model.variants_ == (("idle", 0, 1.0, 0, True, False, False), ("idle", 3, 1.0, 0, True, False, False))
     assert model.weights_.hits[1] > model.weights_.hits[0]  # the routine is sequential
     assert model.weights_.weights("leader").tolist() == [0.0, 1.0]
     assert model.weights_.weights("leader", 2.0).tolist() == [0.0, 1.0]  # clearly better: it leads
@@ -274,3 +275,93 @@ def test_the_routine_predictor_counts_what_the_user_does_at_this_part_of_day():
     assert timed.rank((morning, evening), "Evening").options()[0] == evening
     assert timed.rank((morning, evening), "Morning").options()[0] == morning
     assert untimed.rank((morning, evening), "Evening").options()[0] == morning   # done twice as often
+
+
+def test_the_gate_tells_a_part_of_day_that_changes_the_followers_from_noise():
+    from oracle.algorithm.contexts import differs
+    assert differs({1: 8}, {1: 8, 2: 8}, 1.645)            # 8 x 1 here, 8 x 2 elsewhere: clearly different
+    assert not differs({1: 1}, {1: 1, 2: 1}, 1.645)        # once each: could be chance
+    assert not differs({1: 4, 2: 4}, {1: 8, 2: 8}, 0.0)    # the same shares here and elsewhere
+    assert not differs({1: 3, 2: 1}, {1: 3, 2: 1}, 0.0)    # never followed at another part of day
+    assert not differs({}, {1: 3, 2: 1}, 0.0) and not differs({1: 3}, {1: 5}, 0.0)   # nothing here / one follower
+    # a stricter gate needs more evidence for the same shares
+    assert differs({1: 5, 2: 1}, {1: 6, 2: 6}, 0.0) and not differs({1: 5, 2: 1}, {1: 6, 2: 6}, 3.0)
+
+
+def test_a_gated_part_of_day_refines_only_where_it_differs():
+    counts = ContextCounts(1, timed_from=0)
+    alike = ((7, 0), (1, 0), (7, 0), (2, 0), (7, 2), (1, 2), (7, 2), (2, 2)) * 3   # after 7: 1 or 2 at either part
+    for token, part in (*alike, (7, 0)):
+        counts.add(token, part)
+    base = np.full(2, 0.5)
+    untimed = counts.blend([1, 2], base, 1, 0).probabilities
+    assert counts.blend([1, 2], base, 1, 0, part=0, gate=1.645).probabilities.tolist() == untimed.tolist()
+    assert counts.blend([1, 2], base, 1, 0, part=0).probabilities.tolist() != untimed.tolist()  # ungated: refined
+    apart = ContextCounts(1, timed_from=1)
+    for token, part in (*((7, 0), (1, 0), (7, 2), (2, 2)) * 6, (7, 0)):   # after 7: 1 in the morning, 2 in the evening
+        apart.add(token, part)
+    gated = apart.blend([1, 2], base, 1, 1, part=0, gate=1.645).probabilities
+    assert gated.tolist() == apart.blend([1, 2], base, 1, 1, part=0).probabilities.tolist()
+    assert gated[0] > 0.8
+
+
+def test_exclusion_gives_the_never_done_options_the_estimate_of_a_novel_action():
+    counts = ContextCounts(1)
+    for token in (1, 1, 2):
+        counts.add(token)
+    base = np.array([0.45, 0.45, 0.05, 0.05])   # candidates 1, 2 and two never done, 3 and 4
+    plain = counts.blend([1, 2, 3, 4], base, 0).probabilities
+    excluded = counts.blend([1, 2, 3, 4], base, 0, exclusion=True).probabilities
+    # order 0: N = 3 actions, u = 2 distinct; the escape 2/5 goes to 3 and 4 alone, shared by base
+    assert excluded == pytest.approx([2 / 5, 1 / 5, 1 / 5, 1 / 5])
+    assert plain == pytest.approx([(2 + 2 * 0.45) / 5, (1 + 2 * 0.45) / 5, 2 * 0.05 / 5, 2 * 0.05 / 5])
+    # only the lowest level excludes: order 1 above it blends as before
+    above = counts.blend([1, 2, 3, 4], base, 1, exclusion=True).probabilities   # context (2,): never followed yet
+    assert above.tolist() == excluded.tolist()
+    # nothing left to exclude to: the base is kept
+    assert counts.blend([1, 2], np.full(2, 0.5), 0, exclusion=True).probabilities.tolist() == \
+        counts.blend([1, 2], np.full(2, 0.5), 0).probabilities.tolist()
+
+
+@pytest.mark.parametrize("options", [{"timed_gate": 1.645}, {"exclusion": True}, {"timed_gate": 0.0, "exclusion": True},
+                                     {"novelty": (True,)}, {"novelty": (False, True), "timed_gate": 1.645}])
+def test_the_new_options_on_empty_and_tiny_histories(options):
+    empty = RoutineOracle(kitchen(), **options).fit([]).rank(OFFERED)
+    assert empty.options() == OFFERED
+    assert [t.probability for t in empty] == pytest.approx([1 / len(OFFERED)] * len(OFFERED))
+    one = RoutineOracle(kitchen(), **options).fit([act(ROUTINE[1], OFFERED, "Morning")]).rank(OFFERED, "Morning")
+    assert one[0].option == ROUTINE[1] and sum(t.probability for t in one) == pytest.approx(1.0)
+    steps = [s for _ in range(5) for s in (idle(), *(act(o, OFFERED, "Morning") for o in ROUTINE))] + [idle()]
+    model = RoutineOracle(kitchen(), **options).fit(steps)
+    after = model.rank(OFFERED, "Morning")
+    assert after.options()[0] == ROUTINE[0] and after[0].context[-1] == "idle"   # the routine starts after a gap
+    assert RoutineOracle(kitchen(), **options).fit(steps[:-1]).partial_fit(steps[-1]).rank(OFFERED, "Morning") == after
+
+
+def test_the_new_options_are_validated():
+    for bad in ({"timed_gate": True}, {"timed_gate": "high"}, {"timed_gate": math.inf}, {"exclusion": 1},
+                {"novelty": True}, {"novelty": ()}, {"novelty": (1,)}):
+        with pytest.raises(SettingsError):
+            RoutineOracle(kitchen(), **bad).fit([])
+
+
+def test_novelty_gives_the_never_done_options_the_estimate_of_a_novel_action_and_keeps_q_among_the_rest():
+    counts = ContextCounts(1)
+    for token in (1, 1, 2):
+        counts.add(token)
+    base = np.array([0.45, 0.45, 0.05, 0.05])   # candidates 1, 2 done; 3, 4 never done
+    # order 0: q = u / (N + u) = 2 / 5; the done part escapes to base restricted to the done ones
+    novel = counts.blend([1, 2, 3, 4], base, 0, novelty=True).probabilities
+    assert novel == pytest.approx([0.6 * (2 + 2 * 0.5) / 5, 0.6 * (1 + 2 * 0.5) / 5, 0.4 * 0.5, 0.4 * 0.5])
+    # without the order-0 level the split sits under the first context (here unseen: it stays)
+    assert counts.blend([1, 2, 3, 4], base, 1, 1, novelty=True).probabilities == pytest.approx([0.3, 0.3, 0.2, 0.2])
+    # an offer of done options only, or of never-done options only, is blended as without novelty
+    for offer, b in (([1, 2], np.array([0.7, 0.3])), ([3, 4], np.array([0.7, 0.3]))):
+        assert counts.blend(offer, b, 1, novelty=True).probabilities.tolist() == counts.blend(offer, b, 1).probabilities.tolist()
+    assert ContextCounts(1).blend([1, 2], np.full(2, 0.5), 1, novelty=True).probabilities.tolist() == [0.5, 0.5]
+
+
+def test_the_default_has_novelty_variants_after_the_plain_ones():
+    model = RoutineOracle(kitchen()).fit([])
+    assert len(model.variants_) == 16 and model.variants_[0][-1] is False
+    assert [v[-1] for v in model.variants_[:2]] == [False, True]

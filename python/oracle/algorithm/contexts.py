@@ -9,6 +9,7 @@ distribution instead of the uniform one.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
@@ -51,17 +52,49 @@ class _Level:
         return self.once / (self.once + 2 * self.twice)
 
     def apply(self, context: tuple[int, ...], candidates: Sequence[int], probs: np.ndarray,
-              discount: bool) -> tuple[np.ndarray, np.ndarray] | None:
-        """The next blended distribution from ``probs`` and the candidates' counts, or None (unseen)."""
+              discount: bool, exclude: bool = False) -> tuple[np.ndarray, np.ndarray] | None:
+        """The next blended distribution from ``probs`` and the candidates' counts, or None (unseen).
+        With ``exclude`` the escape goes to the candidates this context was never followed by
+        (PPM's exclusion), in proportion to ``probs``, while there are any with mass."""
         followers = self.tables.get(context)
         if not followers:
             return None
         seen = np.array([followers.get(c, 0) for c in candidates], dtype=np.float64)
         kinds, total = len(followers), self.totals[context]
+        if exclude:
+            rest = np.where(seen > 0, 0.0, probs)
+            mass = float(rest.sum())
+            if mass > 0:
+                probs = rest / mass
         if discount:
             d = self.discount()
             return (np.maximum(seen - d, 0.0) + d * kinds * probs) / total, seen
         return (seen + kinds * probs) / (total + kinds), seen
+
+
+def differs(part: dict[int, int], overall: dict[int, int], critical: float) -> bool:
+    """Whether the followers of a context at one part of day differ from its followers at the other
+    parts beyond sampling noise: the G-test of independence of the 2 x k table (this part, the
+    others) x follower exceeds ``critical`` standard normal units, by the Wilson-Hilferty
+    approximation of the chi-square quantile with k - 1 degrees of freedom (k: the followers seen).
+    No evidence (the context was followed only at this part of day, or by one token) is no difference."""
+    n_part = sum(part.values())
+    n_all = sum(overall.values())
+    n_rest = n_all - n_part
+    k = len(overall)
+    if n_part == 0 or n_rest == 0 or k < 2:
+        return False
+    g = 0.0
+    for token, total in overall.items():
+        here = part.get(token, 0)
+        rest = total - here
+        if here:
+            g += here * math.log(here * n_all / (n_part * total))
+        if rest:
+            g += rest * math.log(rest * n_all / (n_rest * total))
+    df = k - 1
+    quantile = df * (1 - 2 / (9 * df) + critical * math.sqrt(2 / (9 * df))) ** 3
+    return 2 * g > quantile
 
 
 class ContextCounts:
@@ -99,38 +132,94 @@ class ContextCounts:
         return tuple(self.tokens[-n:]) if len(self.tokens) >= n else None
 
     def blend(self, candidates: Sequence[int], base: np.ndarray, max_order: int, min_order: int = 0,
-              part: int = -1, discount: bool = False) -> Blend:
+              part: int = -1, discount: bool = False, gate: float | None = None,
+              exclusion: bool = False, novelty: bool = False) -> Blend:
         """``P_n(c) = (n(ctx_n, c) + u_n P_{n-1}(c)) / (N(ctx_n) + u_n)`` from ``P_{-1} = base`` up to
         ``max_order``; an unseen context leaves the distribution as it is (PPM-C, no exclusion).
         With ``discount``: ``P_n(c) = (max(n(ctx_n, c) - D_n, 0) + D_n u_n P_{n-1}(c)) / N(ctx_n)``.
         When ``part`` is known (>= 0) and the counts are timed from order ``t``, the level
         ``(part,) + ctx_n`` follows each level ``ctx_n``, n >= max(t, 1), in the same way; at order 0
         (t = 0) it replaces the level ``()`` unless nothing was done at this part of day yet. The
-        explanation (``order``, ``count``) keeps the untimed levels."""
+        explanation (``order``, ``count``) keeps the untimed levels. With ``gate`` (a standard normal
+        quantile) a part-of-day level is used only where its followers ``differs`` from those of
+        the same context at the other parts of day. With ``exclusion`` the lowest level applied
+        escapes only to the candidates it did not count (``_Level.apply``): the options never done
+        (at order 0) share the estimate ``u / (N + u)`` of a novel action by ``base``. With
+        ``novelty`` the order-0 stage is two-staged: a novel action (one never done) comes next with
+        the PPM-C estimate ``q = u_0 / (N_0 + u_0)`` and is then chosen by ``base`` among the
+        never-done candidates; otherwise (``1 - q``) the order-0 level ranks the done candidates,
+        escaping to ``base`` restricted to them (below the order-1 contexts when the order-0
+        level is not used)."""
         probs = base.astype(np.float64, copy=True)
         order = np.full(len(candidates), -1, dtype=np.int64)
         count = np.zeros(len(candidates), dtype=np.int64)
+        applied = False
+        novel_part: np.ndarray | None = None
+        done_share = 1.0
+        if novelty:
+            split = self._novelty(candidates, probs)
+            if split is not None:
+                probs, novel_part, done_share = split
+                if min_order > 0:
+                    probs = done_share * probs + novel_part
+                    novel_part = None
         for n in range(min_order, min(max_order, self.max_order) + 1):
             context = self.context(n)
             if context is None:
                 break
-            timed = part >= 0 and 0 <= self.timed_from <= n
-            plain = self.levels[n].apply(context, candidates, probs, discount)
-            if plain is None:
+            followers = self.levels[n].tables.get(context)
+            if not followers:
                 continue
+            timed = part >= 0 and 0 <= self.timed_from <= n
+            if timed and gate is not None:
+                timed = differs(self.timed[n].tables.get((part, *context), {}), followers, gate)
+            # order 0 at a known part of day: the user's counts at this part of day replace the
+            # overall counts (Q already lends evidence across parts of day), unless there are none
+            replace_zero = n == 0 and timed and bool(self.timed[0].tables.get((part,)))
+            lowest = exclusion and not applied
+            applied = True
+            plain = self.levels[n].apply(context, candidates, probs, discount, lowest and not replace_zero)
+            assert plain is not None
             seen = plain[1]
             hit = seen > 0
             order[hit] = n
             count[hit] = seen[hit].astype(np.int64)
-            if n == 0 and timed:
-                # order 0 at a known part of day: the user's counts at this part of day replace
-                # the overall counts (Q already lends evidence across parts of day)
-                refined = self.timed[0].apply((part,), candidates, probs, discount)
-                probs = plain[0] if refined is None else refined[0]
+            if replace_zero:
+                refined = self.timed[0].apply((part,), candidates, probs, discount, lowest)
+                assert refined is not None
+                probs = refined[0]
+            else:
+                probs = plain[0]
+            if n == 0 and novel_part is not None:
+                probs = done_share * probs + novel_part
+                novel_part = None
+            if n == 0:
                 continue
-            probs = plain[0]
             if timed:
                 refined = self.timed[n].apply((part, *context), candidates, probs, discount)
                 if refined is not None:
                     probs = refined[0]
+        if novel_part is not None:   # the order-0 level was never reached (cannot happen: it has counts)
+            probs = done_share * probs + novel_part
         return Blend(probs, order, count)
+
+    def _novelty(self, candidates: Sequence[int], base: np.ndarray) -> tuple[np.ndarray, np.ndarray, float] | None:
+        """``base`` restricted to the done candidates, ``q * base`` restricted to the never-done ones,
+        and ``1 - q``; None unless both kinds are offered."""
+        done = self.levels[0].tables.get(())
+        if not done:
+            return None
+        mask = np.array([c in done for c in candidates], dtype=bool)
+        if mask.all() or not mask.any():
+            return None
+        q = len(done) / (self.levels[0].totals[()] + len(done))
+        return _within(base, mask), q * _within(base, ~mask), 1.0 - q
+
+
+def _within(probs: np.ndarray, mask: np.ndarray) -> np.ndarray:
+    """``probs`` restricted to ``mask`` and normalised (uniform there when it has no mass)."""
+    part = np.where(mask, probs, 0.0)
+    mass = float(part.sum())
+    if mass > 0:
+        return part / mass
+    return mask / float(mask.sum())

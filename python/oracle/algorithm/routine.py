@@ -1,7 +1,7 @@
 """The routine predictor (the default): exact-context counts of the user's own actions, backed off
 to ontology similarity of past situations, self-tuned on the user's own history.
 
-For each variant ``v = (stream, order, tau, n0, timed, discount)`` the probability of a candidate
+For each variant ``v = (stream, order, tau, n0, timed, discount, novelty)`` the probability of a candidate
 is PPM-C over the user's exact contexts (and the same contexts at this part of day) whose lowest
 level is the similarity distribution ``Q`` of ``kernel``; the predictor ranks with the variant
 that predicted the user's past steps best (``selftune``). docs/algorithm.md, "Routine predictor",
@@ -72,13 +72,16 @@ class RoutineOracle(EstimatorParams):
     ``distances`` is the DistanceMatrix; ``task_factor``, ``object_factor``, ``penalty`` and
     ``time_of_day_penalty`` are the thesis's Table 4.2 values, used in the same roles;
     ``orders``, ``temperatures``, ``lowest_orders``, ``timed`` (part-of-day contexts from order
-    ``timed_from``), ``discounts`` and ``streams`` span the variants that ``tuning`` weighs
+    ``timed_from``; with ``timed_gate`` only where they differ beyond noise), ``discounts`` and
+    ``streams`` span the variants that ``tuning`` weighs; ``exclusion`` lets the lowest counted
+    level escape only to the options it did not count; ``novelty`` (variants) gives the never-done
+    options together the PPM-C estimate of a novel action
     ("leader": the best so far that leads the first variant by ``switch_margin`` standard errors,
     "mixture": posterior weights, "fixed": the first variant).
     """
 
     _param_names = ("distances", "opening_tasks", "orders", "temperatures", "lowest_orders", "timed", "timed_from",
-                    "discounts", "streams", "context_depth", "switch_margin",
+                    "discounts", "streams", "timed_gate", "exclusion", "novelty", "context_depth", "switch_margin",
                     "context_decay", "tuning", "task_factor", "object_factor", "penalty",
                     "time_of_day_penalty", "event_horizon_forward")
 
@@ -86,7 +89,9 @@ class RoutineOracle(EstimatorParams):
                  orders: tuple[int, ...] = (3, 5), temperatures: tuple[float, ...] = (0.5, 2.0),
                  lowest_orders: tuple[int, ...] = (0, 1), timed: tuple[bool, ...] = (True,),
                  timed_from: int = 0, discounts: tuple[bool, ...] = (False,),
-                 streams: tuple[str, ...] = ("idle",), context_depth: int = 3, context_decay: float = 0.5,
+                 streams: tuple[str, ...] = ("idle",), timed_gate: float | None = None, exclusion: bool = False,
+                 novelty: tuple[bool, ...] = (False, True),
+                 context_depth: int = 3, context_decay: float = 0.5,
                  tuning: str = "leader", switch_margin: float = 2.0, task_factor: float = THESIS_DEFAULTS.task_factor,
                  object_factor: float = THESIS_DEFAULTS.object_factor, penalty: float = THESIS_DEFAULTS.penalty,
                  time_of_day_penalty: float = THESIS_DEFAULTS.time_of_day_penalty,
@@ -100,6 +105,9 @@ class RoutineOracle(EstimatorParams):
         self.timed_from = timed_from
         self.discounts = discounts
         self.streams = streams
+        self.timed_gate = timed_gate
+        self.exclusion = exclusion
+        self.novelty = novelty
         self.context_depth = context_depth
         self.context_decay = context_decay
         self.tuning = tuning
@@ -130,6 +138,14 @@ class RoutineOracle(EstimatorParams):
             raise SettingsError(f"{name}: temperatures must be positive numbers, got {self.temperatures!r}")
         if not self.streams or any(s not in STREAMS for s in self.streams):
             raise SettingsError(f"{name}: streams must be among {', '.join(STREAMS)}, got {self.streams!r}")
+        if self.timed_gate is not None and (isinstance(self.timed_gate, bool) or not isinstance(self.timed_gate, (int, float))
+                                            or not math.isfinite(self.timed_gate)):
+            raise SettingsError(f"{name}: timed_gate must be a number (a standard normal quantile) or None, "
+                                f"got {self.timed_gate!r}")
+        if not isinstance(self.exclusion, bool):
+            raise SettingsError(f"{name}: exclusion must be True or False, got {self.exclusion!r}")
+        if not isinstance(self.novelty, (tuple, list)) or not self.novelty or any(not isinstance(t, bool) for t in self.novelty):
+            raise SettingsError(f"{name}: novelty must be True or False values, got {self.novelty!r}")
         if self.tuning not in TUNINGS:
             raise SettingsError(f"{name}: tuning must be one of {', '.join(TUNINGS)}, got {self.tuning!r}")
         if not isinstance(self.context_depth, int) or self.context_depth < 0:
@@ -144,7 +160,7 @@ class RoutineOracle(EstimatorParams):
         self._validate()
         self._raw_params = tuple(self.get_params().values())
         self.variants_ = tuple(product(self.streams, self.orders, self.temperatures, self.lowest_orders,
-                                      self.timed, self.discounts))
+                                      self.timed, self.discounts, self.novelty))
         self.weights_ = VariantWeights(len(self.variants_))
         self._values = np.asarray(self.distances.values, dtype=np.float64)
         self.options_: list[Option] = []
@@ -255,14 +271,15 @@ class RoutineOracle(EstimatorParams):
         context = {name: context_distance(table, s.recent(), s.before.view, self.penalty, self.context_decay)
                    for name, s in self._streams.items() if any(v[0] == name for v in chosen)}
         base: dict[tuple[str, float], np.ndarray] = {}
-        blends: dict[tuple[str, int, float, int, bool, bool], Blend] = {}
+        blends: dict[tuple[str, int, float, int, bool, bool, bool], Blend] = {}
         probabilities = []
-        for stream, order, tau, lowest, timed, discount in chosen:
+        for stream, order, tau, lowest, timed, discount, novel in chosen:
             if (stream, tau) not in base:
                 base[stream, tau] = normalised(similarity_mass(cand, executed, context[stream], differs, tau,
                                                                self.time_of_day_penalty))
-            blend = blends[stream, order, tau, lowest, timed, discount] = self._streams[stream].counts.blend(
-                ids, base[stream, tau], order, lowest, now_code if timed else -1, discount)
+            blend = blends[stream, order, tau, lowest, timed, discount, novel] = self._streams[stream].counts.blend(
+                ids, base[stream, tau], order, lowest, now_code if timed else -1, discount, self.timed_gate,
+                self.exclusion, novel)
             probabilities.append(blend.probabilities)
         return probabilities, [blends[v] for v in chosen], cand
 
