@@ -141,6 +141,19 @@ _CODEC = DEFAULT_CODEC_OPTIONS.with_options(datetime_conversion=DatetimeConversi
 
 #: The taxonomic properties get fixed term ids so SQL (and partial indexes) can name them.
 _RESERVED_TERMS = ((1, RDF_TYPE), (2, SUBCLASS_OF), (3, SUBPROPERTY_OF))
+#: The store's own tables, made (or upgraded from schema 3) in one transaction when a writer opens
+#: the file: a process killed meanwhile leaves no half-made store that readers would refuse.
+_SCHEMA_STATEMENTS = (
+    "CREATE TABLE IF NOT EXISTS store_info(key TEXT PRIMARY KEY, value TEXT)",
+    "CREATE TABLE IF NOT EXISTS neems(id TEXT PRIMARY KEY, meta BLOB NOT NULL)",
+    "CREATE TABLE IF NOT EXISTS closure(cid INTEGER PRIMARY KEY, key BLOB UNIQUE NOT NULL)",
+    "CREATE TABLE IF NOT EXISTS closure_member(cid INTEGER NOT NULL, pos INTEGER NOT NULL, value, PRIMARY KEY(cid, pos)) WITHOUT ROWID",
+    "CREATE INDEX IF NOT EXISTS closure_member_value ON closure_member(value, cid)",
+    "CREATE TABLE IF NOT EXISTS terms(id INTEGER PRIMARY KEY, value TEXT NOT NULL UNIQUE)",
+    "CREATE TABLE IF NOT EXISTS side_tables(neem TEXT PRIMARY KEY, p INTEGER NOT NULL, closures TEXT NOT NULL)",
+    "INSERT OR IGNORE INTO store_info VALUES ('schema', '4')",
+    "UPDATE store_info SET value='4' WHERE key='schema' AND value='3'",
+)
 _HIERARCHY_SQL = "(2, 3)"
 # Partial indexes: the o* index only holds taxonomic rows and the p* index only the others,
 # so each row updates three indexes; queries repeat the WHERE term so SQLite may use them.
@@ -306,6 +319,9 @@ class SQLiteStore(Store):
             reason = "not a NEEM store" if "no such table" in str(error) or "not a database" in str(error) else str(error)
             raise StoreError(f"{self.path}: cannot open the NEEM store ({reason})") from None
         version = None if row is None else row[0]
+        if row is None:  # tables without the schema row: an older version was stopped making the file
+            raise StoreError(f"{self.path}: the store was never completed (its maker was stopped); a writing command"
+                             " such as import completes it")  # fmt: skip
         if version not in READS_SCHEMAS:
             raise StoreError(f"{self.path}: store schema {version}, this version reads {SCHEMA_VERSION}")
         self._has_sides = version == SCHEMA_VERSION
@@ -348,22 +364,19 @@ class SQLiteStore(Store):
             # Fewer, larger checkpoints: each one fsyncs, commits themselves do not.
             conn.execute("PRAGMA wal_autocheckpoint=8192")
             conn.execute("PRAGMA cache_size=-65536")
-            conn.executescript(
-                """
-                CREATE TABLE IF NOT EXISTS store_info(key TEXT PRIMARY KEY, value TEXT);
-                CREATE TABLE IF NOT EXISTS neems(id TEXT PRIMARY KEY, meta BLOB NOT NULL);
-                CREATE TABLE IF NOT EXISTS closure(cid INTEGER PRIMARY KEY, key BLOB UNIQUE NOT NULL);
-                CREATE TABLE IF NOT EXISTS closure_member(cid INTEGER NOT NULL, pos INTEGER NOT NULL, value,
-                    PRIMARY KEY(cid, pos)) WITHOUT ROWID;
-                CREATE INDEX IF NOT EXISTS closure_member_value ON closure_member(value, cid);
-                CREATE TABLE IF NOT EXISTS terms(id INTEGER PRIMARY KEY, value TEXT NOT NULL UNIQUE);
-                CREATE TABLE IF NOT EXISTS side_tables(neem TEXT PRIMARY KEY, p INTEGER NOT NULL, closures TEXT NOT NULL);
-                INSERT OR IGNORE INTO store_info VALUES ('schema', '4');
-                UPDATE store_info SET value='4' WHERE key='schema' AND value='3';
-                """
-            )
-            conn.executemany("INSERT OR IGNORE INTO terms VALUES (?, ?)", _RESERVED_TERMS)
-            version = conn.execute("SELECT value FROM store_info WHERE key='schema'").fetchone()[0]
+            # One transaction: each statement would otherwise commit on its own, and a kill in
+            # between left tables without the schema row (every reader then refused the file).
+            conn.execute("BEGIN IMMEDIATE")
+            try:
+                for statement in _SCHEMA_STATEMENTS:
+                    conn.execute(statement)
+                conn.executemany("INSERT OR IGNORE INTO terms VALUES (?, ?)", _RESERVED_TERMS)
+                version = conn.execute("SELECT value FROM store_info WHERE key='schema'").fetchone()[0]
+                conn.execute("COMMIT")
+            except BaseException:
+                if conn.in_transaction:
+                    conn.execute("ROLLBACK")
+                raise
         except (OSError, sqlite3.Error) as error:
             raise StoreError(f"{self.path}: cannot open the NEEM store ({error})") from None
         if version != SCHEMA_VERSION:
