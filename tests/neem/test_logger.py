@@ -229,6 +229,23 @@ def test_resumed_logger_keeps_time_order_and_idle(logger, store, onto):
     assert resumed.action("place(green_mug)", T0 + timedelta(seconds=60)).idle is not None
 
 
+def test_writing_a_ranking_back_does_not_read_the_clock_but_the_next_action_does(logger, store, onto, monkeypatch):
+    # rank writes its ranking into a NEEM of any length: reading every action's interval to
+    # resume the clock (needed only to check the time of the next timed entry) is left to then.
+    logger.action("pick(green_mug)", T0, T0 + timedelta(seconds=5))
+    logger.flush()
+    reads = []
+    real = NeemLogger._resume_clock
+    monkeypatch.setattr(NeemLogger, "_resume_clock", lambda self: reads.append(1) or real(self))
+    resumed = NeemLogger(store, onto, logger.neem_id)
+    resumed.preference([("place(green_mug)", 0.5)], T0 - timedelta(seconds=30))  # a decision before the last action
+    resumed.flush()
+    assert reads == []
+    with pytest.raises(LoggingError, match="time goes backwards"):
+        resumed.action("place(green_mug)", T0 - timedelta(seconds=2))
+    assert reads == [1]
+
+
 def test_overlapping_actions_are_logged_as_knowrob_events_may_overlap(logger, store, onto):
     """Two sensors firing at once: the second starts before the first ends. Starts stay ordered,
     and the idle gap runs from the latest end, also after reopening the NEEM."""

@@ -191,7 +191,11 @@ class NeemLogger:
         self._counter = int.from_bytes(os.urandom(3), "big") >> 1  # 8M ids before it wraps
         #: Latest begin and latest end of the executed actions: actions may overlap, as events
         #: do in KnowRob (two sensors firing at once), but none may start before the one before.
-        self._last_begin, self._last_end = self._resume_clock()
+        #: Read from the NEEM when something timed is first logged (``_check_time``): writing
+        #: a ranking back (``preference``, stamped with its decision's time) needs neither.
+        self._last_begin: Instant | None = None
+        self._last_end: Instant | None = None
+        self._clock_resumed = False
         #: What ``neems`` lists, as committed; moved on with every commit (oracle.neem.query).
         known = summarize_neem(store, neem_id, info)
         self._summary = {"actions": known.actions, "begin": known.begin, "end": known.end}
@@ -430,6 +434,9 @@ class NeemLogger:
 
     # -- checks -----------------------------------------------------------------------------
     def _check_time(self, at: Instant, what: str) -> None:
+        if not self._clock_resumed:
+            self._last_begin, self._last_end = self._resume_clock()
+            self._clock_resumed = True
         if self._last_begin is not None and at.seconds < self._last_begin.seconds:
             raise LoggingError(
                 f"time goes backwards: {what} at {at.seconds:.3f} is before the start of the last action"
