@@ -28,6 +28,11 @@ class Blend:
     count: np.ndarray      # how often, at that order
 
 
+#: Per (level, context): the candidates' follower counts, the distinct followers and the total,
+#: or None for a context never followed (``_Level.apply``).
+Memo = dict[tuple[int, tuple[int, ...]], "tuple[np.ndarray, int, int] | None"]
+
+
 @dataclass
 class _Level:
     """Follower counts of the contexts of one order, with its count-of-counts (for the discount)."""
@@ -52,15 +57,25 @@ class _Level:
         return self.once / (self.once + 2 * self.twice)
 
     def apply(self, context: tuple[int, ...], candidates: Sequence[int], probs: np.ndarray,
-              discount: bool, exclude: bool = False) -> tuple[np.ndarray, np.ndarray] | None:
+              discount: bool, exclude: bool = False, memo: Memo | None = None) -> tuple[np.ndarray, np.ndarray] | None:
         """The next blended distribution from ``probs`` and the candidates' counts, or None (unseen).
         With ``exclude`` the escape goes to the candidates this context was never followed by
-        (PPM's exclusion), in proportion to ``probs``, while there are any with mass."""
-        followers = self.tables.get(context)
-        if not followers:
+        (PPM's exclusion), in proportion to ``probs``, while there are any with mass. ``memo``
+        keeps the candidates' counts of a context for the other variants ranking the same
+        candidates against the same counts (the counts must not change meanwhile)."""
+        key = (id(self), context)
+        if memo is not None and key in memo:
+            counted = memo[key]
+        else:
+            followers = self.tables.get(context)
+            counted = None if not followers else (
+                np.array([followers.get(c, 0) for c in candidates], dtype=np.float64), len(followers),
+                self.totals[context])
+            if memo is not None:
+                memo[key] = counted
+        if counted is None:
             return None
-        seen = np.array([followers.get(c, 0) for c in candidates], dtype=np.float64)
-        kinds, total = len(followers), self.totals[context]
+        seen, kinds, total = counted
         if exclude:
             rest = np.where(seen > 0, 0.0, probs)
             mass = float(rest.sum())
@@ -133,7 +148,7 @@ class ContextCounts:
 
     def blend(self, candidates: Sequence[int], base: np.ndarray, max_order: int, min_order: int = 0,
               part: int = -1, discount: bool = False, gate: float | None = None,
-              exclusion: bool = False, novelty: bool = False) -> Blend:
+              exclusion: bool = False, novelty: bool = False, memo: Memo | None = None) -> Blend:
         """``P_n(c) = (n(ctx_n, c) + u_n P_{n-1}(c)) / (N(ctx_n) + u_n)`` from ``P_{-1} = base`` up to
         ``max_order``; an unseen context leaves the distribution as it is (PPM-C, no exclusion).
         With ``discount``: ``P_n(c) = (max(n(ctx_n, c) - D_n, 0) + D_n u_n P_{n-1}(c)) / N(ctx_n)``.
@@ -178,14 +193,14 @@ class ContextCounts:
             replace_zero = n == 0 and timed and bool(self.timed[0].tables.get((part,)))
             lowest = exclusion and not applied
             applied = True
-            plain = self.levels[n].apply(context, candidates, probs, discount, lowest and not replace_zero)
+            plain = self.levels[n].apply(context, candidates, probs, discount, lowest and not replace_zero, memo)
             assert plain is not None
             seen = plain[1]
             hit = seen > 0
             order[hit] = n
             count[hit] = seen[hit].astype(np.int64)
             if replace_zero:
-                refined = self.timed[0].apply((part,), candidates, probs, discount, lowest)
+                refined = self.timed[0].apply((part,), candidates, probs, discount, lowest, memo)
                 assert refined is not None
                 probs = refined[0]
             else:
@@ -196,7 +211,7 @@ class ContextCounts:
             if n == 0:
                 continue
             if timed:
-                refined = self.timed[n].apply((part, *context), candidates, probs, discount)
+                refined = self.timed[n].apply((part, *context), candidates, probs, discount, memo=memo)
                 if refined is not None:
                     probs = refined[0]
         if novel_part is not None:   # the order-0 level was never reached (cannot happen: it has counts)

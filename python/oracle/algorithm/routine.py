@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from oracle.algorithm.contexts import IDLE, UNKNOWN, Blend, ContextCounts
+from oracle.algorithm.contexts import IDLE, UNKNOWN, Blend, ContextCounts, Memo
 from oracle.algorithm.params import THESIS_DEFAULTS, EstimatorParams
 from oracle.algorithm.kernel import START, Rows, context_distance, normalised, similarity_mass
 from oracle.algorithm.reference import offered_options
@@ -273,13 +273,14 @@ class RoutineOracle(EstimatorParams):
         base: dict[tuple[str, float], np.ndarray] = {}
         blends: dict[tuple[str, int, float, int, bool, bool, bool], Blend] = {}
         probabilities = []
+        memo: Memo = {}  # the counts' look-ups, shared by the variants (same candidates, same counts)
         for stream, order, tau, lowest, timed, discount, novel in chosen:
             if (stream, tau) not in base:
                 base[stream, tau] = normalised(similarity_mass(cand, executed, context[stream], differs, tau,
                                                                self.time_of_day_penalty))
             blend = blends[stream, order, tau, lowest, timed, discount, novel] = self._streams[stream].counts.blend(
                 ids, base[stream, tau], order, lowest, now_code if timed else -1, discount, self.timed_gate,
-                self.exclusion, novel)
+                self.exclusion, novel, memo)
             probabilities.append(blend.probabilities)
         return probabilities, [blends[v] for v in chosen], cand
 
