@@ -97,7 +97,7 @@ batch_goal(GoalText, Status) :-
 goal_status(Goal, GoalText, Status) :-
     catch(( user:Goal
           ->  Status = 0
-          ;   format(user_error, "ERROR: -g ~w: false~n", [GoalText]),
+          ;   print_message(error, format("-g ~w: false", [GoalText])),
               Status = 1
           ),
           Error,
