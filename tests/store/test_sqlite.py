@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import stat
+from pathlib import Path
 
 import pytest
 
@@ -141,3 +142,29 @@ def test_the_store_schema_is_made_whole_or_not_at_all(tmp_path, monkeypatch):
     SQLiteStore(path).close()
     with SQLiteStore(path, read_only=True) as store:
         assert store.neems() == []
+
+
+def _open_at_once(path: str, barrier, results) -> None:  # noqa: ANN001 - multiprocessing objects
+    barrier.wait()
+    try:
+        SQLiteStore(Path(path)).close()
+        results.put("ok")
+    except StoreError as error:
+        results.put(str(error))
+
+
+def test_processes_making_one_new_store_at_once_all_open_it(tmp_path):
+    # SQLite refuses the switch to WAL at once ("database is locked", no busy wait) while another
+    # process switches the same new file: two imports into one new store used to fail now and then.
+    import multiprocessing
+
+    context = multiprocessing.get_context("fork")
+    for trial in range(20):
+        path = str(tmp_path / f"s{trial}.sqlite")
+        barrier, results = context.Barrier(3), context.Queue()
+        processes = [context.Process(target=_open_at_once, args=(path, barrier, results)) for _ in range(3)]
+        for process in processes:
+            process.start()
+        for process in processes:
+            process.join(timeout=60)
+        assert [results.get(timeout=5) for _ in processes] == ["ok"] * 3

@@ -179,6 +179,24 @@ _TRIPLE_COLUMNS = (
 _INSERT_COLUMNS = "id, oid, s, p, o, ok, pstar, ostar, graph, since, until, sk"
 
 
+#: How long a writer opening the store keeps asking for WAL mode while others open it too.
+WAL_SWITCH_WAIT_S = 10.0
+
+
+def _use_wal(conn: sqlite3.Connection) -> None:
+    """Put the file in WAL mode. SQLite refuses the switch at once ("database is locked", no busy
+    wait) while another process opening the same new file switches it: ask again, briefly."""
+    deadline = time.monotonic() + WAL_SWITCH_WAIT_S
+    while True:
+        try:
+            conn.execute("PRAGMA journal_mode=WAL")
+            return
+        except sqlite3.OperationalError as error:
+            if "locked" not in str(error) and "busy" not in str(error) or time.monotonic() > deadline:
+                raise
+            time.sleep(0.005 + 0.02 * int.from_bytes(os.urandom(1), "big") / 255)
+
+
 def _indexes(neem_id: str, taken: Collection[str] = (), side: bool = False) -> list[tuple[str, str]]:
     """(name, CREATE INDEX statement) of every index of a NEEM's tables, each name made
     unique against ``taken`` (the store's index names: a renamed NEEM keeps its old ones)."""
@@ -353,9 +371,9 @@ class SQLiteStore(Store):
             conn = sqlite3.connect(self.path, isolation_level=None, check_same_thread=False)
             if existed and self.path.stat().st_size > 0:
                 self._check_integrity(conn)
-            conn.execute("PRAGMA journal_mode=WAL")
-            conn.execute("PRAGMA synchronous=NORMAL")
             conn.execute("PRAGMA busy_timeout=10000")  # concurrent writers wait instead of failing
+            _use_wal(conn)
+            conn.execute("PRAGMA synchronous=NORMAL")
             # temp_store stays FILE: with MEMORY, dropping a NEEM (import --replace) kept its
             # statement journal in memory, +270 MiB at 50,000 actions; sorts are as fast.
             # A dropped or wiped NEEM's pages are overwritten, not just freed: its documents
