@@ -365,3 +365,26 @@ def test_the_default_has_novelty_variants_after_the_plain_ones():
     model = RoutineOracle(kitchen()).fit([])
     assert len(model.variants_) == 16 and model.variants_[0][-1] is False
     assert [v[-1] for v in model.variants_[:2]] == [False, True]
+
+
+@settings(max_examples=60, deadline=None)
+@given(tokens=st.lists(st.tuples(st.sampled_from([-1, 0, 1, 2, 3, 4]), st.integers(-1, 3)), max_size=60),
+       candidates=st.lists(st.integers(-3, 6), min_size=1, max_size=6, unique=True),
+       lowest=st.sampled_from([0, 1]), timed_from=st.sampled_from([-1, 0, 1]), part=st.integers(-1, 3),
+       discount=st.booleans(), exclusion=st.booleans(), novelty=st.booleans(),
+       gate=st.sampled_from([None, 1.0]))
+def test_blends_of_several_maximum_orders_equal_the_blend_of_each(tokens, candidates, lowest, timed_from, part,
+                                                                  discount, exclusion, novelty, gate):
+    # The self-tuning's variants that differ in their maximum order only share one blend pass:
+    # each order's result must be exactly the blend computed alone.
+    counts = ContextCounts(5, timed_from)
+    for token, token_part in tokens:
+        counts.add(token, token_part)
+    base = np.random.default_rng(len(tokens)).random(len(candidates)) + 0.01
+    base /= base.sum()
+    stops = (3, 5, 1, 7)
+    together = counts.blends(candidates, base, stops, lowest, part, discount, gate, exclusion, novelty, {})
+    for stop in stops:
+        alone = counts.blend(candidates, base, stop, lowest, part, discount, gate, exclusion, novelty)
+        assert np.array_equal(together[stop].probabilities, alone.probabilities)
+        assert np.array_equal(together[stop].order, alone.order) and np.array_equal(together[stop].count, alone.count)

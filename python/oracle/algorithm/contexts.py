@@ -149,6 +149,13 @@ class ContextCounts:
     def blend(self, candidates: Sequence[int], base: np.ndarray, max_order: int, min_order: int = 0,
               part: int = -1, discount: bool = False, gate: float | None = None,
               exclusion: bool = False, novelty: bool = False, memo: Memo | None = None) -> Blend:
+        """One variant's blend: ``blends`` with the one stop ``max_order`` (documented there)."""
+        return self.blends(candidates, base, (max_order,), min_order, part, discount, gate, exclusion, novelty,
+                           memo)[max_order]
+
+    def blends(self, candidates: Sequence[int], base: np.ndarray, max_orders: Sequence[int], min_order: int = 0,
+               part: int = -1, discount: bool = False, gate: float | None = None,
+               exclusion: bool = False, novelty: bool = False, memo: Memo | None = None) -> dict[int, Blend]:
         """``P_n(c) = (n(ctx_n, c) + u_n P_{n-1}(c)) / (N(ctx_n) + u_n)`` from ``P_{-1} = base`` up to
         ``max_order``; an unseen context leaves the distribution as it is (PPM-C, no exclusion).
         With ``discount``: ``P_n(c) = (max(n(ctx_n, c) - D_n, 0) + D_n u_n P_{n-1}(c)) / N(ctx_n)``.
@@ -164,7 +171,9 @@ class ContextCounts:
         the PPM-C estimate ``q = u_0 / (N_0 + u_0)`` and is then chosen by ``base`` among the
         never-done candidates; otherwise (``1 - q``) the order-0 level ranks the done candidates,
         escaping to ``base`` restricted to them (below the order-1 contexts when the order-0
-        level is not used)."""
+        level is not used). The blend of each of ``max_orders`` (variants that differ in their
+        maximum order only), computed once up to the highest: a lower one is the state the
+        higher one's blend passes through."""
         probs = base.astype(np.float64, copy=True)
         order = np.full(len(candidates), -1, dtype=np.int64)
         count = np.zeros(len(candidates), dtype=np.int64)
@@ -178,7 +187,16 @@ class ContextCounts:
                 if min_order > 0:
                     probs = done_share * probs + novel_part
                     novel_part = None
-        for n in range(min_order, min(max_order, self.max_order) + 1):
+        done: dict[int, Blend] = {}
+
+        def reached(below: float) -> None:  # the blends of every maximum order below ``below``
+            for stop in max_orders:
+                if stop < below and stop not in done:
+                    final = probs if novel_part is None else done_share * probs + novel_part
+                    done[stop] = Blend(final, order.copy(), count.copy())
+
+        for n in range(min_order, min(max(max_orders), self.max_order) + 1):
+            reached(n)
             context = self.context(n)
             if context is None:
                 break
@@ -214,9 +232,8 @@ class ContextCounts:
                 refined = self.timed[n].apply((part, *context), candidates, probs, discount, memo=memo)
                 if refined is not None:
                     probs = refined[0]
-        if novel_part is not None:   # the order-0 level was never reached (cannot happen: it has counts)
-            probs = done_share * probs + novel_part
-        return Blend(probs, order, count)
+        reached(math.inf)  # the order-0 level never reached leaves the novelty split as it is
+        return done
 
     def _novelty(self, candidates: Sequence[int], base: np.ndarray) -> tuple[np.ndarray, np.ndarray, float] | None:
         """``base`` restricted to the done candidates, ``q * base`` restricted to the never-done ones,

@@ -274,14 +274,20 @@ class RoutineOracle(EstimatorParams):
         blends: dict[tuple[str, int, float, int, bool, bool, bool], Blend] = {}
         probabilities = []
         memo: Memo = {}  # the counts' look-ups, shared by the variants (same candidates, same counts)
-        for stream, order, tau, lowest, timed, discount, novel in chosen:
+        orders: dict[tuple[str, float, int, bool, bool, bool], list[int]] = {}
+        for stream, order, tau, lowest, timed, discount, novel in chosen:  # twins but for the order: one blend
+            orders.setdefault((stream, tau, lowest, timed, discount, novel), []).append(order)
+        for (stream, tau, lowest, timed, discount, novel), stops in orders.items():
             if (stream, tau) not in base:
                 base[stream, tau] = normalised(similarity_mass(cand, executed, context[stream], differs, tau,
                                                                self.time_of_day_penalty))
-            blend = blends[stream, order, tau, lowest, timed, discount, novel] = self._streams[stream].counts.blend(
-                ids, base[stream, tau], order, lowest, now_code if timed else -1, discount, self.timed_gate,
+            found = self._streams[stream].counts.blends(
+                ids, base[stream, tau], stops, lowest, now_code if timed else -1, discount, self.timed_gate,
                 self.exclusion, novel, memo)
-            probabilities.append(blend.probabilities)
+            for order in stops:
+                blends[stream, order, tau, lowest, timed, discount, novel] = found[order]
+        for variant in chosen:
+            probabilities.append(blends[variant].probabilities)
         return probabilities, [blends[v] for v in chosen], cand
 
     def rank(self, current: Step | Iterable[Option], time_of_day: str | None = None, *,
