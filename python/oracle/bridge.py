@@ -26,10 +26,11 @@ pyswip and its traps stay in one module.
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 import threading
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from datetime import datetime
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -192,6 +193,24 @@ def _connected() -> Bridge:
     return bridge
 
 
+def _foreign(answer: Callable[[Any], str]) -> Callable[[Any, Any], bool]:
+    """The foreign predicate ``name(+Request, -Reply)`` of ``answer(Request) -> reply text``:
+    counted in CROSSINGS, an error handed to Prolog as its reply (pyswip would make it a silent
+    failure)."""
+
+    @functools.wraps(answer)
+    def predicate(req: Any, out: Any) -> bool:
+        CROSSINGS[answer.__name__] += 1
+        try:
+            reply = answer(req)
+        except Exception as error:
+            reply = _error_text(error)
+        out.unify(reply)
+        return True
+
+    return predicate
+
+
 def py_match(req: Any, out: Any, handle: Any) -> Any:
     from pyswip.core import PL_FIRST_CALL, PL_PRUNED, PL_REDO, PL_foreign_context, PL_foreign_control, PL_retry
 
@@ -229,68 +248,56 @@ def py_match(req: Any, out: Any, handle: Any) -> Any:
     return False
 
 
-def py_insert(req: Any, out: Any) -> bool:
+@_foreign
+def py_insert(req: Any) -> str:
     """``[Neem, Merge, Graph | [S, P, O, Since, Until]...]``: kb_project's triples into a named
     graph, ``Merge`` being ``union`` or ``intersect`` (store.project)."""
     from oracle.store.project import project
 
-    CROSSINGS["py_insert"] += 1
-    try:
-        bridge = _connected()
-        neem, merge, graph = _plain(req[0]), _plain(req[1]), _plain(req[2])
-        triples = [
-            Triple(_plain(s), _plain(p), _plain(o), graph, float(since), float(until))
-            for s, p, o, since, until in req[3:]
-        ]
-        project(bridge.store, neem, triples, merge)
-        out.unify("[]")
-    except Exception as error:
-        out.unify(_error_text(error))
-    return True
+    bridge = _connected()
+    neem, merge, graph = _plain(req[0]), _plain(req[1]), _plain(req[2])
+    triples = [
+        Triple(_plain(s), _plain(p), _plain(o), graph, float(since), float(until))
+        for s, p, o, since, until in req[3:]
+    ]
+    project(bridge.store, neem, triples, merge)
+    return "[]"
 
 
-def py_graph(req: Any, out: Any) -> bool:
+@_foreign
+def py_graph(req: Any) -> str:
     """``[Neem, Op, Graph, Ontology, Version]``: a named graph's version marker (``get`` ->
     ``[[Ontology, Version]...]``, ``set``) or the graph dropped (``drop``), as KnowRob's
     get_ontology_version/set_ontology_version/drop_graph."""
     from oracle.store.model import VERSION_PREDICATE, version_document
     from oracle.store.project import retract
 
-    CROSSINGS["py_graph"] += 1
-    try:
-        store = _connected().store
-        neem, op, graph, ontology, version = (_plain(x) for x in req)
-        rows = []
-        if op == "get":
-            docs = store.find(neem, p=VERSION_PREDICATE, graph=graph, exact=True)
-            rows = [f"[{term_text(d['s'])},{term_text(str(d['o']))}]" for d in docs]
-        elif op == "set":
-            store.write_documents(neem, "triples", [version_document(ontology, str(version), graph)])
-        elif op == "drop":
-            retract(store, neem, graph=graph)
-        else:
-            raise PrologError(f"unknown graph operation {op!r}")
-        out.unify("[" + ",".join(rows) + "]")
-    except Exception as error:
-        out.unify(_error_text(error))
-    return True
+    store = _connected().store
+    neem, op, graph, ontology, version = (_plain(x) for x in req)
+    rows = []
+    if op == "get":
+        docs = store.find(neem, p=VERSION_PREDICATE, graph=graph, exact=True)
+        rows = [f"[{term_text(d['s'])},{term_text(str(d['o']))}]" for d in docs]
+    elif op == "set":
+        store.write_documents(neem, "triples", [version_document(ontology, str(version), graph)])
+    elif op == "drop":
+        retract(store, neem, graph=graph)
+    else:
+        raise PrologError(f"unknown graph operation {op!r}")
+    return "[" + ",".join(rows) + "]"
 
 
-def py_retract(req: Any, out: Any) -> bool:
+@_foreign
+def py_retract(req: Any) -> str:
     """``[Neem | [[S], [P], [O]]...]``: kb_unproject's patterns, ``[]`` for any value."""
     from oracle.store.project import retract
 
-    CROSSINGS["py_retract"] += 1
-    try:
-        bridge = _connected()
-        neem = _plain(req[0])
-        for pattern in req[1:]:
-            s, p, o = (_plain(term[0]) if term else None for term in pattern)
-            retract(bridge.store, neem, s, p, o)
-        out.unify("[]")
-    except Exception as error:
-        out.unify(_error_text(error))
-    return True
+    bridge = _connected()
+    neem = _plain(req[0])
+    for pattern in req[1:]:
+        s, p, o = (_plain(term[0]) if term else None for term in pattern)
+        retract(bridge.store, neem, s, p, o)
+    return "[]"
 
 
 def _scope_number(value: Any) -> float:
@@ -299,78 +306,61 @@ def _scope_number(value: Any) -> float:
     return float(value)
 
 
-def py_scopes(req: Any, out: Any) -> bool:
+@_foreign
+def py_scopes(req: Any) -> str:
     """The time scopes ``[Since, Until]`` of the documents stating one ground triple (any time,
     KnowRob's p*/o* semantics): what ``G during [S, U]`` with S and U free binds. A fifth
     element lists the graphs read (a kb_call graph(G) option)."""
-    CROSSINGS["py_scopes"] += 1
-    try:
-        bridge = _connected()
-        neem, s, p, o = (_plain(x) for x in req[:4])
-        graphs = {str(_plain(g)) for g in req[4]} if len(req) > 4 else None
-        rows = []
-        for doc in bridge.store.find(neem, s, p, o):
-            if graphs is not None and doc.get("graph") not in graphs:
-                continue
-            time = doc.get("scope", {}).get("time", {})
-            since = _scope_number(time.get("since", 0.0))
-            until = _scope_number(time.get("until", math.inf))
-            rows.append(f"[{term_text(since)},{term_text(until)}]")
-        out.unify("[" + ",".join(rows) + "]")
-    except Exception as error:
-        out.unify(_error_text(error))
-    return True
+    bridge = _connected()
+    neem, s, p, o = (_plain(x) for x in req[:4])
+    graphs = {str(_plain(g)) for g in req[4]} if len(req) > 4 else None
+    rows = []
+    for doc in bridge.store.find(neem, s, p, o):
+        if graphs is not None and doc.get("graph") not in graphs:
+            continue
+        time = doc.get("scope", {}).get("time", {})
+        since = _scope_number(time.get("since", 0.0))
+        until = _scope_number(time.get("until", math.inf))
+        rows.append(f"[{term_text(since)},{term_text(until)}]")
+    return "[" + ",".join(rows) + "]"
 
 
-def py_annotations(req: Any, out: Any) -> bool:
+@_foreign
+def py_annotations(req: Any) -> str:
     """Annotations ``[S, P, Value]`` of a subject and/or property (``''`` for any)."""
-    CROSSINGS["py_annotations"] += 1
-    try:
-        bridge = _connected()
-        neem, s, p = (_plain(x) for x in req)
-        rows = (
-            f"[{term_text(a.s)},{term_text(a.p)},{term_text(a.v)}]"
-            for a in bridge.store.annotations(neem, s or None, p or None)
-        )
-        out.unify("[" + ",".join(rows) + "]")
-    except Exception as error:
-        out.unify(_error_text(error))
-    return True
+    bridge = _connected()
+    neem, s, p = (_plain(x) for x in req)
+    rows = (
+        f"[{term_text(a.s)},{term_text(a.p)},{term_text(a.v)}]"
+        for a in bridge.store.annotations(neem, s or None, p or None)
+    )
+    return "[" + ",".join(rows) + "]"
 
 
-def py_annotate(req: Any, out: Any) -> bool:
+@_foreign
+def py_annotate(req: Any) -> str:
     """Store ``[S, P, Value]`` rows in the NEEM's annotations collection (load_owl/1)."""
-    CROSSINGS["py_annotate"] += 1
-    try:
-        bridge = _connected()
-        neem = _plain(req[0])
-        rows = [Annotation(_plain(s), _plain(p), _plain(v)) for s, p, v in req[1:]]
-        bridge.store.insert_annotations(neem, rows)
-        out.unify("[]")
-    except Exception as error:
-        out.unify(_error_text(error))
-    return True
+    bridge = _connected()
+    neem = _plain(req[0])
+    rows = [Annotation(_plain(s), _plain(p), _plain(v)) for s, p, v in req[1:]]
+    bridge.store.insert_annotations(neem, rows)
+    return "[]"
 
 
-def py_tf(req: Any, out: Any) -> bool:
+@_foreign
+def py_tf(req: Any) -> str:
     """The latest transform of a tf frame stamped at or before a time (-1: any time), as
     ``[[Stamp, RefFrame, X, Y, Z, QX, QY, QZ, QW]]`` or ``[]``."""
     from oracle.neem.tf import pose_at
 
-    CROSSINGS["py_tf"] += 1
-    try:
-        bridge = _connected()
-        neem, frame, at = _plain(req[0]), _plain(req[1]), req[2]
-        found = pose_at(bridge.store, neem, frame, None if at == -1 else float(at))
-        if found is None:
-            out.unify("[]")
-        else:
-            stamp, pose = found
-            values = [stamp, pose.frame, *pose.position, *pose.rotation]
-            out.unify("[[" + ",".join(term_text(v) for v in values) + "]]")
-    except Exception as error:
-        out.unify(_error_text(error))
-    return True
+    bridge = _connected()
+    neem, frame, at = _plain(req[0]), _plain(req[1]), req[2]
+    found = pose_at(bridge.store, neem, frame, None if at == -1 else float(at))
+    if found is None:
+        return "[]"
+    stamp, pose = found
+    values = [stamp, pose.frame, *pose.position, *pose.rotation]
+    return "[[" + ",".join(term_text(v) for v in values) + "]]"
 
 
 def py_request(out: Any) -> bool:
