@@ -39,7 +39,7 @@ Reason terms of why_not/2,3 (each a separate solution, most telling first):
 :- use_module(model/rdfs, []).
 :- use_module(model/event, []).
 :- use_module(odb/names, [odb_iri/2]).
-:- use_module(odb/calls, [task_call/2, call_tasks/2, call_task_times/3, times_done/2]).
+:- use_module(odb/calls, [task_call/2, call_time/4, call_time/5]).
 :- use_module(odb/events, [perceived_at/2]).
 :- use_module(odb/decisions, [decision_at/3, imagined_available/2, latest_decision/4, preference_at/3,
                               latest_preference/3]).
@@ -55,24 +55,21 @@ why_not(Call, Reason) :-
     why_not(Call, At, Reason).
 
 %!  why_not(+Call, +Time, -Reason) is nondet.
-%   Why Call was not done at Time (unix seconds). Every step asks the store for the one
-%   row it needs (comparisons, order and limit evaluated by the database), so the answer
-%   costs a few queries however long the NEEM.
+%   Why Call was not done at Time (unix seconds). Every step asks the store for the few
+%   rows it needs (comparisons, order and limit evaluated by the database), so the answer
+%   costs a few queries however long the NEEM and however often Call was done.
 why_not(Call, At, Reason) :-
     check_call(Call),
     must_be(number, At),
-    call_tasks(Call, Tasks),
-    call_task_times(Call, Tasks, Times),
-    (   findall(B, ( member(B-E, Times), number(B), number(E), B =< At, E >= At ), Bs), Bs \== []
-    ->  min_list(Bs, B),
-        Reason = done(Call, B)
+    (   call_time(Call, =<(At), >=(At), B)
+    ->  Reason = done(Call, B)
     ;   decision_at(situation, At, M)
     ->  once(kb_call(event_interval(M, When, _), any)),
-        reasons_at(Call, At, M, When, Times, Reason)
-    ;   later_earlier(Call, At, Times, Reason)
+        reasons_at(Call, At, M, When, Reason)
+    ;   later_earlier(Call, At, Reason)
     ).
 
-reasons_at(Call, At, M, When, Times, Reason) :-
+reasons_at(Call, At, M, When, Reason) :-
     imagined_available(M, Available),
     (   \+ memberchk(Call, Available)
     ->  missing_reason(Call, When, Why),
@@ -88,7 +85,7 @@ reasons_at(Call, At, M, When, Times, Reason) :-
     ->  R2 = [user_chose(Other, OB)]
     ;   R2 = []
     ),
-    findall(R, later_earlier(Call, At, Times, R), R3),
+    findall(R, later_earlier(Call, At, R), R3),
     append([R1, R2, R3], Reasons),
     member(Reason, Reasons).
 
@@ -99,13 +96,11 @@ missing_reason(Call, When, object_not_perceived(Obj)) :-
 missing_reason(_, _, precondition_failed).
 
 %   done_later: the first begin after At; else done_earlier: the latest begin of an action
-%   that ended before At (Times: the Begin-End of the call's actions).
-later_earlier(Call, At, Times, done_later(Call, B)) :-
-    findall(B0, ( member(B0-_, Times), number(B0), B0 > At ), Bs), Bs \== [], !,
-    min_list(Bs, B).
-later_earlier(Call, At, Times, done_earlier(Call, B)) :-
-    findall(B0, ( member(B0-E, Times), number(E), E < At ), Bs), Bs \== [], !,
-    max_list(Bs, B).
+%   that ended before At (and so began before it: the store scans back from At).
+later_earlier(Call, At, done_later(Call, B)) :-
+    call_time(Call, >(At), _, asc, B), !.
+later_earlier(Call, At, done_earlier(Call, B)) :-
+    call_time(Call, <(At), <(At), desc, B), !.
 
 %!  chosen_after(+Time, -Call, -Begin) is semidet.
 %   The first non-idle task executed at or after Time: executions in begin order, fetched
@@ -159,7 +154,7 @@ something_else(Current, Alternative, rank(R, S)) :-
     (   var(Current)
     ->  latest_action(Current, Begin)
     ;   check_call(Current),
-        (   times_done(Current, Done), last(Done, action(Begin, _, _)) -> true ; true )
+        (   call_time(Current, _, _, desc, Begin) -> true ; true )
     ),
     (   number(Begin), preference_at(Begin, _, Ranked)
     ->  true

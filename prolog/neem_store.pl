@@ -314,7 +314,8 @@ insert_row(triple(S,P,O,Since,Until), [S,P,O,Since,Until]).
 %   binding of Term's other variables, Var left free and Values the list of its values in
 %   those rows (duplicates kept, in no fixed order), grouped by the store; `plan(written)`:
 %   the store joins the patterns in the order written (SQLite has no statistics to plan a
-%   long join by; MongoDB's pipeline is always in that order). Terms must be variables or
+%   long join by; MongoDB's pipeline is always in that order), with `order(Keys)` too (the
+%   rows are then sorted after the join, not scanned in the key's order). Terms must be variables or
 %   atomic values.
 store_match(Patterns, Scope) :-
     store_match(Patterns, Scope, []).

@@ -120,20 +120,29 @@ kb_findall(Template, Goal, Scope, List) :-
 
 %!  kb_findall(+Template, :Goal, +Scope, +Options, -List) is det.
 %   kb_findall/4 with Options for that one store query: `plan(written)` joins its patterns
-%   in the order Goal names them (store_match/3), for a join SQLite would plan badly.
+%   in the order Goal names them (store_match/3), for a join SQLite would plan badly;
+%   `order(Keys)` and `limit(N)` order and cut the solutions in the store (store_match/3).
+%   These two need a Goal that compiles to one store query with nothing after it (a filter
+%   after a limit would drop solutions the limit counted): for another Goal they raise a
+%   domain error.
 kb_findall(Template, Goal, Scope, Options, List) :-
     must_be(list, Options),
     kb_compile(Goal, Scope, compiled, Plan),
+    include(plan_option, Options, Plans),
     (   Plan = [match(Ts, S)|Rest],
-        \+ ( member(Step, Rest), Step \= call(_) )
+        \+ ( member(Step, Rest), Step \= call(_) ),
+        ( Rest == [] ; \+ ( member(O, Plans), O \= plan(_) ) )
     ->  term_variables(Template-Rest, Keep),
         maplist(expand_pattern, Ts, Ts1),
-        include(plan_option, Options, Plans),
         findall(Template, ( store_match(Ts1, S, [select(Keep)|Plans]), run_plan(Rest) ), List)
+    ;   member(O, Plans), O \= plan(_)
+    ->  domain_error(single_store_query, Goal)
     ;   findall(Template, run_plan(Plan), List)
     ).
 
 plan_option(plan(written)).
+plan_option(order(_)).
+plan_option(limit(_)).
 
 %!  kb_group(+Key, +Var, :Goal, +Scope, -Groups) is det.
 %   Groups is the sorted list of `Key-Values`, one per distinct Key of the solutions of

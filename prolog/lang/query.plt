@@ -32,6 +32,16 @@ test(group_equals_findall_grouped, [nondet, setup(load_test_episode), cleanup(st
              group_pairs_by_key(Sorted, Expected),
              assertion(Groups == Expected), Groups \== [] )).
 
+test(findall_order_limit_in_the_store, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
+    G = ( executes_task(A, _), event_interval(A, B, _) ),
+    kb_findall(B, G, any, [order([desc(B)]), limit(2)], Latest),
+    findall(B, kb_call(G, any), All), sort(0, @>=, All, [B1, B2|_]),
+    Latest == [B1, B2].
+
+test(findall_limit_needs_one_query, [setup(load_test_episode), cleanup(store_reset),
+                                     error(domain_error(single_store_query, _))]) :-
+    kb_findall(A, ( executes_task(A, T), T \== x ), any, [limit(1)], _).
+
 test(compile_one_match_per_conjunction, [nondet]) :-
     kb_compile(( is_action(A), executes_task(A, T), event_interval(A, _, _), T \== x ), any, Plan),
     Plan = [match(Ps, any), call(_)], length(Ps, 5).

@@ -4,6 +4,8 @@
       task_calls/2,               % +Tasks, -Pairs
       call_tasks/2,               % +Call, -TaskIndividuals
       call_task_times/3,          % +Call, +Tasks, -Times
+      call_time/4,                % +Call, ?BeginTest, ?EndTest, -Begin
+      call_time/5,                % +Call, ?BeginTest, ?EndTest, +Dir, -Begin
       action_call/4,              % ?Action, ?Call, ?Begin, ?End
       times_done/2,               % +Call, -Actions
       chain_before/3              % +Action, +N, -Calls
@@ -21,7 +23,6 @@ odb object classes. Its call is the chain term `pick(banana)` (odb_names).
 :- use_module(library(assoc)).
 :- use_module(library(ordsets)).
 :- use_module('../lang/query', [kb_call/2, kb_findall/4, kb_findall/5]).
-:- use_module('../lang/triple', [kb_iri/2]).
 :- use_module('../model/rdfs', []).
 :- use_module('../model/event', []).
 :- use_module('../model/object', []).
@@ -189,6 +190,77 @@ call_task_times(Call, Tasks, Times) :-
     candidate_tasks(Call, T, Candidates),
     kb_findall(T-B-E, ( Candidates, executes_task(A, T), event_interval(A, B, E) ), any, [plan(written)], Rows),
     findall(B-E, ( member(T1-B-E, Rows), ord_memberchk(T1, Set) ), Times).
+
+%!  call_time(+Call, ?BeginTest, ?EndTest, -Begin) is semidet.
+%!  call_time(+Call, ?BeginTest, ?EndTest, +Dir, -Begin) is semidet.
+%   The least (Dir `asc`, the default) or greatest (`desc`) begin of an action that executed
+%   a task whose call is Call, among the actions whose begin and end pass the tests
+%   (`>(T)`, `=<(T)`, ... on a number; unbound: any). The store compares, orders and sends
+%   the candidates (call_tasks/2's superset) a chunk at a time, growing, and only the tasks
+%   of the rows looked at get their call: a few queries however often Call was done.
+call_time(Call, BTest, ETest, B) :-
+    call_time(Call, BTest, ETest, asc, B).
+
+call_time(Call, BTest, ETest, Dir, B) :-
+    must_be(oneof([asc, desc]), Dir),
+    call_time_(Call, BTest, ETest, Dir, 16, B).
+
+call_time_(Call, BTest, ETest, Dir, _, B) :-
+    far_bound(Dir, BTest), !,
+    % Ordered from the far side of the bound, the store would scan every begin before it
+    % (asc) or after it (desc): all rows from the tasks instead, ordered here.
+    candidate_times(Call, BTest, ETest, [], _, All),
+    (   Dir == asc -> sort(0, @=<, All, Sorted) ; sort(0, @>=, All, Sorted) ),
+    first_of_call(Call, Sorted, B).
+call_time_(Call, BTest, ETest, Dir, N, B) :-
+    Key =.. [Dir, B0],
+    candidate_times(Call, BTest, ETest, [order([Key]), limit(N)], B0, Rows),
+    length(Rows, Got),
+    (   Got < N
+    ->  first_of_call(Call, Rows, B)
+    ;   last(Rows, Last-_),
+        exclude(begins_at(Last), Rows, Complete),   % the last begin may have more rows
+        (   first_of_call(Call, Complete, B)
+        ->  true
+        ;   resume_test(Dir, Last, BTest, BTest1)
+        ->  N1 is N*4,
+            call_time_(Call, BTest1, ETest, Dir, N1, B)
+        ;   candidate_times(Call, BTest, ETest, [], _, All),   % no bound to resume from: all rows
+            (   Dir == asc -> sort(0, @=<, All, Sorted) ; sort(0, @>=, All, Sorted) ),
+            first_of_call(Call, Sorted, B)
+        )
+    ).
+
+%   Begin-Task rows of the candidate tasks' actions whose interval passes the tests.
+candidate_times(Call, BTest, ETest, Options, B, Rows) :-
+    candidate_tasks(Call, T, Candidates),
+    value_spec(BTest, B, BSpec),
+    value_spec(ETest, _, ESpec),
+    kb_findall(B-T, ( Candidates, executes_task(A, T), has_time_interval(A, I),
+                      triple(I, soma:hasIntervalBegin, BSpec), triple(I, soma:hasIntervalEnd, ESpec) ),
+               any, [plan(written)|Options], Rows).
+
+value_spec(Test, V, V) :- var(Test), !.
+value_spec(Test, V, (Test -> V)).
+
+%   The begin test that resumes after the rows with begins before Last, from Last itself
+%   (ties included): it replaces BTest when Last passes BTest and the new test implies it.
+resume_test(asc, Last, BTest, >=(Last)) :-
+    number(Last),
+    ( var(BTest) ; BTest = >(_) ; BTest = >=(_) ), !.
+resume_test(desc, Last, BTest, =<(Last)) :-
+    number(Last),
+    ( var(BTest) ; BTest = <(_) ; BTest = =<(_) ), !.
+
+far_bound(asc, BTest) :- nonvar(BTest), ( BTest = <(_) ; BTest = =<(_) ), !.
+far_bound(desc, BTest) :- nonvar(BTest), ( BTest = >(_) ; BTest = >=(_) ), !.
+
+begins_at(Last, B-_) :- B == Last.
+
+first_of_call(Call, Rows, B) :-
+    member(B-T, Rows),
+    number(B),
+    task_call(T, C), C = Call, !.
 
 %!  times_done(+Call, -Actions) is det.
 %   `action(Begin, End, Action)` for every action that executed Call, by begin.

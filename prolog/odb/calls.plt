@@ -45,4 +45,53 @@ test(task_calls_equals_task_call, [cleanup(store_reset)]) :-
              findall(T-Call, ( member(T, Ts), task_call(T, Call) ), Expected),
              assertion(Pairs == Expected) )).
 
+%   After the test episode: N pours of the thermos into a red mug from t=300, 10 s apart,
+%   each its own task individual (the call shares its first object's class with the
+%   episode's pour into the green mug, so these tasks are candidates of that call too),
+%   then two pours into the green mug that begin together, and one spanning the others.
+many_pours(N) :-
+    Q = fixture_assert('http://example.org/neem#'),
+    call(Q, red1, rdf:type, odb:red_mug),
+    Last is 300 + 10*N,
+    findall(I-B, ( between(1, N, I), B is 300 + 10*(I-1) ), Pours),
+    forall(member(I-B, Pours), ( E is B + 5, pour(Q, red, I, B, E, red1) )),
+    forall(member(I, [1, 2]), ( E is Last + I, pour(Q, tie, I, Last, E, mug1) )),
+    pour(Q, long, 1, 250, 2000, mug1).
+
+pour(Q, Kind, I, B, E, Mug) :-
+    atomic_list_concat([Kind, '_pour', I], T),
+    atomic_list_concat([Kind, '_act', I], A),
+    atomic_list_concat([A, '_ti'], TI),
+    atomic_list_concat([T, '_r1'], R1), atomic_list_concat([T, '_r2'], R2),
+    forall(member(S-P-O, [T-rdf:type-odb:pour, T-dul:isTaskOf-R1, R1-dul:classifies-thermos1,
+                          R1-rdf:type-soma:'PouredObject', T-dul:isTaskOf-R2, R2-dul:classifies-Mug,
+                          R2-rdf:type-soma:'RecipientRole', A-rdf:type-soma:'PhysicalAction',
+                          A-dul:executesTask-T, A-dul:hasTimeInterval-TI,
+                          TI-soma:hasIntervalBegin-B, TI-soma:hasIntervalEnd-E]),
+           call(Q, S, P, O)).
+
+%   call_time/5 against the definition: the begins of every action of the call's tasks.
+call_time_spec(Call, BTest, ETest, Dir, B) :-
+    findall(B0, ( action_call(_, Call, B0, E0), passes(BTest, B0), passes(ETest, E0) ), Bs),
+    Bs \== [],
+    (   Dir == asc -> min_list(Bs, B) ; max_list(Bs, B) ).
+
+passes(Test, _) :- var(Test), !.
+passes(Test, V) :- Test =.. [Op, Arg], call(Op, V, Arg).
+
+test(call_time_as_defined, [cleanup(store_reset)]) :-
+    load_test_episode, many_pours(40),
+    forall(( member(Call, [pour(thermos, green_mug), pour(thermos, red_mug), pick(apple), pick(banana)]),
+             member(Tests, [_-_, >(100)-_, >(300)-_, >=(700)-_, _-(<(700)), <(700)-(<(700)), =<(101)-(>=(101)),
+                            =<(705)-(>=(705)), >(5000)-_, _-(<(0))]),
+             member(Dir, [asc, desc]) ),
+           ( Tests = BTest-ETest,
+             (   call_time_spec(Call, BTest, ETest, Dir, Expected)
+             ->  assertion(call_time(Call, BTest, ETest, Dir, Expected))
+             ;   assertion(\+ call_time(Call, BTest, ETest, Dir, _))
+             ) )).
+
+test(call_time_default_is_least, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
+    call_time(pour(thermos, green_mug), _, _, B), B == 101.
+
 :- end_tests(odb_calls).

@@ -117,3 +117,44 @@ def test_unknown_neem(tmp_path):
     store = open_store(tmp_path / "s.sqlite")
     with pytest.raises(StoreError):
         Bridge(store, "nope")
+
+
+def test_why_not_times_of_a_call_done_often(tmp_path, onto):
+    """done / done_later / done_earlier come from a few ordered store queries over a call's
+    candidate tasks (pour(thermos, red_mug) shares pour(thermos, green_mug)'s first object, so
+    its 60 actions are candidates the answer must skip); they equal the times as logged."""
+    from datetime import timedelta
+
+    from oracle.neem.writer import NeemLogger
+
+    store = open_store(tmp_path / "neems.sqlite")
+    log = NeemLogger.create(store, onto, user="bob", neem_id="bob", commit_every=50)
+    for obj in ("thermos", "green_mug", "red_mug"):
+        log.perceive(obj, datetime(2024, 5, 1, 6, tzinfo=timezone.utc))
+    start = datetime(2024, 5, 1, 7, tzinfo=timezone.utc)
+    green: list[tuple[float, float]] = []
+    for i in range(130):
+        b = start + timedelta(minutes=i)
+        call = "pour(thermos, green_mug)" if i in (3, 70, 71, 129) else "pour(thermos, red_mug)"
+        log.action(call, b, b + timedelta(seconds=30))
+        if call.endswith("green_mug)"):
+            green.append((b.timestamp(), (b + timedelta(seconds=30)).timestamp()))
+    log.flush()
+    bridge = Bridge(store, "bob", onto)
+    try:
+        for minute in (0, 3.2, 3.9, 20, 69.5, 70.2, 100, 129.1, 200):
+            at = start.timestamp() + minute * 60
+            reasons = bridge.why_not("pour", ["thermos", "green_mug"], at)["reasons"]
+            done = [b for b, e in green if b <= at <= e]
+            later = [b for b, _ in green if b > at]
+            earlier = [b for b, e in green if e < at]
+            if done:
+                expected = [{"reason": "done", "task": "pour(thermos, green_mug)", "time": min(done)}]
+            elif later:
+                expected = [{"reason": "done_later", "task": "pour(thermos, green_mug)", "time": min(later)}]
+            else:
+                expected = [{"reason": "done_earlier", "task": "pour(thermos, green_mug)", "time": max(earlier)}]
+            assert [r for r in reasons if r["reason"].startswith("done")] == expected, minute
+    finally:
+        bridge.close()
+        store.close()

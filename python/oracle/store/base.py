@@ -418,7 +418,10 @@ class Store(ABC):
         combination of the other kept variables, ``group`` mapped to the list of its values in
         those solutions (duplicates kept; groups and values in no fixed order).
         ``written_order`` joins the patterns in the order given (MongoDB's pipeline always
-        does; SQLite, without statistics, may otherwise start from a large index range).
+        does; SQLite, without statistics, may otherwise start from a large index range), also
+        with an ``order``: then the rows are sorted after the join, for a first pattern that
+        binds few rows (without it, SQLite scans the order's key from its first value, which
+        stops early only when the first rows in that order match).
         """
         validate_patterns(patterns)
         kept = None if select is None else validate_select(patterns, select)

@@ -349,7 +349,8 @@ def compile_pipeline(
     """
     stages: list[dict[str, Any]] = [{"$limit": 1}, {"$project": {"_id": 0}}]
     bound: set[str] = set()
-    for pattern in patterns:
+    for index, pattern in enumerate(patterns):
+        after_first = index > 0
         match = _pattern_filter(pattern, number_format)
         match.update(_scope_filter(scope, number_format))
         taxonomic = isinstance(pattern.p, str) and pattern.p in TAXONOMIC
@@ -377,6 +378,10 @@ def compile_pipeline(
         if exprs:
             match["$expr"] = exprs[0] if len(exprs) == 1 else {"$and": exprs}
         lookup: dict[str, Any] = {"from": collection, "as": "next", "pipeline": [{"$match": match}]}
+        if not new and after_first:
+            # No new variable: a test, as goal by goal (a ground goal succeeds once however
+            # many documents match it; SqlCompiler.semi_joins).
+            lookup["pipeline"].append({"$limit": 1})
         if let:
             lookup["let"] = let
         stages.append({"$lookup": lookup})

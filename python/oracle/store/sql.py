@@ -135,14 +135,24 @@ class SqlCompiler:
         self.params: list[Any] = []
         #: variable -> (SQL expression of its value, SQL expression of its kind; None for a term id)
         self.bound: dict[str, tuple[str, str | None]] = {}
+        #: With ``semi_joins``, a pattern after the first that binds no new variable is a test
+        #: (``EXISTS``), not a join: goal by goal it is a ground goal, which succeeds once
+        #: however many documents match it (two type triples of one subject, one of them
+        #: through the class closure), so the compiled query gives the same solutions.
+        self.semi_joins = False
+        self.semi: set[int] = set()
 
     def from_clause(self) -> str:
-        return ", ".join(f"{source} AS {alias}" for source, alias in zip(self.sources, self.aliases))
+        return ", ".join(f"{self.sources[i]} AS {self.aliases[i]}" for i in self.joined_patterns())
 
     def ordered_from_clause(self, plan: Sequence[int]) -> str:
         """The patterns joined in ``plan`` order (``join_order``); CROSS JOIN makes SQLite
         keep it."""
-        return " CROSS JOIN ".join(f"{self.sources[i]} AS {self.aliases[i]}" for i in plan)
+        return " CROSS JOIN ".join(f"{self.sources[i]} AS {self.aliases[i]}" for i in plan if i not in self.semi)
+
+    def joined_patterns(self) -> list[int]:
+        """The patterns in the FROM clause (those that are no ``EXISTS`` test)."""
+        return [i for i in range(len(self.aliases)) if i not in self.semi]
 
     def where(self) -> str:
         return " AND ".join(self.conds) if self.conds else "1"
@@ -207,6 +217,22 @@ class SqlCompiler:
         self.params.extend([*cids, low, high])
 
     def add(self, pattern: TriplePattern, exact: bool = False) -> None:
+        index, first_cond = len(self.aliases), len(self.conds)
+        semi = self.semi_joins and not exact and index > 0 and set(pattern.variables()) <= set(self.bound)
+        joined = self.joined
+        # A test is always reached from the patterns binding its variables (their index, not
+        # a scan of its closure's range, finds its rows).
+        self.joined = joined or semi
+        self._add(pattern, exact)
+        self.joined = joined
+        if semi:
+            a = self.aliases[index]
+            test = " AND ".join(self.conds[first_cond:]) or "1"
+            del self.conds[first_cond:]  # its parameters keep their place: the test stands where they did
+            self.conds.append(f"EXISTS (SELECT 1 FROM {self.sources[index]} AS {a} WHERE {test})")
+            self.semi.add(index)
+
+    def _add(self, pattern: TriplePattern, exact: bool) -> None:
         a = f"t{len(self.aliases)}"
         self.aliases.append(a)
         self.sources.append(self.table if self.side is None else self.side.sources(self.table, pattern, exact, self._iri))

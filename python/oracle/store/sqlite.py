@@ -1137,10 +1137,11 @@ class SQLiteStore(Store):
         (value, kind) pair per variable."""
         self._require(neem_id)
         query = SqlCompiler(self, _table(neem_id, "triples"), scope, self._side(neem_id))
-        if order:
-            plan, joined = join_order(patterns, order[0][0])
-        elif written_order:
+        query.semi_joins = True
+        if written_order:  # with an order too: joined as written, then sorted (a top-N sort)
             plan, joined = list(range(len(patterns))), _joined_in_order(patterns)
+        elif order:
+            plan, joined = join_order(patterns, order[0][0])
         else:
             plan, joined = [], set()
         first = plan[0] if plan else -1
@@ -1158,9 +1159,9 @@ class SQLiteStore(Store):
         keys = [f"{query.bound[name][0]} {'DESC' if descending else 'ASC'}" for name, descending in order]
         # In the written order the rows are sorted after the join ("+": SQLite would otherwise
         # scan the first table in id order to skip the sort, instead of using its index).
-        mark = "+" if written_order and not order else ""
+        mark = "+" if written_order else ""
         if group is None:  # groups come in no fixed order (Store.match): no sort of the rows
-            keys += [f"{mark}{alias}.id" for alias in query.aliases]
+            keys += [f"{mark}{query.aliases[i]}.id" for i in query.joined_patterns()]
         source = query.ordered_from_clause(plan) if plan else query.from_clause()
         sql = f"SELECT {columns} FROM {source} WHERE {query.where()}"
         if keys:
