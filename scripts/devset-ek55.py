@@ -149,7 +149,7 @@ def convert(folder: Path | str, out: Path | str) -> ConvertReport:
         actions.setdefault(verb, {})
     write_mapping(
         out / "mapping.yaml", "urn:neem-oracle:odb:ek55#", soma_map, actions,
-        "EPIC-Kitchens-55 (DEVELOPMENT ONLY): nouns as odb objects, verbs as tasks (devdata/convert_ek55.py).",
+        "EPIC-Kitchens-55 (a development set): nouns as odb objects, verbs as tasks (scripts/devset-ek55.py).",
     )
     users = {row.user for row in rows}
     return ConvertReport("ek55", len(rows), len(users), len(objects), len(verbs), out)

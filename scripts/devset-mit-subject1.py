@@ -193,7 +193,7 @@ def convert(folder: Path | str, out: Path | str) -> ConvertReport:
     write_odb(out / "odb", objects)
     write_mapping(
         out / "mapping.yaml", "urn:neem-oracle:odb:mit-subject1#", soma_map, ACTIONS,
-        "MIT PlaceLab subject 1 (DEVELOPMENT ONLY): sensors as odb objects, what they observe as tasks (devdata/convert_mit_subject1.py).",
+        "MIT PlaceLab subject 1 (a development set): sensors as odb objects, what they observe as tasks (scripts/devset-mit-subject1.py).",
     )
     tasks = {row.action.task for row in rows}
     return ConvertReport("mit-subject1", len(rows), 1, len(objects), len(tasks), out)
