@@ -192,7 +192,8 @@ def test_parameters_follow_the_estimator_contract():
         model.set_params(nope=1)
     for bad in ({"orders": ()}, {"temperatures": (0.0,)}, {"streams": ("sideways",)}, {"tuning": "best"},
                 {"penalty": -1.0}, {"context_depth": 1.5}, {"lowest_orders": (2,)},
-                {"timed": ()}, {"timed": (1,)}, {"timed_from": -1}, {"discounts": ("yes",)}, {"switch_margin": -1.0}):
+                {"timed": ()}, {"timed": (1,)}, {"timed_from": -1}, {"discounts": ("yes",)}, {"discount_from": -1},
+                {"discount_from": True}, {"switch_margin": -1.0}):
         with pytest.raises(SettingsError):
             RoutineOracle(kitchen(), **bad).fit([])
     fitted = RoutineOracle(kitchen()).fit([])
@@ -250,6 +251,26 @@ def test_the_discounted_blend_is_absolute_discounting_with_the_estimated_discoun
                                         (1 - d + d * 3 * 0.1) / 4, d * 3 * 0.7 / 4])
     assert float(discounted.sum()) == pytest.approx(float(ppm.sum())) == pytest.approx(1.0)
     assert discounted.tolist() != ppm.tolist()
+
+
+def test_discounting_applies_from_its_order_and_ppm_c_below():
+    counts = ContextCounts(2)
+    for token in (5, 1, 5, 1, 5, 2, 5, 3, 5, 1, 5):
+        counts.add(token)
+    base = np.array([0.1, 0.1, 0.1, 0.7])
+    candidates = [1, 2, 3, 4]
+    ppm = counts.blend(candidates, base, 2).probabilities
+    everywhere = counts.blend(candidates, base, 2, discount=True).probabilities
+    # from order 3 (above the maximum order 2): no level is discounted, the blend is PPM-C
+    assert counts.blend(candidates, base, 2, discount=True, discount_from=3).probabilities.tolist() == ppm.tolist()
+    assert counts.blend(candidates, base, 2, discount=True, discount_from=0).probabilities.tolist() == everywhere.tolist()
+    # from order 2: orders 0 and 1 as PPM-C, then the order-2 level discounted on top of them
+    below = counts.blend(candidates, base, 1).probabilities
+    seen = np.array([counts.levels[2].tables[(1, 5)].get(c, 0) for c in candidates], dtype=float)
+    d, kinds, total = counts.levels[2].discount(), len(counts.levels[2].tables[(1, 5)]), counts.levels[2].totals[(1, 5)]
+    expected = (np.maximum(seen - d, 0.0) + d * kinds * below) / total
+    assert counts.blend(candidates, base, 2, discount=True, discount_from=2).probabilities == pytest.approx(expected)
+    assert expected.tolist() != everywhere.tolist()
 
 
 def test_at_order_0_the_counts_of_this_part_of_day_replace_the_overall_counts():
@@ -372,9 +393,9 @@ def test_the_default_has_novelty_variants_after_the_plain_ones():
        candidates=st.lists(st.integers(-3, 6), min_size=1, max_size=6, unique=True),
        lowest=st.sampled_from([0, 1]), timed_from=st.sampled_from([-1, 0, 1]), part=st.integers(-1, 3),
        discount=st.booleans(), exclusion=st.booleans(), novelty=st.booleans(),
-       gate=st.sampled_from([None, 1.0]))
+       gate=st.sampled_from([None, 1.0]), discount_from=st.integers(0, 3))
 def test_blends_of_several_maximum_orders_equal_the_blend_of_each(tokens, candidates, lowest, timed_from, part,
-                                                                  discount, exclusion, novelty, gate):
+                                                                  discount, exclusion, novelty, gate, discount_from):
     # The self-tuning's variants that differ in their maximum order only share one blend pass:
     # each order's result must be exactly the blend computed alone.
     counts = ContextCounts(5, timed_from)
@@ -383,8 +404,9 @@ def test_blends_of_several_maximum_orders_equal_the_blend_of_each(tokens, candid
     base = np.random.default_rng(len(tokens)).random(len(candidates)) + 0.01
     base /= base.sum()
     stops = (3, 5, 1, 7)
-    together = counts.blends(candidates, base, stops, lowest, part, discount, gate, exclusion, novelty, {})
+    together = counts.blends(candidates, base, stops, lowest, part, discount, gate, exclusion, novelty, {}, discount_from)
     for stop in stops:
-        alone = counts.blend(candidates, base, stop, lowest, part, discount, gate, exclusion, novelty)
+        alone = counts.blend(candidates, base, stop, lowest, part, discount, gate, exclusion, novelty,
+                             discount_from=discount_from)
         assert np.array_equal(together[stop].probabilities, alone.probabilities)
         assert np.array_equal(together[stop].order, alone.order) and np.array_equal(together[stop].count, alone.count)

@@ -148,17 +148,20 @@ class ContextCounts:
 
     def blend(self, candidates: Sequence[int], base: np.ndarray, max_order: int, min_order: int = 0,
               part: int = -1, discount: bool = False, gate: float | None = None,
-              exclusion: bool = False, novelty: bool = False, memo: Memo | None = None) -> Blend:
+              exclusion: bool = False, novelty: bool = False, memo: Memo | None = None,
+              discount_from: int = 0) -> Blend:
         """One variant's blend: ``blends`` with the one stop ``max_order`` (documented there)."""
         return self.blends(candidates, base, (max_order,), min_order, part, discount, gate, exclusion, novelty,
-                           memo)[max_order]
+                           memo, discount_from)[max_order]
 
     def blends(self, candidates: Sequence[int], base: np.ndarray, max_orders: Sequence[int], min_order: int = 0,
                part: int = -1, discount: bool = False, gate: float | None = None,
-               exclusion: bool = False, novelty: bool = False, memo: Memo | None = None) -> dict[int, Blend]:
+               exclusion: bool = False, novelty: bool = False, memo: Memo | None = None,
+               discount_from: int = 0) -> dict[int, Blend]:
         """``P_n(c) = (n(ctx_n, c) + u_n P_{n-1}(c)) / (N(ctx_n) + u_n)`` from ``P_{-1} = base`` up to
         ``max_order``; an unseen context leaves the distribution as it is (PPM-C, no exclusion).
-        With ``discount``: ``P_n(c) = (max(n(ctx_n, c) - D_n, 0) + D_n u_n P_{n-1}(c)) / N(ctx_n)``.
+        With ``discount``: ``P_n(c) = (max(n(ctx_n, c) - D_n, 0) + D_n u_n P_{n-1}(c)) / N(ctx_n)`` at
+        the orders ``n >= discount_from`` (their part-of-day levels too), PPM-C below.
         When ``part`` is known (>= 0) and the counts are timed from order ``t``, the level
         ``(part,) + ctx_n`` follows each level ``ctx_n``, n >= max(t, 1), in the same way; at order 0
         (t = 0) it replaces the level ``()`` unless nothing was done at this part of day yet. The
@@ -211,14 +214,15 @@ class ContextCounts:
             replace_zero = n == 0 and timed and bool(self.timed[0].tables.get((part,)))
             lowest = exclusion and not applied
             applied = True
-            plain = self.levels[n].apply(context, candidates, probs, discount, lowest and not replace_zero, memo)
+            discounted = discount and n >= discount_from
+            plain = self.levels[n].apply(context, candidates, probs, discounted, lowest and not replace_zero, memo)
             assert plain is not None
             seen = plain[1]
             hit = seen > 0
             order[hit] = n
             count[hit] = seen[hit].astype(np.int64)
             if replace_zero:
-                refined = self.timed[0].apply((part,), candidates, probs, discount, lowest, memo)
+                refined = self.timed[0].apply((part,), candidates, probs, discounted, lowest, memo)
                 assert refined is not None
                 probs = refined[0]
             else:
@@ -229,7 +233,7 @@ class ContextCounts:
             if n == 0:
                 continue
             if timed:
-                refined = self.timed[n].apply((part, *context), candidates, probs, discount, memo=memo)
+                refined = self.timed[n].apply((part, *context), candidates, probs, discounted, memo=memo)
                 if refined is not None:
                     probs = refined[0]
         reached(math.inf)  # the order-0 level never reached leaves the novelty split as it is
