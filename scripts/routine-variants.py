@@ -26,6 +26,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
 from oracle.algorithm.records import Option, Step  # noqa: E402
 from oracle.algorithm.routine import RoutineOracle  # noqa: E402
 from oracle.calls import opening_tasks  # noqa: E402
+from oracle.errors import NeemOracleError  # noqa: E402
 from oracle.evaluation.baselines import BASELINES  # noqa: E402
 from oracle.evaluation.replay import load_users, replay  # noqa: E402
 from oracle.ontology import OdbOntology, build_ontology  # noqa: E402
@@ -116,6 +117,17 @@ class Kinds:
         self.tokens.append(token)
 
 
+def _params(parser: argparse.ArgumentParser, name: str, text: str) -> dict[str, Any]:
+    """The constructor parameters of ``NAME=JSON`` (a JSON object), or a one-line usage error."""
+    try:
+        params = json.loads(text)
+    except json.JSONDecodeError as error:
+        parser.error(f"{name}={text}: not NAME=JSON ({error.msg}); a name holds no '='")
+    if not isinstance(params, dict):
+        parser.error(f"{name}={text}: the parameters must be a JSON object")
+    return params
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("chains")
@@ -125,9 +137,12 @@ def main() -> None:
     parser.add_argument("--alternatives", choices=sorted(ROUNDS), default="first")
     parser.add_argument("variants", nargs="*", metavar="NAME=JSON")
     args = parser.parse_intermixed_args()
-    chosen = dict(v.split("=", 1) for v in args.variants)
-    variants = {name: json.loads(text) for name, text in chosen.items()} if chosen else ROUNDS[args.alternatives]
+    variants = {name: _params(parser, name, text) for name, _, text in (v.partition("=") for v in args.variants)}
+    variants = variants or ROUNDS[args.alternatives]
     baselines = list(BASELINES) if args.baselines == "all" else [b.strip() for b in args.baselines.split(",") if b.strip()]
+    unknown = [b for b in baselines if b not in BASELINES]
+    if unknown:
+        parser.error(f"unknown baseline {unknown[0]!r}; known: {', '.join(BASELINES)}")
     ontology = build_ontology(args.odb, args.mapping, None)
     users = load_users(args.chains)
     kinds = Kinds()
@@ -164,4 +179,7 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except NeemOracleError as error:  # a file that cannot be read, a bad parameter: one line
+        sys.exit(f"routine-variants: {error}")
