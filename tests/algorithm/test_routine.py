@@ -193,7 +193,8 @@ def test_parameters_follow_the_estimator_contract():
     for bad in ({"orders": ()}, {"temperatures": (0.0,)}, {"streams": ("sideways",)}, {"tuning": "best"},
                 {"penalty": -1.0}, {"context_depth": 1.5}, {"lowest_orders": (2,)},
                 {"timed": ()}, {"timed": (1,)}, {"timed_from": -1}, {"discounts": ("yes",)}, {"discount_from": -1},
-                {"discount_from": True}, {"switch_margin": -1.0}):
+                {"discount_from": True}, {"discount_evidence": -1}, {"discount_evidence": 1.5},
+                {"switch_margin": -1.0}):
         with pytest.raises(SettingsError):
             RoutineOracle(kitchen(), **bad).fit([])
     fitted = RoutineOracle(kitchen()).fit([])
@@ -271,6 +272,21 @@ def test_discounting_applies_from_its_order_and_ppm_c_below():
     expected = (np.maximum(seen - d, 0.0) + d * kinds * below) / total
     assert counts.blend(candidates, base, 2, discount=True, discount_from=2).probabilities == pytest.approx(expected)
     assert expected.tolist() != everywhere.tolist()
+
+
+def test_discounting_waits_for_the_evidence_of_its_estimate():
+    counts = ContextCounts(2)
+    for token in (5, 1, 5, 1, 5, 2, 5, 3, 5, 1, 5):
+        counts.add(token)
+    base = np.array([0.1, 0.1, 0.1, 0.7])
+    candidates = [1, 2, 3, 4]
+    ppm = counts.blend(candidates, base, 2).probabilities.tolist()
+    everywhere = counts.blend(candidates, base, 2, discount=True).probabilities.tolist()
+    pairs = [counts.levels[n].evidence() for n in range(3)]
+    assert pairs == [counts.levels[n].once + counts.levels[n].twice for n in range(3)] and min(pairs) > 0
+    # below every order's evidence: discounted as without the threshold; above all of it: PPM-C
+    assert counts.blend(candidates, base, 2, discount=True, discount_evidence=min(pairs)).probabilities.tolist() == everywhere
+    assert counts.blend(candidates, base, 2, discount=True, discount_evidence=max(pairs) + 1).probabilities.tolist() == ppm
 
 
 def test_at_order_0_the_counts_of_this_part_of_day_replace_the_overall_counts():
@@ -393,9 +409,10 @@ def test_the_default_has_novelty_variants_after_the_plain_ones():
        candidates=st.lists(st.integers(-3, 6), min_size=1, max_size=6, unique=True),
        lowest=st.sampled_from([0, 1]), timed_from=st.sampled_from([-1, 0, 1]), part=st.integers(-1, 3),
        discount=st.booleans(), exclusion=st.booleans(), novelty=st.booleans(),
-       gate=st.sampled_from([None, 1.0]), discount_from=st.integers(0, 3))
+       gate=st.sampled_from([None, 1.0]), discount_from=st.integers(0, 3), evidence=st.sampled_from([0, 3, 10]))
 def test_blends_of_several_maximum_orders_equal_the_blend_of_each(tokens, candidates, lowest, timed_from, part,
-                                                                  discount, exclusion, novelty, gate, discount_from):
+                                                                  discount, exclusion, novelty, gate, discount_from,
+                                                                  evidence):
     # The self-tuning's variants that differ in their maximum order only share one blend pass:
     # each order's result must be exactly the blend computed alone.
     counts = ContextCounts(5, timed_from)
@@ -404,9 +421,10 @@ def test_blends_of_several_maximum_orders_equal_the_blend_of_each(tokens, candid
     base = np.random.default_rng(len(tokens)).random(len(candidates)) + 0.01
     base /= base.sum()
     stops = (3, 5, 1, 7)
-    together = counts.blends(candidates, base, stops, lowest, part, discount, gate, exclusion, novelty, {}, discount_from)
+    together = counts.blends(candidates, base, stops, lowest, part, discount, gate, exclusion, novelty, {}, discount_from,
+                             evidence)
     for stop in stops:
         alone = counts.blend(candidates, base, stop, lowest, part, discount, gate, exclusion, novelty,
-                             discount_from=discount_from)
+                             discount_from=discount_from, discount_evidence=evidence)
         assert np.array_equal(together[stop].probabilities, alone.probabilities)
         assert np.array_equal(together[stop].order, alone.order) and np.array_equal(together[stop].count, alone.count)

@@ -50,6 +50,10 @@ class _Level:
         self.once += (seen == 0) - (seen == 1)
         self.twice += (seen == 1) - (seen == 2)
 
+    def evidence(self) -> int:
+        """The (context, follower) pairs the discount estimate rests on: those seen once or twice."""
+        return self.once + self.twice
+
     def discount(self) -> float:
         """Ney-Essen-Kneser ``D = n1 / (n1 + 2 n2)`` of this order; 0.5 while no pair was seen exactly once."""
         if self.once == 0:
@@ -149,19 +153,20 @@ class ContextCounts:
     def blend(self, candidates: Sequence[int], base: np.ndarray, max_order: int, min_order: int = 0,
               part: int = -1, discount: bool = False, gate: float | None = None,
               exclusion: bool = False, novelty: bool = False, memo: Memo | None = None,
-              discount_from: int = 0) -> Blend:
+              discount_from: int = 0, discount_evidence: int = 0) -> Blend:
         """One variant's blend: ``blends`` with the one stop ``max_order`` (documented there)."""
         return self.blends(candidates, base, (max_order,), min_order, part, discount, gate, exclusion, novelty,
-                           memo, discount_from)[max_order]
+                           memo, discount_from, discount_evidence)[max_order]
 
     def blends(self, candidates: Sequence[int], base: np.ndarray, max_orders: Sequence[int], min_order: int = 0,
                part: int = -1, discount: bool = False, gate: float | None = None,
                exclusion: bool = False, novelty: bool = False, memo: Memo | None = None,
-               discount_from: int = 0) -> dict[int, Blend]:
+               discount_from: int = 0, discount_evidence: int = 0) -> dict[int, Blend]:
         """``P_n(c) = (n(ctx_n, c) + u_n P_{n-1}(c)) / (N(ctx_n) + u_n)`` from ``P_{-1} = base`` up to
         ``max_order``; an unseen context leaves the distribution as it is (PPM-C, no exclusion).
         With ``discount``: ``P_n(c) = (max(n(ctx_n, c) - D_n, 0) + D_n u_n P_{n-1}(c)) / N(ctx_n)`` at
-        the orders ``n >= discount_from`` (their part-of-day levels too), PPM-C below.
+        the orders ``n >= discount_from`` (their part-of-day levels too), PPM-C below, and only once
+        the order's estimate ``D_n`` rests on ``discount_evidence`` pairs seen once or twice.
         When ``part`` is known (>= 0) and the counts are timed from order ``t``, the level
         ``(part,) + ctx_n`` follows each level ``ctx_n``, n >= max(t, 1), in the same way; at order 0
         (t = 0) it replaces the level ``()`` unless nothing was done at this part of day yet. The
@@ -214,7 +219,7 @@ class ContextCounts:
             replace_zero = n == 0 and timed and bool(self.timed[0].tables.get((part,)))
             lowest = exclusion and not applied
             applied = True
-            discounted = discount and n >= discount_from
+            discounted = discount and n >= discount_from and self.levels[n].evidence() >= discount_evidence
             plain = self.levels[n].apply(context, candidates, probs, discounted, lowest and not replace_zero, memo)
             assert plain is not None
             seen = plain[1]

@@ -81,14 +81,15 @@ class RoutineOracle(EstimatorParams):
     """
 
     _param_names = ("distances", "opening_tasks", "orders", "temperatures", "lowest_orders", "timed", "timed_from",
-                    "discounts", "discount_from", "streams", "timed_gate", "exclusion", "novelty", "context_depth", "switch_margin",
-                    "context_decay", "tuning", "task_factor", "object_factor", "penalty",
+                    "discounts", "discount_from", "discount_evidence", "streams", "timed_gate", "exclusion", "novelty",
+                    "context_depth", "switch_margin", "context_decay", "tuning", "task_factor", "object_factor", "penalty",
                     "time_of_day_penalty", "event_horizon_forward")
 
     def __init__(self, distances: Any = None, *, opening_tasks: frozenset[str] = frozenset(),
                  orders: tuple[int, ...] = (3, 5), temperatures: tuple[float, ...] = (0.5, 2.0),
                  lowest_orders: tuple[int, ...] = (0, 1), timed: tuple[bool, ...] = (True,),
                  timed_from: int = 0, discounts: tuple[bool, ...] = (False,), discount_from: int = 0,
+                 discount_evidence: int = 0,
                  streams: tuple[str, ...] = ("idle",), timed_gate: float | None = None, exclusion: bool = False,
                  novelty: tuple[bool, ...] = (False, True),
                  context_depth: int = 3, context_decay: float = 0.5,
@@ -105,6 +106,7 @@ class RoutineOracle(EstimatorParams):
         self.timed_from = timed_from
         self.discounts = discounts
         self.discount_from = discount_from
+        self.discount_evidence = discount_evidence
         self.streams = streams
         self.timed_gate = timed_gate
         self.exclusion = exclusion
@@ -134,6 +136,9 @@ class RoutineOracle(EstimatorParams):
             raise SettingsError(f"{name}: discounts must be True or False values, got {self.discounts!r}")
         if isinstance(self.discount_from, bool) or not isinstance(self.discount_from, int) or self.discount_from < 0:
             raise SettingsError(f"{name}: discount_from must be a whole number >= 0, got {self.discount_from!r}")
+        if (isinstance(self.discount_evidence, bool) or not isinstance(self.discount_evidence, int)
+                or self.discount_evidence < 0):
+            raise SettingsError(f"{name}: discount_evidence must be a whole number >= 0, got {self.discount_evidence!r}")
         if isinstance(self.timed_from, bool) or not isinstance(self.timed_from, int) or self.timed_from < 0:
             raise SettingsError(f"{name}: timed_from must be a whole number >= 0, got {self.timed_from!r}")
         if not self.temperatures or any(not (isinstance(t, (int, float)) and math.isfinite(t) and t > 0)
@@ -286,7 +291,7 @@ class RoutineOracle(EstimatorParams):
                                                                self.time_of_day_penalty))
             found = self._streams[stream].counts.blends(
                 ids, base[stream, tau], stops, lowest, now_code if timed else -1, discount, self.timed_gate,
-                self.exclusion, novel, memo, self.discount_from)
+                self.exclusion, novel, memo, self.discount_from, self.discount_evidence)
             for order in stops:
                 blends[stream, order, tau, lowest, timed, discount, novel] = found[order]
         for variant in chosen:
