@@ -30,10 +30,10 @@ from typing import TextIO
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
 
-from oracle.chains import ChainRow, TaskCall, write_chains  # noqa: E402
+from oracle.chains import ChainRow, TaskCall  # noqa: E402
 from oracle.errors import NeemOracleError  # noqa: E402
-from oracle.evaluation.convert_egtea import ACTIONS, NOUNS, PARENTS, _container_noun, snake  # noqa: E402
-from oracle.evaluation.convert_kasteren import ConvertReport, prepare_out, write_mapping, write_odb  # noqa: E402
+from oracle.evaluation.convert_egtea import snake, write_cooking_set  # noqa: E402
+from oracle.evaluation.convert_kasteren import ConvertReport  # noqa: E402
 
 SPLIT_FILES = ("training.csv", "validation.csv")
 
@@ -128,31 +128,12 @@ def convert(folder: Path | str, out: Path | str) -> ConvertReport:
     """Write ``chains.jsonl``, ``odb/`` and ``mapping.yaml`` for EK55 into ``out``."""
     folder = Path(folder)
     rows = read_ek55(folder)
-    out = prepare_out(out)
-    write_chains(rows, out / "chains.jsonl")
-    tasks_of: dict[str, set[str]] = defaultdict(set)
-    for _verb, _noun, call in read_actions(folder).values():
-        tasks_of[call.args[0]].add(call.task)
-    objects: dict[str, tuple[str | None, list[str]]] = {parent: (None, []) for parent in PARENTS}
-    soma_map = dict(PARENTS)
     renamed = {f"{noun}_object": noun for noun in read_classes(folder / "EPIC_noun_classes.csv").values()}
-    for noun, tasks in sorted(tasks_of.items()):
-        base = renamed.get(noun, noun)  # NOUNS and the container rule see the EPIC class key
-        parent, cls = NOUNS.get(base) or _container_noun(base)
-        objects[noun] = (parent, sorted(tasks))
-        if cls is not None:
-            soma_map[noun] = cls
-    write_odb(out / "odb", objects)
-    verbs = sorted({task for tasks in tasks_of.values() for task in tasks})
-    actions = {name: spec for name, spec in ACTIONS.items()}
-    for verb in verbs:
-        actions.setdefault(verb, {})
-    write_mapping(
-        out / "mapping.yaml", "urn:neem-oracle:odb:ek55#", soma_map, actions,
+    return write_cooking_set(
+        "ek55", rows, (call for _verb, _noun, call in read_actions(folder).values()), out, "urn:neem-oracle:odb:ek55#",
         "EPIC-Kitchens-55 (a development set): nouns as odb objects, verbs as tasks (scripts/devset-ek55.py).",
+        lambda noun: renamed.get(noun, noun),  # NOUNS and the container rule see the EPIC class key
     )
-    users = {row.user for row in rows}
-    return ConvertReport("ek55", len(rows), len(users), len(objects), len(verbs), out)
 
 
 if __name__ == "__main__":

@@ -33,10 +33,10 @@ from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
 
-from oracle.chains import ChainRow, TaskCall, write_chains  # noqa: E402
+from oracle.chains import ChainRow, TaskCall  # noqa: E402
 from oracle.errors import NeemOracleError  # noqa: E402
 from oracle.evaluation.convert_egtea import snake  # noqa: E402
-from oracle.evaluation.convert_kasteren import ConvertReport, prepare_out, write_mapping, write_odb  # noqa: E402
+from oracle.evaluation.convert_kasteren import ConvertReport, write_sensor_home  # noqa: E402
 from oracle.evaluation.convert_kasteren import ACTIONS as KASTEREN_ACTIONS  # noqa: E402
 from oracle.evaluation.convert_kasteren import SOMA_ODB_MAP as KASTEREN_SOMA  # noqa: E402
 
@@ -181,22 +181,15 @@ def convert(folder: Path | str, out: Path | str) -> ConvertReport:
     """Write ``chains.jsonl``, ``odb/`` and ``mapping.yaml`` for subject 1 into ``out``."""
     folder = Path(folder)
     rows = read_mit(folder)
-    out = prepare_out(out)
-    write_chains(rows, out / "chains.jsonl")
     sensors = read_sensors(folder / "sensors.csv")
-    objects: dict[str, tuple[str | None, list[str]]] = {p: (None, []) for p in sorted({s[2] for s in sensors.values()})}
     soma_map = dict(SOMA_ODB_MAP)
-    for obj, task, parent, kind in sensors.values():
-        objects[obj] = (parent, [task])
-        if kind in TYPE_CLASSES:
-            soma_map[obj] = TYPE_CLASSES[kind]
-    write_odb(out / "odb", objects)
-    write_mapping(
-        out / "mapping.yaml", "urn:neem-oracle:odb:mit-subject1#", soma_map, ACTIONS,
-        "MIT PlaceLab subject 1 (a development set): sensors as odb objects, what they observe as tasks (scripts/devset-mit-subject1.py).",
+    soma_map.update({obj: TYPE_CLASSES[kind] for obj, _task, _parent, kind in sensors.values() if kind in TYPE_CLASSES})
+    return write_sensor_home(
+        "mit-subject1", rows, ((obj, task, parent) for obj, task, parent, _kind in sensors.values()), out,
+        "urn:neem-oracle:odb:mit-subject1#", soma_map, ACTIONS,
+        "MIT PlaceLab subject 1 (a development set): sensors as odb objects, what they observe as tasks"
+        " (scripts/devset-mit-subject1.py).",
     )
-    tasks = {row.action.task for row in rows}
-    return ConvertReport("mit-subject1", len(rows), 1, len(objects), len(tasks), out)
 
 
 if __name__ == "__main__":

@@ -209,9 +209,7 @@ call_time_(Call, BTest, ETest, Dir, _, B) :-
     far_bound(Dir, BTest), !,
     % Ordered from the far side of the bound, the store would scan every begin before it
     % (asc) or after it (desc): all rows from the tasks instead, ordered here.
-    candidate_times(Call, BTest, ETest, [], _, All),
-    (   Dir == asc -> sort(0, @=<, All, Sorted) ; sort(0, @>=, All, Sorted) ),
-    first_of_call(Call, Sorted, B).
+    first_of_all(Call, BTest, ETest, Dir, B).
 call_time_(Call, BTest, ETest, Dir, N, B) :-
     Key =.. [Dir, B0],
     candidate_times(Call, BTest, ETest, [order([Key]), limit(N)], B0, Rows),
@@ -225,11 +223,15 @@ call_time_(Call, BTest, ETest, Dir, N, B) :-
         ;   resume_test(Dir, Last, BTest, BTest1)
         ->  N1 is N*4,
             call_time_(Call, BTest1, ETest, Dir, N1, B)
-        ;   candidate_times(Call, BTest, ETest, [], _, All),   % no bound to resume from: all rows
-            (   Dir == asc -> sort(0, @=<, All, Sorted) ; sort(0, @>=, All, Sorted) ),
-            first_of_call(Call, Sorted, B)
+        ;   first_of_all(Call, BTest, ETest, Dir, B)   % no bound to resume from
         )
     ).
+
+%   The first matching row of all the candidates' rows, ordered in Prolog.
+first_of_all(Call, BTest, ETest, Dir, B) :-
+    candidate_times(Call, BTest, ETest, [], _, All),
+    (   Dir == asc -> sort(0, @=<, All, Sorted) ; sort(0, @>=, All, Sorted) ),
+    first_of_call(Call, Sorted, B).
 
 %   Begin-Task rows of the candidate tasks' actions whose interval passes the tests.
 candidate_times(Call, BTest, ETest, Options, B, Rows) :-

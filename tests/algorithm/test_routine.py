@@ -254,12 +254,16 @@ def test_the_discounted_blend_is_absolute_discounting_with_the_estimated_discoun
     assert discounted.tolist() != ppm.tolist()
 
 
-def test_discounting_applies_from_its_order_and_ppm_c_below():
+def _order_2_counts() -> tuple[ContextCounts, np.ndarray, list[int]]:
+    """Counts of order 2 whose latest context (1, 5) was followed by 1 and by 2, a base, the candidates."""
     counts = ContextCounts(2)
     for token in (5, 1, 5, 1, 5, 2, 5, 3, 5, 1, 5):
         counts.add(token)
-    base = np.array([0.1, 0.1, 0.1, 0.7])
-    candidates = [1, 2, 3, 4]
+    return counts, np.array([0.1, 0.1, 0.1, 0.7]), [1, 2, 3, 4]
+
+
+def test_discounting_applies_from_its_order_and_ppm_c_below():
+    counts, base, candidates = _order_2_counts()
     ppm = counts.blend(candidates, base, 2).probabilities
     everywhere = counts.blend(candidates, base, 2, discount=True).probabilities
     # from order 3 (above the maximum order 2): no level is discounted, the blend is PPM-C
@@ -275,11 +279,7 @@ def test_discounting_applies_from_its_order_and_ppm_c_below():
 
 
 def test_discounting_waits_for_the_evidence_of_its_estimate():
-    counts = ContextCounts(2)
-    for token in (5, 1, 5, 1, 5, 2, 5, 3, 5, 1, 5):
-        counts.add(token)
-    base = np.array([0.1, 0.1, 0.1, 0.7])
-    candidates = [1, 2, 3, 4]
+    counts, base, candidates = _order_2_counts()
     ppm = counts.blend(candidates, base, 2).probabilities.tolist()
     everywhere = counts.blend(candidates, base, 2, discount=True).probabilities.tolist()
     pairs = [counts.levels[n].evidence() for n in range(3)]

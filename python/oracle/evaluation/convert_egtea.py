@@ -12,6 +12,7 @@ from __future__ import annotations
 import csv
 import re
 from collections import defaultdict
+from collections.abc import Callable, Iterable
 from pathlib import Path
 
 from oracle.chains import ChainRow, TaskCall, write_chains
@@ -177,26 +178,34 @@ def convert(folder: Path | str, out: Path | str) -> ConvertReport:
     """Write ``chains.jsonl``, ``odb/`` and ``mapping.yaml`` for EGTEA Gaze+ into ``out``."""
     folder = Path(folder)
     rows = read_egtea(folder)
+    return write_cooking_set("egtea", rows, read_actions(folder / "actions.csv").values(), out,
+                             "urn:neem-oracle:odb:egtea#",
+                             "EGTEA Gaze+: nouns as odb objects, verbs as tasks (oracle convert egtea).")
+
+
+def write_cooking_set(name: str, rows: list[ChainRow], calls: Iterable[TaskCall], out: Path | str, namespace: str,
+                      comment: str, class_key: Callable[[str], str] = lambda noun: noun) -> ConvertReport:
+    """``chains.jsonl``, ``odb/`` and ``mapping.yaml`` of verb(noun) actions into ``out``: each noun
+    an odb object (its parent and SOMA class from NOUNS / the container rule, looked up by
+    ``class_key(noun)``), each verb a task (ACTIONS, else the action defaults)."""
     out = prepare_out(out)
     write_chains(rows, out / "chains.jsonl")
     tasks_of: dict[str, set[str]] = defaultdict(set)
-    for call in read_actions(folder / "actions.csv").values():
+    for call in calls:
         tasks_of[call.args[0]].add(call.task)
     objects: dict[str, tuple[str | None, list[str]]] = {parent: (None, []) for parent in PARENTS}
     soma_map = dict(PARENTS)
     for noun, tasks in sorted(tasks_of.items()):
-        parent, cls = NOUNS.get(noun) or _container_noun(noun)
+        key = class_key(noun)
+        parent, cls = NOUNS.get(key) or _container_noun(key)
         objects[noun] = (parent, sorted(tasks))
         if cls is not None:
             soma_map[noun] = cls
     write_odb(out / "odb", objects)
     verbs = sorted({task for tasks in tasks_of.values() for task in tasks})
-    actions = {name: spec for name, spec in ACTIONS.items()}
+    actions = {verb: spec for verb, spec in ACTIONS.items()}
     for verb in verbs:
         actions.setdefault(verb, {})
-    write_mapping(
-        out / "mapping.yaml", "urn:neem-oracle:odb:egtea#", soma_map, actions,
-        "EGTEA Gaze+: nouns as odb objects, verbs as tasks (oracle convert egtea).",
-    )
+    write_mapping(out / "mapping.yaml", namespace, soma_map, actions, comment)
     users = {row.user for row in rows}
-    return ConvertReport("egtea", len(rows), len(users), len(objects), len(verbs), out)
+    return ConvertReport(name, len(rows), len(users), len(objects), len(verbs), out)

@@ -184,16 +184,24 @@ def read_kasteren(folder: Path | str) -> list[ChainRow]:
 
 def convert(folder: Path | str, out: Path | str) -> ConvertReport:
     """Write ``chains.jsonl``, ``odb/`` and ``mapping.yaml`` for house A into ``out``."""
-    rows = read_kasteren(folder)
+    return write_sensor_home("kasteren", read_kasteren(folder), SENSORS.values(), out, "urn:neem-oracle:odb:kasteren#",
+                             SOMA_ODB_MAP, ACTIONS, "van Kasteren house A: sensors as odb objects, what they observe as tasks"
+                             " (oracle convert kasteren).")
+
+
+def write_sensor_home(name: str, rows: list[ChainRow], sensors: Iterable[tuple[str, str, str]], out: Path | str,
+                      namespace: str, soma_map: Mapping[str, str], actions: Mapping[str, dict],
+                      comment: str) -> ConvertReport:
+    """``chains.jsonl``, ``odb/`` and ``mapping.yaml`` of one home's sensor firings into ``out``:
+    each sensor (object, the task it observes, its odb parent) an odb object with that task."""
+    sensors = list(sensors)
     out = prepare_out(out)
     write_chains(rows, out / "chains.jsonl")
-    objects: dict[str, tuple[str | None, list[str]]] = {parent: (None, []) for parent in sorted({s[2] for s in SENSORS.values()})}
-    for obj, task, parent in SENSORS.values():
+    objects: dict[str, tuple[str | None, list[str]]] = {parent: (None, []) for parent in sorted({s[2] for s in sensors})}
+    for obj, task, parent in sensors:
         objects[obj] = (parent, [task])
     write_odb(out / "odb", objects)
-    write_mapping(
-        out / "mapping.yaml", "urn:neem-oracle:odb:kasteren#", SOMA_ODB_MAP, ACTIONS,
-        "van Kasteren house A: sensors as odb objects, what they observe as tasks (oracle convert kasteren).",
-    )
+    write_mapping(out / "mapping.yaml", namespace, soma_map, actions, comment)
     tasks = {row.action.task for row in rows}
-    return ConvertReport("kasteren", len(rows), 1, len(objects), len(tasks), out)
+    users = {row.user for row in rows}
+    return ConvertReport(name, len(rows), len(users), len(objects), len(tasks), out)

@@ -350,7 +350,6 @@ def compile_pipeline(
     stages: list[dict[str, Any]] = [{"$limit": 1}, {"$project": {"_id": 0}}]
     bound: set[str] = set()
     for index, pattern in enumerate(patterns):
-        after_first = index > 0
         match = _pattern_filter(pattern, number_format)
         match.update(_scope_filter(scope, number_format))
         taxonomic = isinstance(pattern.p, str) and pattern.p in TAXONOMIC
@@ -378,7 +377,7 @@ def compile_pipeline(
         if exprs:
             match["$expr"] = exprs[0] if len(exprs) == 1 else {"$and": exprs}
         lookup: dict[str, Any] = {"from": collection, "as": "next", "pipeline": [{"$match": match}]}
-        if not new and after_first:
+        if not new and index > 0:
             # No new variable: a test, as goal by goal (a ground goal succeeds once however
             # many documents match it; SqlCompiler.semi_joins).
             lookup["pipeline"].append({"$limit": 1})
