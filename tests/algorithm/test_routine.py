@@ -163,7 +163,7 @@ def test_self_tuning_follows_the_variant_that_predicted_the_user_best():
     steps = synthetic_history(200, seed=6)
     model = RoutineOracle(random_matrix(6), orders=(0, 3), temperatures=(1.0,), lowest_orders=(0,),
                           novelty=(False,)).fit(steps)
-    assert model.variants_ == (("idle", 0, 1.0, 0, True, False, False), ("idle", 3, 1.0, 0, True, False, False))
+    assert model.variants_ == (("idle", 0, 1.0, 0, True, True, False), ("idle", 3, 1.0, 0, True, True, False))
     assert model.weights_.hits[1] > model.weights_.hits[0]  # the routine is sequential
     assert model.weights_.weights("leader").tolist() == [0.0, 1.0]
     assert model.weights_.weights("leader", 2.0).tolist() == [0.0, 1.0]  # clearly better: it leads
