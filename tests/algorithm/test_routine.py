@@ -194,6 +194,7 @@ def test_parameters_follow_the_estimator_contract():
                 {"penalty": -1.0}, {"context_depth": 1.5}, {"lowest_orders": (2,)},
                 {"timed": ()}, {"timed": (1,)}, {"timed_from": -1}, {"discounts": ("yes",)}, {"discount_from": -1},
                 {"discount_from": True}, {"discount_evidence": -1}, {"discount_evidence": 1.5},
+                {"timed_discount_from": -1}, {"timed_discount_from": 1.0},
                 {"switch_margin": -1.0}):
         with pytest.raises(SettingsError):
             RoutineOracle(kitchen(), **bad).fit([])
@@ -287,6 +288,29 @@ def test_discounting_waits_for_the_evidence_of_its_estimate():
     # below every order's evidence: discounted as without the threshold; above all of it: PPM-C
     assert counts.blend(candidates, base, 2, discount=True, discount_evidence=min(pairs)).probabilities.tolist() == everywhere
     assert counts.blend(candidates, base, 2, discount=True, discount_evidence=max(pairs) + 1).probabilities.tolist() == ppm
+
+
+def test_the_part_of_day_levels_can_be_discounted_from_their_own_order():
+    counts = ContextCounts(2, timed_from=1)
+    for token in (5, 1, 5, 1, 5, 2, 5, 3, 5, 1, 5):
+        counts.add(token, 0)
+    base, candidates = np.array([0.1, 0.1, 0.1, 0.7]), [1, 2, 3, 4]
+    same = counts.blend(candidates, base, 2, part=0, discount=True, discount_from=2).probabilities
+    # None: the part-of-day levels follow discount_from (order 1 PPM-C, timed or not)
+    assert counts.blend(candidates, base, 2, part=0, discount=True, discount_from=2,
+                        timed_discount_from=None).probabilities.tolist() == same.tolist()
+    # from order 1: the untimed order-1 level stays PPM-C, its part-of-day level is discounted by its own D
+    untimed_1 = counts.blend(candidates, base, 1, discount=True, discount_from=2).probabilities
+    level = counts.timed[1]
+    seen = np.array([level.tables[(0, 5)].get(c, 0) for c in candidates], dtype=float)
+    d, kinds, total = level.discount(), len(level.tables[(0, 5)]), level.totals[(0, 5)]
+    assert counts.blend(candidates, base, 1, part=0, discount=True, discount_from=2,
+                        timed_discount_from=1).probabilities == pytest.approx(
+        (np.maximum(seen - d, 0.0) + d * kinds * untimed_1) / total)
+    # without a part of day, or without discounting, the option changes nothing
+    for kwargs in ({"part": -1, "discount": True}, {"part": 0, "discount": False}):
+        assert counts.blend(candidates, base, 2, discount_from=2, timed_discount_from=1, **kwargs).probabilities.tolist() \
+            == counts.blend(candidates, base, 2, discount_from=2, **kwargs).probabilities.tolist()
 
 
 def test_at_order_0_the_counts_of_this_part_of_day_replace_the_overall_counts():
@@ -409,10 +433,11 @@ def test_the_default_has_novelty_variants_after_the_plain_ones():
        candidates=st.lists(st.integers(-3, 6), min_size=1, max_size=6, unique=True),
        lowest=st.sampled_from([0, 1]), timed_from=st.sampled_from([-1, 0, 1]), part=st.integers(-1, 3),
        discount=st.booleans(), exclusion=st.booleans(), novelty=st.booleans(),
-       gate=st.sampled_from([None, 1.0]), discount_from=st.integers(0, 3), evidence=st.sampled_from([0, 3, 10]))
+       gate=st.sampled_from([None, 1.0]), discount_from=st.integers(0, 3), evidence=st.sampled_from([0, 3, 10]),
+       timed_discount=st.sampled_from([None, 1, 2]))
 def test_blends_of_several_maximum_orders_equal_the_blend_of_each(tokens, candidates, lowest, timed_from, part,
                                                                   discount, exclusion, novelty, gate, discount_from,
-                                                                  evidence):
+                                                                  evidence, timed_discount):
     # The self-tuning's variants that differ in their maximum order only share one blend pass:
     # each order's result must be exactly the blend computed alone.
     counts = ContextCounts(5, timed_from)
@@ -422,9 +447,9 @@ def test_blends_of_several_maximum_orders_equal_the_blend_of_each(tokens, candid
     base /= base.sum()
     stops = (3, 5, 1, 7)
     together = counts.blends(candidates, base, stops, lowest, part, discount, gate, exclusion, novelty, {}, discount_from,
-                             evidence)
+                             evidence, timed_discount)
     for stop in stops:
         alone = counts.blend(candidates, base, stop, lowest, part, discount, gate, exclusion, novelty,
-                             discount_from=discount_from, discount_evidence=evidence)
+                             discount_from=discount_from, discount_evidence=evidence, timed_discount_from=timed_discount)
         assert np.array_equal(together[stop].probabilities, alone.probabilities)
         assert np.array_equal(together[stop].order, alone.order) and np.array_equal(together[stop].count, alone.count)

@@ -153,15 +153,16 @@ class ContextCounts:
     def blend(self, candidates: Sequence[int], base: np.ndarray, max_order: int, min_order: int = 0,
               part: int = -1, discount: bool = False, gate: float | None = None,
               exclusion: bool = False, novelty: bool = False, memo: Memo | None = None,
-              discount_from: int = 0, discount_evidence: int = 0) -> Blend:
+              discount_from: int = 0, discount_evidence: int = 0, timed_discount_from: int | None = None) -> Blend:
         """One variant's blend: ``blends`` with the one stop ``max_order`` (documented there)."""
         return self.blends(candidates, base, (max_order,), min_order, part, discount, gate, exclusion, novelty,
-                           memo, discount_from, discount_evidence)[max_order]
+                           memo, discount_from, discount_evidence, timed_discount_from)[max_order]
 
     def blends(self, candidates: Sequence[int], base: np.ndarray, max_orders: Sequence[int], min_order: int = 0,
                part: int = -1, discount: bool = False, gate: float | None = None,
                exclusion: bool = False, novelty: bool = False, memo: Memo | None = None,
-               discount_from: int = 0, discount_evidence: int = 0) -> dict[int, Blend]:
+               discount_from: int = 0, discount_evidence: int = 0,
+               timed_discount_from: int | None = None) -> dict[int, Blend]:
         """``P_n(c) = (n(ctx_n, c) + u_n P_{n-1}(c)) / (N(ctx_n) + u_n)`` from ``P_{-1} = base`` up to
         ``max_order``; an unseen context leaves the distribution as it is (PPM-C, no exclusion).
         With ``discount``: ``P_n(c) = (max(n(ctx_n, c) - D_n, 0) + D_n u_n P_{n-1}(c)) / N(ctx_n)`` at
@@ -238,7 +239,9 @@ class ContextCounts:
             if n == 0:
                 continue
             if timed:
-                refined = self.timed[n].apply((part, *context), candidates, probs, discounted, memo=memo)
+                timed_discounted = discounted if timed_discount_from is None else (
+                    discount and n >= timed_discount_from and self.timed[n].evidence() >= discount_evidence)
+                refined = self.timed[n].apply((part, *context), candidates, probs, timed_discounted, memo=memo)
                 if refined is not None:
                     probs = refined[0]
         reached(math.inf)  # the order-0 level never reached leaves the novelty split as it is

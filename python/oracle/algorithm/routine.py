@@ -72,7 +72,9 @@ class RoutineOracle(EstimatorParams):
     ``distances`` is the DistanceMatrix; ``task_factor``, ``object_factor``, ``penalty`` and
     ``time_of_day_penalty`` are the thesis's Table 4.2 values, used in the same roles;
     ``orders``, ``temperatures``, ``lowest_orders``, ``timed`` (part-of-day contexts from order
-    ``timed_from``; with ``timed_gate`` only where they differ beyond noise), ``discounts`` and
+    ``timed_from``; with ``timed_gate`` only where they differ beyond noise), ``discounts``
+    (absolute discounting from order ``discount_from`` once ``discount_evidence`` pairs back an
+    order's estimate; the part-of-day levels from ``timed_discount_from``, None: as the rest) and
     ``streams`` span the variants that ``tuning`` weighs; ``exclusion`` lets the lowest counted
     level escape only to the options it did not count; ``novelty`` (variants) gives the never-done
     options together the PPM-C estimate of a novel action
@@ -81,7 +83,8 @@ class RoutineOracle(EstimatorParams):
     """
 
     _param_names = ("distances", "opening_tasks", "orders", "temperatures", "lowest_orders", "timed", "timed_from",
-                    "discounts", "discount_from", "discount_evidence", "streams", "timed_gate", "exclusion", "novelty",
+                    "discounts", "discount_from", "discount_evidence", "timed_discount_from", "streams", "timed_gate",
+                    "exclusion", "novelty",
                     "context_depth", "switch_margin", "context_decay", "tuning", "task_factor", "object_factor", "penalty",
                     "time_of_day_penalty", "event_horizon_forward")
 
@@ -89,7 +92,7 @@ class RoutineOracle(EstimatorParams):
                  orders: tuple[int, ...] = (3, 5), temperatures: tuple[float, ...] = (0.5, 2.0),
                  lowest_orders: tuple[int, ...] = (0, 1), timed: tuple[bool, ...] = (True,),
                  timed_from: int = 0, discounts: tuple[bool, ...] = (True,), discount_from: int = 3,
-                 discount_evidence: int = 50,
+                 discount_evidence: int = 50, timed_discount_from: int | None = None,
                  streams: tuple[str, ...] = ("idle",), timed_gate: float | None = None, exclusion: bool = False,
                  novelty: tuple[bool, ...] = (False, True),
                  context_depth: int = 3, context_decay: float = 0.5,
@@ -107,6 +110,7 @@ class RoutineOracle(EstimatorParams):
         self.discounts = discounts
         self.discount_from = discount_from
         self.discount_evidence = discount_evidence
+        self.timed_discount_from = timed_discount_from
         self.streams = streams
         self.timed_gate = timed_gate
         self.exclusion = exclusion
@@ -139,6 +143,11 @@ class RoutineOracle(EstimatorParams):
         if (isinstance(self.discount_evidence, bool) or not isinstance(self.discount_evidence, int)
                 or self.discount_evidence < 0):
             raise SettingsError(f"{name}: discount_evidence must be a whole number >= 0, got {self.discount_evidence!r}")
+        if self.timed_discount_from is not None and (isinstance(self.timed_discount_from, bool)
+                                                     or not isinstance(self.timed_discount_from, int)
+                                                     or self.timed_discount_from < 0):
+            raise SettingsError(f"{name}: timed_discount_from must be None or a whole number >= 0, "
+                                f"got {self.timed_discount_from!r}")
         if isinstance(self.timed_from, bool) or not isinstance(self.timed_from, int) or self.timed_from < 0:
             raise SettingsError(f"{name}: timed_from must be a whole number >= 0, got {self.timed_from!r}")
         if not self.temperatures or any(not (isinstance(t, (int, float)) and math.isfinite(t) and t > 0)
@@ -291,7 +300,8 @@ class RoutineOracle(EstimatorParams):
                                                                self.time_of_day_penalty))
             found = self._streams[stream].counts.blends(
                 ids, base[stream, tau], stops, lowest, now_code if timed else -1, discount, self.timed_gate,
-                self.exclusion, novel, memo, self.discount_from, self.discount_evidence)
+                self.exclusion, novel, memo, self.discount_from, self.discount_evidence,
+                self.timed_discount_from)
             for order in stops:
                 blends[stream, order, tau, lowest, timed, discount, novel] = found[order]
         for variant in chosen:
