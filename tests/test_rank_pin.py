@@ -24,9 +24,9 @@ pytestmark = [pytest.mark.slow,
 ACTIONS = 10_000
 #: sha256 of ``ranking_digest_text`` as the implementation of commit 4f2f506 wrote it, renewed when
 #: the routine predictor's default changed on purpose (part-of-day contexts and the leader's
-#: switch margin; then absolute discounting from order 3 once 50 pairs back it; docs/algorithm.md):
+#: switch margin; then absolute discounting from order 2 once 100 pairs back it; docs/algorithm.md):
 #: ``python tests/test_rank_pin.py`` prints it.
-EXPECTED = "b792d3840081c8dad5fe5eb5f0fa4016a58850adb3610cdf26ae3c325a5c55a4"
+EXPECTED = "77aa1b49d2cd2bc8830f20e94f926e04f0b1de53af17b129f89c537ca97bf8f4"
 
 
 def _oracle(*argv: str, env: dict[str, str]) -> str:
