@@ -572,17 +572,33 @@ nth0_var([V|Vs], X, I0, I) :-
     (   V == X -> I = I0 ; I1 is I0+1, nth0_var(Vs, X, I1, I) ).
 
 %   A chunk of py_match/2 solutions arrives as the text `r(d(V1, ..., Vk), Rows)`: each
-%   distinct value (quoted atom or number) once, and each row a list of positions in d/k
-%   (a grouped variable's values: a list of positions). A history read repeats each IRI
-%   many times; small integers are read 7x faster than the quoted atoms. It is read as
-%   data, never called; an error arrives as `error(Message)`.
+%   distinct value (quoted atom or number) once, and each row a list of positions in d/k.
+%   A history read repeats each IRI many times; small integers are read 7x faster than the
+%   quoted atoms. A grouped request's chunk is `r(d(V1, ..., Vk), g(S1, ..., Sm), Rows)`:
+%   each distinct group of values once, as a list of positions in d/k, and a row's last
+%   position k+j names the group Sj; Table is then d/k+m, its last m values the groups' value
+%   lists (each built once, shared by the rows naming it). It is read as data, never called;
+%   an error arrives as `error(Message)`.
 match_reply(Reply, Table, Rows) :-
     term_string(T, Reply),
     (   T = r(Table, Rows), ground(T), is_list(Rows)
     ->  true
+    ;   T = r(Values, Groups, Rows), ground(T), is_list(Rows), functor(Values, d, _),
+        functor(Groups, g, _)
+    ->  Values =.. [d|Vs],
+        Groups =.. [g|Gs],
+        maplist(group_values(Values), Gs, Lists),
+        append(Vs, Lists, All),
+        Table =.. [d|All]
     ;   T = error(Message)
     ->  throw(error(neem_store_error(Message), _))
     ;   throw(error(neem_store_error(unexpected_reply(T)), _))
+    ).
+
+group_values(Values, Positions, List) :-
+    (   is_list(Positions)
+    ->  row_values(Positions, Values, List)
+    ;   throw(error(neem_store_error(unexpected_reply(Positions)), _))
     ).
 
 %   The values of one compact row; a position outside the table is a broken reply.

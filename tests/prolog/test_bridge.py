@@ -158,3 +158,31 @@ def test_why_not_times_of_a_call_done_often(tmp_path, onto):
     finally:
         bridge.close()
         store.close()
+
+
+def test_grouped_reply_writes_each_distinct_group_once():
+    from oracle.bridge import _compact
+    from oracle.store.chunks import MatchChunk
+
+    chunk = MatchChunk(["a", "b", "c"], [(0, [1, 2]), (2, [2, 1]), (1, [1])])
+    # The values in no fixed order: [b, c] and [c, b] are one group, the 4th value of the table.
+    assert _compact(chunk, True) == "r(d('a','b','c'),g([2,3],[2]),[[1,4],[3,4],[2,5]])"
+    assert _compact(MatchChunk([], []), True) == "r(d,g,[])"
+
+
+def test_kb_group_of_shared_groups_through_the_store(tmp_path):
+    store = open_store(tmp_path / "s.sqlite")
+    store.create_neem("n1")
+    p = "http://e.org/p"
+    sets = {"s1": "xy", "s2": "yx", "s3": "x", "s4": "xyy"}
+    store.insert("n1", [Triple(f"http://e.org/{s}", p, f"http://e.org/{o}") for s, os in sets.items() for o in os])
+    bridge = Bridge(store, "n1")
+    try:
+        grouped = bridge.query(f"kb_query:kb_group(S, O, triple(S, '{p}', O), any, G)")[0]["G"]
+        expected = bridge.query(f"findall(S-O, kb_call(triple(S, '{p}', O), any), P), msort(P, Q), group_pairs_by_key(Q, G)")
+        assert grouped == expected[0]["G"] and len(grouped) == 4
+        sizes = bridge.query(f"kb_query:kb_group(S, O, triple(S, '{p}', O), any, G),"
+                             " findall(N, ( member(_-Vs, G), length(Vs, N) ), Ns)")[0]["Ns"]
+        assert sizes == [2, 2, 1, 3]
+    finally:
+        bridge.close()

@@ -149,3 +149,27 @@ def _grouped_chunks(rows: list[Sequence[Any]], where: list[int], size: int,
             at += len(m)
         columns.append(collected)
         yield MatchChunk(index.values, list(zip(*columns)))
+
+
+def concatenated_chunks(rows: list[Sequence[Any]], width: int, keys: list[int], size: int,
+                        out: Callable[[Any, int], Any], convert: Convert | None = None) -> Iterator[MatchChunk]:
+    """Groups made by SQL as chunks of up to ``size`` groups: each row holds the key's (value,
+    kind) column pairs (``width`` columns; ``keys`` gives, per kept key variable in the order
+    asked, its pair) and then the group's integer values and their kinds, each as one
+    comma-separated text (``group_concat``; NULL: no solution). Each distinct group is parsed
+    and its values indexed once per chunk."""
+    rows = [row for row in rows if row[width] is not None]
+    for start in range(0, len(rows), size):
+        batch = rows[start:start + size]
+        index = _RawIndex(out, convert)
+        columns: list[Any] = [index.column([r[2 * c] for r in batch], [r[2 * c + 1] for r in batch]) for c in keys]
+        distinct = list(dict.fromkeys((r[width], r[width + 1]) for r in batch))
+        members = [(list(map(int, values.split(","))), list(map(int, kinds.split(",")))) for values, kinds in distinct]
+        flat = index.column([v for values, _ in members for v in values], [k for _, kinds in members for k in kinds])
+        positions: dict[tuple[str, str], list[int]] = {}
+        at = 0
+        for key, (values, _) in zip(distinct, members):
+            positions[key] = flat[at:at + len(values)]
+            at += len(values)
+        columns.append([positions[r[width], r[width + 1]] for r in batch])
+        yield MatchChunk(index.values, list(zip(*columns)))

@@ -72,7 +72,7 @@ from oracle.store.sql import (
     non_taxonomic,
     sql_value,
 )
-from oracle.store.chunks import MatchChunk, raw_chunks
+from oracle.store.chunks import MatchChunk, concatenated_chunks, raw_chunks
 
 SCHEMA_VERSION = "4"
 #: Schemas this version reads: 3 is 4 without side tables (opened for writing, it becomes 4,
@@ -1099,9 +1099,41 @@ class SQLiteStore(Store):
     ) -> Iterator[MatchChunk]:
         # The raw (value, kind) columns are indexed as they come from SQL: each distinct term
         # id becomes its IRI once per chunk, not once per cell.
+        if group is not None and limit is None:
+            grouped = self._grouped_in_sql(neem_id, patterns, scope, order, kept, group, written_order, size)
+            if grouped is not None:
+                return grouped
         names, rows = self._match_rows(neem_id, patterns, scope, limit, order, kept, group, written_order)
         where = [names.index(name) for name in kept]
         return raw_chunks(rows, where, group is not None, size, self._out, self._convert)
+
+    def _grouped_in_sql(self, neem_id: str, patterns: Sequence[TriplePattern], scope: Scope | None,
+                        order: Sequence[tuple[str, bool]], kept: list[str], group: str, written_order: bool,
+                        size: int) -> Iterator[MatchChunk] | None:
+        """A grouped match grouped by SQLite (GROUP BY over the join, ``group_concat`` of the
+        grouped column): one row per group reaches Python instead of one per solution (the
+        imaginings of a history read: 10,000 groups, not 212,000 rows). Exact only where the
+        grouped values are all integers (term ids, integers) and no key is a REAL zero (GROUP BY
+        would join 0.0 and -0.0): otherwise None, and the caller groups in Python. Only for a
+        key of one variable: its groups are few and large, while a wide key (an action with its
+        task and interval, two types each) makes groups of ~2 values that Python groups faster
+        than SQLite sorts the rows by eight columns (0.39 s against 0.44 s at 10,000 actions)."""
+        if written_order or len(kept) != 2 or kept[-1] != group:
+            return None
+        names, columns, rest, params = self._match_sql(neem_id, patterns, scope, None, order, kept, group, False)
+        width = len(columns) - 2
+        keys = [f"c{i}" for i in range(width)]
+        inner = f"SELECT {', '.join(f'{expr} AS c{i}' for i, expr in enumerate(columns))} {rest}"
+        # Checks: a grouped value that is no integer, a key that is a REAL zero.
+        checks = [f"sum(typeof(c{width}) != 'integer' OR typeof(c{width + 1}) != 'integer')"]
+        checks += [f"sum(typeof(c{i}) = 'real' AND c{i} = 0)" for i in range(0, width, 2)]
+        sql = (f"SELECT {', '.join(keys + [f'group_concat(c{width})', f'group_concat(c{width + 1})'] + checks)}"
+               f" FROM ({inner})" + (f" GROUP BY {', '.join(keys)}" if keys else ""))
+        rows = self._conn.execute(sql, params).fetchall()
+        if any(any(row[width + 2:]) for row in rows):
+            return None
+        where = [names.index(name) for name in kept]
+        return concatenated_chunks(rows, width, where[:-1], size, self._out, self._convert)
 
     def _convert(self, kind: int, values: list[Any]) -> list[Any]:
         """Raw values of one kind as plain values; term ids looked up at once, in id order (a
@@ -1135,6 +1167,34 @@ class SQLiteStore(Store):
     ) -> tuple[list[str], list[Any]]:
         """The kept variables (``group`` last) and the rows of one SQL join, each row a
         (value, kind) pair per variable."""
+        names, columns, rest, params = self._match_sql(neem_id, patterns, scope, limit, order, select, group,
+                                                       written_order)
+        sql = f"SELECT {', '.join(columns) or '1'} {rest}"
+        if written_order:
+            # The plan is the caller's: no automatic index (SQLite without statistics would build
+            # one over the whole table for a lookup the (o, p) index answers).
+            self._conn.execute("PRAGMA automatic_index = OFF")
+            try:
+                rows = self._conn.execute(sql, params).fetchall()
+            finally:
+                self._conn.execute("PRAGMA automatic_index = ON")
+        else:
+            rows = self._conn.execute(sql, params).fetchall()
+        return names, rows
+
+    def _match_sql(
+        self,
+        neem_id: str,
+        patterns: Sequence[TriplePattern],
+        scope: Scope | None,
+        limit: int | None,
+        order: Sequence[tuple[str, bool]],
+        select: Sequence[str] | None,
+        group: str | None,
+        written_order: bool,
+    ) -> tuple[list[str], list[str], str, Any]:
+        """The SQL of one join: the kept variables (``group`` last), the column expressions (a
+        value and a kind per variable), the text after the select list and the parameters."""
         self._require(neem_id)
         query = SqlCompiler(self, _table(neem_id, "triples"), scope, self._side(neem_id))
         query.semi_joins = True
@@ -1152,10 +1212,7 @@ class SQLiteStore(Store):
         names = [name for name in query.bound if (select is None or name in select) and name != group]
         if group is not None:
             names.append(group)
-        if not names:
-            columns = "1"
-        else:
-            columns = ", ".join(f"{query.bound[n][0]}, {query.bound[n][1] or K_STR}" for n in names)
+        columns = [expr for n in names for expr in (query.bound[n][0], str(query.bound[n][1] or K_STR))]
         keys = [f"{query.bound[name][0]} {'DESC' if descending else 'ASC'}" for name, descending in order]
         # In the written order the rows are sorted after the join ("+": SQLite would otherwise
         # scan the first table in id order to skip the sort, instead of using its index).
@@ -1163,22 +1220,12 @@ class SQLiteStore(Store):
         if group is None:  # groups come in no fixed order (Store.match): no sort of the rows
             keys += [f"{mark}{query.aliases[i]}.id" for i in query.joined_patterns()]
         source = query.ordered_from_clause(plan) if plan else query.from_clause()
-        sql = f"SELECT {columns} FROM {source} WHERE {query.where()}"
+        rest = f"FROM {source} WHERE {query.where()}"
         if keys:
-            sql += f" ORDER BY {', '.join(keys)}"
+            rest += f" ORDER BY {', '.join(keys)}"
         if limit is not None:
-            sql += f" LIMIT {int(limit)}"
-        if mark:
-            # The plan is the caller's: no automatic index (SQLite without statistics would build
-            # one over the whole table for a lookup the (o, p) index answers).
-            self._conn.execute("PRAGMA automatic_index = OFF")
-            try:
-                rows = self._conn.execute(sql, query.params).fetchall()
-            finally:
-                self._conn.execute("PRAGMA automatic_index = ON")
-        else:
-            rows = self._conn.execute(sql, query.params).fetchall()
-        return names, rows
+            rest += f" LIMIT {int(limit)}"
+        return names, columns, rest, query.params
 
     def annotations(self, neem_id: str, s: str | None = None, p: str | None = None) -> Iterator[Annotation]:
         self._require(neem_id)
