@@ -194,7 +194,7 @@ def test_parameters_follow_the_estimator_contract():
                 {"penalty": -1.0}, {"context_depth": 1.5}, {"lowest_orders": (2,)},
                 {"timed": ()}, {"timed": (1,)}, {"timed_from": -1}, {"discounts": ("yes",)}, {"discount_from": -1},
                 {"discount_from": True}, {"discount_evidence": -1}, {"discount_evidence": 1.5},
-                {"timed_discount_from": -1}, {"timed_discount_from": 1.0},
+                {"timed_discount_from": -1}, {"timed_discount_from": 1.0}, {"timed_shrink": 1},
                 {"switch_margin": -1.0}):
         with pytest.raises(SettingsError):
             RoutineOracle(kitchen(), **bad).fit([])
@@ -311,6 +311,27 @@ def test_the_part_of_day_levels_can_be_discounted_from_their_own_order():
     for kwargs in ({"part": -1, "discount": True}, {"part": 0, "discount": False}):
         assert counts.blend(candidates, base, 2, discount_from=2, timed_discount_from=1, **kwargs).probabilities.tolist() \
             == counts.blend(candidates, base, 2, discount_from=2, **kwargs).probabilities.tolist()
+
+
+def test_a_shrunk_part_of_day_level_escapes_by_the_followers_of_its_context():
+    counts = ContextCounts(1, timed_from=1)
+    for token, part in ((5, 0), (1, 0), (5, 1), (2, 1), (5, 1), (3, 1), (5, 0), (1, 0), (5, 0)):
+        counts.add(token, part)
+    base, candidates = np.array([0.1, 0.2, 0.3, 0.4]), [1, 2, 3, 4]
+    untimed = counts.blend(candidates, base, 1).probabilities     # P_1: context (5,) followed by 1, 2, 3, 1
+    level = counts.timed[1].tables[(0, 5)]                        # at part 0: followed by 1 twice
+    seen = np.array([level.get(c, 0) for c in candidates], dtype=float)
+    n_t, u_n = sum(level.values()), len(counts.levels[1].tables[(5,)])
+    assert (n_t, len(level), u_n) == (2, 1, 3)
+    # PPM-C with the context's distinct followers at any time as the escape count
+    assert counts.blend(candidates, base, 1, part=0, timed_shrink=True).probabilities == pytest.approx(
+        (seen + u_n * untimed) / (n_t + u_n))
+    own = counts.blend(candidates, base, 1, part=0).probabilities
+    assert own == pytest.approx((seen + 1 * untimed) / (n_t + 1))
+    # shrunk: between the untimed estimate and the part-of-day one
+    assert untimed[0] < counts.blend(candidates, base, 1, part=0, timed_shrink=True).probabilities[0] < own[0]
+    # without a part of day the option changes nothing
+    assert counts.blend(candidates, base, 1, timed_shrink=True).probabilities.tolist() == untimed.tolist()
 
 
 def test_at_order_0_the_counts_of_this_part_of_day_replace_the_overall_counts():
@@ -434,10 +455,10 @@ def test_the_default_has_novelty_variants_after_the_plain_ones():
        lowest=st.sampled_from([0, 1]), timed_from=st.sampled_from([-1, 0, 1]), part=st.integers(-1, 3),
        discount=st.booleans(), exclusion=st.booleans(), novelty=st.booleans(),
        gate=st.sampled_from([None, 1.0]), discount_from=st.integers(0, 3), evidence=st.sampled_from([0, 3, 10]),
-       timed_discount=st.sampled_from([None, 1, 2]))
+       timed_discount=st.sampled_from([None, 1, 2]), shrink=st.booleans())
 def test_blends_of_several_maximum_orders_equal_the_blend_of_each(tokens, candidates, lowest, timed_from, part,
                                                                   discount, exclusion, novelty, gate, discount_from,
-                                                                  evidence, timed_discount):
+                                                                  evidence, timed_discount, shrink):
     # The self-tuning's variants that differ in their maximum order only share one blend pass:
     # each order's result must be exactly the blend computed alone.
     counts = ContextCounts(5, timed_from)
@@ -447,9 +468,10 @@ def test_blends_of_several_maximum_orders_equal_the_blend_of_each(tokens, candid
     base /= base.sum()
     stops = (3, 5, 1, 7)
     together = counts.blends(candidates, base, stops, lowest, part, discount, gate, exclusion, novelty, {}, discount_from,
-                             evidence, timed_discount)
+                             evidence, timed_discount, shrink)
     for stop in stops:
         alone = counts.blend(candidates, base, stop, lowest, part, discount, gate, exclusion, novelty,
-                             discount_from=discount_from, discount_evidence=evidence, timed_discount_from=timed_discount)
+                             discount_from=discount_from, discount_evidence=evidence, timed_discount_from=timed_discount,
+                             timed_shrink=shrink)
         assert np.array_equal(together[stop].probabilities, alone.probabilities)
         assert np.array_equal(together[stop].order, alone.order) and np.array_equal(together[stop].count, alone.count)

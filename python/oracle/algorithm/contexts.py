@@ -153,16 +153,17 @@ class ContextCounts:
     def blend(self, candidates: Sequence[int], base: np.ndarray, max_order: int, min_order: int = 0,
               part: int = -1, discount: bool = False, gate: float | None = None,
               exclusion: bool = False, novelty: bool = False, memo: Memo | None = None,
-              discount_from: int = 0, discount_evidence: int = 0, timed_discount_from: int | None = None) -> Blend:
+              discount_from: int = 0, discount_evidence: int = 0, timed_discount_from: int | None = None,
+              timed_shrink: bool = False) -> Blend:
         """One variant's blend: ``blends`` with the one stop ``max_order`` (documented there)."""
         return self.blends(candidates, base, (max_order,), min_order, part, discount, gate, exclusion, novelty,
-                           memo, discount_from, discount_evidence, timed_discount_from)[max_order]
+                           memo, discount_from, discount_evidence, timed_discount_from, timed_shrink)[max_order]
 
     def blends(self, candidates: Sequence[int], base: np.ndarray, max_orders: Sequence[int], min_order: int = 0,
                part: int = -1, discount: bool = False, gate: float | None = None,
                exclusion: bool = False, novelty: bool = False, memo: Memo | None = None,
                discount_from: int = 0, discount_evidence: int = 0,
-               timed_discount_from: int | None = None) -> dict[int, Blend]:
+               timed_discount_from: int | None = None, timed_shrink: bool = False) -> dict[int, Blend]:
         """``P_n(c) = (n(ctx_n, c) + u_n P_{n-1}(c)) / (N(ctx_n) + u_n)`` from ``P_{-1} = base`` up to
         ``max_order``; an unseen context leaves the distribution as it is (PPM-C, no exclusion).
         With ``discount``: ``P_n(c) = (max(n(ctx_n, c) - D_n, 0) + D_n u_n P_{n-1}(c)) / N(ctx_n)`` at
@@ -180,7 +181,12 @@ class ContextCounts:
         the PPM-C estimate ``q = u_0 / (N_0 + u_0)`` and is then chosen by ``base`` among the
         never-done candidates; otherwise (``1 - q``) the order-0 level ranks the done candidates,
         escaping to ``base`` restricted to them (below the order-1 contexts when the order-0
-        level is not used). The blend of each of ``max_orders`` (variants that differ in their
+        level is not used). With ``timed_shrink`` a part-of-day level of order n >= 1 escapes as
+        often as the context has distinct followers at any part of day (``u_n``, not its own
+        ``u_t``): its estimate ``R`` becomes ``a R + (1 - a) P_n`` with ``a = (N_t + u_t) / (N_t +
+        u_n)``, which under PPM-C is ``(n_t(c) + u_n P_n(c)) / (N_t + u_n)``; a context split four
+        ways by the clock then moves the untimed estimate only as far as its few timed counts
+        warrant. The blend of each of ``max_orders`` (variants that differ in their
         maximum order only), computed once up to the highest: a lower one is the state the
         higher one's blend passes through."""
         probs = base.astype(np.float64, copy=True)
@@ -241,8 +247,13 @@ class ContextCounts:
             if timed:
                 timed_discounted = discounted if timed_discount_from is None else (
                     discount and n >= timed_discount_from and self.timed[n].evidence() >= discount_evidence)
-                refined = self.timed[n].apply((part, *context), candidates, probs, timed_discounted, memo=memo)
-                if refined is not None:
+                key = (part, *context)
+                refined = self.timed[n].apply(key, candidates, probs, timed_discounted, memo=memo)
+                if refined is not None and timed_shrink:
+                    own = self.timed[n].totals[key] + len(self.timed[n].tables[key])
+                    share = own / (own - len(self.timed[n].tables[key]) + len(followers))
+                    probs = share * refined[0] + (1.0 - share) * probs
+                elif refined is not None:
                     probs = refined[0]
         reached(math.inf)  # the order-0 level never reached leaves the novelty split as it is
         return done

@@ -74,7 +74,9 @@ class RoutineOracle(EstimatorParams):
     ``orders``, ``temperatures``, ``lowest_orders``, ``timed`` (part-of-day contexts from order
     ``timed_from``; with ``timed_gate`` only where they differ beyond noise), ``discounts``
     (absolute discounting from order ``discount_from`` once ``discount_evidence`` pairs back an
-    order's estimate; the part-of-day levels from ``timed_discount_from``, None: as the rest) and
+    order's estimate; the part-of-day levels from ``timed_discount_from``, None: as the rest;
+    ``timed_shrink``: a part-of-day level escapes as often as its context has distinct followers
+    at any time of day) and
     ``streams`` span the variants that ``tuning`` weighs; ``exclusion`` lets the lowest counted
     level escape only to the options it did not count; ``novelty`` (variants) gives the never-done
     options together the PPM-C estimate of a novel action
@@ -83,7 +85,8 @@ class RoutineOracle(EstimatorParams):
     """
 
     _param_names = ("distances", "opening_tasks", "orders", "temperatures", "lowest_orders", "timed", "timed_from",
-                    "discounts", "discount_from", "discount_evidence", "timed_discount_from", "streams", "timed_gate",
+                    "discounts", "discount_from", "discount_evidence", "timed_discount_from", "timed_shrink", "streams",
+                    "timed_gate",
                     "exclusion", "novelty",
                     "context_depth", "switch_margin", "context_decay", "tuning", "task_factor", "object_factor", "penalty",
                     "time_of_day_penalty", "event_horizon_forward")
@@ -92,7 +95,7 @@ class RoutineOracle(EstimatorParams):
                  orders: tuple[int, ...] = (3, 5), temperatures: tuple[float, ...] = (0.5, 2.0),
                  lowest_orders: tuple[int, ...] = (0, 1), timed: tuple[bool, ...] = (True,),
                  timed_from: int = 0, discounts: tuple[bool, ...] = (True,), discount_from: int = 2,
-                 discount_evidence: int = 100, timed_discount_from: int | None = None,
+                 discount_evidence: int = 100, timed_discount_from: int | None = None, timed_shrink: bool = False,
                  streams: tuple[str, ...] = ("idle",), timed_gate: float | None = None, exclusion: bool = False,
                  novelty: tuple[bool, ...] = (False, True),
                  context_depth: int = 3, context_decay: float = 0.5,
@@ -111,6 +114,7 @@ class RoutineOracle(EstimatorParams):
         self.discount_from = discount_from
         self.discount_evidence = discount_evidence
         self.timed_discount_from = timed_discount_from
+        self.timed_shrink = timed_shrink
         self.streams = streams
         self.timed_gate = timed_gate
         self.exclusion = exclusion
@@ -148,6 +152,8 @@ class RoutineOracle(EstimatorParams):
                                                      or self.timed_discount_from < 0):
             raise SettingsError(f"{name}: timed_discount_from must be None or a whole number >= 0, "
                                 f"got {self.timed_discount_from!r}")
+        if not isinstance(self.timed_shrink, bool):
+            raise SettingsError(f"{name}: timed_shrink must be True or False, got {self.timed_shrink!r}")
         if isinstance(self.timed_from, bool) or not isinstance(self.timed_from, int) or self.timed_from < 0:
             raise SettingsError(f"{name}: timed_from must be a whole number >= 0, got {self.timed_from!r}")
         if not self.temperatures or any(not (isinstance(t, (int, float)) and math.isfinite(t) and t > 0)
@@ -301,7 +307,7 @@ class RoutineOracle(EstimatorParams):
             found = self._streams[stream].counts.blends(
                 ids, base[stream, tau], stops, lowest, now_code if timed else -1, discount, self.timed_gate,
                 self.exclusion, novel, memo, self.discount_from, self.discount_evidence,
-                self.timed_discount_from)
+                self.timed_discount_from, self.timed_shrink)
             for order in stops:
                 blends[stream, order, tau, lowest, timed, discount, novel] = found[order]
         for variant in chosen:
