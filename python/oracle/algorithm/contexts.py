@@ -250,8 +250,8 @@ class ContextCounts:
                 key = (part, *context)
                 refined = self.timed[n].apply(key, candidates, probs, timed_discounted, memo=memo)
                 if refined is not None and timed_shrink:
-                    own = self.timed[n].totals[key] + len(self.timed[n].tables[key])
-                    share = own / (own - len(self.timed[n].tables[key]) + len(followers))
+                    n_t, u_t = self.timed[n].totals[key], len(self.timed[n].tables[key])
+                    share = (n_t + u_t) / (n_t + len(followers))
                     probs = share * refined[0] + (1.0 - share) * probs
                 elif refined is not None:
                     probs = refined[0]

@@ -156,9 +156,8 @@ def concatenated_chunks(rows: list[Sequence[Any]], width: int, keys: list[int], 
     """Groups made by SQL as chunks of up to ``size`` groups: each row holds the key's (value,
     kind) column pairs (``width`` columns; ``keys`` gives, per kept key variable in the order
     asked, its pair) and then the group's integer values and their kinds, each as one
-    comma-separated text (``group_concat``; NULL: no solution). Each distinct group is parsed
-    and its values indexed once per chunk."""
-    rows = [row for row in rows if row[width] is not None]
+    comma-separated text (``group_concat``). Each distinct group is parsed and its values
+    indexed once per chunk."""
     for start in range(0, len(rows), size):
         batch = rows[start:start + size]
         index = _RawIndex(out, convert)
