@@ -1,7 +1,7 @@
 """The oracle in the system: history from the NEEM (through Prolog), ranking, write-back.
 
-NEEM -> ``odb_history:situation_history`` (one crossing) -> Steps -> the chosen predictor -> ranking
--> ``NeemLogger.preference`` (an imagined preference the Prolog answers read).
+NEEM -> ``odb_history:situation_history`` (one crossing) -> Steps -> the chosen predictor (its fit
+kept between calls, oracle.fitcache) -> ranking -> ``NeemLogger.preference`` (an imagined preference the Prolog answers read).
 
 The answers read the written rank (1 = best) and show the score; for every predictor the score is
 lower-is-better: the thesis oracle writes its eq. 4.12 distance, the routine predictor -log2 of its
@@ -20,6 +20,7 @@ from oracle.algorithm.predictors import DEFAULT, make_predictor
 from oracle.algorithm.records import RankedTask, Ranking
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError, NeemOracleError
+from oracle.fitcache import FitCache
 from oracle.calls import call_of, check_call, opening_tasks, option_of, steps_before
 from oracle.neem.query import recorded_part_of_day
 from oracle.neem.writer import NeemLogger
@@ -74,11 +75,13 @@ def rank_neem(
     *,
     write: bool = True,
     method: str = DEFAULT,
+    cache: FitCache | None = None,
 ) -> NeemRanking:
     """Rank ``available`` (chain syntax) at ``at`` (default: now), or else the NEEM's latest
     imagined situation, at the part of day recorded with it (oracle.timeline's rule). In a NEEM
     without a clock, times are positions with no part of the day, and "now" is the position
-    after the last action."""
+    after the last action. The fit is kept in ``cache`` (default: the user's, oracle.fitcache)
+    and extended by the actions logged since."""
     clocked = has_clock(bridge.store.neem(bridge.neem_id).meta)
     if available:
         calls = [parse_call(text) for text in available]
@@ -99,7 +102,8 @@ def rank_neem(
         instant = Instant(begin, (recorded or part_of_day_at(begin)) if clocked else None)
     when, part = instant.seconds, instant.part_of_day
     steps = steps_before(ontology, bridge.history(), when)
-    oracle = make_predictor(method, ontology.distances(), opening_tasks(ontology), settings).fit(steps)
+    model = make_predictor(method, ontology.distances(), opening_tasks(ontology), settings)
+    oracle = (cache or FitCache.default()).fitted(model, steps, f"{bridge.store.location}\0{bridge.neem_id}")
     started = time.perf_counter()
     ranking = oracle.rank([option_of(ontology, c) for c in calls], part)
     elapsed = (time.perf_counter() - started) * 1000

@@ -32,7 +32,8 @@ from oracle.timeline import TIME_OF_DAY_NAMES
 _TOD = {name: code for code, name in enumerate(TIME_OF_DAY_NAMES)}
 STREAMS = ("idle", "through")   # idle steps as tokens / contexts that run across idle steps
 TUNINGS = ("leader", "mixture", "fixed")
-#: ``fit`` scores the variants on at most this many latest steps (``partial_fit`` scores every step).
+#: ``fit`` scores the variants on at most this many latest steps by default (``tuning_window``;
+#: ``partial_fit`` scores every step).
 TUNING_WINDOW = 1000
 
 
@@ -81,14 +82,16 @@ class RoutineOracle(EstimatorParams):
     level escape only to the options it did not count; ``novelty`` (variants) gives the never-done
     options together the PPM-C estimate of a novel action
     ("leader": the best so far that leads the first variant by ``switch_margin`` standard errors,
-    "mixture": posterior weights, "fixed": the first variant).
+    "mixture": posterior weights, "fixed": the first variant), which ``fit`` scores on the
+    latest ``tuning_window`` steps (``extend`` continues a fit exactly).
     """
 
     _param_names = ("distances", "opening_tasks", "orders", "temperatures", "lowest_orders", "timed", "timed_from",
                     "discounts", "discount_from", "discount_evidence", "timed_discount_from", "timed_shrink", "streams",
                     "timed_gate",
                     "exclusion", "novelty",
-                    "context_depth", "switch_margin", "context_decay", "tuning", "task_factor", "object_factor", "penalty",
+                    "context_depth", "switch_margin", "context_decay", "tuning", "tuning_window", "task_factor", "object_factor",
+                    "penalty",
                     "time_of_day_penalty", "event_horizon_forward")
 
     def __init__(self, distances: Any = None, *, opening_tasks: frozenset[str] = frozenset(),
@@ -99,7 +102,8 @@ class RoutineOracle(EstimatorParams):
                  streams: tuple[str, ...] = ("idle",), timed_gate: float | None = None, exclusion: bool = False,
                  novelty: tuple[bool, ...] = (False, True),
                  context_depth: int = 3, context_decay: float = 0.5,
-                 tuning: str = "leader", switch_margin: float = 2.0, task_factor: float = THESIS_DEFAULTS.task_factor,
+                 tuning: str = "leader", tuning_window: int = TUNING_WINDOW, switch_margin: float = 2.0,
+                 task_factor: float = THESIS_DEFAULTS.task_factor,
                  object_factor: float = THESIS_DEFAULTS.object_factor, penalty: float = THESIS_DEFAULTS.penalty,
                  time_of_day_penalty: float = THESIS_DEFAULTS.time_of_day_penalty,
                  event_horizon_forward: int = THESIS_DEFAULTS.event_horizon_forward) -> None:
@@ -122,6 +126,7 @@ class RoutineOracle(EstimatorParams):
         self.context_depth = context_depth
         self.context_decay = context_decay
         self.tuning = tuning
+        self.tuning_window = tuning_window
         self.switch_margin = switch_margin
         self.task_factor = task_factor
         self.object_factor = object_factor
@@ -171,6 +176,8 @@ class RoutineOracle(EstimatorParams):
             raise SettingsError(f"{name}: novelty must be True or False values, got {self.novelty!r}")
         if self.tuning not in TUNINGS:
             raise SettingsError(f"{name}: tuning must be one of {', '.join(TUNINGS)}, got {self.tuning!r}")
+        if isinstance(self.tuning_window, bool) or not isinstance(self.tuning_window, int) or self.tuning_window < 0:
+            raise SettingsError(f"{name}: tuning_window must be a whole number >= 0, got {self.tuning_window!r}")
         if not isinstance(self.context_depth, int) or self.context_depth < 0:
             raise SettingsError(f"{name}: context_depth must be a whole number >= 0, got {self.context_depth!r}")
         for value, what in ((self.context_decay, "context_decay"), (self.switch_margin, "switch_margin"),
@@ -184,7 +191,7 @@ class RoutineOracle(EstimatorParams):
         self._raw_params = tuple(self.get_params().values())
         self.variants_ = tuple(product(self.streams, self.orders, self.temperatures, self.lowest_orders,
                                       self.timed, self.discounts, self.novelty))
-        self.weights_ = VariantWeights(len(self.variants_))
+        self.weights_ = VariantWeights(len(self.variants_), keep=True)
         self._values = np.asarray(self.distances.values, dtype=np.float64)
         self.options_: list[Option] = []
         self._ids: dict[Option, int] = {}
@@ -198,16 +205,37 @@ class RoutineOracle(EstimatorParams):
         self._next = Rows(1)            # per history position: successor position, -1 none or idle
         self._step_ids = Rows(1)        # per history position: option id, -1 idle
         self.n_steps_ = 0
-        steps = list(history)
-        for position, step in enumerate(steps):
-            # scoring a step costs one rank: only the latest TUNING_WINDOW steps tune a long history
-            self._add(step, score=position >= len(steps) - TUNING_WINDOW)
+        self.fitted_steps_: int | None = 0  # the length of the history fit() saw; None once partial_fit
+        self._grow(list(history))
         return self
+
+    def extend(self, history: Sequence[Step]) -> RoutineOracle:
+        """The model ``fit(history)`` gives, from this one, fitted by ``fit`` on the first
+        ``fitted_steps_`` steps of ``history`` (the caller vouches for that prefix; the fitted-
+        model cache compares digests): the later steps are added, and the variants' scores
+        re-cut to the latest ``tuning_window`` steps, bit for bit as a fresh fit would count them."""
+        self._check()
+        if self.fitted_steps_ is None:
+            raise SettingsError("a model changed by partial_fit does not extend; call fit(history)")
+        if len(history) < self.fitted_steps_:
+            raise SettingsError(f"extend: {len(history)} steps, fewer than the {self.fitted_steps_} fitted")
+        self._grow(history)
+        return self
+
+    def _grow(self, steps: Sequence[Step]) -> None:
+        # scoring a step costs one rank: only the latest tuning_window steps tune a long history
+        first_scored = len(steps) - self.tuning_window
+        for position in range(self.n_steps_, len(steps)):
+            self._add(steps[position], score=position >= first_scored)
+        self.weights_.keep_from(first_scored)
+        self.fitted_steps_ = len(steps)
 
     def partial_fit(self, step: Step) -> RoutineOracle:
         if not hasattr(self, "variants_"):
             return self.fit([step])
         self._check()
+        self.fitted_steps_ = None
+        self.weights_.kept = None  # every later step is scored: nothing is re-cut
         self._add(step, score=True)
         return self
 
@@ -249,7 +277,8 @@ class RoutineOracle(EstimatorParams):
             offered, _ = offered_options(step, None)
             if step.option in offered:
                 truth = offered.index(step.option)
-                self.weights_.update(self._variant_probabilities(offered, step.time_of_day)[0], truth)
+                self.weights_.update(self._variant_probabilities(offered, step.time_of_day)[0], truth,
+                                   self.n_steps_)
         position = self.n_steps_
         for option in step.options:  # offered again later: their distances are then looked up
             self._intern(option)

@@ -21,26 +21,58 @@ FLOOR = 1e-12
 
 
 class VariantWeights:
-    """Cumulative log-likelihood of each variant on the steps seen so far."""
+    """Cumulative log-likelihood of each variant on the steps seen so far.
 
-    def __init__(self, n_variants: int) -> None:
+    With ``keep`` the terms each scored step added are kept with its history position, so that
+    ``keep_from`` can drop the oldest ones and give exactly the sums a count of only the later
+    steps would have (the fitted-model cache extends a fit this way, oracle.fitcache).
+    """
+
+    def __init__(self, n_variants: int, keep: bool = False) -> None:
         self.scores = np.zeros(n_variants)
         self.hits = np.zeros(n_variants)
         self.spread = np.zeros(n_variants)   # sum over steps of (hit_v - hit_0)^2
         self.steps = 0
+        self.kept: list[tuple[int, np.ndarray]] | None = [] if keep else None  # (position, 3 x n terms)
 
-    def update(self, probabilities: Sequence[np.ndarray], truth: int) -> None:
-        """Score every variant's distribution over the offered options on the option done."""
+    def update(self, probabilities: Sequence[np.ndarray], truth: int, position: int = -1) -> None:
+        """Score every variant's distribution over the offered options on the option done
+        (``position``: the step's place in the history, for ``keep_from``)."""
+        terms = np.zeros((3, self.scores.size))
         first = 0.0
         for v, p in enumerate(probabilities):
-            self.scores[v] += math.log(max(float(p[truth]), FLOOR))
+            terms[0, v] = math.log(max(float(p[truth]), FLOOR))
             # rank as ``rank`` orders: by probability, ties by the order offered
             better = int(np.count_nonzero(p > p[truth])) + int(np.count_nonzero(p[:truth] == p[truth]))
             hit = ((better < 1) + (better < 3) + (better < 5)) / 3.0
             first = hit if v == 0 else first
-            self.hits[v] += hit
-            self.spread[v] += (hit - first) ** 2
+            terms[1, v] = hit
+            terms[2, v] = (hit - first) ** 2
+        self._add(terms)
+        if self.kept is not None:
+            self.kept.append((position, terms))
+
+    def _add(self, terms: np.ndarray) -> None:
+        self.scores += terms[0]
+        self.hits += terms[1]
+        self.spread += terms[2]
         self.steps += 1
+
+    def keep_from(self, position: int) -> None:
+        """Forget the steps scored before history ``position``: the sums become those of the
+        later steps alone, added in the same order (bit for bit what scoring only them gives)."""
+        if self.kept is None:
+            raise ValueError("the scored steps were not kept")
+        later = [(at, terms) for at, terms in self.kept if at >= position]
+        if len(later) == len(self.kept):
+            return
+        self.scores[:] = 0.0
+        self.hits[:] = 0.0
+        self.spread[:] = 0.0
+        self.steps = 0
+        for _, terms in later:
+            self._add(terms)
+        self.kept = later
 
     def weights(self, tuning: str, margin: float = 0.0) -> np.ndarray:
         """All weight on one variant ("leader", "fixed") or the posterior ("mixture"). With

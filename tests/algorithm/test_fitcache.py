@@ -1,0 +1,148 @@
+"""The fitted-model cache (oracle.fitcache) and the routine predictor's ``extend``: a model
+extended from a fit of a prefix is the model a fresh fit gives, bit for bit; the cache uses an
+entry only for a history that begins with the entry's steps, and never one another user could
+have written."""
+
+from __future__ import annotations
+
+import os
+import pickle
+
+import numpy as np
+import pytest
+
+from algoworld import random_matrix, synthetic_history
+from oracle.algorithm.fast import PreferenceOracle
+from oracle.algorithm.routine import RoutineOracle
+from oracle.errors import SettingsError
+from oracle.fitcache import FitCache
+
+
+def _same(a: RoutineOracle, b: RoutineOracle, queries) -> None:
+    wa, wb = a.weights_, b.weights_
+    assert wa.steps == wb.steps
+    for name in ("scores", "hits", "spread"):
+        assert np.array_equal(getattr(wa, name), getattr(wb, name)), name
+    assert a.options_ == b.options_ and a.n_steps_ == b.n_steps_ == b.fitted_steps_
+    for step in queries:
+        ra, rb = a.rank(step), b.rank(step)
+        assert [(t.option, t.probability, t.order, t.n_similar, t.situations) for t in ra] == \
+               [(t.option, t.probability, t.order, t.n_similar, t.situations) for t in rb]
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+@pytest.mark.parametrize("window", [0, 5, 40, 1000])
+def test_extend_equals_a_fresh_fit(seed, window):
+    matrix = random_matrix(seed)
+    steps = synthetic_history(160, seed)
+    queries = steps[-12:]
+    fresh = RoutineOracle(matrix, tuning_window=window).fit(steps)
+    for cut in (0, 1, 37, 120, 159, 160):
+        grown = RoutineOracle(matrix, tuning_window=window).fit(steps[:cut])
+        grown = pickle.loads(pickle.dumps(grown))  # as the cache keeps it
+        _same(fresh, grown.extend(steps), queries)
+    # in two hops, as a user's NEEM grows between ranks
+    hop = RoutineOracle(matrix, tuning_window=window).fit(steps[:50]).extend(steps[:90]).extend(steps)
+    _same(fresh, hop, queries)
+
+
+def test_the_window_changes_what_tunes():
+    """The scores really are cut to the window (else the test above would prove little)."""
+    matrix = random_matrix(3)
+    steps = synthetic_history(200, 3)
+    assert RoutineOracle(matrix, tuning_window=10).fit(steps).weights_.steps <= 10
+    assert RoutineOracle(matrix, tuning_window=1000).fit(steps).weights_.steps > 150
+
+
+def test_extend_refuses_what_it_cannot_continue():
+    matrix = random_matrix(4)
+    steps = synthetic_history(30, 4)
+    with pytest.raises(SettingsError, match="fewer than"):
+        RoutineOracle(matrix).fit(steps).extend(steps[:10])
+    changed = RoutineOracle(matrix).fit(steps[:20]).partial_fit(steps[20])
+    with pytest.raises(SettingsError, match="partial_fit"):
+        changed.extend(steps)
+    with pytest.raises(SettingsError, match="tuning_window"):
+        RoutineOracle(matrix, tuning_window=-1).fit(steps)
+
+
+class _Counting(RoutineOracle):
+    """Counts the steps it is given to add (fresh fits and extensions)."""
+
+    added = 0
+
+    def _add(self, step, score):
+        type(self).added += 1
+        super()._add(step, score)
+
+
+def test_cache_fits_once_then_extends_only_the_new_steps(tmp_path):
+    cache = FitCache(tmp_path / "fits")
+    matrix = random_matrix(5)
+    steps = synthetic_history(120, 5)
+    _Counting.added = 0
+    first = cache.fitted(_Counting(matrix), steps[:100], "n")
+    assert _Counting.added == 100
+    entry, = (tmp_path / "fits").glob("*.fit")
+    assert entry.stat().st_mode & 0o777 == 0o600 and (tmp_path / "fits").stat().st_mode & 0o777 == 0o700
+    again = cache.fitted(_Counting(matrix), steps[:100], "n")
+    assert _Counting.added == 100  # the same history: nothing fitted
+    grown = cache.fitted(_Counting(matrix), steps, "n")
+    assert _Counting.added == 120  # only the 20 new steps
+    _same(_Counting(matrix).fit(steps), grown, steps[-5:])
+    _same(first, again, steps[-5:])
+    assert again.distances is matrix  # the caller's matrix, not a copy
+
+
+def test_cache_fits_afresh_when_the_history_is_not_a_continuation(tmp_path):
+    cache = FitCache(tmp_path)
+    matrix = random_matrix(6)
+    steps = synthetic_history(80, 6)
+    cache.fitted(_Counting(matrix), steps, "n")
+    other = synthetic_history(90, 7)  # another history of the same NEEM (e.g. re-imported)
+    _Counting.added = 0
+    model = cache.fitted(_Counting(matrix), other, "n")
+    assert _Counting.added == 90
+    _same(RoutineOracle(matrix).fit(other), model, other[-5:])
+    shorter = cache.fitted(_Counting(matrix), other[:40], "n")  # a rank at an earlier moment
+    assert _Counting.added == 130 and shorter.n_steps_ == 40
+
+
+def test_cache_keys_on_parameters_and_neem(tmp_path):
+    cache = FitCache(tmp_path)
+    matrix = random_matrix(8)
+    steps = synthetic_history(60, 8)
+    cache.fitted(RoutineOracle(matrix), steps, "a")
+    cache.fitted(RoutineOracle(matrix, tuning="mixture"), steps, "a")
+    cache.fitted(RoutineOracle(matrix), steps, "b")
+    cache.fitted(RoutineOracle(random_matrix(9)), steps, "a")
+    assert len(list(tmp_path.glob("*.fit"))) == 4
+
+
+def test_damaged_or_foreign_entries_are_never_used(tmp_path):
+    cache = FitCache(tmp_path)
+    matrix = random_matrix(10)
+    steps = synthetic_history(50, 10)
+    cache.fitted(_Counting(matrix), steps, "n")
+    entry, = tmp_path.glob("*.fit")
+    entry.write_bytes(b"not a pickle")
+    _Counting.added = 0
+    cache.fitted(_Counting(matrix), steps, "n")
+    assert _Counting.added == 50 and entry.read_bytes() != b"not a pickle"  # refitted and replaced
+    _Counting.added = 0
+    cache.fitted(_Counting(matrix), steps, "n")
+    assert _Counting.added == 0  # the replaced entry is used
+    os.chmod(entry, 0o620)  # another user of the group could have written it
+    cache.fitted(_Counting(matrix), steps, "n")
+    assert _Counting.added == 50
+
+
+def test_unwritable_cache_still_ranks_and_predictors_without_extend_just_fit(tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("")
+    matrix = random_matrix(11)
+    steps = synthetic_history(40, 11)
+    model = FitCache(blocker / "fits").fitted(RoutineOracle(matrix), steps, "n")
+    _same(RoutineOracle(matrix).fit(steps), model, steps[-3:])
+    thesis = FitCache(tmp_path / "fits").fitted(PreferenceOracle(matrix), steps, "n")
+    assert thesis.n_steps_ == 40 and not (tmp_path / "fits").exists()
