@@ -26,13 +26,12 @@ import tempfile
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
 from oracle.algorithm.records import Step
 
-FOLDER = "fits"
 #: Entries kept; the least recently written go first.
 MAX_ENTRIES = 32
 _FORMAT = b"neem-oracle fit 1"
@@ -44,12 +43,14 @@ class FitCache:
     """Fitted models under ``root`` (one file each)."""
 
     root: Path
+    #: The sub-folder of the user's cache (oracle.ontology.distance.default_cache_dir).
+    FOLDER: ClassVar[str] = "fits"
 
     @classmethod
     def default(cls) -> FitCache:
         from oracle.ontology.distance import default_cache_dir
 
-        return cls(default_cache_dir() / FOLDER)
+        return cls(default_cache_dir() / cls.FOLDER)
 
     def fitted(self, model: Any, steps: Sequence[Step], neem: str) -> Any:
         """``model.fit(steps)``, extended from the entry of ``neem`` when the entry's steps are

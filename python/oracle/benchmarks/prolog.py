@@ -3,6 +3,8 @@ and the history read / ``rank`` / why_not at 1,000-50,000 actions against a plai
 
 from __future__ import annotations
 
+import os
+import shutil
 import tempfile
 import time
 from datetime import datetime, timedelta
@@ -10,6 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from oracle.benchmarks.figures import growth_exponent, spread, spread_text
+from oracle.fitcache import FitCache
 
 
 #: Goal-by-goal evaluation costs one store query per solution of the goals before; on the
@@ -200,27 +203,56 @@ def _timed(fn, repeat: int = 3) -> tuple[dict[str, float], dict[str, float]]:
     return _spread(walls), _spread(cpus)
 
 
-def _rank_cli(store: Path, neem: str, repeat: int = 3) -> dict[str, dict[str, float]]:
+def _rank_cli(store: Path, neem: str, grown_at: tuple[str, str] | None, repeat: int = 3) -> dict[str, dict[str, float]]:
     """``python -m oracle rank`` from start to exit, and the interpreter's own start and exit
-    (``python -c pass``) interleaved with it: wall and the child's CPU seconds of each."""
+    (``python -c pass``) interleaved with it: wall and the child's CPU seconds of each. ``rank``
+    starts with an empty fit cache (oracle.fitcache) every time: the whole history is fitted.
+    ``rank_grown`` finds the fit of the history one action shorter (``grown_at``: a rank of one
+    call ``--at`` the last action's begin, made just before, untimed): the robot logged one action since the
+    last rank, and only that action is added."""
     import resource
     import subprocess
     import sys
 
-    argvs = {"rank": [sys.executable, "-m", "oracle", "rank", "--store", str(store), "--neem", neem, "--no-write"],
-             "start": [sys.executable, "-c", "pass"]}
+    base = [sys.executable, "-m", "oracle", "rank", "--store", str(store), "--neem", neem, "--no-write"]
+    argvs = {"rank": base, "start": [sys.executable, "-c", "pass"]}
+    if grown_at is not None:
+        argvs["rank_grown"] = base
     walls: dict[str, list[float]] = {name: [] for name in argvs}
     cpus: dict[str, list[float]] = {name: [] for name in argvs}
-    for _ in range(repeat):
-        for name, argv in argvs.items():
-            before = resource.getrusage(resource.RUSAGE_CHILDREN)
-            start = time.perf_counter()
-            subprocess.run(argv, check=True, capture_output=True)
-            walls[name].append(time.perf_counter() - start)
-            after = resource.getrusage(resource.RUSAGE_CHILDREN)
-            cpus[name].append(after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
+    with tempfile.TemporaryDirectory() as cache:
+        # the ontology and the compiled Prolog modules are cached as a user's are; the fits are not
+        env = {**os.environ, "NEEM_ORACLE_CACHE": cache}
+        subprocess.run(base, check=True, capture_output=True, env=env)
+        for _ in range(repeat):
+            for name, argv in argvs.items():
+                shutil.rmtree(Path(cache) / FitCache.FOLDER, ignore_errors=True)
+                if name == "rank_grown":
+                    assert grown_at is not None
+                    subprocess.run([*base, "--available", grown_at[1], "--at", grown_at[0]], check=True,
+                                   capture_output=True, env=env)
+                before = resource.getrusage(resource.RUSAGE_CHILDREN)
+                start = time.perf_counter()
+                subprocess.run(argv, check=True, capture_output=True, env=env)
+                walls[name].append(time.perf_counter() - start)
+                after = resource.getrusage(resource.RUSAGE_CHILDREN)
+                cpus[name].append(after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
     return {f"{name}_{kind}": _spread(values[name]) for name in argvs
             for kind, values in (("wall", walls), ("cpu", cpus))}
+
+
+def _last_action_begin(bridge: Any) -> tuple[str, str] | None:
+    """The begin (ISO, UTC) of the last action before the latest imagined situation, and a call
+    available then."""
+    from datetime import datetime, timezone
+
+    latest = bridge.latest_situation()
+    if latest is None:
+        return None
+    earlier = [float(row["begin"]) for row in bridge.history() if float(row["begin"]) < float(latest["begin"])]
+    if not earlier or not latest["available"]:
+        return None
+    return datetime.fromtimestamp(max(earlier), timezone.utc).isoformat(), str(latest["available"][0])
 
 
 def _crossing(bridge: Any) -> None:
@@ -265,7 +297,7 @@ def history_figures(quick: bool = False) -> list[dict]:
                   f" cpu {_fmt(why_cpu, 1000, 1)} ms (min/median/max of 5); floor, one one-row store query:"
                   f" cpu {_fmt(cross_cpu, 1000, 1)} ms; {why_ratio:.1f}x floor"
                   f" (target <= {50 if n <= 10000 else 200} ms)", flush=True)
-            cli = _rank_cli(path, neem)
+            cli = _rank_cli(path, neem, _last_action_begin(bridge))
             # Floor of a rank from start to exit: the interpreter starting and exiting, plus the
             # plain SQL read of the rows the history needs (both measured in this run).
             rank_floor = cli["start_cpu"]["median"] + floor["median"]
@@ -273,6 +305,11 @@ def history_figures(quick: bool = False) -> list[dict]:
             print(f"rank start to exit, {n:>6,} actions: wall {_fmt(cli['rank_wall'])} s, cpu {_fmt(cli['rank_cpu'])} s"
                   f" (min/median/max of 3); floor (python -c pass cpu {_fmt(cli['start_cpu'])} s + SQL floor)"
                   f" {rank_floor:.3f} s cpu; {rank_ratio:.1f}x floor cpu (target < {1 if n <= 10000 else 4} s)", flush=True)
+            if "rank_grown_wall" in cli:
+                print(f"rank start to exit after one more action (the fit of the rest kept), {n:>6,} actions:"
+                      f" wall {_fmt(cli['rank_grown_wall'])} s, cpu {_fmt(cli['rank_grown_cpu'])} s;"
+                      f" {cli['rank_grown_cpu']['median'] / rank_floor:.1f}x floor cpu", flush=True)
+                medians.setdefault("rank_grown_wall", []).append(cli["rank_grown_wall"]["median"])
             medians["history_cpu"].append(cpu["median"])
             medians["rank_wall"].append(cli["rank_wall"]["median"])
             medians["rank_cpu"].append(cli["rank_cpu"]["median"])
@@ -285,6 +322,7 @@ def history_figures(quick: bool = False) -> list[dict]:
                          "why_not_floor_ratio": why_ratio,
                          "rank_wall_s": cli["rank_wall"], "rank_cpu_s": cli["rank_cpu"],
                          "rank_floor_cpu_s": rank_floor, "rank_floor_ratio": rank_ratio,
+                         "rank_grown_wall_s": cli.get("rank_grown_wall"), "rank_grown_cpu_s": cli.get("rank_grown_cpu"),
                          "start_wall_s": cli["start_wall"], "start_cpu_s": cli["start_cpu"]})
             if n == 10000:
                 fixture = prolog_dir() / "fixtures" / "history_reference.pl"
@@ -295,8 +333,8 @@ def history_figures(quick: bool = False) -> list[dict]:
                 rows.append({"area": "prolog", "name": "history equals reference", "actions": n, "equal": same == "true"})
             bridge.close()
         for key, label in (("history_cpu", "history read cpu"), ("rank_wall", "rank wall"), ("rank_cpu", "rank cpu"),
-                           ("floor", "SQL floor")):
-            k = _exponent(sizes, medians[key])
+                           ("rank_grown_wall", "rank wall after one more action"), ("floor", "SQL floor")):
+            k = _exponent(sizes, medians[key]) if len(medians.get(key, ())) == len(sizes) else None
             if k is not None:
                 print(f"growth exponent, {label}, {sizes[-2]:,} -> {sizes[-1]:,}: {k:.2f} (n log n ~ 1.1)", flush=True)
                 rows.append({"area": "prolog", "name": f"growth {label}", "exponent": k,
