@@ -19,6 +19,7 @@ from oracle.algorithm.records import RankedTask, Ranking, Step
 from oracle.answers import support_sentence
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError
+from oracle.fitcache import FitCache
 from oracle.neem.tf import Pose
 from oracle.neem.writer import LoggedAction, NeemLogger, check_performer
 from oracle.timeline import Instant, TimeValueError, clock, is_idle_gap
@@ -113,7 +114,8 @@ class NeemSession:
         #: a ranking's supporting past situations are shown as).
         self.steps: list[Step] = steps_from_history(ontology, history)
         self.begins: list[float] = [float(row["begin"]) for row in history]
-        self.predictor = predictor.fit(self.steps)
+        # the fit of a NEEM the CLI or an earlier service run ranked is kept (oracle.fitcache)
+        self.predictor = FitCache.default().fitted(predictor, self.steps, f"{logger.store.location}\0{neem}")
         self.done = {step.label for step in self.steps if not step.idle}
         ends = [float(row["end"]) for row in history]
         begins = [float(row["begin"]) for row in history]
