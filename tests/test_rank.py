@@ -100,3 +100,31 @@ def test_a_decision_after_a_pause_is_ranked_after_an_idle_step(store, capsys):
     assert main(["rank", "--store", str(store), "--available", "pick(red_mug)", "open(small_drawer)",
                  "--at", "2026-03-04T08:01:00", "--no-write", "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["history"] == 3 * len(CHAIN) + 2
+
+
+def test_rank_keeps_its_fit_and_answers_the_same_with_it(store, tmp_path, monkeypatch, capsys):
+    """The second rank of the same history finds the first one's fit (oracle.fitcache) and gives
+    the same ranking; a rank at an earlier moment (a shorter history) fits afresh, as before."""
+    monkeypatch.setenv("NEEM_ORACLE_CACHE", str(tmp_path / "cache"))
+    argv = ["rank", "--store", str(store), "--no-write", "--json"]
+    capsys.readouterr()
+    outs = []
+    for _ in range(2):
+        assert main(argv) == 0
+        out = json.loads(capsys.readouterr().out)
+        out.pop("ms")
+        outs.append(out)
+    assert outs[0] == outs[1]
+    entry, = (tmp_path / "cache" / "fits").glob("*.fit")
+    assert entry.stat().st_mode & 0o777 == 0o600
+    written = entry.stat().st_mtime_ns
+    assert main(argv) == 0 and entry.stat().st_mtime_ns == written  # nothing new: nothing written
+    capsys.readouterr()
+    early = ["rank", "--store", str(store), "--available", "pick(red_mug)", "open(small_drawer)",
+             "--at", "2026-03-03T08:00:20", "--no-write", "--json"]
+    assert main(early) == 0
+    first = json.loads(capsys.readouterr().out)
+    (tmp_path / "cache" / "fits").joinpath(entry.name).unlink()
+    assert main(early) == 0
+    fresh = json.loads(capsys.readouterr().out)
+    assert first["ranking"] == fresh["ranking"] and first["history"] == fresh["history"] < outs[0]["history"]
