@@ -12,7 +12,7 @@ import errno
 import os
 from collections.abc import Iterator
 from pathlib import Path
-from typing import TextIO
+from typing import IO, Any, TextIO
 
 
 def private_folder(path: Path) -> Path:
@@ -28,7 +28,18 @@ def private_folder(path: Path) -> Path:
 def private_file(path: Path | str) -> Iterator[TextIO]:
     """Write ``path`` privately and atomically (see the module's docstring); OSError on failure,
     with the place untouched."""
-    path = Path(path)
+    with _private(Path(path), "w") as handle:
+        yield handle
+
+
+def write_private_bytes(path: Path | str, data: bytes) -> None:
+    """``data`` as the file ``path``, privately and atomically (as ``private_file``)."""
+    with _private(Path(path), "wb") as handle:
+        handle.write(data)
+
+
+@contextlib.contextmanager
+def _private(path: Path, mode: str) -> Iterator[Any]:
     if path.is_symlink():
         raise OSError(errno.ELOOP, "is a symbolic link; refusing to write through it", str(path))
     private_folder(path.parent)
@@ -36,7 +47,8 @@ def private_file(path: Path | str) -> Iterator[TextIO]:
     fd = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW, 0o600)
     try:
         os.fchmod(fd, 0o600)
-        with os.fdopen(fd, "w", encoding="utf-8") as handle:
+        handle: IO[Any]
+        with (os.fdopen(fd, "wb") if mode == "wb" else os.fdopen(fd, "w", encoding="utf-8")) as handle:
             yield handle
             handle.flush()
             os.fsync(handle.fileno())

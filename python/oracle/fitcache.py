@@ -22,7 +22,6 @@ import io
 import os
 import pickle
 import sys
-import tempfile
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -31,6 +30,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from oracle.algorithm.records import Step
+from oracle.files import write_private_bytes
 
 #: Entries kept; the least recently written go first.
 MAX_ENTRIES = 32
@@ -90,12 +90,7 @@ class FitCache:
             body = io.BytesIO()
             _Pickler(body, model.distances).dump(model)
             data = pickle.dumps((_FORMAT, len(steps), _steps_digest(steps), body.getvalue()), protocol=5)
-            self.root.mkdir(parents=True, exist_ok=True, mode=0o700)
-            os.chmod(self.root, 0o700)
-            handle, scratch = tempfile.mkstemp(dir=self.root, prefix=".", suffix=".tmp")  # mode 0600
-            with os.fdopen(handle, "wb") as out:
-                out.write(data)
-            os.replace(scratch, path)
+            write_private_bytes(path, data)
             self._prune()
         except (OSError, pickle.PicklingError):
             return  # read-only or full: the next call fits afresh
