@@ -10,9 +10,16 @@ from __future__ import annotations
 import contextlib
 import errno
 import os
+import stat
 from collections.abc import Iterator
 from pathlib import Path
 from typing import IO, Any, TextIO
+
+
+def written_by_user_alone(info: os.stat_result) -> bool:
+    """Whether a file (its ``stat``) is a regular file of this user that nobody else may write:
+    the only kind a cache unpickles."""
+    return stat.S_ISREG(info.st_mode) and info.st_uid == os.getuid() and not info.st_mode & 0o022
 
 
 def private_folder(path: Path) -> Path:

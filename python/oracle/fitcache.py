@@ -30,7 +30,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from oracle.algorithm.records import Step
-from oracle.files import write_private_bytes
+from oracle.files import write_private_bytes, written_by_user_alone
 
 #: Entries kept; the least recently written go first.
 MAX_ENTRIES = 32
@@ -52,12 +52,13 @@ class FitCache:
 
         return cls(default_cache_dir() / cls.FOLDER)
 
-    def fitted(self, model: Any, steps: Sequence[Step], neem: str) -> Any:
-        """``model.fit(steps)``, extended from the entry of ``neem`` when the entry's steps are
-        the first steps of ``steps``; the entry then holds the new fit."""
+    def fitted(self, model: Any, steps: Sequence[Step], store: str, neem: str) -> Any:
+        """``model.fit(steps)``, extended from the entry of NEEM ``neem`` of the store at
+        ``store`` (its location) when the entry's steps are the first steps of ``steps``; the
+        entry then holds the new fit."""
         if not callable(getattr(model, "extend", None)):
             return model.fit(steps)
-        path = self.root / f"{_entry_key(model, neem)}.fit"
+        path = self.root / f"{_entry_key(model, store, neem)}.fit"
         cached = self._load(path, model, steps)
         if cached is not None and cached.fitted_steps_ == len(steps):
             return cached
@@ -69,8 +70,8 @@ class FitCache:
         try:
             with path.open("rb") as handle:
                 info = os.fstat(handle.fileno())
-                if info.st_uid != os.getuid() or info.st_mode & 0o022:
-                    return None  # not written by this user alone: never unpickled
+                if not written_by_user_alone(info):
+                    return None  # never unpickled
                 data = handle.read()
         except OSError:
             return None
@@ -128,9 +129,9 @@ def _steps_digest(steps: Sequence[Step]) -> str:
     return hashlib.sha256(pickle.dumps(list(steps), protocol=5)).hexdigest()
 
 
-def _entry_key(model: Any, neem: str) -> str:
+def _entry_key(model: Any, store: str, neem: str) -> str:
     digest = hashlib.sha256()
-    for part in (_FORMAT.decode(), type(model).__module__, type(model).__qualname__, neem, sys.version,
+    for part in (_FORMAT.decode(), type(model).__module__, type(model).__qualname__, store, neem, sys.version,
                  np.__version__, _code_digest()):
         digest.update(part.encode() + b"\0")
     for name, value in model.get_params().items():

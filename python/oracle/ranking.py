@@ -103,7 +103,7 @@ def rank_neem(
     when, part = instant.seconds, instant.part_of_day
     steps = steps_before(ontology, bridge.history(), when)
     model = make_predictor(method, ontology.distances(), opening_tasks(ontology), settings)
-    oracle = (cache or FitCache.default()).fitted(model, steps, f"{bridge.store.location}\0{bridge.neem_id}")
+    oracle = (cache or FitCache.default()).fitted(model, steps, bridge.store.location, bridge.neem_id)
     started = time.perf_counter()
     ranking = oracle.rank([option_of(ontology, c) for c in calls], part)
     elapsed = (time.perf_counter() - started) * 1000

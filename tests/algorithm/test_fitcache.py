@@ -81,13 +81,13 @@ def test_cache_fits_once_then_extends_only_the_new_steps(tmp_path):
     matrix = random_matrix(5)
     steps = synthetic_history(120, 5)
     _Counting.added = 0
-    first = cache.fitted(_Counting(matrix), steps[:100], "n")
+    first = cache.fitted(_Counting(matrix), steps[:100], "s", "n")
     assert _Counting.added == 100
     entry, = (tmp_path / "fits").glob("*.fit")
     assert entry.stat().st_mode & 0o777 == 0o600 and (tmp_path / "fits").stat().st_mode & 0o777 == 0o700
-    again = cache.fitted(_Counting(matrix), steps[:100], "n")
+    again = cache.fitted(_Counting(matrix), steps[:100], "s", "n")
     assert _Counting.added == 100  # the same history: nothing fitted
-    grown = cache.fitted(_Counting(matrix), steps, "n")
+    grown = cache.fitted(_Counting(matrix), steps, "s", "n")
     assert _Counting.added == 120  # only the 20 new steps
     _same(_Counting(matrix).fit(steps), grown, steps[-5:])
     _same(first, again, steps[-5:])
@@ -98,13 +98,13 @@ def test_cache_fits_afresh_when_the_history_is_not_a_continuation(tmp_path):
     cache = FitCache(tmp_path)
     matrix = random_matrix(6)
     steps = synthetic_history(80, 6)
-    cache.fitted(_Counting(matrix), steps, "n")
+    cache.fitted(_Counting(matrix), steps, "s", "n")
     other = synthetic_history(90, 7)  # another history of the same NEEM (e.g. re-imported)
     _Counting.added = 0
-    model = cache.fitted(_Counting(matrix), other, "n")
+    model = cache.fitted(_Counting(matrix), other, "s", "n")
     assert _Counting.added == 90
     _same(RoutineOracle(matrix).fit(other), model, other[-5:])
-    shorter = cache.fitted(_Counting(matrix), other[:40], "n")  # a rank at an earlier moment
+    shorter = cache.fitted(_Counting(matrix), other[:40], "s", "n")  # a rank at an earlier moment
     assert _Counting.added == 130 and shorter.n_steps_ == 40
 
 
@@ -112,10 +112,10 @@ def test_cache_keys_on_parameters_and_neem(tmp_path):
     cache = FitCache(tmp_path)
     matrix = random_matrix(8)
     steps = synthetic_history(60, 8)
-    cache.fitted(RoutineOracle(matrix), steps, "a")
-    cache.fitted(RoutineOracle(matrix, tuning="mixture"), steps, "a")
-    cache.fitted(RoutineOracle(matrix), steps, "b")
-    cache.fitted(RoutineOracle(random_matrix(9)), steps, "a")
+    cache.fitted(RoutineOracle(matrix), steps, "s", "a")
+    cache.fitted(RoutineOracle(matrix, tuning="mixture"), steps, "s", "a")
+    cache.fitted(RoutineOracle(matrix), steps, "s", "b")
+    cache.fitted(RoutineOracle(random_matrix(9)), steps, "s", "a")
     assert len(list(tmp_path.glob("*.fit"))) == 4
 
 
@@ -123,17 +123,17 @@ def test_damaged_or_foreign_entries_are_never_used(tmp_path):
     cache = FitCache(tmp_path)
     matrix = random_matrix(10)
     steps = synthetic_history(50, 10)
-    cache.fitted(_Counting(matrix), steps, "n")
+    cache.fitted(_Counting(matrix), steps, "s", "n")
     entry, = tmp_path.glob("*.fit")
     entry.write_bytes(b"not a pickle")
     _Counting.added = 0
-    cache.fitted(_Counting(matrix), steps, "n")
+    cache.fitted(_Counting(matrix), steps, "s", "n")
     assert _Counting.added == 50 and entry.read_bytes() != b"not a pickle"  # refitted and replaced
     _Counting.added = 0
-    cache.fitted(_Counting(matrix), steps, "n")
+    cache.fitted(_Counting(matrix), steps, "s", "n")
     assert _Counting.added == 0  # the replaced entry is used
     os.chmod(entry, 0o620)  # another user of the group could have written it
-    cache.fitted(_Counting(matrix), steps, "n")
+    cache.fitted(_Counting(matrix), steps, "s", "n")
     assert _Counting.added == 50
 
 
@@ -142,7 +142,7 @@ def test_unwritable_cache_still_ranks_and_predictors_without_extend_just_fit(tmp
     blocker.write_text("")
     matrix = random_matrix(11)
     steps = synthetic_history(40, 11)
-    model = FitCache(blocker / "fits").fitted(RoutineOracle(matrix), steps, "n")
+    model = FitCache(blocker / "fits").fitted(RoutineOracle(matrix), steps, "s", "n")
     _same(RoutineOracle(matrix).fit(steps), model, steps[-3:])
-    thesis = FitCache(tmp_path / "fits").fitted(PreferenceOracle(matrix), steps, "n")
+    thesis = FitCache(tmp_path / "fits").fitted(PreferenceOracle(matrix), steps, "s", "n")
     assert thesis.n_steps_ == 40 and not (tmp_path / "fits").exists()

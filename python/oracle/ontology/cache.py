@@ -12,13 +12,13 @@ from __future__ import annotations
 import hashlib
 import os
 import pickle
-import stat
 import sys
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from oracle.errors import OntologyError
+from oracle.files import written_by_user_alone
 
 if TYPE_CHECKING:
     from oracle.ontology.builder import BuildReport
@@ -61,7 +61,7 @@ def _readable_entry(path: Path) -> bool:
         info = path.stat()
     except OSError:
         return False
-    return stat.S_ISREG(info.st_mode) and info.st_uid == os.getuid() and not info.st_mode & 0o022
+    return written_by_user_alone(info)
 
 
 def cached_build(
