@@ -27,7 +27,7 @@ setup:
 	$(PY) -m pip install -q --upgrade pip
 	$(PY) -m pip install -q -e '.[dev]'
 	@# bytecode of the package now, as a wheel install has it: a shell with PYTHONDONTWRITEBYTECODE set
-	@# would otherwise compile every module on every call (~1 s of each CLI call)
+	@# would otherwise compile every module on every call (~0.1 s of each CLI call)
 	$(PY) -m compileall -q python
 	@$(PY) -c "import oracle, pyswip, rdflib, owlready2, numpy, yaml, pymongo; print('neem-oracle', oracle.__version__, 'ready')"
 
