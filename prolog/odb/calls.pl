@@ -103,9 +103,19 @@ action_call(A, Call, B, E) :-
 %   reads are the product of a task's types, its role-object pairs, the role's types and
 %   the object's types (~11 rows per role in a logged NEEM); they are read as their four
 %   factors (four store queries, each in the store's order) and joined here, plus one query
-%   per task without typed roles.
+%   per task without typed roles. Those factors are the rows of every task of the NEEM; for
+%   a few tasks (a kept history's new actions, oracle.historycache) task_call/2 per task
+%   reads less: one query each, of that task's rows alone.
 task_calls(Ts, Pairs) :-
     sort(Ts, Distinct),
+    length(Distinct, N),
+    (   N =< 64
+    ->  findall(T-C, ( member(T, Distinct), task_call(T, C) ), Pairs)
+    ;   factor_calls(Distinct, Pairs)
+    ).
+
+%   factor_calls(+Distinct, -Pairs): task_calls/2 from the four factors, however few tasks.
+factor_calls(Distinct, Pairs) :-
     kb_findall(T-(R-O), ( task_role(T, R), has_role(O, R) ), any, TROs),
     kb_findall(T-C, ( task_role(T, _), triple(T, rdf:type, C) ), any, TCs),
     kb_findall(R-RC, ( task_role(_, R), triple(R, rdf:type, RC) ), any, RCs),

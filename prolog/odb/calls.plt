@@ -43,7 +43,13 @@ test(task_calls_equals_task_call, [cleanup(store_reset)]) :-
              findall(T, ( kb_call(triple(T, rdf:type, C), any), atom(C) ), Ts0), sort(Ts0, Ts),
              task_calls(Ts, Pairs),
              findall(T-Call, ( member(T, Ts), task_call(T, Call) ), Expected),
-             assertion(Pairs == Expected) )).
+             assertion(Pairs == Expected),
+             % the factor read (many tasks) and the per-task read (a few) agree on any set
+             odb_calls:factor_calls(Ts, Factored),
+             assertion(Factored == Expected),
+             length(Few, 5), append(Few, _, Ts),
+             task_calls(Few, FewPairs), odb_calls:factor_calls(Few, FewFactored),
+             assertion(FewPairs == FewFactored) )).
 
 %   After the test episode: N pours of the thermos into a red mug from t=300, 10 s apart,
 %   each its own task individual (the call shares its first object's class with the

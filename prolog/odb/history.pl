@@ -1,6 +1,8 @@
 :- module(odb_history,
     [ situation_history/1,        % -Situations
+      situation_history_after/2,  % +After, -Situations
       situation_history_json/1,   % -JSONString
+      situation_history_json/2,   % +After, -JSONString
       latest_situation/2,         % -Begin, -Calls
       latest_situation_json/1     % -JSONString
     ]).
@@ -38,30 +40,34 @@ situation, the one the next ranking is for.
 %   pass over the actions in begin order that merges the imaginings (also in begin order)
 %   and looks parts of day and calls up in AVL trees: O(n log n) in the rows read.
 situation_history(Situations) :-
-    situation_history(Situations, _).
+    situation_history(none, Situations, _).
 
-%   situation_history(-Situations, -Calls): also the AVL tree of task individual -> call
-%   the rows were made from (every call in Situations but `idle` is one of its values).
-situation_history(Situations, Calls) :-
+%!  situation_history_after(+After, -Situations) is det.
+%   The situations of situation_history/1 whose action began after the number After, as
+%   that read gives them when its last situation before them began at After: the imaginings
+%   that began after After are merged, the earlier ones are not. Every store query reads from
+%   the intervals that began after After, so a kept history grows by its new actions alone
+%   (oracle.historycache); After `none` is the whole history.
+situation_history_after(After, Situations) :-
+    after_bound(After),
+    situation_history(After, Situations, _).
+
+%   situation_history(+After, -Situations, -Calls): also the AVL tree of task individual ->
+%   call the rows were made from (every call in Situations but `idle` is one of its values).
+situation_history(After, Situations, Calls) :-
     odb_iri('IdleTask', Idle),
     % Each action with its task's types, grouped by the store (a logged task has two).
-    kb_group(B-A-T-E, C, ( executes_task(A, T), triple(T, rdf:type, C), event_interval(A, B, E) ),
-             any, Typed),
+    typed_actions(After, Typed),
     % The few distinct types are checked once, not once per action.
     findall(C, ( member(_-Cs, Typed), member(C, Cs) ), AllTypes),
     sort(AllTypes, Types),
     include(odb_or_idle(Idle), Types, Kept),
     findall(B-A-T-E-C, ( member(B-A-T-E-Cs, Typed), member(C, Cs), ord_memberchk(C, Kept) ), Actions0),
     sort(Actions0, Actions),
-    kb_findall(A-PC, ( has_time_interval(A, I), triple(I, rdf:type, PC) ), any, IntervalTypes),
+    interval_types(After, IntervalTypes),
     findall(PC-P, ( member(P, ['Morning', 'Midday', 'Evening', 'Night']), odb_iri(P, PC) ), PartClasses),
     findall(A-P, ( member(A-PC, IntervalTypes), memberchk(PC-P, PartClasses) ), Parts),
-    % Each imagining's begin with its plans, grouped by the store (one row per begin, not one
-    % per imagined plan). The mental action's own patterns come first: SQLite then joins its
-    % interval before fanning out to the ~20 plans (4x faster at 10,000 actions).
-    kb_group(B, Plan, ( executes_task(M, MT), instance_of(MT, soma:'Imagining'),
-                        event_interval(M, B, _), holds(M, odb:imagines_situation, Plan) ),
-             any, ImaginedPlans),
+    imagined_plans(After, ImaginedPlans),
     % The few plans' tasks once, not once per (imagining, plan) row: the same join, in Prolog.
     kb_findall(Plan-T, plan_defines_task(Plan, T), any, PlanTasks0),
     sort(PlanTasks0, PlanTasks),
@@ -77,7 +83,42 @@ situation_history(Situations, Calls) :-
     empty_assoc(Memo),
     imagined_calls(ImaginedPlans, TasksOf, Calls, Memo, ByBegin),
     first_values(Parts, PartOf),
-    history_rows(Actions, inf, Idle, PartOf, ByBegin, none, Calls, Situations).
+    (   After == none -> Prev = inf ; Prev = After ),
+    history_rows(Actions, Prev, Idle, PartOf, ByBegin, none, Calls, Situations).
+
+%   Every action (After `none`), or every action that began after After, with its begin,
+%   task, end and the task's types. The restricted reads start from the interval begins the
+%   store finds by value (its index on property and value), before fanning out.
+typed_actions(none, Typed) :- !,
+    kb_group(B-A-T-E, C, ( executes_task(A, T), triple(T, rdf:type, C), event_interval(A, B, E) ),
+             any, Typed).
+typed_actions(After, Typed) :-
+    kb_group(B-A-T-E, C, ( triple(I, soma:hasIntervalBegin, >(After)->B), has_time_interval(A, I),
+                           has_interval_end(I, E), executes_task(A, T), triple(T, rdf:type, C) ),
+             any, Typed).
+
+%   Each event (of an interval that began after After) with the types of its interval.
+interval_types(none, IntervalTypes) :- !,
+    kb_findall(A-PC, ( has_time_interval(A, I), triple(I, rdf:type, PC) ), any, IntervalTypes).
+interval_types(After, IntervalTypes) :-
+    kb_findall(A-PC, ( triple(I, soma:hasIntervalBegin, >(After)), has_time_interval(A, I),
+                       triple(I, rdf:type, PC) ), any, IntervalTypes).
+
+%   Each imagining's begin with its plans, grouped by the store (one row per begin, not one
+%   per imagined plan). The mental action's own patterns come first: SQLite then joins its
+%   interval before fanning out to the ~20 plans (4x faster at 10,000 actions).
+imagined_plans(none, ImaginedPlans) :- !,
+    kb_group(B, Plan, ( executes_task(M, MT), instance_of(MT, soma:'Imagining'),
+                        event_interval(M, B, _), holds(M, odb:imagines_situation, Plan) ),
+             any, ImaginedPlans).
+imagined_plans(After, ImaginedPlans) :-
+    kb_group(B, Plan, ( triple(I, soma:hasIntervalBegin, >(After)->B), has_time_interval(M, I),
+                        has_interval_end(I, _), executes_task(M, MT), instance_of(MT, soma:'Imagining'),
+                        holds(M, odb:imagines_situation, Plan) ),
+             any, ImaginedPlans).
+
+after_bound(After) :-
+    (   After == none -> true ; must_be(number, After) ).
 
 odb_or_idle(Idle, C) :-
     (   C == Idle -> true ; odb_iri(_, C) ).
@@ -142,7 +183,13 @@ advance(Groups, _, Latest, Groups, Latest).
 %   indexes of its calls, and the situations as one flat list of five values each (SetIndex
 %   -1: none available). Flat rows write 10x faster than one JSON object per situation.
 situation_history_json(JSON) :-
-    situation_history(Situations, Calls),
+    situation_history_json(none, JSON).
+
+%!  situation_history_json(+After, -JSON) is det.
+%   situation_history_after/2 as JSON, in the shape of situation_history_json/1.
+situation_history_json(After, JSON) :-
+    after_bound(After),
+    situation_history(After, Situations, Calls),
     assoc_to_values(Calls, CallList),
     sort([idle|CallList], Distinct),
     findall(C-I, nth0(I, Distinct, C), Numbered),

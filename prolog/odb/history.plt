@@ -38,4 +38,33 @@ test(one_pass_equals_reference, [cleanup(store_reset)]) :-
 test(one_pass_equals_reference_small_episode, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
     situation_history(New), situation_history_reference(Old), New == Old.
 
+test(after_is_the_suffix_after_a_begin, [cleanup(store_reset)]) :-
+    forall(member(Seed, [1, 2]),
+           ( load_generated_episode(300, Seed),
+             situation_history(All),
+             length(All, N),
+             forall(between(1, N, K),
+                    ( Cut is N - K,
+                      length(Before, Cut), append(Before, Suffix, All),
+                      (   Before == [] -> After = -1.0e12
+                      ;   last(Before, situation(After, _, _, _, _))
+                      ),
+                      % a cut between two actions that began together is no cut by begin
+                      (   Suffix = [situation(First, _, _, _, _)|_], First =< After
+                      ->  true
+                      ;   situation_history_after(After, Got),
+                          assertion(Got == Suffix)
+                      ) )) )).
+
+test(after_the_last_action_is_empty, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
+    situation_history(All), last(All, situation(B, _, _, _, _)),
+    situation_history_after(B, []),
+    situation_history_json(B, J), atom_json_dict(J, D, []), D.rows == [].
+
+test(after_none_is_everything, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
+    situation_history(All), situation_history_after(none, Got), Got == All.
+
+test(after_must_be_a_number, [error(type_error(number, soon)), setup(load_test_episode), cleanup(store_reset)]) :-
+    situation_history_after(soon, _).
+
 :- end_tests(odb_history).
