@@ -487,6 +487,8 @@ class Bridge:
 
         self.store = store
         self.neem_id = neem_id = resolve_neem(store, neem_id)  # an id or an alias; StoreError when neither
+        #: The ontology the Prolog names were set from (set_ontology), None before.
+        self.ontology: OdbOntology | None = None
         with _LOCK:
             _attach_engine()
             _ensure_loaded()
@@ -498,6 +500,8 @@ class Bridge:
     def set_ontology(self, ontology: OdbOntology) -> None:
         """Tell odb_names the ontology's namespace and which role of each task is which."""
         from pyswip import Atom
+
+        self.ontology = ontology
 
         rows = [
             [Atom(task.iri), Atom(task.target_role or "none"), Atom(task.ref_role or "none")]
@@ -576,13 +580,20 @@ class Bridge:
         """odb_history:situation_history/1 in one crossing: every executed action in begin order
         as ``{"begin", "end", "call", "part", "available"}`` (calls in the chain syntax). The
         situations that found the same set available share one list (Prolog writes each set once)."""
-        reply = self._json("odb_history:situation_history_json")
-        calls: list[str] = reply["calls"]
-        sets = [[calls[i] for i in indexes] for indexes in reply["sets"]]
-        flat = reply["rows"]
-        return [{"begin": flat[i], "end": flat[i + 1], "call": calls[flat[i + 2]], "part": flat[i + 3],
-                 "available": sets[flat[i + 4]] if flat[i + 4] >= 0 else None}
-                for i in range(0, len(flat), 5)]
+        return history_rows(self._json("odb_history:situation_history_json"))
+
+    def history_after(self, after: float) -> list[dict[str, Any]]:
+        """The rows of history() whose action began after ``after``, as history() gives them
+        when its row before them began at ``after`` (odb_history:situation_history_after/2):
+        a few store queries, from the intervals that began after it."""
+        if isinstance(after, bool) or not isinstance(after, (int, float)) or not math.isfinite(after):
+            raise PrologError(f"history_after needs a finite number, got {after!r}")
+        number = repr(after) if isinstance(after, int) else repr(float(after))
+        rows = self._with_request([], f"odb_history:situation_history_json({number}, J)")
+        if not rows:
+            raise PrologError("Prolog found no answer to odb_history:situation_history_json/2")
+        text = rows[0]["J"]
+        return history_rows(json.loads(text.decode("utf-8") if isinstance(text, bytes) else text))
 
     def latest_situation(self) -> dict[str, Any] | None:
         """The latest imagined situation as ``{"begin", "available"}``, or None."""
@@ -600,6 +611,16 @@ class Bridge:
             if _STATE["bridge"] is self:
                 _STATE["bridge"] = None
                 _run("neem_store:store_use_memory")
+
+
+def history_rows(reply: dict[str, Any]) -> list[dict[str, Any]]:
+    """odb_history:situation_history_json's reply as rows (Bridge.history)."""
+    calls: list[str] = reply["calls"]
+    sets = [[calls[i] for i in indexes] for indexes in reply["sets"]]
+    flat = reply["rows"]
+    return [{"begin": flat[i], "end": flat[i + 1], "call": calls[flat[i + 2]], "part": flat[i + 3],
+             "available": sets[flat[i + 4]] if flat[i + 4] >= 0 else None}
+            for i in range(0, len(flat), 5)]
 
 
 def _python_value(value: Any) -> Any:

@@ -21,6 +21,7 @@ from oracle.algorithm.records import RankedTask, Ranking
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError, NeemOracleError
 from oracle.fitcache import FitCache
+from oracle.historycache import HistoryCache
 from oracle.calls import call_of, check_call, opening_tasks, option_of, steps_before
 from oracle.neem.query import recorded_part_of_day
 from oracle.neem.writer import NeemLogger
@@ -76,12 +77,15 @@ def rank_neem(
     write: bool = True,
     method: str = DEFAULT,
     cache: FitCache | None = None,
+    histories: HistoryCache | None = None,
 ) -> NeemRanking:
     """Rank ``available`` (chain syntax) at ``at`` (default: now), or else the NEEM's latest
     imagined situation, at the part of day recorded with it (oracle.timeline's rule). In a NEEM
     without a clock, times are positions with no part of the day, and "now" is the position
     after the last action. The fit is kept in ``cache`` (default: the user's, oracle.fitcache)
-    and extended by the actions logged since."""
+    and extended by the actions logged since; so is the history read (``histories``, default:
+    the user's, oracle.historycache)."""
+    history = (histories or HistoryCache.default()).history(bridge)
     clocked = has_clock(bridge.store.neem(bridge.neem_id).meta)
     if available:
         calls = [parse_call(text) for text in available]
@@ -90,7 +94,7 @@ def rank_neem(
         if clocked:
             instant = at if at is not None else now()
         else:
-            last = 0.0 if at is not None else max((float(row["end"]) for row in bridge.history()), default=0.0)
+            last = 0.0 if at is not None else max((float(row["end"]) for row in history), default=0.0)
             instant = Instant(at.seconds if at is not None else last, None)
     else:
         latest = bridge.latest_situation()
@@ -101,7 +105,7 @@ def rank_neem(
         recorded = recorded_part_of_day(bridge.store, bridge.neem_id, ontology.vocab, begin)
         instant = Instant(begin, (recorded or part_of_day_at(begin)) if clocked else None)
     when, part = instant.seconds, instant.part_of_day
-    steps = steps_before(ontology, bridge.history(), when)
+    steps = steps_before(ontology, history, when)
     model = make_predictor(method, ontology.distances(), opening_tasks(ontology), settings)
     oracle = (cache or FitCache.default()).fitted(model, steps, bridge.store.location, bridge.neem_id)
     started = time.perf_counter()

@@ -19,6 +19,7 @@ from typing import Any, TypeVar
 from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.predictors import DEFAULT
 from oracle.answers import something_else_sentence, what_next_sentence, why_not_sentence
+from oracle.historycache import HistoryCache
 from oracle.bridge import Bridge
 from oracle.paths import prolog_dir
 from oracle.errors import NeemOracleError, StoreError
@@ -127,7 +128,7 @@ class Engine:
             neem = self.resolve(name)
             if neem in self.sessions:
                 return self.sessions[neem]
-            history = self.bridge(neem).history()
+            history = HistoryCache.default().history(self.bridge(neem))
             logger = NeemLogger(self.store, self.ontology, neem, commit_every=NEVER)
             session = NeemSession(neem, logger, self.ontology, make_predictor(self.ontology, self.settings, self.method), history)
             self.sessions[neem] = session

@@ -67,6 +67,29 @@ def check_neem_id(neem_id: str) -> str:
 
 
 @dataclass(frozen=True)
+class AppendMark:
+    """Where a NEEM's triples stand, for a reader that keeps what it read and later reads only
+    what was added (oracle.historycache). ``token`` names the NEEM's tables (made anew, as by
+    ``import --replace``, they get another), ``changes`` counts every update and deletion of
+    one of its triples, ever, and ``last`` is the id of its last triple."""
+
+    token: str
+    changes: int
+    last: int
+
+
+@dataclass(frozen=True)
+class Appended:
+    """The triples a NEEM gained after a mark's ``last`` id, in the order they were added, and
+    whether every subject among them is new: a term that no earlier triple of the NEEM has,
+    as subject or as object. Then nothing reached from an earlier individual over a triple
+    (subject to object) is among them."""
+
+    docs: list[dict[str, Any]]
+    fresh: bool
+
+
+@dataclass(frozen=True)
 class NeemInfo:
     """A NEEM's registry entry (openEASE's ``meta`` document, trimmed to what we use)."""
 
@@ -355,6 +378,15 @@ class Store(ABC):
 
     @abstractmethod
     def _count(self, neem_id: str, kind: str) -> int: ...
+
+    def append_mark(self, neem_id: str) -> AppendMark | None:
+        """The NEEM's AppendMark, or None where the backend cannot tell additions from changes
+        (then a reader reads everything again)."""
+        return None
+
+    def appended(self, neem_id: str, last: int) -> Appended | None:
+        """The triples added after id ``last`` (an AppendMark's), or None (as append_mark)."""
+        return None
 
     def write_mark(self, neem_id: str) -> int:
         """A number that changes whenever triples are added to a NEEM (what a kept summary is

@@ -39,7 +39,7 @@ from bson.int64 import Int64
 from bson.objectid import ObjectId
 
 from oracle.errors import StoreError
-from oracle.store.base import COLLECTION_KINDS, STAGING, Closed, NeemInfo, Store
+from oracle.store.base import COLLECTION_KINDS, STAGING, Appended, AppendMark, Closed, NeemInfo, Store
 from oracle.store.model import (
     HIERARCHY,
     RDF_TYPE,
@@ -151,6 +151,8 @@ _SCHEMA_STATEMENTS = (
     "CREATE INDEX IF NOT EXISTS closure_member_value ON closure_member(value, cid)",
     "CREATE TABLE IF NOT EXISTS terms(id INTEGER PRIMARY KEY, value TEXT NOT NULL UNIQUE)",
     "CREATE TABLE IF NOT EXISTS side_tables(neem TEXT PRIMARY KEY, p INTEGER NOT NULL, closures TEXT NOT NULL)",
+    # A NEEM's update and delete count (Store.append_mark), kept by triggers on its tables.
+    "CREATE TABLE IF NOT EXISTS revisions(neem TEXT PRIMARY KEY, token TEXT NOT NULL UNIQUE, changes INTEGER NOT NULL)",
     "INSERT OR IGNORE INTO store_info VALUES ('schema', '4')",
     "UPDATE store_info SET value='4' WHERE key='schema' AND value='3'",
 )
@@ -312,6 +314,8 @@ class SQLiteStore(Store):
         #: NEEM ids seen to exist; forgotten on drop/rename (another process may drop one too,
         #: then the next statement fails with "no such table", still a StoreError).
         self._present: set[str] = set()
+        #: NEEM ids whose updates and deletions are counted (revisions, append_mark).
+        self._tracked: set[str] = set()
         self._tids: dict[str, int] = {}
         self._tvals: dict[int, str] = {}
         self._all_terms = False
@@ -495,6 +499,7 @@ class SQLiteStore(Store):
             taken = {name for (name,) in self._conn.execute("SELECT name FROM sqlite_master WHERE type='index'")}
             for _, sql in _indexes(neem_id, taken, side=side_property is not None):
                 self._conn.execute(sql)
+            self._track(neem_id)
 
     def _drop_neem(self, neem_id: str) -> None:
         with self.transaction():
@@ -502,7 +507,9 @@ class SQLiteStore(Store):
                 self._conn.execute(f"DROP TABLE IF EXISTS {_table(neem_id, kind)}")
             self._conn.execute("DELETE FROM neems WHERE id=?", (neem_id,))
             self._conn.execute("DELETE FROM side_tables WHERE neem=?", (neem_id,))
+            self._conn.execute("DELETE FROM revisions WHERE neem=?", (neem_id,))
         self._present.discard(neem_id)
+        self._tracked.discard(neem_id)
 
     def _rename_neem(self, neem_id: str, new_id: str, info: NeemInfo) -> None:
         with self.transaction():
@@ -515,7 +522,82 @@ class SQLiteStore(Store):
             # index, and rebuilding them cost minutes and ~200 MiB at 50,000 actions): a NEEM
             # created later under an id whose names are taken gets other names (_indexes).
             self._conn.execute("UPDATE neems SET id=? WHERE id=?", (new_id, neem_id))
+            self._conn.execute("UPDATE revisions SET neem=? WHERE neem=?", (new_id, neem_id))
         self._present.discard(neem_id)
+        self._tracked.discard(neem_id)
+
+    def _track(self, neem_id: str) -> None:
+        """Count every update and deletion of the NEEM's triples from now on (append_mark):
+        triggers on its triple tables, under a token of their own that stays with the tables
+        when the NEEM is renamed and goes when they are dropped."""
+        token = os.urandom(8).hex()
+        self._conn.execute("INSERT INTO revisions VALUES (?, ?, 0)", (neem_id, token))
+        for table, kind in ((_table(neem_id, "triples"), "t"), (_table(neem_id, SIDE), "s")):
+            if kind == "s" and self._side_row(neem_id) is None:
+                continue
+            for event in ("UPDATE", "DELETE"):
+                name = _quote(f"changes_{token}_{kind}_{event.lower()}")
+                self._conn.execute(f"CREATE TRIGGER {name} AFTER {event} ON {table} BEGIN"
+                                   f" UPDATE revisions SET changes = changes + 1 WHERE token = '{token}'; END")
+
+    def append_mark(self, neem_id: str) -> AppendMark | None:
+        # A NEEM made before the revisions table starts being tracked at its first mark (a
+        # reader only trusts what it read after that); a read-only store cannot start it.
+        self._require(neem_id)
+        query = "SELECT token, changes FROM revisions WHERE neem=?"
+        try:
+            with self._reading():
+                row = self._conn.execute(query, (neem_id,)).fetchone()
+                last = self._next_id(neem_id) - 1
+        except StoreError:
+            if self.read_only:
+                return None  # a store from before the revisions table
+            raise
+        if row is None and not self.read_only:
+            with self.transaction():
+                if self._conn.execute(query, (neem_id,)).fetchone() is None:
+                    self._track(neem_id)
+                row = self._conn.execute(query, (neem_id,)).fetchone()
+                last = self._next_id(neem_id) - 1
+        return None if row is None else AppendMark(str(row[0]), int(row[1]), last)
+
+    @contextmanager
+    def _reading(self) -> Iterator[None]:
+        """One read transaction (one snapshot of the file) that takes no write lock; inside a
+        transaction already, that one."""
+        if self._depth > 0 or self._conn.conn.in_transaction:
+            yield
+            return
+        self._conn.execute("BEGIN")
+        try:
+            yield
+        finally:
+            if self._conn.conn.in_transaction:
+                self._conn.execute("COMMIT")
+
+    def appended(self, neem_id: str, last: int) -> Appended | None:
+        self._require(neem_id)
+        tables = self._tables_of(neem_id)
+        with self._reading():
+            cursors = [self._conn.execute(f"SELECT t0.id, {_DOC_COLUMNS} FROM {t} AS t0 WHERE id > ? ORDER BY id", (last,))
+                       for t in tables]
+            docs = [self._document(row[1:]) for row in heapq.merge(*cursors, key=itemgetter(0))]
+            new = " UNION ".join(f"SELECT s FROM {t} WHERE id > :last" for t in tables)
+            # Each subject looked up by the (s, p) and (o, p) indexes of the main table and the
+            # (s) index of the side table; the side table's objects (plans) in one scan.
+            known = " OR ".join(
+                [f"EXISTS (SELECT 1 FROM {t} WHERE s = n.s AND id <= :last)" for t in tables]
+                + [f"EXISTS (SELECT 1 FROM {tables[0]} WHERE o = n.s AND ok = {K_STR} AND id <= :last)"]
+            )
+            stale = self._conn.execute(
+                f"SELECT 1 FROM ({new}) AS n WHERE n.s IS NULL OR {known} LIMIT 1", {"last": last}
+            ).fetchone()
+            if stale is None and len(tables) > 1:
+                stale = self._conn.execute(
+                    f"SELECT 1 FROM {tables[1]} WHERE id <= :last AND ok = {K_STR} AND o IN ({new}) LIMIT 1",
+                    {"last": last},
+                ).fetchone()
+        return Appended(docs, stale is None)
 
     def update_meta(self, neem_id: str, **fields: Any) -> NeemInfo:
         meta = dict(self.neem(neem_id).meta)
@@ -712,6 +794,11 @@ class SQLiteStore(Store):
         """Rows (id first, then the rest of ``columns``) into the triples table and the side
         table; the closures the side rows hold (``side_closures`` when the caller knows them)
         are recorded (``_note_side_closures``)."""
+        if neem_id not in self._tracked:
+            # a NEEM made before the revisions table is counted from its first write on
+            if self._conn.execute("SELECT 1 FROM revisions WHERE neem=?", (neem_id,)).fetchone() is None:
+                self._track(neem_id)
+            self._tracked.add(neem_id)
         if main_rows:
             self._insert_many(_table(neem_id, "triples"), columns, main_rows, 1)
         if side is not None and side_rows:

@@ -1,0 +1,165 @@
+"""The oracle's history of a NEEM (``Bridge.history``), kept between calls: a rank after the robot
+logged one more action reads that action from the store, not the whole NEEM again.
+
+One entry per store and NEEM, a file in the user's private cache (``histories/`` beside the kept
+fits; folder 0700, file 0600), named by a digest of the store's location, the NEEM id, the
+Prolog sources and the ontology's fingerprint (what the rows are computed with). Inside, as
+JSON: the store's AppendMark taken before the rows were read, and the rows.
+
+The kept rows are extended, not read again, only when the store shows that what was added
+since cannot change them (``extends``):
+
+- the NEEM's tables are the same (token) and none of its triples was updated or deleted since
+  (changes), and every triple added since has a subject that no earlier triple had, as
+  subject or object (Store.appended's ``fresh``): every pattern of the history read starts at
+  an action or an imagining and follows triples from subject to object, so no earlier row can
+  reach the new triples;
+- every interval begin added is later than the last kept row's begin, and every interval an
+  added triple gives an event is itself added: new actions and imaginings come after the kept
+  ones, and odb_history:situation_history_after/2 reads exactly them.
+
+Otherwise (a store that cannot tell, such as MongoDB; an entry missing, damaged or not the
+user's own; anything else) the whole history is read and the entry replaced. The cache is an
+optimisation: a folder that cannot be written only makes every call read the whole history.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+from collections.abc import Collection, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, ClassVar
+
+from oracle.bridge import Bridge, history_rows
+from oracle.files import write_private_bytes, written_by_user_alone
+from oracle.neem.terms import BEGIN, HAS_INTERVAL
+from oracle.store.base import Appended, AppendMark
+from oracle.store.model import decode_value
+
+#: Entries kept; the least recently written go first.
+MAX_ENTRIES = 32
+_FORMAT = "neem-oracle history 1"
+
+
+@dataclass(frozen=True)
+class HistoryCache:
+    """Histories under ``root`` (one file each)."""
+
+    root: Path
+    #: The sub-folder of the user's cache (oracle.ontology.distance.default_cache_dir).
+    FOLDER: ClassVar[str] = "histories"
+
+    @classmethod
+    def default(cls) -> HistoryCache:
+        from oracle.ontology.distance import default_cache_dir
+
+        return cls(default_cache_dir() / cls.FOLDER)
+
+    def history(self, bridge: Bridge) -> list[dict[str, Any]]:
+        """``bridge.history()``, from the kept entry and the actions added since when the
+        store shows they extend it (module docstring); the entry then holds the result."""
+        store, neem = bridge.store, bridge.neem_id
+        mark = store.append_mark(neem)
+        if mark is None:
+            return bridge.history()
+        path = self.root / f"{_entry_key(bridge)}.json"
+        kept = self._load(path)
+        rows: list[dict[str, Any]] | None = None
+        if kept is not None and kept[0] == mark:
+            return kept[1]
+        if kept is not None and kept[1] and same_tables(kept[0], mark):
+            after = kept[1][-1]["begin"]
+            added = store.appended(neem, kept[0].last)
+            if added is not None and extends(added, after):
+                rows = kept[1] + bridge.history_after(after)
+        if rows is None:
+            rows = bridge.history()
+        self._store(path, mark, rows)
+        return rows
+
+    def _load(self, path: Path) -> tuple[AppendMark, list[dict[str, Any]]] | None:
+        try:
+            with path.open("rb") as handle:
+                if not written_by_user_alone(os.fstat(handle.fileno())):
+                    return None
+                data = json.loads(handle.read())
+            if data["format"] != _FORMAT:
+                return None
+            token, changes, last = data["mark"]
+            mark = AppendMark(str(token), int(changes), int(last))
+            return mark, history_rows(data["history"])
+        except (OSError, ValueError, KeyError, TypeError, IndexError):
+            return None  # missing or damaged: the whole history is read, the entry replaced
+
+    def _store(self, path: Path, mark: AppendMark, rows: list[dict[str, Any]]) -> None:
+        data = {"format": _FORMAT, "mark": [mark.token, mark.changes, mark.last], "history": compact(rows)}
+        try:
+            write_private_bytes(path, json.dumps(data, separators=(",", ":")).encode())
+            self._prune()
+        except OSError:
+            return  # read-only or full: the next call reads the whole history
+
+    def _prune(self) -> None:
+        entries = sorted(self.root.glob("*.json"), key=lambda p: p.stat().st_mtime, reverse=True)
+        for old in entries[MAX_ENTRIES:]:
+            old.unlink(missing_ok=True)
+
+
+def same_tables(kept: AppendMark, now: AppendMark) -> bool:
+    """The NEEM's tables are those of the kept mark, nothing in them was changed or deleted
+    since, and nothing is missing."""
+    return kept.token == now.token and kept.changes == now.changes and now.last >= kept.last
+
+
+def extends(added: Appended, after: float) -> bool:
+    """The triples ``added`` after a history whose last row began at ``after`` only add rows
+    after it (module docstring)."""
+    if not added.fresh:
+        return False
+    subjects = {doc.get("s") for doc in added.docs}
+    for doc in added.docs:
+        properties = _properties(doc)
+        if BEGIN in properties:
+            begin = decode_value(doc.get("o"))
+            if isinstance(begin, bool) or not isinstance(begin, (int, float)) or not begin > after:
+                return False
+        if HAS_INTERVAL in properties and doc.get("o") not in subjects:
+            return False
+    return True
+
+
+def _properties(doc: Mapping[str, Any]) -> Collection[Any]:
+    stars = doc.get("p*")
+    return {doc.get("p"), *(stars if isinstance(stars, list) else ())}
+
+
+def compact(rows: list[dict[str, Any]]) -> dict[str, Any]:
+    """Rows in the shape of odb_history:situation_history_json (each distinct call and each
+    distinct available set written once); ``history_rows`` reads it back."""
+    calls: dict[str, int] = {}
+    sets: dict[tuple[int, ...], int] = {}
+    flat: list[Any] = []
+    for row in rows:
+        call = calls.setdefault(row["call"], len(calls))
+        available = row["available"]
+        index = -1
+        if available is not None:
+            key = tuple(calls.setdefault(c, len(calls)) for c in available)
+            index = sets.setdefault(key, len(sets))
+        flat += [row["begin"], row["end"], call, row["part"], index]
+    return {"calls": list(calls), "sets": [list(key) for key in sets], "rows": flat}
+
+
+def _entry_key(bridge: Bridge) -> str:
+    from oracle import modulecache
+    from oracle.ontology.provenance import fingerprint
+    from oracle.paths import prolog_dir
+
+    digest = hashlib.sha256()
+    ontology = "none" if bridge.ontology is None else fingerprint(bridge.ontology)
+    for part in (_FORMAT, bridge.store.location, bridge.neem_id, modulecache.modules_key(prolog_dir(), ""), ontology):
+        digest.update(part.encode() + b"\0")
+    return digest.hexdigest()[:32]
