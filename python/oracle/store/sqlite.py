@@ -269,7 +269,7 @@ class _Connection:
         self.conn = conn
         self.location = location
 
-    def execute(self, sql: str, params: Sequence[Any] = ()) -> _Cursor:
+    def execute(self, sql: str, params: Sequence[Any] | Mapping[str, Any] = ()) -> _Cursor:
         try:
             return _Cursor(self.conn.execute(sql, params), self.location)
         except sqlite3.Error as error:

@@ -1,0 +1,196 @@
+"""The kept history (oracle.historycache): extended by what the logger adds, it equals the whole
+history read afresh; anything else the store shows (an update, a deletion, a triple about an
+earlier individual, an action in the past, other tables) makes it read the whole history."""
+
+from __future__ import annotations
+
+import os
+import random
+from datetime import datetime, timedelta
+
+import pytest
+
+from oracle.bridge import Bridge
+from oracle.historycache import HistoryCache
+from oracle.neem import terms as T
+from oracle.neem.writer import NeemLogger
+from oracle.store import RDF_TYPE, open_store
+from oracle.store.model import INFINITY, USER_GRAPH
+
+CALLS = ["pick(apple)", "pour(thermos, green_mug)", "pick(banana)", "open(fridge)"]
+
+
+class Counting:
+    """A bridge whose whole-history reads are counted."""
+
+    def __init__(self, bridge: Bridge) -> None:
+        self.bridge = bridge
+        self.full = 0
+
+    def __getattr__(self, name):
+        return getattr(self.bridge, name)
+
+    def history(self):
+        self.full += 1
+        return self.bridge.history()
+
+
+def _log_some(log: NeemLogger, rng: random.Random, t: datetime, n: int, durations=(2, 25)) -> datetime:
+    for _ in range(n):
+        t += timedelta(seconds=rng.choice([1, 5, 30, 3600]))  # idle gaps and parts of day
+        for _ in range(rng.choice([0, 1, 2])):
+            log.available(rng.sample(CALLS, rng.randint(1, len(CALLS))), t)
+            t += timedelta(seconds=rng.choice([0, 1]))
+        if rng.random() < 0.2:
+            log.preference([(c, rng.random()) for c in CALLS], t)
+        end = t + timedelta(seconds=rng.choice(durations))
+        log.action(rng.choice(CALLS), t, end)
+        t = end
+    log.flush()
+    return t
+
+
+@pytest.fixture()
+def neem(tmp_path, onto):
+    store = open_store(tmp_path / "h.sqlite")
+    log = NeemLogger.create(store, onto, user="r", neem_id="r")
+    t = datetime(2024, 1, 1, 5)
+    for obj in ("apple", "thermos", "green_mug", "banana", "fridge"):
+        log.perceive(obj, t)
+    rng = random.Random(3)
+    t = _log_some(log, rng, t, 40)
+    bridge = Bridge(store, "r", onto)
+    yield store, log, bridge, rng, t
+    bridge.close()
+
+
+def test_grown_history_equals_the_whole_read(neem, tmp_path):
+    store, log, bridge, rng, t = neem
+    cache, counting = HistoryCache(tmp_path / "histories"), Counting(bridge)
+    assert cache.history(counting) == bridge.history() and counting.full == 1
+    for n in (1, 1, 3, 7, 0):
+        t = _log_some(log, rng, t, n)
+        assert cache.history(counting) == bridge.history()
+    assert counting.full == 1  # every later call read only what was added
+    log.available(["pick(apple)"], t + timedelta(seconds=3))  # an imagining, no action yet
+    log.flush()
+    assert cache.history(counting) == bridge.history() and counting.full == 1
+    t = _log_some(log, rng, t + timedelta(seconds=4), 2)
+    assert cache.history(counting) == bridge.history() and counting.full == 1
+
+
+def test_instant_actions_and_idle_gaps_answer_the_same(neem, tmp_path):
+    # An idle action after an action without duration begins when that action began: the kept
+    # rows may sort after it, so the whole history is read; the answer is the same either way.
+    store, log, bridge, rng, t = neem
+    cache = HistoryCache(tmp_path / "histories")
+    cache.history(bridge)
+    for n in (1, 2, 5, 1, 3):
+        t = _log_some(log, rng, t, n, durations=(0, 0, 2))
+        assert cache.history(bridge) == bridge.history()
+
+
+def test_nothing_added_reads_nothing(neem, tmp_path):
+    store, log, bridge, rng, t = neem
+    cache = HistoryCache(tmp_path / "histories")
+    first = cache.history(bridge)
+
+    class NoProlog(Counting):
+        def history(self):
+            raise AssertionError("read again")
+
+        def history_after(self, after):
+            raise AssertionError("read again")
+
+    assert cache.history(NoProlog(bridge)) == first
+
+
+def _full_after(cache, bridge, change) -> int:
+    counting = Counting(bridge)
+    cache.history(counting)
+    change()
+    got = cache.history(counting)
+    assert got == bridge.history()
+    return counting.full
+
+
+def _last_id(store, neem_id: str) -> int:
+    return store.append_mark(neem_id).last
+
+
+def test_an_update_or_a_deletion_reads_everything(neem, tmp_path):
+    store, log, bridge, rng, t = neem
+    cache, nid = HistoryCache(tmp_path / "histories"), bridge.neem_id
+    before = store.append_mark(nid)
+    assert _full_after(cache, bridge, lambda: store._rescope(nid, _last_id(store, nid), 0.0, 1e12)) == 2
+    assert store.append_mark(nid).changes == before.changes + 1
+    assert _full_after(cache, bridge, lambda: store._delete_triples(nid, [_last_id(store, nid)])) == 1
+    assert store.append_mark(nid).changes == before.changes + 2
+
+
+def test_a_triple_about_an_earlier_individual_reads_everything(neem, tmp_path, onto):
+    store, log, bridge, rng, t = neem
+    cache = HistoryCache(tmp_path / "histories")
+    nid = bridge.neem_id
+    task = next(doc["o"] for doc in store.find(nid, p=T.EXECUTES))  # an earlier action's task
+    extra = (task, RDF_TYPE, onto.task_iri("pick"), USER_GRAPH, 0.0, INFINITY)
+    assert _full_after(cache, bridge, lambda: store.insert(nid, [extra])) == 2
+    assert not store.appended(nid, _last_id(store, nid) - 1).fresh
+
+
+def test_an_action_logged_in_the_past_reads_everything(neem, tmp_path, onto):
+    store, log, bridge, rng, t = neem
+    cache = HistoryCache(tmp_path / "histories")
+    first = datetime(2024, 1, 1, 5, 0, 1)  # before every action
+    late = NeemLogger(store, onto, bridge.neem_id)
+    late._clock_resumed, late._last_end, late._last_begin = True, None, None  # a recorded action, logged late
+    assert _full_after(cache, bridge, lambda: (late.action("pick(apple)", first, first), late.flush())) == 2
+    assert bridge.history()[0]["call"] == "pick(apple)" and bridge.history()[0]["begin"] == first.timestamp()
+
+
+def test_a_replaced_neem_reads_everything(neem, tmp_path, onto):
+    store, log, bridge, rng, t = neem
+    cache = HistoryCache(tmp_path / "histories")
+    counting = Counting(bridge)
+    cache.history(counting)
+    token = store.append_mark(bridge.neem_id).token
+    bridge.close()
+    again = NeemLogger.create(store, onto, user="r", neem_id="r", replace=True)
+    _log_some(again, random.Random(9), datetime(2025, 1, 1), 5)
+    again.close()
+    fresh = Bridge(store, "r", onto)
+    assert store.append_mark(fresh.neem_id).token != token
+    counting = Counting(fresh)
+    assert cache.history(counting) == fresh.history() and counting.full == 1
+    fresh.close()
+
+
+def test_a_damaged_or_foreign_entry_is_not_used(neem, tmp_path):
+    store, log, bridge, rng, t = neem
+    cache = HistoryCache(tmp_path / "histories")
+    cache.history(bridge)
+    (entry,) = (tmp_path / "histories").glob("*.json")
+    entry.write_bytes(b"{not json")
+    counting = Counting(bridge)
+    assert cache.history(counting) == bridge.history() and counting.full == 1
+    os.chmod(entry, 0o666)
+    counting = Counting(bridge)
+    assert cache.history(counting) == bridge.history() and counting.full == 1
+    assert entry.stat().st_mode & 0o077 == 0  # replaced, private again
+
+
+def test_an_unwritable_cache_still_answers(neem, tmp_path):
+    store, log, bridge, rng, t = neem
+    blocked = tmp_path / "file"
+    blocked.write_text("")
+    assert HistoryCache(blocked / "histories").history(bridge) == bridge.history()
+
+
+def test_a_store_that_cannot_tell_reads_everything(neem, tmp_path, monkeypatch):
+    store, log, bridge, rng, t = neem
+    monkeypatch.setattr(type(store), "append_mark", lambda self, neem_id: None)
+    counting = Counting(bridge)
+    cache = HistoryCache(tmp_path / "histories")
+    cache.history(counting)
+    cache.history(counting)
+    assert counting.full == 2 and not (tmp_path / "histories").exists()
