@@ -52,11 +52,12 @@ class FitCache:
 
         return cls(default_cache_dir() / cls.FOLDER)
 
-    def fitted(self, model: Any, steps: Sequence[Step], store: str, neem: str) -> Any:
+    def fitted(self, model: Any, steps: Sequence[Step], store: str, neem: str, *, keep: bool = True) -> Any:
         """``model.fit(steps)``, extended from the entry of NEEM ``neem`` of the store at
         ``store`` (its location) when the entry's steps are the first steps of ``steps``; the
-        entry then holds the new fit."""
-        if not callable(getattr(model, "extend", None)):
+        entry then holds the new fit. ``keep`` False (a temporary NEEM, wiped when its session
+        ends: nothing made from it may outlive it) fits afresh and keeps nothing."""
+        if not keep or not callable(getattr(model, "extend", None)):
             return model.fit(steps)
         path = self.root / f"{_entry_key(model, store, neem)}.fit"
         cached = self._load(path, model, steps)

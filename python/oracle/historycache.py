@@ -19,7 +19,8 @@ since cannot change them (``extends``):
   ones, and odb_history:situation_history_after/2 reads exactly them.
 
 Otherwise (a store that cannot tell, such as MongoDB; an entry missing, damaged or not the
-user's own; anything else) the whole history is read and the entry replaced. The cache is an
+user's own; anything else) the whole history is read and the entry replaced. A temporary NEEM
+(a session not yet persisted, wiped when the next one starts; thesis 3.5) is never kept. The cache is an
 optimisation: a folder that cannot be written only makes every call read the whole history.
 """
 
@@ -62,6 +63,8 @@ class HistoryCache:
         """``bridge.history()``, from the kept entry and the actions added since when the
         store shows they extend it (module docstring); the entry then holds the result."""
         store, neem = bridge.store, bridge.neem_id
+        if store.neem(neem).temporary:
+            return bridge.history()  # wiped when its session ends: nothing of it may outlive it
         mark = store.append_mark(neem)
         if mark is None:
             return bridge.history()

@@ -107,7 +107,8 @@ def rank_neem(
     when, part = instant.seconds, instant.part_of_day
     steps = steps_before(ontology, history, when)
     model = make_predictor(method, ontology.distances(), opening_tasks(ontology), settings)
-    oracle = (cache or FitCache.default()).fitted(model, steps, bridge.store.location, bridge.neem_id)
+    oracle = (cache or FitCache.default()).fitted(model, steps, bridge.store.location, bridge.neem_id,
+                                                  keep=not bridge.store.neem(bridge.neem_id).temporary)
     started = time.perf_counter()
     ranking = oracle.rank([option_of(ontology, c) for c in calls], part)
     elapsed = (time.perf_counter() - started) * 1000

@@ -94,6 +94,18 @@ def test_cache_fits_once_then_extends_only_the_new_steps(tmp_path):
     assert again.distances is matrix  # the caller's matrix, not a copy
 
 
+def test_a_fit_not_to_keep_is_fitted_and_not_written(tmp_path):
+    # a temporary NEEM's fit (thesis 3.5: wiped with the NEEM) never reaches the cache
+    cache = FitCache(tmp_path / "fits")
+    matrix = random_matrix(5)
+    steps = synthetic_history(60, 5)
+    _Counting.added = 0
+    model = cache.fitted(_Counting(matrix), steps, "s", "n", keep=False)
+    cache.fitted(_Counting(matrix), steps, "s", "n", keep=False)
+    assert _Counting.added == 120 and not (tmp_path / "fits").exists()
+    _same(_Counting(matrix).fit(steps), model, steps[-5:])
+
+
 def test_cache_fits_afresh_when_the_history_is_not_a_continuation(tmp_path):
     cache = FitCache(tmp_path)
     matrix = random_matrix(6)

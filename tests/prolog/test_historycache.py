@@ -194,3 +194,16 @@ def test_a_store_that_cannot_tell_reads_everything(neem, tmp_path, monkeypatch):
     cache.history(counting)
     cache.history(counting)
     assert counting.full == 2 and not (tmp_path / "histories").exists()
+
+
+def test_a_temporary_neem_is_never_kept(tmp_path, onto):
+    # A session NEEM not yet persisted is wiped when the next session starts (thesis 3.5):
+    # nothing read from it may stay in the user's cache.
+    store = open_store(tmp_path / "t.sqlite")
+    log = NeemLogger.create(store, onto, user="s", neem_id="s", temporary=True)
+    _log_some(log, random.Random(1), datetime(2024, 1, 1, 5), 5)
+    bridge = Bridge(store, "s", onto)
+    cache = HistoryCache(tmp_path / "histories")
+    assert cache.history(bridge) == bridge.history()
+    assert not (tmp_path / "histories").exists()
+    bridge.close()

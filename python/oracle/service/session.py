@@ -115,7 +115,9 @@ class NeemSession:
         self.steps: list[Step] = steps_from_history(ontology, history)
         self.begins: list[float] = [float(row["begin"]) for row in history]
         # the fit of a NEEM the CLI or an earlier service run ranked is kept (oracle.fitcache)
-        self.predictor = FitCache.default().fitted(predictor, self.steps, logger.store.location, neem)
+        # (never that of a temporary NEEM: it is wiped when the next session starts)
+        self.predictor = FitCache.default().fitted(predictor, self.steps, logger.store.location, neem,
+                                                   keep=not logger.store.neem(neem).temporary)
         self.done = {step.label for step in self.steps if not step.idle}
         ends = [float(row["end"]) for row in history]
         begins = [float(row["begin"]) for row in history]
