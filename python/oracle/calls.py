@@ -8,11 +8,12 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 from datetime import datetime
+from typing import Any
 
 from oracle.algorithm.records import Option, Step
 from oracle.chains import TaskCall
 from oracle.errors import OntologyError
-from oracle.namespaces import SOMA
+from oracle.namespaces import SOMA_IRI
 from oracle.ontology import OdbOntology
 from oracle.timeline import clock, is_idle_gap, time_of_day
 
@@ -27,7 +28,7 @@ def option_of(ontology: OdbOntology, call: TaskCall) -> Option:
 
 def opening_tasks(ontology: OdbOntology) -> frozenset[str]:
     """Task classes under soma:Opening: their successors are not pruned (thesis Fig. 4.7)."""
-    return frozenset(t.iri for t in ontology.tasks.values() if ontology.taxonomy.is_subclass_of(t.iri, str(SOMA.Opening)))
+    return frozenset(t.iri for t in ontology.tasks.values() if ontology.taxonomy.is_subclass_of(t.iri, SOMA_IRI + "Opening"))
 
 
 def call_of(ontology: OdbOntology, option: Option) -> TaskCall:
@@ -79,6 +80,10 @@ def steps_from_history(ontology: OdbOntology, rows: Iterable[dict]) -> list[Step
             known = options_of[text] = option_of(ontology, parse_call(text))
         return known
 
+    # Rows read together share one list per distinct available set, and a step repeats often
+    # (the same call, set and part of day): each distinct step is made once (Steps are immutable).
+    by_list: dict[int, tuple[Any, tuple[Option, ...]]] = {}
+    made: dict[tuple[str, int, str | None], Step] = {}
     steps: list[Step] = []
     for row in rows:
         part = row.get("part")
@@ -87,15 +92,23 @@ def steps_from_history(ontology: OdbOntology, rows: Iterable[dict]) -> list[Step
             steps.append(Step(ontology.vocab.idle_task, time_of_day=part, idle=True, label="idle"))
             continue
         text = row["call"]
-        done = option(text)
-        label = labels.get(text)
-        if label is None:
-            label = labels[text] = str(parse_call(text))
-        key = tuple(row.get("available") or ())
-        options = sets.get(key)
-        if options is None:
-            options = sets[key] = tuple(option(c) for c in key)
-        steps.append(Step(done.task, done.target, done.reference, options, part, False, label))
+        available = row.get("available")
+        seen = by_list.get(id(available))
+        if seen is None or seen[0] is not available:
+            key = tuple(available or ())
+            options = sets.get(key)
+            if options is None:
+                options = sets[key] = tuple(option(c) for c in key)
+            seen = by_list[id(available)] = (available, options)
+        same = (text, id(seen[1]), part)
+        step = made.get(same)
+        if step is None:
+            done = option(text)
+            label = labels.get(text)
+            if label is None:
+                label = labels[text] = str(parse_call(text))
+            step = made[same] = Step(done.task, done.target, done.reference, seen[1], part, False, label)
+        steps.append(step)
     return steps
 
 

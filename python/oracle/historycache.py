@@ -144,14 +144,21 @@ def compact(rows: list[dict[str, Any]]) -> dict[str, Any]:
     distinct available set written once); ``history_rows`` reads it back."""
     calls: dict[str, int] = {}
     sets: dict[tuple[int, ...], int] = {}
+    # rows read together share one list per distinct set: each list is numbered once
+    numbered: dict[int, tuple[list[str], int]] = {}
     flat: list[Any] = []
     for row in rows:
         call = calls.setdefault(row["call"], len(calls))
         available = row["available"]
         index = -1
         if available is not None:
-            key = tuple(calls.setdefault(c, len(calls)) for c in available)
-            index = sets.setdefault(key, len(sets))
+            known = numbered.get(id(available))
+            if known is not None and known[0] is available:
+                index = known[1]
+            else:
+                key = tuple(calls.setdefault(c, len(calls)) for c in available)
+                index = sets.setdefault(key, len(sets))
+                numbered[id(available)] = (available, index)
         flat += [row["begin"], row["end"], call, row["part"], index]
     return {"calls": list(calls), "sets": [list(key) for key in sets], "rows": flat}
 
