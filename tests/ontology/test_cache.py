@@ -72,3 +72,26 @@ def test_entries_are_private_and_a_foreign_writable_one_is_not_loaded(tmp_path):
     entry.write_bytes(b"\x80\x05anything")
     rebuilt, _ = build_with_report(odb, mapping, cache_dir=cache)
     assert rebuilt.tasks and stat.S_IMODE(entry.stat().st_mode) == 0o600
+
+
+def test_a_cached_build_loads_without_rdflib_until_its_graph_is_used(tmp_path):
+    import subprocess
+    import sys
+
+    cache = tmp_path / "cache"
+    odb, mapping = _copy_inputs(tmp_path)
+    build_with_report(odb, mapping, cache_dir=cache)
+    probe = (
+        "import sys\n"
+        "from oracle.ontology import build_ontology\n"
+        f"onto = build_ontology({str(odb)!r}, {str(mapping)!r}, cache_dir=__import__('pathlib').Path({str(cache)!r}))\n"
+        "before = 'rdflib' in sys.modules\n"
+        "names = onto.name(onto.task_iri('pick')), onto.name('http://www.ease-crc.org/ont/SOMA.owl#PhysicalTask')\n"
+        "distances = onto.distances().classes[:1]\n"
+        "still = 'rdflib' in sys.modules\n"
+        "triples = len(onto.graph)\n"
+        "print(before, still, 'rdflib' in sys.modules, names, triples > 0)\n"
+    )
+    out = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, check=True).stdout.split()
+    assert out[:3] == ["False", "False", "True"] and out[-1] == "True"
+    assert "soma:PhysicalTask" in " ".join(out)

@@ -22,7 +22,7 @@ import time
 import uuid
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 from datetime import datetime, timezone
 
 from oracle.chains import TaskCall, parse_call
@@ -37,8 +37,10 @@ from oracle.store import RDF_TYPE, Store, TriplePattern, Var
 from oracle.store.base import SUMMARY_KEY
 from oracle.store.model import INFINITY, USER_GRAPH, TripleRow, Value
 from oracle.store.ids import ALIAS_KEY, alias_of, check_alias, find_neem, is_object_id, new_neem_id, unique_alias
-from oracle.store.tbox import TBox, load_tbox, tbox_for
 from oracle.timeline import IDLE_THRESHOLD_S, Instant, Moment, TimeValueError, has_clock, is_idle_gap, sequence_instant
+
+if TYPE_CHECKING:
+    from oracle.store.tbox import TBox  # rdflib: only a NEEM's creation loads it (create)
 
 _SLUG = re.compile(r"[^A-Za-z0-9_\-]+")
 #: NEEM ids are collection prefixes: no underscores (see store.base.check_neem_id).
@@ -245,6 +247,8 @@ class NeemLogger:
                                        side_property=onto.vocab.imagines_situation)  # fmt: skip
         staging: str | None = created
         try:
+            from oracle.store.tbox import load_tbox, tbox_for
+
             load_tbox(store, created, tbox if tbox is not None else tbox_for(onto))
             if not hidden and not (replace and store.has_neem(neem_id)):
                 store.swap_in(created, neem_id, replace=False)

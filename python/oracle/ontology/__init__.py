@@ -1,4 +1,9 @@
-"""odb + mapping -> OWL ontology under SOMA/DUL, its taxonomy and its distances."""
+"""odb + mapping -> OWL ontology under SOMA/DUL, its taxonomy and its distances.
+
+Nothing imported here imports rdflib: a build found in the user's cache loads without it, and
+only a build, an OWL file read or written, or a NEEM's TBox needs it (oracle.ontology.generate,
+oracle.store.tbox).
+"""
 
 from oracle.ontology.builder import BuildReport, build_ontology, build_with_report, write_ontology
 from oracle.ontology.distance import DistanceMatrix, owl_distance

@@ -25,7 +25,7 @@ if TYPE_CHECKING:
     from oracle.ontology.model import OdbOntology
 
 #: Bumped when the layout of an entry changes.
-FORMAT = "1"
+FORMAT = "2"
 _CODE_DIR = Path(__file__).resolve().parent
 
 
@@ -43,9 +43,8 @@ def _input_files(odb_dir: Path, mapping: Path, soma_dir: Path | None, core_tbox:
 
 def build_key(odb_dir: Path, mapping: Path, soma_dir: Path | None, core_tbox: Path, official: tuple[str, ...]) -> str | None:
     """The hash of the inputs, or None when one cannot be read (the build then says why)."""
-    import rdflib  # already loaded by the builder; an entry holds an rdflib Graph
 
-    digest = hashlib.sha256(f"neem-oracle ontology cache {FORMAT} {sys.version} {rdflib.__version__}\0".encode())
+    digest = hashlib.sha256(f"neem-oracle ontology cache {FORMAT} {sys.version} {_rdflib_release()}\0".encode())
     try:
         for path in _input_files(odb_dir, mapping, soma_dir, core_tbox, official):
             digest.update(str(path).encode() + b"\0")
@@ -53,6 +52,19 @@ def build_key(odb_dir: Path, mapping: Path, soma_dir: Path | None, core_tbox: Pa
     except OSError:
         return None
     return digest.hexdigest()[:32]
+
+
+def _rdflib_release() -> str:
+    """The installed rdflib's distribution folder name (``rdflib-7.1.1.dist-info``), found
+    without importing rdflib: an entry holds the graph as rdflib pickled it, read on first use."""
+    import importlib.util
+
+    spec = importlib.util.find_spec("rdflib")
+    if spec is None or spec.origin is None:
+        return "none"
+    package = Path(spec.origin).parent
+    found = sorted(p.name for p in package.parent.glob("rdflib-*.dist-info"))
+    return ",".join(found) or str(package)
 
 
 def _readable_entry(path: Path) -> bool:

@@ -8,13 +8,15 @@ from __future__ import annotations
 
 from collections import deque
 from collections.abc import Iterable, Mapping
-
-from rdflib import Graph, URIRef
-from rdflib.namespace import OWL, RDF, RDFS
+from typing import TYPE_CHECKING
 
 from oracle.errors import OntologyError
+from oracle.namespaces import OWL_IRI
 
-THING = str(OWL.Thing)
+if TYPE_CHECKING:
+    from rdflib import Graph
+
+THING = OWL_IRI + "Thing"
 
 
 class Taxonomy:
@@ -38,6 +40,9 @@ class Taxonomy:
 
     @classmethod
     def from_graph(cls, graph: Graph) -> Taxonomy:
+        from rdflib import URIRef
+        from rdflib.namespace import OWL, RDF, RDFS
+
         parents: dict[str, set[str]] = {}
         for s in graph.subjects(RDF.type, OWL.Class):
             if isinstance(s, URIRef):

@@ -9,12 +9,13 @@ from DIR instead.
 from __future__ import annotations
 
 from pathlib import Path
-
-from rdflib import Graph, URIRef
-from rdflib.namespace import OWL, RDF
+from typing import TYPE_CHECKING
 
 from oracle.errors import OntologyError
 from oracle.paths import data_dir
+
+if TYPE_CHECKING:
+    from rdflib import Graph
 
 #: Folder of the shipped data (sample odb, mapping, core TBox, kitchen world).
 DATA_DIR = data_dir()
@@ -24,6 +25,8 @@ OFFICIAL_FILES = ("DUL.owl", "SOMA.owl", "SOMA-HOME.owl")
 
 def load_upper(soma_dir: Path | str | None = None) -> Graph:
     """Return the upper TBox: the official files from ``soma_dir`` or the shipped core TBox."""
+    from rdflib import Graph
+
     graph = Graph()
     if soma_dir is None:
         if not CORE_TBOX.exists():
@@ -52,5 +55,8 @@ def official_files(soma_dir: Path | str) -> list[Path]:
 
 def declared_entities(graph: Graph) -> frozenset[str]:
     """IRIs declared as classes or properties in a graph."""
+    from rdflib import URIRef
+    from rdflib.namespace import OWL, RDF
+
     kinds = (OWL.Class, OWL.ObjectProperty, OWL.DatatypeProperty, OWL.AnnotationProperty)
     return frozenset(str(s) for kind in kinds for s in graph.subjects(RDF.type, kind) if isinstance(s, URIRef))

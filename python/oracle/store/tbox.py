@@ -173,7 +173,7 @@ def tbox_for(onto: OdbOntology) -> TBox:
     source = onto.source
     if source is None or source.soma is None or source.owl is not None:
         return tbox_from_graph(onto.graph)
-    from oracle.ontology.builder import generated_graph
+    from oracle.ontology.generate import generated_graph
     from oracle.ontology.upper import official_files
     from oracle.store.owlfile import tbox_from_file
 
