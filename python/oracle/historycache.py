@@ -42,6 +42,9 @@ from oracle.store.model import decode_value
 
 #: Entries kept; the least recently written go first.
 MAX_ENTRIES = 32
+#: More triples added than this (~500 logged actions) and the whole history is read instead:
+#: checking and reading that many added triples costs about as much.
+MAX_APPENDED = 20_000
 _FORMAT = "neem-oracle history 1"
 
 
@@ -73,7 +76,7 @@ class HistoryCache:
         rows: list[dict[str, Any]] | None = None
         if kept is not None and kept[0] == mark:
             return kept[1]
-        if kept is not None and kept[1] and same_tables(kept[0], mark):
+        if kept is not None and kept[1] and same_tables(kept[0], mark) and mark.last - kept[0].last <= MAX_APPENDED:
             after = kept[1][-1]["begin"]
             added = store.appended(neem, kept[0].last)
             if added is not None and extends(added, after):

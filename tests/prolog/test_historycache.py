@@ -207,3 +207,14 @@ def test_a_temporary_neem_is_never_kept(tmp_path, onto):
     assert cache.history(bridge) == bridge.history()
     assert not (tmp_path / "histories").exists()
     bridge.close()
+
+
+def test_many_added_triples_are_read_whole(neem, tmp_path, monkeypatch):
+    import oracle.historycache as kept_module
+
+    store, log, bridge, rng, t = neem
+    cache, counting = HistoryCache(tmp_path / "histories"), Counting(bridge)
+    cache.history(counting)
+    monkeypatch.setattr(kept_module, "MAX_APPENDED", 10)
+    t = _log_some(log, rng, t, 3)  # ~40 triples an action
+    assert cache.history(counting) == bridge.history() and counting.full == 2
