@@ -12,8 +12,11 @@ import errno
 import os
 import stat
 from collections.abc import Iterator
+from dataclasses import dataclass
 from pathlib import Path
-from typing import IO, Any, TextIO
+from typing import IO, Any, ClassVar, TextIO, TypeVar
+
+_Cache = TypeVar("_Cache", bound="CacheFolder")
 
 
 def written_by_user_alone(info: os.stat_result) -> bool:
@@ -63,3 +66,26 @@ def _private(path: Path, mode: str) -> Iterator[Any]:
     finally:
         with contextlib.suppress(FileNotFoundError):
             os.unlink(temporary)
+
+
+@dataclass(frozen=True)
+class CacheFolder:
+    """A folder of the user's private cache (``FOLDER`` of oracle.ontology.distance's
+    default_cache_dir) with one ``*SUFFIX`` file per entry, the least recently written pruned."""
+
+    root: Path
+    FOLDER: ClassVar[str] = ""
+    SUFFIX: ClassVar[str] = ""
+    #: Entries kept; the least recently written go first.
+    MAX_ENTRIES: ClassVar[int] = 32
+
+    @classmethod
+    def default(cls: type[_Cache]) -> _Cache:
+        from oracle.ontology.distance import default_cache_dir
+
+        return cls(default_cache_dir() / cls.FOLDER)
+
+    def _prune(self) -> None:
+        entries = sorted(self.root.glob(f"*{self.SUFFIX}"), key=lambda p: p.stat().st_mtime, reverse=True)
+        for old in entries[self.MAX_ENTRIES:]:
+            old.unlink(missing_ok=True)

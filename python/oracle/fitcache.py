@@ -30,27 +30,18 @@ from typing import Any, ClassVar
 import numpy as np
 
 from oracle.algorithm.records import Step
-from oracle.files import write_private_bytes, written_by_user_alone
+from oracle.files import CacheFolder, write_private_bytes, written_by_user_alone
 
-#: Entries kept; the least recently written go first.
-MAX_ENTRIES = 32
 _FORMAT = b"neem-oracle fit 1"
 _DISTANCES = "distances"
 
 
 @dataclass(frozen=True)
-class FitCache:
+class FitCache(CacheFolder):
     """Fitted models under ``root`` (one file each)."""
 
-    root: Path
-    #: The sub-folder of the user's cache (oracle.ontology.distance.default_cache_dir).
     FOLDER: ClassVar[str] = "fits"
-
-    @classmethod
-    def default(cls) -> FitCache:
-        from oracle.ontology.distance import default_cache_dir
-
-        return cls(default_cache_dir() / cls.FOLDER)
+    SUFFIX: ClassVar[str] = ".fit"
 
     def fitted(self, model: Any, steps: Sequence[Step], store: str, neem: str, *, keep: bool = True) -> Any:
         """``model.fit(steps)``, extended from the entry of NEEM ``neem`` of the store at
@@ -59,7 +50,7 @@ class FitCache:
         ends: nothing made from it may outlive it) fits afresh and keeps nothing."""
         if not keep or not callable(getattr(model, "extend", None)):
             return model.fit(steps)
-        path = self.root / f"{_entry_key(model, store, neem)}.fit"
+        path = self.root / f"{_entry_key(model, store, neem)}{self.SUFFIX}"
         cached = self._load(path, model, steps)
         if cached is not None and cached.fitted_steps_ == len(steps):
             return cached
@@ -96,11 +87,6 @@ class FitCache:
             self._prune()
         except (OSError, pickle.PicklingError):
             return  # read-only or full: the next call fits afresh
-
-    def _prune(self) -> None:
-        entries = sorted(self.root.glob("*.fit"), key=lambda p: p.stat().st_mtime, reverse=True)
-        for old in entries[MAX_ENTRIES:]:
-            old.unlink(missing_ok=True)
 
 
 class _Pickler(pickle.Pickler):

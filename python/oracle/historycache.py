@@ -35,13 +35,11 @@ from pathlib import Path
 from typing import Any, ClassVar
 
 from oracle.bridge import Bridge, history_rows
-from oracle.files import write_private_bytes, written_by_user_alone
+from oracle.files import CacheFolder, write_private_bytes, written_by_user_alone
 from oracle.neem.terms import BEGIN, HAS_INTERVAL
 from oracle.store.base import Appended, AppendMark
 from oracle.store.model import decode_value
 
-#: Entries kept; the least recently written go first.
-MAX_ENTRIES = 32
 #: More triples added than this (~500 logged actions) and the whole history is read instead:
 #: checking and reading that many added triples costs about as much.
 MAX_APPENDED = 20_000
@@ -49,18 +47,11 @@ _FORMAT = "neem-oracle history 1"
 
 
 @dataclass(frozen=True)
-class HistoryCache:
+class HistoryCache(CacheFolder):
     """Histories under ``root`` (one file each)."""
 
-    root: Path
-    #: The sub-folder of the user's cache (oracle.ontology.distance.default_cache_dir).
     FOLDER: ClassVar[str] = "histories"
-
-    @classmethod
-    def default(cls) -> HistoryCache:
-        from oracle.ontology.distance import default_cache_dir
-
-        return cls(default_cache_dir() / cls.FOLDER)
+    SUFFIX: ClassVar[str] = ".json"
 
     def history(self, bridge: Bridge) -> list[dict[str, Any]]:
         """``bridge.history()``, from the kept entry and the actions added since when the
@@ -71,7 +62,7 @@ class HistoryCache:
         mark = store.append_mark(neem)
         if mark is None:
             return bridge.history()
-        path = self.root / f"{_entry_key(bridge)}.json"
+        path = self.root / f"{_entry_key(bridge)}{self.SUFFIX}"
         kept = self._load(path)
         rows: list[dict[str, Any]] | None = None
         if kept is not None and kept[0] == mark:
@@ -107,11 +98,6 @@ class HistoryCache:
             self._prune()
         except OSError:
             return  # read-only or full: the next call reads the whole history
-
-    def _prune(self) -> None:
-        entries = sorted(self.root.glob("*.json"), key=lambda p: p.stat().st_mtime, reverse=True)
-        for old in entries[MAX_ENTRIES:]:
-            old.unlink(missing_ok=True)
 
 
 def same_tables(kept: AppendMark, now: AppendMark) -> bool:
