@@ -14,9 +14,11 @@ since cannot change them (``extends``):
   subject or object (Store.appended's ``fresh``): every pattern of the history read starts at
   an action or an imagining and follows triples from subject to object, so no earlier row can
   reach the new triples;
-- every interval begin added is later than the last kept row's begin, and every interval an
-  added triple gives an event is itself added: new actions and imaginings come after the kept
-  ones, and odb_history:situation_history_after/2 reads exactly them.
+- every interval begin added is later than the last kept row's begin, or belongs to added events
+  that execute added tasks of no odb class and not soma:Imagining (a preference written for a
+  decision ranked earlier); and every interval an added triple gives an event is itself added:
+  new actions and imaginings come after the kept ones, and
+  odb_history:situation_history_after/2 reads exactly them.
 
 Otherwise (a store that cannot tell, such as MongoDB; an entry missing, damaged or not the
 user's own; anything else) the whole history is read and the entry replaced. A temporary NEEM
@@ -36,9 +38,9 @@ from typing import Any, ClassVar
 
 from oracle.bridge import Bridge, history_rows
 from oracle.files import CacheFolder, write_private_bytes, written_by_user_alone
-from oracle.neem.terms import BEGIN, HAS_INTERVAL
+from oracle.neem.terms import BEGIN, EXECUTES, HAS_INTERVAL, IMAGINING
 from oracle.store.base import Appended, AppendMark
-from oracle.store.model import decode_value
+from oracle.store.model import RDF_TYPE, decode_value
 
 #: More triples added than this (~500 logged actions) and the whole history is read instead:
 #: checking and reading that many added triples costs about as much.
@@ -70,7 +72,8 @@ class HistoryCache(CacheFolder):
         if kept is not None and kept[1] and same_tables(kept[0], mark) and mark.last - kept[0].last <= MAX_APPENDED:
             after = kept[1][-1]["begin"]
             added = store.appended(neem, kept[0].last)
-            if added is not None and extends(added, after):
+            namespace = None if bridge.ontology is None else bridge.ontology.namespace
+            if added is not None and extends(added, after, namespace):
                 rows = kept[1] + bridge.history_after(after)
         if rows is None:
             rows = bridge.history()
@@ -106,20 +109,53 @@ def same_tables(kept: AppendMark, now: AppendMark) -> bool:
     return kept.token == now.token and kept.changes == now.changes and now.last >= kept.last
 
 
-def extends(added: Appended, after: float) -> bool:
+def extends(added: Appended, after: float, namespace: str | None) -> bool:
     """The triples ``added`` after a history whose last row began at ``after`` only add rows
-    after it (module docstring)."""
+    after it (module docstring). An added interval that begins at or before ``after`` is
+    harmless only when it belongs to added events that execute added tasks of no class that
+    makes a situation or an imagining (an odb class of ``namespace``, soma:Imagining): a
+    preference written for a decision ranked earlier."""
     if not added.fresh:
         return False
-    subjects = {doc.get("s") for doc in added.docs}
+    docs_of: dict[Any, list[Mapping[str, Any]]] = {}
+    owners: dict[Any, list[Any]] = {}
+    for doc in added.docs:
+        docs_of.setdefault(doc.get("s"), []).append(doc)
+        if HAS_INTERVAL in _properties(doc):
+            owners.setdefault(doc.get("o"), []).append(doc.get("s"))
     for doc in added.docs:
         properties = _properties(doc)
+        if HAS_INTERVAL in properties and doc.get("o") not in docs_of:
+            return False
         if BEGIN in properties:
             begin = decode_value(doc.get("o"))
-            if isinstance(begin, bool) or not isinstance(begin, (int, float)) or not begin > after:
+            if isinstance(begin, bool) or not isinstance(begin, (int, float)):
                 return False
-        if HAS_INTERVAL in properties and doc.get("o") not in subjects:
-            return False
+            if not begin > after and not _no_situation(owners.get(doc.get("s"), []), docs_of, namespace):
+                return False
+    return True
+
+
+def _no_situation(events: list[Any], docs_of: Mapping[Any, list[Mapping[str, Any]]], namespace: str | None) -> bool:
+    """None of the (added) events can be an action or an imagining of the history read: each
+    task they execute is added with its types, and none of those is under an odb class or
+    soma:Imagining."""
+    if namespace is None:
+        return False
+    for event in events:
+        for doc in docs_of.get(event, []):
+            if EXECUTES not in _properties(doc):
+                continue
+            task_docs = docs_of.get(doc.get("o"))
+            if task_docs is None:
+                return False  # an earlier task: its types are not among the added triples
+            for typed in task_docs:
+                if typed.get("p") != RDF_TYPE:
+                    continue
+                stars = typed.get("o*")
+                classes = {typed.get("o"), *(stars if isinstance(stars, list) else ())}
+                if any(isinstance(c, str) and (c.startswith(namespace) or c == IMAGINING) for c in classes):
+                    return False
     return True
 
 

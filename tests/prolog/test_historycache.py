@@ -218,3 +218,34 @@ def test_many_added_triples_are_read_whole(neem, tmp_path, monkeypatch):
     monkeypatch.setattr(kept_module, "MAX_APPENDED", 10)
     t = _log_some(log, rng, t, 3)  # ~40 triples an action
     assert cache.history(counting) == bridge.history() and counting.full == 2
+
+
+def test_a_preference_for_an_earlier_decision_keeps_the_history(neem, tmp_path):
+    # The robot logs an action with what was available (the imagining begins with it), a rank
+    # of that latest situation writes its preference at the same begin; the next actions still
+    # extend the kept history (a preference is neither an action nor an imagining).
+    store, log, bridge, rng, t = neem
+    cache, counting = HistoryCache(tmp_path / "histories"), Counting(bridge)
+    for _ in range(3):
+        t += timedelta(seconds=7)
+        log.action("pick(apple)", t, t + timedelta(seconds=2), available=CALLS)
+        log.flush()
+        assert cache.history(counting) == bridge.history()
+        log.preference([(c, 0.5) for c in CALLS], t)  # at the last kept row's begin
+        log.flush()
+        t += timedelta(seconds=2)
+    assert counting.full == 1
+    assert cache.history(counting) == bridge.history() and counting.full == 1
+
+
+def test_an_imagining_at_the_last_begin_reads_everything(neem, tmp_path):
+    # An imagining added at the last kept action's begin is one the kept rows could have used.
+    store, log, bridge, rng, t = neem
+    cache, counting = HistoryCache(tmp_path / "histories"), Counting(bridge)
+    cache.history(counting)
+    last = bridge.history()[-1]["begin"]
+    late = NeemLogger(store, log.onto, bridge.neem_id)
+    late._clock_resumed, late._last_end, late._last_begin = True, None, None  # a recorded imagining, logged late
+    late.available(["pick(banana)"], datetime.fromtimestamp(last))
+    late.flush()
+    assert cache.history(counting) == bridge.history() and counting.full == 2
