@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 import os
 from collections.abc import Collection, Mapping
 from dataclasses import dataclass
@@ -90,9 +91,10 @@ class HistoryCache(CacheFolder):
                 return None
             token, changes, last = data["mark"]
             mark = AppendMark(str(token), int(changes), int(last))
-            return mark, history_rows(data["history"])
+            rows = history_rows(data["history"])
         except (OSError, ValueError, KeyError, TypeError, IndexError):
             return None  # missing or damaged: the whole history is read, the entry replaced
+        return (mark, rows) if all(_well_formed(row) for row in rows) else None
 
     def _store(self, path: Path, mark: AppendMark, rows: list[dict[str, Any]]) -> None:
         data = {"format": _FORMAT, "mark": [mark.token, mark.changes, mark.last], "history": compact(rows)}
@@ -101,6 +103,15 @@ class HistoryCache(CacheFolder):
             self._prune()
         except OSError:
             return  # read-only or full: the next call reads the whole history
+
+
+def _well_formed(row: Mapping[str, Any]) -> bool:
+    """A row as Bridge.history gives it (an entry edited or damaged into other JSON is not used)."""
+    numbers = (row["begin"], row["end"])
+    available = row["available"]
+    return (all(type(n) in (int, float) and math.isfinite(n) for n in numbers)
+            and isinstance(row["call"], str) and isinstance(row["part"], str)
+            and (available is None or (isinstance(available, list) and all(isinstance(c, str) for c in available))))
 
 
 def same_tables(kept: AppendMark, now: AppendMark) -> bool:

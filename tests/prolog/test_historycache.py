@@ -173,6 +173,13 @@ def test_a_damaged_or_foreign_entry_is_not_used(neem, tmp_path):
     entry.write_bytes(b"{not json")
     counting = Counting(bridge)
     assert cache.history(counting) == bridge.history() and counting.full == 1
+    import json
+
+    data = json.loads(entry.read_bytes())
+    data["history"]["rows"][0] = "soon"  # valid JSON, not a history
+    entry.write_text(json.dumps(data))
+    counting = Counting(bridge)
+    assert cache.history(counting) == bridge.history() and counting.full == 1
     os.chmod(entry, 0o666)
     counting = Counting(bridge)
     assert cache.history(counting) == bridge.history() and counting.full == 1
