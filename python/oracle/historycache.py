@@ -91,10 +91,12 @@ class HistoryCache(CacheFolder):
                 return None
             token, changes, last = data["mark"]
             mark = AppendMark(str(token), int(changes), int(last))
+            if not _well_formed(data["history"]):
+                return None  # valid JSON, but not a history (edited or damaged)
             rows = history_rows(data["history"])
         except (OSError, ValueError, KeyError, TypeError, IndexError):
             return None  # missing or damaged: the whole history is read, the entry replaced
-        return (mark, rows) if all(_well_formed(row) for row in rows) else None
+        return mark, rows
 
     def _store(self, path: Path, mark: AppendMark, rows: list[dict[str, Any]]) -> None:
         data = {"format": _FORMAT, "mark": [mark.token, mark.changes, mark.last], "history": compact(rows)}
@@ -105,13 +107,20 @@ class HistoryCache(CacheFolder):
             return  # read-only or full: the next call reads the whole history
 
 
-def _well_formed(row: Mapping[str, Any]) -> bool:
-    """A row as Bridge.history gives it (an entry edited or damaged into other JSON is not used)."""
-    numbers = (row["begin"], row["end"])
-    available = row["available"]
-    return (all(type(n) in (int, float) and math.isfinite(n) for n in numbers)
-            and isinstance(row["call"], str) and isinstance(row["part"], str)
-            and (available is None or (isinstance(available, list) and all(isinstance(c, str) for c in available))))
+def _well_formed(history: Any) -> bool:
+    """``compact``'s shape: call texts, sets of call indexes, and rows of a finite begin and
+    end, a call index, a part of day and a set index (-1: none)."""
+    calls, sets, flat = history["calls"], history["sets"], history["rows"]
+    if not (isinstance(calls, list) and isinstance(sets, list) and isinstance(flat, list) and len(flat) % 5 == 0):
+        return False
+    n_calls, n_sets = len(calls), len(sets)
+    index = lambda x, n: type(x) is int and 0 <= x < n  # noqa: E731
+    number = lambda x: type(x) in (int, float) and math.isfinite(x)  # noqa: E731
+    return (all(type(c) is str for c in calls)
+            and all(isinstance(s, list) and all(index(i, n_calls) for i in s) for s in sets)
+            and all(map(number, flat[0::5])) and all(map(number, flat[1::5]))
+            and all(index(i, n_calls) for i in flat[2::5]) and all(type(p) is str for p in flat[3::5])
+            and all(i == -1 or index(i, n_sets) for i in flat[4::5]))
 
 
 def same_tables(kept: AppendMark, now: AppendMark) -> bool:

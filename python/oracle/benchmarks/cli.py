@@ -21,7 +21,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from oracle.benchmarks.figures import growth_exponent, spread, spread_text
+from oracle.benchmarks.figures import installed_env, growth_exponent, spread, spread_text
 
 #: NEEM sizes (executed actions); quick runs use the first and a small second one.
 SIZES = (1000, 10000, 50000)
@@ -160,9 +160,7 @@ def run(quick: bool = False) -> list[dict]:
     with tempfile.TemporaryDirectory() as tmp_name:
         tmp = Path(tmp_name)
         # A fresh cache dir: the first call of each command fills it, as after installing.
-        env = {**os.environ, "NEEM_ORACLE_CACHE": str(tmp / "cache")}
-        env.pop("PYTHONDONTWRITEBYTECODE", None)  # installed packages have their .pyc; so do we
-        subprocess.run([py, "-m", "compileall", "-q", str(Path(__file__).resolve().parents[1])], check=True, env=env)
+        env = installed_env(NEEM_ORACLE_CACHE=str(tmp / "cache"))
         print(f"load average {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores while measuring", flush=True)
 
         fixed = _calls({"help": [py, "-m", "oracle", "--help"]}, env, REPEAT)

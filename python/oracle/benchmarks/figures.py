@@ -21,3 +21,20 @@ def growth_exponent(sizes: list[int], values: list[float]) -> float | None:
     if len(sizes) < 2 or values[-2] <= 0 or values[-1] <= 0:
         return None
     return math.log(values[-1] / values[-2]) / math.log(sizes[-1] / sizes[-2])
+
+
+def installed_env(**extra: str) -> dict[str, str]:
+    """The environment for timing ``python -m oracle`` as an installed package runs: the
+    package's ``.pyc`` written first (an install writes them) and PYTHONDONTWRITEBYTECODE
+    unset, so a call never compiles a module it imports."""
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    env = {**os.environ, **extra}
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    subprocess.run([sys.executable, "-m", "compileall", "-q", str(Path(__file__).resolve().parents[1])],
+                   check=True, env=env)
+    return env
+

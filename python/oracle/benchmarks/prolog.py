@@ -3,7 +3,6 @@ and the history read / ``rank`` / why_not at 1,000-50,000 actions against a plai
 
 from __future__ import annotations
 
-import os
 from collections.abc import Callable
 import shutil
 import tempfile
@@ -12,7 +11,7 @@ from datetime import datetime, timedelta
 from pathlib import Path
 from typing import Any
 
-from oracle.benchmarks.figures import growth_exponent, spread, spread_text
+from oracle.benchmarks.figures import installed_env, growth_exponent, spread, spread_text
 from oracle.fitcache import FitCache
 from oracle.historycache import HistoryCache
 
@@ -223,8 +222,9 @@ def _rank_cli(store: Path, neem: str, grow: Callable[[], None] | None, repeat: i
     walls: dict[str, list[float]] = {name: [] for name in argvs}
     cpus: dict[str, list[float]] = {name: [] for name in argvs}
     with tempfile.TemporaryDirectory() as cache:
-        # the ontology and the compiled Prolog modules are cached as a user's are
-        env = {**os.environ, "NEEM_ORACLE_CACHE": cache}
+        # the ontology and the compiled Prolog modules are cached as a user's are, the
+        # package's bytecode written as an install writes it
+        env = installed_env(NEEM_ORACLE_CACHE=cache)
         subprocess.run(base, check=True, capture_output=True, env=env)
         for _ in range(repeat):
             for name, argv in argvs.items():
