@@ -86,7 +86,8 @@ def rank_neem(
     and extended by the actions logged since; so is the history read (``histories``, default:
     the user's, oracle.historycache)."""
     history = (histories or HistoryCache.default()).history(bridge)
-    clocked = has_clock(bridge.store.neem(bridge.neem_id).meta)
+    info = bridge.store.neem(bridge.neem_id)
+    clocked = has_clock(info.meta)
     if available:
         calls = [parse_call(text) for text in available]
         for call in calls:
@@ -108,7 +109,7 @@ def rank_neem(
     steps = steps_before(ontology, history, when)
     model = make_predictor(method, ontology.distances(), opening_tasks(ontology), settings)
     oracle = (cache or FitCache.default()).fitted(model, steps, bridge.store.location, bridge.neem_id,
-                                                  keep=not bridge.store.neem(bridge.neem_id).temporary)
+                                                  keep=not info.temporary)
     started = time.perf_counter()
     ranking = oracle.rank([option_of(ontology, c) for c in calls], part)
     elapsed = (time.perf_counter() - started) * 1000

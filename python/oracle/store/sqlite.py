@@ -540,6 +540,14 @@ class SQLiteStore(Store):
                 self._conn.execute(f"CREATE TRIGGER {name} AFTER {event} ON {table} BEGIN"
                                    f" UPDATE revisions SET changes = changes + 1 WHERE token = '{token}'; END")
 
+    def _ensure_tracked(self, neem_id: str) -> None:
+        """Start counting the NEEM's updates and deletions unless they are counted already."""
+        if neem_id in self._tracked:
+            return
+        if self._conn.execute("SELECT 1 FROM revisions WHERE neem=?", (neem_id,)).fetchone() is None:
+            self._track(neem_id)
+        self._tracked.add(neem_id)
+
     def append_mark(self, neem_id: str) -> AppendMark | None:
         # A NEEM made before the revisions table starts being tracked at its first mark (a
         # reader only trusts what it read after that); a read-only store cannot start it.
@@ -555,8 +563,7 @@ class SQLiteStore(Store):
             raise
         if row is None and not self.read_only:
             with self.transaction():
-                if self._conn.execute(query, (neem_id,)).fetchone() is None:
-                    self._track(neem_id)
+                self._ensure_tracked(neem_id)
                 row = self._conn.execute(query, (neem_id,)).fetchone()
                 last = self._next_id(neem_id) - 1
         return None if row is None else AppendMark(str(row[0]), int(row[1]), last)
@@ -794,11 +801,7 @@ class SQLiteStore(Store):
         """Rows (id first, then the rest of ``columns``) into the triples table and the side
         table; the closures the side rows hold (``side_closures`` when the caller knows them)
         are recorded (``_note_side_closures``)."""
-        if neem_id not in self._tracked:
-            # a NEEM made before the revisions table is counted from its first write on
-            if self._conn.execute("SELECT 1 FROM revisions WHERE neem=?", (neem_id,)).fetchone() is None:
-                self._track(neem_id)
-            self._tracked.add(neem_id)
+        self._ensure_tracked(neem_id)  # a NEEM made before the revisions table: from its first write on
         if main_rows:
             self._insert_many(_table(neem_id, "triples"), columns, main_rows, 1)
         if side is not None and side_rows:
