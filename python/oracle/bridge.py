@@ -569,8 +569,10 @@ class Bridge:
 
         return self.answer([Atom("something_else"), Atom(task or "none"), [Atom(a) for a in args]])
 
-    def _json(self, goal: str) -> Any:
-        rows = self._with_request([], f"{goal}(J)")
+    def _json(self, goal: str, first: str = "") -> Any:
+        """The JSON text a Prolog goal binds to its last argument, parsed; ``first``: the
+        arguments before it (Prolog text, ending in a comma)."""
+        rows = self._with_request([], f"{goal}({first}J)")
         if not rows:
             raise PrologError(f"Prolog found no answer to {goal}")
         text = rows[0]["J"]
@@ -589,11 +591,7 @@ class Bridge:
         if isinstance(after, bool) or not isinstance(after, (int, float)) or not math.isfinite(after):
             raise PrologError(f"history_after needs a finite number, got {after!r}")
         number = repr(after) if isinstance(after, int) else repr(float(after))
-        rows = self._with_request([], f"odb_history:situation_history_json({number}, J)")
-        if not rows:
-            raise PrologError("Prolog found no answer to odb_history:situation_history_json/2")
-        text = rows[0]["J"]
-        return history_rows(json.loads(text.decode("utf-8") if isinstance(text, bytes) else text))
+        return history_rows(self._json("odb_history:situation_history_json", f"{number}, "))
 
     def latest_situation(self) -> dict[str, Any] | None:
         """The latest imagined situation as ``{"begin", "available"}``, or None."""
