@@ -475,3 +475,24 @@ def test_blends_of_several_maximum_orders_equal_the_blend_of_each(tokens, candid
                              timed_shrink=shrink)
         assert np.array_equal(together[stop].probabilities, alone.probabilities)
         assert np.array_equal(together[stop].order, alone.order) and np.array_equal(together[stop].count, alone.count)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(st.integers(0, 5), st.integers(-1, 3)), min_size=0, max_size=60),
+       st.lists(st.floats(0.0, 1.0), min_size=12, max_size=12), st.booleans(), st.booleans(), st.booleans(),
+       st.integers(0, 1))
+def test_a_stack_of_bases_blends_each_row_bit_for_bit_as_alone(tokens, weights, novelty, exclusion, discount, lowest):
+    counts = ContextCounts(3, timed_from=0)
+    for token, part in tokens:
+        counts.add(token if token < 5 else -1, part)   # 5 stands for the idle token
+    candidates = [0, 1, 2, 3, 4, 7]                     # 7: never counted
+    rows = np.array(weights).reshape(2, 6)
+    rows[1, :3] = 0.0                                   # a row without mass on the done candidates
+    kwargs = dict(min_order=lowest, part=tokens[-1][1] if tokens else -1, discount=discount,
+                  exclusion=exclusion, novelty=novelty, discount_from=1, discount_evidence=2)
+    stacked = counts.blends(candidates, rows, (1, 3), **kwargs)
+    for row in range(2):
+        alone = counts.blends(candidates, rows[row], (1, 3), **kwargs)
+        for order in (1, 3):
+            assert stacked[order].probabilities[row].tolist() == alone[order].probabilities.tolist()
+            assert stacked[order].order.tolist() == alone[order].order.tolist()

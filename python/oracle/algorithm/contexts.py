@@ -82,9 +82,8 @@ class _Level:
         seen, kinds, total = counted
         if exclude:
             rest = np.where(seen > 0, 0.0, probs)
-            mass = float(rest.sum())
-            if mass > 0:
-                probs = rest / mass
+            mass = rest.sum(axis=-1, keepdims=True)
+            probs = np.where(mass > 0, rest / np.where(mass > 0, mass, 1.0), probs)
         if discount:
             d = self.discount()
             return (np.maximum(seen - d, 0.0) + d * kinds * probs) / total, seen
@@ -188,7 +187,9 @@ class ContextCounts:
         ways by the clock then moves the untimed estimate only as far as its few timed counts
         warrant. The blend of each of ``max_orders`` (variants that differ in their
         maximum order only), computed once up to the highest: a lower one is the state the
-        higher one's blend passes through."""
+        higher one's blend passes through. ``base`` may also be a stack of distributions (one
+        per row, variants that differ in their base only): each row is blended as it would be
+        alone, with the same operations, so its result is bit for bit the same."""
         probs = base.astype(np.float64, copy=True)
         order = np.full(len(candidates), -1, dtype=np.int64)
         count = np.zeros(len(candidates), dtype=np.int64)
@@ -272,9 +273,9 @@ class ContextCounts:
 
 
 def _within(probs: np.ndarray, mask: np.ndarray) -> np.ndarray:
-    """``probs`` restricted to ``mask`` and normalised (uniform there when it has no mass)."""
+    """``probs`` (each row of it) restricted to ``mask`` and normalised (uniform there when the
+    row has no mass)."""
     part = np.where(mask, probs, 0.0)
-    mass = float(part.sum())
-    if mass > 0:
-        return part / mass
-    return mask / float(mask.sum())
+    mass = part.sum(axis=-1, keepdims=True)
+    uniform = mask / float(mask.sum())
+    return np.where(mass > 0, part / np.where(mass > 0, mass, 1.0), uniform)

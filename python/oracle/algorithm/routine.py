@@ -280,8 +280,10 @@ class RoutineOracle(EstimatorParams):
                 self.weights_.update(self._variant_probabilities(offered, step.time_of_day)[0], truth,
                                    self.n_steps_)
         position = self.n_steps_
+        known = self._ids
         for option in step.options:  # offered again later: their distances are then looked up
-            self._intern(option)
+            if option not in known:
+                self._intern(option)
         if step.idle:
             token = IDLE
         else:
@@ -326,19 +328,26 @@ class RoutineOracle(EstimatorParams):
         blends: dict[tuple[str, int, float, int, bool, bool, bool], Blend] = {}
         probabilities = []
         memo: Memo = {}  # the counts' look-ups, shared by the variants (same candidates, same counts)
-        orders: dict[tuple[str, float, int, bool, bool, bool], list[int]] = {}
-        for stream, order, tau, lowest, timed, discount, novel in chosen:  # twins but for the order: one blend
-            orders.setdefault((stream, tau, lowest, timed, discount, novel), []).append(order)
-        for (stream, tau, lowest, timed, discount, novel), stops in orders.items():
-            if (stream, tau) not in base:
-                base[stream, tau] = normalised(similarity_mass(cand, executed, context[stream], differs, tau,
-                                                               self.time_of_day_penalty))
+        # twins but for the order or the temperature: one blend pass (orders as stops, bases as rows)
+        twins: dict[tuple[str, int, bool, bool, bool], tuple[list[int], list[float]]] = {}
+        for stream, order, tau, lowest, timed, discount, novel in chosen:
+            stops, taus = twins.setdefault((stream, lowest, timed, discount, novel), ([], []))
+            stops.extend([order] if order not in stops else [])
+            taus.extend([tau] if tau not in taus else [])
+        for (stream, lowest, timed, discount, novel), (stops, taus) in twins.items():
+            for tau in taus:
+                if (stream, tau) not in base:
+                    base[stream, tau] = normalised(similarity_mass(cand, executed, context[stream], differs, tau,
+                                                                   self.time_of_day_penalty))
             found = self._streams[stream].counts.blends(
-                ids, base[stream, tau], stops, lowest, now_code if timed else -1, discount, self.timed_gate,
-                self.exclusion, novel, memo, self.discount_from, self.discount_evidence,
+                ids, np.stack([base[stream, tau] for tau in taus]), stops, lowest, now_code if timed else -1,
+                discount, self.timed_gate, self.exclusion, novel, memo, self.discount_from, self.discount_evidence,
                 self.timed_discount_from, self.timed_shrink)
             for order in stops:
-                blends[stream, order, tau, lowest, timed, discount, novel] = found[order]
+                for row, tau in enumerate(taus):
+                    both = found[order]
+                    blends[stream, order, tau, lowest, timed, discount, novel] = Blend(
+                        both.probabilities[row], both.order, both.count)
         for variant in chosen:
             probabilities.append(blends[variant].probabilities)
         return probabilities, [blends[v] for v in chosen], cand
