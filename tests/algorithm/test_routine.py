@@ -496,3 +496,25 @@ def test_a_stack_of_bases_blends_each_row_bit_for_bit_as_alone(tokens, weights, 
         for order in (1, 3):
             assert stacked[order].probabilities[row].tolist() == alone[order].probabilities.tolist()
             assert stacked[order].order.tolist() == alone[order].order.tolist()
+
+
+def test_the_part_of_day_levels_stop_at_timed_to():
+    counts = ContextCounts(2, timed_from=0)
+    for token, part in ((7, 0), (1, 0), (7, 2), (2, 2), (7, 0), (1, 0), (7, 2), (2, 2), (7, 0)):
+        counts.add(token, part)
+    base = np.full(3, 1 / 3)
+    candidates = [1, 2, 7]
+    untimed = counts.blend(candidates, base, 2, 1).probabilities.tolist()
+    morning = counts.blend(candidates, base, 2, 1, part=0).probabilities.tolist()
+    assert morning != untimed
+    # timed_to 0: no part-of-day level at orders 1 and 2 (the order-0 level is below min_order 1)
+    assert counts.blend(candidates, base, 2, 1, part=0, timed_to=0).probabilities.tolist() == untimed
+    # timed_to 1: order 1 refined, order 2 not: the blend up to order 1 equals the fully timed one
+    assert counts.blend(candidates, base, 1, 1, part=0, timed_to=1).probabilities.tolist() == \
+        counts.blend(candidates, base, 1, 1, part=0).probabilities.tolist()
+    assert counts.blend(candidates, base, 2, 1, part=0, timed_to=1).probabilities.tolist() != morning
+
+
+def test_timed_to_is_checked():
+    with pytest.raises(SettingsError, match="timed_to"):
+        RoutineOracle(kitchen(), timed_to=-1).fit([])

@@ -153,16 +153,18 @@ class ContextCounts:
               part: int = -1, discount: bool = False, gate: float | None = None,
               exclusion: bool = False, novelty: bool = False, memo: Memo | None = None,
               discount_from: int = 0, discount_evidence: int = 0, timed_discount_from: int | None = None,
-              timed_shrink: bool = False) -> Blend:
+              timed_shrink: bool = False, timed_to: int | None = None) -> Blend:
         """One variant's blend: ``blends`` with the one stop ``max_order`` (documented there)."""
         return self.blends(candidates, base, (max_order,), min_order, part, discount, gate, exclusion, novelty,
-                           memo, discount_from, discount_evidence, timed_discount_from, timed_shrink)[max_order]
+                           memo, discount_from, discount_evidence, timed_discount_from, timed_shrink,
+                           timed_to)[max_order]
 
     def blends(self, candidates: Sequence[int], base: np.ndarray, max_orders: Sequence[int], min_order: int = 0,
                part: int = -1, discount: bool = False, gate: float | None = None,
                exclusion: bool = False, novelty: bool = False, memo: Memo | None = None,
                discount_from: int = 0, discount_evidence: int = 0,
-               timed_discount_from: int | None = None, timed_shrink: bool = False) -> dict[int, Blend]:
+               timed_discount_from: int | None = None, timed_shrink: bool = False,
+               timed_to: int | None = None) -> dict[int, Blend]:
         """``P_n(c) = (n(ctx_n, c) + u_n P_{n-1}(c)) / (N(ctx_n) + u_n)`` from ``P_{-1} = base`` up to
         ``max_order``; an unseen context leaves the distribution as it is (PPM-C, no exclusion).
         With ``discount``: ``P_n(c) = (max(n(ctx_n, c) - D_n, 0) + D_n u_n P_{n-1}(c)) / N(ctx_n)`` at
@@ -185,7 +187,8 @@ class ContextCounts:
         ``u_t``): its estimate ``R`` becomes ``a R + (1 - a) P_n`` with ``a = (N_t + u_t) / (N_t +
         u_n)``, which under PPM-C is ``(n_t(c) + u_n P_n(c)) / (N_t + u_n)``; a context split four
         ways by the clock then moves the untimed estimate only as far as its few timed counts
-        warrant. The blend of each of ``max_orders`` (variants that differ in their
+        warrant. With ``timed_to`` k the part-of-day levels stop at order k (the higher orders
+        are untimed). The blend of each of ``max_orders`` (variants that differ in their
         maximum order only), computed once up to the highest: a lower one is the state the
         higher one's blend passes through. ``base`` may also be a stack of distributions (one
         per row, variants that differ in their base only): each row is blended as it would be
@@ -219,7 +222,7 @@ class ContextCounts:
             followers = self.levels[n].tables.get(context)
             if not followers:
                 continue
-            timed = part >= 0 and 0 <= self.timed_from <= n
+            timed = part >= 0 and 0 <= self.timed_from <= n and (timed_to is None or n <= timed_to)
             if timed and gate is not None:
                 timed = differs(self.timed[n].tables.get((part, *context), {}), followers, gate)
             # order 0 at a known part of day: the user's counts at this part of day replace the

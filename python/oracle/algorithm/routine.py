@@ -87,7 +87,7 @@ class RoutineOracle(EstimatorParams):
     """
 
     _param_names = ("distances", "opening_tasks", "orders", "temperatures", "lowest_orders", "timed", "timed_from",
-                    "discounts", "discount_from", "discount_evidence", "timed_discount_from", "timed_shrink", "streams",
+                    "discounts", "discount_from", "discount_evidence", "timed_discount_from", "timed_shrink", "timed_to", "streams",
                     "timed_gate",
                     "exclusion", "novelty",
                     "context_depth", "switch_margin", "context_decay", "tuning", "tuning_window", "task_factor", "object_factor",
@@ -99,7 +99,8 @@ class RoutineOracle(EstimatorParams):
                  lowest_orders: tuple[int, ...] = (0, 1), timed: tuple[bool, ...] = (True,),
                  timed_from: int = 0, discounts: tuple[bool, ...] = (True,), discount_from: int = 2,
                  discount_evidence: int = 100, timed_discount_from: int | None = None, timed_shrink: bool = False,
-                 streams: tuple[str, ...] = ("idle",), timed_gate: float | None = None, exclusion: bool = False,
+                 timed_to: int | None = None, streams: tuple[str, ...] = ("idle",), timed_gate: float | None = None,
+                 exclusion: bool = False,
                  novelty: tuple[bool, ...] = (False, True),
                  context_depth: int = 3, context_decay: float = 0.5,
                  tuning: str = "leader", tuning_window: int = TUNING_WINDOW, switch_margin: float = 2.0,
@@ -119,6 +120,7 @@ class RoutineOracle(EstimatorParams):
         self.discount_evidence = discount_evidence
         self.timed_discount_from = timed_discount_from
         self.timed_shrink = timed_shrink
+        self.timed_to = timed_to
         self.streams = streams
         self.timed_gate = timed_gate
         self.exclusion = exclusion
@@ -157,6 +159,9 @@ class RoutineOracle(EstimatorParams):
                                                      or self.timed_discount_from < 0):
             raise SettingsError(f"{name}: timed_discount_from must be None or a whole number >= 0, "
                                 f"got {self.timed_discount_from!r}")
+        if self.timed_to is not None and (isinstance(self.timed_to, bool) or not isinstance(self.timed_to, int)
+                                          or self.timed_to < 0):
+            raise SettingsError(f"{name}: timed_to must be None or a whole number >= 0, got {self.timed_to!r}")
         if not isinstance(self.timed_shrink, bool):
             raise SettingsError(f"{name}: timed_shrink must be True or False, got {self.timed_shrink!r}")
         if isinstance(self.timed_from, bool) or not isinstance(self.timed_from, int) or self.timed_from < 0:
@@ -342,7 +347,7 @@ class RoutineOracle(EstimatorParams):
             found = self._streams[stream].counts.blends(
                 ids, np.stack([base[stream, tau] for tau in taus]), stops, lowest, now_code if timed else -1,
                 discount, self.timed_gate, self.exclusion, novel, memo, self.discount_from, self.discount_evidence,
-                self.timed_discount_from, self.timed_shrink)
+                self.timed_discount_from, self.timed_shrink, self.timed_to)
             for order in stops:
                 for row, tau in enumerate(taus):
                     both = found[order]
