@@ -43,12 +43,16 @@ class _Level:
     twice: int = 0   # ... exactly twice
 
     def count(self, context: tuple[int, ...], token: int) -> None:
-        followers = self.tables.setdefault(context, {})
+        followers = self.tables.get(context)
+        if followers is None:
+            followers = self.tables[context] = {}
+            self.totals[context] = 0
         seen = followers.get(token, 0)
         followers[token] = seen + 1
-        self.totals[context] = self.totals.get(context, 0) + 1
-        self.once += (seen == 0) - (seen == 1)
-        self.twice += (seen == 1) - (seen == 2)
+        self.totals[context] += 1
+        if seen < 3:
+            self.once += (seen == 0) - (seen == 1)
+            self.twice += (seen == 1) - (seen == 2)
 
     def evidence(self) -> int:
         """The (context, follower) pairs the discount estimate rests on: those seen once or twice."""
@@ -134,13 +138,14 @@ class ContextCounts:
     def add(self, token: int, part: int = -1) -> None:
         """Count ``token`` after every current context; ``part`` is its part of day (-1 unknown)."""
         history = self.tokens
-        for n in range(0 if token != IDLE else 1, self.max_order + 1):  # idle is no action: no order-0 count
-            if len(history) < n:
-                break
-            context = tuple(history[len(history) - n:]) if n else ()
-            self.levels[n].count(context, token)
-            if 0 <= self.timed_from <= n and part >= 0:
-                self.timed[n].count((part, *context), token)
+        size = len(history)
+        timed_from = self.timed_from if part >= 0 else -1
+        levels, timed = self.levels, self.timed
+        for n in range(0 if token != IDLE else 1, min(self.max_order, size) + 1):  # idle: no order-0 count
+            context = tuple(history[size - n:]) if n else ()
+            levels[n].count(context, token)
+            if 0 <= timed_from <= n:
+                timed[n].count((part, *context), token)
         history.append(token)
 
     def context(self, n: int) -> tuple[int, ...] | None:
