@@ -69,3 +69,22 @@ def test_a_damaged_entry_falls_back_to_the_sources(tmp_path):
     entry.write_bytes(b"not a qlf")
     assert _probe(home, cache) == "False"  # loaded from the sources (probe/1 is not there)
     assert _entries(cache) == [] or _entries(cache)[0].read_bytes() != b"not a qlf"
+
+
+def test_publishing_an_entry_prunes_the_least_recently_used_beyond_the_bound(tmp_path):
+    from oracle import modulecache
+
+    root = tmp_path / "prolog"
+    for i in range(modulecache.KEPT + 2):
+        entry = root / f"{i:024x}"
+        entry.mkdir(parents=True)
+        (entry / modulecache.COMPILED).write_text("old")
+        os.utime(entry, (1000 + i, 1000 + i))
+    modulecache.loaded(root / f"{0:024x}" / modulecache.COMPILED)  # the oldest, just used
+    compiled = root / ("f" * 24) / modulecache.COMPILED
+    loader = modulecache.prepare(compiled, [], str)
+    loader.with_name(modulecache.COMPILED).write_text("new")
+    modulecache.publish(loader, compiled)
+    names = sorted(p.name for p in root.iterdir())
+    assert len(names) == modulecache.KEPT and compiled.is_file()
+    assert f"{0:024x}" in names and f"{1:024x}" not in names and f"{2:024x}" not in names

@@ -436,6 +436,7 @@ def _load_compiled(folder: Path, paths: list[Path]) -> bool:
             except PrologError:
                 modulecache.discard(compiled)  # damaged: the sources are loaded, and compiled next time
                 raise
+            modulecache.loaded(compiled)
             return True
         loader = modulecache.prepare(compiled, paths, quote_atom)
         # qcompile loads the modules, as use_module would, and writes the .qlf beside the loader.

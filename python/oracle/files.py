@@ -10,6 +10,7 @@ from __future__ import annotations
 import contextlib
 import errno
 import os
+import shutil
 import stat
 from collections.abc import Iterator
 from dataclasses import dataclass
@@ -68,6 +69,33 @@ def _private(path: Path, mode: str) -> Iterator[Any]:
             os.unlink(temporary)
 
 
+#: Entries kept per kind in the user's cache (ontologies, distance matrices, compiled modules,
+#: fits, histories); the least recently used go first.
+MAX_CACHE_ENTRIES = 32
+
+
+def used(path: Path) -> None:
+    """Mark a cache entry as just used (its modification time), so pruning keeps it."""
+    with contextlib.suppress(OSError):
+        os.utime(path)
+
+
+def prune_cache(directory: Path, pattern: str, keep: int = MAX_CACHE_ENTRIES) -> None:
+    """Remove all but the ``keep`` most recently used entries (files or folders) of ``directory``
+    matching ``pattern``: a cache keyed by content would otherwise keep every odb, mapping and
+    source version it ever saw."""
+    try:
+        entries = sorted(((entry.stat().st_mtime, entry) for entry in directory.glob(pattern)), reverse=True)
+    except OSError:
+        return
+    for _, old in entries[keep:]:
+        with contextlib.suppress(OSError):
+            if old.is_dir() and not old.is_symlink():
+                shutil.rmtree(old)
+            else:
+                old.unlink()
+
+
 @dataclass(frozen=True)
 class CacheFolder:
     """A folder of the user's private cache (``FOLDER`` of oracle.ontology.distance's
@@ -77,7 +105,7 @@ class CacheFolder:
     FOLDER: ClassVar[str] = ""
     SUFFIX: ClassVar[str] = ""
     #: Entries kept; the least recently written go first.
-    MAX_ENTRIES: ClassVar[int] = 32
+    MAX_ENTRIES: ClassVar[int] = MAX_CACHE_ENTRIES
 
     @classmethod
     def default(cls: type[_Cache]) -> _Cache:

@@ -1,7 +1,8 @@
 """Where the compiled Prolog modules are cached: one SWI-Prolog ``.qlf`` of the product's modules
 per user, keyed by the content of every Prolog source under ``prolog/``, where they are, and the
-SWI-Prolog version. An edited module changes the key, so a stale compilation is never loaded; an
-old entry is only left unused. The bridge compiles and loads (oracle.bridge._ensure_loaded).
+SWI-Prolog version. An edited module changes the key, so a stale compilation is never loaded; the
+entries used least recently beyond ``KEPT`` are removed when a new one is published.
+The bridge compiles and loads (oracle.bridge._ensure_loaded).
 """
 
 from __future__ import annotations
@@ -12,12 +13,15 @@ import shutil
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
+from oracle.files import prune_cache, used
 from oracle.ontology.distance import default_cache_dir
 
 #: The cache's sub-folder; each entry is a folder named by its key.
 FOLDER = "prolog"
 LOADER = "modules.pl"
 COMPILED = "modules.qlf"
+#: Compiled entries kept (one per checkout and SWI-Prolog version in use).
+KEPT = 8
 
 
 def modules_key(folder: Path, swipl_version: str) -> str:
@@ -61,6 +65,12 @@ def publish(loader: Path, compiled: Path) -> None:
     except OSError:
         pass
     shutil.rmtree(loader.parent, ignore_errors=True)
+    prune_cache(compiled.parent.parent, "[0-9a-f]*", KEPT)
+
+
+def loaded(compiled: Path) -> None:
+    """Note that an entry was just loaded (pruning keeps the entries used last)."""
+    used(compiled.parent)
 
 
 def discard(compiled: Path) -> None:

@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from oracle.errors import OntologyError
-from oracle.files import written_by_user_alone
+from oracle.files import prune_cache, used, written_by_user_alone
 
 if TYPE_CHECKING:
     from oracle.ontology.builder import BuildReport
@@ -86,6 +86,7 @@ def cached_build(
             with path.open("rb") as handle:
                 entry = pickle.load(handle)
             if isinstance(entry, tuple) and len(entry) == 3 and entry[0] == key:
+                used(path)
                 return entry[1], entry[2]
         except Exception:  # noqa: BLE001 - a damaged entry (any unpickling error) is rebuilt below
             pass
@@ -103,5 +104,6 @@ def _save(path: Path, entry: tuple[object, ...]) -> None:
         with os.fdopen(fd, "wb") as handle:
             pickle.dump(entry, handle, protocol=pickle.HIGHEST_PROTOCOL)
         os.replace(tmp, path)
+        prune_cache(path.parent, "ontology-*.pickle")
     except (OSError, pickle.PicklingError, OntologyError):
         pass  # caching is an optimisation; a read-only home still builds every time

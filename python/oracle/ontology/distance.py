@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING
 import platformdirs
 
 from oracle.errors import OntologyError
+from oracle.files import prune_cache, used
 from oracle.ontology.taxonomy import Taxonomy
 
 if TYPE_CHECKING:  # numpy is imported where a matrix is made: why-not and neems never need one
@@ -127,6 +128,7 @@ class DistanceMatrix:
                 with np.load(path, allow_pickle=False) as data:
                     classes = tuple(str(c) for c in data["classes"])
                     if classes == taxonomy.classes:
+                        used(path)
                         return cls(classes, data["values"], data["lcs"], key)
             except (OSError, ValueError, KeyError):
                 pass  # a damaged cache file is recomputed below
@@ -137,6 +139,7 @@ class DistanceMatrix:
             np.savez_compressed(tmp, classes=np.array(matrix.classes), values=matrix.values, lcs=matrix.lcs_index)
             os.chmod(tmp, 0o600)  # the cache is the user's, like the stores
             os.replace(tmp, path)
+            prune_cache(directory, "distances-*.npz")
         except OSError:
             pass  # caching is an optimisation; a read-only home still works
         return matrix
