@@ -25,13 +25,14 @@ class Target:
 
 
 def open_target(args: argparse.Namespace, *, write: bool = False) -> Target:
-    """Open ``--store`` (read-only unless ``write``: a reader never waits for a writer), pick
+    """Open ``--store`` (read-only unless ``write``: a reader never waits for a writer; a writer's
+    whole-file check runs beside its reads), pick
     ``--neem`` and the ontology the NEEM was logged with."""
     from oracle.ontology.provenance import ontology_for
     from oracle.store import open_store
     from oracle.store.ids import alias_of, resolve_neem
 
-    store = open_store(args.store, create=False, read_only=not write)
+    store = open_store(args.store, create=False, read_only=not write, check_while_reading=write)
     try:
         neem_id = resolve_neem(store, args.neem) if args.neem is not None else default_neem(store)
         info = store.neem(neem_id)

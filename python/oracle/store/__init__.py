@@ -70,6 +70,7 @@ def open_store(
     number_format: NumberFormat = "decimal128",
     create: bool = True,
     read_only: bool = False,
+    check_while_reading: bool = False,
 ) -> Store:
     """Open the store a ``--store`` value names.
 
@@ -80,6 +81,8 @@ def open_store(
     0600 if missing unless ``create`` is False (commands that only read pass False, so a typo'd
     path is an error instead of a new empty store). ``read_only`` (implies not ``create``)
     opens a SQLite file without writing anything, so a reader never waits for a writer.
+    ``check_while_reading``: a writer's whole-file check of a SQLite file runs beside its reads,
+    and its first write waits for it (for commands that read much and then write a little).
     """
     if spec is None:
         uri = mongo_uri_from_env()
@@ -87,7 +90,8 @@ def open_store(
             return open_mongo(uri, number_format=number_format)
         from oracle.store.sqlite import SQLiteStore
 
-        return SQLiteStore(default_store_path(), number_format, create=create, read_only=read_only)
+        return SQLiteStore(default_store_path(), number_format, create=create, read_only=read_only,
+                           check_while_reading=check_while_reading)
     text = os.fspath(spec)
     if text in ("mongodb", "mongo"):
         uri = mongo_uri_from_env()
@@ -107,7 +111,7 @@ def open_store(
         raise StoreError(f"unknown store {text!r}: expected a path, sqlite:///PATH or mongodb://HOST")
     from oracle.store.sqlite import SQLiteStore
 
-    return SQLiteStore(text, number_format, create=create, read_only=read_only)
+    return SQLiteStore(text, number_format, create=create, read_only=read_only, check_while_reading=check_while_reading)
 
 
 def open_mongo(uri: str, *, number_format: NumberFormat = "decimal128", timeout_ms: int = 3000) -> Store:

@@ -73,6 +73,7 @@ from oracle.store.sql import (
     sql_value,
 )
 from oracle.store.chunks import MatchChunk, concatenated_chunks, raw_chunks
+from oracle.store.integrity import IntegrityCheck, damaged, problems_of
 
 SCHEMA_VERSION = "4"
 #: Schemas this version reads: 3 is 4 without side tables (opened for writing, it becomes 4,
@@ -262,26 +263,49 @@ class _Cursor:
         return self.cursor.rowcount
 
 
-class _Connection:
-    """sqlite3 errors (a NEEM dropped by another process, a locked or full disk) as StoreError."""
+#: Statements that never change the file (a deferred BEGIN starts a read snapshot).
+_READS = ("SELECT", "EXPLAIN", "COMMIT", "ROLLBACK", "END")
 
-    def __init__(self, conn: sqlite3.Connection, location: str) -> None:
+
+def _writes(sql: str) -> bool:
+    """Whether a statement may change the file (the pragmas a writer sets are before any check)."""
+    head = sql.lstrip()[:16].upper()
+    return not (head.startswith(_READS) or head.rstrip() == "BEGIN" or head.startswith("BEGIN DEFERRED"))
+
+
+class _Connection:
+    """sqlite3 errors (a NEEM dropped by another process, a locked or full disk) as StoreError.
+    With ``check`` (oracle.store.integrity), the first statement that may write waits for the
+    whole-file check and is refused, as every later one, when the file is damaged."""
+
+    def __init__(self, conn: sqlite3.Connection, location: str, check: IntegrityCheck | None = None) -> None:
         self.conn = conn
         self.location = location
+        self.check = check
+
+    def _before_write(self) -> None:
+        if self.check is not None:
+            self.check.wait()   # StoreError when damaged: the check stays, so every write is refused
+            self.check = None
 
     def execute(self, sql: str, params: Sequence[Any] | Mapping[str, Any] = ()) -> _Cursor:
+        if self.check is not None and _writes(sql):
+            self._before_write()
         try:
             return _Cursor(self.conn.execute(sql, params), self.location)
         except sqlite3.Error as error:
             raise StoreError(f"{self.location}: {_reason(error)}") from None
 
     def executemany(self, sql: str, rows: Any) -> sqlite3.Cursor:
+        self._before_write()
         try:
             return self.conn.executemany(sql, rows)
         except sqlite3.Error as error:
             raise StoreError(f"{self.location}: {error}") from None
 
     def close(self) -> None:
+        if self.check is not None:
+            self.check.cancel()
         self.conn.close()
 
 
@@ -296,8 +320,10 @@ class SQLiteStore(Store):
         *,
         create: bool = True,
         read_only: bool = False,
+        check_while_reading: bool = False,
     ) -> None:
         super().__init__(number_format)
+        self._check_while_reading = check_while_reading
         self.path = Path(path).expanduser()
         self.location = str(self.path)
         self.read_only = read_only
@@ -305,7 +331,10 @@ class SQLiteStore(Store):
             raise StoreError(f"{self.path}: no NEEM store there (check --store; 'import' or 'load' creates one)")
         #: False for a schema 3 file opened read-only (no side tables there).
         self._has_sides = True
-        self._conn = _Connection(self._connect_read_only() if read_only else self._connect(), self.location)
+        #: The whole-file check a writer's first write waits for (None: done before, or a new file).
+        self._check: IntegrityCheck | None = None
+        self._conn = _Connection(self._connect_read_only() if read_only else self._connect(), self.location,
+                                 self._check)
         self._depth = 0
         self._cids: dict[Any, int] = {}
         self._members: dict[int, tuple[Any, ...]] = {}
@@ -373,9 +402,17 @@ class SQLiteStore(Store):
             finally:
                 os.close(fd)
             conn = sqlite3.connect(self.path, isolation_level=None, check_same_thread=False)
-            if existed and self.path.stat().st_size > 0:
+            # The whole-file check runs before anything is written. With check_while_reading,
+            # when opening writes nothing (a complete store of this schema, in WAL mode), it runs
+            # beside the reads that follow and the first write waits for it (store/integrity.py).
+            checked = not (existed and self.path.stat().st_size > 0)
+            if not checked and not self._check_while_reading:
                 self._check_integrity(conn)
+                checked = True
             conn.execute("PRAGMA busy_timeout=10000")  # concurrent writers wait instead of failing
+            if not checked and str(conn.execute("PRAGMA journal_mode").fetchone()[0]).lower() != "wal":
+                self._check_integrity(conn)   # switching to WAL writes the header
+                checked = True
             _use_wal(conn)
             conn.execute("PRAGMA synchronous=NORMAL")
             # temp_store stays FILE: with MEMORY, dropping a NEEM (import --replace) kept its
@@ -386,38 +423,54 @@ class SQLiteStore(Store):
             # Fewer, larger checkpoints: each one fsyncs, commits themselves do not.
             conn.execute("PRAGMA wal_autocheckpoint=8192")
             conn.execute("PRAGMA cache_size=-65536")
-            # One transaction: each statement would otherwise commit on its own, and a kill in
-            # between left tables without the schema row (every reader then refused the file).
-            conn.execute("BEGIN IMMEDIATE")
-            try:
-                for statement in _SCHEMA_STATEMENTS:
-                    conn.execute(statement)
-                conn.executemany("INSERT OR IGNORE INTO terms VALUES (?, ?)", _RESERVED_TERMS)
-                version = conn.execute("SELECT value FROM store_info WHERE key='schema'").fetchone()[0]
-                conn.execute("COMMIT")
-            except BaseException:
-                if conn.in_transaction:
-                    conn.execute("ROLLBACK")
-                raise
+            version = self._make_schema(conn, checked)
+        except sqlite3.DatabaseError as error:
+            if not checked:
+                self._check_integrity(conn)   # a damaged file: say so, not what failed first
+            raise StoreError(f"{self.path}: cannot open the NEEM store ({error})") from None
         except (OSError, sqlite3.Error) as error:
             raise StoreError(f"{self.path}: cannot open the NEEM store ({error})") from None
         if version != SCHEMA_VERSION:
             raise StoreError(f"{self.path}: store schema {version}, this version reads {SCHEMA_VERSION}")
         return conn
 
+    def _make_schema(self, conn: sqlite3.Connection, checked: bool) -> str:
+        """Make or upgrade the store's own tables (``_SCHEMA_STATEMENTS``) in one transaction:
+        each statement would otherwise commit on its own, and a kill in between left tables
+        without the schema row (every reader then refused the file). On a file not checked yet,
+        a transaction that would change something is rolled back and made again after the
+        check; one that changes nothing leaves the check to run beside the reads
+        (``self._check``). Returns the schema version."""
+        while True:
+            conn.execute("BEGIN IMMEDIATE")
+            try:
+                before = (conn.total_changes, conn.execute("PRAGMA schema_version").fetchone()[0])
+                for statement in _SCHEMA_STATEMENTS:
+                    conn.execute(statement)
+                conn.executemany("INSERT OR IGNORE INTO terms VALUES (?, ?)", _RESERVED_TERMS)
+                version = str(conn.execute("SELECT value FROM store_info WHERE key='schema'").fetchone()[0])
+                after = (conn.total_changes, conn.execute("PRAGMA schema_version").fetchone()[0])
+                if not checked and after != before:
+                    conn.execute("ROLLBACK")
+                    self._check_integrity(conn)
+                    checked = True
+                    continue
+                conn.execute("COMMIT")
+            except BaseException:
+                if conn.in_transaction:
+                    conn.execute("ROLLBACK")
+                raise
+            if not checked:
+                self._check = IntegrityCheck(self.path)
+            return version
+
     def _check_integrity(self, conn: sqlite3.Connection) -> None:
         """Refuse to write into a damaged file: writing would spread the damage, and a later
         reader would answer from it. ``quick_check`` reads every page once (no index cross-check)."""
-        try:
-            problems = [row[0] for row in conn.execute("PRAGMA quick_check(3)").fetchall()]
-        except sqlite3.DatabaseError as error:
-            problems = [str(error)]
-        if problems != ["ok"]:
+        problems = problems_of(conn)
+        if problems:
             conn.close()
-            raise StoreError(
-                f"{self.path}: the store file is corrupt ({'; '.join(problems)[:200]}); nothing was written"
-                " (restore it from a backup or an export)"
-            )
+            raise damaged(self.path, problems)
 
     def close(self) -> None:
         self._conn.close()
