@@ -1,0 +1,23 @@
+"""Session-wide test set-up: the suite's caches stay out of the user's own."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterator
+
+import pytest
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _private_cache(tmp_path_factory: pytest.TempPathFactory) -> Iterator[None]:
+    """Built ontologies, distance matrices, compiled modules, fits and histories of the suite go
+    to a folder of its own (child processes inherit it), not to ~/.cache/neem-oracle; a
+    NEEM_ORACLE_CACHE set by the caller is kept."""
+    if os.environ.get("NEEM_ORACLE_CACHE"):
+        yield
+        return
+    os.environ["NEEM_ORACLE_CACHE"] = str(tmp_path_factory.mktemp("neem-oracle-cache"))
+    try:
+        yield
+    finally:
+        os.environ.pop("NEEM_ORACLE_CACHE", None)
