@@ -90,3 +90,15 @@ def test_closing_without_a_write_does_not_wait_for_the_whole_check(store_file):
     store = SQLiteStore(store_file, create=False, check_while_reading=True)
     assert store.neems()
     store.close()   # cancels the check; nothing to report, nothing written
+
+
+def test_what_counts_as_a_write():
+    from oracle.store.sqlite import _writes
+
+    for sql in ("SELECT 1", "  select s FROM t", "BEGIN", "COMMIT", "ROLLBACK", "PRAGMA automatic_index = OFF",
+                "EXPLAIN QUERY PLAN SELECT 1", "BEGIN DEFERRED"):
+        assert not _writes(sql), sql
+    for sql in ("BEGIN IMMEDIATE", "INSERT INTO t VALUES (1)", "UPDATE t SET a=1", "DELETE FROM t",
+                "CREATE TABLE x(a)", "DROP TABLE x", "ALTER TABLE x RENAME TO y", "PRAGMA journal_mode=WAL",
+                "CREATE TRIGGER x AFTER UPDATE ON t BEGIN SELECT 1; END"):
+        assert _writes(sql), sql

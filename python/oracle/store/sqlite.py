@@ -263,14 +263,15 @@ class _Cursor:
         return self.cursor.rowcount
 
 
-#: Statements that never change the file (a deferred BEGIN starts a read snapshot).
-_READS = ("SELECT", "EXPLAIN", "COMMIT", "ROLLBACK", "END")
+#: Statements that never change the file (a deferred BEGIN starts a read snapshot; the
+#: automatic_index pragma is a setting of the connection).
+_READS = ("SELECT", "EXPLAIN", "COMMIT", "ROLLBACK", "END", "PRAGMA AUTOMATIC_INDEX")
 
 
 def _writes(sql: str) -> bool:
     """Whether a statement may change the file (the pragmas a writer sets are before any check)."""
-    head = sql.lstrip()[:16].upper()
-    return not (head.startswith(_READS) or head.rstrip() == "BEGIN" or head.startswith("BEGIN DEFERRED"))
+    head = " ".join(sql[:40].split()).upper()
+    return not (head.startswith(_READS) or head == "BEGIN" or head.startswith("BEGIN DEFERRED"))
 
 
 class _Connection:
