@@ -102,3 +102,18 @@ def test_what_counts_as_a_write():
                 "CREATE TABLE x(a)", "DROP TABLE x", "ALTER TABLE x RENAME TO y", "PRAGMA journal_mode=WAL",
                 "CREATE TRIGGER x AFTER UPDATE ON t BEGIN SELECT 1; END"):
         assert _writes(sql), sql
+
+
+def test_a_check_that_cannot_run_refuses_the_writes(store_file, monkeypatch):
+    import oracle.store.integrity as integrity
+
+    def broken(conn):
+        raise OSError("no pages for you")
+
+    monkeypatch.setattr(integrity, "problems_of", broken)
+    store = SQLiteStore(store_file, create=False, check_while_reading=True)
+    try:
+        with pytest.raises(StoreError, match="corrupt .no pages for you"):
+            store.update_meta(_neem(store_file), note="must not land")
+    finally:
+        store.close()

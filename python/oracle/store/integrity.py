@@ -54,8 +54,8 @@ class IntegrityCheck:
                     self._problems = problems_of(self._conn)
             finally:
                 self._conn.close()
-        except sqlite3.Error as error:
-            self._problems = [str(error)]
+        except Exception as error:  # noqa: BLE001 - anything that stops the check refuses the writes
+            self._problems = [str(error) or type(error).__name__]
 
     def wait(self) -> None:
         """Block until the check is done; StoreError when the file is damaged."""
