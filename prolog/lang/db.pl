@@ -34,8 +34,8 @@ kb_db:package_path/2; without ROS there is none, so such a URL is an error namin
 :- use_module(library(lists)).
 :- use_module(library(apply)).
 :- use_module(library(option)).
-:- use_module(library(semweb/rdf_db), [rdf_load/2, rdf/4, rdf_unload_graph/1]).
-:- use_module(library(semweb/turtle), []).
+% The RDF parsers (~60 ms to load) are needed only when an OWL file is loaded: on first use.
+:- autoload(library(semweb/rdf_db), [rdf_load/2, rdf/4, rdf_unload_graph/1]).
 :- use_module('../neem_store', [store_insert/3, store_insert_annotations/1, store_annotation/3,
                                  store_graph_version/2, store_set_graph_version/3, store_drop_graph/1]).
 :- use_module(triple, [kb_iri/2]).
@@ -70,6 +70,7 @@ load_owl(URL, Options) :-
     ->  true                    % unchanged since it was loaded (KnowRob: ontology_detected)
     ;   store_drop_graph(OntoGraph),
         gensym(kb_db_load_, Graph),
+        use_module(library(semweb/turtle), []),   % rdf_load/2 then reads Turtle files too
         setup_call_cleanup(
             rdf_load(File, [graph(Graph), silent(true)]),
             load_graph(Graph, OntoGraph, File, Stamp),

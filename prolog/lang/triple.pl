@@ -34,7 +34,7 @@ called from Prolog is `kb_call(triple(S,P,O))`.
 :- use_module(library(error)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
-:- use_module(library(pcre), []).
+:- autoload(library(pcre), [re_match/2]).   % loaded on the first regex test
 :- use_module(library(semweb/rdf_prefixes)).
 :- use_module('../neem_store', [store_match/2, store_taxonomic/1]).
 
@@ -151,7 +151,7 @@ value_test(=, A0, X) :-
     (   number(A), number(X) -> X =:= A ; X == A ).
 value_test(regex, Pattern, X) :-
     atomic(X), atom_string(X, Text), text_to_string(Pattern, Re),
-    pcre:re_match(Re, Text).
+    re_match(Re, Text).
 
                  /*******************************
                  *      PROPERTY MODIFIERS      *
