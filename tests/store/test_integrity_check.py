@@ -117,3 +117,25 @@ def test_a_check_that_cannot_run_refuses_the_writes(store_file, monkeypatch):
             store.update_meta(_neem(store_file), note="must not land")
     finally:
         store.close()
+
+
+@pytest.mark.parametrize("damage", [False, True])
+def test_a_store_that_opening_would_change_is_checked_first(store_file, damage):
+    import sqlite3
+
+    conn = sqlite3.connect(store_file)
+    conn.execute("DROP TABLE revisions")   # the next writer makes it again: opening writes
+    conn.commit()
+    conn.close()
+    if damage:
+        corrupt(store_file, 2)
+        before = _digest(store_file)
+        with pytest.raises(StoreError, match="corrupt.*nothing was written"):
+            SQLiteStore(store_file, create=False, check_while_reading=True)
+        assert _digest(store_file) == before
+    else:
+        store = SQLiteStore(store_file, create=False, check_while_reading=True)
+        try:
+            assert store._conn.check is None   # checked at open, before the table was made
+        finally:
+            store.close()

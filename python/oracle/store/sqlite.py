@@ -451,16 +451,16 @@ class SQLiteStore(Store):
                 conn.executemany("INSERT OR IGNORE INTO terms VALUES (?, ?)", _RESERVED_TERMS)
                 version = str(conn.execute("SELECT value FROM store_info WHERE key='schema'").fetchone()[0])
                 after = (conn.total_changes, conn.execute("PRAGMA schema_version").fetchone()[0])
-                if not checked and after != before:
-                    conn.execute("ROLLBACK")
-                    self._check_integrity(conn)
-                    checked = True
-                    continue
-                conn.execute("COMMIT")
+                changes = after != before
+                conn.execute("ROLLBACK" if changes and not checked else "COMMIT")
             except BaseException:
                 if conn.in_transaction:
                     conn.execute("ROLLBACK")
                 raise
+            if changes and not checked:
+                self._check_integrity(conn)   # closes conn and raises when damaged
+                checked = True
+                continue
             if not checked:
                 self._check = IntegrityCheck(self.path)
             return version
