@@ -114,6 +114,4 @@ class CacheFolder:
         return cls(default_cache_dir() / cls.FOLDER)
 
     def _prune(self) -> None:
-        entries = sorted(self.root.glob(f"*{self.SUFFIX}"), key=lambda p: p.stat().st_mtime, reverse=True)
-        for old in entries[self.MAX_ENTRIES:]:
-            old.unlink(missing_ok=True)
+        prune_cache(self.root, f"*{self.SUFFIX}", self.MAX_ENTRIES)

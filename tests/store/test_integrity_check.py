@@ -86,10 +86,15 @@ def test_rank_on_a_damaged_store_says_so_in_one_line_and_writes_nothing(store_fi
     assert _digest(store_file) == before
 
 
-def test_closing_without_a_write_does_not_wait_for_the_whole_check(store_file):
+def test_closing_without_a_write_cancels_the_check_and_writes_nothing(store_file):
+    before = _digest(store_file)
     store = SQLiteStore(store_file, create=False, check_while_reading=True)
     assert store.neems()
-    store.close()   # cancels the check; nothing to report, nothing written
+    check = store._conn.check
+    assert check is not None
+    store.close()   # cancels the check: nothing to report, nothing written
+    assert not check._thread.is_alive()
+    assert _digest(store_file) == before
 
 
 def test_what_counts_as_a_write():

@@ -337,8 +337,10 @@ class RoutineOracle(EstimatorParams):
         twins: dict[tuple[str, int, bool, bool, bool], tuple[list[int], list[float]]] = {}
         for stream, order, tau, lowest, timed, discount, novel in chosen:
             stops, taus = twins.setdefault((stream, lowest, timed, discount, novel), ([], []))
-            stops.extend([order] if order not in stops else [])
-            taus.extend([tau] if tau not in taus else [])
+            if order not in stops:
+                stops.append(order)
+            if tau not in taus:
+                taus.append(tau)
         for (stream, lowest, timed, discount, novel), (stops, taus) in twins.items():
             for tau in taus:
                 if (stream, tau) not in base:
@@ -349,10 +351,10 @@ class RoutineOracle(EstimatorParams):
                 discount, self.timed_gate, self.exclusion, novel, memo, self.discount_from, self.discount_evidence,
                 self.timed_discount_from, self.timed_shrink, self.timed_to)
             for order in stops:
+                rows = found[order]
                 for row, tau in enumerate(taus):
-                    both = found[order]
                     blends[stream, order, tau, lowest, timed, discount, novel] = Blend(
-                        both.probabilities[row], both.order, both.count)
+                        rows.probabilities[row], rows.order, rows.count)
         for variant in chosen:
             probabilities.append(blends[variant].probabilities)
         return probabilities, [blends[v] for v in chosen], cand

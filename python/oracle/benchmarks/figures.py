@@ -37,4 +37,3 @@ def installed_env(**extra: str) -> dict[str, str]:
     subprocess.run([sys.executable, "-m", "compileall", "-q", str(Path(__file__).resolve().parents[1])],
                    check=True, env=env)
     return env
-

@@ -324,7 +324,6 @@ class SQLiteStore(Store):
         check_while_reading: bool = False,
     ) -> None:
         super().__init__(number_format)
-        self._check_while_reading = check_while_reading
         self.path = Path(path).expanduser()
         self.location = str(self.path)
         self.read_only = read_only
@@ -332,10 +331,9 @@ class SQLiteStore(Store):
             raise StoreError(f"{self.path}: no NEEM store there (check --store; 'import' or 'load' creates one)")
         #: False for a schema 3 file opened read-only (no side tables there).
         self._has_sides = True
-        #: The whole-file check a writer's first write waits for (None: done before, or a new file).
-        self._check: IntegrityCheck | None = None
-        self._conn = _Connection(self._connect_read_only() if read_only else self._connect(), self.location,
-                                 self._check)
+        # the whole-file check a writer's first write waits for (None: done at open, or nothing to check)
+        conn, check = (self._connect_read_only(), None) if read_only else self._connect(check_while_reading)
+        self._conn = _Connection(conn, self.location, check)
         self._depth = 0
         self._cids: dict[Any, int] = {}
         self._members: dict[int, tuple[Any, ...]] = {}
@@ -391,7 +389,7 @@ class SQLiteStore(Store):
             conn.close()
             raise
 
-    def _connect(self) -> sqlite3.Connection:
+    def _connect(self, check_while_reading: bool) -> tuple[sqlite3.Connection, IntegrityCheck | None]:
         try:
             self.path.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
             existed = self.path.exists()
@@ -407,7 +405,7 @@ class SQLiteStore(Store):
             # when opening writes nothing (a complete store of this schema, in WAL mode), it runs
             # beside the reads that follow and the first write waits for it (store/integrity.py).
             checked = not (existed and self.path.stat().st_size > 0)
-            if not checked and not self._check_while_reading:
+            if not checked and not check_while_reading:
                 self._check_integrity(conn)
                 checked = True
             conn.execute("PRAGMA busy_timeout=10000")  # concurrent writers wait instead of failing
@@ -424,7 +422,7 @@ class SQLiteStore(Store):
             # Fewer, larger checkpoints: each one fsyncs, commits themselves do not.
             conn.execute("PRAGMA wal_autocheckpoint=8192")
             conn.execute("PRAGMA cache_size=-65536")
-            version = self._make_schema(conn, checked)
+            version, check = self._make_schema(conn, checked)
         except sqlite3.DatabaseError as error:
             if not checked:
                 self._check_integrity(conn)   # a damaged file: say so, not what failed first
@@ -433,15 +431,15 @@ class SQLiteStore(Store):
             raise StoreError(f"{self.path}: cannot open the NEEM store ({error})") from None
         if version != SCHEMA_VERSION:
             raise StoreError(f"{self.path}: store schema {version}, this version reads {SCHEMA_VERSION}")
-        return conn
+        return conn, check
 
-    def _make_schema(self, conn: sqlite3.Connection, checked: bool) -> str:
+    def _make_schema(self, conn: sqlite3.Connection, checked: bool) -> tuple[str, IntegrityCheck | None]:
         """Make or upgrade the store's own tables (``_SCHEMA_STATEMENTS``) in one transaction:
         each statement would otherwise commit on its own, and a kill in between left tables
         without the schema row (every reader then refused the file). On a file not checked yet,
         a transaction that would change something is rolled back and made again after the
-        check; one that changes nothing leaves the check to run beside the reads
-        (``self._check``). Returns the schema version."""
+        check; one that changes nothing leaves the check to run beside the reads. Returns the
+        schema version and that check (None when the file was checked)."""
         while True:
             conn.execute("BEGIN IMMEDIATE")
             try:
@@ -461,9 +459,7 @@ class SQLiteStore(Store):
                 self._check_integrity(conn)   # closes conn and raises when damaged
                 checked = True
                 continue
-            if not checked:
-                self._check = IntegrityCheck(self.path)
-            return version
+            return version, None if checked else IntegrityCheck(self.path)
 
     def _check_integrity(self, conn: sqlite3.Connection) -> None:
         """Refuse to write into a damaged file: writing would spread the damage, and a later
