@@ -498,6 +498,35 @@ def test_a_stack_of_bases_blends_each_row_bit_for_bit_as_alone(tokens, weights, 
             assert stacked[order].order.tolist() == alone[order].order.tolist()
 
 
+@settings(max_examples=80, deadline=None)
+@given(st.lists(st.tuples(st.integers(0, 5), st.integers(-1, 3)), min_size=0, max_size=60),
+       st.lists(st.floats(0.0, 1.0), min_size=24, max_size=24),
+       st.lists(st.tuples(st.integers(0, 1), st.booleans(), st.booleans()), min_size=1, max_size=4),
+       st.booleans(), st.booleans(), st.sampled_from([-1, 0, 1]), st.booleans())
+def test_lanes_blended_in_one_pass_equal_each_lane_alone(tokens, weights, lanes, exclusion, discount, timed_from,
+                                                         shrink):
+    # The self-tuning's variants that differ in their lowest order and novelty share the levels
+    # from order 1 on: each lane's rows, flat or stacked, must come out exactly as alone.
+    counts = ContextCounts(3, timed_from=timed_from)
+    for token, part in tokens:
+        counts.add(token if token < 5 else -1, part)   # 5 stands for the idle token
+    candidates = [0, 1, 2, 3, 4, 7]                     # 7: never counted
+    rows = np.array(weights).reshape(4, 6)
+    rows[1, :3] = 0.0                                   # a row without mass on the done candidates
+    bases = [rows[i] if flat else rows[i:i + 2] for i, (_, _, flat) in enumerate(lanes)]
+    kwargs = dict(part=tokens[-1][1] if tokens else -1, discount=discount, exclusion=exclusion,
+                  discount_from=1, discount_evidence=2, timed_shrink=shrink)
+    together = counts.lane_blends(candidates, [(base, lowest, novelty) for base, (lowest, novelty, _) in zip(bases, lanes)],
+                                  (3, 1, 2), **kwargs)
+    for base, (lowest, novelty, _), found in zip(bases, lanes, together):
+        alone = counts.blends(candidates, base, (3, 1, 2), lowest, novelty=novelty, **kwargs)
+        for order in (1, 2, 3):
+            assert found[order].probabilities.shape == alone[order].probabilities.shape
+            assert found[order].probabilities.tobytes() == alone[order].probabilities.tobytes()
+            assert found[order].order.tolist() == alone[order].order.tolist()
+            assert found[order].count.tolist() == alone[order].count.tolist()
+
+
 def test_the_part_of_day_levels_stop_at_timed_to():
     counts = ContextCounts(2, timed_from=0)
     for token, part in ((7, 0), (1, 0), (7, 2), (2, 2), (7, 0), (1, 0), (7, 2), (2, 2), (7, 0)):

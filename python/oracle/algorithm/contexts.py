@@ -198,29 +198,30 @@ class ContextCounts:
         higher one's blend passes through. ``base`` may also be a stack of distributions (one
         per row, variants that differ in their base only): each row is blended as it would be
         alone, with the same operations, so its result is bit for bit the same."""
-        probs = base.astype(np.float64, copy=True)
-        order = np.full(len(candidates), -1, dtype=np.int64)
-        count = np.zeros(len(candidates), dtype=np.int64)
-        applied = False
-        novel_part: np.ndarray | None = None
-        done_share = 1.0
-        if novelty:
-            split = self._novelty(candidates, probs)
-            if split is not None:
-                probs, novel_part, done_share = split
-                if min_order > 0:
-                    probs = done_share * probs + novel_part
-                    novel_part = None
-        done: dict[int, Blend] = {}
+        return self.lane_blends(candidates, [(base, min_order, novelty)], max_orders, part, discount, gate, exclusion,
+                                memo, discount_from, discount_evidence, timed_discount_from, timed_shrink,
+                                timed_to)[0]
 
-        def reached(below: float) -> None:  # the blends of every maximum order below ``below``
-            for stop in max_orders:
-                if stop < below and stop not in done:
-                    final = probs if novel_part is None else done_share * probs + novel_part
-                    done[stop] = Blend(final, order.copy(), count.copy())
-
-        for n in range(min_order, min(max(max_orders), self.max_order) + 1):
-            reached(n)
+    def lane_blends(self, candidates: Sequence[int], lanes: Sequence[tuple[np.ndarray, int, bool]],
+                    max_orders: Sequence[int], part: int = -1, discount: bool = False, gate: float | None = None,
+                    exclusion: bool = False, memo: Memo | None = None, discount_from: int = 0,
+                    discount_evidence: int = 0, timed_discount_from: int | None = None,
+                    timed_shrink: bool = False, timed_to: int | None = None) -> list[dict[int, Blend]]:
+        """``blends`` of each lane ``(base, min_order, novelty)``, in one pass: the lanes differ only
+        below order 1 (the order-0 level and the novelty split are worked out per lane), so from
+        order 1 on their rows are stacked and go through each level together, each row with the
+        operations it would meet alone (element by element), so every result is bit for bit
+        that of ``blends`` on the lane alone. With ``exclusion`` the lowest level applied differs
+        by lane, and each lane is blended alone."""
+        if exclusion and len(lanes) > 1:
+            return [self.lane_blends(candidates, [lane], max_orders, part, discount, gate, exclusion, memo,
+                                     discount_from, discount_evidence, timed_discount_from, timed_shrink, timed_to)[0]
+                    for lane in lanes]
+        states = [_Lane.start(self, candidates, base, min_order, novelty) for base, min_order, novelty in lanes]
+        stack: _Stack | None = None
+        for n in range(min(lane.min_order for lane in states), min(max(max_orders), self.max_order) + 1):
+            for lane in states:
+                lane.reached(n, max_orders)
             context = self.context(n)
             if context is None:
                 break
@@ -230,29 +231,29 @@ class ContextCounts:
             timed = part >= 0 and 0 <= self.timed_from <= n and (timed_to is None or n <= timed_to)
             if timed and gate is not None:
                 timed = differs(self.timed[n].tables.get((part, *context), {}), followers, gate)
-            # order 0 at a known part of day: the user's counts at this part of day replace the
-            # overall counts (Q already lends evidence across parts of day), unless there are none
-            replace_zero = n == 0 and timed and bool(self.timed[0].tables.get((part,)))
-            lowest = exclusion and not applied
-            applied = True
             discounted = discount and n >= discount_from and self.levels[n].evidence() >= discount_evidence
-            plain = self.levels[n].apply(context, candidates, probs, discounted, lowest and not replace_zero, memo)
+            if n == 0:
+                # order 0 at a known part of day: the user's counts at this part of day replace the
+                # overall counts (Q already lends evidence across parts of day), unless there are none
+                replace_zero = timed and bool(self.timed[0].tables.get((part,)))
+                for lane in states:
+                    if lane.min_order == 0:
+                        lane.order_zero(self, candidates, part, discounted, replace_zero, exclusion, memo)
+                continue
+            if stack is None:  # from order 1 on every lane takes part (min_order is 0 or 1)
+                stack = _Stack.of(states)
+            lowest = exclusion and not states[0].applied  # one lane when excluding
+            for lane in states:
+                lane.applied = True
+            plain = self.levels[n].apply(context, candidates, stack.probs, discounted, lowest, memo)
             assert plain is not None
             seen = plain[1]
             hit = seen > 0
-            order[hit] = n
-            count[hit] = seen[hit].astype(np.int64)
-            if replace_zero:
-                refined = self.timed[0].apply((part,), candidates, probs, discounted, lowest, memo)
-                assert refined is not None
-                probs = refined[0]
-            else:
-                probs = plain[0]
-            if n == 0 and novel_part is not None:
-                probs = done_share * probs + novel_part
-                novel_part = None
-            if n == 0:
-                continue
+            counted = seen[hit].astype(np.int64)
+            for lane in states:
+                lane.order[hit] = n
+                lane.count[hit] = counted
+            probs = plain[0]
             if timed:
                 timed_discounted = discounted if timed_discount_from is None else (
                     discount and n >= timed_discount_from and self.timed[n].evidence() >= discount_evidence)
@@ -264,8 +265,10 @@ class ContextCounts:
                     probs = share * refined[0] + (1.0 - share) * probs
                 elif refined is not None:
                     probs = refined[0]
-        reached(math.inf)  # the order-0 level never reached leaves the novelty split as it is
-        return done
+            stack.update(probs)
+        for lane in states:
+            lane.reached(math.inf, max_orders)  # the order-0 level never reached leaves the novelty split as it is
+        return [lane.done for lane in states]
 
     def _novelty(self, candidates: Sequence[int], base: np.ndarray) -> tuple[np.ndarray, np.ndarray, float] | None:
         """``base`` restricted to the done candidates, ``q * base`` restricted to the never-done ones,
@@ -287,3 +290,90 @@ def _within(probs: np.ndarray, mask: np.ndarray) -> np.ndarray:
     mass = part.sum(axis=-1, keepdims=True)
     uniform = mask / float(mask.sum())
     return np.where(mass > 0, part / np.where(mass > 0, mass, 1.0), uniform)
+
+
+@dataclass
+class _Lane:
+    """One lane's blend in progress (``ContextCounts.lane_blends``): its distribution (one row,
+    or a stack of rows), the candidates' longest counted orders and counts, the novelty split
+    still to merge, and the blends of the maximum orders passed."""
+
+    probs: np.ndarray
+    order: np.ndarray
+    count: np.ndarray
+    min_order: int
+    novel_part: np.ndarray | None = None
+    done_share: float = 1.0
+    applied: bool = False
+    done: dict[int, Blend] = field(default_factory=dict)
+
+    @classmethod
+    def start(cls, counts: ContextCounts, candidates: Sequence[int], base: np.ndarray, min_order: int,
+              novelty: bool) -> _Lane:
+        lane = cls(base.astype(np.float64, copy=True), np.full(len(candidates), -1, dtype=np.int64),
+                   np.zeros(len(candidates), dtype=np.int64), min_order)
+        if novelty:
+            split = counts._novelty(candidates, lane.probs)
+            if split is not None:
+                lane.probs, lane.novel_part, lane.done_share = split
+                if min_order > 0:
+                    lane.probs = lane.done_share * lane.probs + lane.novel_part
+                    lane.novel_part = None
+        return lane
+
+    def reached(self, below: float, max_orders: Sequence[int]) -> None:
+        """The blends of every maximum order below ``below``."""
+        for stop in max_orders:
+            if stop < below and stop not in self.done:
+                final = self.probs if self.novel_part is None else self.done_share * self.probs + self.novel_part
+                self.done[stop] = Blend(final, self.order.copy(), self.count.copy())
+
+    def order_zero(self, counts: ContextCounts, candidates: Sequence[int], part: int, discounted: bool,
+                   replace_zero: bool, exclusion: bool, memo: Memo | None) -> None:
+        """The order-0 level: the user's action counts (at this part of day when ``replace_zero``)."""
+        lowest = exclusion and not self.applied
+        self.applied = True
+        plain = counts.levels[0].apply((), candidates, self.probs, discounted, lowest and not replace_zero, memo)
+        assert plain is not None
+        seen = plain[1]
+        hit = seen > 0
+        self.order[hit] = 0
+        self.count[hit] = seen[hit].astype(np.int64)
+        if replace_zero:
+            refined = counts.timed[0].apply((part,), candidates, self.probs, discounted, lowest, memo)
+            assert refined is not None
+            self.probs = refined[0]
+        else:
+            self.probs = plain[0]
+        if self.novel_part is not None:
+            self.probs = self.done_share * self.probs + self.novel_part
+            self.novel_part = None
+
+
+@dataclass
+class _Stack:
+    """The lanes' rows stacked for the levels from order 1 on; each lane's ``probs`` is kept a
+    view of its rows."""
+
+    probs: np.ndarray
+    lanes: list[_Lane]
+    spans: list[tuple[int, int, bool]]   # per lane: first row, end row, whether it is one flat row
+
+    @classmethod
+    def of(cls, lanes: list[_Lane]) -> _Stack:
+        if len(lanes) == 1:  # a lane alone keeps its shape
+            return cls(lanes[0].probs, lanes, [])
+        spans, rows, at = [], [], 0
+        for lane in lanes:
+            block = np.atleast_2d(lane.probs)
+            rows.append(block)
+            spans.append((at, at + block.shape[0], lane.probs.ndim == 1))
+            at += block.shape[0]
+        return cls(np.concatenate(rows), lanes, spans)
+
+    def update(self, probs: np.ndarray) -> None:
+        self.probs = probs
+        if not self.spans:
+            self.lanes[0].probs = probs
+        for lane, (lo, hi, flat) in zip(self.lanes, self.spans):
+            lane.probs = probs[lo] if flat else probs[lo:hi]

@@ -333,28 +333,33 @@ class RoutineOracle(EstimatorParams):
         blends: dict[tuple[str, int, float, int, bool, bool, bool], Blend] = {}
         probabilities = []
         memo: Memo = {}  # the counts' look-ups, shared by the variants (same candidates, same counts)
-        # twins but for the order or the temperature: one blend pass (orders as stops, bases as rows)
-        twins: dict[tuple[str, int, bool, bool, bool], tuple[list[int], list[float]]] = {}
+        # variants alike but for the order, the temperature, the lowest order and the novelty:
+        # one blend pass (orders as stops; per lowest order and novelty a lane of bases as rows)
+        groups: dict[tuple[str, bool, bool], dict[tuple[int, bool], tuple[list[int], list[float]]]] = {}
         for stream, order, tau, lowest, timed, discount, novel in chosen:
-            stops, taus = twins.setdefault((stream, lowest, timed, discount, novel), ([], []))
+            stops, taus = groups.setdefault((stream, timed, discount), {}).setdefault((lowest, novel), ([], []))
             if order not in stops:
                 stops.append(order)
             if tau not in taus:
                 taus.append(tau)
-        for (stream, lowest, timed, discount, novel), (stops, taus) in twins.items():
-            for tau in taus:
-                if (stream, tau) not in base:
-                    base[stream, tau] = normalised(similarity_mass(cand, executed, context[stream], differs, tau,
-                                                                   self.time_of_day_penalty))
-            found = self._streams[stream].counts.blends(
-                ids, np.stack([base[stream, tau] for tau in taus]), stops, lowest, now_code if timed else -1,
-                discount, self.timed_gate, self.exclusion, novel, memo, self.discount_from, self.discount_evidence,
-                self.timed_discount_from, self.timed_shrink, self.timed_to)
-            for order in stops:
-                rows = found[order]
-                for row, tau in enumerate(taus):
-                    blends[stream, order, tau, lowest, timed, discount, novel] = Blend(
-                        rows.probabilities[row], rows.order, rows.count)
+        for (stream, timed, discount), lanes in groups.items():
+            stops = sorted({order for lane_stops, _ in lanes.values() for order in lane_stops})
+            for _, taus in lanes.values():
+                for tau in taus:
+                    if (stream, tau) not in base:
+                        base[stream, tau] = normalised(similarity_mass(cand, executed, context[stream], differs, tau,
+                                                                       self.time_of_day_penalty))
+            found = self._streams[stream].counts.lane_blends(
+                ids, [(np.stack([base[stream, tau] for tau in taus]), lowest, novel)
+                      for (lowest, novel), (_, taus) in lanes.items()],
+                stops, now_code if timed else -1, discount, self.timed_gate, self.exclusion, memo,
+                self.discount_from, self.discount_evidence, self.timed_discount_from, self.timed_shrink, self.timed_to)
+            for ((lowest, novel), (lane_stops, taus)), lane in zip(lanes.items(), found):
+                for order in lane_stops:
+                    rows = lane[order]
+                    for row, tau in enumerate(taus):
+                        blends[stream, order, tau, lowest, timed, discount, novel] = Blend(
+                            rows.probabilities[row], rows.order, rows.count)
         for variant in chosen:
             probabilities.append(blends[variant].probabilities)
         return probabilities, [blends[v] for v in chosen], cand

@@ -84,14 +84,17 @@ def open_store(
     ``check_while_reading``: a writer's whole-file check of a SQLite file runs beside its reads,
     and its first write waits for it (for commands that read much and then write a little).
     """
+    def sqlite_file(path: str | os.PathLike[str]) -> Store:
+        from oracle.store.sqlite import SQLiteStore
+
+        return SQLiteStore(path, number_format, create=create, read_only=read_only,
+                           check_while_reading=check_while_reading)
+
     if spec is None:
         uri = mongo_uri_from_env()
         if uri:
             return open_mongo(uri, number_format=number_format)
-        from oracle.store.sqlite import SQLiteStore
-
-        return SQLiteStore(default_store_path(), number_format, create=create, read_only=read_only,
-                           check_while_reading=check_while_reading)
+        return sqlite_file(default_store_path())
     text = os.fspath(spec)
     if text in ("mongodb", "mongo"):
         uri = mongo_uri_from_env()
@@ -109,9 +112,7 @@ def open_store(
             raise StoreError("sqlite:// needs a path, e.g. sqlite:///home/me/neems.sqlite")
     elif "://" in text:
         raise StoreError(f"unknown store {text!r}: expected a path, sqlite:///PATH or mongodb://HOST")
-    from oracle.store.sqlite import SQLiteStore
-
-    return SQLiteStore(text, number_format, create=create, read_only=read_only, check_while_reading=check_while_reading)
+    return sqlite_file(text)
 
 
 def open_mongo(uri: str, *, number_format: NumberFormat = "decimal128", timeout_ms: int = 3000) -> Store:
