@@ -32,7 +32,7 @@ Reason terms of why_not/2,3 (each a separate solution, most telling first):
 :- use_module(library(error)).
 :- use_module(library(lists)).
 :- use_module(library(apply)).
-:- use_module(library(http/json)).
+:- use_module(json_text, [json_text/2]).
 :- use_module(neem_store).
 :- use_module(lang/query, [kb_call/2]).
 :- use_module(lang/triple, [kb_iri/2]).
@@ -216,7 +216,7 @@ reason_dict(done_earlier(C, B), _{reason: done_earlier, task: T, time: B}) :- ca
 answer_json(JSON) :-
     store_python_request(Request),
     answer(Request, Dict),
-    with_output_to(string(JSON), json_write_dict(current_output, Dict, [width(0)])).
+    json_text(Dict, JSON).
 
 answer([why_not, Name, Args, At], _{question: why_not, task: T, at: AtOut, reasons: Ds}) :-
     Call =.. [Name|Args],

@@ -19,7 +19,7 @@ situation, the one the next ranking is for.
 :- use_module(library(pairs)).
 :- use_module(library(assoc)).
 :- use_module(library(ordsets)).
-:- use_module(library(http/json)).
+:- use_module('../json_text', [json_text/2]).
 :- use_module('../lang/query', [kb_call/2, kb_findall/4, kb_group/5]).
 :- use_module('../lang/triple', [kb_iri/2]).
 :- use_module('../model/rdfs', []).
@@ -201,9 +201,10 @@ situation_history_json(After, JSON) :-
     transpose_pairs(Indexed, ByIndex),      % index-set pairs, by index
     findall(Set, ( member(_-Avail, ByIndex), maplist(call_index(Index), Avail, Is), format(string(Set), '~w', [Is]) ),
             SetLists),
+    json_text(Texts, CallsJSON),
     with_output_to(string(JSON),
                    ( format('{"calls":'),
-                     json_write(current_output, Texts, [width(0)]),
+                     write(CallsJSON),
                      format(',"sets":['),
                      write_separated(SetLists),
                      format('],"rows":['),
@@ -248,4 +249,4 @@ latest_situation_json(JSON) :-
         Dict = _{begin:B, available:Xs}
     ;   Dict = null
     ),
-    with_output_to(string(JSON), json_write_dict(current_output, Dict, [width(0)])).
+    json_text(Dict, JSON).

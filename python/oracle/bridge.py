@@ -45,7 +45,7 @@ if TYPE_CHECKING:
 
 #: The Prolog modules under ``paths.prolog_dir()``, in load order (KnowRob's layout: lang/, model/; the
 #: odb extension in odb/); each is imported into ``user`` so a typed query sees its exports.
-MODULES = ("neem_store", "lang/triple", "lang/scope", "lang/query", "lang/holds", "lang/temporal", "lang/db",
+MODULES = ("neem_store", "json_text", "lang/triple", "lang/scope", "lang/query", "lang/holds", "lang/temporal", "lang/db",
            "model/rdfs", "model/event", "model/object", "model/situation", "model/action", "model/interval", "model/tf",
            "odb/names", "odb/calls", "odb/events", "odb/decisions", "odb/history", "answers", "batch_toplevel")
 #: Rows per chunk handed to Prolog by one solution of py_match/2.
