@@ -70,3 +70,20 @@ def test_prolog_g_runs_goals_like_swipl(tmp_path, onto):
     assert ok.returncode == 0 and ok.stdout.strip().endswith("actions") and ok.stderr == ""
     assert _prolog(path, "-q", "-g", "fail").returncode == 1
     assert _prolog(path, "-q", "-g", "throw(oops)").returncode == 2
+
+
+def test_answering_and_reading_the_history_load_no_json_or_rdf_parser(tmp_path, onto):
+    # library(http/json), the RDF parsers and pcre cost tens of ms to load in every process:
+    # the CLI's answers and history read must not need them (json_text writes their JSON).
+    # A module loaded from a file, not one that exists at all: rdf_prefixes adds clauses to
+    # rdf_db:ns/2 without loading library(semweb/rdf_db).
+    path = _store(tmp_path, onto)
+    goal = ("odb_history:situation_history_json(H), string_length(H, N), N > 0,"
+            " findall(R, answers:why_not(pick(apple), R), Rs), Rs \\== [],"
+            " forall(member(M, [json, rdf_db, turtle, pcre]), \\+ module_property(M, file(_))),"
+            " format('clean~n')")
+    out = _prolog(path, "-q", "-g", goal)
+    assert out.returncode == 0 and out.stdout.strip() == "clean", out.stdout + out.stderr
+    # and the check can fail: loading the library is seen
+    loaded = _prolog(path, "-q", "-g", "use_module(library(semweb/rdf_db)), \\+ module_property(rdf_db, file(_))")
+    assert loaded.returncode == 1
