@@ -212,8 +212,9 @@ class ContextCounts:
         order 1 on their rows are stacked and go through each level together, each row with the
         operations it would meet alone (element by element), so every result is bit for bit
         that of ``blends`` on the lane alone. With ``exclusion`` the lowest level applied differs
-        by lane, and each lane is blended alone."""
-        if exclusion and len(lanes) > 1:
+        by lane, and so do the levels a lane of ``min_order`` 2 or more skips: then each lane is
+        blended alone."""
+        if len(lanes) > 1 and (exclusion or any(min_order > 1 for _, min_order, _ in lanes)):
             return [self.lane_blends(candidates, [lane], max_orders, part, discount, gate, exclusion, memo,
                                      discount_from, discount_evidence, timed_discount_from, timed_shrink, timed_to)[0]
                     for lane in lanes]
@@ -240,7 +241,7 @@ class ContextCounts:
                     if lane.min_order == 0:
                         lane.order_zero(self, candidates, part, discounted, replace_zero, exclusion, memo)
                 continue
-            if stack is None:  # from order 1 on every lane takes part (min_order is 0 or 1)
+            if stack is None:  # from order 1 on every lane takes part (min_order 0 or 1, or one lane)
                 stack = _Stack.of(states)
             lowest = exclusion and not states[0].applied  # one lane when excluding
             for lane in states:
