@@ -1,5 +1,6 @@
 :- module(json_text,
-    [ json_text/2                 % +Term, -String
+    [ json_text/2,                % +Term, -String
+      json_data_text/2            % +Term, -String
     ]).
 /** <module> JSON text of the answers and the history read
 
@@ -20,57 +21,74 @@ library(http/json): it runs in one long-lived process.
 %   Raises an instantiation error for a variable, a domain error for an infinite or NaN
 %   float and a type error for any other term (a compound that is not a list).
 json_text(Term, String) :-
-    with_output_to(string(String), write_json(Term)).
+    with_output_to(string(String), write_json(literals, Term)).
 
-write_json(X) :-
+%!  json_data_text(+Term, -String) is det.
+%   As json_text/2, but every atom is a string, `true`, `false` and `null` too: the text of
+%   data whose atoms are names (a store request's IRIs and values), not JSON literals. An
+%   infinite or NaN float is written `Infinity`, `-Infinity` or `NaN`, as Python's json
+%   module reads them (not standard JSON: this text is for the bridge alone).
+json_data_text(Term, String) :-
+    with_output_to(string(String), write_json(names, Term)).
+
+%   write_json(+Atoms, +Term): Atoms `literals` writes true, false and null as literals.
+write_json(_, X) :-
     var(X), !,
     instantiation_error(X).
-write_json(X) :-
+write_json(Atoms, X) :-
     is_dict(X), !,
     dict_pairs(X, _, Pairs),
     write('{'),
-    write_members(Pairs),
+    write_members(Pairs, Atoms),
     write('}').
-write_json(X) :-
+write_json(Atoms, X) :-
     is_list(X), !,
     write('['),
-    write_items(X),
+    write_items(X, Atoms),
     write(']').
-write_json(X) :-
+write_json(_, X) :-
     string(X), !,
     write_string(X).
-write_json(X) :-
+write_json(Atoms, X) :-
     atom(X), !,
-    (   literal(X) -> write(X) ; write_string(X) ).
-write_json(X) :-
+    (   Atoms == literals, literal(X) -> write(X) ; write_string(X) ).
+write_json(_, X) :-
     integer(X), !,
     write(X).
-write_json(X) :-
+write_json(Atoms, X) :-
     float(X), !,
     float_class(X, Class),
-    (   memberchk(Class, [infinite, nan])
-    ->  domain_error(finite_float, X)
-    ;   write(X)
+    (   \+ memberchk(Class, [infinite, nan])
+    ->  write(X)
+    ;   Atoms == names
+    ->  non_finite(X, Text), write(Text)
+    ;   domain_error(finite_float, X)
     ).
-write_json(X) :-
+write_json(_, X) :-
     type_error(json, X).
+
+%   The tokens Python's json module reads for the floats JSON has no number for (a scope
+%   that lasts for ever ends at inf).
+non_finite(X, 'NaN') :- X =\= X, !.
+non_finite(X, 'Infinity') :- X > 0, !.
+non_finite(_, '-Infinity').
 
 literal(true).
 literal(false).
 literal(null).
 
-write_members([]).
-write_members([K-V|Pairs]) :-
-    write_key(K), write(':'), write_json(V),
-    forall(member(K1-V1, Pairs), ( write(','), write_key(K1), write(':'), write_json(V1) )).
+write_members([], _).
+write_members([K-V|Pairs], Atoms) :-
+    write_key(K), write(':'), write_json(Atoms, V),
+    forall(member(K1-V1, Pairs), ( write(','), write_key(K1), write(':'), write_json(Atoms, V1) )).
 
 write_key(K) :-
     (   atom(K) -> write_string(K) ; number_string(K, S), write_string(S) ).
 
-write_items([]).
-write_items([X|Xs]) :-
-    write_json(X),
-    forall(member(Y, Xs), ( write(','), write_json(Y) )).
+write_items([], _).
+write_items([X|Xs], Atoms) :-
+    write_json(Atoms, X),
+    forall(member(Y, Xs), ( write(','), write_json(Atoms, Y) )).
 
 %   A JSON string: the text in double quotes, `"` and `\` escaped, control characters as
 %   \n, \t, \r, \b, \f or \u00XX.

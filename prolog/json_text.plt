@@ -57,4 +57,16 @@ test(an_infinite_float_is_no_json, [error(domain_error(finite_float, _))]) :-
 test(a_variable_is_no_json, [error(instantiation_error)]) :-
     json_text(_{a: _}, _).
 
+test(data_text_keeps_every_atom_a_string) :-
+    json_data_text([true, false, null, 'x y', "s", 3, [a]], T),
+    T == "[\"true\",\"false\",\"null\",\"x y\",\"s\",3,[\"a\"]]".
+
+test(data_text_writes_the_non_finite_floats_as_pythons_json_reads_them) :-
+    Inf is inf, NegInf is -inf, NaN is nan,
+    json_data_text([Inf, NegInf, NaN, 0.5], T),
+    T == "[Infinity,-Infinity,NaN,0.5]".
+
+test(data_text_of_a_compound_is_an_error, [error(type_error(json, f(x)))]) :-
+    json_data_text([f(x)], _).
+
 :- end_tests(json_text).

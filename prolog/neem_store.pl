@@ -52,6 +52,7 @@ A question scope is `scope(Since, Until)`: a fact is visible when its own scope 
 :- use_module(library(lists)).
 :- use_module(library(apply)).
 :- use_module(library(pairs)).
+:- use_module(json_text, [json_data_text/2]).
 
 :- meta_predicate store_in_graphs(+, 0).
 
@@ -458,7 +459,13 @@ match(python(Neem), Patterns, Scope, Options) :-
     length(Vars, NVars),
     (   memberchk(group_last, Options) -> Group is NVars-1 ; Group = -1 ),
     (   memberchk(plan(written), Options) -> Plan = written ; Plan = store ),
-    neem_store:py_match([Neem, S0, S1, N, NVars, Order, Group, Plan|Encoded], Reply),
+    Request = [Neem, S0, S1, N, NVars, Order, Group, Plan|Encoded],
+    % As JSON text: pyswip turns a list into Python one node at a time (~0.5 ms a request);
+    % a value JSON cannot hold (an infinite float) goes as the term.
+    (   catch(json_data_text(Request, Text), error(_, _), fail)
+    ->  neem_store:py_match(Text, Reply)
+    ;   neem_store:py_match(Request, Reply)
+    ),
     match_reply(Reply, Table, Rows),
     member(Row, Rows),
     row_values(Row, Table, Vars).

@@ -235,6 +235,8 @@ def py_match(req: Any, out: Any, handle: Any) -> Any:
     if control == PL_FIRST_CALL:
         CROSSINGS["py_match"] += 1
         try:
+            if not isinstance(req, list):  # the request as JSON text (neem_store's match/4)
+                req = json.loads(_plain(req))
             chunks = _chunks(_connected().store, req)
             first = next(chunks, "r(d,[])")
         except Exception as error:  # handed to Prolog: pyswip would make it silent failure

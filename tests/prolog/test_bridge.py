@@ -7,7 +7,7 @@ from datetime import datetime, timezone
 import pytest
 
 from oracle import bridge as bridge_module
-from oracle.bridge import Bridge, term_text
+from oracle.bridge import Bridge, quote_atom, term_text
 from oracle.errors import PrologError, StoreError
 from oracle.store import Triple, open_store
 
@@ -184,5 +184,23 @@ def test_kb_group_of_shared_groups_through_the_store(tmp_path):
         sizes = bridge.query(f"kb_query:kb_group(S, O, triple(S, '{p}', O), any, G),"
                              " findall(N, ( member(_-Vs, G), length(Vs, N) ), Ns)")[0]["Ns"]
         assert sizes == [2, 2, 1, 3]
+    finally:
+        bridge.close()
+
+
+@pytest.mark.parametrize("name", ["true", "null", "false", "1.5", "[]", "ünïcødé ✓", "it's \"x\"\\"])
+def test_a_request_names_values_as_data_whatever_json_would_make_of_them(tmp_path, name):
+    # The store request crosses as JSON text: a name such as true or null must stay that
+    # name, and a scope ending at inf (no JSON number) must still reach the store.
+    store = open_store(tmp_path / "s.sqlite")
+    store.create_neem("n1")
+    store.insert("n1", [Triple("http://e.org/s", "http://e.org/p", name), Triple("http://e.org/s", "http://e.org/n", 2)])
+    bridge = Bridge(store, "n1")
+    try:
+        found = bridge.query(f"kb_call(triple(S, 'http://e.org/p', {quote_atom(name)}))")
+        assert [row["S"] for row in found] == ["http://e.org/s"]
+        ever = bridge.query("X is inf, kb_call(triple('http://e.org/s', 'http://e.org/n', N), scope(0, X))")
+        assert [row["N"] for row in ever] == [2]
+        assert bridge.query("kb_call(triple('http://e.org/s', 'http://e.org/n', 2))") == [{}]
     finally:
         bridge.close()
