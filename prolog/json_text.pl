@@ -77,18 +77,22 @@ literal(true).
 literal(false).
 literal(null).
 
-write_members([], _).
-write_members([K-V|Pairs], Atoms) :-
-    write_key(K), write(':'), write_json(Atoms, V),
-    forall(member(K1-V1, Pairs), ( write(','), write_key(K1), write(':'), write_json(Atoms, V1) )).
+write_members(Pairs, Atoms) :-
+    write_separated(write_member(Atoms), Pairs).
 
-write_key(K) :-
-    (   atom(K) -> write_string(K) ; number_string(K, S), write_string(S) ).
+write_member(Atoms, K-V) :-
+    (   atom(K) -> write_string(K) ; number_string(K, S), write_string(S) ),
+    write(':'),
+    write_json(Atoms, V).
 
-write_items([], _).
-write_items([X|Xs], Atoms) :-
-    write_json(Atoms, X),
-    forall(member(Y, Xs), ( write(','), write_json(Atoms, Y) )).
+write_items(Xs, Atoms) :-
+    write_separated(write_json(Atoms), Xs).
+
+%   Each element written by Goal, with commas between them.
+write_separated(_, []).
+write_separated(Goal, [X|Xs]) :-
+    call(Goal, X),
+    forall(member(Y, Xs), ( write(','), call(Goal, Y) )).
 
 %   A JSON string: the text in double quotes, `"` and `\` escaped, control characters as
 %   \n, \t, \r, \b, \f or \u00XX.

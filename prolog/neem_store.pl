@@ -461,7 +461,7 @@ match(python(Neem), Patterns, Scope, Options) :-
     (   memberchk(plan(written), Options) -> Plan = written ; Plan = store ),
     Request = [Neem, S0, S1, N, NVars, Order, Group, Plan|Encoded],
     % As JSON text: pyswip turns a list into Python one node at a time (~0.5 ms a request);
-    % a value JSON cannot hold (an infinite float) goes as the term.
+    % a constant JSON cannot hold (a rational number, a blob) goes as the term.
     (   catch(json_data_text(Request, Text), error(_, _), fail)
     ->  neem_store:py_match(Text, Reply)
     ;   neem_store:py_match(Request, Reply)

@@ -243,9 +243,8 @@ class ContextCounts:
                 continue
             if stack is None:  # from order 1 on every lane takes part (min_order 0 or 1, or one lane)
                 stack = _Stack.of(states)
-            lowest = exclusion and not states[0].applied  # one lane when excluding
-            for lane in states:
-                lane.applied = True
+            lowest = exclusion and not states[0].applied  # excluding: one lane alone
+            states[0].applied = True
             plain = self.levels[n].apply(context, candidates, stack.probs, discounted, lowest, memo)
             assert plain is not None
             seen = plain[1]
