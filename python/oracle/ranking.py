@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 
 from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.predictors import DEFAULT, make_predictor
-from oracle.algorithm.records import RankedTask, Ranking
+from oracle.algorithm.records import RankedTask, Ranking, local_name
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError, NeemOracleError
 from oracle.fitcache import FitCache
@@ -57,14 +57,14 @@ def finite(score: float) -> float:
 def support_fields(task: RankedTask) -> dict[str, Any]:
     """What supports a routine-predictor ranking (empty for the thesis oracle): its probability,
     the exact context it followed (``context_order`` its length; 0: done, not after this context;
-    -1: no counted context holds it) and the history positions of those past situations (latest
-    last, at most 5)."""
+    -1: no counted context holds it), the history positions of those past situations (latest
+    last, at most 5) and the objects in hand it uses (``focus``, local names)."""
     from oracle.algorithm.routine import RoutineTask
 
     if not isinstance(task, RoutineTask):
         return {}
     return {"probability": task.probability, "context_order": task.order, "context": list(task.context),
-            "situations": list(task.situations)}
+            "situations": list(task.situations), "focus": [local_name(obj) for obj in task.focus]}
 
 
 def rank_neem(

@@ -406,7 +406,9 @@ def test_exclusion_gives_the_never_done_options_the_estimate_of_a_novel_action()
 
 
 @pytest.mark.parametrize("options", [{"timed_gate": 1.645}, {"exclusion": True}, {"timed_gate": 0.0, "exclusion": True},
-                                     {"novelty": (True,)}, {"novelty": (False, True), "timed_gate": 1.645}])
+                                     {"novelty": (True,)}, {"novelty": (False, True), "timed_gate": 1.645},
+                                     {"focus": 0}, {"focus": 1, "focus_odds": False}, {"focus_level": "top"},
+                                     {"timed_blend": 0.5}])
 def test_the_new_options_on_empty_and_tiny_histories(options):
     empty = RoutineOracle(kitchen(), **options).fit([]).rank(OFFERED)
     assert empty.options() == OFFERED
@@ -422,7 +424,8 @@ def test_the_new_options_on_empty_and_tiny_histories(options):
 
 def test_the_new_options_are_validated():
     for bad in ({"timed_gate": True}, {"timed_gate": "high"}, {"timed_gate": math.inf}, {"exclusion": 1},
-                {"novelty": True}, {"novelty": ()}, {"novelty": (1,)}):
+                {"novelty": True}, {"novelty": ()}, {"novelty": (1,)}, {"focus": -1}, {"focus": True},
+                {"focus_odds": 1}, {"focus_level": "all"}, {"timed_blend": 2}, {"timed_blend": True}):
         with pytest.raises(SettingsError):
             RoutineOracle(kitchen(), **bad).fit([])
 
@@ -547,3 +550,37 @@ def test_the_part_of_day_levels_stop_at_timed_to():
 def test_timed_to_is_checked():
     with pytest.raises(SettingsError, match="timed_to"):
         RoutineOracle(kitchen(), timed_to=-1).fit([])
+
+
+def _handled_then_used(objects, rounds):
+    """A user who picks an object and then drinks from that object, for changing objects."""
+    offered = tuple(Option(t, o) for o in objects for t in (PICK, DRINK))
+    return [act(Option(task, o), offered) for _ in range(rounds) for o in objects for task in (PICK, DRINK)]
+
+
+def test_the_objects_in_hand_lift_the_never_done_options_that_use_them():
+    history = _handled_then_used((RED, BLUE, THERMOS), 3) + [act(Option(PICK, SPOON))]
+    offered = (Option(DRINK, PLATE), Option(DRINK, SPOON))      # neither was ever done
+    plain = RoutineOracle(kitchen(), focus=0).fit(history).rank(offered)
+    assert plain[0].probability == pytest.approx(plain[1].probability)   # alike by similarity: offered order
+    model = RoutineOracle(kitchen(), focus=1).fit(history)
+    handled = model.rank(offered)
+    lift, rest = model.focus_lift()
+    assert lift > 1 > rest   # this user goes on with what they just picked
+    # both escape to the lowest level alike, so their odds are the lift's
+    assert handled[0].probability / handled[1].probability == pytest.approx(lift / rest)
+    assert handled.options()[0] == Option(DRINK, SPOON) and handled[0].focus == (SPOON,)
+    assert handled[1].focus == () and handled[0].probability > handled[1].probability
+
+
+def test_the_lift_is_the_users_own_rate_of_using_an_object_in_hand_against_the_offer():
+    history = _handled_then_used((RED, BLUE), 1)     # pick red, drink red, pick blue, drink blue
+    model = RoutineOracle(kitchen(), focus=1).fit(history)
+    # with the latest action's objects in focus, half the 4 offered options use them at steps 2-4
+    # (the first step has no focus): drink red yes, pick blue no, drink blue yes
+    assert (model.focus_steps_, model.focus_hits_, model.focus_share_) == (3, 2.0, 1.5)
+    assert model.focus_lift() == pytest.approx(((2 + 1) / (1.5 + 1), (3 - 2 + 1) / (3 - 1.5 + 1)))
+    fitted = RoutineOracle(kitchen(), focus=1).fit(history[:2])
+    for step in history[2:]:
+        fitted.partial_fit(step)
+    assert fitted.focus_lift() == model.focus_lift()

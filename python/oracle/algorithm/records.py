@@ -37,8 +37,8 @@ class Option:
         return tuple(obj for obj in (self.target, self.reference) if obj is not None)
 
     def __str__(self) -> str:
-        names = [_local(obj) for obj in (self.reference, self.target) if obj is not None]
-        return f"{_local(self.task)}({', '.join(names)})" if names else _local(self.task)
+        names = [local_name(obj) for obj in (self.reference, self.target) if obj is not None]
+        return f"{local_name(self.task)}({', '.join(names)})" if names else local_name(self.task)
 
 
 def option_key(option: Option) -> tuple[str, str, str]:
@@ -151,7 +151,7 @@ class Ranking:
         return tuple(chain)
 
 
-def _local(iri: str) -> str:
+def local_name(iri: str) -> str:
     for sep in ("#", "/"):
         if sep in iri:
             iri = iri.rsplit(sep, 1)[1]

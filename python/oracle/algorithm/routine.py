@@ -3,7 +3,7 @@ to ontology similarity of past situations, self-tuned on the user's own history.
 
 For each variant ``v = (stream, order, tau, n0, timed, discount, novelty)`` the probability of a candidate
 is PPM-C over the user's exact contexts (and the same contexts at this part of day) whose lowest
-level is the similarity distribution ``Q`` of ``kernel``; the predictor ranks with the variant
+level is the similarity distribution ``Q`` of ``kernel``, reweighted by the objects in hand; the predictor ranks with the variant
 that predicted the user's past steps best (``selftune``). docs/algorithm.md, "Routine predictor",
 gives every formula and the reasons.
 """
@@ -45,13 +45,15 @@ class RoutineTask(RankedTask):
     ``context`` the longest exact context (oldest first, ``idle`` for a gap) that was followed by
     this option ``n_similar`` times, ``order`` its length (0: the option was done, in no matching
     context; -1: never done); ``situations`` the history positions of those past situations
-    (latest last), or of the most similar past actions when there are none.
+    (latest last), or of the most similar past actions when there are none; ``focus`` the
+    option's objects that the user's latest actions used (the objects in hand, which lift it).
     """
 
     probability: float = 0.0
     order: int = -1
     context: tuple[str, ...] = ()
     situations: tuple[int, ...] = ()
+    focus: tuple[str, ...] = ()
 
 
 class _Stream:
@@ -78,7 +80,10 @@ class RoutineOracle(EstimatorParams):
     order's estimate; the part-of-day levels from ``timed_discount_from``, None: as the rest;
     ``timed_shrink``: a part-of-day level escapes as often as its context has distinct followers
     at any time of day) and
-    ``streams`` span the variants that ``tuning`` weighs; ``exclusion`` lets the lowest counted
+    ``streams`` span the variants that ``tuning`` weighs (``timed_blend``: a timed variant averaged
+    with its untimed twin); ``focus`` reweights ``Q`` (``focus_level`` "top": each variant's
+    blend) by the user's own lift of the options that use an object of the latest ``focus``
+    actions (``focus_odds``: and of those that do not); ``exclusion`` lets the lowest counted
     level escape only to the options it did not count; ``novelty`` (variants) gives the never-done
     options together the PPM-C estimate of a novel action
     ("leader": the best so far that leads the first variant by ``switch_margin`` standard errors,
@@ -87,7 +92,8 @@ class RoutineOracle(EstimatorParams):
     """
 
     _param_names = ("distances", "opening_tasks", "orders", "temperatures", "lowest_orders", "timed", "timed_from",
-                    "discounts", "discount_from", "discount_evidence", "timed_discount_from", "timed_shrink", "timed_to", "streams",
+                    "discounts", "discount_from", "discount_evidence", "timed_discount_from", "timed_shrink", "timed_to",
+                    "timed_blend", "focus", "focus_level", "focus_odds", "streams",
                     "timed_gate",
                     "exclusion", "novelty",
                     "context_depth", "switch_margin", "context_decay", "tuning", "tuning_window", "task_factor", "object_factor",
@@ -99,7 +105,9 @@ class RoutineOracle(EstimatorParams):
                  lowest_orders: tuple[int, ...] = (0, 1), timed: tuple[bool, ...] = (True,),
                  timed_from: int = 0, discounts: tuple[bool, ...] = (True,), discount_from: int = 2,
                  discount_evidence: int = 100, timed_discount_from: int | None = None, timed_shrink: bool = False,
-                 timed_to: int | None = None, streams: tuple[str, ...] = ("idle",), timed_gate: float | None = None,
+                 timed_to: int | None = None, timed_blend: float | None = None,
+                 focus: int = 3, focus_level: str = "base", focus_odds: bool = True,
+                 streams: tuple[str, ...] = ("idle",), timed_gate: float | None = None,
                  exclusion: bool = False,
                  novelty: tuple[bool, ...] = (False, True),
                  context_depth: int = 3, context_decay: float = 0.5,
@@ -121,6 +129,10 @@ class RoutineOracle(EstimatorParams):
         self.timed_discount_from = timed_discount_from
         self.timed_shrink = timed_shrink
         self.timed_to = timed_to
+        self.timed_blend = timed_blend
+        self.focus = focus
+        self.focus_level = focus_level
+        self.focus_odds = focus_odds
         self.streams = streams
         self.timed_gate = timed_gate
         self.exclusion = exclusion
@@ -162,6 +174,16 @@ class RoutineOracle(EstimatorParams):
         if self.timed_to is not None and (isinstance(self.timed_to, bool) or not isinstance(self.timed_to, int)
                                           or self.timed_to < 0):
             raise SettingsError(f"{name}: timed_to must be None or a whole number >= 0, got {self.timed_to!r}")
+        if self.timed_blend is not None and (isinstance(self.timed_blend, bool)
+                                             or not isinstance(self.timed_blend, (int, float))
+                                             or not 0 <= self.timed_blend <= 1):
+            raise SettingsError(f"{name}: timed_blend must be None or a number from 0 to 1, got {self.timed_blend!r}")
+        if isinstance(self.focus, bool) or not isinstance(self.focus, int) or self.focus < 0:
+            raise SettingsError(f"{name}: focus must be a whole number >= 0, got {self.focus!r}")
+        if not isinstance(self.focus_odds, bool):
+            raise SettingsError(f"{name}: focus_odds must be True or False, got {self.focus_odds!r}")
+        if self.focus_level not in ("base", "top"):
+            raise SettingsError(f"{name}: focus_level must be base or top, got {self.focus_level!r}")
         if not isinstance(self.timed_shrink, bool):
             raise SettingsError(f"{name}: timed_shrink must be True or False, got {self.timed_shrink!r}")
         if isinstance(self.timed_from, bool) or not isinstance(self.timed_from, int) or self.timed_from < 0:
@@ -209,6 +231,10 @@ class RoutineOracle(EstimatorParams):
         self._position = Rows(1)        # per past action: its position in the history
         self._next = Rows(1)            # per history position: successor position, -1 none or idle
         self._step_ids = Rows(1)        # per history position: option id, -1 idle
+        self._objects: list[frozenset[str]] = []  # per interned option: its object classes
+        self.focus_hits_ = 0.0   # steps whose option shared an object with the focus
+        self.focus_share_ = 0.0  # sum over those steps of the offered options' share in focus
+        self.focus_steps_ = 0
         self.n_steps_ = 0
         self.fitted_steps_: int | None = 0  # the length of the history fit() saw; None once partial_fit
         self._grow(list(history))
@@ -270,6 +296,7 @@ class RoutineOracle(EstimatorParams):
         self._table[: old + 1, old] = distances
         self._ids[option] = old
         self.options_.append(option)
+        self._objects.append(frozenset(option.objects()))
         return old
 
     def _distances(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -278,17 +305,26 @@ class RoutineOracle(EstimatorParams):
     def _add(self, step: Step, score: bool) -> None:
         if not isinstance(step, Step):
             raise TypeError(f"history entries must be Step records, got {type(step).__name__}")
-        if score and self.tuning != "fixed" and not step.idle and step.options:  # "fixed" needs no scores
+        inside, truth = None, -1
+        if not step.idle and step.options:
             offered, _ = offered_options(step, None)
             if step.option in offered:
                 truth = offered.index(step.option)
-                self.weights_.update(self._variant_probabilities(offered, step.time_of_day)[0], truth,
-                                   self.n_steps_)
+                inside = self._in_focus(offered) if self.focus else None
+                if score and self.tuning != "fixed":  # "fixed" needs no scores
+                    self.weights_.update(self._variant_probabilities(offered, step.time_of_day, inside=inside)[0],
+                                         truth, self.n_steps_)
         position = self.n_steps_
         known = self._ids
         for option in step.options:  # offered again later: their distances are then looked up
             if option not in known:
                 self._intern(option)
+        if inside is not None:
+            n_in = int(inside.sum())
+            if 0 < n_in < inside.size:  # the offer held options in focus and out of it
+                self.focus_hits_ += float(inside[truth])
+                self.focus_share_ += n_in / inside.size
+                self.focus_steps_ += 1
         if step.idle:
             token = IDLE
         else:
@@ -310,11 +346,38 @@ class RoutineOracle(EstimatorParams):
 
     # -- ranking --------------------------------------------------------------------------
 
+    def _in_focus(self, offered: Sequence[Option]) -> np.ndarray:
+        """Per offered option: does it use an object of the latest ``focus`` actions?"""
+        held = self._held()
+        return np.array([not held.isdisjoint(option.objects()) for option in offered], dtype=bool)
+
+    def _held(self) -> frozenset[str]:
+        """The objects of the latest ``focus`` actions (idle gaps skipped)."""
+        recent = self._executed.view[-self.focus:, 0].tolist() if self.focus and self._executed.size else []
+        return frozenset().union(*(self._objects[t] for t in recent))
+
+    def focus_lift(self) -> tuple[float, float]:
+        """The weights of an offered option in focus and of one out of it: the user's rate of
+        choosing an option in focus over the share of such options in the offer, and (with
+        ``focus_odds``) the same for the options out of focus, each with one pseudo-step."""
+        inside = (self.focus_hits_ + 1.0) / (self.focus_share_ + 1.0)
+        outside = ((self.focus_steps_ - self.focus_hits_ + 1.0) / (self.focus_steps_ - self.focus_share_ + 1.0)
+                   if self.focus_odds else 1.0)
+        return inside, outside
+
+    def _focus_weights(self, inside: np.ndarray | None) -> np.ndarray | None:
+        """The lift of each offered option, or None (no focus, or nothing to tell apart)."""
+        if inside is None or not inside.any() or inside.all():
+            return None
+        lift, rest = self.focus_lift()
+        return np.where(inside, lift, rest)
+
     def _variant_probabilities(self, offered: Sequence[Option], now: str | None,
-                               which: Sequence[int] | None = None
+                               which: Sequence[int] | None = None, inside: np.ndarray | None = None
                                ) -> tuple[list[np.ndarray], list[Blend], np.ndarray]:
         """The distribution over ``offered`` and the blend of each variant in ``which`` (default:
-        all), and the candidates' Algorithm 2 distances to every interned option."""
+        all), and the candidates' Algorithm 2 distances to every interned option (``inside``:
+        which offered options are in focus, None without focus)."""
         ids = [self._ids.get(option, UNKNOWN) for option in offered]
         count = len(self.options_)
         if UNKNOWN in ids:
@@ -330,25 +393,31 @@ class RoutineOracle(EstimatorParams):
         context = {name: context_distance(table, s.recent(), s.before.view, self.penalty, self.context_decay)
                    for name, s in self._streams.items() if any(v[0] == name for v in chosen)}
         base: dict[tuple[str, float], np.ndarray] = {}
+        focus = self._focus_weights(inside)
         blends: dict[tuple[str, int, float, int, bool, bool, bool], Blend] = {}
         probabilities = []
         memo: Memo = {}  # the counts' look-ups, shared by the variants (same candidates, same counts)
         # variants alike but for the order, the temperature, the lowest order and the novelty:
         # one blend pass (orders as stops; per lowest order and novelty a lane of bases as rows)
         groups: dict[tuple[str, bool, bool], dict[tuple[int, bool], tuple[list[int], list[float]]]] = {}
+        blended = self.timed_blend is not None and now_code >= 0
         for stream, order, tau, lowest, timed, discount, novel in chosen:
-            stops, taus = groups.setdefault((stream, timed, discount), {}).setdefault((lowest, novel), ([], []))
-            if order not in stops:
-                stops.append(order)
-            if tau not in taus:
-                taus.append(tau)
+            # with timed_blend a timed variant also needs its untimed twin
+            for clocked in ((timed, False) if timed and blended else (timed,)):
+                stops, taus = groups.setdefault((stream, clocked, discount), {}).setdefault((lowest, novel), ([], []))
+                if order not in stops:
+                    stops.append(order)
+                if tau not in taus:
+                    taus.append(tau)
         for (stream, timed, discount), lanes in groups.items():
             stops = sorted({order for lane_stops, _ in lanes.values() for order in lane_stops})
             for _, taus in lanes.values():
                 for tau in taus:
                     if (stream, tau) not in base:
-                        base[stream, tau] = normalised(similarity_mass(cand, executed, context[stream], differs, tau,
-                                                                       self.time_of_day_penalty))
+                        mass = similarity_mass(cand, executed, context[stream], differs, tau, self.time_of_day_penalty)
+                        if focus is not None and self.focus_level == "base":
+                            mass = normalised(mass) * focus
+                        base[stream, tau] = normalised(mass)
             found = self._streams[stream].counts.lane_blends(
                 ids, [(np.stack([base[stream, tau] for tau in taus]), lowest, novel)
                       for (lowest, novel), (_, taus) in lanes.items()],
@@ -360,6 +429,18 @@ class RoutineOracle(EstimatorParams):
                     for row, tau in enumerate(taus):
                         blends[stream, order, tau, lowest, timed, discount, novel] = Blend(
                             rows.probabilities[row], rows.order, rows.count)
+        if blended:  # a timed variant: its chain and the untimed twin's, averaged
+            weight = float(self.timed_blend)  # type: ignore[arg-type]
+            for variant in chosen:
+                if variant[4]:
+                    twin = blends[variant[:4] + (False,) + variant[5:]]
+                    timed_blend = blends[variant]
+                    blends[variant] = Blend((1 - weight) * timed_blend.probabilities + weight * twin.probabilities,
+                                            timed_blend.order, timed_blend.count)
+        if focus is not None and self.focus_level == "top":
+            for variant in chosen:
+                b = blends[variant]
+                blends[variant] = Blend(b.probabilities * focus, b.order, b.count)
         for variant in chosen:
             probabilities.append(blends[variant].probabilities)
         return probabilities, [blends[v] for v in chosen], cand
@@ -374,7 +455,8 @@ class RoutineOracle(EstimatorParams):
             return Ranking(())
         weights = self.weights_.weights(self.tuning, self.switch_margin)
         used = np.flatnonzero(weights > 0).tolist()  # the leader alone, unless mixing
-        probabilities, blends, cand = self._variant_probabilities(offered, now, used)
+        inside = self._in_focus(offered) if self.focus else None
+        probabilities, blends, cand = self._variant_probabilities(offered, now, used, inside)
         mixed = np.zeros(len(offered))
         for weight, p in zip(weights[used], probabilities):
             mixed += weight * p
@@ -385,6 +467,7 @@ class RoutineOracle(EstimatorParams):
         stream = self._streams[self.variants_[used[lead]][0]]
         order = sorted(range(len(offered)), key=lambda i: (-mixed[i], i))
         nearest = cand.min(axis=1) if cand.shape[1] else np.full(len(offered), math.inf)
+        held = self._held()
         present = frozenset(present_objects) if present_objects is not None else frozenset(
             obj for option in offered for obj in option.objects())
         tasks = []
@@ -403,7 +486,8 @@ class RoutineOracle(EstimatorParams):
             tasks.append(RoutineTask(
                 rank, -math.log2(probability) if probability > 0 else math.inf, option,
                 int(explain.count[i]) if n >= 0 else 0, float(nearest[i]), successors, probability, n,
-                tuple(self._label(t) for t in context or ()), tuple(situations[-5:]) if n >= 0 else ()))
+                tuple(self._label(t) for t in context or ()), tuple(situations[-5:]) if n >= 0 else (),
+                tuple(obj for obj in option.objects() if obj in held) if inside is not None else ()))
         return Ranking(tuple(tasks))
 
     def _support(self, stream: _Stream, option_id: int, context: tuple[int, ...], n: int) -> list[int]:

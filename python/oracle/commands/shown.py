@@ -12,6 +12,7 @@ if TYPE_CHECKING:
 
 def describe(task) -> str:  # noqa: ANN001 - a RankedTask
     """One line of why a task stands where it does; scores are lower-is-better for every method."""
+    from oracle.algorithm.records import local_name
     from oracle.algorithm.routine import RoutineTask
 
     if isinstance(task, RoutineTask):
@@ -21,6 +22,8 @@ def describe(task) -> str:  # noqa: ANN001 - a RankedTask
             why = f"done {task.n_similar}x, not after this context"
         else:
             why = "no past context: by similarity"
+        if task.focus:
+            why += f"; uses {', '.join(local_name(obj) for obj in task.focus)} in hand"
         return f"p {task.probability:.3f} ({why})"
     return "no similar history" if math.isinf(task.score) else f"score {task.score:.4f} from {task.n_similar} similar"
 

@@ -1,0 +1,77 @@
+"""How often a user's next action uses an object of their latest actions, against the offer.
+
+usage: python scripts/focus-rates.py CHAINS [CHAINS ...] [--depth M]
+
+For each chains file, over every step with objects in hand (the objects of the latest M actions,
+default 3): the share of steps whose action uses one of them, and the mean share of the offered
+options that do (the row's ``available``, or every distinct action of the user in the file, as
+the replay offers). Both for first uses (among the options never done before) and for the other
+steps (among the options done before). docs/algorithm.md, "Sixth round", reads it. Calls are
+parsed as text (``task(object, object)``): no ontology is needed.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from collections import OrderedDict
+from dataclasses import dataclass
+from pathlib import Path
+
+
+def objects(call: str) -> frozenset[str]:
+    """The objects named in ``task(a, b)``."""
+    inner = call.partition("(")[2].rpartition(")")[0]
+    return frozenset(name.strip() for name in inner.split(",") if name.strip())
+
+
+@dataclass
+class Rates:
+    steps: int = 0
+    uses: int = 0          # steps whose action uses an object in hand
+    offered: float = 0.0   # sum over steps of the share of the options that do
+
+    def text(self) -> str:
+        if not self.steps:
+            return "no steps"
+        return f"{self.steps} steps: action {self.uses / self.steps:.3f}, offer {self.offered / self.steps:.3f}"
+
+
+def rates(path: Path, depth: int) -> dict[str, Rates]:
+    users: OrderedDict[str, list[dict]] = OrderedDict()
+    for line in path.read_text().splitlines():
+        if line.strip():
+            row = json.loads(line)
+            users.setdefault(row["user"], []).append(row)
+    out = {"first": Rates(), "again": Rates()}
+    for rows in users.values():
+        every = list(OrderedDict.fromkeys(row["action"] for row in rows))
+        done: set[str] = set()
+        recent: list[str] = []
+        for row in rows:
+            action = row["action"]
+            held = frozenset().union(*(objects(call) for call in recent[-depth:]))
+            first = action not in done
+            pool = [c for c in (row.get("available") or every) if (c not in done) == first]
+            if held and pool:
+                r = out["first" if first else "again"]
+                r.steps += 1
+                r.uses += bool(objects(action) & held)
+                r.offered += sum(bool(objects(c) & held) for c in pool) / len(pool)
+            done.add(action)
+            recent.append(action)
+    return out
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("chains", nargs="+", type=Path)
+    parser.add_argument("--depth", type=int, default=3)
+    args = parser.parse_args()
+    for path in args.chains:
+        found = rates(path, args.depth)
+        print(f"{path}: first uses {found['first'].text()}; other steps {found['again'].text()}")
+
+
+if __name__ == "__main__":
+    main()
