@@ -79,8 +79,8 @@ def something_else_sentence(answer: dict[str, Any]) -> str:
 def support_sentence(entry: dict[str, Any]) -> str:
     """Why a ranked task stands where it does, short enough for a touch target: the service's
     ranking entry (``support`` and, from the routine predictor, ``context_order``, ``context``
-    and the times of the supporting past ``situations``, latest last; ``done``: whether the user
-    ever did it). The sentence names the last two steps of the context; the entry holds it all."""
+    and the times of the supporting past ``situations``, latest last; ``focus``: the objects in
+    hand it uses; ``done``: whether the user ever did it). The sentence names the last two steps of the context; the entry holds it all."""
     n = int(entry.get("support") or 0)
     order = entry.get("context_order")
     times = entry.get("situations") or []
@@ -91,9 +91,11 @@ def support_sentence(entry: dict[str, Any]) -> str:
         context = ["a break" if c == "idle" else c for c in entry.get("context") or []]
         after = ("\u2026 " if len(context) > SHOWN_CONTEXT else "") + " \u2192 ".join(context[-SHOWN_CONTEXT:])
         return f"after {after}: {n}\u00d7{last}"
+    held = entry.get("focus") or []
+    hand = f"; uses {', '.join(held)} in hand" if held else ""
     if order == 0 or entry.get("done"):
-        return f"done {n}\u00d7, not at this point{last}" if n else "done before, not at this point"
-    return "never done: like similar tasks"
+        return (f"done {n}\u00d7, not at this point{last}" if n else "done before, not at this point") + hand
+    return f"never done: uses {', '.join(held)} in hand" if held else "never done: like similar tasks"
 
 
 #: Context steps a support sentence names (the latest ones).

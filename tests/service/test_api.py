@@ -353,3 +353,15 @@ def test_the_request_log_holds_ids_never_the_users_data(ctx, caplog):
     assert "POST /api/neems/{neem}/situation neem=ada 200" in text
     for secret in ("Ada Lovelace", "banana", "red_mug", "fridge", "thermos", "unicorn", "secretquery", "s3cret", "wrong-token"):
         assert secret not in text, secret
+
+
+def test_a_reason_names_the_objects_in_hand_where_no_context_backs_the_task():
+    from oracle.answers import support_sentence
+
+    never = {"support": 0, "context_order": -1, "context": [], "situations": [], "done": False}
+    assert support_sentence({**never, "focus": ["red_mug"]}) == "never done: uses red_mug in hand"
+    assert support_sentence({**never, "focus": []}) == "never done: like similar tasks"
+    done = {**never, "support": 2, "context_order": 0, "done": True, "focus": ["fridge", "milk"]}
+    assert support_sentence(done) == "done 2\u00d7, not at this point; uses fridge, milk in hand"
+    after = {**done, "context_order": 1, "context": ["pick(milk)"]}
+    assert support_sentence(after) == "after pick(milk): 2\u00d7"    # a counted context says enough
