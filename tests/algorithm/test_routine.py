@@ -565,7 +565,7 @@ def test_the_objects_in_hand_lift_the_never_done_options_that_use_them():
     assert plain[0].probability == pytest.approx(plain[1].probability)   # alike by similarity: offered order
     model = RoutineOracle(kitchen(), focus=1).fit(history)
     handled = model.rank(offered)
-    lift, rest = model.focus_lift()
+    lift, rest = model.hand_.lift(model.focus_odds)
     assert lift > 1 > rest   # this user goes on with what they just picked
     # both escape to the lowest level alike, so their odds are the lift's
     assert handled[0].probability / handled[1].probability == pytest.approx(lift / rest)
@@ -578,9 +578,10 @@ def test_the_lift_is_the_users_own_rate_of_using_an_object_in_hand_against_the_o
     model = RoutineOracle(kitchen(), focus=1).fit(history)
     # with the latest action's objects in focus, half the 4 offered options use them at steps 2-4
     # (the first step has no focus): drink red yes, pick blue no, drink blue yes
-    assert (model.focus_steps_, model.focus_hits_, model.focus_share_) == (3, 2.0, 1.5)
-    assert model.focus_lift() == pytest.approx(((2 + 1) / (1.5 + 1), (3 - 2 + 1) / (3 - 1.5 + 1)))
+    assert (model.hand_.steps, model.hand_.hits, model.hand_.share) == (3, 2.0, 1.5)
+    assert model.hand_.lift(True) == pytest.approx(((2 + 1) / (1.5 + 1), (3 - 2 + 1) / (3 - 1.5 + 1)))
+    assert model.hand_.lift(False) == pytest.approx(((2 + 1) / (1.5 + 1), 1.0))
     fitted = RoutineOracle(kitchen(), focus=1).fit(history[:2])
     for step in history[2:]:
         fitted.partial_fit(step)
-    assert fitted.focus_lift() == model.focus_lift()
+    assert fitted.hand_ == model.hand_

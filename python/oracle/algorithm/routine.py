@@ -19,9 +19,11 @@ from typing import Any
 import numpy as np
 
 from oracle.algorithm.contexts import IDLE, UNKNOWN, Blend, ContextCounts, Memo
+from oracle.algorithm.focus import HandLift, held_objects, in_focus
 from oracle.algorithm.params import THESIS_DEFAULTS, EstimatorParams
 from oracle.algorithm.kernel import START, Rows, context_distance, normalised, similarity_mass
 from oracle.algorithm.reference import offered_options
+from oracle.algorithm.routine_settings import check_settings
 from oracle.algorithm.selftune import VariantWeights
 from oracle.algorithm.similarity import class_rows, option_distances
 from oracle.algorithm.records import Option, RankedTask, Ranking, Step, TreeNode
@@ -30,8 +32,6 @@ from oracle.errors import SettingsError
 from oracle.timeline import TIME_OF_DAY_NAMES
 
 _TOD = {name: code for code, name in enumerate(TIME_OF_DAY_NAMES)}
-STREAMS = ("idle", "through")   # idle steps as tokens / contexts that run across idle steps
-TUNINGS = ("leader", "mixture", "fixed")
 #: ``fit`` scores the variants on at most this many latest steps by default (``tuning_window``;
 #: ``partial_fit`` scores every step).
 TUNING_WINDOW = 1000
@@ -150,71 +150,8 @@ class RoutineOracle(EstimatorParams):
 
     # -- learning -------------------------------------------------------------------------
 
-    def _validate(self) -> None:
-        name = type(self).__name__
-        if not self.orders or any(isinstance(n, bool) or not isinstance(n, int) or n < 0 for n in self.orders):
-            raise SettingsError(f"{name}: orders must be whole numbers >= 0, got {self.orders!r}")
-        if not self.lowest_orders or any(isinstance(n, bool) or not isinstance(n, int) or n not in (0, 1)
-                                         for n in self.lowest_orders):
-            raise SettingsError(f"{name}: lowest_orders must be 0 or 1, got {self.lowest_orders!r}")
-        if not self.timed or any(not isinstance(t, bool) for t in self.timed):
-            raise SettingsError(f"{name}: timed must be True or False values, got {self.timed!r}")
-        if not self.discounts or any(not isinstance(t, bool) for t in self.discounts):
-            raise SettingsError(f"{name}: discounts must be True or False values, got {self.discounts!r}")
-        if isinstance(self.discount_from, bool) or not isinstance(self.discount_from, int) or self.discount_from < 0:
-            raise SettingsError(f"{name}: discount_from must be a whole number >= 0, got {self.discount_from!r}")
-        if (isinstance(self.discount_evidence, bool) or not isinstance(self.discount_evidence, int)
-                or self.discount_evidence < 0):
-            raise SettingsError(f"{name}: discount_evidence must be a whole number >= 0, got {self.discount_evidence!r}")
-        if self.timed_discount_from is not None and (isinstance(self.timed_discount_from, bool)
-                                                     or not isinstance(self.timed_discount_from, int)
-                                                     or self.timed_discount_from < 0):
-            raise SettingsError(f"{name}: timed_discount_from must be None or a whole number >= 0, "
-                                f"got {self.timed_discount_from!r}")
-        if self.timed_to is not None and (isinstance(self.timed_to, bool) or not isinstance(self.timed_to, int)
-                                          or self.timed_to < 0):
-            raise SettingsError(f"{name}: timed_to must be None or a whole number >= 0, got {self.timed_to!r}")
-        if self.timed_blend is not None and (isinstance(self.timed_blend, bool)
-                                             or not isinstance(self.timed_blend, (int, float))
-                                             or not 0 <= self.timed_blend <= 1):
-            raise SettingsError(f"{name}: timed_blend must be None or a number from 0 to 1, got {self.timed_blend!r}")
-        if isinstance(self.focus, bool) or not isinstance(self.focus, int) or self.focus < 0:
-            raise SettingsError(f"{name}: focus must be a whole number >= 0, got {self.focus!r}")
-        if not isinstance(self.focus_odds, bool):
-            raise SettingsError(f"{name}: focus_odds must be True or False, got {self.focus_odds!r}")
-        if self.focus_level not in ("base", "top"):
-            raise SettingsError(f"{name}: focus_level must be base or top, got {self.focus_level!r}")
-        if not isinstance(self.timed_shrink, bool):
-            raise SettingsError(f"{name}: timed_shrink must be True or False, got {self.timed_shrink!r}")
-        if isinstance(self.timed_from, bool) or not isinstance(self.timed_from, int) or self.timed_from < 0:
-            raise SettingsError(f"{name}: timed_from must be a whole number >= 0, got {self.timed_from!r}")
-        if not self.temperatures or any(not (isinstance(t, (int, float)) and math.isfinite(t) and t > 0)
-                                        for t in self.temperatures):
-            raise SettingsError(f"{name}: temperatures must be positive numbers, got {self.temperatures!r}")
-        if not self.streams or any(s not in STREAMS for s in self.streams):
-            raise SettingsError(f"{name}: streams must be among {', '.join(STREAMS)}, got {self.streams!r}")
-        if self.timed_gate is not None and (isinstance(self.timed_gate, bool) or not isinstance(self.timed_gate, (int, float))
-                                            or not math.isfinite(self.timed_gate)):
-            raise SettingsError(f"{name}: timed_gate must be a number (a standard normal quantile) or None, "
-                                f"got {self.timed_gate!r}")
-        if not isinstance(self.exclusion, bool):
-            raise SettingsError(f"{name}: exclusion must be True or False, got {self.exclusion!r}")
-        if not isinstance(self.novelty, (tuple, list)) or not self.novelty or any(not isinstance(t, bool) for t in self.novelty):
-            raise SettingsError(f"{name}: novelty must be True or False values, got {self.novelty!r}")
-        if self.tuning not in TUNINGS:
-            raise SettingsError(f"{name}: tuning must be one of {', '.join(TUNINGS)}, got {self.tuning!r}")
-        if isinstance(self.tuning_window, bool) or not isinstance(self.tuning_window, int) or self.tuning_window < 0:
-            raise SettingsError(f"{name}: tuning_window must be a whole number >= 0, got {self.tuning_window!r}")
-        if not isinstance(self.context_depth, int) or self.context_depth < 0:
-            raise SettingsError(f"{name}: context_depth must be a whole number >= 0, got {self.context_depth!r}")
-        for value, what in ((self.context_decay, "context_decay"), (self.switch_margin, "switch_margin"),
-                            (self.task_factor, "task_factor"), (self.object_factor, "object_factor"), (self.penalty, "penalty"),
-                            (self.time_of_day_penalty, "time_of_day_penalty")):
-            if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value < 0:
-                raise SettingsError(f"{name}: {what} must be a number >= 0, got {value!r}")
-
     def fit(self, history: Iterable[Step]) -> RoutineOracle:
-        self._validate()
+        check_settings(self)
         self._raw_params = tuple(self.get_params().values())
         self.variants_ = tuple(product(self.streams, self.orders, self.temperatures, self.lowest_orders,
                                       self.timed, self.discounts, self.novelty))
@@ -232,9 +169,7 @@ class RoutineOracle(EstimatorParams):
         self._next = Rows(1)            # per history position: successor position, -1 none or idle
         self._step_ids = Rows(1)        # per history position: option id, -1 idle
         self._objects: list[frozenset[str]] = []  # per interned option: its object classes
-        self.focus_hits_ = 0.0   # steps whose option shared an object with the focus
-        self.focus_share_ = 0.0  # sum over those steps of the offered options' share in focus
-        self.focus_steps_ = 0
+        self.hand_ = HandLift()
         self.n_steps_ = 0
         self.fitted_steps_: int | None = 0  # the length of the history fit() saw; None once partial_fit
         self._grow(list(history))
@@ -320,11 +255,7 @@ class RoutineOracle(EstimatorParams):
             if option not in known:
                 self._intern(option)
         if inside is not None:
-            n_in = int(inside.sum())
-            if 0 < n_in < inside.size:  # the offer held options in focus and out of it
-                self.focus_hits_ += float(inside[truth])
-                self.focus_share_ += n_in / inside.size
-                self.focus_steps_ += 1
+            self.hand_.observe(inside, truth)
         if step.idle:
             token = IDLE
         else:
@@ -348,29 +279,12 @@ class RoutineOracle(EstimatorParams):
 
     def _in_focus(self, offered: Sequence[Option]) -> np.ndarray:
         """Per offered option: does it use an object of the latest ``focus`` actions?"""
-        held = self._held()
-        return np.array([not held.isdisjoint(option.objects()) for option in offered], dtype=bool)
+        return in_focus(self._held(), offered)
 
     def _held(self) -> frozenset[str]:
         """The objects of the latest ``focus`` actions (idle gaps skipped)."""
         recent = self._executed.view[-self.focus:, 0].tolist() if self.focus and self._executed.size else []
-        return frozenset().union(*(self._objects[t] for t in recent))
-
-    def focus_lift(self) -> tuple[float, float]:
-        """The weights of an offered option in focus and of one out of it: the user's rate of
-        choosing an option in focus over the share of such options in the offer, and (with
-        ``focus_odds``) the same for the options out of focus, each with one pseudo-step."""
-        inside = (self.focus_hits_ + 1.0) / (self.focus_share_ + 1.0)
-        outside = ((self.focus_steps_ - self.focus_hits_ + 1.0) / (self.focus_steps_ - self.focus_share_ + 1.0)
-                   if self.focus_odds else 1.0)
-        return inside, outside
-
-    def _focus_weights(self, inside: np.ndarray | None) -> np.ndarray | None:
-        """The lift of each offered option, or None (no focus, or nothing to tell apart)."""
-        if inside is None or not inside.any() or inside.all():
-            return None
-        lift, rest = self.focus_lift()
-        return np.where(inside, lift, rest)
+        return held_objects(self._objects[t] for t in recent)
 
     def _variant_probabilities(self, offered: Sequence[Option], now: str | None,
                                which: Sequence[int] | None = None, inside: np.ndarray | None = None
@@ -393,7 +307,7 @@ class RoutineOracle(EstimatorParams):
         context = {name: context_distance(table, s.recent(), s.before.view, self.penalty, self.context_decay)
                    for name, s in self._streams.items() if any(v[0] == name for v in chosen)}
         base: dict[tuple[str, float], np.ndarray] = {}
-        focus = self._focus_weights(inside)
+        focus = self.hand_.weights(inside, self.focus_odds)
         blends: dict[tuple[str, int, float, int, bool, bool, bool], Blend] = {}
         probabilities = []
         memo: Memo = {}  # the counts' look-ups, shared by the variants (same candidates, same counts)

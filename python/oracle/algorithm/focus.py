@@ -1,0 +1,58 @@
+"""The objects in hand: the user's own lift of the options that use an object of their latest
+actions (docs/algorithm.md, "Objects in hand").
+
+``w_in = (h + 1) / (s + 1)`` and ``w_out = (n - h + 1) / (n - s + 1)`` over the ``n`` past steps
+whose offer held options both in and out of focus: ``h`` of them chose one in focus, ``s`` sums
+the share of such options in each offer. The routine predictor multiplies its similarity level by
+them (``routine.RoutineOracle``, parameters ``focus``, ``focus_odds``, ``focus_level``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from oracle.algorithm.records import Option
+
+
+def held_objects(objects: Iterable[frozenset[str]]) -> frozenset[str]:
+    """The objects of the given actions together."""
+    return frozenset().union(*objects)
+
+
+def in_focus(held: frozenset[str], offered: Sequence[Option]) -> np.ndarray:
+    """Per offered option: does it use one of the ``held`` objects?"""
+    return np.array([not held.isdisjoint(option.objects()) for option in offered], dtype=bool)
+
+
+@dataclass
+class HandLift:
+    """What the user's past steps say about choosing an option in focus."""
+
+    hits: float = 0.0    # steps whose option done was in focus
+    share: float = 0.0   # sum over the steps of the share of the offer in focus
+    steps: int = 0
+
+    def observe(self, inside: np.ndarray, truth: int) -> None:
+        """Count a step (``inside`` per offered option, ``truth`` the index of the option done),
+        when its offer held options in focus and out of it."""
+        n_in = int(inside.sum())
+        if 0 < n_in < inside.size:
+            self.hits += float(inside[truth])
+            self.share += n_in / inside.size
+            self.steps += 1
+
+    def lift(self, odds: bool) -> tuple[float, float]:
+        """``(w_in, w_out)``, each with one pseudo-step; ``w_out`` is 1 without ``odds``."""
+        inside = (self.hits + 1.0) / (self.share + 1.0)
+        outside = (self.steps - self.hits + 1.0) / (self.steps - self.share + 1.0) if odds else 1.0
+        return inside, outside
+
+    def weights(self, inside: np.ndarray | None, odds: bool) -> np.ndarray | None:
+        """The weight of each offered option, or None (no focus, or nothing to tell apart)."""
+        if inside is None or not inside.any() or inside.all():
+            return None
+        w_in, w_out = self.lift(odds)
+        return np.where(inside, w_in, w_out)
