@@ -1,18 +1,21 @@
 """A NEEM's fits with the routine predictor: their digest (to show a faster fit is the same fit)
 and what the whole fit costs.
 
-Usage: python scripts/fit-check.py STORE NEEM [--runs 3]
+Usage: python scripts/fit-check.py STORE NEEM [--runs 3] [--params JSON]
 Reads the NEEM's history as `rank` does, fits the default predictor and four other settings
 (novelty only, timed_shrink, timed and untimed variants, exclusion) on its first 40, 700 and
 3,000 steps, ranks the next 30 situations of each, and prints the SHA-256 of the variant
 weights and every ranked option's probability, context order, count and situations; then the
-CPU seconds of fitting the default on the whole history, each run.
+CPU seconds of fitting the default on the whole history, each run. ``--params`` adds the same
+constructor parameters to every setting (``'{"focus": 0}'``: the predictor before the objects in
+hand, whose digest docs/prolog.md quotes).
 """
 
 from __future__ import annotations
 
 import argparse
 import hashlib
+import json
 import time
 from typing import Any
 
@@ -33,6 +36,7 @@ def main() -> None:
     parser.add_argument("store")
     parser.add_argument("neem")
     parser.add_argument("--runs", type=int, default=3)
+    parser.add_argument("--params", type=json.loads, default={}, help="JSON object of parameters added to every setting")
     args = parser.parse_args()
     target = argparse.Namespace(store=args.store, neem=args.neem, odb=None, mapping=None, soma=None, ontology=None)
     bridge, onto = connect(target, write=False)
@@ -40,6 +44,7 @@ def main() -> None:
 
     def model(**settings: Any) -> Any:
         made = make_predictor(DEFAULT, onto.distances(), opening_tasks(onto), Hyperparameters())
+        settings = {**settings, **args.params}
         return made.set_params(**settings) if settings else made
 
     digest = hashlib.sha256()

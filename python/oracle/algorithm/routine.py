@@ -240,22 +240,18 @@ class RoutineOracle(EstimatorParams):
     def _add(self, step: Step, score: bool) -> None:
         if not isinstance(step, Step):
             raise TypeError(f"history entries must be Step records, got {type(step).__name__}")
-        inside, truth = None, -1
-        if not step.idle and step.options:
+        scored = score and self.tuning != "fixed" and not step.idle and bool(step.options)  # "fixed" needs no scores
+        if scored:
             offered, _ = offered_options(step, None)
             if step.option in offered:
-                truth = offered.index(step.option)
                 inside = self._in_focus(offered) if self.focus else None
-                if score and self.tuning != "fixed":  # "fixed" needs no scores
-                    self.weights_.update(self._variant_probabilities(offered, step.time_of_day, inside=inside)[0],
-                                         truth, self.n_steps_)
+                self.weights_.update(self._variant_probabilities(offered, step.time_of_day, inside=inside)[0],
+                                     offered.index(step.option), self.n_steps_)
         position = self.n_steps_
         known = self._ids
-        for option in step.options:  # offered again later: their distances are then looked up
-            if option not in known:
-                self._intern(option)
-        if inside is not None:
-            self.hand_.observe(inside, truth)
+        ids = [known[option] if option in known else self._intern(option) for option in step.options]
+        if self.focus and not step.idle and ids:
+            self._observe_focus(ids, step.option)
         if step.idle:
             token = IDLE
         else:
@@ -280,6 +276,17 @@ class RoutineOracle(EstimatorParams):
     def _in_focus(self, offered: Sequence[Option]) -> np.ndarray:
         """Per offered option: does it use an object of the latest ``focus`` actions?"""
         return in_focus(self._held(), offered)
+
+    def _observe_focus(self, ids: list[int], option: Option) -> None:
+        """Count a step for the lift: its offer (interned ids, duplicates dropped as
+        ``offered_options`` drops them) and the option done, if offered."""
+        truth = self._ids.get(option)
+        offered = list(dict.fromkeys(ids))
+        if truth is None or truth not in offered:
+            return
+        held = self._held()
+        inside = np.array([not held.isdisjoint(self._objects[i]) for i in offered], dtype=bool)
+        self.hand_.observe(inside, offered.index(truth))
 
     def _held(self) -> frozenset[str]:
         """The objects of the latest ``focus`` actions (idle gaps skipped)."""
