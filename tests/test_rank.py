@@ -128,3 +128,16 @@ def test_rank_keeps_its_fit_and_answers_the_same_with_it(store, tmp_path, monkey
     assert main(early) == 0
     fresh = json.loads(capsys.readouterr().out)
     assert first["ranking"] == fresh["ranking"] and first["history"] == fresh["history"] < outs[0]["history"]
+
+
+def test_the_terminal_names_the_objects_in_hand_only_where_no_context_backs_a_task():
+    from oracle.algorithm.records import Option
+    from oracle.algorithm.routine import RoutineTask
+    from oracle.commands.shown import describe
+
+    mug = "https://ontology.dlr.de/soma/odb#RedMug"
+    never = RoutineTask(1, 3.0, Option("https://ontology.dlr.de/soma/odb#Pick", mug), 0, 1.0, (), 0.125, -1, (), (),
+                        (mug,))
+    assert describe(never) == "p 0.125 (no past context: by similarity; uses RedMug in hand)"
+    followed = RoutineTask(1, 1.0, never.option, 4, 0.0, (), 0.5, 1, ("pick(RedMug)",), (3,), (mug,))
+    assert describe(followed) == "p 0.500 (followed [pick(RedMug)] 4x)"

@@ -22,7 +22,7 @@ def describe(task) -> str:  # noqa: ANN001 - a RankedTask
             why = f"done {task.n_similar}x, not after this context"
         else:
             why = "no past context: by similarity"
-        if task.focus:
+        if task.focus and task.order <= 0:  # where no counted context backs it, as the tablet's reason
             why += f"; uses {', '.join(local_name(obj) for obj in task.focus)} in hand"
         return f"p {task.probability:.3f} ({why})"
     return "no similar history" if math.isinf(task.score) else f"score {task.score:.4f} from {task.n_similar} similar"
