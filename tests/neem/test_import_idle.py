@@ -24,3 +24,31 @@ def test_idle_follows_ends_not_starts(tmp_path):
     # 45 s between the starts of the first two, but only 5 s of pause: one idle period, before pick(apple)
     assert len(idle) == 1
     assert idle[0].end - idle[0].begin == 250.0  # from the end of place (08:00:50) to 08:05:00
+
+
+def test_the_second_pass_logs_the_rows_the_first_kept_and_reads_a_long_file_again(tmp_path, monkeypatch):
+    import pytest
+
+    from oracle.errors import ChainSyntaxError
+    from oracle.neem import importing
+
+    rows = [{"user": "u", "time": f"2026-01-01T08:0{i}:00", "action": "pick(red_mug)"} for i in range(3)]
+    onto = build_ontology()
+
+    def checked_then_gone(name):
+        chains = tmp_path / f"{name}.jsonl"
+        chains.write_text("".join(json.dumps(r) + "\n" for r in rows))
+        checked = importing.check_chains(onto, chains)
+        chains.unlink()   # the second pass must not need the file ...
+        return chains, checked
+
+    chains, checked = checked_then_gone("kept")
+    assert checked.rows is not None and [r.line for r in checked.rows] == [1, 2, 3]
+    with open_store(tmp_path / "kept.sqlite") as store:
+        (neem,) = import_chains(store, onto, chains, checked=checked)
+        assert sum(a.task_class != onto.vocab.idle_task for a in executed_actions(store, neem)) == 3
+    monkeypatch.setattr(importing, "KEPT_ROWS", 2)   # ... unless it was longer than the rows kept
+    chains, checked = checked_then_gone("long")
+    assert checked.rows is None and checked.plans["u"].rows == 3
+    with open_store(tmp_path / "long.sqlite") as store, pytest.raises(ChainSyntaxError, match="cannot read"):
+        import_chains(store, onto, chains, checked=checked)

@@ -37,12 +37,12 @@ def run(args: argparse.Namespace) -> int:
     from oracle.store import open_store
 
     onto = ontology_from(args)
-    plans = check_chains(onto, args.chains, no_clock=args.no_clock)  # before the store is opened: a bad file creates nothing
+    checked = check_chains(onto, args.chains, no_clock=args.no_clock)  # before the store is opened: a bad file creates nothing
     with open_store(args.store, number_format=args.numbers) as store, _first_ctrl_c_between_rows() as stop:
         report: dict[str, int] = {}
         try:
             import_chains(store, onto, args.chains, replace=args.replace, report=report, commit_every=args.commit_every,
-                          session=args.session, plans=plans, no_clock=args.no_clock, stop=stop)
+                          session=args.session, checked=checked, no_clock=args.no_clock, stop=stop)
         except NeemOracleError:
             _print(report, store)
             raise

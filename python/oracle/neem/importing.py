@@ -1,9 +1,10 @@
 """Bulk import: a chains JSONL file logged into one NEEM per user.
 
-Two passes over the file, both streaming (bounded memory): the first checks every row the way
-the logger would (syntax, task and objects, roles, time order and ids per user) and notes each
-user's last line, so a bad row anywhere writes nothing; the second logs, committing a user's
-NEEM when that user's last row is logged (docs/store.md, "Durability"). A log without clock times
+Two passes: the first checks every row the way the logger would (syntax, task and objects,
+roles, time order and ids per user) and notes each user's last line, so a bad row anywhere writes
+nothing; the second logs, committing a user's NEEM when that user's last row is logged
+(docs/store.md, "Durability"). The first pass keeps the rows it parsed for the second, up to
+``KEPT_ROWS``; a longer file is read again, so memory stays bounded. A log without clock times
 imports only when asked (``no_clock``): each user's actions then lie on the sequence clock, in
 file order (docs/time.md, "Logs without a clock").
 """
@@ -24,6 +25,11 @@ from oracle.store import Store
 from oracle.store.tbox import TBox, tbox_for
 from oracle.timeline import CLOCK_KEY, IDLE_THRESHOLD_S, SEQUENCE_CLOCK, Instant, TimeValueError, seconds_of, sequence_instant
 
+#: The first pass keeps at most this many parsed rows for the second (about 0.5 kB each with
+#: their calls shared); beyond it the file is read again.
+KEPT_ROWS = 100_000
+
+
 @dataclass
 class _UserPlan:
     """What the first pass learned about one user's rows."""
@@ -34,25 +40,39 @@ class _UserPlan:
     ids: set[str] = field(default_factory=set)
 
 
-def check_chains(onto: OdbOntology, path: str | Path, *, no_clock: bool = False) -> dict[str, _UserPlan]:
-    """Check every row of a chains file as the logger will; return each user's plan.
+@dataclass(frozen=True)
+class CheckedChains:
+    """What the first pass found: each user's plan, and the rows themselves (None when the file
+    had more than ``KEPT_ROWS``: the second pass reads it again)."""
+
+    plans: dict[str, _UserPlan]
+    rows: tuple[ChainRow, ...] | None
+
+
+def check_chains(onto: OdbOntology, path: str | Path, *, no_clock: bool = False) -> CheckedChains:
+    """Check every row of a chains file as the logger will; return each user's plan and the rows.
     With ``no_clock`` every row must be time-less (no ``time``, ``end`` or ``duration``).
 
     Raises LoggingError naming the file and line of the first bad row."""
     plans: dict[str, _UserPlan] = {}
     where = str(path)
     checked: set[object] = set()
+    kept: list[ChainRow] | None = []
     try:
         for row in read_chains(path):
             where = f"{path}:{row.line}"
             plan = plans.setdefault(row.user, _UserPlan())
             _check_row(onto, row, plan, checked, no_clock)
             plan.last_line, plan.rows = row.line, plan.rows + 1
+            if kept is not None:
+                kept.append(row)
+                if len(kept) > KEPT_ROWS:
+                    kept = None
     except LoggingError as error:
         raise LoggingError(f"{where}: {error}") from None
     if not plans:
         raise LoggingError(f"{path}: no rows to import (every line is blank or a # comment)")
-    return plans
+    return CheckedChains(plans, tuple(kept) if kept is not None else None)
 
 
 def _check_row(onto: OdbOntology, row: ChainRow, plan: _UserPlan, checked: set[object], no_clock: bool) -> None:
@@ -104,7 +124,7 @@ def import_chains(
     commit_every: int = 1,
     tbox: TBox | None = None,
     session: bool = False,
-    plans: dict[str, _UserPlan] | None = None,
+    checked: CheckedChains | None = None,
     no_clock: bool = False,
     stop: Callable[[], bool] | None = None,
 ) -> dict[str, int]:
@@ -119,7 +139,7 @@ def import_chains(
     a user's last row is logged; with ``replace`` a user's old NEEM is swapped for the new one
     only then (until then, and after any error, the old one is untouched). Session NEEMs, too,
     appear only when complete, so two session imports at once do not wipe each other's.
-    ``plans`` is what ``check_chains`` returned for this file, when the caller checked it.
+    ``checked`` is what ``check_chains`` returned for this file, when the caller checked it.
     With ``no_clock`` the rows have no times: a user's n-th action (from 0) spans positions n to
     n + 1 of the sequence clock, and the NEEMs are marked as having no clock.
     ``stop`` is asked before each row; when it says True (Ctrl-C was pressed) the import ends
@@ -127,7 +147,8 @@ def import_chains(
     """
     if commit_every < 1:
         raise LoggingError(f"commit_every must be at least 1, got {commit_every}")
-    plans = check_chains(onto, path, no_clock=no_clock) if plans is None else plans
+    checked = check_chains(onto, path, no_clock=no_clock) if checked is None else checked
+    plans = checked.plans
     positions: dict[str, int] = {}
     report = {} if report is None else report
     loggers: dict[str, NeemLogger] = {}
@@ -137,7 +158,7 @@ def import_chains(
     try:
         if session:
             wipe_temporary_neems(store)
-        for row in read_chains(path):
+        for row in checked.rows if checked.rows is not None else read_chains(path):
             if stop is not None and stop():
                 raise KeyboardInterrupt
             where = f"{path}:{row.line}"
