@@ -249,7 +249,7 @@ class RoutineOracle(EstimatorParams):
                                      offered.index(step.option), self.n_steps_)
         position = self.n_steps_
         known = self._ids
-        ids = [known[option] if option in known else self._intern(option) for option in step.options]
+        ids = [self._intern(option) if (found := known.get(option)) is None else found for option in step.options]
         if self.focus and not step.idle and ids:
             self._observe_focus(ids, step.option)
         if step.idle:
