@@ -92,10 +92,16 @@ def support_sentence(entry: dict[str, Any]) -> str:
         after = ("\u2026 " if len(context) > SHOWN_CONTEXT else "") + " \u2192 ".join(context[-SHOWN_CONTEXT:])
         return f"after {after}: {n}\u00d7{last}"
     held = entry.get("focus") or []
-    hand = f"; uses {', '.join(held)} in hand" if held else ""
+    hand = f"; {in_hand(held)}" if held else ""
     if order == 0 or entry.get("done"):
         return (f"done {n}\u00d7, not at this point{last}" if n else "done before, not at this point") + hand
-    return f"never done: uses {', '.join(held)} in hand" if held else "never done: like similar tasks"
+    return f"never done: {in_hand(held)}" if held else "never done: like similar tasks"
+
+
+def in_hand(objects: list[str]) -> str:
+    """The words naming the objects in hand that lift a task (said only where no counted context
+    backs it: by the tablet's reason and by ``rank``'s text)."""
+    return f"uses {', '.join(objects)} in hand"
 
 
 #: Context steps a support sentence names (the latest ones).

@@ -9,12 +9,10 @@ them (``routine.RoutineOracle``, parameters ``focus``, ``focus_odds``, ``focus_l
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
-
-from oracle.algorithm.records import Option
 
 
 def held_objects(objects: Iterable[frozenset[str]]) -> frozenset[str]:
@@ -22,9 +20,9 @@ def held_objects(objects: Iterable[frozenset[str]]) -> frozenset[str]:
     return frozenset().union(*objects)
 
 
-def in_focus(held: frozenset[str], offered: Sequence[Option]) -> np.ndarray:
-    """Per offered option: does it use one of the ``held`` objects?"""
-    return np.array([not held.isdisjoint(option.objects()) for option in offered], dtype=bool)
+def in_focus(held: frozenset[str], objects: Iterable[Iterable[str]]) -> np.ndarray:
+    """Per offered option (given by its objects): does it use one of the ``held`` objects?"""
+    return np.array([not held.isdisjoint(used) for used in objects], dtype=bool)
 
 
 @dataclass

@@ -273,9 +273,9 @@ class RoutineOracle(EstimatorParams):
 
     # -- ranking --------------------------------------------------------------------------
 
-    def _in_focus(self, offered: Sequence[Option]) -> np.ndarray:
-        """Per offered option: does it use an object of the latest ``focus`` actions?"""
-        return in_focus(self._held(), offered)
+    def _in_focus(self, offered: Sequence[Option], held: frozenset[str] | None = None) -> np.ndarray:
+        """Per offered option: does it use an object of the latest ``focus`` actions (``held``)?"""
+        return in_focus(self._held() if held is None else held, (option.objects() for option in offered))
 
     def _observe_focus(self, ids: list[int], option: Option) -> None:
         """Count a step for the lift: its offer (interned ids, duplicates dropped as
@@ -284,9 +284,7 @@ class RoutineOracle(EstimatorParams):
         offered = list(dict.fromkeys(ids))
         if truth is None or truth not in offered:
             return
-        held = self._held()
-        inside = np.array([not held.isdisjoint(self._objects[i]) for i in offered], dtype=bool)
-        self.hand_.observe(inside, offered.index(truth))
+        self.hand_.observe(in_focus(self._held(), (self._objects[i] for i in offered)), offered.index(truth))
 
     def _held(self) -> frozenset[str]:
         """The objects of the latest ``focus`` actions (idle gaps skipped)."""
@@ -376,7 +374,8 @@ class RoutineOracle(EstimatorParams):
             return Ranking(())
         weights = self.weights_.weights(self.tuning, self.switch_margin)
         used = np.flatnonzero(weights > 0).tolist()  # the leader alone, unless mixing
-        inside = self._in_focus(offered) if self.focus else None
+        held = self._held()
+        inside = self._in_focus(offered, held) if self.focus else None
         probabilities, blends, cand = self._variant_probabilities(offered, now, used, inside)
         mixed = np.zeros(len(offered))
         for weight, p in zip(weights[used], probabilities):
@@ -388,7 +387,6 @@ class RoutineOracle(EstimatorParams):
         stream = self._streams[self.variants_[used[lead]][0]]
         order = sorted(range(len(offered)), key=lambda i: (-mixed[i], i))
         nearest = cand.min(axis=1) if cand.shape[1] else np.full(len(offered), math.inf)
-        held = self._held()
         present = frozenset(present_objects) if present_objects is not None else frozenset(
             obj for option in offered for obj in option.objects())
         tasks = []
