@@ -365,3 +365,14 @@ def test_a_reason_names_the_objects_in_hand_where_no_context_backs_the_task():
     assert support_sentence(done) == "done 2\u00d7, not at this point; uses fridge, milk in hand"
     after = {**done, "context_order": 1, "context": ["pick(milk)"]}
     assert support_sentence(after) == "after pick(milk): 2\u00d7"    # a counted context says enough
+
+
+def test_a_reason_says_a_task_is_newly_possible_where_no_context_backs_it():
+    from oracle.answers import support_sentence
+
+    never = {"support": 0, "context_order": -1, "context": [], "situations": [], "done": False, "new": True}
+    assert support_sentence({**never, "focus": []}) == "never done: newly possible"
+    assert support_sentence({**never, "focus": ["red_mug"]}) == "never done: uses red_mug in hand; newly possible"
+    done = {**never, "support": 3, "context_order": 0, "done": True, "focus": []}
+    assert support_sentence(done) == "done 3\u00d7, not at this point; newly possible"
+    assert support_sentence({**done, "context_order": 2, "context": ["a", "b"]}) == "after a \u2192 b: 3\u00d7"

@@ -1,10 +1,13 @@
-"""The objects in hand: the user's own lift of the options that use an object of their latest
-actions (docs/algorithm.md, "Objects in hand").
+"""The routine predictor's lifts: binary features of the offered options, each weighed by the
+user's own likelihood ratio (docs/algorithm.md, "Objects in hand" and "Newly offered options").
 
-``w_in = (h + 1) / (s + 1)`` and ``w_out = (n - h + 1) / (n - s + 1)`` over the ``n`` past steps
-whose offer held options both in and out of focus: ``h`` of them chose one in focus, ``s`` sums
-the share of such options in each offer. The routine predictor multiplies its similarity level by
-them (``routine.RoutineOracle``, parameters ``focus``, ``focus_odds``, ``focus_level``).
+The features: an option uses an object of the user's latest actions (the objects in hand), and an
+option was not offered at the previous decision (newly offered: what the last action made
+possible). For a feature, ``w_in = (h + 1) / (s + 1)`` and ``w_out = (n - h + 1) / (n - s + 1)``
+over the ``n`` past steps whose offer held options with it and without it: ``h`` of them chose
+one with it, ``s`` sums the share of such options in each offer. The routine predictor multiplies
+its similarity level by them (``routine.RoutineOracle``, parameters ``focus``, ``focus_odds``,
+``focus_level``, ``fresh``).
 """
 
 from __future__ import annotations
@@ -25,17 +28,23 @@ def in_focus(held: frozenset[str], objects: Iterable[Iterable[str]]) -> np.ndarr
     return np.array([not held.isdisjoint(used) for used in objects], dtype=bool)
 
 
-@dataclass
-class HandLift:
-    """What the user's past steps say about choosing an option in focus."""
+def newly_offered(ids: Iterable[int], previous: frozenset[int]) -> np.ndarray:
+    """Per offered option (given by its interned id): was it not offered at the previous decision?"""
+    return np.array([i not in previous for i in ids], dtype=bool)
 
-    hits: float = 0.0    # steps whose option done was in focus
-    share: float = 0.0   # sum over the steps of the share of the offer in focus
+
+@dataclass
+class FeatureLift:
+    """What the user's past steps say about choosing an option with a binary feature (in focus,
+    newly offered)."""
+
+    hits: float = 0.0    # steps whose option done had the feature
+    share: float = 0.0   # sum over the steps of the share of the offer with it
     steps: int = 0
 
     def observe(self, inside: np.ndarray, truth: int) -> None:
         """Count a step (``inside`` per offered option, ``truth`` the index of the option done),
-        when its offer held options in focus and out of it."""
+        when its offer held options with the feature and without it."""
         n_in = int(inside.sum())
         if 0 < n_in < inside.size:
             self.hits += float(inside[truth])

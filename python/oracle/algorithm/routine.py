@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 
 from oracle.algorithm.contexts import IDLE, UNKNOWN, Blend, ContextCounts, Memo
-from oracle.algorithm.focus import HandLift, held_objects, in_focus
+from oracle.algorithm.focus import FeatureLift, held_objects, in_focus, newly_offered
 from oracle.algorithm.params import THESIS_DEFAULTS, EstimatorParams
 from oracle.algorithm.kernel import START, Rows, context_distance, normalised, similarity_mass
 from oracle.algorithm.reference import offered_options
@@ -46,7 +46,9 @@ class RoutineTask(RankedTask):
     this option ``n_similar`` times, ``order`` its length (0: the option was done, in no matching
     context; -1: never done); ``situations`` the history positions of those past situations
     (latest last), or of the most similar past actions when there are none; ``focus`` the
-    option's objects that the user's latest actions used (the objects in hand, which lift it).
+    option's objects that the user's latest actions used (the objects in hand, which lift it);
+    ``new`` whether it was not offered at the previous decision (newly possible) while others
+    were, so that the user's lift of such options weighs it.
     """
 
     probability: float = 0.0
@@ -54,6 +56,7 @@ class RoutineTask(RankedTask):
     context: tuple[str, ...] = ()
     situations: tuple[int, ...] = ()
     focus: tuple[str, ...] = ()
+    new: bool = False
 
 
 class _Stream:
@@ -93,7 +96,7 @@ class RoutineOracle(EstimatorParams):
 
     _param_names = ("distances", "opening_tasks", "orders", "temperatures", "lowest_orders", "timed", "timed_from",
                     "discounts", "discount_from", "discount_evidence", "timed_discount_from", "timed_shrink", "timed_to",
-                    "timed_blend", "focus", "focus_level", "focus_odds", "streams",
+                    "timed_blend", "focus", "focus_level", "focus_odds", "fresh", "streams",
                     "timed_gate",
                     "exclusion", "novelty",
                     "context_depth", "switch_margin", "context_decay", "tuning", "tuning_window", "task_factor", "object_factor",
@@ -106,7 +109,7 @@ class RoutineOracle(EstimatorParams):
                  timed_from: int = 0, discounts: tuple[bool, ...] = (True,), discount_from: int = 2,
                  discount_evidence: int = 100, timed_discount_from: int | None = None, timed_shrink: bool = False,
                  timed_to: int | None = None, timed_blend: float | None = None,
-                 focus: int = 3, focus_level: str = "base", focus_odds: bool = True,
+                 focus: int = 3, focus_level: str = "base", focus_odds: bool = True, fresh: bool = False,
                  streams: tuple[str, ...] = ("idle",), timed_gate: float | None = None,
                  exclusion: bool = False,
                  novelty: tuple[bool, ...] = (False, True),
@@ -133,6 +136,7 @@ class RoutineOracle(EstimatorParams):
         self.focus = focus
         self.focus_level = focus_level
         self.focus_odds = focus_odds
+        self.fresh = fresh
         self.streams = streams
         self.timed_gate = timed_gate
         self.exclusion = exclusion
@@ -169,7 +173,9 @@ class RoutineOracle(EstimatorParams):
         self._next = Rows(1)            # per history position: successor position, -1 none or idle
         self._step_ids = Rows(1)        # per history position: option id, -1 idle
         self._objects: list[frozenset[str]] = []  # per interned option: its object classes
-        self.hand_ = HandLift()
+        self.hand_ = FeatureLift()
+        self.fresh_ = FeatureLift()     # the options not offered at the previous decision
+        self._offer: frozenset[int] = frozenset()  # the interned ids offered at the latest decision
         self.n_steps_ = 0
         self.fitted_steps_: int | None = 0  # the length of the history fit() saw; None once partial_fit
         self._grow(list(history))
@@ -245,13 +251,17 @@ class RoutineOracle(EstimatorParams):
             offered, _ = offered_options(step, None)
             if step.option in offered:
                 inside = self._in_focus(offered) if self.focus else None
-                self.weights_.update(self._variant_probabilities(offered, step.time_of_day, inside=inside)[0],
+                self.weights_.update(self._variant_probabilities(offered, step.time_of_day, inside=inside,
+                                                                 new=self._newly_offered(offered))[0],
                                      offered.index(step.option), self.n_steps_)
         position = self.n_steps_
         known = self._ids
         ids = [self._intern(option) if (found := known.get(option)) is None else found for option in step.options]
         if self.focus and not step.idle and ids:
             self._observe_focus(ids, step.option)
+        if not step.idle and ids:
+            self._observe_fresh(ids, step.option)
+            self._offer = frozenset(ids)
         if step.idle:
             token = IDLE
         else:
@@ -286,17 +296,33 @@ class RoutineOracle(EstimatorParams):
             return
         self.hand_.observe(in_focus(self._held(), (self._objects[i] for i in offered)), offered.index(truth))
 
+    def _observe_fresh(self, ids: list[int], option: Option) -> None:
+        """Count a step for the lift of the newly offered options, as ``_observe_focus`` does."""
+        if not self.fresh:
+            return
+        truth = self._ids.get(option)
+        offered = list(dict.fromkeys(ids))
+        if truth is not None and truth in offered:
+            self.fresh_.observe(newly_offered(offered, self._offer), offered.index(truth))
+
+    def _newly_offered(self, offered: Sequence[Option]) -> np.ndarray | None:
+        """Per offered option: was it not offered at the latest decision? (None without ``fresh``)"""
+        if not self.fresh:
+            return None
+        return newly_offered((self._ids.get(option, UNKNOWN) for option in offered), self._offer)
+
     def _held(self) -> frozenset[str]:
         """The objects of the latest ``focus`` actions (idle gaps skipped)."""
         recent = self._executed.view[-self.focus:, 0].tolist() if self.focus and self._executed.size else []
         return held_objects(self._objects[t] for t in recent)
 
     def _variant_probabilities(self, offered: Sequence[Option], now: str | None,
-                               which: Sequence[int] | None = None, inside: np.ndarray | None = None
-                               ) -> tuple[list[np.ndarray], list[Blend], np.ndarray]:
+                               which: Sequence[int] | None = None, inside: np.ndarray | None = None,
+                               new: np.ndarray | None = None) -> tuple[list[np.ndarray], list[Blend], np.ndarray]:
         """The distribution over ``offered`` and the blend of each variant in ``which`` (default:
         all), and the candidates' Algorithm 2 distances to every interned option (``inside``:
-        which offered options are in focus, None without focus)."""
+        which offered options are in focus, None without focus; ``new``: which were not offered
+        at the previous decision, None without ``fresh``)."""
         ids = [self._ids.get(option, UNKNOWN) for option in offered]
         count = len(self.options_)
         if UNKNOWN in ids:
@@ -313,6 +339,9 @@ class RoutineOracle(EstimatorParams):
                    for name, s in self._streams.items() if any(v[0] == name for v in chosen)}
         base: dict[tuple[str, float], np.ndarray] = {}
         focus = self.hand_.weights(inside, self.focus_odds)
+        lifted = self.fresh_.weights(new, True)
+        if lifted is not None:
+            focus = lifted if focus is None else focus * lifted
         blends: dict[tuple[str, int, float, int, bool, bool, bool], Blend] = {}
         probabilities = []
         memo: Memo = {}  # the counts' look-ups, shared by the variants (same candidates, same counts)
@@ -376,7 +405,9 @@ class RoutineOracle(EstimatorParams):
         used = np.flatnonzero(weights > 0).tolist()  # the leader alone, unless mixing
         held = self._held()
         inside = self._in_focus(offered, held) if self.focus else None
-        probabilities, blends, cand = self._variant_probabilities(offered, now, used, inside)
+        new = self._newly_offered(offered)
+        lifted = new is not None and bool(new.any()) and not bool(new.all())
+        probabilities, blends, cand = self._variant_probabilities(offered, now, used, inside, new)
         mixed = np.zeros(len(offered))
         for weight, p in zip(weights[used], probabilities):
             mixed += weight * p
@@ -406,7 +437,8 @@ class RoutineOracle(EstimatorParams):
                 rank, -math.log2(probability) if probability > 0 else math.inf, option,
                 int(explain.count[i]) if n >= 0 else 0, float(nearest[i]), successors, probability, n,
                 tuple(self._label(t) for t in context or ()), tuple(situations[-5:]) if n >= 0 else (),
-                tuple(obj for obj in option.objects() if obj in held) if inside is not None else ()))
+                tuple(obj for obj in option.objects() if obj in held) if inside is not None else (),
+                lifted and bool(new[i])))  # type: ignore[index]
         return Ranking(tuple(tasks))
 
     def _support(self, stream: _Stream, option_id: int, context: tuple[int, ...], n: int) -> list[int]:

@@ -13,7 +13,7 @@ if TYPE_CHECKING:
 def describe(task) -> str:  # noqa: ANN001 - a RankedTask
     """One line of why a task stands where it does; scores are lower-is-better for every method."""
     from oracle.algorithm.records import local_name
-    from oracle.answers import in_hand
+    from oracle.answers import lifts
     from oracle.algorithm.routine import RoutineTask
 
     if isinstance(task, RoutineTask):
@@ -23,8 +23,8 @@ def describe(task) -> str:  # noqa: ANN001 - a RankedTask
             why = f"done {task.n_similar}x, not after this context"
         else:
             why = "no past context: by similarity"
-        if task.focus and task.order <= 0:  # where no counted context backs it, as the tablet's reason
-            why += f"; {in_hand([local_name(obj) for obj in task.focus])}"
+        if task.order <= 0:  # where no counted context backs it, as the tablet's reason
+            why += "".join(f"; {note}" for note in lifts([local_name(obj) for obj in task.focus], task.new))
         return f"p {task.probability:.3f} ({why})"
     return "no similar history" if math.isinf(task.score) else f"score {task.score:.4f} from {task.n_similar} similar"
 
