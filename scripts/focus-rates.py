@@ -1,13 +1,16 @@
-"""How often a user's next action uses an object of their latest actions, against the offer.
+"""How often a user's next action uses an object of their latest actions, or was newly offered,
+against the offer.
 
-usage: python scripts/focus-rates.py CHAINS [CHAINS ...] [--depth M]
+usage: python scripts/focus-rates.py CHAINS [CHAINS ...] [--depth M] [--feature hand|new]
 
 For each chains file, over every step with objects in hand (the objects of the latest M actions,
 default 3): the share of steps whose action uses one of them, and the mean share of the offered
 options that do (the row's ``available``, or every distinct action of the user in the file, as
 the replay offers). Both for first uses (among the options never done before) and for the other
-steps (among the options done before). docs/algorithm.md, "Sixth round", reads it. Calls are
-parsed as text (``task(object, object)``): no ontology is needed.
+steps (among the options done before). With ``--feature new`` the feature is "not offered at the
+previous step" instead, over the steps whose options of that kind hold some newly offered and some
+not. docs/algorithm.md, "Sixth round" and "Seventh round", reads it. Calls are parsed as text
+(``task(object, object)``): no ontology is needed.
 """
 
 from __future__ import annotations
@@ -37,7 +40,7 @@ class Rates:
         return f"{self.steps} steps: action {self.uses / self.steps:.3f}, offer {self.offered / self.steps:.3f}"
 
 
-def rates(path: Path, depth: int) -> dict[str, Rates]:
+def rates(path: Path, depth: int, feature: str = "hand") -> dict[str, Rates]:
     users: OrderedDict[str, list[dict]] = OrderedDict()
     for line in path.read_text().splitlines():
         if line.strip():
@@ -48,18 +51,29 @@ def rates(path: Path, depth: int) -> dict[str, Rates]:
         every = list(OrderedDict.fromkeys(row["action"] for row in rows))
         done: set[str] = set()
         recent: list[str] = []
+        previous: set[str] = set()
         for row in rows:
             action = row["action"]
+            offer = row.get("available") or every
             held = frozenset().union(*(objects(call) for call in recent[-depth:]))
             first = action not in done
-            pool = [c for c in (row.get("available") or every) if (c not in done) == first]
-            if held and pool:
+            pool = [c for c in offer if (c not in done) == first]
+            if feature == "new":
+                has = [c not in previous for c in pool]
+                counted = any(has) and not all(has) and action in pool
+                hit = action not in previous
+            else:
+                has = [bool(objects(c) & held) for c in pool]
+                counted = bool(held and pool)
+                hit = bool(objects(action) & held)
+            if counted:
                 r = out["first" if first else "again"]
                 r.steps += 1
-                r.uses += bool(objects(action) & held)
-                r.offered += sum(bool(objects(c) & held) for c in pool) / len(pool)
+                r.uses += hit
+                r.offered += sum(has) / len(pool)
             done.add(action)
             recent.append(action)
+            previous = set(offer)
     return out
 
 
@@ -67,9 +81,10 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("chains", nargs="+", type=Path)
     parser.add_argument("--depth", type=int, default=3)
+    parser.add_argument("--feature", choices=("hand", "new"), default="hand")
     args = parser.parse_args()
     for path in args.chains:
-        found = rates(path, args.depth)
+        found = rates(path, args.depth, args.feature)
         print(f"{path}: first uses {found['first'].text()}; other steps {found['again'].text()}")
 
 

@@ -25,10 +25,12 @@ ACTIONS = 10_000
 #: sha256 of ``ranking_digest_text`` as the implementation of commit 4f2f506 wrote it, renewed when
 #: the routine predictor's default changed on purpose (part-of-day contexts and the leader's
 #: switch margin; then absolute discounting from order 2 once 100 pairs back it; then the objects
-#: in hand, which also add the JSON field ``focus``; docs/algorithm.md). With ``focus=0`` and that
-#: field dropped the code of the objects in hand gave the digest before it, 77aa1b49...
+#: in hand, which also add the JSON field ``focus``; then the newly offered options, which add the
+#: field ``new``; docs/algorithm.md). With ``focus=0`` and that field dropped the code of the
+#: objects in hand gave the digest before it, 77aa1b49...; with ``fresh=False`` and ``new``
+#: dropped the code of the newly offered options gives the digest before it, ac2327a9...
 #: ``python tests/test_rank_pin.py`` prints it.
-EXPECTED = "ac2327a90404c536c0ab2d95e0c03f4993c14c7575540bc6e8a64d72145ed8b5"
+EXPECTED = "8193c57e8355fea0ef4956577cf8b105ef5f72752c5d14e4426147ab75f59737"
 
 
 def _oracle(*argv: str, env: dict[str, str]) -> str:

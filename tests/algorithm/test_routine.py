@@ -408,7 +408,7 @@ def test_exclusion_gives_the_never_done_options_the_estimate_of_a_novel_action()
 @pytest.mark.parametrize("options", [{"timed_gate": 1.645}, {"exclusion": True}, {"timed_gate": 0.0, "exclusion": True},
                                      {"novelty": (True,)}, {"novelty": (False, True), "timed_gate": 1.645},
                                      {"focus": 0}, {"focus": 1, "focus_odds": False}, {"focus_level": "top"},
-                                     {"timed_blend": 0.5}, {"fresh": True}, {"fresh": False}])
+                                     {"timed_blend": 0.5}, {"fresh": False}, {"fresh_level": "base"}])
 def test_the_new_options_on_empty_and_tiny_histories(options):
     empty = RoutineOracle(kitchen(), **options).fit([]).rank(OFFERED)
     assert empty.options() == OFFERED
@@ -426,7 +426,7 @@ def test_the_new_options_are_validated():
     for bad in ({"timed_gate": True}, {"timed_gate": "high"}, {"timed_gate": math.inf}, {"exclusion": 1},
                 {"novelty": True}, {"novelty": ()}, {"novelty": (1,)}, {"focus": -1}, {"focus": True},
                 {"focus_odds": 1}, {"focus_level": "all"}, {"timed_blend": 2}, {"timed_blend": True},
-                {"fresh": 1}, {"fresh": "yes"}):
+                {"fresh": 1}, {"fresh": "yes"}, {"fresh_level": "all"}):
         with pytest.raises(SettingsError):
             RoutineOracle(kitchen(), **bad).fit([])
 
@@ -600,28 +600,30 @@ def test_the_lift_of_the_newly_offered_options_is_counted_against_the_offer_of_t
     history = _takes_what_is_new()
     model = RoutineOracle(kitchen(), fresh=True).fit(history)
     # the first decision has no previous offer; then 1 of 2, 1 of 3 and 1 of 2 options were new, each taken
-    assert (model.fresh_.steps, model.fresh_.hits) == (3, 3.0)
-    assert model.fresh_.share == pytest.approx(1 / 2 + 1 / 3 + 1 / 2)
-    assert model.fresh_.lift(True) == pytest.approx((4 / (4 / 3 + 1), 1 / (3 - 4 / 3 + 1)))
+    assert (model.fresh_.lift.steps, model.fresh_.lift.hits) == (3, 3.0)
+    assert model.fresh_.lift.share == pytest.approx(1 / 2 + 1 / 3 + 1 / 2)
+    assert model.fresh_.lift.lift(True) == pytest.approx((4 / (4 / 3 + 1), 1 / (3 - 4 / 3 + 1)))
     stepwise = RoutineOracle(kitchen(), fresh=True).fit(history[:1])
     for step in history[1:]:
         stepwise.partial_fit(step)
     assert stepwise.fresh_ == model.fresh_
-    assert RoutineOracle(kitchen()).fit(history).fresh_.steps == 0   # not counted when off
+    assert RoutineOracle(kitchen(), fresh=False).fit(history).fresh_.lift.steps == 0   # not counted when off
 
 
-def test_the_newly_offered_options_are_lifted_by_the_users_own_odds():
+@pytest.mark.parametrize("level", ["top", "base"])
+def test_the_newly_offered_options_are_lifted_by_the_users_own_odds(level):
     history = _takes_what_is_new()
     offered = (Option(PICK, BLUE), Option(DRINK, SPOON))   # neither done; blue offered before, the spoon new
-    plain = RoutineOracle(kitchen()).fit(history).rank(offered)
-    model = RoutineOracle(kitchen(), fresh=True).fit(history)
+    plain = RoutineOracle(kitchen(), fresh=False).fit(history).rank(offered)
+    model = RoutineOracle(kitchen(), fresh=True, fresh_level=level).fit(history)
     lifted = model.rank(offered)
-    w_new, w_old = model.fresh_.lift(True)
+    w_new, w_old = model.fresh_.lift.lift(True)
     assert w_new > 1 > w_old
     ratio = {r: {t.option: t.probability for t in r} for r in (plain, lifted)}
     before = ratio[plain][Option(DRINK, SPOON)] / ratio[plain][Option(PICK, BLUE)]
     after = ratio[lifted][Option(DRINK, SPOON)] / ratio[lifted][Option(PICK, BLUE)]
-    assert after == pytest.approx(before * w_new / w_old)   # both escape to the lowest level alike
+    # on the blend, or on Q where both escape to the lowest level alike: the odds move by the lift's
+    assert after == pytest.approx(before * w_new / w_old)
     assert after > before
     assert {t.option: t.new for t in lifted} == {Option(DRINK, SPOON): True, Option(PICK, BLUE): False}
     assert not any(t.new for t in plain)
@@ -631,7 +633,7 @@ def test_an_offer_that_never_changes_leaves_the_newly_offered_lift_out():
     # every step offers the same options (as a replay without available sets does): nothing is new
     history = _handled_then_used((RED, BLUE, THERMOS), 3)
     offered = history[0].options
-    plain = RoutineOracle(kitchen()).fit(history)
+    plain = RoutineOracle(kitchen(), fresh=False).fit(history)
     model = RoutineOracle(kitchen(), fresh=True).fit(history)
-    assert model.fresh_.steps == 0
+    assert model.fresh_.lift.steps == 0
     assert model.rank(offered) == plain.rank(offered)

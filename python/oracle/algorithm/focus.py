@@ -13,7 +13,7 @@ its similarity level by them (``routine.RoutineOracle``, parameters ``focus``, `
 from __future__ import annotations
 
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -28,9 +28,11 @@ def in_focus(held: frozenset[str], objects: Iterable[Iterable[str]]) -> np.ndarr
     return np.array([not held.isdisjoint(used) for used in objects], dtype=bool)
 
 
-def newly_offered(ids: Iterable[int], previous: frozenset[int]) -> np.ndarray:
-    """Per offered option (given by its interned id): was it not offered at the previous decision?"""
-    return np.array([i not in previous for i in ids], dtype=bool)
+def decision(ids: list[int], truth: int | None) -> tuple[list[int], int] | None:
+    """A decision as the lifts count it: the interned ids offered (duplicates dropped, as
+    ``offered_options`` drops them) and the index of the option done; None when it was not offered."""
+    offered = list(dict.fromkeys(ids))
+    return (offered, offered.index(truth)) if truth is not None and truth in offered else None
 
 
 @dataclass
@@ -63,3 +65,32 @@ class FeatureLift:
             return None
         w_in, w_out = self.lift(odds)
         return np.where(inside, w_in, w_out)
+
+
+@dataclass
+class NewOffers:
+    """The newly offered options: the latest decision's offer (interned ids) and the user's lift
+    of the options that were not in it."""
+
+    lift: FeatureLift = field(default_factory=FeatureLift)
+    offer: frozenset[int] = frozenset()
+
+    def which(self, ids: Iterable[int]) -> np.ndarray:
+        """Per offered option (given by its interned id): was it not offered at the latest decision?"""
+        return np.array([i not in self.offer for i in ids], dtype=bool)
+
+    def observe(self, ids: list[int], truth: int | None) -> None:
+        """Count a decision (its offer, the option done) and keep its offer as the latest."""
+        counted = decision(ids, truth)
+        if counted is not None:
+            self.lift.observe(self.which(counted[0]), counted[1])
+        self.offer = frozenset(ids)
+
+
+def split_weights(hand: np.ndarray | None, new: np.ndarray | None,
+                  new_on_top: bool) -> tuple[np.ndarray | None, np.ndarray | None]:
+    """The weights of ``Q`` and of each variant's blend (None: none): the objects in hand's on
+    ``Q``, the newly offered options' on the blend (``new_on_top``) or on ``Q`` with them."""
+    if new is None or new_on_top:
+        return hand, new
+    return (new if hand is None else hand * new), None

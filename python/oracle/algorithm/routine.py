@@ -3,7 +3,8 @@ to ontology similarity of past situations, self-tuned on the user's own history.
 
 For each variant ``v = (stream, order, tau, n0, timed, discount, novelty)`` the probability of a candidate
 is PPM-C over the user's exact contexts (and the same contexts at this part of day) whose lowest
-level is the similarity distribution ``Q`` of ``kernel``, reweighted by the objects in hand; the predictor ranks with the variant
+level is the similarity distribution ``Q`` of ``kernel``, reweighted by the objects in hand, and whose result is
+reweighted by the user's odds of taking a newly offered option; the predictor ranks with the variant
 that predicted the user's past steps best (``selftune``). docs/algorithm.md, "Routine predictor",
 gives every formula and the reasons.
 """
@@ -19,13 +20,14 @@ from typing import Any
 import numpy as np
 
 from oracle.algorithm.contexts import IDLE, UNKNOWN, Blend, ContextCounts, Memo
-from oracle.algorithm.focus import FeatureLift, held_objects, in_focus, newly_offered
+from oracle.algorithm.focus import FeatureLift, NewOffers, decision, held_objects, in_focus, split_weights
 from oracle.algorithm.params import THESIS_DEFAULTS, EstimatorParams
 from oracle.algorithm.kernel import START, Rows, context_distance, normalised, similarity_mass
 from oracle.algorithm.reference import offered_options
 from oracle.algorithm.routine_settings import check_settings
 from oracle.algorithm.selftune import VariantWeights
 from oracle.algorithm.similarity import class_rows, option_distances
+from oracle.algorithm.support import followed_at
 from oracle.algorithm.records import Option, RankedTask, Ranking, Step, TreeNode
 from oracle.algorithm.tree import Successions, TreeShape, successor_tree
 from oracle.errors import SettingsError
@@ -86,7 +88,9 @@ class RoutineOracle(EstimatorParams):
     ``streams`` span the variants that ``tuning`` weighs (``timed_blend``: a timed variant averaged
     with its untimed twin); ``focus`` reweights ``Q`` (``focus_level`` "top": each variant's
     blend) by the user's own lift of the options that use an object of the latest ``focus``
-    actions (``focus_odds``: and of those that do not); ``exclusion`` lets the lowest counted
+    actions (``focus_odds``: and of those that do not); ``fresh`` reweights each variant's blend
+    (``fresh_level`` "base": ``Q``) by the user's own odds of taking an option that was not
+    offered at the previous decision; ``exclusion`` lets the lowest counted
     level escape only to the options it did not count; ``novelty`` (variants) gives the never-done
     options together the PPM-C estimate of a novel action
     ("leader": the best so far that leads the first variant by ``switch_margin`` standard errors,
@@ -96,7 +100,7 @@ class RoutineOracle(EstimatorParams):
 
     _param_names = ("distances", "opening_tasks", "orders", "temperatures", "lowest_orders", "timed", "timed_from",
                     "discounts", "discount_from", "discount_evidence", "timed_discount_from", "timed_shrink", "timed_to",
-                    "timed_blend", "focus", "focus_level", "focus_odds", "fresh", "streams",
+                    "timed_blend", "focus", "focus_level", "focus_odds", "fresh", "fresh_level", "streams",
                     "timed_gate",
                     "exclusion", "novelty",
                     "context_depth", "switch_margin", "context_decay", "tuning", "tuning_window", "task_factor", "object_factor",
@@ -109,7 +113,8 @@ class RoutineOracle(EstimatorParams):
                  timed_from: int = 0, discounts: tuple[bool, ...] = (True,), discount_from: int = 2,
                  discount_evidence: int = 100, timed_discount_from: int | None = None, timed_shrink: bool = False,
                  timed_to: int | None = None, timed_blend: float | None = None,
-                 focus: int = 3, focus_level: str = "base", focus_odds: bool = True, fresh: bool = False,
+                 focus: int = 3, focus_level: str = "base", focus_odds: bool = True, fresh: bool = True,
+                 fresh_level: str = "top",
                  streams: tuple[str, ...] = ("idle",), timed_gate: float | None = None,
                  exclusion: bool = False,
                  novelty: tuple[bool, ...] = (False, True),
@@ -137,6 +142,7 @@ class RoutineOracle(EstimatorParams):
         self.focus_level = focus_level
         self.focus_odds = focus_odds
         self.fresh = fresh
+        self.fresh_level = fresh_level
         self.streams = streams
         self.timed_gate = timed_gate
         self.exclusion = exclusion
@@ -174,8 +180,7 @@ class RoutineOracle(EstimatorParams):
         self._step_ids = Rows(1)        # per history position: option id, -1 idle
         self._objects: list[frozenset[str]] = []  # per interned option: its object classes
         self.hand_ = FeatureLift()
-        self.fresh_ = FeatureLift()     # the options not offered at the previous decision
-        self._offer: frozenset[int] = frozenset()  # the interned ids offered at the latest decision
+        self.fresh_ = NewOffers()
         self.n_steps_ = 0
         self.fitted_steps_: int | None = 0  # the length of the history fit() saw; None once partial_fit
         self._grow(list(history))
@@ -257,11 +262,12 @@ class RoutineOracle(EstimatorParams):
         position = self.n_steps_
         known = self._ids
         ids = [self._intern(option) if (found := known.get(option)) is None else found for option in step.options]
-        if self.focus and not step.idle and ids:
-            self._observe_focus(ids, step.option)
         if not step.idle and ids:
-            self._observe_fresh(ids, step.option)
-            self._offer = frozenset(ids)
+            truth = known.get(step.option)
+            if self.focus:
+                self._observe_focus(ids, truth)
+            if self.fresh:
+                self.fresh_.observe(ids, truth)
         if step.idle:
             token = IDLE
         else:
@@ -287,29 +293,15 @@ class RoutineOracle(EstimatorParams):
         """Per offered option: does it use an object of the latest ``focus`` actions (``held``)?"""
         return in_focus(self._held() if held is None else held, (option.objects() for option in offered))
 
-    def _observe_focus(self, ids: list[int], option: Option) -> None:
-        """Count a step for the lift: its offer (interned ids, duplicates dropped as
-        ``offered_options`` drops them) and the option done, if offered."""
-        truth = self._ids.get(option)
-        offered = list(dict.fromkeys(ids))
-        if truth is None or truth not in offered:
-            return
-        self.hand_.observe(in_focus(self._held(), (self._objects[i] for i in offered)), offered.index(truth))
-
-    def _observe_fresh(self, ids: list[int], option: Option) -> None:
-        """Count a step for the lift of the newly offered options, as ``_observe_focus`` does."""
-        if not self.fresh:
-            return
-        truth = self._ids.get(option)
-        offered = list(dict.fromkeys(ids))
-        if truth is not None and truth in offered:
-            self.fresh_.observe(newly_offered(offered, self._offer), offered.index(truth))
+    def _observe_focus(self, ids: list[int], truth: int | None) -> None:
+        """Count a decision (interned ids offered, the option done) for the objects in hand's lift."""
+        counted = decision(ids, truth)
+        if counted is not None:
+            self.hand_.observe(in_focus(self._held(), (self._objects[i] for i in counted[0])), counted[1])
 
     def _newly_offered(self, offered: Sequence[Option]) -> np.ndarray | None:
         """Per offered option: was it not offered at the latest decision? (None without ``fresh``)"""
-        if not self.fresh:
-            return None
-        return newly_offered((self._ids.get(option, UNKNOWN) for option in offered), self._offer)
+        return self.fresh_.which(self._ids.get(option, UNKNOWN) for option in offered) if self.fresh else None
 
     def _held(self) -> frozenset[str]:
         """The objects of the latest ``focus`` actions (idle gaps skipped)."""
@@ -338,10 +330,8 @@ class RoutineOracle(EstimatorParams):
         context = {name: context_distance(table, s.recent(), s.before.view, self.penalty, self.context_decay)
                    for name, s in self._streams.items() if any(v[0] == name for v in chosen)}
         base: dict[tuple[str, float], np.ndarray] = {}
-        focus = self.hand_.weights(inside, self.focus_odds)
-        lifted = self.fresh_.weights(new, True)
-        if lifted is not None:
-            focus = lifted if focus is None else focus * lifted
+        focus, top = split_weights(self.hand_.weights(inside, self.focus_odds), self.fresh_.lift.weights(new, True),
+                                   self.fresh_level == "top")
         blends: dict[tuple[str, int, float, int, bool, bool, bool], Blend] = {}
         probabilities = []
         memo: Memo = {}  # the counts' look-ups, shared by the variants (same candidates, same counts)
@@ -389,6 +379,10 @@ class RoutineOracle(EstimatorParams):
             for variant in chosen:
                 b = blends[variant]
                 blends[variant] = Blend(b.probabilities * focus, b.order, b.count)
+        if top is not None:
+            for variant in chosen:
+                b = blends[variant]
+                blends[variant] = Blend(b.probabilities * top, b.order, b.count)
         for variant in chosen:
             probabilities.append(blends[variant].probabilities)
         return probabilities, [blends[v] for v in chosen], cand
@@ -443,27 +437,10 @@ class RoutineOracle(EstimatorParams):
 
     def _support(self, stream: _Stream, option_id: int, context: tuple[int, ...], n: int) -> list[int]:
         """History positions where ``option_id`` followed ``context`` (all its uses when n is 0)."""
-        if option_id == UNKNOWN or n < 0:
-            return []
-        executed = self._executed.view[:, 0]
-        hit = executed == option_id
-        before = stream.before.view
-        for k in range(min(n, before.shape[1])):
-            hit &= before[:, k] == context[-1 - k]
-        if n > before.shape[1]:  # longer than the kept predecessors: check the stream itself
-            tokens = np.asarray(stream.counts.tokens, dtype=np.int64)
-            where = self._stream_index(stream)
-            for k in range(before.shape[1], n):
-                at = where - 1 - k
-                hit &= (at >= 0) & (tokens[np.maximum(at, 0)] == context[-1 - k])
-        positions: list[int] = self._position.view[hit, 0].tolist()
-        return positions
-
-    def _stream_index(self, stream: _Stream) -> np.ndarray:
-        """The index of every past action in ``stream``'s token list."""
-        if stream is self._streams.get("through"):
-            return np.arange(self._executed.size)
-        return self._position.view[:, 0]
+        positions = self._position.view[:, 0]
+        index = np.arange(self._executed.size) if stream is self._streams.get("through") else positions
+        return followed_at(self._executed.view[:, 0], positions, stream.before.view, stream.counts.tokens, index,
+                           option_id, context, n)
 
     def _label(self, token: int) -> str:
         return "idle" if token == IDLE else str(self.options_[token])

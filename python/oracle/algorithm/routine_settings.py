@@ -47,6 +47,8 @@ def check_settings(model: Any) -> None:
         raise SettingsError(f"{name}: focus must be a whole number >= 0, got {model.focus!r}")
     if not isinstance(model.fresh, bool):
         raise SettingsError(f"{name}: fresh must be True or False, got {model.fresh!r}")
+    if model.fresh_level not in ("base", "top"):
+        raise SettingsError(f"{name}: fresh_level must be base or top, got {model.fresh_level!r}")
     if not isinstance(model.focus_odds, bool):
         raise SettingsError(f"{name}: focus_odds must be True or False, got {model.focus_odds!r}")
     if model.focus_level not in ("base", "top"):
