@@ -25,12 +25,14 @@ ACTIONS = 10_000
 #: sha256 of ``ranking_digest_text`` as the implementation of commit 4f2f506 wrote it, renewed when
 #: the routine predictor's default changed on purpose (part-of-day contexts and the leader's
 #: switch margin; then absolute discounting from order 2 once 100 pairs back it; then the objects
-#: in hand, which also add the JSON field ``focus``; then the newly offered options, which add the
-#: field ``new``; docs/algorithm.md). With ``focus=0`` and that field dropped the code of the
-#: objects in hand gave the digest before it, 77aa1b49...; with ``fresh=False`` and ``new``
-#: dropped the code of the newly offered options gives the digest before it, ac2327a9...
+#: in hand, which also add the JSON field ``focus``; then the newly offered options and the lift
+#: after a break, which add the fields ``new`` and ``resumed``; docs/algorithm.md). With
+#: ``focus=0`` and that field dropped the code of the objects in hand gave the digest before it,
+#: 77aa1b49...; with ``fresh=False`` and ``new`` dropped the code of the newly offered options
+#: gave the one before it, ac2327a9...; with ``resume=False`` and ``resumed`` dropped the code of
+#: the lift after a break gives the newly offered options' one, 8193c57e...
 #: ``python tests/test_rank_pin.py`` prints it.
-EXPECTED = "8193c57e8355fea0ef4956577cf8b105ef5f72752c5d14e4426147ab75f59737"
+EXPECTED = "6e082cecaf2e61026197d5edcbea12d3807acd5cb5e2727cde9ffc9999246ad1"
 
 
 def _oracle(*argv: str, env: dict[str, str]) -> str:

@@ -80,7 +80,8 @@ def support_sentence(entry: dict[str, Any]) -> str:
     """Why a ranked task stands where it does, short enough for a touch target: the service's
     ranking entry (``support`` and, from the routine predictor, ``context_order``, ``context``
     and the times of the supporting past ``situations``, latest last; ``focus``: the objects in
-    hand it uses; ``new``: newly offered; ``done``: whether the user ever did it). The sentence
+    hand it uses; ``new``: newly offered; ``resumed``: after a break, it once followed the last
+    action before it; ``done``: whether the user ever did it). The sentence
     names the last two steps of the context; the entry holds it all."""
     n = int(entry.get("support") or 0)
     order = entry.get("context_order")
@@ -92,18 +93,19 @@ def support_sentence(entry: dict[str, Any]) -> str:
         context = ["a break" if c == "idle" else c for c in entry.get("context") or []]
         after = ("\u2026 " if len(context) > SHOWN_CONTEXT else "") + " \u2192 ".join(context[-SHOWN_CONTEXT:])
         return f"after {after}: {n}\u00d7{last}"
-    notes = lifts(entry.get("focus") or [], bool(entry.get("new")))
+    notes = lifts(entry.get("focus") or [], bool(entry.get("new")), bool(entry.get("resumed")))
     if order == 0 or entry.get("done"):
         return (f"done {n}\u00d7, not at this point{last}" if n else "done before, not at this point") + \
             "".join(f"; {note}" for note in notes)
     return f"never done: {'; '.join(notes)}" if notes else "never done: like similar tasks"
 
 
-def lifts(held: list[str], new: bool) -> list[str]:
-    """The words naming what lifts a task: the objects in hand it uses, and that it is newly
-    possible (said only where no counted context backs it: by the tablet's reason and by
-    ``rank``'s text)."""
-    return ([f"uses {', '.join(held)} in hand"] if held else []) + (["newly possible"] if new else [])
+def lifts(held: list[str], new: bool, resumed: bool = False) -> list[str]:
+    """The words naming what lifts a task: the objects in hand it uses, that it is newly
+    possible, that it goes on from before a break (said only where no counted context backs it:
+    by the tablet's reason and by ``rank``'s text)."""
+    return ([f"uses {', '.join(held)} in hand"] if held else []) + (["newly possible"] if new else []) + (
+        ["goes on from before the break"] if resumed else [])
 
 
 #: Context steps a support sentence names (the latest ones).

@@ -58,14 +58,16 @@ def support_fields(task: RankedTask) -> dict[str, Any]:
     """What supports a routine-predictor ranking (empty for the thesis oracle): its probability,
     the exact context it followed (``context_order`` its length; 0: done, not after this context;
     -1: no counted context holds it), the history positions of those past situations (latest
-    last, at most 5), the objects in hand it uses (``focus``, local names) and whether it is newly
-    offered (``new``: not offered at the previous decision)."""
+    last, at most 5), the objects in hand it uses (``focus``, local names), whether it is newly
+    offered (``new``: not offered at the previous decision) and whether, right after a break, it
+    once followed the last action before it (``resumed``)."""
     from oracle.algorithm.routine import RoutineTask
 
     if not isinstance(task, RoutineTask):
         return {}
     return {"probability": task.probability, "context_order": task.order, "context": list(task.context),
-            "situations": list(task.situations), "focus": [local_name(obj) for obj in task.focus], "new": task.new}
+            "situations": list(task.situations), "focus": [local_name(obj) for obj in task.focus], "new": task.new,
+            "resumed": task.resumed}
 
 
 def rank_neem(

@@ -408,7 +408,7 @@ def test_exclusion_gives_the_never_done_options_the_estimate_of_a_novel_action()
 @pytest.mark.parametrize("options", [{"timed_gate": 1.645}, {"exclusion": True}, {"timed_gate": 0.0, "exclusion": True},
                                      {"novelty": (True,)}, {"novelty": (False, True), "timed_gate": 1.645},
                                      {"focus": 0}, {"focus": 1, "focus_odds": False}, {"focus_level": "top"},
-                                     {"timed_blend": 0.5}, {"fresh": False}, {"fresh_level": "base"}])
+                                     {"timed_blend": 0.5}, {"fresh": False}, {"fresh_level": "base"}, {"resume": False}])
 def test_the_new_options_on_empty_and_tiny_histories(options):
     empty = RoutineOracle(kitchen(), **options).fit([]).rank(OFFERED)
     assert empty.options() == OFFERED
@@ -426,7 +426,7 @@ def test_the_new_options_are_validated():
     for bad in ({"timed_gate": True}, {"timed_gate": "high"}, {"timed_gate": math.inf}, {"exclusion": 1},
                 {"novelty": True}, {"novelty": ()}, {"novelty": (1,)}, {"focus": -1}, {"focus": True},
                 {"focus_odds": 1}, {"focus_level": "all"}, {"timed_blend": 2}, {"timed_blend": True},
-                {"fresh": 1}, {"fresh": "yes"}, {"fresh_level": "all"}):
+                {"fresh": 1}, {"fresh": "yes"}, {"fresh_level": "all"}, {"resume": 1}):
         with pytest.raises(SettingsError):
             RoutineOracle(kitchen(), **bad).fit([])
 
@@ -637,3 +637,42 @@ def test_an_offer_that_never_changes_leaves_the_newly_offered_lift_out():
     model = RoutineOracle(kitchen(), fresh=True).fit(history)
     assert model.fresh_.lift.steps == 0
     assert model.rank(offered) == plain.rank(offered)
+
+
+def _picks_then_breaks_then_drinks(rounds):
+    """A user who picks a mug, pauses, then drinks from it, for two mugs (the same four offered)."""
+    offered = tuple(Option(t, o) for o in (RED, BLUE) for t in (PICK, DRINK))
+    return [s for _ in range(rounds) for o in (RED, BLUE)
+            for s in (act(Option(PICK, o), offered), idle(), act(Option(DRINK, o), offered))]
+
+
+def test_after_a_break_the_lift_counts_the_options_that_once_followed_the_last_action():
+    history = _picks_then_breaks_then_drinks(2)
+    model = RoutineOracle(kitchen()).fit(history)
+    # after each break the last action was a pick; only in the second round had its drink followed
+    # it before (1 of the 4 offered options), and each time it was taken
+    assert (model.resume_.lift.steps, model.resume_.lift.hits, model.resume_.lift.share) == (2, 2.0, 0.5)
+    stepwise = RoutineOracle(kitchen()).fit(history[:1])
+    for step in history[1:]:
+        stepwise.partial_fit(step)
+    assert stepwise.resume_.lift == model.resume_.lift
+    assert RoutineOracle(kitchen(), resume=False).fit(history).resume_.lift.steps == 0
+
+
+def test_after_a_break_the_option_that_goes_on_from_the_last_action_is_lifted():
+    history = _picks_then_breaks_then_drinks(3)
+    offered = history[0].options
+    now = history + [act(Option(PICK, RED), offered), idle()]
+    plain = {t.option: t for t in RoutineOracle(kitchen(), resume=False).fit(now).rank(offered)}
+    model = RoutineOracle(kitchen()).fit(now)
+    lifted = {t.option: t for t in model.rank(offered)}
+    w_in, w_out = model.resume_.lift.lift(True)
+    assert w_in > 1 > w_out
+    assert lifted[Option(DRINK, RED)].probability > plain[Option(DRINK, RED)].probability
+    assert [o for o, t in lifted.items() if t.resumed] == [Option(DRINK, RED)]
+    # without a break right before now nothing is lifted, and nothing is said
+    for resume in (True, False):
+        after = RoutineOracle(kitchen(), resume=resume).fit(now[:-1]).rank(offered)
+        assert not any(t.resumed for t in after)
+    assert RoutineOracle(kitchen()).fit(now[:-1]).rank(offered) == \
+        RoutineOracle(kitchen(), resume=False).fit(now[:-1]).rank(offered)

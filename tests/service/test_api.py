@@ -376,3 +376,5 @@ def test_a_reason_says_a_task_is_newly_possible_where_no_context_backs_it():
     done = {**never, "support": 3, "context_order": 0, "done": True, "focus": []}
     assert support_sentence(done) == "done 3\u00d7, not at this point; newly possible"
     assert support_sentence({**done, "context_order": 2, "context": ["a", "b"]}) == "after a \u2192 b: 3\u00d7"
+    back = {**done, "new": False, "resumed": True, "focus": ["red_mug"]}
+    assert support_sentence(back) == "done 3\u00d7, not at this point; uses red_mug in hand; goes on from before the break"

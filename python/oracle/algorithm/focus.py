@@ -1,13 +1,15 @@
 """The routine predictor's lifts: binary features of the offered options, each weighed by the
-user's own likelihood ratio (docs/algorithm.md, "Objects in hand" and "Newly offered options").
+user's own likelihood ratio (docs/algorithm.md, "Objects in hand", "Newly offered options" and
+"After a break").
 
-The features: an option uses an object of the user's latest actions (the objects in hand), and an
+The features: an option uses an object of the user's latest actions (the objects in hand), an
 option was not offered at the previous decision (newly offered: what the last action made
-possible). For a feature, ``w_in = (h + 1) / (s + 1)`` and ``w_out = (n - h + 1) / (n - s + 1)``
+possible), and, right after an idle gap, an option once followed the last action before the gap
+(it picks up where the user left off). For a feature, ``w_in = (h + 1) / (s + 1)`` and ``w_out = (n - h + 1) / (n - s + 1)``
 over the ``n`` past steps whose offer held options with it and without it: ``h`` of them chose
 one with it, ``s`` sums the share of such options in each offer. The routine predictor multiplies
 its similarity level by them (``routine.RoutineOracle``, parameters ``focus``, ``focus_odds``,
-``focus_level``, ``fresh``).
+``focus_level``, ``fresh``, ``resume``).
 """
 
 from __future__ import annotations
@@ -94,3 +96,34 @@ def split_weights(hand: np.ndarray | None, new: np.ndarray | None,
     if new is None or new_on_top:
         return hand, new
     return (new if hand is None else hand * new), None
+
+
+@dataclass
+class Resumption:
+    """After a break: which actions ever came right after each action (idle gaps skipped), the
+    latest action, and the user's lift of the options that once followed it, counted on the
+    decisions right after an idle gap."""
+
+    lift: FeatureLift = field(default_factory=FeatureLift)
+    followers: dict[int, set[int]] = field(default_factory=dict)
+    last: int = -1
+
+    def which(self, ids: Iterable[int], paused: bool) -> np.ndarray | None:
+        """Per offered option (interned id): did it ever follow the latest action? None unless
+        the user paused right before now."""
+        if not paused or self.last < 0:
+            return None
+        after = self.followers.get(self.last, set())
+        return np.array([i in after for i in ids], dtype=bool)
+
+    def observe(self, ids: list[int], truth: int | None, paused: bool) -> None:
+        """Count a decision (its offer, the option done) when it came right after a gap."""
+        counted = decision(ids, truth) if paused and self.last >= 0 else None
+        if counted is not None:
+            self.lift.observe(self.which(counted[0], True), counted[1])  # type: ignore[arg-type]
+
+    def follow(self, action: int) -> None:
+        """The next action done (after a gap or not)."""
+        if self.last >= 0:
+            self.followers.setdefault(self.last, set()).add(action)
+        self.last = action

@@ -20,13 +20,13 @@ from typing import Any
 import numpy as np
 
 from oracle.algorithm.contexts import IDLE, UNKNOWN, Blend, ContextCounts, Memo
-from oracle.algorithm.focus import FeatureLift, NewOffers, decision, held_objects, in_focus, split_weights
+from oracle.algorithm.focus import FeatureLift, NewOffers, Resumption, decision, held_objects, in_focus, split_weights
 from oracle.algorithm.params import THESIS_DEFAULTS, EstimatorParams
 from oracle.algorithm.kernel import START, Rows, context_distance, normalised, similarity_mass
 from oracle.algorithm.reference import offered_options
 from oracle.algorithm.routine_settings import check_settings
 from oracle.algorithm.selftune import VariantWeights
-from oracle.algorithm.similarity import class_rows, option_distances
+from oracle.algorithm.similarity import OptionTable, class_rows
 from oracle.algorithm.support import followed_at
 from oracle.algorithm.records import Option, RankedTask, Ranking, Step, TreeNode
 from oracle.algorithm.tree import Successions, TreeShape, successor_tree
@@ -50,7 +50,9 @@ class RoutineTask(RankedTask):
     (latest last), or of the most similar past actions when there are none; ``focus`` the
     option's objects that the user's latest actions used (the objects in hand, which lift it);
     ``new`` whether it was not offered at the previous decision (newly possible) while others
-    were, so that the user's lift of such options weighs it.
+    were, so that the user's lift of such options weighs it; ``resumed`` whether, right after a
+    break, it once followed the last action before the break (it picks up where the user left
+    off) while others did not.
     """
 
     probability: float = 0.0
@@ -59,6 +61,7 @@ class RoutineTask(RankedTask):
     situations: tuple[int, ...] = ()
     focus: tuple[str, ...] = ()
     new: bool = False
+    resumed: bool = False
 
 
 class _Stream:
@@ -90,7 +93,8 @@ class RoutineOracle(EstimatorParams):
     blend) by the user's own lift of the options that use an object of the latest ``focus``
     actions (``focus_odds``: and of those that do not); ``fresh`` reweights each variant's blend
     (``fresh_level`` "base": ``Q``) by the user's own odds of taking an option that was not
-    offered at the previous decision; ``exclusion`` lets the lowest counted
+    offered at the previous decision; ``resume`` reweights ``Q``, right after an idle gap, by
+    the user's own odds of taking an option that once followed the last action; ``exclusion`` lets the lowest counted
     level escape only to the options it did not count; ``novelty`` (variants) gives the never-done
     options together the PPM-C estimate of a novel action
     ("leader": the best so far that leads the first variant by ``switch_margin`` standard errors,
@@ -100,7 +104,7 @@ class RoutineOracle(EstimatorParams):
 
     _param_names = ("distances", "opening_tasks", "orders", "temperatures", "lowest_orders", "timed", "timed_from",
                     "discounts", "discount_from", "discount_evidence", "timed_discount_from", "timed_shrink", "timed_to",
-                    "timed_blend", "focus", "focus_level", "focus_odds", "fresh", "fresh_level", "streams",
+                    "timed_blend", "focus", "focus_level", "focus_odds", "fresh", "fresh_level", "resume", "streams",
                     "timed_gate",
                     "exclusion", "novelty",
                     "context_depth", "switch_margin", "context_decay", "tuning", "tuning_window", "task_factor", "object_factor",
@@ -114,7 +118,7 @@ class RoutineOracle(EstimatorParams):
                  discount_evidence: int = 100, timed_discount_from: int | None = None, timed_shrink: bool = False,
                  timed_to: int | None = None, timed_blend: float | None = None,
                  focus: int = 3, focus_level: str = "base", focus_odds: bool = True, fresh: bool = True,
-                 fresh_level: str = "top",
+                 fresh_level: str = "top", resume: bool = True,
                  streams: tuple[str, ...] = ("idle",), timed_gate: float | None = None,
                  exclusion: bool = False,
                  novelty: tuple[bool, ...] = (False, True),
@@ -143,6 +147,7 @@ class RoutineOracle(EstimatorParams):
         self.focus_odds = focus_odds
         self.fresh = fresh
         self.fresh_level = fresh_level
+        self.resume = resume
         self.streams = streams
         self.timed_gate = timed_gate
         self.exclusion = exclusion
@@ -166,11 +171,8 @@ class RoutineOracle(EstimatorParams):
         self.variants_ = tuple(product(self.streams, self.orders, self.temperatures, self.lowest_orders,
                                       self.timed, self.discounts, self.novelty))
         self.weights_ = VariantWeights(len(self.variants_), keep=True)
-        self._values = np.asarray(self.distances.values, dtype=np.float64)
-        self.options_: list[Option] = []
-        self._ids: dict[Option, int] = {}
-        self._classes = np.empty((0, 3), dtype=np.int64)
-        self._table = np.zeros((0, 0))
+        self._known = OptionTable(self.distances, self.task_factor, self.object_factor, self.penalty)
+        self.options_: list[Option] = self._known.options
         self._streams = {s: _Stream(max(self.orders), self.context_depth,
                                         self.timed_from if any(self.timed) else -1) for s in self.streams}
         self._executed = Rows(1)        # per past action: option id
@@ -178,9 +180,9 @@ class RoutineOracle(EstimatorParams):
         self._position = Rows(1)        # per past action: its position in the history
         self._next = Rows(1)            # per history position: successor position, -1 none or idle
         self._step_ids = Rows(1)        # per history position: option id, -1 idle
-        self._objects: list[frozenset[str]] = []  # per interned option: its object classes
         self.hand_ = FeatureLift()
         self.fresh_ = NewOffers()
+        self.resume_ = Resumption()
         self.n_steps_ = 0
         self.fitted_steps_: int | None = 0  # the length of the history fit() saw; None once partial_fit
         self._grow(list(history))
@@ -222,32 +224,6 @@ class RoutineOracle(EstimatorParams):
         if tuple(self.get_params().values()) != self._raw_params:
             raise SettingsError("parameters changed since fit; call fit(history) again")
 
-    def _intern(self, option: Option) -> int:
-        known = self._ids.get(option)
-        if known is not None:
-            return known
-        row = class_rows(self.distances, [option])
-        old = len(self.options_)
-        if old == self._table.shape[0]:
-            size = max(32, 2 * old)
-            table = np.zeros((size, size))
-            table[:old, :old] = self._table[:old, :old]
-            self._table = table
-            classes = np.empty((size, 3), dtype=np.int64)
-            classes[:old] = self._classes[:old]
-            self._classes = classes
-        self._classes[old] = row[0]
-        distances = self._distances(row, self._classes[: old + 1])[0]
-        self._table[old, : old + 1] = distances
-        self._table[: old + 1, old] = distances
-        self._ids[option] = old
-        self.options_.append(option)
-        self._objects.append(frozenset(option.objects()))
-        return old
-
-    def _distances(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        return option_distances(self._values, a, b, self.task_factor, self.object_factor, self.penalty)
-
     def _add(self, step: Step, score: bool) -> None:
         if not isinstance(step, Step):
             raise TypeError(f"history entries must be Step records, got {type(step).__name__}")
@@ -257,21 +233,24 @@ class RoutineOracle(EstimatorParams):
             if step.option in offered:
                 inside = self._in_focus(offered) if self.focus else None
                 self.weights_.update(self._variant_probabilities(offered, step.time_of_day, inside=inside,
-                                                                 new=self._newly_offered(offered))[0],
+                                                                 new=self._newly_offered(offered),
+                                                                 resumed=self._resumed(offered))[0],
                                      offered.index(step.option), self.n_steps_)
         position = self.n_steps_
-        known = self._ids
-        ids = [self._intern(option) if (found := known.get(option)) is None else found for option in step.options]
+        known = self._known.ids
+        ids = [self._known.intern(option) if (found := known.get(option)) is None else found for option in step.options]
         if not step.idle and ids:
             truth = known.get(step.option)
             if self.focus:
                 self._observe_focus(ids, truth)
             if self.fresh:
                 self.fresh_.observe(ids, truth)
+            if self.resume:
+                self.resume_.observe(ids, truth, self._paused())
         if step.idle:
             token = IDLE
         else:
-            token = self._intern(step.option)
+            token = self._known.intern(step.option)
             if position > 0 and self._step_ids.view[position - 1, 0] != IDLE:
                 self._next.view[position - 1, 0] = position
             for stream in self._streams.values():
@@ -279,6 +258,7 @@ class RoutineOracle(EstimatorParams):
             self._executed.append(token)
             self._tod.append(_TOD.get(step.time_of_day or "", -1))
             self._position.append(position)
+            self.resume_.follow(token)
         part = _TOD.get(step.time_of_day or "", -1)
         for name, stream in self._streams.items():
             if name == "idle" or token != IDLE:
@@ -297,41 +277,52 @@ class RoutineOracle(EstimatorParams):
         """Count a decision (interned ids offered, the option done) for the objects in hand's lift."""
         counted = decision(ids, truth)
         if counted is not None:
-            self.hand_.observe(in_focus(self._held(), (self._objects[i] for i in counted[0])), counted[1])
+            self.hand_.observe(in_focus(self._held(), (self._known.objects[i] for i in counted[0])), counted[1])
+
+    def _paused(self) -> bool:
+        """Whether the history ends with an idle gap (the user paused right before now)."""
+        return self.n_steps_ > 0 and self._step_ids.view[self.n_steps_ - 1, 0] == IDLE
+
+    def _resumed(self, offered: Sequence[Option]) -> np.ndarray | None:
+        """After a gap, per offered option: did it ever follow the last action? (None otherwise)"""
+        return self.resume_.which((self._known.ids.get(o, UNKNOWN) for o in offered), self._paused()) if self.resume else None
 
     def _newly_offered(self, offered: Sequence[Option]) -> np.ndarray | None:
         """Per offered option: was it not offered at the latest decision? (None without ``fresh``)"""
-        return self.fresh_.which(self._ids.get(option, UNKNOWN) for option in offered) if self.fresh else None
+        return self.fresh_.which(self._known.ids.get(option, UNKNOWN) for option in offered) if self.fresh else None
 
     def _held(self) -> frozenset[str]:
         """The objects of the latest ``focus`` actions (idle gaps skipped)."""
         recent = self._executed.view[-self.focus:, 0].tolist() if self.focus and self._executed.size else []
-        return held_objects(self._objects[t] for t in recent)
+        return held_objects(self._known.objects[t] for t in recent)
 
     def _variant_probabilities(self, offered: Sequence[Option], now: str | None,
                                which: Sequence[int] | None = None, inside: np.ndarray | None = None,
-                               new: np.ndarray | None = None) -> tuple[list[np.ndarray], list[Blend], np.ndarray]:
+                               new: np.ndarray | None = None, resumed: np.ndarray | None = None
+                               ) -> tuple[list[np.ndarray], list[Blend], np.ndarray]:
         """The distribution over ``offered`` and the blend of each variant in ``which`` (default:
         all), and the candidates' Algorithm 2 distances to every interned option (``inside``:
         which offered options are in focus, None without focus; ``new``: which were not offered
-        at the previous decision, None without ``fresh``)."""
-        ids = [self._ids.get(option, UNKNOWN) for option in offered]
+        at the previous decision, None without ``fresh``; ``resumed``: after a gap, which once
+        followed the last action, None otherwise)."""
+        ids = [self._known.ids.get(option, UNKNOWN) for option in offered]
         count = len(self.options_)
         if UNKNOWN in ids:
-            cand = self._distances(class_rows(self.distances, offered), self._classes[:count])
+            cand = self._known.distances(class_rows(self.distances, offered), self._known.classes[:count])
         else:
-            cand = self._table[ids, :count]
+            cand = self._known.table[ids, :count]
         executed = self._executed.view[:, 0]
         now_code = _TOD.get(now, -1) if now is not None else -1
         then = self._tod.view[:, 0]
         differs = (then >= 0) & (then != now_code) if now_code >= 0 else np.zeros(then.size, dtype=bool)
-        table = self._table[:count, :count]
+        table = self._known.table[:count, :count]
         chosen = [self.variants_[v] for v in (range(len(self.variants_)) if which is None else which)]
         context = {name: context_distance(table, s.recent(), s.before.view, self.penalty, self.context_decay)
                    for name, s in self._streams.items() if any(v[0] == name for v in chosen)}
         base: dict[tuple[str, float], np.ndarray] = {}
         focus, top = split_weights(self.hand_.weights(inside, self.focus_odds), self.fresh_.lift.weights(new, True),
                                    self.fresh_level == "top")
+        focus, _ = split_weights(focus, self.resume_.lift.weights(resumed, True), False)
         blends: dict[tuple[str, int, float, int, bool, bool, bool], Blend] = {}
         probabilities = []
         memo: Memo = {}  # the counts' look-ups, shared by the variants (same candidates, same counts)
@@ -399,9 +390,10 @@ class RoutineOracle(EstimatorParams):
         used = np.flatnonzero(weights > 0).tolist()  # the leader alone, unless mixing
         held = self._held()
         inside = self._in_focus(offered, held) if self.focus else None
-        new = self._newly_offered(offered)
+        new, resumed = self._newly_offered(offered), self._resumed(offered)
         lifted = new is not None and bool(new.any()) and not bool(new.all())
-        probabilities, blends, cand = self._variant_probabilities(offered, now, used, inside, new)
+        goes_on = resumed is not None and bool(resumed.any()) and not bool(resumed.all())
+        probabilities, blends, cand = self._variant_probabilities(offered, now, used, inside, new, resumed)
         mixed = np.zeros(len(offered))
         for weight, p in zip(weights[used], probabilities):
             mixed += weight * p
@@ -418,7 +410,7 @@ class RoutineOracle(EstimatorParams):
         for rank, i in enumerate(order, start=1):
             option, n = offered[i], int(explain.order[i])
             context = stream.counts.context(n) if n > 0 else ()
-            situations = self._support(stream, self._ids.get(option, UNKNOWN), context or (), n)
+            situations = self._support(stream, self._known.ids.get(option, UNKNOWN), context or (), n)
             successors: tuple[TreeNode, ...] = ()
             if situations and (tree_roots is None or rank <= tree_roots):
                 successors = successor_tree(
@@ -432,7 +424,7 @@ class RoutineOracle(EstimatorParams):
                 int(explain.count[i]) if n >= 0 else 0, float(nearest[i]), successors, probability, n,
                 tuple(self._label(t) for t in context or ()), tuple(situations[-5:]) if n >= 0 else (),
                 tuple(obj for obj in option.objects() if obj in held) if inside is not None else (),
-                lifted and bool(new[i])))  # type: ignore[index]
+                lifted and bool(new[i]), goes_on and bool(resumed[i])))  # type: ignore[index]
         return Ranking(tuple(tasks))
 
     def _support(self, stream: _Stream, option_id: int, context: tuple[int, ...], n: int) -> list[int]:

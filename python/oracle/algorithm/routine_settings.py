@@ -45,6 +45,8 @@ def check_settings(model: Any) -> None:
         raise SettingsError(f"{name}: timed_blend must be None or a number from 0 to 1, got {model.timed_blend!r}")
     if isinstance(model.focus, bool) or not isinstance(model.focus, int) or model.focus < 0:
         raise SettingsError(f"{name}: focus must be a whole number >= 0, got {model.focus!r}")
+    if not isinstance(model.resume, bool):
+        raise SettingsError(f"{name}: resume must be True or False, got {model.resume!r}")
     if not isinstance(model.fresh, bool):
         raise SettingsError(f"{name}: fresh must be True or False, got {model.fresh!r}")
     if model.fresh_level not in ("base", "top"):

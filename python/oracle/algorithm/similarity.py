@@ -3,12 +3,14 @@
 The thesis oracle keeps its own vectorised copy inside ``fast.py`` so that it stays bit-identical
 to ``reference``; this one serves the new predictor and is held equal to ``reference`` by
 tests/algorithm/test_routine.py. Options become rows of class indices (task, target, reference;
--1 for an empty slot) so that a whole table of distances is one numpy expression.
+-1 for an empty slot) so that a whole table of distances is one numpy expression; ``OptionTable``
+keeps the distances between the options a history interned.
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -46,3 +48,51 @@ def option_distances(values: np.ndarray, a: np.ndarray, b: np.ndarray, task_fact
     average = np.divide(total, count, out=np.zeros(task.shape), where=count > 0)
     result: np.ndarray = task_factor * task + object_factor * average
     return result
+
+
+@dataclass(eq=False)
+class OptionTable:
+    """Every option a history offered or did, interned in the order first seen, with its class
+    row, its objects and its Algorithm 2 distance to each other interned option (a square table
+    that doubles as it fills)."""
+
+    matrix: DistanceTable
+    task_factor: float
+    object_factor: float
+    penalty: float
+    options: list[Option] = field(default_factory=list)
+    ids: dict[Option, int] = field(default_factory=dict)
+    objects: list[frozenset[str]] = field(default_factory=list)
+    classes: np.ndarray = field(default_factory=lambda: np.empty((0, 3), dtype=np.int64))
+    table: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+
+    def __post_init__(self) -> None:
+        self.values = np.asarray(self.matrix.values, dtype=np.float64)
+
+    def distances(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """Algorithm 2 between class rows (``option_distances`` with this table's factors)."""
+        return option_distances(self.values, a, b, self.task_factor, self.object_factor, self.penalty)
+
+    def intern(self, option: Option) -> int:
+        """The option's id, interning it (and its distances to every interned option) if new."""
+        known = self.ids.get(option)
+        if known is not None:
+            return known
+        row = class_rows(self.matrix, [option])
+        old = len(self.options)
+        if old == self.table.shape[0]:
+            size = max(32, 2 * old)
+            table = np.zeros((size, size))
+            table[:old, :old] = self.table[:old, :old]
+            self.table = table
+            classes = np.empty((size, 3), dtype=np.int64)
+            classes[:old] = self.classes[:old]
+            self.classes = classes
+        self.classes[old] = row[0]
+        distances = self.distances(row, self.classes[: old + 1])[0]
+        self.table[old, : old + 1] = distances
+        self.table[: old + 1, old] = distances
+        self.ids[option] = old
+        self.options.append(option)
+        self.objects.append(frozenset(option.objects()))
+        return old

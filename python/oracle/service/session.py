@@ -222,13 +222,14 @@ class NeemSession:
         """One ranked task as the API answers it: ``support`` is how many past situations back
         it (the thesis oracle: |H(s_o)|; the routine predictor: how often the user did it after
         the same exact context), ``situations`` when the latest of those began (at most 5),
-        ``focus`` the objects in hand it uses, ``new`` whether it is newly offered,
+        ``focus`` the objects in hand it uses, ``new`` whether it is newly offered, ``resumed``
+        whether, after a break, it picks up where the user left off,
         ``reason`` the same in a few words."""
         fields = support_fields(task)
         entry: dict[str, Any] = {"rank": task.rank, "task": call, "score": finite(task.score), "support": task.n_similar,
                                  "probability": fields.get("probability"), "context_order": fields.get("context_order"),
                                  "context": fields.get("context", []), "focus": fields.get("focus", []),
-                                 "new": fields.get("new", False),
+                                 "new": fields.get("new", False), "resumed": fields.get("resumed", False),
                                  "situations": [self.begins[p] for p in fields.get("situations", []) if p < len(self.begins)]}
         entry["reason"] = support_sentence({**entry, "done": call in self.done})
         return entry
