@@ -14,7 +14,7 @@ its similarity level by them (``routine.RoutineOracle``, parameters ``focus``, `
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -46,13 +46,13 @@ class FeatureLift:
     share: float = 0.0   # sum over the steps of the share of the offer with it
     steps: int = 0
 
-    def observe(self, inside: np.ndarray, truth: int) -> None:
+    def observe(self, inside: Sequence[bool], truth: int) -> None:
         """Count a step (``inside`` per offered option, ``truth`` the index of the option done),
         when its offer held options with the feature and without it."""
-        n_in = int(inside.sum())
-        if 0 < n_in < inside.size:
+        n_in = sum(inside)
+        if 0 < n_in < len(inside):
             self.hits += float(inside[truth])
-            self.share += n_in / inside.size
+            self.share += n_in / len(inside)
             self.steps += 1
 
     def lift(self, odds: bool) -> tuple[float, float]:
@@ -81,12 +81,10 @@ class NewOffers:
         """Per offered option (given by its interned id): was it not offered at the latest decision?"""
         return np.array([i not in self.offer for i in ids], dtype=bool)
 
-    def observe(self, ids: list[int], truth: int | None) -> None:
-        """Count a decision (its offer, the option done) and keep its offer as the latest."""
-        counted = decision(ids, truth)
-        if counted is not None:
-            self.lift.observe(self.which(counted[0]), counted[1])
-        self.offer = frozenset(ids)
+    def observe(self, offered: list[int], truth: int) -> None:
+        """Count a decision (the ids offered, duplicates dropped; the index of the option done)."""
+        offer = self.offer
+        self.lift.observe([i not in offer for i in offered], truth)
 
 
 def split_weights(hand: np.ndarray | None, new: np.ndarray | None,
@@ -116,11 +114,12 @@ class Resumption:
         after = self.followers.get(self.last, set())
         return np.array([i in after for i in ids], dtype=bool)
 
-    def observe(self, ids: list[int], truth: int | None, paused: bool) -> None:
-        """Count a decision (its offer, the option done) when it came right after a gap."""
-        counted = decision(ids, truth) if paused and self.last >= 0 else None
-        if counted is not None:
-            self.lift.observe(self.which(counted[0], True), counted[1])  # type: ignore[arg-type]
+    def observe(self, offered: list[int], truth: int) -> None:
+        """Count a decision right after a gap (the ids offered, duplicates dropped; the index of
+        the option done)."""
+        if self.last >= 0:
+            after = self.followers.get(self.last, set())
+            self.lift.observe([i in after for i in offered], truth)
 
     def follow(self, action: int) -> None:
         """The next action done (after a gap or not)."""

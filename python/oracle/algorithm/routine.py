@@ -240,13 +240,10 @@ class RoutineOracle(EstimatorParams):
         known = self._known.ids
         ids = [self._known.intern(option) if (found := known.get(option)) is None else found for option in step.options]
         if not step.idle and ids:
-            truth = known.get(step.option)
-            if self.focus:
-                self._observe_focus(ids, truth)
-            if self.fresh:
-                self.fresh_.observe(ids, truth)
-            if self.resume:
-                self.resume_.observe(ids, truth, self._paused())
+            counted = decision(ids, known.get(step.option))
+            if counted is not None:
+                self._observe(*counted)
+            self.fresh_.offer = frozenset(ids)
         if step.idle:
             token = IDLE
         else:
@@ -273,11 +270,15 @@ class RoutineOracle(EstimatorParams):
         """Per offered option: does it use an object of the latest ``focus`` actions (``held``)?"""
         return in_focus(self._held() if held is None else held, (option.objects() for option in offered))
 
-    def _observe_focus(self, ids: list[int], truth: int | None) -> None:
-        """Count a decision (interned ids offered, the option done) for the objects in hand's lift."""
-        counted = decision(ids, truth)
-        if counted is not None:
-            self.hand_.observe(in_focus(self._held(), (self._known.objects[i] for i in counted[0])), counted[1])
+    def _observe(self, offered: list[int], truth: int) -> None:
+        """Count a decision (interned ids offered, the index of the option done) for the lifts."""
+        if self.focus:
+            held, objects = self._held(), self._known.objects
+            self.hand_.observe([not held.isdisjoint(objects[i]) for i in offered], truth)
+        if self.fresh:
+            self.fresh_.observe(offered, truth)
+        if self.resume and self._paused():
+            self.resume_.observe(offered, truth)
 
     def _paused(self) -> bool:
         """Whether the history ends with an idle gap (the user paused right before now)."""
