@@ -40,7 +40,7 @@ def decision(ids: list[int], truth: int | None) -> tuple[list[int], int] | None:
 @dataclass
 class FeatureLift:
     """What the user's past steps say about choosing an option with a binary feature (in focus,
-    newly offered)."""
+    newly offered, going on after a break)."""
 
     hits: float = 0.0    # steps whose option done had the feature
     share: float = 0.0   # sum over the steps of the share of the offer with it
@@ -87,13 +87,21 @@ class NewOffers:
         self.lift.observe([i not in offer for i in offered], truth)
 
 
+def combined(a: np.ndarray | None, b: np.ndarray | None) -> np.ndarray | None:
+    """The product of two lifts' weights over the same offer (None: no weights)."""
+    if a is None or b is None:
+        return b if a is None else a
+    product: np.ndarray = a * b
+    return product
+
+
 def split_weights(hand: np.ndarray | None, new: np.ndarray | None,
                   new_on_top: bool) -> tuple[np.ndarray | None, np.ndarray | None]:
     """The weights of ``Q`` and of each variant's blend (None: none): the objects in hand's on
     ``Q``, the newly offered options' on the blend (``new_on_top``) or on ``Q`` with them."""
     if new is None or new_on_top:
         return hand, new
-    return (new if hand is None else hand * new), None
+    return combined(hand, new), None
 
 
 @dataclass

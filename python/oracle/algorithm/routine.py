@@ -3,8 +3,9 @@ to ontology similarity of past situations, self-tuned on the user's own history.
 
 For each variant ``v = (stream, order, tau, n0, timed, discount, novelty)`` the probability of a candidate
 is PPM-C over the user's exact contexts (and the same contexts at this part of day) whose lowest
-level is the similarity distribution ``Q`` of ``kernel``, reweighted by the objects in hand, and whose result is
-reweighted by the user's odds of taking a newly offered option; the predictor ranks with the variant
+level is the similarity distribution ``Q`` of ``kernel``, reweighted by the objects in hand (and, right after
+a break, by what followed the last action), and whose result is reweighted by the user's odds of
+taking a newly offered option; the predictor ranks with the variant
 that predicted the user's past steps best (``selftune``). docs/algorithm.md, "Routine predictor",
 gives every formula and the reasons.
 """
@@ -20,7 +21,8 @@ from typing import Any
 import numpy as np
 
 from oracle.algorithm.contexts import IDLE, UNKNOWN, Blend, ContextCounts, Memo
-from oracle.algorithm.focus import FeatureLift, NewOffers, Resumption, decision, held_objects, in_focus, split_weights
+from oracle.algorithm.focus import (FeatureLift, NewOffers, Resumption, combined, decision, held_objects, in_focus,
+                                   split_weights)
 from oracle.algorithm.params import THESIS_DEFAULTS, EstimatorParams
 from oracle.algorithm.kernel import START, Rows, context_distance, normalised, similarity_mass
 from oracle.algorithm.reference import offered_options
@@ -323,7 +325,7 @@ class RoutineOracle(EstimatorParams):
         base: dict[tuple[str, float], np.ndarray] = {}
         focus, top = split_weights(self.hand_.weights(inside, self.focus_odds), self.fresh_.lift.weights(new, True),
                                    self.fresh_level == "top")
-        focus, _ = split_weights(focus, self.resume_.lift.weights(resumed, True), False)
+        focus = combined(focus, self.resume_.lift.weights(resumed, True))
         blends: dict[tuple[str, int, float, int, bool, bool, bool], Blend] = {}
         probabilities = []
         memo: Memo = {}  # the counts' look-ups, shared by the variants (same candidates, same counts)
