@@ -30,6 +30,12 @@ def in_focus(held: frozenset[str], objects: Iterable[Iterable[str]]) -> np.ndarr
     return np.array([not held.isdisjoint(used) for used in objects], dtype=bool)
 
 
+def tells_apart(inside: np.ndarray | None) -> bool:
+    """Whether a feature holds for some offered options and not for others (only then does its
+    lift weigh the offer, and only then does the explanation name it)."""
+    return inside is not None and bool(inside.any()) and not bool(inside.all())
+
+
 def decision(ids: list[int], truth: int | None) -> tuple[list[int], int] | None:
     """A decision as the lifts count it: the interned ids offered (duplicates dropped, as
     ``offered_options`` drops them) and the index of the option done; None when it was not offered."""
@@ -63,7 +69,7 @@ class FeatureLift:
 
     def weights(self, inside: np.ndarray | None, odds: bool) -> np.ndarray | None:
         """The weight of each offered option, or None (no focus, or nothing to tell apart)."""
-        if inside is None or not inside.any() or inside.all():
+        if inside is None or not tells_apart(inside):
             return None
         w_in, w_out = self.lift(odds)
         return np.where(inside, w_in, w_out)

@@ -22,7 +22,7 @@ import numpy as np
 
 from oracle.algorithm.contexts import IDLE, UNKNOWN, Blend, ContextCounts, Memo
 from oracle.algorithm.focus import (FeatureLift, NewOffers, Resumption, combined, decision, held_objects, in_focus,
-                                   split_weights)
+                                   split_weights, tells_apart)
 from oracle.algorithm.params import THESIS_DEFAULTS, EstimatorParams
 from oracle.algorithm.kernel import START, Rows, context_distance, normalised, similarity_mass
 from oracle.algorithm.reference import offered_options
@@ -234,9 +234,9 @@ class RoutineOracle(EstimatorParams):
             offered, _ = offered_options(step, None)
             if step.option in offered:
                 inside = self._in_focus(offered) if self.focus else None
+                new, resumed = self._offer_flags(offered)
                 self.weights_.update(self._variant_probabilities(offered, step.time_of_day, inside=inside,
-                                                                 new=self._newly_offered(offered),
-                                                                 resumed=self._resumed(offered))[0],
+                                                                 new=new, resumed=resumed)[0],
                                      offered.index(step.option), self.n_steps_)
         position = self.n_steps_
         known = self._known.ids
@@ -286,13 +286,12 @@ class RoutineOracle(EstimatorParams):
         """Whether the history ends with an idle gap (the user paused right before now)."""
         return self.n_steps_ > 0 and self._step_ids.view[self.n_steps_ - 1, 0] == IDLE
 
-    def _resumed(self, offered: Sequence[Option]) -> np.ndarray | None:
-        """After a gap, per offered option: did it ever follow the last action? (None otherwise)"""
-        return self.resume_.which((self._known.ids.get(o, UNKNOWN) for o in offered), self._paused()) if self.resume else None
-
-    def _newly_offered(self, offered: Sequence[Option]) -> np.ndarray | None:
-        """Per offered option: was it not offered at the latest decision? (None without ``fresh``)"""
-        return self.fresh_.which(self._known.ids.get(option, UNKNOWN) for option in offered) if self.fresh else None
+    def _offer_flags(self, offered: Sequence[Option]) -> tuple[np.ndarray | None, np.ndarray | None]:
+        """Per offered option: was it not offered at the latest decision (None without ``fresh``),
+        and, right after a gap, did it ever follow the last action (None otherwise)?"""
+        ids = [self._known.ids.get(option, UNKNOWN) for option in offered]
+        return (self.fresh_.which(ids) if self.fresh else None,
+                self.resume_.which(ids, self._paused()) if self.resume else None)
 
     def _held(self) -> frozenset[str]:
         """The objects of the latest ``focus`` actions (idle gaps skipped)."""
@@ -393,9 +392,8 @@ class RoutineOracle(EstimatorParams):
         used = np.flatnonzero(weights > 0).tolist()  # the leader alone, unless mixing
         held = self._held()
         inside = self._in_focus(offered, held) if self.focus else None
-        new, resumed = self._newly_offered(offered), self._resumed(offered)
-        lifted = new is not None and bool(new.any()) and not bool(new.all())
-        goes_on = resumed is not None and bool(resumed.any()) and not bool(resumed.all())
+        new, resumed = self._offer_flags(offered)
+        lifted, goes_on = tells_apart(new), tells_apart(resumed)
         probabilities, blends, cand = self._variant_probabilities(offered, now, used, inside, new, resumed)
         mixed = np.zeros(len(offered))
         for weight, p in zip(weights[used], probabilities):
