@@ -52,3 +52,29 @@ def test_the_second_pass_logs_the_rows_the_first_kept_and_reads_a_long_file_agai
     assert checked.rows is None and checked.plans["u"].rows == 3
     with open_store(tmp_path / "long.sqlite") as store, pytest.raises(ChainSyntaxError, match="cannot read"):
         import_chains(store, onto, chains, checked=checked)
+
+
+def test_an_available_set_is_checked_where_it_first_appears_and_a_changed_one_again(tmp_path):
+    import pytest
+
+    from oracle.errors import LoggingError
+    from oracle.neem.importing import check_chains
+
+    good = ["pick(red_mug)", "pick(apple)"]
+    rows = [{"user": "u", "time": f"2026-01-01T08:0{i}:00", "action": "pick(red_mug)", "available": good}
+            for i in range(3)]
+    onto = build_ontology()
+    chains = tmp_path / "c.jsonl"
+    chains.write_text("".join(json.dumps(r) + "\n" for r in rows))
+    checked = check_chains(onto, chains)   # rows 1-3 share one set: checked once, all good
+    assert checked.plans["u"].rows == 3
+    # the same set again on line 4, then a set with an unknown object on line 5: the error names line 5
+    rows += [dict(rows[0], time="2026-01-01T08:04:00"),
+             dict(rows[0], time="2026-01-01T08:05:00", available=[*good, "pick(no_such_thing)"])]
+    chains.write_text("".join(json.dumps(r) + "\n" for r in rows))
+    with pytest.raises(LoggingError, match=r"c\.jsonl:5: .*no_such_thing"):
+        check_chains(onto, chains)
+    with open_store(tmp_path / "s.sqlite") as store:
+        with pytest.raises(LoggingError, match=r":5: "):
+            import_chains(store, onto, chains)
+        assert store.neems() == []   # nothing written before the bad row was found

@@ -11,12 +11,12 @@ file order (docs/time.md, "Logs without a clock").
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from datetime import datetime
 from pathlib import Path
 
-from oracle.chains import ChainRow, read_chains
+from oracle.chains import ChainRow, TaskCall, read_chains
 from oracle.errors import LoggingError
 from oracle.neem.lifecycle import wipe_temporary_neems
 from oracle.neem.writer import NeemLogger, check_call, check_performer
@@ -56,7 +56,7 @@ def check_chains(onto: OdbOntology, path: str | Path, *, no_clock: bool = False)
     Raises LoggingError naming the file and line of the first bad row."""
     plans: dict[str, _UserPlan] = {}
     where = str(path)
-    checked: set[object] = set()
+    checked = _Checked()
     kept: list[ChainRow] | None = []
     try:
         for row in read_chains(path):
@@ -75,17 +75,38 @@ def check_chains(onto: OdbOntology, path: str | Path, *, no_clock: bool = False)
     return CheckedChains(plans, tuple(kept) if kept is not None else None)
 
 
-def _check_row(onto: OdbOntology, row: ChainRow, plan: _UserPlan, checked: set[object], no_clock: bool) -> None:
+@dataclass
+class _Checked:
+    """The calls a first pass found good, and the available sets it checked whole: rows that
+    share a set share its tuple (``read_chains``), which is kept here so that its id stays its own."""
+
+    calls: set[TaskCall] = field(default_factory=set)
+    sets: dict[int, tuple[TaskCall, ...]] = field(default_factory=dict)
+
+    def check(self, onto: OdbOntology, calls: Iterable[TaskCall]) -> None:
+        known = self.calls
+        for call in calls:
+            if call not in known:
+                check_call(onto, call)
+                if len(known) < 100_000:
+                    known.add(call)
+
+    def check_set(self, onto: OdbOntology, available: tuple[TaskCall, ...]) -> None:
+        if self.sets.get(id(available)) is not available:
+            self.check(onto, available)
+            if len(self.sets) < 100_000:
+                self.sets[id(available)] = available
+
+
+def _check_row(onto: OdbOntology, row: ChainRow, plan: _UserPlan, checked: _Checked, no_clock: bool) -> None:
     if no_clock:
         if row.time is not None or row.end is not None:
             raise LoggingError("the row has a time, but a log without a clock (--no-clock) must have none")
     elif row.time is None:
         raise LoggingError("'time' is required to log an action (a log without clock times: import --no-clock)")
-    for call in (row.action, *(row.available or ())):
-        if call not in checked:
-            check_call(onto, call)
-            if len(checked) < 100_000:
-                checked.add(call)
+    checked.check(onto, (row.action,))
+    if row.available:
+        checked.check_set(onto, row.available)
     check_performer(row.extra.get("performed_by", "robot"))
     if row.time is None:  # the sequence clock: in order by construction
         return _check_id(row, plan)
