@@ -46,6 +46,38 @@ def test_extend_equals_a_fresh_fit(seed, window):
     _same(fresh, hop, queries)
 
 
+def test_a_decision_drops_repeated_options_with_or_without_the_offer_set():
+    from oracle.algorithm.focus import decision
+
+    assert decision([3, 1, 3, 2], 2) == decision([3, 1, 3, 2], 2, frozenset({1, 2, 3})) == ([3, 1, 2], 2)
+    assert decision([3, 1, 2], 2, frozenset({1, 2, 3})) == ([3, 1, 2], 2)
+    assert decision([3, 1, 2], 7, frozenset({1, 2, 3})) is None
+
+
+@pytest.mark.parametrize("seed", [0, 4])
+def test_a_fit_over_shared_offers_equals_one_over_copies(seed):
+    """``fit`` interns each offer its steps share once (``OptionTable.offer``, by identity); steps
+    whose offers are equal copies, or repeat an option, count the same."""
+    from dataclasses import replace
+
+    matrix = random_matrix(seed)
+    steps = synthetic_history(300, seed)
+    assert len({id(step.options) for step in steps}) < 60   # the offers really are shared
+    copies = [replace(step, options=tuple(list(step.options))) for step in steps]
+    assert all(a.options is not b.options for a, b in zip(steps, copies))
+    queries = steps[-10:]
+    _same(RoutineOracle(matrix).fit(steps), RoutineOracle(matrix).fit(copies), queries)
+    doubled = [replace(step, options=step.options + step.options[:2]) if i % 3 else step for i, step in enumerate(steps)]
+    partial = RoutineOracle(matrix).fit([])
+    for step in doubled:
+        partial.partial_fit(step)
+    grown = RoutineOracle(matrix).fit(doubled)
+    assert (grown.fresh_.lift.hits, grown.fresh_.lift.share, grown.fresh_.lift.steps) == \
+           (partial.fresh_.lift.hits, partial.fresh_.lift.share, partial.fresh_.lift.steps)
+    assert (grown.hand_.hits, grown.hand_.share, grown.hand_.steps) == \
+           (partial.hand_.hits, partial.hand_.share, partial.hand_.steps)
+
+
 def test_the_window_changes_what_tunes():
     """The scores really are cut to the window (else the test above would prove little)."""
     matrix = random_matrix(3)
@@ -71,9 +103,9 @@ class _Counting(RoutineOracle):
 
     added = 0
 
-    def _add(self, step, score):
+    def _add(self, step, score, offers=None):
         type(self).added += 1
-        super()._add(step, score)
+        super()._add(step, score, offers)
 
 
 def test_cache_fits_once_then_extends_only_the_new_steps(tmp_path):

@@ -28,7 +28,7 @@ from oracle.algorithm.kernel import START, Rows, context_distance, normalised, s
 from oracle.algorithm.reference import offered_options
 from oracle.algorithm.routine_settings import check_settings
 from oracle.algorithm.selftune import VariantWeights
-from oracle.algorithm.similarity import OptionTable, class_rows
+from oracle.algorithm.similarity import Offers, OptionTable, class_rows
 from oracle.algorithm.support import followed_at
 from oracle.algorithm.records import Option, RankedTask, Ranking, Step, TreeNode
 from oracle.algorithm.tree import Successions, TreeShape, successor_tree
@@ -206,8 +206,9 @@ class RoutineOracle(EstimatorParams):
     def _grow(self, steps: Sequence[Step]) -> None:
         # scoring a step costs one rank: only the latest tuning_window steps tune a long history
         first_scored = len(steps) - self.tuning_window
+        offers: Offers = {}  # a history's steps share a few hundred offers: each interned once
         for position in range(self.n_steps_, len(steps)):
-            self._add(steps[position], score=position >= first_scored)
+            self._add(steps[position], score=position >= first_scored, offers=offers)
         self.weights_.keep_from(first_scored)
         self.fitted_steps_ = len(steps)
 
@@ -226,7 +227,9 @@ class RoutineOracle(EstimatorParams):
         if tuple(self.get_params().values()) != self._raw_params:
             raise SettingsError("parameters changed since fit; call fit(history) again")
 
-    def _add(self, step: Step, score: bool) -> None:
+    def _add(self, step: Step, score: bool, offers: Offers | None = None) -> None:
+        """Count a step (``score``: after the variants ranked its offer); ``offers`` keeps the
+        interned ids of each offer met (by identity: an option keeps its id once interned)."""
         if not isinstance(step, Step):
             raise TypeError(f"history entries must be Step records, got {type(step).__name__}")
         scored = score and self.tuning != "fixed" and not step.idle and bool(step.options)  # "fixed" needs no scores
@@ -239,13 +242,12 @@ class RoutineOracle(EstimatorParams):
                                                                  new=new, resumed=resumed)[0],
                                      offered.index(step.option), self.n_steps_)
         position = self.n_steps_
-        known = self._known.ids
-        ids = [self._known.intern(option) if (found := known.get(option)) is None else found for option in step.options]
+        ids, offer = self._known.offer(step.options, offers)
         if not step.idle and ids:
-            counted = decision(ids, known.get(step.option))
+            counted = decision(ids, self._known.ids.get(step.option), offer)
             if counted is not None:
                 self._observe(*counted)
-            self.fresh_.offer = frozenset(ids)
+            self.fresh_.offer = offer
         if step.idle:
             token = IDLE
         else:

@@ -50,6 +50,12 @@ def option_distances(values: np.ndarray, a: np.ndarray, b: np.ndarray, task_fact
     return result
 
 
+#: at most this many distinct offers ``OptionTable.offer`` keeps the ids of (each holds its options)
+MAX_OFFERS = 4096
+#: per offer met, by ``id``: the offer itself, its options' interned ids, those ids as a set
+Offers = dict[int, tuple[tuple[Option, ...], list[int], frozenset[int]]]
+
+
 @dataclass(eq=False)
 class OptionTable:
     """Every option a history offered or did, interned in the order first seen, with its class
@@ -96,3 +102,17 @@ class OptionTable:
         self.options.append(option)
         self.objects.append(frozenset(option.objects()))
         return old
+
+    def offer(self, options: tuple[Option, ...], met: Offers | None = None) -> tuple[list[int], frozenset[int]]:
+        """The interned ids of an offer's options (interning new ones), as a list and as a set;
+        ``met`` keeps them per offer by identity for the next step that shares the offer (the
+        steps of a history share a few hundred offers; an option keeps its id once interned)."""
+        seen = met.get(id(options)) if met is not None else None
+        if seen is not None and seen[0] is options:
+            return seen[1], seen[2]
+        known = self.ids
+        ids = [self.intern(option) if (found := known.get(option)) is None else found for option in options]
+        offer = frozenset(ids)
+        if met is not None and len(met) < MAX_OFFERS:
+            met[id(options)] = (options, ids, offer)
+        return ids, offer
