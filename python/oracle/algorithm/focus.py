@@ -39,7 +39,8 @@ def tells_apart(inside: np.ndarray | None) -> bool:
 def decision(ids: list[int], truth: int | None, distinct: frozenset[int] | None = None) -> tuple[list[int], int] | None:
     """A decision as the lifts count it: the interned ids offered (duplicates dropped, as
     ``offered_options`` drops them) and the index of the option done; None when it was not offered.
-    ``distinct``, the set of ``ids`` when known, spares the copy of an offer without duplicates."""
+    ``distinct``, the set of ``ids`` when known, spares the copy of an offer without duplicates
+    (the list returned is then ``ids`` itself, which the lifts only read)."""
     offered = ids if distinct is not None and len(distinct) == len(ids) else list(dict.fromkeys(ids))
     return (offered, offered.index(truth)) if truth is not None and truth in offered else None
 
