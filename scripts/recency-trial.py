@@ -65,8 +65,8 @@ class Recency(_variants.Routine):  # type: ignore[name-defined]
     """The default routine predictor with the recency lift, behind the replay's Method interface."""
 
     def __init__(self, ontology: Any, name: str, users: list[list[Any]], level: str, odds: str,
-                 edges: Sequence[float]) -> None:
-        self.users, self.level, self.odds, self.edges = users, level, odds, tuple(edges)
+                 edges: Sequence[float], gate: float | None = None) -> None:
+        self.users, self.level, self.odds, self.edges, self.gate = users, level, odds, tuple(edges), gate
         self.user = -2  # the constructor resets once, then the replay once per user
         super().__init__(ontology, name, {})
 
@@ -78,6 +78,9 @@ class Recency(_variants.Routine):  # type: ignore[name-defined]
         self.hits = [0.0] * (len(self.edges) + 2)
         self.share = [0.0] * (len(self.edges) + 2)
         self.pending: tuple[list[Option], list[int], list[float]] | None = None
+        self.orders: tuple[list[Option], list[Option]] | None = None  # plain, lifted (post)
+        self.lead = 0.0     # the gate's sum of Top-1 hit differences, lifted minus plain
+        self.spread = 0.0   # ... and of their squares
         for holder, attr in ((self.model, "hand_"), (self.model.fresh_, "lift")):
             lift = getattr(holder, attr)
             setattr(holder, attr, Extra(lift.hits, lift.share, lift.steps))
@@ -93,7 +96,7 @@ class Recency(_variants.Routine):  # type: ignore[name-defined]
         elif self.level == "top":
             self.model.fresh_.lift.extra = weights
 
-    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None) -> list[Option]:
+    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None, at: float | None = None) -> list[Option]:
         offered = list(candidates)
         now = self._now()
         buckets = [len(self.edges) + 1 if (t := self.last.get(key(o))) is None
@@ -104,11 +107,16 @@ class Recency(_variants.Routine):  # type: ignore[name-defined]
         ranking = self.model.rank(offered, time_of_day, tree_roots=0)
         probability = {key(t.option): t.probability for t in ranking}
         self.pending = (offered, buckets, [probability[key(o)] for o in offered]) if spans else None
+        self.orders = None
         if self.level != "post" or weights is None:
             return list(ranking.options())
         final = [probability[key(o)] * w for o, w in zip(offered, weights)]
         order = sorted(range(len(offered)), key=lambda i: (-final[i], i))
-        return [offered[i] for i in order]
+        lifted = [offered[i] for i in order]
+        self.orders = (list(ranking.options()), lifted)
+        if self.gate is not None and not self.lead > self.gate * self.spread ** 0.5:
+            return self.orders[0]
+        return lifted
 
     def observe(self, step: Step) -> None:
         self.model.partial_fit(step)  # scored with this decision's weights still set
@@ -119,6 +127,11 @@ class Recency(_variants.Routine):  # type: ignore[name-defined]
             offered, buckets, probability = self.pending
             truth = next(i for i, o in enumerate(offered) if key(o) == key(step))
             self.hits[buckets[truth]] += 1
+            if self.orders is not None:
+                plain, lifted = self.orders
+                d = float(key(lifted[0]) == key(step)) - float(key(plain[0]) == key(step))
+                self.lead += d
+                self.spread += d * d
             for b, p in zip(buckets, probability):
                 self.share[b] += p if self.odds == "model" else 1 / len(offered)
         if (now := self._now()) is not None:
@@ -135,7 +148,12 @@ def main() -> None:
     parser.add_argument("--level", choices=("post", "top", "base"), default="top")
     parser.add_argument("--odds", choices=("offer", "model"), default="offer")
     parser.add_argument("--edges", default=",".join(f"{e:g}" for e in EDGES))
+    parser.add_argument("--gate", type=float, default=None,
+                        help="with --level post: use the lift for a user only once its Top-1 hits lead the plain"
+                             " ranking's by this many standard errors of the paired differences (the switch margin)")
     args = parser.parse_args()
+    if args.gate is not None and args.level != "post":
+        parser.error("--gate needs --level post")
     if args.odds == "model" and args.level != "post":
         parser.error("--odds model needs --level post (the model's probabilities before the lift)")
     try:
@@ -145,7 +163,7 @@ def main() -> None:
     ontology = build_ontology(args.odb, args.mapping, None)
     users = load_users(args.chains)
     methods = [_variants.Routine(ontology, "routine", {}),
-               Recency(ontology, "recency", list(users.values()), args.level, args.odds, edges)]
+               Recency(ontology, "recency", list(users.values()), args.level, args.odds, edges, args.gate)]
     result = replay(ontology, users, methods, 0)
     n = len(result.outcomes)
 
@@ -155,7 +173,8 @@ def main() -> None:
 
     base = [hits("routine", k) for k in (1, 3, 5)]
     print(f"{args.chains}: {n} predictions; routine " + " / ".join(f"{b / n:.3f}" for b in base))
-    print(f"recency ({args.level}, {args.odds} odds, edges {','.join(f'{e:g}' for e in edges)}), points: "
+    gated = "" if args.gate is None else f", gate z {args.gate:g} on Top-1"
+    print(f"recency ({args.level}, {args.odds} odds, edges {','.join(f'{e:g}' for e in edges)}{gated}), points: "
           + " / ".join(f"{100 * (hits('recency', k) - b) / n:+.2f}" for k, b in zip((1, 3, 5), base)))
 
 

@@ -81,8 +81,8 @@ class Routine:
         params: dict[str, Any] = {k: tuple(v) if isinstance(v, list) else v for k, v in self.params.items()}
         self.model = RoutineOracle(self.distances, opening_tasks=self.opening, **params).fit([])
 
-    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None) -> list[Option]:
-        return list(self.model.rank(list(candidates), time_of_day, tree_roots=0).options())
+    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None, at: float | None = None) -> list[Option]:
+        return list(self.model.rank(list(candidates), time_of_day, tree_roots=0, at=at).options())
 
     def observe(self, step: Step) -> None:
         self.model.partial_fit(step)
@@ -102,7 +102,7 @@ class Kinds:
         self.done: Counter[object] = Counter()
         self.followed: set[tuple] = set()
 
-    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None) -> list[Option]:
+    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None, at: float | None = None) -> list[Option]:
         return list(candidates)
 
     def observe(self, step: Step) -> None:

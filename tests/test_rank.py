@@ -132,7 +132,7 @@ def test_rank_keeps_its_fit_and_answers_the_same_with_it(store, tmp_path, monkey
 
 def test_the_terminal_names_the_objects_in_hand_only_where_no_context_backs_a_task():
     from oracle.algorithm.records import Option
-    from oracle.algorithm.routine import RoutineTask
+    from oracle.algorithm.records import RoutineTask
     from oracle.commands.shown import describe
 
     mug = "https://ontology.dlr.de/soma/odb#RedMug"

@@ -30,9 +30,11 @@ ACTIONS = 10_000
 #: ``focus=0`` and that field dropped the code of the objects in hand gave the digest before it,
 #: 77aa1b49...; with ``fresh=False`` and ``new`` dropped the code of the newly offered options
 #: gave the one before it, ac2327a9...; with ``resume=False`` and ``resumed`` dropped the code of
-#: the lift after a break gives the newly offered options' one, 8193c57e...
+#: the lift after a break gives the newly offered options' one, 8193c57e... The clock (how long
+#: ago each option was last done, behind its Top-1 gate) adds the field ``since``; on this NEEM
+#: its gate stays shut, and with ``since`` dropped the code gives the digest before it, 6e082cec...
 #: ``python tests/test_rank_pin.py`` prints it.
-EXPECTED = "6e082cecaf2e61026197d5edcbea12d3807acd5cb5e2727cde9ffc9999246ad1"
+EXPECTED = "2d72e8977a1032e54fcb6b163160dfe1c5fbc698a1234b96d7a808b0109b8ad0"
 
 
 def _oracle(*argv: str, env: dict[str, str]) -> str:

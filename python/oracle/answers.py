@@ -93,19 +93,33 @@ def support_sentence(entry: dict[str, Any]) -> str:
         context = ["a break" if c == "idle" else c for c in entry.get("context") or []]
         after = ("\u2026 " if len(context) > SHOWN_CONTEXT else "") + " \u2192 ".join(context[-SHOWN_CONTEXT:])
         return f"after {after}: {n}\u00d7{last}"
-    notes = lifts(entry.get("focus") or [], bool(entry.get("new")), bool(entry.get("resumed")))
+    since = entry.get("since")
+    notes = lifts(entry.get("focus") or [], bool(entry.get("new")), bool(entry.get("resumed")),
+                  float(since) if isinstance(since, (int, float)) and not isinstance(since, bool) else None)
     if order == 0 or entry.get("done"):
         return (f"done {n}\u00d7, not at this point{last}" if n else "done before, not at this point") + \
             "".join(f"; {note}" for note in notes)
     return f"never done: {'; '.join(notes)}" if notes else "never done: like similar tasks"
 
 
-def lifts(held: list[str], new: bool, resumed: bool = False) -> list[str]:
+def lifts(held: list[str], new: bool, resumed: bool = False, since: float | None = None) -> list[str]:
     """The words naming what lifts a task: the objects in hand it uses, that it is newly
-    possible, that it goes on from before a break (said only where no counted context backs it:
-    by the tablet's reason and by ``rank``'s text)."""
+    possible, that it goes on from before a break, when it was last done where the clock weighed
+    the ranking (said only where no counted context backs it: by the tablet's reason and by
+    ``rank``'s text)."""
     return ([f"uses {', '.join(held)} in hand"] if held else []) + (["newly possible"] if new else []) + (
-        ["goes on from before the break"] if resumed else [])
+        ["goes on from before the break"] if resumed else []) + ([f"last done {ago(since)}"] if since is not None else [])
+
+
+def ago(seconds: float) -> str:
+    """A time span as the tablet says it: ``40 s ago``, ``5 min ago``, ``3 h ago``, ``2 days ago``."""
+    if seconds < 90:
+        return f"{max(0, round(seconds))} s ago"
+    if seconds < 90 * 60:
+        return f"{round(seconds / 60)} min ago"
+    if seconds < 36 * 3600:
+        return f"{round(seconds / 3600)} h ago"
+    return f"{round(seconds / 86400)} days ago"
 
 
 #: Context steps a support sentence names (the latest ones).

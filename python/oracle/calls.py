@@ -7,6 +7,7 @@ argument fills which slot is ``TaskClass.slots`` (the logger's roles follow the 
 from __future__ import annotations
 
 from collections.abc import Iterable
+from dataclasses import replace
 from datetime import datetime
 from typing import Any
 
@@ -64,8 +65,10 @@ def check_call(ontology: OdbOntology, call: TaskCall, where: str) -> None:
         raise OntologyError(f"{where}: {error}") from None
 
 
-def steps_from_history(ontology: OdbOntology, rows: Iterable[dict]) -> list[Step]:
-    """The oracle's history from the Prolog bridge's ``situation_history`` rows (begin order)."""
+def steps_from_history(ontology: OdbOntology, rows: Iterable[dict], clocked: bool = True) -> list[Step]:
+    """The oracle's history from the Prolog bridge's ``situation_history`` rows (begin order);
+    each action's step carries its begin as ``time`` when the NEEM has a clock (``clocked``: on
+    the sequence clock a begin is a position, not a time)."""
     from oracle.chains import parse_call
 
     # A long NEEM repeats a few dozen calls and available sets thousands of times: each is
@@ -81,7 +84,8 @@ def steps_from_history(ontology: OdbOntology, rows: Iterable[dict]) -> list[Step
         return known
 
     # Rows read together share one list per distinct available set, and a step repeats often
-    # (the same call, set and part of day): each distinct step is made once (Steps are immutable).
+    # (the same call, set and part of day): each distinct step is made once (Steps are immutable),
+    # then given its begin where there is a clock.
     by_list: dict[int, tuple[Any, tuple[Option, ...]]] = {}
     made: dict[tuple[str, int, str | None], Step] = {}
     steps: list[Step] = []
@@ -108,17 +112,17 @@ def steps_from_history(ontology: OdbOntology, rows: Iterable[dict]) -> list[Step
             if label is None:
                 label = labels[text] = str(parse_call(text))
             step = made[same] = Step(done.task, done.target, done.reference, seen[1], part, False, label)
-        steps.append(step)
+        steps.append(replace(step, time=float(row["begin"])) if clocked else step)
     return steps
 
 
-def steps_before(ontology: OdbOntology, rows: Iterable[dict], at: float) -> list[Step]:
+def steps_before(ontology: OdbOntology, rows: Iterable[dict], at: float, clocked: bool = True) -> list[Step]:
     """The history a decision at unix seconds ``at`` is ranked with: the ``situation_history``
     rows that began before it and, when the pause since the last action's end is an idle gap,
     the idle step the logger will write before the next action (the replay's rule:
     evaluation.replay observes that idle before ranking the decision after a gap)."""
     earlier = [row for row in rows if float(row["begin"]) < at]
-    steps = steps_from_history(ontology, earlier)
+    steps = steps_from_history(ontology, earlier, clocked)
     if earlier and earlier[-1]["call"] != "idle":
         last_end = max(float(row["end"] if row.get("end") is not None else row["begin"]) for row in earlier)
         if is_idle_gap(last_end, at):

@@ -60,14 +60,15 @@ def support_fields(task: RankedTask) -> dict[str, Any]:
     -1: no counted context holds it), the history positions of those past situations (latest
     last, at most 5), the objects in hand it uses (``focus``, local names), whether it is newly
     offered (``new``: not offered at the previous decision) and whether, right after a break, it
-    once followed the last action before it (``resumed``)."""
-    from oracle.algorithm.routine import RoutineTask
+    once followed the last action before it (``resumed``) and, where the clock's odds weighed the
+    ranking, how many seconds ago the user last did it (``since``)."""
+    from oracle.algorithm.records import RoutineTask
 
     if not isinstance(task, RoutineTask):
         return {}
     return {"probability": task.probability, "context_order": task.order, "context": list(task.context),
             "situations": list(task.situations), "focus": [local_name(obj) for obj in task.focus], "new": task.new,
-            "resumed": task.resumed}
+            "resumed": task.resumed, "since": task.since}
 
 
 def rank_neem(
@@ -109,12 +110,12 @@ def rank_neem(
         recorded = recorded_part_of_day(bridge.store, bridge.neem_id, ontology.vocab, begin)
         instant = Instant(begin, (recorded or part_of_day_at(begin)) if clocked else None)
     when, part = instant.seconds, instant.part_of_day
-    steps = steps_before(ontology, history, when)
+    steps = steps_before(ontology, history, when, clocked)
     model = make_predictor(method, ontology.distances(), opening_tasks(ontology), settings)
     oracle = (cache or FitCache.default()).fitted(model, steps, bridge.store.location, bridge.neem_id,
                                                   keep=not info.temporary)
     started = time.perf_counter()
-    ranking = oracle.rank([option_of(ontology, c) for c in calls], part)
+    ranking = oracle.rank([option_of(ontology, c) for c in calls], part, at=when if clocked else None)
     elapsed = (time.perf_counter() - started) * 1000
     written = note = None
     if write:

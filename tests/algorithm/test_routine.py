@@ -15,7 +15,8 @@ from oracle.algorithm.params import PRESETS, Hyperparameters
 from oracle.algorithm.predictors import DEFAULT, PREDICTORS, make_predictor, predictor_spec
 from oracle.algorithm.reference import overall_distance
 from oracle.algorithm.contexts import ContextCounts
-from oracle.algorithm.routine import RoutineOracle, RoutineTask
+from oracle.algorithm.records import RoutineTask
+from oracle.algorithm.routine import RoutineOracle
 from oracle.algorithm.selftune import VariantWeights
 from oracle.algorithm.similarity import class_rows, option_distances
 from oracle.algorithm.records import Option, Step

@@ -32,7 +32,7 @@ class Seen:
     def reset(self) -> None:
         pass
 
-    def rank(self, candidates, time_of_day=None):
+    def rank(self, candidates, time_of_day=None, at=None):
         self.ranked.append((len(candidates), time_of_day))
         return list(candidates)
 

@@ -9,8 +9,8 @@ from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import PRESETS, Hyperparameters, load_settings, preset, save_settings
 from oracle.algorithm.predictors import DEFAULT, PREDICTORS, THESIS, make_predictor
 from oracle.algorithm.reference import ReferenceOracle
-from oracle.algorithm.routine import RoutineOracle, RoutineTask
-from oracle.algorithm.records import Option, RankedTask, Ranking, Situation, Step, TreeNode
+from oracle.algorithm.routine import RoutineOracle
+from oracle.algorithm.records import Option, RankedTask, Ranking, RoutineTask, Situation, Step, TreeNode
 
 __all__ = ["PreferenceOracle", "ReferenceOracle", "RoutineOracle", "RoutineTask", "make_predictor", "PREDICTORS",
            "DEFAULT", "THESIS", "Hyperparameters", "PRESETS", "preset", "load_settings",

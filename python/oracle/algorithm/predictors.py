@@ -4,7 +4,7 @@
 self-tuning ablations) and ``thesis`` (``fast.PreferenceOracle`` with
 the given Table 4.2 settings, exactly as the thesis defines it). Every predictor has the same
 estimator interface: ``fit(history) -> self``, ``partial_fit(step) -> self`` and
-``rank(options, time_of_day, tree_roots=..., present_objects=...) -> Ranking`` whose scores are
+``rank(options, time_of_day, tree_roots=..., present_objects=..., at=...) -> Ranking`` whose scores are
 lower-is-better (thesis: eq. 4.12 distance; routine: -log2 of the probability).
 """
 
@@ -30,7 +30,8 @@ class Predictor(Protocol):
     def partial_fit(self, step: Step) -> Any: ...
 
     def rank(self, current: Step | Iterable[Option], time_of_day: str | None = None, *,
-             tree_roots: int | None = 3, present_objects: Iterable[str] | None = None) -> Ranking: ...
+             tree_roots: int | None = 3, present_objects: Iterable[str] | None = None,
+             at: float | None = None) -> Ranking: ...
 
 
 @dataclass(frozen=True)

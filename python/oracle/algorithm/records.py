@@ -5,6 +5,7 @@ Every class and task is a full IRI; ``label`` is for display only. See docs/algo
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 from typing import Any, Protocol
@@ -60,6 +61,7 @@ class Step:
     """One executed situation: the task and its objects, what else was available, when, and whether idle.
 
     ``idle`` marks an odb:IdleTask, which delimits task chains (thesis 4.4, "Looking Further Back").
+    ``time`` is when it began, in unix seconds (None: the log has no clock).
     """
 
     task: str
@@ -69,6 +71,7 @@ class Step:
     time_of_day: str | None = None
     idle: bool = False
     label: str = ""
+    time: float | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.options, tuple):
@@ -76,6 +79,9 @@ class Step:
         for option in self.options:
             if not isinstance(option, Option):
                 raise TypeError(f"step {self.label or self.task}: options must be Option records, got {option!r}")
+        if self.time is not None and (isinstance(self.time, bool) or not isinstance(self.time, (int, float))
+                                      or not math.isfinite(self.time)):
+            raise ValueError(f"step {self.label or self.task}: time must be finite unix seconds, got {self.time!r}")
         if self.time_of_day is not None and self.time_of_day not in TIME_OF_DAY_NAMES:
             raise ValueError(f"step {self.label or self.task}: time of day {self.time_of_day!r} "
                              f"is not one of {', '.join(TIME_OF_DAY_NAMES)}")
@@ -119,6 +125,33 @@ class RankedTask:
     n_similar: int
     nearest: float
     successors: tuple[TreeNode, ...] = field(default=(), compare=True)
+
+
+@dataclass(frozen=True)
+class RoutineTask(RankedTask):
+    """A ranked option with what supports it.
+
+    ``score`` is ``-log2 P`` (bits of surprise; lower is better, like the thesis's distance);
+    ``context`` the longest exact context (oldest first, ``idle`` for a gap) that was followed by
+    this option ``n_similar`` times, ``order`` its length (0: the option was done, in no matching
+    context; -1: never done); ``situations`` the history positions of those past situations
+    (latest last), or of the most similar past actions when there are none; ``focus`` the
+    option's objects that the user's latest actions used (the objects in hand, which lift it);
+    ``new`` whether it was not offered at the previous decision (newly possible) while others
+    were, so that the user's lift of such options weighs it; ``resumed`` whether, right after a
+    break, it once followed the last action before the break (it picks up where the user left
+    off) while others did not; ``since`` how many seconds ago the user last did it, when the
+    clock's odds weighed this ranking (None otherwise, and for an option never done).
+    """
+
+    probability: float = 0.0
+    order: int = -1
+    context: tuple[str, ...] = ()
+    situations: tuple[int, ...] = ()
+    focus: tuple[str, ...] = ()
+    new: bool = False
+    resumed: bool = False
+    since: float | None = None
 
 
 @dataclass(frozen=True)

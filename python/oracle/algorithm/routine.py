@@ -14,12 +14,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
 from itertools import product
 from typing import Any
 
 import numpy as np
 
+from oracle.algorithm.clock import EDGES, ClockGate, SinceDone, reweighted
 from oracle.algorithm.contexts import IDLE, UNKNOWN, Blend, ContextCounts, Memo
 from oracle.algorithm.focus import (FeatureLift, NewOffers, Resumption, combined, decision, held_objects, in_focus,
                                    split_weights, tells_apart)
@@ -27,10 +27,10 @@ from oracle.algorithm.params import THESIS_DEFAULTS, EstimatorParams
 from oracle.algorithm.kernel import START, Rows, context_distance, normalised, similarity_mass
 from oracle.algorithm.reference import offered_options
 from oracle.algorithm.routine_settings import check_settings
-from oracle.algorithm.selftune import VariantWeights
+from oracle.algorithm.selftune import VariantWeights, mixed_distribution
 from oracle.algorithm.similarity import Offers, OptionTable, class_rows
 from oracle.algorithm.support import followed_at
-from oracle.algorithm.records import Option, RankedTask, Ranking, Step, TreeNode
+from oracle.algorithm.records import Option, Ranking, RoutineTask, Step, TreeNode
 from oracle.algorithm.tree import Successions, TreeShape, successor_tree
 from oracle.errors import SettingsError
 from oracle.timeline import TIME_OF_DAY_NAMES
@@ -39,31 +39,6 @@ _TOD = {name: code for code, name in enumerate(TIME_OF_DAY_NAMES)}
 #: ``fit`` scores the variants on at most this many latest steps by default (``tuning_window``;
 #: ``partial_fit`` scores every step).
 TUNING_WINDOW = 1000
-
-
-@dataclass(frozen=True)
-class RoutineTask(RankedTask):
-    """A ranked option with what supports it.
-
-    ``score`` is ``-log2 P`` (bits of surprise; lower is better, like the thesis's distance);
-    ``context`` the longest exact context (oldest first, ``idle`` for a gap) that was followed by
-    this option ``n_similar`` times, ``order`` its length (0: the option was done, in no matching
-    context; -1: never done); ``situations`` the history positions of those past situations
-    (latest last), or of the most similar past actions when there are none; ``focus`` the
-    option's objects that the user's latest actions used (the objects in hand, which lift it);
-    ``new`` whether it was not offered at the previous decision (newly possible) while others
-    were, so that the user's lift of such options weighs it; ``resumed`` whether, right after a
-    break, it once followed the last action before the break (it picks up where the user left
-    off) while others did not.
-    """
-
-    probability: float = 0.0
-    order: int = -1
-    context: tuple[str, ...] = ()
-    situations: tuple[int, ...] = ()
-    focus: tuple[str, ...] = ()
-    new: bool = False
-    resumed: bool = False
 
 
 class _Stream:
@@ -96,7 +71,10 @@ class RoutineOracle(EstimatorParams):
     actions (``focus_odds``: and of those that do not); ``fresh`` reweights each variant's blend
     (``fresh_level`` "base": ``Q``) by the user's own odds of taking an option that was not
     offered at the previous decision; ``resume`` reweights ``Q``, right after an idle gap, by
-    the user's own odds of taking an option that once followed the last action; ``exclusion`` lets the lowest counted
+    the user's own odds of taking an option that once followed the last action; ``recency``
+    (bucket edges, seconds) reweights the final ranking by the user's odds per bucket of the time
+    since each option was last done, once they lead on Top-1 by ``recency_gate`` standard errors
+    (``clock.py``); ``exclusion`` lets the lowest counted
     level escape only to the options it did not count; ``novelty`` (variants) gives the never-done
     options together the PPM-C estimate of a novel action
     ("leader": the best so far that leads the first variant by ``switch_margin`` standard errors,
@@ -106,7 +84,8 @@ class RoutineOracle(EstimatorParams):
 
     _param_names = ("distances", "opening_tasks", "orders", "temperatures", "lowest_orders", "timed", "timed_from",
                     "discounts", "discount_from", "discount_evidence", "timed_discount_from", "timed_shrink", "timed_to",
-                    "timed_blend", "focus", "focus_level", "focus_odds", "fresh", "fresh_level", "resume", "streams",
+                    "timed_blend", "focus", "focus_level", "focus_odds", "fresh", "fresh_level", "resume", "recency", "recency_gate",
+                    "streams",
                     "timed_gate",
                     "exclusion", "novelty",
                     "context_depth", "switch_margin", "context_decay", "tuning", "tuning_window", "task_factor", "object_factor",
@@ -121,6 +100,7 @@ class RoutineOracle(EstimatorParams):
                  timed_to: int | None = None, timed_blend: float | None = None,
                  focus: int = 3, focus_level: str = "base", focus_odds: bool = True, fresh: bool = True,
                  fresh_level: str = "top", resume: bool = True,
+                 recency: tuple[float, ...] = EDGES, recency_gate: float = 2.0,
                  streams: tuple[str, ...] = ("idle",), timed_gate: float | None = None,
                  exclusion: bool = False,
                  novelty: tuple[bool, ...] = (False, True),
@@ -150,6 +130,8 @@ class RoutineOracle(EstimatorParams):
         self.fresh = fresh
         self.fresh_level = fresh_level
         self.resume = resume
+        self.recency = recency
+        self.recency_gate = recency_gate
         self.streams = streams
         self.timed_gate = timed_gate
         self.exclusion = exclusion
@@ -185,6 +167,8 @@ class RoutineOracle(EstimatorParams):
         self.hand_ = FeatureLift()
         self.fresh_ = NewOffers()
         self.resume_ = Resumption()
+        self.clock_ = SinceDone(tuple(self.recency))
+        self.gate_ = ClockGate(kept=[])
         self.n_steps_ = 0
         self.fitted_steps_: int | None = 0  # the length of the history fit() saw; None once partial_fit
         self._grow(list(history))
@@ -210,6 +194,7 @@ class RoutineOracle(EstimatorParams):
         for position in range(self.n_steps_, len(steps)):
             self._add(steps[position], score=position >= first_scored, offers=offers)
         self.weights_.keep_from(first_scored)
+        self.gate_.keep_from(first_scored)
         self.fitted_steps_ = len(steps)
 
     def partial_fit(self, step: Step) -> RoutineOracle:
@@ -218,6 +203,7 @@ class RoutineOracle(EstimatorParams):
         self._check()
         self.fitted_steps_ = None
         self.weights_.kept = None  # every later step is scored: nothing is re-cut
+        self.gate_.kept = None
         self._add(step, score=True)
         return self
 
@@ -238,15 +224,20 @@ class RoutineOracle(EstimatorParams):
             if step.option in offered:
                 inside = self._in_focus(offered) if self.focus else None
                 new, resumed = self._offer_flags(offered)
-                self.weights_.update(self._variant_probabilities(offered, step.time_of_day, inside=inside,
-                                                                 new=new, resumed=resumed)[0],
-                                     offered.index(step.option), self.n_steps_)
+                probabilities = self._variant_probabilities(offered, step.time_of_day, inside=inside, new=new,
+                                                            resumed=resumed)[0]
+                truth = offered.index(step.option)
+                clock = self.clock_.weights(self._buckets(offered, step.time))
+                if clock is not None:  # the clock's gate: Top-1 with its odds against without
+                    plain = mixed_distribution(self.weights_.weights(self.tuning, self.switch_margin), probabilities)
+                    self.gate_.update(plain, reweighted(plain, clock), truth, self.n_steps_)
+                self.weights_.update(probabilities, truth, self.n_steps_)
         position = self.n_steps_
         ids, offer = self._known.offer(step.options, offers)
         if not step.idle and ids:
             counted = decision(ids, self._known.ids.get(step.option), offer)
             if counted is not None:
-                self._observe(*counted)
+                self._observe(*counted, step.time)
             self.fresh_.offer = offer
         if step.idle:
             token = IDLE
@@ -260,6 +251,7 @@ class RoutineOracle(EstimatorParams):
             self._tod.append(_TOD.get(step.time_of_day or "", -1))
             self._position.append(position)
             self.resume_.follow(token)
+            self.clock_.done(token, step.time)
         part = _TOD.get(step.time_of_day or "", -1)
         for name, stream in self._streams.items():
             if name == "idle" or token != IDLE:
@@ -274,8 +266,9 @@ class RoutineOracle(EstimatorParams):
         """Per offered option: does it use an object of the latest ``focus`` actions (``held``)?"""
         return in_focus(self._held() if held is None else held, (option.objects() for option in offered))
 
-    def _observe(self, offered: list[int], truth: int) -> None:
-        """Count a decision (interned ids offered, the index of the option done) for the lifts."""
+    def _observe(self, offered: list[int], truth: int, now: float | None) -> None:
+        """Count a decision (interned ids offered, the index of the option done, its time) for the lifts."""
+        self.clock_.observe(self.clock_.buckets(offered, now), truth)
         if self.focus:
             held, objects = self._held(), self._known.objects
             self.hand_.observe([not held.isdisjoint(objects[i]) for i in offered], truth)
@@ -283,6 +276,10 @@ class RoutineOracle(EstimatorParams):
             self.fresh_.observe(offered, truth)
         if self.resume and self._paused():
             self.resume_.observe(offered, truth)
+
+    def _buckets(self, offered: Sequence[Option], now: float | None) -> list[int] | None:
+        """The clock's bucket of each offered option at ``now`` (None: nothing to weigh)."""
+        return self.clock_.buckets([self._known.ids.get(option, UNKNOWN) for option in offered], now)
 
     def _paused(self) -> bool:
         """Whether the history ends with an idle gap (the user paused right before now)."""
@@ -383,11 +380,14 @@ class RoutineOracle(EstimatorParams):
         return probabilities, [blends[v] for v in chosen], cand
 
     def rank(self, current: Step | Iterable[Option], time_of_day: str | None = None, *,
-             tree_roots: int | None = 3, present_objects: Iterable[str] | None = None) -> Ranking:
-        """Rank the available options of ``current`` (a Step, or options plus ``time_of_day``),
-        most probable first (ties: the order offered); the model is not changed."""
+             tree_roots: int | None = 3, present_objects: Iterable[str] | None = None,
+             at: float | None = None) -> Ranking:
+        """Rank the available options of ``current`` (a Step, or options plus ``time_of_day``;
+        ``at``: the decision's unix seconds, default the Step's ``time``), most probable first
+        (ties: the order offered); the model is not changed."""
         self._check()
         offered, now = offered_options(current, time_of_day)
+        when = at if at is not None else current.time if isinstance(current, Step) else None
         if not offered:
             return Ranking(())
         weights = self.weights_.weights(self.tuning, self.switch_margin)
@@ -397,11 +397,12 @@ class RoutineOracle(EstimatorParams):
         new, resumed = self._offer_flags(offered)
         lifted, goes_on = tells_apart(new), tells_apart(resumed)
         probabilities, blends, cand = self._variant_probabilities(offered, now, used, inside, new, resumed)
-        mixed = np.zeros(len(offered))
-        for weight, p in zip(weights[used], probabilities):
-            mixed += weight * p
-        total = float(mixed.sum())
-        mixed = mixed / total if total > 0 else np.full(len(offered), 1.0 / len(offered))  # P(c | offered)
+        mixed = mixed_distribution(weights[used], probabilities)  # P(c | offered)
+        buckets = self._buckets(offered, when)
+        clock = self.clock_.weights(buckets) if self.gate_.open(self.recency_gate) else None
+        if clock is not None:
+            mixed = reweighted(mixed, clock)
+        ago = self.clock_.ages([self._known.ids.get(option, UNKNOWN) for option in offered], when, clock is not None)
         lead = int(np.argmax(weights[used]))
         explain = blends[lead]
         stream = self._streams[self.variants_[used[lead]][0]]
@@ -427,7 +428,7 @@ class RoutineOracle(EstimatorParams):
                 int(explain.count[i]) if n >= 0 else 0, float(nearest[i]), successors, probability, n,
                 tuple(self._label(t) for t in context or ()), tuple(situations[-5:]) if n >= 0 else (),
                 tuple(obj for obj in option.objects() if obj in held) if inside is not None else (),
-                lifted and bool(new[i]), goes_on and bool(resumed[i])))  # type: ignore[index]
+                lifted and bool(new[i]), goes_on and bool(resumed[i]), ago[i]))  # type: ignore[index]
         return Ranking(tuple(tasks))
 
     def _support(self, stream: _Stream, option_id: int, context: tuple[int, ...], n: int) -> list[int]:
@@ -439,3 +440,4 @@ class RoutineOracle(EstimatorParams):
 
     def _label(self, token: int) -> str:
         return "idle" if token == IDLE else str(self.options_[token])
+

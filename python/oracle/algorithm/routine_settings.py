@@ -78,7 +78,13 @@ def check_settings(model: Any) -> None:
         raise SettingsError(f"{name}: tuning_window must be a whole number >= 0, got {model.tuning_window!r}")
     if not isinstance(model.context_depth, int) or model.context_depth < 0:
         raise SettingsError(f"{name}: context_depth must be a whole number >= 0, got {model.context_depth!r}")
+    edges = model.recency
+    if (not isinstance(edges, (tuple, list))
+            or any(isinstance(e, bool) or not isinstance(e, (int, float)) or not math.isfinite(e) or e <= 0 for e in edges)
+            or any(b <= a for a, b in zip(edges, edges[1:]))):
+        raise SettingsError(f"{name}: recency must be increasing positive seconds (empty: off), got {edges!r}")
     for value, what in ((model.context_decay, "context_decay"), (model.switch_margin, "switch_margin"),
+                        (model.recency_gate, "recency_gate"),
                         (model.task_factor, "task_factor"), (model.object_factor, "object_factor"), (model.penalty, "penalty"),
                         (model.time_of_day_penalty, "time_of_day_penalty")):
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value < 0:

@@ -97,3 +97,14 @@ class VariantWeights:
     def describe(self) -> list[float]:
         """Mean log2-likelihood per step of each variant (for reports)."""
         return [s / math.log(2) / max(1, self.steps) for s in self.scores.tolist()]
+
+
+def mixed_distribution(weights: np.ndarray, probabilities: Sequence[np.ndarray]) -> np.ndarray:
+    """The variants' distributions over the offer weighed by ``weights`` (those of weight 0 left
+    out) and normalised: uniform when nothing is left."""
+    mixed = np.zeros(len(probabilities[0]))
+    for weight, p in zip(weights, probabilities):
+        if weight > 0:
+            mixed += weight * p
+    total = float(mixed.sum())
+    return mixed / total if total > 0 else np.full(len(mixed), 1.0 / len(mixed))

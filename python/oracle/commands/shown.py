@@ -14,7 +14,7 @@ def describe(task) -> str:  # noqa: ANN001 - a RankedTask
     """One line of why a task stands where it does; scores are lower-is-better for every method."""
     from oracle.algorithm.records import local_name
     from oracle.answers import lifts
-    from oracle.algorithm.routine import RoutineTask
+    from oracle.algorithm.records import RoutineTask
 
     if isinstance(task, RoutineTask):
         if task.order > 0:
@@ -24,7 +24,8 @@ def describe(task) -> str:  # noqa: ANN001 - a RankedTask
         else:
             why = "no past context: by similarity"
         if task.order <= 0:  # where no counted context backs it, as the tablet's reason
-            why += "".join(f"; {note}" for note in lifts([local_name(obj) for obj in task.focus], task.new, task.resumed))
+            why += "".join(f"; {note}" for note in lifts([local_name(obj) for obj in task.focus], task.new, task.resumed,
+                                                         task.since))
         return f"p {task.probability:.3f} ({why})"
     return "no similar history" if math.isinf(task.score) else f"score {task.score:.4f} from {task.n_similar} similar"
 

@@ -63,7 +63,7 @@ class LZ78:
             out.append(((child.count if child else 0) + 1) / (node.followed + size))
         return out
 
-    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None) -> list[Option]:
+    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None, at: float | None = None) -> list[Option]:
         return order_by_score(candidates, self.probabilities(candidates))
 
 
@@ -134,7 +134,7 @@ class ActiveLeZi:
             probs.append(p)
         return probs
 
-    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None) -> list[Option]:
+    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None, at: float | None = None) -> list[Option]:
         return order_by_score(candidates, self.probabilities(candidates))
 
 

@@ -37,7 +37,8 @@ class Method(Protocol):
 
     def reset(self) -> None: ...
 
-    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None) -> list[Option]: ...
+    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None,
+             at: float | None = None) -> list[Option]: ...
 
     def observe(self, step: Step) -> None: ...
 
@@ -59,8 +60,8 @@ class OracleMethod:
     def reset(self) -> None:
         self.model = make_predictor(self.method, self.distances, self.opening, self.settings).fit([])
 
-    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None) -> list[Option]:
-        return list(self.model.rank(list(candidates), time_of_day, tree_roots=0).options())
+    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None, at: float | None = None) -> list[Option]:
+        return list(self.model.rank(list(candidates), time_of_day, tree_roots=0, at=at).options())
 
     def observe(self, step: Step) -> None:
         self.model.partial_fit(step)
@@ -153,16 +154,18 @@ def replay(
                 candidates = list(fallback)
             _rng(user, index, seed).shuffle(candidates)
             tod = time_of_day(row.time) if row.time is not None else None
+            at = seconds_of(row.time) if row.time is not None else None
             ranks: dict[str, int | None] = {}
             seconds: dict[str, float] = {}
             offered = truth in candidates
             for method in methods:
                 start = time.perf_counter()
-                order = method.rank(candidates, tod)
+                order = method.rank(candidates, tod, at)
                 seconds[method.name] = time.perf_counter() - start
                 ranks[method.name] = order.index(truth) + 1 if offered else None
             result.outcomes.append(Outcome(user, index, len(candidates), offered, ranks, seconds))
-            observed = Step(truth.task, truth.target, truth.reference, tuple(candidates), tod, False, str(row.action))
+            observed = Step(truth.task, truth.target, truth.reference, tuple(candidates), tod, False, str(row.action),
+                            at)
             for method in methods:
                 method.observe(observed)
     return result

@@ -69,7 +69,7 @@ class _NgramCounts:
     def probabilities(self, words: Sequence[object]) -> list[float]:
         raise NotImplementedError
 
-    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None) -> list[Option]:
+    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None, at: float | None = None) -> list[Option]:
         return order_by_score(candidates, self.probabilities(candidates))
 
 

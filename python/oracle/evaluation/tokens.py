@@ -45,7 +45,7 @@ class CountingMethod:
     def scores(self, candidates: Sequence[Option]) -> list[float]:
         raise NotImplementedError
 
-    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None) -> list[Option]:
+    def rank(self, candidates: Sequence[Option], time_of_day: str | None = None, at: float | None = None) -> list[Option]:
         return order_by_score(candidates, self.scores(candidates))
 
 

@@ -112,7 +112,7 @@ class NeemSession:
         self.ontology = ontology
         #: The steps fitted so far, and when each began (the predictor's history positions: what
         #: a ranking's supporting past situations are shown as).
-        self.steps: list[Step] = steps_from_history(ontology, history)
+        self.steps: list[Step] = steps_from_history(ontology, history, logger.clocked)
         self.begins: list[float] = [float(row["begin"]) for row in history]
         # the fit of a NEEM the CLI or an earlier service run ranked is kept (oracle.fitcache)
         # (never that of a temporary NEEM: it is wiped when the next session starts)
@@ -180,7 +180,7 @@ class NeemSession:
         self._fit_break(when.seconds)
         started = time.perf_counter()
         ranking = self.predictor.rank([option_of(self.ontology, c) for c in calls], when.part_of_day,
-                                      tree_roots=TREE_ROOTS)
+                                      tree_roots=TREE_ROOTS, at=when.seconds if self.logger.clocked else None)
         return Situation(calls, when, moment), ranking, (time.perf_counter() - started) * 1000
 
     def _fit(self, step: Step, begin: float) -> None:
@@ -223,13 +223,15 @@ class NeemSession:
         it (the thesis oracle: |H(s_o)|; the routine predictor: how often the user did it after
         the same exact context), ``situations`` when the latest of those began (at most 5),
         ``focus`` the objects in hand it uses, ``new`` whether it is newly offered, ``resumed``
-        whether, after a break, it picks up where the user left off,
-        ``reason`` the same in a few words."""
+        whether, after a break, it picks up where the user left off, ``since`` how many seconds
+        ago the user last did it (where the clock weighed the ranking), ``reason`` the same in a
+        few words."""
         fields = support_fields(task)
         entry: dict[str, Any] = {"rank": task.rank, "task": call, "score": finite(task.score), "support": task.n_similar,
                                  "probability": fields.get("probability"), "context_order": fields.get("context_order"),
                                  "context": fields.get("context", []), "focus": fields.get("focus", []),
                                  "new": fields.get("new", False), "resumed": fields.get("resumed", False),
+                                 "since": fields.get("since"),
                                  "situations": [self.begins[p] for p in fields.get("situations", []) if p < len(self.begins)]}
         entry["reason"] = support_sentence({**entry, "done": call in self.done})
         return entry
@@ -289,8 +291,8 @@ class NeemSession:
                   and (self.prev_begin is None or pending.when.seconds > self.prev_begin))
         options = tuple(option_of(self.ontology, c) for c in sorted(set(pending.calls), key=str)) if counts and pending else ()
         option = option_of(self.ontology, call)
-        self._fit(Step(option.task, option.target, option.reference, options, logged.part_of_day, False, str(call)),
-                  logged.begin)
+        self._fit(Step(option.task, option.target, option.reference, options, logged.part_of_day, False, str(call),
+                       logged.begin if self.logger.clocked else None), logged.begin)
         self.last_end = logged.end
         self.prev_begin = logged.begin
         self.pending = None
