@@ -65,6 +65,10 @@ def taxonomy(rng: np.random.Generator, n_tasks: int = 30, n_objects: int = 60) -
     return DistanceMatrix.from_values(tuple(NS + name for name in names), values), leaves["Task"], leaves["Object"]
 
 
+#: The histories' clock: when the first step begins, and the time from one step to the next.
+START_S, STEP_S = 1_700_000_000.0, 540.0
+
+
 def history(n: int, seed: int = 0, n_options: int = 20, n_states: int = 60):
     rng = np.random.default_rng(seed)
     matrix, tasks, objects = taxonomy(rng)
@@ -80,13 +84,14 @@ def history(n: int, seed: int = 0, n_options: int = 20, n_states: int = 60):
     for i in range(n):
         options = states[state]
         tod = TIME_OF_DAY_NAMES[(i // 40) % 4]
+        begin = START_S + i * STEP_S  # a clock as the parts of day turn: 40 steps of 9 min each
         if rng.random() < 0.05:
-            steps.append(Step(idle_task, None, None, options, tod, True, "idle"))
+            steps.append(Step(idle_task, None, None, options, tod, True, "idle", begin))
             state = int(rng.integers(n_states))
             continue
         pick = favourite[state, rng.integers(4)] if rng.random() < 0.8 else rng.integers(n_options)
         chosen = options[int(pick) % len(options)]
-        steps.append(Step(chosen.task, chosen.target, chosen.reference, options, tod, False, str(chosen)))
+        steps.append(Step(chosen.task, chosen.target, chosen.reference, options, tod, False, str(chosen), begin))
         state = (state * 5 + int(pick) + 1) % n_states
     return matrix, steps
 
