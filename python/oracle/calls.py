@@ -7,7 +7,6 @@ argument fills which slot is ``TaskClass.slots`` (the logger's roles follow the 
 from __future__ import annotations
 
 from collections.abc import Iterable
-from dataclasses import replace
 from datetime import datetime
 from typing import Any
 
@@ -112,7 +111,7 @@ def steps_from_history(ontology: OdbOntology, rows: Iterable[dict], clocked: boo
             if label is None:
                 label = labels[text] = str(parse_call(text))
             step = made[same] = Step(done.task, done.target, done.reference, seen[1], part, False, label)
-        steps.append(replace(step, time=float(row["begin"])) if clocked else step)
+        steps.append(step.began(float(row["begin"])) if clocked else step)
     return steps
 
 

@@ -167,3 +167,15 @@ def test_history_steps_carry_their_begin_only_where_the_neem_has_a_clock():
     assert clocked[0].options is clocked[3].options                      # offers still shared
     assert [s.time for s in steps_from_history(onto, rows, clocked=False)] == [None] * 4
     assert [s.time for s in steps_before(onto, rows, 350.0, clocked=False)] == [None] * 4   # and the idle gap
+
+
+def test_a_step_begun_at_a_time_is_the_step_made_with_it():
+    from oracle.algorithm.records import Option
+
+    step = Step("t", "a", None, (Option("t", "a"), Option("u")), "Morning", False, "t(a)")
+    later = step.began(1234.5)
+    assert later == Step("t", "a", None, (Option("t", "a"), Option("u")), "Morning", False, "t(a)", 1234.5)
+    assert later.options is step.options and step.time is None and hash(later) == hash(replace(step, time=1234.5))
+    for bad in (math.nan, True, "1"):
+        with pytest.raises(ValueError, match="time"):
+            step.began(bad)

@@ -91,6 +91,15 @@ class Step:
         """The executed task with its objects, as an option."""
         return Option(self.task, self.target, self.reference)
 
+    def began(self, time: float) -> Step:
+        """This step beginning at ``time`` (unix seconds): a copy whose options, checked when this
+        one was made, are not checked again (a history of 50,000 steps shares a few hundred)."""
+        if isinstance(time, bool) or not isinstance(time, (int, float)) or not math.isfinite(time):
+            raise ValueError(f"step {self.label or self.task}: time must be finite unix seconds, got {time!r}")
+        step = object.__new__(Step)
+        step.__dict__.update(self.__dict__, time=float(time))
+        return step
+
 
 #: The thesis calls an executed step a situation.
 Situation = Step
