@@ -179,3 +179,10 @@ def test_a_step_begun_at_a_time_is_the_step_made_with_it():
     for bad in (math.nan, True, "1"):
         with pytest.raises(ValueError, match="time"):
             step.began(bad)
+
+
+@pytest.mark.parametrize("bad", [math.nan, math.inf, True, "now"])
+def test_a_decision_time_must_be_finite_seconds(bad):
+    steps = timed(synthetic_history(20, 6), 6)
+    with pytest.raises(SettingsError, match="at must be finite"):
+        RoutineOracle(random_matrix(6)).fit(steps).rank(steps[-1], at=bad)

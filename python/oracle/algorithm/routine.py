@@ -388,6 +388,8 @@ class RoutineOracle(EstimatorParams):
         self._check()
         offered, now = offered_options(current, time_of_day)
         when = at if at is not None else current.time if isinstance(current, Step) else None
+        if when is not None and (isinstance(when, bool) or not isinstance(when, (int, float)) or not math.isfinite(when)):
+            raise SettingsError(f"rank: at must be finite unix seconds or None, got {when!r}")
         if not offered:
             return Ranking(())
         weights = self.weights_.weights(self.tuning, self.switch_margin)
