@@ -93,9 +93,7 @@ def support_sentence(entry: dict[str, Any]) -> str:
         context = ["a break" if c == "idle" else c for c in entry.get("context") or []]
         after = ("\u2026 " if len(context) > SHOWN_CONTEXT else "") + " \u2192 ".join(context[-SHOWN_CONTEXT:])
         return f"after {after}: {n}\u00d7{last}"
-    since = entry.get("since")
-    notes = lifts(entry.get("focus") or [], bool(entry.get("new")), bool(entry.get("resumed")),
-                  float(since) if isinstance(since, (int, float)) and not isinstance(since, bool) else None)
+    notes = lifts(entry.get("focus") or [], bool(entry.get("new")), bool(entry.get("resumed")), entry.get("since"))
     if order == 0 or entry.get("done"):
         return (f"done {n}\u00d7, not at this point{last}" if n else "done before, not at this point") + \
             "".join(f"; {note}" for note in notes)

@@ -223,11 +223,12 @@ class RoutineOracle(EstimatorParams):
             offered, _ = offered_options(step, None)
             if step.option in offered:
                 inside = self._in_focus(offered) if self.focus else None
-                new, resumed = self._offer_flags(offered)
+                ids = self._offer_ids(offered)
+                new, resumed = self._offer_flags(ids)
                 probabilities = self._variant_probabilities(offered, step.time_of_day, inside=inside, new=new,
                                                             resumed=resumed)[0]
                 truth = offered.index(step.option)
-                clock = self.clock_.weights(self._buckets(offered, step.time))
+                clock = self.clock_.weights(self.clock_.buckets(ids, step.time))
                 if clock is not None:  # the clock's gate: Top-1 with its odds against without
                     plain = mixed_distribution(self.weights_.weights(self.tuning, self.switch_margin), probabilities)
                     self.gate_.update(plain, reweighted(plain, clock), truth, self.n_steps_)
@@ -277,18 +278,17 @@ class RoutineOracle(EstimatorParams):
         if self.resume and self._paused():
             self.resume_.observe(offered, truth)
 
-    def _buckets(self, offered: Sequence[Option], now: float | None) -> list[int] | None:
-        """The clock's bucket of each offered option at ``now`` (None: nothing to weigh)."""
-        return self.clock_.buckets([self._known.ids.get(option, UNKNOWN) for option in offered], now)
+    def _offer_ids(self, offered: Sequence[Option]) -> list[int]:
+        """The interned id of each offered option (UNKNOWN for one never met)."""
+        return [self._known.ids.get(option, UNKNOWN) for option in offered]
 
     def _paused(self) -> bool:
         """Whether the history ends with an idle gap (the user paused right before now)."""
         return self.n_steps_ > 0 and self._step_ids.view[self.n_steps_ - 1, 0] == IDLE
 
-    def _offer_flags(self, offered: Sequence[Option]) -> tuple[np.ndarray | None, np.ndarray | None]:
-        """Per offered option: was it not offered at the latest decision (None without ``fresh``),
-        and, right after a gap, did it ever follow the last action (None otherwise)?"""
-        ids = [self._known.ids.get(option, UNKNOWN) for option in offered]
+    def _offer_flags(self, ids: list[int]) -> tuple[np.ndarray | None, np.ndarray | None]:
+        """Per offered option (interned ids): was it not offered at the latest decision (None
+        without ``fresh``), and, right after a gap, did it ever follow the last action (None otherwise)?"""
         return (self.fresh_.which(ids) if self.fresh else None,
                 self.resume_.which(ids, self._paused()) if self.resume else None)
 
@@ -396,15 +396,15 @@ class RoutineOracle(EstimatorParams):
         used = np.flatnonzero(weights > 0).tolist()  # the leader alone, unless mixing
         held = self._held()
         inside = self._in_focus(offered, held) if self.focus else None
-        new, resumed = self._offer_flags(offered)
+        ids = self._offer_ids(offered)
+        new, resumed = self._offer_flags(ids)
         lifted, goes_on = tells_apart(new), tells_apart(resumed)
         probabilities, blends, cand = self._variant_probabilities(offered, now, used, inside, new, resumed)
         mixed = mixed_distribution(weights[used], probabilities)  # P(c | offered)
-        buckets = self._buckets(offered, when)
-        clock = self.clock_.weights(buckets) if self.gate_.open(self.recency_gate) else None
+        clock = self.clock_.weights(self.clock_.buckets(ids, when)) if self.gate_.open(self.recency_gate) else None
         if clock is not None:
             mixed = reweighted(mixed, clock)
-        ago = self.clock_.ages([self._known.ids.get(option, UNKNOWN) for option in offered], when, clock is not None)
+        ago = self.clock_.ages(ids, when, clock is not None)
         lead = int(np.argmax(weights[used]))
         explain = blends[lead]
         stream = self._streams[self.variants_[used[lead]][0]]

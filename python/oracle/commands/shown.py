@@ -12,9 +12,8 @@ if TYPE_CHECKING:
 
 def describe(task) -> str:  # noqa: ANN001 - a RankedTask
     """One line of why a task stands where it does; scores are lower-is-better for every method."""
-    from oracle.algorithm.records import local_name
+    from oracle.algorithm.records import RoutineTask, local_name
     from oracle.answers import lifts
-    from oracle.algorithm.records import RoutineTask
 
     if isinstance(task, RoutineTask):
         if task.order > 0:
