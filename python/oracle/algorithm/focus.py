@@ -142,27 +142,3 @@ class Resumption:
         if self.last >= 0:
             self.followers.setdefault(self.last, set()).add(action)
         self.last = action
-
-
-@dataclass
-class Episode:
-    """The actions done since the latest idle gap (interned ids) and the user's lift of the
-    offered options among them."""
-
-    lift: FeatureLift = field(default_factory=FeatureLift)
-    done: set[int] = field(default_factory=set)
-
-    def which(self, ids: Iterable[int]) -> np.ndarray:
-        """Per offered option (interned id): was it done since the latest gap?"""
-        return np.array([i in self.done for i in ids], dtype=bool)
-
-    def observe(self, offered: list[int], truth: int) -> None:
-        """Count a decision (the ids offered, duplicates dropped; the index of the option done)."""
-        self.lift.observe([i in self.done for i in offered], truth)
-
-    def follow(self, action: int) -> None:
-        """The next step: an action joins the episode, an idle gap (-1) ends it."""
-        if action < 0:
-            self.done = set()
-        else:
-            self.done.add(action)

@@ -21,7 +21,7 @@ import numpy as np
 
 from oracle.algorithm.clock import EDGES, ClockGate, SinceDone, reweighted
 from oracle.algorithm.contexts import IDLE, UNKNOWN, Blend, ContextCounts, Memo
-from oracle.algorithm.focus import (Episode, FeatureLift, NewOffers, Resumption, combined, decision, held_objects, in_focus,
+from oracle.algorithm.focus import (FeatureLift, NewOffers, Resumption, combined, decision, held_objects, in_focus,
                                    split_weights, tells_apart)
 from oracle.algorithm.params import THESIS_DEFAULTS, EstimatorParams
 from oracle.algorithm.kernel import START, Rows, context_distance, normalised, similarity_mass
@@ -84,7 +84,7 @@ class RoutineOracle(EstimatorParams):
 
     _param_names = ("distances", "opening_tasks", "orders", "temperatures", "lowest_orders", "timed", "timed_from",
                     "discounts", "discount_from", "discount_evidence", "timed_discount_from", "timed_shrink", "timed_to",
-                    "timed_blend", "focus", "focus_level", "focus_odds", "fresh", "fresh_level", "resume", "episode", "recency", "recency_gate",
+                    "timed_blend", "focus", "focus_level", "focus_odds", "fresh", "fresh_level", "resume", "recency", "recency_gate",
                     "streams",
                     "timed_gate",
                     "exclusion", "novelty",
@@ -99,7 +99,7 @@ class RoutineOracle(EstimatorParams):
                  discount_evidence: int = 100, timed_discount_from: int | None = None, timed_shrink: bool = False,
                  timed_to: int | None = None, timed_blend: float | None = None,
                  focus: int = 3, focus_level: str = "base", focus_odds: bool = True, fresh: bool = True,
-                 fresh_level: str = "top", resume: bool = True, episode: str | None = None,
+                 fresh_level: str = "top", resume: bool = True,
                  recency: tuple[float, ...] = EDGES, recency_gate: float = 2.0,
                  streams: tuple[str, ...] = ("idle",), timed_gate: float | None = None,
                  exclusion: bool = False,
@@ -130,7 +130,6 @@ class RoutineOracle(EstimatorParams):
         self.fresh = fresh
         self.fresh_level = fresh_level
         self.resume = resume
-        self.episode = episode
         self.recency = recency
         self.recency_gate = recency_gate
         self.streams = streams
@@ -168,7 +167,6 @@ class RoutineOracle(EstimatorParams):
         self.hand_ = FeatureLift()
         self.fresh_ = NewOffers()
         self.resume_ = Resumption()
-        self.episode_ = Episode()
         self.clock_ = SinceDone(tuple(self.recency))
         self.gate_ = ClockGate(kept=[])
         self.n_steps_ = 0
@@ -244,7 +242,6 @@ class RoutineOracle(EstimatorParams):
             self.fresh_.offer = offer
         if step.idle:
             token = IDLE
-            self.episode_.follow(-1)
         else:
             token = self._known.intern(step.option)
             if position > 0 and self._step_ids.view[position - 1, 0] != IDLE:
@@ -255,7 +252,6 @@ class RoutineOracle(EstimatorParams):
             self._tod.append(_TOD.get(step.time_of_day or "", -1))
             self._position.append(position)
             self.resume_.follow(token)
-            self.episode_.follow(token)
             self.clock_.done(token, step.time)
         part = _TOD.get(step.time_of_day or "", -1)
         for name, stream in self._streams.items():
@@ -281,8 +277,6 @@ class RoutineOracle(EstimatorParams):
             self.fresh_.observe(offered, truth)
         if self.resume and self._paused():
             self.resume_.observe(offered, truth)
-        if self.episode is not None:
-            self.episode_.observe(offered, truth)
 
     def _offer_ids(self, offered: Sequence[Option]) -> list[int]:
         """The interned id of each offered option (UNKNOWN for one never met)."""
@@ -330,12 +324,6 @@ class RoutineOracle(EstimatorParams):
         focus, top = split_weights(self.hand_.weights(inside, self.focus_odds), self.fresh_.lift.weights(new, True),
                                    self.fresh_level == "top")
         focus = combined(focus, self.resume_.lift.weights(resumed, True))
-        if self.episode is not None:
-            again = self.episode_.lift.weights(self.episode_.which(ids), True)
-            if self.episode == "top":
-                top = combined(top, again)
-            else:
-                focus = combined(focus, again)
         blends: dict[tuple[str, int, float, int, bool, bool, bool], Blend] = {}
         probabilities = []
         memo: Memo = {}  # the counts' look-ups, shared by the variants (same candidates, same counts)
