@@ -88,6 +88,10 @@ def steps_from_history(ontology: OdbOntology, rows: Iterable[dict], clocked: boo
     by_list: dict[int, tuple[Any, tuple[Option, ...]]] = {}
     made: dict[tuple[str, int, str | None], Step] = {}
     steps: list[Step] = []
+    # An action without an imagined situation is offered what the user did before it
+    # (docs/algorithm.md, "Steps without an offer"): one tuple, replaced when a new action comes.
+    done_before: dict[str, None] = {}
+    before: tuple[Any, tuple[Option, ...]] = (None, ())
     for row in rows:
         part = row.get("part")
         part = part if part not in (None, "none") else None
@@ -96,13 +100,20 @@ def steps_from_history(ontology: OdbOntology, rows: Iterable[dict], clocked: boo
             continue
         text = row["call"]
         available = row.get("available")
-        seen = by_list.get(id(available))
-        if seen is None or seen[0] is not available:
-            key = tuple(available or ())
-            options = sets.get(key)
-            if options is None:
-                options = sets[key] = tuple(option(c) for c in key)
-            seen = by_list[id(available)] = (available, options)
+        if available is None:
+            if before[0] != len(done_before):
+                before = (len(done_before), tuple(dict.fromkeys(option(c) for c in done_before)))
+            seen = before
+        else:
+            found = by_list.get(id(available))
+            if found is None or found[0] is not available:
+                key = tuple(available)
+                options = sets.get(key)
+                if options is None:
+                    options = sets[key] = tuple(option(c) for c in key)
+                found = by_list[id(available)] = (available, options)
+            seen = found
+        done_before.setdefault(text, None)
         same = (text, id(seen[1]), part)
         step = made.get(same)
         if step is None:

@@ -62,6 +62,41 @@ def test_incremental_predictor_ranks_like_a_fresh_fit_of_the_neem(client, neem, 
     assert [t.n_similar for t in fresh.ranking] == [r["support"] for r in live["ranking"]]
 
 
+def test_actions_logged_without_a_situation_are_offered_what_was_done_before_live_and_read_back(client, neem, ctx, onto):
+    """An action with no imagined situation before it is offered the user's earlier actions, by
+    the live predictor and by the history read alike (docs/algorithm.md, "Steps without an offer")."""
+    from oracle.algorithm.params import Hyperparameters
+    from oracle.algorithm.records import Option
+    from oracle.calls import option_of, steps_from_history
+    from oracle.chains import parse_call
+    from oracle.ranking import rank_neem
+    from oracle.timeline import Instant
+
+    for day in range(3):
+        for i, call in enumerate(ROUTINE):
+            begin = at(day, 10 * i)
+            if day == 1 and i % 2:      # the second morning imagines every other step
+                assert client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": begin}).status_code == 200
+            response = client.post(f"/api/neems/{neem}/actions", json={"call": call, "begin": begin, "end": begin + 5})
+            assert response.status_code == 200, response.text
+    live = client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(3, 0)}).json()
+    history = ctx.thread.call(lambda: ctx.engine.bridge(neem).history())
+    steps = [s for s in steps_from_history(onto, history) if not s.idle]
+    routine = [option_of(onto, parse_call(c)) for c in ROUTINE]
+    assert steps[0].options == () and steps[3].options == tuple(routine[:3])     # what came before, in order
+    assert steps[7].options == tuple(routine)
+    assert set(steps[8].options) == {option_of(onto, parse_call(c)) for c in AVAILABLE}  # the imagined one
+    assert all(isinstance(o, Option) for s in steps for o in s.options)
+
+    def refit():
+        return rank_neem(ctx.engine.bridge(neem), onto, Hyperparameters(), AVAILABLE, Instant.of(at(3, 0)), write=False)
+
+    fresh = ctx.thread.call(refit)
+    assert fresh.history == live["history"]
+    assert [str(c) for c in fresh.calls] == [r["task"] for r in live["ranking"]]
+    assert [round(min(t.score, 1e9), 9) for t in fresh.ranking] == [round(r["score"], 9) for r in live["ranking"]]
+
+
 def test_support_names_the_past_situations_behind_each_task(client, neem):
     """The routine predictor's support: how often the user did the task after the same context,
     and when (only times at which the user began that very task)."""

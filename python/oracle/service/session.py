@@ -15,7 +15,7 @@ from typing import Any
 from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.predictors import DEFAULT, Predictor
 from oracle.algorithm.predictors import make_predictor as make_named
-from oracle.algorithm.records import RankedTask, Ranking, Step
+from oracle.algorithm.records import Option, RankedTask, Ranking, Step
 from oracle.answers import support_sentence
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError
@@ -119,6 +119,10 @@ class NeemSession:
         self.predictor = FitCache.default().fitted(predictor, self.steps, logger.store.location, neem,
                                                    keep=not logger.store.neem(neem).temporary)
         self.done = {step.label for step in self.steps if not step.idle}
+        #: What the user did so far, first done first: the offer of an action logged without an
+        #: imagined situation, as the history read gives it (oracle.calls.steps_from_history).
+        self.done_options: dict[Option, None] = dict.fromkeys(
+            Option(step.task, step.target, step.reference) for step in self.steps if not step.idle)
         ends = [float(row["end"]) for row in history]
         begins = [float(row["begin"]) for row in history]
         #: The logger's clock: nothing may be logged before the end of the last action.
@@ -189,6 +193,7 @@ class NeemSession:
         self.begins.append(begin)
         if not step.idle:
             self.done.add(step.label)
+            self.done_options.setdefault(Option(step.task, step.target, step.reference), None)
 
     def _fit_break(self, now: float) -> None:
         """The idle step before a situation posted an idle gap after the last action's end: the
@@ -289,7 +294,8 @@ class NeemSession:
         pending = self.pending
         counts = (pending is not None and pending.when.seconds <= logged.begin
                   and (self.prev_begin is None or pending.when.seconds > self.prev_begin))
-        options = tuple(option_of(self.ontology, c) for c in sorted(set(pending.calls), key=str)) if counts and pending else ()
+        options = (tuple(option_of(self.ontology, c) for c in sorted(set(pending.calls), key=str)) if counts and pending
+                   else tuple(self.done_options))
         option = option_of(self.ontology, call)
         self._fit(Step(option.task, option.target, option.reference, options, logged.part_of_day, False, str(call),
                        logged.begin if self.logger.clocked else None), logged.begin)
