@@ -52,6 +52,42 @@ def test_rank_given_options_without_write(store, capsys):
     assert out["ranking"][0]["call"] == "open(small_drawer)" and out["written"] is None
 
 
+def test_a_neem_that_imagined_nothing_ranks_the_actions_done_so_far(tmp_path, capsys):
+    """An import of chains without available sets (a sensor home's log) has no imagined
+    situation: rank offers what the user did, and what-next reads the ranking it wrote."""
+    rows = [{"user": "ada", "time": f"2026-03-0{2 + day}T08:00:{8 * i:02d}", "duration": 5, "action": action}
+            for day in range(3) for i, action in enumerate(CHAIN)]
+    chains = tmp_path / "c.jsonl"
+    chains.write_text("".join(json.dumps(r) + "\n" for r in rows))
+    path = tmp_path / "s.sqlite"
+    assert main(["import", str(chains), "--store", str(path)]) == 0
+    capsys.readouterr()
+    assert main(["rank", "--store", str(path), "--at", "2026-03-05T08:00:00", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert sorted(r["call"] for r in out["ranking"]) == sorted(CHAIN)
+    assert out["ranking"][0]["call"] == "open(small_drawer)"           # what every morning began with
+    assert out["note"].startswith("no imagined situation in the NEEM: ranked the 7 actions done so far")
+    assert out["written"] is not None
+    assert main(["what-next", "--store", str(path), "--json"]) == 0
+    assert "open(small_drawer)" in capsys.readouterr().out
+
+
+def test_a_neem_without_actions_or_situations_has_nothing_to_rank(tmp_path, capsys):
+    from oracle.neem.writer import NeemLogger
+    from oracle.ontology import build_ontology
+    from oracle.store import open_store
+
+    path = tmp_path / "s.sqlite"
+    store = open_store(path)
+    NeemLogger.create(store, build_ontology(), user="ada", neem_id="empty").flush()
+    store.close()
+    capsys.readouterr()
+    assert main(["rank", "--store", str(path), "--neem", "empty", "--no-write"]) == 1
+    err = capsys.readouterr().err
+    assert "has no imagined situation and no action to rank; give the available calls" in err
+    assert len(err.strip().splitlines()) == 1
+
+
 def test_rank_rejects_unknown_objects(store, capsys):
     assert main(["rank", "--store", str(store), "--available", "pick(unicorn)"]) == 1
     assert "unknown object 'unicorn'" in capsys.readouterr().err

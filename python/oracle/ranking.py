@@ -84,14 +84,25 @@ def rank_neem(
     histories: HistoryCache | None = None,
 ) -> NeemRanking:
     """Rank ``available`` (chain syntax) at ``at`` (default: now), or else the NEEM's latest
-    imagined situation, at the part of day recorded with it (oracle.timeline's rule). In a NEEM
-    without a clock, times are positions with no part of the day, and "now" is the position
+    imagined situation, at the part of day recorded with it (oracle.timeline's rule); a NEEM
+    that imagined nothing (an import of chains without available sets) gets the actions done so
+    far ranked, as ``available``, the offer its history steps get (oracle.calls.steps_from_history).
+    In a NEEM without a clock, times are positions with no part of the day, and "now" is the position
     after the last action. The fit is kept in ``cache`` (default: the user's, oracle.fitcache)
     and extended by the actions logged since; so is the history read (``histories``, default:
     the user's, oracle.historycache)."""
     history = (histories or HistoryCache.default()).history(bridge)
     info = bridge.store.neem(bridge.neem_id)
     clocked = has_clock(info.meta)
+    latest = None if available else bridge.latest_situation()
+    offered = None
+    if not available and latest is None:
+        available = list(dict.fromkeys(row["call"] for row in history if row["call"] != "idle"))
+        if not available:
+            raise NeemOracleError(f"NEEM {bridge.neem_id!r} has no imagined situation and no action to rank; "
+                                  "give the available calls")
+        offered = (f"no imagined situation in the NEEM: ranked the {len(available)} actions done so far "
+                   "(--available ranks others)")
     if available:
         calls = [parse_call(text) for text in available]
         for call in calls:
@@ -102,9 +113,7 @@ def rank_neem(
             last = 0.0 if at is not None else max((float(row["end"]) for row in history), default=0.0)
             instant = Instant(at.seconds if at is not None else last, None)
     else:
-        latest = bridge.latest_situation()
-        if latest is None:
-            raise NeemOracleError(f"NEEM {bridge.neem_id!r} has no imagined situation to rank; give the available calls")
+        assert latest is not None
         calls = [parse_call(text) for text in latest["available"]]
         begin = float(latest["begin"])
         recorded = recorded_part_of_day(bridge.store, bridge.neem_id, ontology.vocab, begin)
@@ -124,6 +133,8 @@ def rank_neem(
             written = logger.preference([(call_of(ontology, t.option), finite(t.score)) for t in ranking], instant)
         except LoggingError as error:
             note = f"ranking not written: {error}"
+    if offered is not None:
+        note = offered if note is None else f"{offered}; {note}"
     return NeemRanking(bridge.neem_id, when, part, len(steps), ranking,
                        tuple(call_of(ontology, t.option) for t in ranking),
                        tuple(call_of(ontology, o) for o in ranking.chain()), elapsed, written, note, method)

@@ -12,7 +12,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser("rank", help="rank the available tasks and predict the chain (writes the ranking back)")
     add_options(parser, STORE, NEEM)
     parser.add_argument("--available", nargs="+", metavar="CALL",
-                        help="rank these calls (e.g. 'pick(red_mug)') instead of the latest imagined situation")
+                        help="rank these calls (e.g. 'pick(red_mug)') instead of the latest imagined situation "
+                             "(a NEEM that imagined nothing: the actions done so far)")
     add_options(parser, AT, METHOD, SETTINGS)
     parser.add_argument("--no-write", action="store_true", help="do not write the ranking back into the NEEM")
     add_options(parser, JSON, *ONTOLOGY_OPTIONS)
