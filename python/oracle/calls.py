@@ -7,6 +7,7 @@ argument fills which slot is ``TaskClass.slots`` (the logger's roles follow the 
 from __future__ import annotations
 
 from collections.abc import Iterable
+from dataclasses import dataclass, field
 from datetime import datetime
 from typing import Any
 
@@ -64,6 +65,26 @@ def check_call(ontology: OdbOntology, call: TaskCall, where: str) -> None:
         raise OntologyError(f"{where}: {error}") from None
 
 
+@dataclass
+class DoneBefore:
+    """What the user did so far, first done first: the offer of an action that had no imagined
+    situation before it (docs/algorithm.md, "Steps without an offer"); the history read and the
+    live service both keep one, so that they give such steps the same offer."""
+
+    done: dict[Option, None] = field(default_factory=dict)
+    _offer: tuple[Option, ...] = ()
+
+    def offer(self) -> tuple[Option, ...]:
+        """The options done so far (one tuple, shared until a new option is done)."""
+        if len(self._offer) != len(self.done):
+            self._offer = tuple(self.done)
+        return self._offer
+
+    def add(self, option: Option) -> None:
+        """An action done (its option)."""
+        self.done.setdefault(option, None)
+
+
 def steps_from_history(ontology: OdbOntology, rows: Iterable[dict], clocked: bool = True) -> list[Step]:
     """The oracle's history from the Prolog bridge's ``situation_history`` rows (begin order);
     each action's step carries its begin as ``time`` when the NEEM has a clock (``clocked``: on
@@ -88,10 +109,7 @@ def steps_from_history(ontology: OdbOntology, rows: Iterable[dict], clocked: boo
     by_list: dict[int, tuple[Any, tuple[Option, ...]]] = {}
     made: dict[tuple[str, int, str | None], Step] = {}
     steps: list[Step] = []
-    # An action without an imagined situation is offered what the user did before it
-    # (docs/algorithm.md, "Steps without an offer"): one tuple, replaced when a new action comes.
-    done_before: dict[str, None] = {}
-    before: tuple[Any, tuple[Option, ...]] = (None, ())
+    before = DoneBefore()  # the offer of the actions no imagined situation came before
     for row in rows:
         part = row.get("part")
         part = part if part not in (None, "none") else None
@@ -101,9 +119,7 @@ def steps_from_history(ontology: OdbOntology, rows: Iterable[dict], clocked: boo
         text = row["call"]
         available = row.get("available")
         if available is None:
-            if before[0] != len(done_before):
-                before = (len(done_before), tuple(dict.fromkeys(option(c) for c in done_before)))
-            seen = before
+            seen = (None, before.offer())
         else:
             found = by_list.get(id(available))
             if found is None or found[0] is not available:
@@ -113,7 +129,7 @@ def steps_from_history(ontology: OdbOntology, rows: Iterable[dict], clocked: boo
                     options = sets[key] = tuple(option(c) for c in key)
                 found = by_list[id(available)] = (available, options)
             seen = found
-        done_before.setdefault(text, None)
+        before.add(option(text))
         same = (text, id(seen[1]), part)
         step = made.get(same)
         if step is None:

@@ -25,7 +25,7 @@ from oracle.neem.writer import LoggedAction, NeemLogger, check_performer
 from oracle.timeline import Instant, TimeValueError, clock, is_idle_gap
 from oracle.ontology import OdbOntology
 from oracle.ranking import finite, support_fields
-from oracle.calls import call_of, check_call, idle_step, opening_tasks, option_of, steps_from_history
+from oracle.calls import DoneBefore, call_of, check_call, idle_step, opening_tasks, option_of, steps_from_history
 
 #: The forward tree is built for the top suggestion only: the page and the API offer its chain
 #: as the one workflow; the ranking itself does not depend on how many trees are built.
@@ -119,10 +119,11 @@ class NeemSession:
         self.predictor = FitCache.default().fitted(predictor, self.steps, logger.store.location, neem,
                                                    keep=not logger.store.neem(neem).temporary)
         self.done = {step.label for step in self.steps if not step.idle}
-        #: What the user did so far, first done first: the offer of an action logged without an
-        #: imagined situation, as the history read gives it (oracle.calls.steps_from_history).
-        self.done_options: dict[Option, None] = dict.fromkeys(
-            Option(step.task, step.target, step.reference) for step in self.steps if not step.idle)
+        #: The offer of an action logged without an imagined situation, as the history read gives it.
+        self.done_before = DoneBefore()
+        for step in self.steps:
+            if not step.idle:
+                self.done_before.add(Option(step.task, step.target, step.reference))
         ends = [float(row["end"]) for row in history]
         begins = [float(row["begin"]) for row in history]
         #: The logger's clock: nothing may be logged before the end of the last action.
@@ -193,7 +194,7 @@ class NeemSession:
         self.begins.append(begin)
         if not step.idle:
             self.done.add(step.label)
-            self.done_options.setdefault(Option(step.task, step.target, step.reference), None)
+            self.done_before.add(Option(step.task, step.target, step.reference))
 
     def _fit_break(self, now: float) -> None:
         """The idle step before a situation posted an idle gap after the last action's end: the
@@ -295,7 +296,7 @@ class NeemSession:
         counts = (pending is not None and pending.when.seconds <= logged.begin
                   and (self.prev_begin is None or pending.when.seconds > self.prev_begin))
         options = (tuple(option_of(self.ontology, c) for c in sorted(set(pending.calls), key=str)) if counts and pending
-                   else tuple(self.done_options))
+                   else self.done_before.offer())
         option = option_of(self.ontology, call)
         self._fit(Step(option.task, option.target, option.reference, options, logged.part_of_day, False, str(call),
                        logged.begin if self.logger.clocked else None), logged.begin)
