@@ -21,7 +21,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
 from oracle.algorithm.records import Option, Step  # noqa: E402
 from oracle.algorithm.routine import RoutineOracle  # noqa: E402
-from oracle.calls import opening_tasks  # noqa: E402
+from oracle.calls import DoneBefore, opening_tasks  # noqa: E402
 from oracle.evaluation.replay import KS, load_users, replay  # noqa: E402
 from oracle.ontology import OdbOntology, build_ontology  # noqa: E402
 
@@ -38,7 +38,7 @@ class Offered:
 
     def reset(self) -> None:
         self.model = RoutineOracle(self.distances, opening_tasks=self.opening).fit([])
-        self.done: dict[Option, None] = {}
+        self.done = DoneBefore()
 
     def rank(self, candidates: Sequence[Option], time_of_day: str | None = None, at: float | None = None) -> list[Option]:
         return list(self.model.rank(list(candidates), time_of_day, tree_roots=0, at=at).options())
@@ -48,8 +48,8 @@ class Offered:
             if self.mode == "nothing":
                 step = dataclasses.replace(step, options=())
             elif self.mode == "done before":
-                step = dataclasses.replace(step, options=tuple(self.done))
-            self.done.setdefault(Option(step.task, step.target, step.reference), None)
+                step = dataclasses.replace(step, options=self.done.offer())
+            self.done.add(Option(step.task, step.target, step.reference))
         self.model.partial_fit(step)
 
 
