@@ -677,3 +677,29 @@ def test_after_a_break_the_option_that_goes_on_from_the_last_action_is_lifted():
         assert not any(t.resumed for t in after)
     assert RoutineOracle(kitchen()).fit(now[:-1]).rank(offered) == \
         RoutineOracle(kitchen(), resume=False).fit(now[:-1]).rank(offered)
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.tuples(st.integers(0, 4), st.integers(-2, 3), st.integers(-1, 3)), min_size=1, max_size=60),
+       st.sampled_from([0.5, 2.0]), st.integers(-1, 3))
+def test_the_similarity_mass_by_kinds_equals_it_per_action_bit_for_bit(actions, tau, now_code):
+    """Q weighs each kind of past action (its predecessors and part of day) once and hands the
+    weight to its actions: the same numbers, summed in the same order, as per action."""
+    from oracle.algorithm.kernel import context_distance, similarity_mass
+
+    rng = np.random.default_rng(len(actions))
+    table = rng.uniform(0.0, 2.0, (5, 5))
+    cand = rng.uniform(0.0, 2.0, (3, 5))
+    executed = np.array([a for a, _, _ in actions])
+    before = np.array([[b, (b + 1) % 3, -2] for _, b, _ in actions])
+    tod = np.array([t for _, _, t in actions])
+    now = (1, -1, 2)
+    kinds: dict[tuple[int, ...], int] = {}
+    kind_of = np.array([kinds.setdefault((*row, t), len(kinds)) for row, t in zip(before.tolist(), tod.tolist())])
+    first = {k: i for i, k in reversed(list(enumerate(kind_of.tolist())))}
+    order = [first[k] for k in range(len(kinds))]
+    differs = (tod >= 0) & (tod != now_code) if now_code >= 0 else np.zeros(tod.size, dtype=bool)
+    alone = similarity_mass(cand, executed, context_distance(table, now, before, 1.5, 0.5), differs, tau, 2.0)
+    grouped = similarity_mass(cand, executed, context_distance(table, now, before[order], 1.5, 0.5), differs[order],
+                              tau, 2.0, kind_of)
+    assert alone.tobytes() == grouped.tobytes()

@@ -56,19 +56,23 @@ def context_distance(table: np.ndarray, now: tuple[int, ...], then: np.ndarray, 
 
 
 def similarity_mass(candidate_distances: np.ndarray, executed: np.ndarray, context: np.ndarray,
-                    tod_differs: np.ndarray, tau: float, tod_penalty: float) -> np.ndarray:
+                    tod_differs: np.ndarray, tau: float, tod_penalty: float,
+                    kinds: np.ndarray | None = None) -> np.ndarray:
     """``S(c) = sum_j exp(-(d(c, a_j) + D_j) / tau) * rho^-[tod_j differs]`` for every candidate.
 
     ``candidate_distances`` is (candidates x options) Algorithm 2; ``executed`` the option id of
-    every past action, ``context`` its ``D_j``. Grouping the past actions by option first keeps
-    it O(history + candidates x options).
+    every past action, ``context`` its ``D_j`` and ``tod_differs`` its part-of-day test; or, with
+    ``kinds`` (each past action's kind), both given per kind: each kind's weight is worked out
+    once and handed to its actions, the same number each would get alone, summed in the same
+    order. Grouping the past actions by option first keeps it O(history + candidates x options).
     """
     n_options = candidate_distances.shape[1]
     if executed.size == 0 or n_options == 0:
         return np.zeros(candidate_distances.shape[0])
     log_weight = -context / tau - np.where(tod_differs, math.log(tod_penalty) if tod_penalty > 0 else 0.0, 0.0)
     shift = log_weight.max()  # the common factor exp(shift) cancels when S is normalised
-    per_option = np.bincount(executed, weights=np.exp(log_weight - shift), minlength=n_options)
+    weights = np.exp(log_weight - shift)
+    per_option = np.bincount(executed, weights=weights if kinds is None else weights[kinds], minlength=n_options)
     return np.exp(-candidate_distances / tau) @ per_option
 
 

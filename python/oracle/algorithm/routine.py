@@ -41,6 +41,11 @@ _TOD = {name: code for code, name in enumerate(TIME_OF_DAY_NAMES)}
 TUNING_WINDOW = 1000
 
 
+def _differs(then: np.ndarray, now_code: int) -> np.ndarray:
+    """Per part-of-day code: does it differ from now's (unknown on either side: no)?"""
+    return (then >= 0) & (then != now_code) if now_code >= 0 else np.zeros(then.size, dtype=bool)
+
+
 class _Stream:
     """One token stream: its context counts and each past action's predecessor tokens."""
 
@@ -48,10 +53,28 @@ class _Stream:
         self.counts = ContextCounts(max_order, timed_from)
         self.depth = depth
         self.before = Rows(depth)     # per past action: predecessors 1..depth (START padded)
+        # Past actions alike in their predecessors and part of day weigh alike in Q: each kind's
+        # weight is worked out once and handed to its actions (kernel.similarity_mass).
+        self.kinds: dict[tuple[int, ...], int] = {}
+        self.kind_before = Rows(depth)  # per kind: its predecessors
+        self.kind_tod = Rows(1)         # per kind: its part-of-day code, -1 unknown
+        self.kind_of = Rows(1)          # per past action: its kind
 
     def recent(self) -> tuple[int, ...]:
         tokens = self.counts.tokens
         return tuple(tokens[-n] if len(tokens) >= n else START for n in range(1, self.depth + 1))
+
+    def situation(self, tod: int) -> None:
+        """The next past action, done now at part-of-day code ``tod``: its predecessors and kind."""
+        recent = self.recent()
+        self.before.append(recent)
+        key = (*recent, tod)
+        kind = self.kinds.get(key)
+        if kind is None:
+            kind = self.kinds[key] = len(self.kinds)
+            self.kind_before.append(recent)
+            self.kind_tod.append(tod)
+        self.kind_of.append(kind)
 
 
 class RoutineOracle(EstimatorParams):
@@ -246,10 +269,11 @@ class RoutineOracle(EstimatorParams):
             token = self._known.intern(step.option)
             if position > 0 and self._step_ids.view[position - 1, 0] != IDLE:
                 self._next.view[position - 1, 0] = position
+            code = _TOD.get(step.time_of_day or "", -1)
             for stream in self._streams.values():
-                stream.before.append(stream.recent())
+                stream.situation(code)
             self._executed.append(token)
-            self._tod.append(_TOD.get(step.time_of_day or "", -1))
+            self._tod.append(code)
             self._position.append(position)
             self.resume_.follow(token)
             self.clock_.done(token, step.time)
@@ -314,12 +338,12 @@ class RoutineOracle(EstimatorParams):
             cand = self._known.table[ids, :count]
         executed = self._executed.view[:, 0]
         now_code = _TOD.get(now, -1) if now is not None else -1
-        then = self._tod.view[:, 0]
-        differs = (then >= 0) & (then != now_code) if now_code >= 0 else np.zeros(then.size, dtype=bool)
         table = self._known.table[:count, :count]
         chosen = [self.variants_[v] for v in (range(len(self.variants_)) if which is None else which)]
-        context = {name: context_distance(table, s.recent(), s.before.view, self.penalty, self.context_decay)
+        # per stream, per kind of past action: its context distance and whether its part of day differs
+        context = {name: context_distance(table, s.recent(), s.kind_before.view, self.penalty, self.context_decay)
                    for name, s in self._streams.items() if any(v[0] == name for v in chosen)}
+        differs = {name: _differs(self._streams[name].kind_tod.view[:, 0], now_code) for name in context}
         base: dict[tuple[str, float], np.ndarray] = {}
         focus, top = split_weights(self.hand_.weights(inside, self.focus_odds), self.fresh_.lift.weights(new, True),
                                    self.fresh_level == "top")
@@ -344,7 +368,8 @@ class RoutineOracle(EstimatorParams):
             for _, taus in lanes.values():
                 for tau in taus:
                     if (stream, tau) not in base:
-                        mass = similarity_mass(cand, executed, context[stream], differs, tau, self.time_of_day_penalty)
+                        mass = similarity_mass(cand, executed, context[stream], differs[stream], tau,
+                                               self.time_of_day_penalty, self._streams[stream].kind_of.view[:, 0])
                         if focus is not None and self.focus_level == "base":
                             mass = normalised(mass) * focus
                         base[stream, tau] = normalised(mass)
