@@ -70,6 +70,10 @@ def test_a_neem_that_imagined_nothing_ranks_the_actions_done_so_far(tmp_path, ca
     assert out["written"] is not None
     assert main(["what-next", "--store", str(path), "--json"]) == 0
     assert "open(small_drawer)" in capsys.readouterr().out
+    # a decision in the past is offered what was done before it
+    assert main(["rank", "--store", str(path), "--at", "2026-03-02T08:00:20", "--no-write", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert sorted(r["call"] for r in out["ranking"]) == sorted(CHAIN[:3])
 
 
 def test_a_neem_without_actions_or_situations_has_nothing_to_rank(tmp_path, capsys):

@@ -97,7 +97,9 @@ def rank_neem(
     latest = None if available else bridge.latest_situation()
     offered = None
     if not available and latest is None:
-        available = list(dict.fromkeys(row["call"] for row in history if row["call"] != "idle"))
+        before = at.seconds if at is not None else math.inf   # what was done before the decision
+        available = list(dict.fromkeys(row["call"] for row in history
+                                       if row["call"] != "idle" and float(row["begin"]) < before))
         if not available:
             raise NeemOracleError(f"NEEM {bridge.neem_id!r} has no imagined situation and no action to rank; "
                                   "give the available calls")
@@ -113,7 +115,7 @@ def rank_neem(
             last = 0.0 if at is not None else max((float(row["end"]) for row in history), default=0.0)
             instant = Instant(at.seconds if at is not None else last, None)
     else:
-        assert latest is not None
+        assert latest is not None  # no available calls: the NEEM's latest situation, found above
         calls = [parse_call(text) for text in latest["available"]]
         begin = float(latest["begin"])
         recorded = recorded_part_of_day(bridge.store, bridge.neem_id, ontology.vocab, begin)
