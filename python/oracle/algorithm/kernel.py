@@ -36,6 +36,35 @@ class Rows:
         return self._data[: self.size, : self.width]
 
 
+class PastSituations:
+    """Each past action's predecessor tokens (``before``) and its *kind*: actions alike in their
+    predecessors and part of day weigh alike in ``S``, so each kind's weight is worked out once
+    and handed to its actions (``similarity_mass``'s ``kinds``)."""
+
+    def __init__(self, depth: int) -> None:
+        self.before = Rows(depth)       # per past action: predecessors 1..depth (START padded)
+        self.kinds: dict[tuple[int, ...], int] = {}
+        self.kind_before = Rows(depth)  # per kind: its predecessors
+        self.kind_tod = Rows(1)         # per kind: its part-of-day code, -1 unknown
+        self.kind_of = Rows(1)          # per past action: its kind
+
+    def add(self, before: tuple[int, ...], tod: int) -> None:
+        """The next past action: its predecessor tokens and part-of-day code."""
+        self.before.append(before)
+        key = (*before, tod)
+        kind = self.kinds.get(key)
+        if kind is None:
+            kind = self.kinds[key] = len(self.kinds)
+            self.kind_before.append(before)
+            self.kind_tod.append(tod)
+        self.kind_of.append(kind)
+
+    def differs(self, now: int) -> np.ndarray:
+        """Per kind: does its part of day differ from ``now``'s (unknown on either side: no)?"""
+        then = self.kind_tod.view[:, 0]
+        return (then >= 0) & (then != now) if now >= 0 else np.zeros(then.size, dtype=bool)
+
+
 def context_distance(table: np.ndarray, now: tuple[int, ...], then: np.ndarray, penalty: float,
                      decay: float) -> np.ndarray:
     """``D_j = sum_n decay^(n-1) * delta(now_n, then_jn)`` over the ``len(now)`` predecessors.

@@ -24,7 +24,7 @@ from oracle.algorithm.contexts import IDLE, UNKNOWN, Blend, ContextCounts, Memo
 from oracle.algorithm.focus import (FeatureLift, NewOffers, Resumption, combined, decision, held_objects, in_focus,
                                    split_weights, tells_apart)
 from oracle.algorithm.params import THESIS_DEFAULTS, EstimatorParams
-from oracle.algorithm.kernel import START, Rows, context_distance, normalised, similarity_mass
+from oracle.algorithm.kernel import START, PastSituations, Rows, context_distance, normalised, similarity_mass
 from oracle.algorithm.reference import offered_options
 from oracle.algorithm.routine_settings import check_settings
 from oracle.algorithm.selftune import VariantWeights, mixed_distribution
@@ -41,40 +41,17 @@ _TOD = {name: code for code, name in enumerate(TIME_OF_DAY_NAMES)}
 TUNING_WINDOW = 1000
 
 
-def _differs(then: np.ndarray, now_code: int) -> np.ndarray:
-    """Per part-of-day code: does it differ from now's (unknown on either side: no)?"""
-    return (then >= 0) & (then != now_code) if now_code >= 0 else np.zeros(then.size, dtype=bool)
-
-
 class _Stream:
     """One token stream: its context counts and each past action's predecessor tokens."""
 
     def __init__(self, max_order: int, depth: int, timed_from: int) -> None:
         self.counts = ContextCounts(max_order, timed_from)
         self.depth = depth
-        self.before = Rows(depth)     # per past action: predecessors 1..depth (START padded)
-        # Past actions alike in their predecessors and part of day weigh alike in Q: each kind's
-        # weight is worked out once and handed to its actions (kernel.similarity_mass).
-        self.kinds: dict[tuple[int, ...], int] = {}
-        self.kind_before = Rows(depth)  # per kind: its predecessors
-        self.kind_tod = Rows(1)         # per kind: its part-of-day code, -1 unknown
-        self.kind_of = Rows(1)          # per past action: its kind
+        self.past = PastSituations(depth)  # per past action: its predecessors and their kind
 
     def recent(self) -> tuple[int, ...]:
         tokens = self.counts.tokens
         return tuple(tokens[-n] if len(tokens) >= n else START for n in range(1, self.depth + 1))
-
-    def situation(self, tod: int) -> None:
-        """The next past action, done now at part-of-day code ``tod``: its predecessors and kind."""
-        recent = self.recent()
-        self.before.append(recent)
-        key = (*recent, tod)
-        kind = self.kinds.get(key)
-        if kind is None:
-            kind = self.kinds[key] = len(self.kinds)
-            self.kind_before.append(recent)
-            self.kind_tod.append(tod)
-        self.kind_of.append(kind)
 
 
 class RoutineOracle(EstimatorParams):
@@ -271,7 +248,7 @@ class RoutineOracle(EstimatorParams):
                 self._next.view[position - 1, 0] = position
             code = _TOD.get(step.time_of_day or "", -1)
             for stream in self._streams.values():
-                stream.situation(code)
+                stream.past.add(stream.recent(), code)
             self._executed.append(token)
             self._tod.append(code)
             self._position.append(position)
@@ -341,9 +318,9 @@ class RoutineOracle(EstimatorParams):
         table = self._known.table[:count, :count]
         chosen = [self.variants_[v] for v in (range(len(self.variants_)) if which is None else which)]
         # per stream, per kind of past action: its context distance and whether its part of day differs
-        context = {name: context_distance(table, s.recent(), s.kind_before.view, self.penalty, self.context_decay)
+        context = {name: context_distance(table, s.recent(), s.past.kind_before.view, self.penalty, self.context_decay)
                    for name, s in self._streams.items() if any(v[0] == name for v in chosen)}
-        differs = {name: _differs(self._streams[name].kind_tod.view[:, 0], now_code) for name in context}
+        differs = {name: self._streams[name].past.differs(now_code) for name in context}
         base: dict[tuple[str, float], np.ndarray] = {}
         focus, top = split_weights(self.hand_.weights(inside, self.focus_odds), self.fresh_.lift.weights(new, True),
                                    self.fresh_level == "top")
@@ -369,7 +346,7 @@ class RoutineOracle(EstimatorParams):
                 for tau in taus:
                     if (stream, tau) not in base:
                         mass = similarity_mass(cand, executed, context[stream], differs[stream], tau,
-                                               self.time_of_day_penalty, self._streams[stream].kind_of.view[:, 0])
+                                               self.time_of_day_penalty, self._streams[stream].past.kind_of.view[:, 0])
                         if focus is not None and self.focus_level == "base":
                             mass = normalised(mass) * focus
                         base[stream, tau] = normalised(mass)
@@ -462,7 +439,7 @@ class RoutineOracle(EstimatorParams):
         """History positions where ``option_id`` followed ``context`` (all its uses when n is 0)."""
         positions = self._position.view[:, 0]
         index = np.arange(self._executed.size) if stream is self._streams.get("through") else positions
-        return followed_at(self._executed.view[:, 0], positions, stream.before.view, stream.counts.tokens, index,
+        return followed_at(self._executed.view[:, 0], positions, stream.past.before.view, stream.counts.tokens, index,
                            option_id, context, n)
 
     def _label(self, token: int) -> str:
