@@ -308,7 +308,9 @@ insert_row(triple(S,P,O,Since,Until), [S,P,O,Since,Until]).
 %!  store_match(+Patterns, +Scope) is nondet.
 %!  store_match(+Patterns, +Scope, +Options) is nondet.
 %   Solve the conjunction of `t(S,P,O)` patterns in ONE store query, binding their
-%   variables. Options: `limit(N)`, `order(Keys)` and `select(Term)`: only the variables of
+%   variables. Options: `limit(N)`, `order(Keys)` (with a limit, solutions equal in every
+%   key come in no fixed order: the store's top-N scan stops at its Nth row) and
+%   `select(Term)`: only the variables of
 %   Term are bound by a solution (the store does not send the others back; the memory
 %   backend binds them all), for callers that collect a few variables of many rows;
 %   `group(Var, Values)` (with select(Term), no limit or order): one solution per distinct

@@ -51,10 +51,13 @@ decision_at(Kind, Time, M) :-
     latest_decision(Kind, =<(Time), M, _).
 
 %!  latest_decision(+Kind, +Test, -MentalAction, -Begin) is semidet.
-%   The latest decision of Kind whose begin passes Test (`=<(Time)`, or `any`): one store
-%   query ordered by begin, limited to a few rows, which holds every decision that began
-%   at the latest begin unless they fill it (then it is asked again with a larger limit);
-%   the greatest in the standard order of terms when several began then, as max_member/2.
+%   The latest decision of Kind whose begin passes Test (`=<(Time)`, or `any`); the greatest
+%   in the standard order of terms when several began then, as max_member/2. Two store
+%   queries ordered by begin: the latest begin (the scan stops at the first decision), then
+%   the decisions from just before that begin on, a few at a time, until a later begin
+%   shows that none at it is left out (the scan stops there, or at the end of the NEEM). So
+%   the cost is the intervals that began after the decision, not the whole NEEM when it
+%   holds fewer decisions than a batch.
 latest_decision(Kind, Test, M, B) :-
     % A decision executes a task of Kind's class: without one there is none, and the ordered
     % query need not walk every interval by begin to find that out (1.6 s at 50,000 actions
@@ -62,20 +65,25 @@ latest_decision(Kind, Test, M, B) :-
     % (Written order: the class's closure ids then drive the type index.)
     decision_patterns(Kind, _, _, [_, t(T, Type, C)|_]),
     once(store_match([t(T, Type, C)], any, [limit(1), plan(written)])),
-    latest_decision_(Kind, Test, 4, M, B).
+    (   Test = =<(Time) -> BO = cmp(=<, Time, B1) ; BO = B1 ),
+    decision_patterns(Kind, _, BO, Ps),
+    once(store_match(Ps, any, [order([desc(B1)]), limit(1)])),
+    % From a hair below the latest begin: a begin read back from a store may differ from
+    % its stored number in the last bit (a Decimal128), and begins are compared here.
+    From is B1 - max(1.0e-9, abs(B1) * 1.0e-15),
+    decisions_from(Kind, From, B1, 4, M),
+    B = B1.
 
-latest_decision_(Kind, Test, N, M, B) :-
-    (   Test = =<(Time) -> BO = cmp(=<, Time, B0) ; BO = B0 ),
-    decision_patterns(Kind, M0, BO, Ps),
-    findall(B0-M0, store_match(Ps, any, [order([desc(B0)]), limit(N)]), Rows),
-    Rows = [B1-_|_],
-    findall(Bx-Mx, ( member(Bx-Mx, Rows), Bx =:= B1 ), Latest),
-    length(Latest, NLatest),
-    (   NLatest < N
-    ->  max_member(_-M, Latest),
-        B = B1
+%   decisions_from(+Kind, +From, +B1, +N, -M): the greatest decision of Kind that began at
+%   B1, reading N at a time in ascending begin from From (below B1).
+decisions_from(Kind, From, B1, N, M) :-
+    decision_patterns(Kind, M0, cmp(>=, From, B0), Ps),
+    findall(B0-M0, store_match(Ps, any, [order([asc(B0)]), limit(N)]), Rows),
+    findall(Mx, ( member(Bx-Mx, Rows), Bx =:= B1 ), Latest),
+    (   ( length(Rows, NRows), NRows < N ; last(Rows, BL-_), BL > B1 )
+    ->  max_member(M, Latest)
     ;   N1 is N*4,
-        latest_decision_(Kind, Test, N1, M, B)
+        decisions_from(Kind, From, B1, N1, M)
     ).
 
 %   decision/3 as store patterns (what kb_call compiles it to).

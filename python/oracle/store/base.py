@@ -443,7 +443,10 @@ class Store(ABC):
         (numbers as float or int, IRIs and strings as str). SQLite runs one SQL join,
         MongoDB one aggregation on ``one`` with a ``$lookup`` per pattern, as mongolog does.
         ``order`` is ``[(variable, descending), ...]`` over numeric variables, applied before
-        ``limit`` by the database ("the latest decision before T" is one row, not a scan).
+        ``limit`` by the database ("the latest decision before T" is one row, not a scan);
+        with a ``limit``, solutions equal in every key come in no fixed order (a top-N scan
+        stops at its last row), so a caller that needs all the rows at the last key's value
+        asks again with a larger limit.
         ``select`` names the variables the caller keeps (all of them when None): the others
         are joined on but never converted to Python values; the solutions are the same rows.
         ``group`` names a kept variable whose values are collected: one dict per distinct

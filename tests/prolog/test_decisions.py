@@ -1,0 +1,59 @@
+"""The latest decision of a kind (odb_decisions:latest_decision/4) on a NEEM written by the
+logger: the latest begin wins, ties go to the greatest in the standard order of terms, a time
+bound is kept, and a NEEM holding fewer decisions than one batch of the query answers alike."""
+
+from __future__ import annotations
+
+from datetime import datetime, timedelta, timezone
+
+import pytest
+
+from oracle.bridge import Bridge
+from oracle.neem.writer import NeemLogger
+from oracle.store import open_store
+
+CALLS = ["pick(apple)", "pour(thermos, green_mug)"]
+T0 = datetime(2024, 5, 1, 8, tzinfo=timezone.utc)
+
+
+def latest(bridge: Bridge, kind: str, test: str = "any") -> tuple[str, float] | None:
+    rows = bridge.query(f"odb_decisions:latest_decision({kind}, {test}, M, B)")
+    return (rows[0]["M"], rows[0]["B"]) if rows else None
+
+
+@pytest.fixture()
+def neem(tmp_path, onto):
+    store = open_store(tmp_path / "d.sqlite")
+    log = NeemLogger.create(store, onto, user="r", neem_id="r")
+    for obj in ("apple", "thermos", "green_mug"):
+        log.perceive(obj, T0)
+    t = T0
+    for i in range(30):  # situations at every step, an action after each
+        t += timedelta(minutes=1)
+        log.available(CALLS, t)
+        log.action(CALLS[i % 2], t + timedelta(seconds=1), t + timedelta(seconds=20))
+    log.flush()
+    bridge = Bridge(store, "r", onto)
+    yield store, log, bridge, t
+    bridge.close()
+    store.close()
+
+
+def test_no_preference_then_one_far_back_then_ties_at_the_latest_begin(neem):
+    store, log, bridge, t = neem
+    assert latest(bridge, "preference") is None
+    situation = latest(bridge, "situation")
+    assert situation is not None and situation[1] == t.timestamp()
+    early = T0 + timedelta(minutes=3)
+    log.preference([(CALLS[0], 0.1)], early)          # one preference, 27 situations later on
+    log.flush()
+    only = latest(bridge, "preference")
+    assert only is not None and only[1] == early.timestamp()
+    written = [log.preference([(c, 0.5)], t) for c in CALLS * 5]  # ten at one begin: more than a batch
+    log.flush()
+    tied = bridge.query(f"findall(M, odb_decisions:decision(preference, M, {t.timestamp()}), Ms)")[0]["Ms"]
+    assert len(tied) == len(written) == 10
+    assert latest(bridge, "preference") == (max(tied), t.timestamp())
+    # a time bound before the ties: the one far back
+    assert latest(bridge, "preference", f"=<({(t - timedelta(seconds=1)).timestamp()})") == only
+    assert latest(bridge, "preference", f"=<({early.timestamp() - 1})") is None
