@@ -163,14 +163,37 @@ something_else(Current, Alternative, rank(R, S)) :-
     member(ranked(Alternative, R, S), Ranked),
     Alternative \== Current.
 
+%   The task call of the latest non-idle execution (by begin, then the greatest task): the
+%   executions in descending begin order, fetched in growing ordered chunks until one is
+%   not idle, as chosen_after/3 does forwards (not every action of the NEEM).
 latest_action(Call, Begin) :-
     odb_iri('IdleTask', Idle),
-    findall(B-T, kb_call(( executes_task(A, T), has_time_interval(A, I),
-                           has_interval_begin(I, B) ), any), Pairs0),
-    sort(0, @>=, Pairs0, Pairs),
-    member(Begin-T, Pairs),
-    \+ kb_call(instance_of(T, Idle), any),
-    task_call(T, Call), !.
+    latest_from(none, 16, Idle, Call, Begin).
+
+latest_from(Before, N, Idle, Call, Begin) :-
+    maplist(kb_iri, [dul:executesTask, dul:hasTimeInterval, soma:hasIntervalBegin], [Ex, HI, BeginP]),
+    (   Before == none -> BO = B ; BO = cmp(=<, Before, B) ),
+    findall(B-T, store_match([t(A, Ex, T), t(A, HI, I), t(I, BeginP, BO)], any,
+                             [order([desc(B)]), limit(N)]),
+            Rows),
+    length(Rows, Got),
+    (   Got < N
+    ->  sort(0, @>=, Rows, Pairs),
+        first_choice(Pairs, Idle, Call, Begin)
+    ;   last(Rows, Last-_),
+        include(begins_after(Last), Rows, Complete),   % the last begin may have more rows
+        sort(0, @>=, Complete, Pairs),
+        (   first_choice(Pairs, Idle, Call, Begin)
+        ->  true
+        ;   % from a hair above the last begin: a begin read back may differ from the stored
+            % number in its last bit (a Decimal128); the rows above it looked at again hold no choice
+            Hi is Last + max(1.0e-9, abs(Last) * 1.0e-15),
+            N1 is N*4,
+            latest_from(Hi, N1, Idle, Call, Begin)
+        )
+    ).
+
+begins_after(Last, B-_) :- B > Last.
 
 check_call(Call) :-
     must_be(callable, Call),

@@ -57,3 +57,21 @@ def test_no_preference_then_one_far_back_then_ties_at_the_latest_begin(neem):
     # a time bound before the ties: the one far back
     assert latest(bridge, "preference", f"=<({(t - timedelta(seconds=1)).timestamp()})") == only
     assert latest(bridge, "preference", f"=<({early.timestamp() - 1})") is None
+
+
+def test_the_current_task_is_the_latest_action_also_among_more_ties_than_a_batch(neem):
+    """something_else/2 without a task asks for the latest action: fetched in ordered chunks,
+    it is the one the whole sorted list of executions gives (latest begin, greatest task)."""
+    store, log, bridge, t = neem
+    end = t + timedelta(minutes=5)
+    for i in range(20):  # twenty instant actions at one begin: more than the first chunk
+        log.action(CALLS[i % 2], end, end)
+    log.flush()
+    reference = bridge.query(
+        "odb_names:odb_iri('IdleTask', Idle),"
+        "findall(B-T, kb_call((executes_task(A, T), has_time_interval(A, I), has_interval_begin(I, B)), any), P),"
+        "sort(0, @>=, P, S), member(B0-T0, S), \\+ kb_call(instance_of(T0, Idle), any),"
+        "odb_calls:task_call(T0, C), !, term_string(C, Text)")[0]
+    assert reference["B0"] == end.timestamp()
+    latest = bridge.query("answers:latest_action(C, B), term_string(C, Text)")[0]
+    assert (latest["Text"], latest["B"]) == (reference["Text"], reference["B0"])
