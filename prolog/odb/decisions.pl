@@ -52,27 +52,45 @@ decision_at(Kind, Time, M) :-
 
 %!  latest_decision(+Kind, +Test, -MentalAction, -Begin) is semidet.
 %   The latest decision of Kind whose begin passes Test (`=<(Time)`, or `any`); the greatest
-%   in the standard order of terms when several began then, as max_member/2. Two store
-%   queries ordered by begin: the latest begin (the scan stops at the first decision), then
-%   the decisions from just before that begin on, a few at a time, until a later begin
-%   shows that none at it is left out (the scan stops there, or at the end of the NEEM). So
-%   the cost is the intervals that began after the decision, not the whole NEEM when it
-%   holds fewer decisions than a batch.
+%   in the standard order of terms when several began then, as max_member/2. A NEEM with few
+%   decisions of Kind (a NEEM ranked once or twice) has them all read from the class's
+%   tasks and chosen here. Otherwise two store queries ordered by begin: the latest begin
+%   (the scan stops at the first decision), then the decisions from just below that begin
+%   on, a few at a time, until a later begin shows that none at it is left out. Either way
+%   the cost is not the whole NEEM's intervals, which an ordered scan walks when no decision
+%   passes the test.
 latest_decision(Kind, Test, M, B) :-
-    % A decision executes a task of Kind's class: without one there is none, and the ordered
-    % query need not walk every interval by begin to find that out (1.6 s at 50,000 actions
-    % when a NEEM has no preference yet). The logger makes one such task per kind.
-    % (Written order: the class's closure ids then drive the type index.)
-    decision_patterns(Kind, _, _, [_, t(T, Type, C)|_]),
-    once(store_match([t(T, Type, C)], any, [limit(1), plan(written)])),
-    (   Test = =<(Time) -> BO = cmp(=<, Time, B1) ; BO = B1 ),
-    decision_patterns(Kind, _, BO, Ps),
-    once(store_match(Ps, any, [order([desc(B1)]), limit(1)])),
-    % From a hair below the latest begin: a begin read back from a store may differ from
-    % its stored number in the last bit (a Decimal128), and begins are compared here.
-    From is B1 - max(1.0e-9, abs(B1) * 1.0e-15),
-    decisions_from(Kind, From, B1, 4, M),
-    B = B1.
+    (   few_decisions(Kind, Few)
+    ->  include(begin_passes(Test), Few, Passing),
+        max_member(B-_, Passing),
+        findall(Mx, ( member(Bx-Mx, Passing), Bx =:= B ), Latest),
+        max_member(M, Latest)
+    ;   (   Test = =<(Time) -> BO = cmp(=<, Time, B1) ; BO = B1 ),
+        decision_patterns(Kind, _, BO, Ordered),
+        once(store_match(Ordered, any, [order([desc(B1)]), limit(1)])),
+        % From a hair below the latest begin: a begin read back from a store may differ from
+        % its stored number in the last bit (a Decimal128), and begins are compared here.
+        From is B1 - max(1.0e-9, abs(B1) * 1.0e-15),
+        decisions_from(Kind, From, B1, 4, M),
+        B = B1
+    ).
+
+%   few_decisions(+Kind, -Decisions): Begin-Decision for every decision of Kind, when there
+%   are fewer than 64 (fails otherwise): the class's tasks, their actions, each one's
+%   interval, in one-pattern queries the store answers from an index without a sort.
+few_decisions(Kind, Few) :-
+    decision_patterns(Kind, _, _, [t(_, Ex, _), t(_, Type, C), t(_, HI, _), t(_, Begin, _), t(_, End, _)]),
+    % (Written order: the closure ids go into the query, so SQLite reads the type index
+    % instead of walking the table in id order.)
+    findall(T, store_match([t(T, Type, C)], any, [limit(64), plan(written)]), Ts),
+    length(Ts, NTs), NTs < 64,
+    findall(M, ( member(T, Ts), store_match([t(M, Ex, T)], any, [limit(64), plan(written)]) ), Ms),
+    length(Ms, NMs), NMs < 64,
+    findall(B0-M, ( member(M, Ms),
+                    store_match([t(M, HI, I), t(I, Begin, B0), t(I, End, _)], any) ), Few).
+
+begin_passes(any, _) :- !.
+begin_passes(=<(Time), B-_) :- B =< Time.
 
 %   decisions_from(+Kind, +From, +B1, +N, -M): the greatest decision of Kind that began at
 %   B1, reading N at a time in ascending begin from From (below B1).

@@ -75,3 +75,28 @@ def test_the_current_task_is_the_latest_action_also_among_more_ties_than_a_batch
     assert reference["B0"] == end.timestamp()
     latest = bridge.query("answers:latest_action(C, B), term_string(C, Text)")[0]
     assert (latest["Text"], latest["B"]) == (reference["Text"], reference["B0"])
+
+
+def test_with_many_decisions_the_ordered_queries_answer_as_every_decision_does(neem):
+    """Past 64 decisions of a kind latest_decision/4 switches from reading them all to the
+    ordered scans; both give the latest passing the test, ties to the greatest."""
+    store, log, bridge, t = neem
+    for i in range(40):  # 70 situations in all, then five more at the latest begin
+        t += timedelta(minutes=1)
+        log.available(CALLS, t)
+        log.action(CALLS[i % 2], t + timedelta(seconds=1), t + timedelta(seconds=20))
+    t += timedelta(minutes=1)
+    for _ in range(5):
+        log.available(CALLS, t)
+    log.flush()
+    everything = bridge.query("findall(B-M, odb_decisions:decision(situation, M, B), L), length(L, N)")[0]["N"]
+    assert everything == 75
+    rows = bridge.query("findall(M, odb_decisions:decision(situation, M, _), Ms),"
+                        "findall(B, odb_decisions:decision(situation, _, B), Bs)")[0]
+    pairs = list(zip((float(b) for b in rows["Bs"]), rows["Ms"]))
+    for bound in (None, (t - timedelta(minutes=3)).timestamp(), (t - timedelta(seconds=30)).timestamp()):
+        passing = [(b, m) for b, m in pairs if bound is None or b <= bound]
+        top = max(b for b, _ in passing)
+        expected = (max(m for b, m in passing if b == top), top)
+        assert latest(bridge, "situation", "any" if bound is None else f"=<({bound})") == expected
+    assert latest(bridge, "situation", f"=<({T0.timestamp()})") is None
