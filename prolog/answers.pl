@@ -108,28 +108,38 @@ later_earlier(Call, At, done_earlier(Call, B)) :-
 chosen_after(Time, Call, Begin) :-
     must_be(number, Time),
     odb_iri('IdleTask', Idle),
-    chosen_from(Time, 16, Idle, Call, Begin).
+    first_done(asc, Time, 16, Idle, Call, Begin).
 
-chosen_from(Time, N, Idle, Call, Begin) :-
+%   first_done(+Dir, +Bound, +N, +Idle, -Call, -Begin): the first non-idle execution in
+%   begin order (Dir `asc`: at or after Bound; `desc`: at or before it; Bound `none`: any),
+%   ties in the same direction by task (as sort/4 orders Begin-Task pairs),
+%   read from the store in ordered chunks of N, 4N, ... rows until one is found.
+first_done(Dir, Bound, N, Idle, Call, Begin) :-
     maplist(kb_iri, [dul:executesTask, dul:hasTimeInterval, soma:hasIntervalBegin], [Ex, HI, BeginP]),
-    findall(B-T, store_match([t(A, Ex, T), t(A, HI, I), t(I, BeginP, cmp(>=, Time, B))], any,
-                             [order([asc(B)]), limit(N)]),
+    (   Bound == none -> BO = B ; Dir == asc -> BO = cmp(>=, Bound, B) ; BO = cmp(=<, Bound, B) ),
+    Key =.. [Dir, B],
+    findall(B-T, store_match([t(A, Ex, T), t(A, HI, I), t(I, BeginP, BO)], any, [order([Key]), limit(N)]),
             Rows),
+    (   Dir == asc -> Order = @=< ; Order = @>= ),
     length(Rows, Got),
     (   Got < N
-    ->  sort(Rows, Pairs),
+    ->  sort(0, Order, Rows, Pairs),
         first_choice(Pairs, Idle, Call, Begin)
     ;   last(Rows, Last-_),
-        include(begins_before(Last), Rows, Complete),  % the last begin may have more rows
-        sort(Complete, Pairs),
+        exclude(begins_at(Last), Rows, Complete),   % the last begin may have more rows
+        sort(0, Order, Complete, Pairs),
         (   first_choice(Pairs, Idle, Call, Begin)
         ->  true
-        ;   N1 is N*4,
-            chosen_from(Last, N1, Idle, Call, Begin)
+        ;   % from a hair short of the last begin: a begin read back may differ from the stored
+            % number in its last bit (a Decimal128); the rows looked at again hold no choice
+            Hair is max(1.0e-9, abs(Last) * 1.0e-15),
+            (   Dir == asc -> Next is Last - Hair ; Next is Last + Hair ),
+            N1 is N*4,
+            first_done(Dir, Next, N1, Idle, Call, Begin)
         )
     ).
 
-begins_before(Last, B-_) :- B < Last.
+begins_at(Last, B-_) :- B =:= Last.
 
 first_choice(Pairs, Idle, Call, Begin) :-
     member(Begin-T, Pairs),
@@ -163,37 +173,11 @@ something_else(Current, Alternative, rank(R, S)) :-
     member(ranked(Alternative, R, S), Ranked),
     Alternative \== Current.
 
-%   The task call of the latest non-idle execution (by begin, then the greatest task): the
-%   executions in descending begin order, fetched in growing ordered chunks until one is
-%   not idle, as chosen_after/3 does forwards (not every action of the NEEM).
+%   The task call of the latest non-idle execution (by begin, then the greatest task), read
+%   newest first in growing chunks (not every action of the NEEM).
 latest_action(Call, Begin) :-
     odb_iri('IdleTask', Idle),
-    latest_from(none, 16, Idle, Call, Begin).
-
-latest_from(Before, N, Idle, Call, Begin) :-
-    maplist(kb_iri, [dul:executesTask, dul:hasTimeInterval, soma:hasIntervalBegin], [Ex, HI, BeginP]),
-    (   Before == none -> BO = B ; BO = cmp(=<, Before, B) ),
-    findall(B-T, store_match([t(A, Ex, T), t(A, HI, I), t(I, BeginP, BO)], any,
-                             [order([desc(B)]), limit(N)]),
-            Rows),
-    length(Rows, Got),
-    (   Got < N
-    ->  sort(0, @>=, Rows, Pairs),
-        first_choice(Pairs, Idle, Call, Begin)
-    ;   last(Rows, Last-_),
-        include(begins_after(Last), Rows, Complete),   % the last begin may have more rows
-        sort(0, @>=, Complete, Pairs),
-        (   first_choice(Pairs, Idle, Call, Begin)
-        ->  true
-        ;   % from a hair above the last begin: a begin read back may differ from the stored
-            % number in its last bit (a Decimal128); the rows above it looked at again hold no choice
-            Hi is Last + max(1.0e-9, abs(Last) * 1.0e-15),
-            N1 is N*4,
-            latest_from(Hi, N1, Idle, Call, Begin)
-        )
-    ).
-
-begins_after(Last, B-_) :- B > Last.
+    first_done(desc, none, 16, Idle, Call, Begin).
 
 check_call(Call) :-
     must_be(callable, Call),

@@ -6,7 +6,8 @@ Reads the NEEM's history as `rank` does, fits the default predictor and four oth
 (novelty only, timed_shrink, timed and untimed variants, exclusion) on its first 40, 700 and
 3,000 steps, ranks the next 30 situations of each, and prints the SHA-256 of the variant
 weights and every ranked option's probability, context order, count and situations; then the
-CPU seconds of fitting the default on the whole history, each run. ``--params`` adds the same
+CPU seconds of fitting the default on the whole history, each run, and how many kinds of past
+action (predecessors and part of day) its similarity level holds. ``--params`` adds the same
 constructor parameters to every setting (``'{"focus": 0}'``: the predictor before the objects in
 hand, whose digest docs/prolog.md quotes).
 """
@@ -61,8 +62,11 @@ def main() -> None:
     print(f"{len(steps)} steps; fits digest {digest.hexdigest()}")
     for _ in range(args.runs):
         cpu = time.process_time()
-        model().fit(steps)
+        whole = model().fit(steps)
         print(f"fit of the whole history: {time.process_time() - cpu:.3f} s CPU")
+    if args.runs:  # the kinds of past situations the similarity level works out once each
+        print("kinds of past actions per stream: " + ", ".join(
+            f"{name} {len(stream.past.kinds)}" for name, stream in whole._streams.items()))
 
 
 if __name__ == "__main__":

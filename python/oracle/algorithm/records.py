@@ -56,6 +56,11 @@ def canonical_options(options: Iterable[Option]) -> tuple[Option, ...]:
     return tuple(sorted(set(options), key=option_key))
 
 
+def is_unix_seconds(value: object) -> bool:
+    """Whether ``value`` is a time as the predictors take it: a finite number of unix seconds."""
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+
+
 @dataclass(frozen=True)
 class Step:
     """One executed situation: the task and its objects, what else was available, when, and whether idle.
@@ -79,8 +84,7 @@ class Step:
         for option in self.options:
             if not isinstance(option, Option):
                 raise TypeError(f"step {self.label or self.task}: options must be Option records, got {option!r}")
-        if self.time is not None and (isinstance(self.time, bool) or not isinstance(self.time, (int, float))
-                                      or not math.isfinite(self.time)):
+        if self.time is not None and not is_unix_seconds(self.time):
             raise ValueError(f"step {self.label or self.task}: time must be finite unix seconds, got {self.time!r}")
         if self.time_of_day is not None and self.time_of_day not in TIME_OF_DAY_NAMES:
             raise ValueError(f"step {self.label or self.task}: time of day {self.time_of_day!r} "
@@ -94,7 +98,7 @@ class Step:
     def began(self, time: float) -> Step:
         """This step beginning at ``time`` (unix seconds): a copy whose options, checked when this
         one was made, are not checked again (a history of 50,000 steps shares a few hundred)."""
-        if isinstance(time, bool) or not isinstance(time, (int, float)) or not math.isfinite(time):
+        if not is_unix_seconds(time):
             raise ValueError(f"step {self.label or self.task}: time must be finite unix seconds, got {time!r}")
         step = object.__new__(Step)
         step.__dict__.update(self.__dict__, time=float(time))

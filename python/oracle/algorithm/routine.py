@@ -30,7 +30,7 @@ from oracle.algorithm.routine_settings import check_settings
 from oracle.algorithm.selftune import VariantWeights, mixed_distribution
 from oracle.algorithm.similarity import Offers, OptionTable, class_rows
 from oracle.algorithm.support import followed_at
-from oracle.algorithm.records import Option, Ranking, RoutineTask, Step, TreeNode
+from oracle.algorithm.records import Option, Ranking, RoutineTask, Step, TreeNode, is_unix_seconds
 from oracle.algorithm.tree import Successions, TreeShape, successor_tree
 from oracle.errors import SettingsError
 from oracle.timeline import TIME_OF_DAY_NAMES
@@ -225,7 +225,7 @@ class RoutineOracle(EstimatorParams):
                 inside = self._in_focus(offered) if self.focus else None
                 ids = self._offer_ids(offered)
                 new, resumed = self._offer_flags(ids)
-                probabilities = self._variant_probabilities(offered, step.time_of_day, inside=inside, new=new,
+                probabilities = self._variant_probabilities(offered, ids, step.time_of_day, inside=inside, new=new,
                                                             resumed=resumed)[0]
                 truth = offered.index(step.option)
                 clock = self.clock_.weights(self.clock_.buckets(ids, step.time))
@@ -298,16 +298,16 @@ class RoutineOracle(EstimatorParams):
         recent = self._executed.view[-self.focus:, 0].tolist() if self.focus and self._executed.size else []
         return held_objects(self._known.objects[t] for t in recent)
 
-    def _variant_probabilities(self, offered: Sequence[Option], now: str | None,
+    def _variant_probabilities(self, offered: Sequence[Option], ids: list[int], now: str | None,
                                which: Sequence[int] | None = None, inside: np.ndarray | None = None,
                                new: np.ndarray | None = None, resumed: np.ndarray | None = None
                                ) -> tuple[list[np.ndarray], list[Blend], np.ndarray]:
-        """The distribution over ``offered`` and the blend of each variant in ``which`` (default:
-        all), and the candidates' Algorithm 2 distances to every interned option (``inside``:
+        """The distribution over ``offered`` (``ids``: their interned ids, ``_offer_ids``) and the
+        blend of each variant in ``which`` (default: all), and the candidates' Algorithm 2
+        distances to every interned option (``inside``:
         which offered options are in focus, None without focus; ``new``: which were not offered
         at the previous decision, None without ``fresh``; ``resumed``: after a gap, which once
         followed the last action, None otherwise)."""
-        ids = [self._known.ids.get(option, UNKNOWN) for option in offered]
         count = len(self.options_)
         if UNKNOWN in ids:
             cand = self._known.distances(class_rows(self.distances, offered), self._known.classes[:count])
@@ -390,7 +390,7 @@ class RoutineOracle(EstimatorParams):
         self._check()
         offered, now = offered_options(current, time_of_day)
         when = at if at is not None else current.time if isinstance(current, Step) else None
-        if when is not None and (isinstance(when, bool) or not isinstance(when, (int, float)) or not math.isfinite(when)):
+        if when is not None and not is_unix_seconds(when):
             raise SettingsError(f"rank: at must be finite unix seconds or None, got {when!r}")
         if not offered:
             return Ranking(())
@@ -401,7 +401,7 @@ class RoutineOracle(EstimatorParams):
         ids = self._offer_ids(offered)
         new, resumed = self._offer_flags(ids)
         lifted, goes_on = tells_apart(new), tells_apart(resumed)
-        probabilities, blends, cand = self._variant_probabilities(offered, now, used, inside, new, resumed)
+        probabilities, blends, cand = self._variant_probabilities(offered, ids, now, used, inside, new, resumed)
         mixed = mixed_distribution(weights[used], probabilities)  # P(c | offered)
         clock = self.clock_.weights(self.clock_.buckets(ids, when)) if self.gate_.open(self.recency_gate) else None
         if clock is not None:
@@ -444,4 +444,3 @@ class RoutineOracle(EstimatorParams):
 
     def _label(self, token: int) -> str:
         return "idle" if token == IDLE else str(self.options_[token])
-

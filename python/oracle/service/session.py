@@ -118,8 +118,8 @@ class NeemSession:
         # (never that of a temporary NEEM: it is wiped when the next session starts)
         self.predictor = FitCache.default().fitted(predictor, self.steps, logger.store.location, neem,
                                                    keep=not logger.store.neem(neem).temporary)
-        self.done = {step.label for step in self.steps if not step.idle}
-        #: The offer of an action logged without an imagined situation, as the history read gives it.
+        #: What the user did so far: the offer of an action logged without an imagined
+        #: situation, as the history read gives it, and which ranked tasks were done before.
         self.done_before = DoneBefore()
         for step in self.steps:
             if not step.idle:
@@ -193,7 +193,6 @@ class NeemSession:
         self.steps.append(step)
         self.begins.append(begin)
         if not step.idle:
-            self.done.add(step.label)
             self.done_before.add(Option(step.task, step.target, step.reference))
 
     def _fit_break(self, now: float) -> None:
@@ -239,7 +238,7 @@ class NeemSession:
                                  "new": fields.get("new", False), "resumed": fields.get("resumed", False),
                                  "since": fields.get("since"),
                                  "situations": [self.begins[p] for p in fields.get("situations", []) if p < len(self.begins)]}
-        entry["reason"] = support_sentence({**entry, "done": call in self.done})
+        entry["reason"] = support_sentence({**entry, "done": task.option in self.done_before.done})
         return entry
 
     # -- actions ------------------------------------------------------------------------------
