@@ -141,10 +141,10 @@ def _chains_store(tmp: Path, sizes: list[int]) -> Path:
     return store
 
 
-def _sql_floor(path: Path, neem: str) -> int:
+def _sql_floor(path: Path, neem: str) -> tuple[int, int, int]:
     """The rows the history read needs, read with plain SQL (exact properties, no closures, no
     Prolog): actions with task, type and interval; interval types; imaginings with begin and
-    imagined tasks. Returns the number of rows."""
+    imagined tasks. Returns the number of rows of each of the three."""
     import sqlite3
 
     conn = sqlite3.connect(path)
@@ -171,6 +171,9 @@ def _sql_floor(path: Path, neem: str) -> int:
         row = conn.execute("SELECT id FROM terms WHERE value=?", (value,)).fetchone()
         ids[key] = row[0] if row else -1
     t = f'"{neem}_triples"'
+    # An imagining's plans live in the NEEM's side table where it has one (docs/store.md).
+    has_side = conn.execute("SELECT 1 FROM sqlite_master WHERE type='table' AND name=?", (f"{neem}_side",)).fetchone()
+    side = f'"{neem}_side"' if has_side else t
 
     def drive(alias: str, key: str) -> str:
         """The driving pattern through the property-closure index, as the store's compiler does."""
@@ -181,16 +184,18 @@ def _sql_floor(path: Path, neem: str) -> int:
         f"JOIN {t} e ON e.s=i.o AND e.p=:end WHERE a.p=:exec AND {drive('a', 'exec')}",
         f"SELECT i.s, ty.o FROM {t} i JOIN {t} ty ON ty.s=i.o AND ty.p=:type WHERE i.p=:hti AND {drive('i', 'hti')}",
         f"SELECT b.o, pt.o FROM {t} m JOIN {t} i ON i.s=m.s AND i.p=:hti JOIN {t} b ON b.s=i.o AND b.p=:begin "
-        f"JOIN {t} pl ON pl.s=m.s AND pl.p=:imag JOIN {t} pt ON pt.s=pl.o AND pt.p=:plan"
+        f"JOIN {side} pl ON pl.s=m.s AND pl.p=:imag JOIN {t} pt ON pt.s=pl.o AND pt.p=:plan"
         f" WHERE m.p=:hti AND {drive('m', 'hti')}",
     ]
-    count = 0
+    counts = []
     for sql in queries:
+        count = 0
         for row in conn.execute(sql, ids):
             [name(v) if isinstance(v, int) else v for v in row]
             count += 1
+        counts.append(count)
     conn.close()
-    return count
+    return tuple(counts)
 
 
 def _timed(fn, repeat: int = 3) -> tuple[dict[str, float], dict[str, float]]:
