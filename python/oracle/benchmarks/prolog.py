@@ -195,7 +195,8 @@ def _sql_floor(path: Path, neem: str) -> tuple[int, int, int]:
             count += 1
         counts.append(count)
     conn.close()
-    return tuple(counts)
+    actions, interval_types, imagined = counts
+    return actions, interval_types, imagined
 
 
 def _timed(fn, repeat: int = 3) -> tuple[dict[str, float], dict[str, float]]:
