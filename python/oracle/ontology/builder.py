@@ -59,6 +59,7 @@ def build_with_report(
     onto, report = cached_build(key, directory, lambda: _build(odb_path, mapping_path, soma_dir))
     onto.cache_dir = cache_dir
     onto.source = OntologySource.built(odb_dir, mapping, soma_dir)
+    onto.cache_key = key
     return onto, report
 
 

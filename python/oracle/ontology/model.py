@@ -72,6 +72,9 @@ class OdbOntology:
     cache_dir: Path | None = field(default=None, repr=False)
     #: Where it came from (an ``OntologySource``), recorded by the NEEMs logged with it.
     source: OntologySource | None = field(default=None, repr=False)
+    #: The key of the cached build it came from (oracle.ontology.cache), None for any other:
+    #: what the TBox a NEEM stores is cached by (oracle.store.tbox.tbox_for).
+    cache_key: str | None = field(default=None, repr=False)
 
     def __getstate__(self) -> dict[str, Any]:
         state = dict(self.__dict__)

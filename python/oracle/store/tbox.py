@@ -8,30 +8,36 @@ annotation values go to the ``annotations`` collection, English or untagged only
 from __future__ import annotations
 
 import hashlib
+import os
+import pickle
+import sys
 from dataclasses import dataclass
+from pathlib import Path
 from typing import TYPE_CHECKING
 
-from rdflib import BNode, Graph, Literal, URIRef
-from rdflib.namespace import OWL, RDF, RDFS, XSD
-
-from oracle.namespaces import DUL, SOMA
+from oracle.files import private_folder, prune_cache, used, write_private_bytes, written_by_user_alone
+from oracle.namespaces import DUL_IRI, OWL_IRI, RDFS_IRI, SOMA_IRI, XSD_IRI
 from oracle.store.base import Store
 from oracle.store.model import HIERARCHY, VERSION_PREDICATE, Annotation, Triple, Value, version_document
 
 if TYPE_CHECKING:
+    from rdflib import Graph, Literal
+
     from oracle.ontology.model import OdbOntology
 
-_ANNOTATION_PROPERTIES = frozenset(str(p) for p in (RDFS.comment, RDFS.label, RDFS.seeAlso, OWL.versionInfo))
+# rdflib is imported where a graph is converted: an import or a session whose ontology's TBox is
+# in the cache (``tbox_for``) never loads it (~45 ms of every such call).
+_ANNOTATION_PROPERTIES = frozenset((RDFS_IRI + "comment", RDFS_IRI + "label", RDFS_IRI + "seeAlso", OWL_IRI + "versionInfo"))
 _INTEGER_TYPES = frozenset(
-    str(XSD[name])
+    XSD_IRI + name
     for name in (
         "integer", "int", "long", "short", "byte", "nonNegativeInteger", "positiveInteger",
         "nonPositiveInteger", "negativeInteger", "unsignedInt", "unsignedLong", "unsignedShort", "unsignedByte",
     )
 )  # fmt: skip
-_FLOAT_TYPES = frozenset(str(XSD[name]) for name in ("decimal", "double", "float"))
+_FLOAT_TYPES = frozenset(XSD_IRI + name for name in ("decimal", "double", "float"))
 #: Graph names KnowRob gives the upper ontologies (the base name of their OWL files).
-_KNOWN_GRAPHS = ((str(SOMA), "SOMA"), (str(DUL), "DUL"))
+_KNOWN_GRAPHS = ((SOMA_IRI, "SOMA"), (DUL_IRI, "DUL"))
 
 
 @dataclass(frozen=True)
@@ -70,7 +76,7 @@ def _literal_value(literal: Literal) -> Value:
             return float(literal)
         except ValueError:
             return str(literal)
-    if datatype == str(XSD.boolean):
+    if datatype == XSD_IRI + "boolean":
         return str(literal).strip().lower() in ("true", "1")
     return str(literal)
 
@@ -109,13 +115,16 @@ def tbox_from_graph(graph: Graph, default_graph: str | None = None, *, one_graph
     ``default_graph`` with ``one_graph``, as KnowRob loads one file), the rest to the ontology's
     own name (the last path segment of its owl:Ontology IRI). Each graph gets a version marker:
     ``version``, else a digest of the triples."""
+    from rdflib import BNode, Literal, URIRef
+    from rdflib.namespace import OWL, RDF
+
     ontologies = sorted(str(s) for s in graph.subjects(RDF.type, OWL.Ontology) if isinstance(s, URIRef))
     if default_graph is None:
         default_graph = ontologies[0].rstrip("/#").rsplit("/", 1)[-1] if ontologies else "ontology"
     base = ontologies[0] if ontologies else "urn:neem-oracle:tbox"
     annotation_props = set(_ANNOTATION_PROPERTIES)
     annotation_props.update(str(s) for s in graph.subjects(RDF.type, OWL.AnnotationProperty))
-    blank: dict[BNode, str] = {}
+    blank: dict[object, str] = {}
 
     def node(term: object) -> str:
         if isinstance(term, BNode):
@@ -165,11 +174,63 @@ def load_tbox(store: Store, neem_id: str, tbox: TBox) -> int:
     return count
 
 
+#: Bumped when the layout of a cached TBox changes.
+_CACHE_FORMAT = "1"
+#: The code a TBox is made with: an edit to any of these makes a new cache entry.
+_CODE = ("store/tbox.py", "store/owlfile.py", "store/model.py", "namespaces.py")
+
+
 def tbox_for(onto: OdbOntology) -> TBox:
-    """What a NEEM logged with ``onto`` stores. Built with ``--soma DIR``: the official files
-    as KnowRob's load_owl loads each (its own graph, every axiom and annotation, the version
-    marker KnowRob compares; store/owlfile.py) and the odb's own axioms in graph ``odb``. Else
-    the ontology's graph (the core extract and the odb), as before."""
+    """What a NEEM logged with ``onto`` stores (``_converted``), from the user's cache when the
+    ontology came from a cached build: keyed by that build's key (a hash of every file the build
+    reads and of its code) and by the code that converts, so an entry is never stale. An entry
+    that is missing, damaged or not the user's own is made again; a cache that cannot be written
+    only makes every call convert."""
+    key = _cache_key(onto)
+    if key is None:
+        return _converted(onto)
+    from oracle.ontology.distance import default_cache_dir
+
+    path = (onto.cache_dir if onto.cache_dir is not None else default_cache_dir()) / f"tbox-{key}.pickle"
+    try:
+        with path.open("rb") as handle:
+            if written_by_user_alone(os.fstat(handle.fileno())):
+                entry = pickle.load(handle)
+                if isinstance(entry, tuple) and len(entry) == 2 and entry[0] == key and isinstance(entry[1], TBox):
+                    used(path)
+                    return entry[1]
+    except Exception:  # noqa: BLE001 - missing or damaged (any unpickling error): converted below
+        pass
+    tbox = _converted(onto)
+    try:
+        private_folder(path.parent)
+        write_private_bytes(path, pickle.dumps((key, tbox), protocol=pickle.HIGHEST_PROTOCOL))
+        prune_cache(path.parent, "tbox-*.pickle")
+    except OSError:
+        pass
+    return tbox
+
+
+def _cache_key(onto: OdbOntology) -> str | None:
+    """The key of ``onto``'s TBox, or None for an ontology that came from no cached build (an
+    OWL file, or a build whose inputs could not all be read)."""
+    if onto.cache_key is None:
+        return None
+    package = Path(__file__).resolve().parents[1]
+    digest = hashlib.sha256(f"neem-oracle tbox {_CACHE_FORMAT} {sys.version} {onto.cache_key}\0".encode())
+    try:
+        for name in _CODE:
+            digest.update(hashlib.sha256((package / name).read_bytes()).digest())
+    except OSError:
+        return None
+    return digest.hexdigest()[:32]
+
+
+def _converted(onto: OdbOntology) -> TBox:
+    """Built with ``--soma DIR``: the official files as KnowRob's load_owl loads each (its own
+    graph, every axiom and annotation, the version marker KnowRob compares; store/owlfile.py)
+    and the odb's own axioms in graph ``odb``. Else the ontology's graph (the core extract and
+    the odb), as before."""
     source = onto.source
     if source is None or source.soma is None or source.owl is not None:
         return tbox_from_graph(onto.graph)
