@@ -1,6 +1,8 @@
 """CLI figures a user meets (issue 15): the fixed cost of a call, ``neems`` / ``why-not`` /
 ``what-next`` from start to exit, and logging throughput through ``import`` with peak memory,
-at 1,000-50,000 actions, each beside a floor measured in the same run.
+at 1,000-50,000 actions, each beside a floor measured in the same run. Each ``import`` run logs a
+new NEEM into a store that holds the smaller ones (the NEEM of the run before dropped first,
+untimed).
 
 Floors: the interpreter starting and exiting (``python -c pass``) for a call; for logging,
 plain ``sqlite3`` inserting the very rows ``import`` wrote (same schema and indexes, one
@@ -57,6 +59,23 @@ def _run_measured(argv: list[str], env: dict[str, str]) -> tuple[float, float, i
         wall, _, _ = _run([sys.executable, "-c", _MEASURED, str(report), *argv], env)
         cpu, peak = report.read_text().split()
     return wall, float(cpu), int(peak)
+
+
+def _drop(path: Path, name: str) -> None:
+    """Drop the NEEM ``name`` from the store at ``path`` if it is there."""
+    from oracle.errors import StoreError
+    from oracle.store import open_store
+    from oracle.store.ids import resolve_neem
+
+    if not path.exists():
+        return
+    store = open_store(path)
+    try:
+        store.drop_neem(resolve_neem(store, name))
+    except StoreError:
+        pass  # not there yet
+    finally:
+        store.close()
 
 
 def _run(argv: list[str], env: dict[str, str]) -> tuple[float, float, int]:
@@ -181,8 +200,11 @@ def run(quick: bool = False) -> list[dict]:
             path = _chain_file(tmp, chains, n)
             walls, cpus, rss = [], [], []
             for _attempt in range(IMPORT_REPEAT):
-                wall, cpu, peak = _run_measured([py, "-m", "oracle", "import", str(path), "--store", str(store), "--replace",
-                                        "--commit-every", str(COMMIT_EVERY)], env)  # fmt: skip
+                # Each run logs a new NEEM beside the others, as the floor inserts into new tables: the
+                # NEEM of the run before is dropped first, untimed (``--replace`` would time the drop too).
+                _drop(store, f"u{n}")
+                wall, cpu, peak = _run_measured([py, "-m", "oracle", "import", str(path), "--store", str(store),
+                                                 "--commit-every", str(COMMIT_EVERY)], env)  # fmt: skip
                 walls.append(wall)
                 cpus.append(cpu)
                 rss.append(peak / 1024)
