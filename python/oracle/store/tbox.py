@@ -2,7 +2,8 @@
 
 A NEEM carries the SOMA/DUL/odb axioms it was recorded with, so closures and type queries work
 on the NEEM alone. Literals are typed as load_owl types them (knowrob-2x-facts §4) and
-annotation values go to the ``annotations`` collection, English or untagged only.
+annotation values go to the ``annotations`` collection, English or untagged only. The converted
+TBox of a cached ontology build is kept in the user's cache beside it (``tbox_for``).
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from oracle.files import private_folder, prune_cache, used, write_private_bytes, written_by_user_alone
+from oracle.files import prune_cache, used, write_private_bytes, written_by_user_alone
 from oracle.namespaces import DUL_IRI, OWL_IRI, RDFS_IRI, SOMA_IRI, XSD_IRI
 from oracle.store.base import Store
 from oracle.store.model import HIERARCHY, VERSION_PREDICATE, Annotation, Triple, Value, version_document
@@ -203,7 +204,6 @@ def tbox_for(onto: OdbOntology) -> TBox:
         pass
     tbox = _converted(onto)
     try:
-        private_folder(path.parent)
         write_private_bytes(path, pickle.dumps((key, tbox), protocol=pickle.HIGHEST_PROTOCOL))
         prune_cache(path.parent, "tbox-*.pickle")
     except OSError:
