@@ -336,10 +336,9 @@ run_plan([Step|Steps]) :-
 
 run_step(match(Ts, Scope)) :-
     maplist(expand_pattern, Ts, Ts1),
-    (   ground(Ts1)
-    ->  once(store_match(Ts1, Scope))      % a ground goal succeeds once (KnowRob)
-    ;   store_match(Ts1, Scope)
-    ).
+    ground_tests(Ts1, Tests, Rest),
+    (   Tests == [] -> true ; once(store_match(Tests, Scope)) ),  % a ground goal succeeds once (KnowRob)
+    (   Rest == [] -> true ; store_match(Rest, Scope) ).
 run_step(call(G)) :- call(G).
 run_step(or(A, B)) :- ( run_plan(A) ; run_plan(B) ).
 run_step(ite(C, T, E)) :- ( run_plan(C) -> run_plan(T) ; run_plan(E) ).
@@ -362,11 +361,17 @@ run_plan_fs([Step|Steps], FS0, FS) :-
 
 run_step_fs(match(Ts, Scope), FS0, FS) :-
     maplist(expand_pattern, Ts, Ts1),
-    (   ground(Ts1)
-    ->  once(store_match_scoped(Ts1, Scope, FS1))
-    ;   store_match_scoped(Ts1, Scope, FS1)
+    ground_tests(Ts1, Tests, Rest),
+    (   Tests == []
+    ->  FS1 = FS0
+    ;   once(store_match_scoped(Tests, Scope, FT)),
+        intersect_fs(FS0, FT, FS1)
     ),
-    intersect_fs(FS0, FS1, FS).
+    (   Rest == []
+    ->  FS = FS1
+    ;   store_match_scoped(Rest, Scope, FR),
+        intersect_fs(FS1, FR, FS)
+    ).
 run_step_fs(call(G), FS, FS) :- call(G).
 run_step_fs(or(A, B), FS0, FS) :- ( run_plan_fs(A, FS0, FS) ; run_plan_fs(B, FS0, FS) ).
 run_step_fs(ite(C, T, E), FS0, FS) :-
@@ -379,6 +384,17 @@ run_step_fs(scoped(Kind, G, Arg), FS0, FS) :-
         kb_call_scoped(G, Scope, FS1),
         intersect_fs(FS0, FS1, FS)
     ).
+
+%   ground_tests(+Patterns, -Tests, -Rest): the leading ground patterns of a compiled group
+%   are tests, as goal by goal: each succeeds once however many documents match it. A store
+%   query joins from its first pattern, so a ground one there would give one solution per
+%   matching document (two type triples of one subject, one through the class closure); a
+%   ground pattern after a variable-binding one is already a test in every store's compiler
+%   (SqlCompiler.semi_joins, the Mongo pipeline's `$limit`).
+ground_tests([T|Ts], [T|Tests], Rest) :-
+    ground(T), !,
+    ground_tests(Ts, Tests, Rest).
+ground_tests(Ts, [], Ts).
 
 %   KnowRob's free instants and intervals (decided when the step runs: an event of
 %   `G during E` may be bound by an earlier goal): `G during [S,U]` (or `G during I`) asks

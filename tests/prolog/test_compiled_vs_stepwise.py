@@ -8,7 +8,7 @@ import itertools
 import os
 
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 from oracle.bridge import Bridge
@@ -75,6 +75,10 @@ goal = st.lists(
 @pytest.mark.parametrize("make", [_sqlite, _mongomock, _real_mongo], ids=["sqlite", "mongomock", "mongodb"])
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(graph=graphs, edges=hierarchy, conj=goal)
+# A ground first pattern that two documents match (one through the class closure): a test, not
+# a join that doubles every solution after it (found by this property on 2026-12-04).
+@example(graph=[(NODES[2], TYPE, CLASSES[1]), (NODES[2], TYPE, CLASSES[2])], edges=[(CLASSES[1], SUBCLASS, CLASSES[2])],
+         conj=[(f"'{NODES[2]}'", f"'{TYPE}'", f"'{CLASSES[2]}'"), ("X", f"'{TYPE}'", "Y")])
 def test_compiled_equals_stepwise(make, tmp_path_factory, graph, edges, conj):
     store = make(tmp_path_factory)
     neem = f"prop{next(_counter)}"
