@@ -10,14 +10,18 @@ from __future__ import annotations
 import contextlib
 import errno
 import os
+import pickle
 import shutil
 import stat
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import IO, Any, ClassVar, TextIO, TypeVar
 
+from oracle.errors import NeemOracleError
+
 _Cache = TypeVar("_Cache", bound="CacheFolder")
+_Value = TypeVar("_Value")
 
 
 def written_by_user_alone(info: os.stat_result) -> bool:
@@ -94,6 +98,31 @@ def prune_cache(directory: Path, pattern: str, keep: int = MAX_CACHE_ENTRIES) ->
                 shutil.rmtree(old)
             else:
                 old.unlink()
+
+
+def cached_pickle(path: Path, key: str, make: Callable[[], _Value], valid: Callable[[object], bool],
+                  pattern: str) -> _Value:
+    """The value kept at ``path`` for ``key`` (pickled as ``(key, value)``), or else ``make()``,
+    then kept there. Only a regular file of this user that nobody else may write is unpickled,
+    and only a value ``valid`` accepts is returned; one that is missing, damaged or foreign is
+    made again. The entries of the folder matching ``pattern`` are pruned (``prune_cache``); a
+    folder that cannot be written only makes every call make the value."""
+    try:
+        with path.open("rb") as handle:
+            if written_by_user_alone(os.fstat(handle.fileno())):
+                entry = pickle.load(handle)
+                if isinstance(entry, tuple) and len(entry) == 2 and entry[0] == key and valid(entry[1]):
+                    used(path)
+                    return entry[1]
+    except Exception:  # noqa: BLE001 - missing or damaged (any unpickling error): made again below
+        pass
+    value = make()
+    try:
+        write_private_bytes(path, pickle.dumps((key, value), protocol=pickle.HIGHEST_PROTOCOL))
+        prune_cache(path.parent, pattern)
+    except (OSError, pickle.PicklingError, NeemOracleError):
+        pass  # caching is an optimisation
+    return value
 
 
 @dataclass(frozen=True)

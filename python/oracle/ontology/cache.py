@@ -10,22 +10,19 @@ user's cache dir (0700, files 0600, written atomically); one that cannot be read
 from __future__ import annotations
 
 import hashlib
-import os
-import pickle
 import sys
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from oracle.errors import OntologyError
-from oracle.files import prune_cache, used, written_by_user_alone
+from oracle.files import cached_pickle
 
 if TYPE_CHECKING:
     from oracle.ontology.builder import BuildReport
     from oracle.ontology.model import OdbOntology
 
 #: Bumped when the layout of an entry changes.
-FORMAT = "2"
+FORMAT = "3"
 _CODE_DIR = Path(__file__).resolve().parent
 
 
@@ -67,43 +64,11 @@ def _rdflib_release() -> str:
     return ",".join(found) or str(package)
 
 
-def _readable_entry(path: Path) -> bool:
-    """Only a regular file of this user that nobody else may write is loaded (it is a pickle)."""
-    try:
-        info = path.stat()
-    except OSError:
-        return False
-    return written_by_user_alone(info)
-
-
 def cached_build(
     key: str | None, directory: Path, build: Callable[[], tuple[OdbOntology, BuildReport]]
 ) -> tuple[OdbOntology, BuildReport]:
     """The entry for ``key`` when there is a good one, else ``build()`` saved under ``key``."""
-    path = directory / f"ontology-{key}.pickle"
-    if key is not None and _readable_entry(path):
-        try:
-            with path.open("rb") as handle:
-                entry = pickle.load(handle)
-            if isinstance(entry, tuple) and len(entry) == 3 and entry[0] == key:
-                used(path)
-                return entry[1], entry[2]
-        except Exception:  # noqa: BLE001 - a damaged entry (any unpickling error) is rebuilt below
-            pass
-    built = build()
-    if key is not None:
-        _save(path, (key, *built))
-    return built
-
-
-def _save(path: Path, entry: tuple[object, ...]) -> None:
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
-        tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
-        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o600)
-        with os.fdopen(fd, "wb") as handle:
-            pickle.dump(entry, handle, protocol=pickle.HIGHEST_PROTOCOL)
-        os.replace(tmp, path)
-        prune_cache(path.parent, "ontology-*.pickle")
-    except (OSError, pickle.PicklingError, OntologyError):
-        pass  # caching is an optimisation; a read-only home still builds every time
+    if key is None:
+        return build()
+    return cached_pickle(directory / f"ontology-{key}.pickle", key, build,
+                         lambda value: isinstance(value, tuple) and len(value) == 2, "ontology-*.pickle")

@@ -9,14 +9,12 @@ TBox of a cached ontology build is kept in the user's cache beside it (``tbox_fo
 from __future__ import annotations
 
 import hashlib
-import os
-import pickle
 import sys
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from oracle.files import prune_cache, used, write_private_bytes, written_by_user_alone
+from oracle.files import cached_pickle
 from oracle.namespaces import DUL_IRI, OWL_IRI, RDFS_IRI, SOMA_IRI, XSD_IRI
 from oracle.store.base import Store
 from oracle.store.model import HIERARCHY, VERSION_PREDICATE, Annotation, Triple, Value, version_document
@@ -192,23 +190,9 @@ def tbox_for(onto: OdbOntology) -> TBox:
         return _converted(onto)
     from oracle.ontology.distance import default_cache_dir
 
-    path = (onto.cache_dir if onto.cache_dir is not None else default_cache_dir()) / f"tbox-{key}.pickle"
-    try:
-        with path.open("rb") as handle:
-            if written_by_user_alone(os.fstat(handle.fileno())):
-                entry = pickle.load(handle)
-                if isinstance(entry, tuple) and len(entry) == 2 and entry[0] == key and isinstance(entry[1], TBox):
-                    used(path)
-                    return entry[1]
-    except Exception:  # noqa: BLE001 - missing or damaged (any unpickling error): converted below
-        pass
-    tbox = _converted(onto)
-    try:
-        write_private_bytes(path, pickle.dumps((key, tbox), protocol=pickle.HIGHEST_PROTOCOL))
-        prune_cache(path.parent, "tbox-*.pickle")
-    except OSError:
-        pass
-    return tbox
+    folder = onto.cache_dir if onto.cache_dir is not None else default_cache_dir()
+    return cached_pickle(folder / f"tbox-{key}.pickle", key, lambda: _converted(onto),
+                         lambda value: isinstance(value, TBox), "tbox-*.pickle")
 
 
 def _cache_key(onto: OdbOntology) -> str | None:
