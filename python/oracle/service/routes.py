@@ -62,11 +62,12 @@ class ChoiceIn(BaseModel):
 
 class PrologIn(BaseModel):
     query: str = Field(min_length=1, max_length=10_000, description="a Prolog goal, e.g. kb_call(executes_task(A, T))")
-    bindings: dict[str, Any] = Field(default_factory=dict, description="values for named variables: strings are atoms")
+    bindings: dict[str, Any] = Field(default_factory=dict, max_length=100,
+                                     description="values for named variables: strings are atoms")
     neem: str | None = Field(None, description="NEEM to query (default: the service's NEEM)")
     offset: int = Field(0, ge=0, le=1_000_000)
     limit: int = Field(100, ge=1, le=10_000)
-    timeout: float = Field(5.0, gt=0, le=60, description="seconds")
+    timeout: float = Field(2.0, gt=0, le=60, description="seconds (at most the service's limit, 2 s by default)")
 
 
 def _ctx(request: Request) -> Any:
@@ -269,14 +270,26 @@ async def prolog(body: PrologIn, request: Request) -> dict[str, Any]:
         from oracle.errors import StoreError
 
         raise StoreError("name the NEEM to query: the store holds none yet")
-    return await ctx.thread.run(ctx.engine.prolog, neem, body.query, body.bindings, body.offset,
-                                body.limit, body.timeout)
+    if ctx.queries >= ctx.limits.queries:  # a queue of queries would hold the robot's calls
+        from oracle.service.engine import Overloaded
+
+        raise Overloaded(429, "another Prolog query is running; retry when it is done")
+    ctx.queries += 1
+    try:
+        return await ctx.thread.run(ctx.engine.prolog, neem, body.query, body.bindings, body.offset,
+                                    body.limit, body.timeout, ctx.prolog_writes)
+    finally:
+        ctx.queries -= 1
 
 
 @router.get("/api/events", tags=["events"])
 async def events(request: Request, neem: str | None = Query(None, description="only this NEEM's events")) -> StreamingResponse:
     """Server-Sent Events: `situation` (a new ranking), `action`, `perception`, `choice`, `neem`."""
     ctx = _ctx(request)
+    if ctx.hub.subscribers >= ctx.limits.subscribers:
+        from oracle.service.engine import Overloaded
+
+        raise Overloaded(503, f"{ctx.hub.subscribers} event streams are open, this service's limit")
     if neem is not None:  # events name NEEMs by id
         neem = await ctx.thread.run(ctx.engine.resolve, neem)
     return StreamingResponse(_until_closed(request, ctx.hub.stream(neem, ctx.stopping)), media_type="text/event-stream",
