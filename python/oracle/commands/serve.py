@@ -34,8 +34,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser.add_argument("--max-body", type=int, default=Limits.body_bytes, metavar="BYTES",
                         help=f"largest request body (default {Limits.body_bytes})")
     add_options(parser, METHOD, SETTINGS)
-    parser.add_argument("--sync-writes", action="store_true",
-                        help="answer a situation only after its NEEM write (default: answer first, write next)")
+    writes = parser.add_mutually_exclusive_group()
+    writes.add_argument("--write-behind", action="store_true",
+                        help="answer a situation before its NEEM write is committed (faster; a kill can lose the"
+                             " situation just answered)")
+    writes.add_argument("--sync-writes", action="store_true",
+                        help="answer a situation only after its NEEM write is committed (the default)")
     add_options(parser, *ONTOLOGY_OPTIONS)
     parser.set_defaults(handler=run)
 
@@ -93,7 +97,7 @@ def run(args: argparse.Namespace) -> int:
     method_from(args)  # an unknown --method is refused before the store is opened
     ontology = ontology_from(args)
     limits = Limits(query_seconds=args.query_seconds, body_bytes=args.max_body)
-    ctx = build_context(args.store, ontology, settings, args.neem, token, write_behind=not args.sync_writes,
+    ctx = build_context(args.store, ontology, settings, args.neem, token, write_behind=args.write_behind,
                         method=method_from(args), host=args.host, extra_hosts=tuple(args.allowed_host),
                         limits=limits, prolog_writes=args.allow_prolog_writes)
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(name)s %(message)s")

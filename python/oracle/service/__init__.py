@@ -31,7 +31,7 @@ def is_loopback(host: str) -> bool:
 
 
 def build_context(store_spec: str | None, ontology: OdbOntology, settings: Hyperparameters, neem: str | None = None,
-                  token: str | None = None, write_behind: bool = True, method: str | None = None,
+                  token: str | None = None, write_behind: bool = False, method: str | None = None,
                   host: str = "127.0.0.1", extra_hosts: tuple[str, ...] = (), limits: Limits | None = None,
                   prolog_writes: bool = False) -> Context:
     """Open the store on the engine thread (its connection belongs there) and check ``neem``;

@@ -38,7 +38,7 @@ class Context:
     thread: EngineThread
     default_neem: str | None = None
     token: str | None = None
-    write_behind: bool = True
+    write_behind: bool = False
     #: Host names the service answers to (guard.allowed_hosts of the bound address).
     allowed_hosts: frozenset[str] = field(default_factory=lambda: allowed_hosts("127.0.0.1"))
     limits: Limits = field(default_factory=Limits)
