@@ -79,7 +79,9 @@ def run_evaluate(args: argparse.Namespace) -> int:
     if args.plots is not None:
         from oracle.evaluation import plots
 
-        args.plots.mkdir(parents=True, exist_ok=True)
+        from oracle.files import private_folder
+
+        private_folder(args.plots)
         made = [plots.box_plots(summary, args.plots), plots.learning_curves(result, args.plots, methods[0].name)]
         if "comparisons" in summary:
             made.append(plots.differences(summary, args.plots))
@@ -112,8 +114,10 @@ def _print_table(summary: dict) -> None:
 
 def _write(path: Path, text: str) -> None:
     try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(text, encoding="utf-8")
+        from oracle.files import private_file
+
+        with private_file(path) as handle:  # a report names the users: 0600
+            handle.write(text)
     except OSError as error:
         raise NeemOracleError(f"{path}: cannot write ({error.strerror})") from None
 

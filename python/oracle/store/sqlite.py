@@ -390,9 +390,12 @@ class SQLiteStore(Store):
             raise
 
     def _connect(self, check_while_reading: bool) -> tuple[sqlite3.Connection, IntegrityCheck | None]:
+        checked = True  # nothing to check until a connection is open
         try:
             self.path.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
             existed = self.path.exists()
+            if existed and not stat.S_ISREG(self.path.stat().st_mode):
+                raise StoreError(f"{self.path}: not a regular file (a NEEM store is one SQLite file)")
             # Create the file 0600 before SQLite does; its -wal and -shm files copy the mode.
             fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o600)
             try:
