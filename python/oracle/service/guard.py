@@ -52,7 +52,7 @@ class Limits:
     #: Prolog queries running or queued at once; more get 429.
     queries: int = 1
     #: Longest a Prolog query may run, seconds (a client asking more gets this).
-    query_seconds: float = 2.0
+    query_seconds: float = 1.0
     #: Live NEEM sessions a process keeps; opening more gets 503.
     sessions: int = 64
     #: NEEMs one process may create; more get 429 (the store is the person's, not a dump).

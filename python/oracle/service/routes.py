@@ -67,7 +67,7 @@ class PrologIn(BaseModel):
     neem: str | None = Field(None, description="NEEM to query (default: the service's NEEM)")
     offset: int = Field(0, ge=0, le=1_000_000)
     limit: int = Field(100, ge=1, le=10_000)
-    timeout: float = Field(2.0, gt=0, le=60, description="seconds (at most the service's limit, 2 s by default)")
+    timeout: float = Field(1.0, gt=0, le=60, description="seconds (at most the service's limit: serve --query-seconds, 1 s by default)")
 
 
 def _ctx(request: Request) -> Any:
@@ -116,8 +116,9 @@ async def perception(neem: str, body: Perception, request: Request) -> dict[str,
 @router.post("/api/neems/{neem}/situation", tags=["robot"])
 async def situation(neem: str, body: SituationIn, request: Request, background: BackgroundTasks) -> JSONResponse:
     """Log the available tasks as the imagined situation, rank them, write the ranking back as
-    the imagined preference. The answer is sent as soon as the ranking is known; the NEEM write
-    is the next job on the engine thread, before any later request. The Server-Timing header
+    the imagined preference. The answer is sent once the write is committed (with serve
+    --write-behind: as soon as the ranking is known, the write being the next job on the engine
+    thread, before any later request). The Server-Timing header
     says how long the job waited for the engine thread and how long it ran (ms)."""
     ctx = _ctx(request)
     queued = time.perf_counter()
@@ -126,7 +127,10 @@ async def situation(neem: str, body: SituationIn, request: Request, background: 
         started = time.perf_counter()
         session = ctx.engine.session(neem)
         found, ranking, ms = session.situation(body.available, body.at)
-        return session.neem, found, ranking, session.describe(found, ranking, ms), started, time.perf_counter()
+        answer = session.describe(found, ranking, ms)
+        if not ctx.write_behind:  # committed in the same job: acknowledged means on disk
+            session.write_situation(found, ranking)
+        return session.neem, found, ranking, answer, started, time.perf_counter()
 
     neem, found, ranking, answer, started, done = await ctx.thread.run(job)
     timing = f"queue;dur={(started - queued) * 1000:.3f}, engine;dur={(done - started) * 1000:.3f}"
@@ -141,8 +145,6 @@ async def situation(neem: str, body: SituationIn, request: Request, background: 
             sent.set()
 
         background.add_task(release)
-    else:
-        await ctx.thread.run(write)
     ctx.hub.publish(Event("situation", neem, answer))
     # answered as JSON directly: FastAPI's jsonable_encoder walks every field of the ranking and
     # cost more than the ranking itself (0.6 ms against 0.8 ms for 15 tasks); the values are plain
