@@ -252,6 +252,9 @@ def make_methods(ontology: OdbOntology, settings: Hyperparameters, baselines: bo
         if method != THESIS:
             methods.append(OracleMethod(ontology, settings, method=THESIS, served=served))
         methods.extend(cls() for cls in BASELINES.values())
+        from oracle.evaluation.learned import learned_baselines
+
+        methods.extend(learned_baselines(ontology.distances(), opening_tasks(ontology)))
     return methods
 
 
