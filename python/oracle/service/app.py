@@ -25,6 +25,7 @@ from oracle.service.engine import Engine, EngineThread, NotFound, Overloaded, Pr
 from oracle.service.events import EventHub
 from oracle.service.guard import STATIC_DOCS, Guard, Limits, allowed_hosts
 from oracle.service.routes import router
+from oracle.service.past_routes import router as past_router
 from oracle.service.session import OutOfOrder
 
 LOG = logging.getLogger("oracle.service")
@@ -60,6 +61,7 @@ def create_app(ctx: Context) -> FastAPI:
                   description="The robot's live NEEM logger and PreferenceOracle (docs/service.md).")
     app.state.ctx = ctx
     app.include_router(router)
+    app.include_router(past_router)
     _offline_docs(app)
     app.add_middleware(Guard, ctx=ctx)
 
