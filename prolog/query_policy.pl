@@ -233,6 +233,14 @@ exposed(odb_names, odb_set_namespace/1, write).
 exposed(odb_names, odb_set_task_roles/3, write).
 exposed(odb_names, odb_task_roles/3, read).
 exposed(odb_names, call_classes/3, read).
+exposed(odb_past, latest_time/1, read).
+exposed(odb_past, done_between/3, read).
+exposed(odb_past, last_done/3, read).
+exposed(odb_past, done_times/4, read).
+exposed(odb_past, usual_after/3, read).
+exposed(odb_past, suggestion/3, read).
+exposed(odb_past, object_place/3, read).
+exposed(odb_past, past_answer_json/1, hidden).   % answers the bridge's pending request
 % -- pure builtins and library predicates: terms, comparison, arithmetic, atoms, lists
 exposed(system, Name/Arity, read) :- pure_builtin(Name/Arity).
 exposed(lists, member/2, read).
