@@ -220,6 +220,9 @@ def run(quick: bool = False) -> list[dict]:
             finally:
                 busy.set()
                 thread.join()
+            children = Path(f"/proc/{service.process.pid}/task/{service.process.pid}/children").read_text().split()
+            for child in children:
+                print(f"  query process: peak RSS {peak_rss_mb(int(child)):.0f} MB", flush=True)
             for name, values in (("situation alone", alone), ("situation, queries running", loaded)):
                 p50, p99 = percentile(values, 50), percentile(values, 99)
                 print(f"  {name:28s} n={len(values)} p50 {p50:7.1f} ms  p99 {p99:7.1f} ms", flush=True)

@@ -24,6 +24,7 @@ from oracle.errors import NeemOracleError
 from oracle.service.engine import Engine, EngineThread, NotFound, Overloaded, PrologRefused
 from oracle.service.events import EventHub
 from oracle.service.guard import STATIC_DOCS, Guard, Limits, allowed_hosts
+from oracle.service.queries import QueryProcess
 from oracle.service.routes import router
 from oracle.service.session import OutOfOrder
 
@@ -46,6 +47,8 @@ class Context:
     prolog_writes: bool = False
     #: Prolog queries running now (at most limits.queries).
     queries: int = 0
+    #: The process read-only queries run in (None: on the engine thread).
+    query_process: QueryProcess | None = None
     hub: EventHub = field(default_factory=EventHub)
     stopping: asyncio.Event = field(default_factory=asyncio.Event)
 
@@ -55,6 +58,8 @@ def create_app(ctx: Context) -> FastAPI:
     async def lifespan(app: FastAPI) -> Any:
         yield
         ctx.stopping.set()  # ends the event streams so the server can stop
+        if ctx.query_process is not None:
+            ctx.query_process.close()
 
     app = FastAPI(title="neem-oracle service", version="1", docs_url=None, redoc_url=None, lifespan=lifespan,
                   description="The robot's live NEEM logger and PreferenceOracle (docs/service.md).")
