@@ -24,7 +24,7 @@ from oracle.errors import NeemOracleError
 from oracle.service.engine import Engine, EngineThread, NotFound, Overloaded, PrologRefused
 from oracle.service.events import EventHub
 from oracle.service.guard import STATIC_DOCS, Guard, Limits, allowed_hosts
-from oracle.service.queries import QueryProcess
+from oracle.service.queries import NoSuchNeem, QueryProcess
 from oracle.service.routes import router
 from oracle.service.session import OutOfOrder
 
@@ -70,7 +70,7 @@ def create_app(ctx: Context) -> FastAPI:
 
     @app.exception_handler(NeemOracleError)
     async def domain_error(request: Request, error: NeemOracleError) -> JSONResponse:
-        status = (404 if isinstance(error, NotFound) else 409 if isinstance(error, OutOfOrder)
+        status = (404 if isinstance(error, (NotFound, NoSuchNeem)) else 409 if isinstance(error, OutOfOrder)
                   else 403 if isinstance(error, PrologRefused) else error.status if isinstance(error, Overloaded) else 400)
         return _error(status, str(error))
 

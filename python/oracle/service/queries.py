@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import json
 import multiprocessing
+import os
 import threading
 from typing import TYPE_CHECKING, Any
 
@@ -28,6 +29,8 @@ if TYPE_CHECKING:
 
 #: The service's Prolog query module (json_query/2), loaded once into a process's Prolog.
 QUERY_MODULE = prolog_dir() / "json_query.pl"
+#: Niceness of the query process where SCHED_IDLE is not to be had.
+QUERY_NICENESS = 19
 #: Seconds past a query's own time limit before its process is taken for hung and killed.
 GRACE_S = 5.0
 
@@ -38,6 +41,10 @@ class PrologQueryError(NeemOracleError):
 
 class PrologRefused(PrologQueryError):
     """The query calls a predicate that is not on the read-only allow-list (HTTP 403)."""
+
+
+class NoSuchNeem(PrologQueryError):
+    """The query names a NEEM the store does not hold (HTTP 404)."""
 
 
 def ask(bridge: Bridge, query: str, bindings: dict[str, Any], offset: int, limit: int, seconds: float,
@@ -96,7 +103,7 @@ class QueryProcess:
                 raise PrologQueryError("the query process stopped; the next query starts a new one") from None
         if kind == "ok":
             return dict(payload)
-        raise {"refused": PrologRefused, "query": PrologQueryError}.get(kind, NeemOracleError)(payload)
+        raise {"refused": PrologRefused, "missing": NoSuchNeem, "query": PrologQueryError}.get(kind, NeemOracleError)(payload)
 
     def _started(self) -> Connection:
         if self._process is not None and self._process.is_alive() and self._conn is not None:
@@ -124,12 +131,22 @@ class QueryProcess:
             self._kill()
 
 
+def _yield_cores() -> None:
+    """The query process runs only on cores nothing else wants (SCHED_IDLE, Linux): a query at
+    its limit wants a whole core, and the robot's calls must not wait for it."""
+    try:
+        os.sched_setscheduler(0, os.SCHED_IDLE, os.sched_param(0))  # type: ignore[attr-defined,unused-ignore]
+    except (AttributeError, OSError):
+        os.nice(QUERY_NICENESS)
+
+
 def _serve(conn: Connection, store_spec: str | None, ontology: OdbOntology) -> None:
     """The child's loop: one request in, one ``(kind, payload)`` out, until the pipe closes."""
     from oracle.bridge import Bridge
     from oracle.store import open_store
     from oracle.store.ids import find_neem
 
+    _yield_cores()
     store = open_store(store_spec, read_only=True)
     bridge: Bridge | None = None
     while True:
@@ -140,14 +157,16 @@ def _serve(conn: Connection, store_spec: str | None, ontology: OdbOntology) -> N
         try:
             found = find_neem(store, neem)
             if found is None:
-                raise PrologQueryError(f"no NEEM {neem!r} in the store")
+                raise NoSuchNeem(f"no NEEM {neem!r} in the store")
             if bridge is None or bridge.neem_id != found.id:
                 bridge = Bridge(store, found.id, ontology)
             conn.send(("ok", ask(bridge, query, bindings, offset, limit, seconds, writes=False)))
         except PrologRefused as error:
             conn.send(("refused", str(error)))
+        except NoSuchNeem as error:
+            conn.send(("missing", str(error)))
         except NeemOracleError as error:
             conn.send(("query", str(error)))
 
 
-__all__ = ["GRACE_S", "PrologQueryError", "PrologRefused", "QueryProcess", "ask"]
+__all__ = ["GRACE_S", "NoSuchNeem", "PrologQueryError", "PrologRefused", "QueryProcess", "ask"]

@@ -282,11 +282,10 @@ async def prolog(body: PrologIn, request: Request) -> dict[str, Any]:
         if ctx.query_process is None:
             return await ctx.thread.run(ctx.engine.prolog, neem, body.query, body.bindings, body.offset,
                                         body.limit, body.timeout, ctx.prolog_writes)
-        # off the robot's path: the engine thread only names the NEEM (404 when none)
-        neem_id = await ctx.thread.run(ctx.engine.resolve, neem)
+        # off the robot's path: not even the engine thread is asked (the NEEM is found there)
         seconds = min(body.timeout, ctx.limits.query_seconds)
         return await asyncio.get_running_loop().run_in_executor(
-            None, ctx.query_process.ask, neem_id, body.query, body.bindings, body.offset, body.limit, seconds)
+            None, ctx.query_process.ask, neem, body.query, body.bindings, body.offset, body.limit, seconds)
     finally:
         ctx.queries -= 1
 
