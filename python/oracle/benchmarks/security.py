@@ -2,7 +2,8 @@
 loopback port, sent what a flood would send. Printed: how fast and how small the answer to a
 50 MB body is, the server's peak resident memory through four such bodies at once, and the
 robot's situation round trip alone (before and after) and while Prolog queries that run to their
-time limit keep coming, and what one commit costs at SQLite's synchronous=NORMAL and FULL. tests/security uses the same client functions to assert the behaviour.
+time limit keep coming, and what one commit costs at SQLite's synchronous=NORMAL and FULL.
+tests/security uses the same client functions to assert the behaviour.
 """
 
 from __future__ import annotations
