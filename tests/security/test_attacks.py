@@ -233,6 +233,40 @@ def test_no_acknowledged_situation_is_lost_over_20_sigkills(tmp_path):
     assert lost == []
 
 
+def test_clients_that_send_nothing_or_a_trickle_are_closed(served):
+    """A socket that sends nothing, and one that sends a header line a second, are closed by the
+    header deadline (10 s) rather than held for ever (slowloris)."""
+    import threading
+    import time
+
+    closed_after: dict[str, float] = {}
+
+    def hold(name: str, trickle: bool) -> None:
+        started = time.monotonic()
+        with socket.create_connection(("127.0.0.1", served.port), timeout=40) as sock:
+            sock.sendall(b"GET /api/health HTTP/1.1\r\nHost: 127.0.0.1\r\n" if trickle else b"")
+            try:
+                while time.monotonic() - started < 35:
+                    if trickle:
+                        sock.sendall(b"X-Slow: 1\r\n")
+                    sock.settimeout(1.0)
+                    try:
+                        if sock.recv(1024) == b"":
+                            break
+                    except TimeoutError:
+                        continue
+            except (BrokenPipeError, ConnectionResetError):
+                pass
+        closed_after[name] = time.monotonic() - started
+
+    threads = [threading.Thread(target=hold, args=(name, trickle)) for name, trickle in (("silent", False), ("trickle", True))]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert closed_after["silent"] < 30 and closed_after["trickle"] < 30, closed_after
+
+
 def test_keep_alive_connections_are_closed_when_idle(served):
     """An idle client does not hold its socket for ever (uvicorn's timeout_keep_alive)."""
     import time
