@@ -1,8 +1,9 @@
 """The service under attack (issue 35, docs/security.md): a real ``serve`` process on a free
 loopback port, sent what a flood would send. Printed: how fast and how small the answer to a
 50 MB body is, the server's peak resident memory through four such bodies at once, and the
-robot's situation round trip alone and while Prolog queries that run to their time limit keep
-coming. tests/security uses the same client functions to assert the behaviour.
+robot's situation round trip alone (before and after) and while Prolog queries that run to their
+time limit keep coming, and what one commit costs at SQLite's synchronous=NORMAL and FULL.
+tests/security uses the same client functions to assert the behaviour.
 """
 
 from __future__ import annotations
@@ -174,6 +175,25 @@ def situation_latencies(url: str, neem: str, available: list[str], first_at: flo
     return sorted(times)
 
 
+def commit_ms(folder: Path, synchronous: str, n: int) -> list[float]:
+    """``n`` one-row commits to a WAL SQLite file at ``synchronous``; each one's ms, sorted."""
+    import sqlite3
+
+    conn = sqlite3.connect(folder / f"commits-{synchronous}.sqlite", isolation_level=None)
+    conn.execute("PRAGMA journal_mode=WAL")
+    conn.execute(f"PRAGMA synchronous={synchronous}")
+    conn.execute("CREATE TABLE t (x BLOB)")
+    times = []
+    for _ in range(n):
+        started = time.perf_counter()
+        conn.execute("BEGIN")
+        conn.execute("INSERT INTO t VALUES (randomblob(2000))")
+        conn.execute("COMMIT")
+        times.append((time.perf_counter() - started) * 1000)
+    conn.close()
+    return sorted(times)
+
+
 def run(quick: bool = False) -> list[dict]:
     import tempfile
 
@@ -182,6 +202,13 @@ def run(quick: bool = False) -> list[dict]:
     rows: list[dict] = []
     n = 30 if quick else 100
     with tempfile.TemporaryDirectory() as folder:
+        for synchronous in ("NORMAL", "FULL"):
+            values = commit_ms(Path(folder), synchronous, n * 2)
+            p50, p99 = percentile(values, 50), percentile(values, 99)
+            print(f"  one commit, WAL, synchronous={synchronous:6s} n={len(values)} p50 {p50:6.2f} ms  p99 {p99:6.2f} ms",
+                  flush=True)
+            rows.append({"area": "security", "name": f"commit synchronous={synchronous}", "p50_ms": round(p50, 3),
+                         "p99_ms": round(p99, 3)})
         service = start(Path(folder) / "s.sqlite")
         try:
             user, steps = persona_rows(0, 3, 3)
@@ -220,10 +247,19 @@ def run(quick: bool = False) -> list[dict]:
             finally:
                 busy.set()
                 thread.join()
-            for name, values in (("situation alone", alone), ("situation, queries running", loaded)):
+            after = situation_latencies(service.url, "sec", available, at + 1 + 2 * n, n)  # drift, if any
+            tasks = Path(f"/proc/{service.process.pid}/task")
+            children = {c for task in tasks.iterdir() for c in (task / "children").read_text().split()}
+            for child in sorted(children):
+                print(f"  query process: peak RSS {peak_rss_mb(int(child)):.0f} MB", flush=True)
+            for name, values in (("situation alone", alone), ("situation, queries running", loaded),
+                                 ("situation alone, after", after)):
                 p50, p99 = percentile(values, 50), percentile(values, 99)
                 print(f"  {name:28s} n={len(values)} p50 {p50:7.1f} ms  p99 {p99:7.1f} ms", flush=True)
                 rows.append({"area": "security", "name": name, "p50_ms": round(p50, 2), "p99_ms": round(p99, 2)})
+            ratio = percentile(loaded, 99) / max(percentile(alone, 99), percentile(after, 99))
+            print(f"  p99 with queries / p99 alone (the larger of before and after): {ratio:.2f} (target <= 2)", flush=True)
+            rows.append({"area": "security", "name": "situation p99 ratio, queries running", "ratio": round(ratio, 2)})
         finally:
             stop(service)
     return rows

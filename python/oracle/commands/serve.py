@@ -81,6 +81,7 @@ def run(args: argparse.Namespace) -> int:
     from oracle.commands.common import method_from, settings_from
     from oracle.service import build_context, is_loopback
     from oracle.service.app import create_app
+    from oracle.service.guard import http_protocol
 
     token = read_token(args)
     if token is None and not is_loopback(args.host):
@@ -110,7 +111,7 @@ def run(args: argparse.Namespace) -> int:
         # below it); timeout_keep_alive closes idle connections, so a slow crowd cannot hold sockets
         uvicorn.run(create_app(ctx), host=args.host, port=args.port, access_log=False, log_level="warning",
                     server_header=False, timeout_graceful_shutdown=5, limit_concurrency=limits.in_flight + 16,
-                    timeout_keep_alive=int(limits.keep_alive_seconds), backlog=128)
+                    timeout_keep_alive=int(limits.keep_alive_seconds), backlog=128, http=http_protocol(limits))
     finally:
         ctx.thread.close()
     return 0

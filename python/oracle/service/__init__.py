@@ -41,6 +41,7 @@ def build_context(store_spec: str | None, ontology: OdbOntology, settings: Hyper
     from oracle.service.app import Context
     from oracle.service.engine import Engine, EngineThread
     from oracle.service.guard import Limits, allowed_hosts
+    from oracle.service.queries import QueryProcess
     from oracle.store import open_store
 
     limits = limits or Limits()
@@ -58,8 +59,10 @@ def build_context(store_spec: str | None, ontology: OdbOntology, settings: Hyper
     except NeemOracleError:
         thread.close()
         raise
+    queries = None if prolog_writes else QueryProcess(store_spec, ontology)
     return Context(engine=engine, thread=thread, default_neem=neem, token=token, write_behind=write_behind,
-                   allowed_hosts=allowed_hosts(host, extra_hosts), limits=limits, prolog_writes=prolog_writes)
+                   allowed_hosts=allowed_hosts(host, extra_hosts), limits=limits, prolog_writes=prolog_writes,
+                   query_process=queries)
 
 
 __all__ = ["build_context", "is_loopback"]

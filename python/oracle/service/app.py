@@ -24,6 +24,7 @@ from oracle.errors import NeemOracleError
 from oracle.service.engine import Engine, EngineThread, NotFound, Overloaded, PrologRefused
 from oracle.service.events import EventHub
 from oracle.service.guard import STATIC_DOCS, Guard, Limits, allowed_hosts
+from oracle.service.queries import NoSuchNeem, QueryProcess
 from oracle.service.routes import router
 from oracle.service.past_routes import router as past_router
 from oracle.service.session import OutOfOrder
@@ -47,6 +48,8 @@ class Context:
     prolog_writes: bool = False
     #: Prolog queries running now (at most limits.queries).
     queries: int = 0
+    #: The process read-only queries run in (None: on the engine thread).
+    query_process: QueryProcess | None = None
     hub: EventHub = field(default_factory=EventHub)
     stopping: asyncio.Event = field(default_factory=asyncio.Event)
 
@@ -56,6 +59,8 @@ def create_app(ctx: Context) -> FastAPI:
     async def lifespan(app: FastAPI) -> Any:
         yield
         ctx.stopping.set()  # ends the event streams so the server can stop
+        if ctx.query_process is not None:
+            ctx.query_process.close()
 
     app = FastAPI(title="neem-oracle service", version="1", docs_url=None, redoc_url=None, lifespan=lifespan,
                   description="The robot's live NEEM logger and PreferenceOracle (docs/service.md).")
@@ -67,7 +72,7 @@ def create_app(ctx: Context) -> FastAPI:
 
     @app.exception_handler(NeemOracleError)
     async def domain_error(request: Request, error: NeemOracleError) -> JSONResponse:
-        status = (404 if isinstance(error, NotFound) else 409 if isinstance(error, OutOfOrder)
+        status = (404 if isinstance(error, (NotFound, NoSuchNeem)) else 409 if isinstance(error, OutOfOrder)
                   else 403 if isinstance(error, PrologRefused) else error.status if isinstance(error, Overloaded) else 400)
         return _error(status, str(error))
 

@@ -10,7 +10,6 @@ write-behind of a situation safe: its write is queued before any later request.
 from __future__ import annotations
 
 import asyncio
-import json
 import logging
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
@@ -21,20 +20,18 @@ from oracle.algorithm.predictors import DEFAULT
 from oracle.answers import something_else_sentence, what_next_sentence, why_not_sentence
 from oracle.historycache import HistoryCache
 from oracle.bridge import Bridge
-from oracle.paths import prolog_dir
 from oracle.errors import NeemOracleError, StoreError
 from oracle.neem.writer import NeemLogger
 from oracle.timeline import Instant
 from oracle.ontology import OdbOntology
 from oracle.service.guard import Limits
+from oracle.service.queries import PrologQueryError, PrologRefused, ask
 from oracle.service.session import NeemSession, make_predictor, moment_of
 from oracle.store import Store
 from oracle.store.ids import alias_of, find_neem
 
 T = TypeVar("T")
 LOG = logging.getLogger("oracle.service")
-#: The service's Prolog query module (json_query/2): loaded once into the bridge's engine.
-QUERY_MODULE = prolog_dir() / "json_query.pl"
 #: A whole request is one transaction: the logger never commits on its own.
 NEVER = 10**9
 
@@ -90,7 +87,6 @@ class Engine:
         self.method = method
         self.sessions: dict[str, NeemSession] = {}
         self._bridge: Bridge | None = None
-        self._query_loaded = False
 
     # -- NEEMs --------------------------------------------------------------------------------
     def neems(self) -> list[dict[str, Any]]:
@@ -185,35 +181,16 @@ class Engine:
     # -- Prolog -------------------------------------------------------------------------------
     def prolog(self, neem: str, query: str, bindings: dict[str, Any], offset: int, limit: int,
                seconds: float, writes: bool = False) -> dict[str, Any]:
-        """A page of the query's solutions; it runs at most ``limits.query_seconds`` and only
-        predicates json_query allows (``writes``: also its `write` class)."""
-        from pyswip import Atom
-
+        """A page of the query's solutions, run here on the engine thread (the service runs
+        read-only queries in its query process instead, service/queries.py); it runs at most
+        ``limits.query_seconds`` and only predicates json_query allows (``writes``: also its
+        `write` class)."""
         bridge = self.bridge(self.session(neem).neem)  # a NotFound error for a missing NEEM
-        if not self._query_loaded:
-            bridge.ask("neem_store:py_request(R), R = [F], use_module(user:F)", [Atom(str(QUERY_MODULE))])
-            self._query_loaded = True
-        pairs = [[Atom(name), _term_value(name, value)] for name, value in bindings.items()]
-        rows = bridge.ask("neem_store:py_request(R), json_query:json_query(R, J)",
-                          [query, pairs, offset, limit, float(min(seconds, self.limits.query_seconds)),
-                           Atom("true" if writes else "false")])
-        text = rows[0]["J"]
-        reply = json.loads(text.decode("utf-8") if isinstance(text, bytes) else text)
-        if "error" in reply:
-            raise (PrologRefused if reply.get("refused") else PrologQueryError)(reply["error"])
-        return reply
+        return ask(bridge, query, bindings, offset, limit, min(seconds, self.limits.query_seconds), writes)
 
 
 class NotFound(StoreError):
     """The NEEM a request names is not in the store."""
-
-
-class PrologQueryError(NeemOracleError):
-    """The query a client sent cannot be run (syntax, unsafe goal, an error it raised)."""
-
-
-class PrologRefused(PrologQueryError):
-    """The query calls a predicate that is not on the read-only allow-list (HTTP 403)."""
 
 
 class Overloaded(NeemOracleError):
@@ -224,18 +201,4 @@ class Overloaded(NeemOracleError):
         self.status = status
 
 
-def _term_value(name: str, value: Any) -> Any:
-    from pyswip import Atom
-
-    if isinstance(value, bool) or value is None:
-        raise PrologQueryError(f"binding {name}: expected a string (atom) or a number, got {value!r}")
-    if isinstance(value, (int, float)):
-        return value
-    if isinstance(value, str):
-        return Atom(value)
-    if isinstance(value, list):
-        return [_term_value(name, v) for v in value]
-    raise PrologQueryError(f"binding {name}: expected a string (atom), a number or a list, got {type(value).__name__}")
-
-
-__all__ = ["Engine", "EngineThread", "NotFound", "Overloaded", "PrologQueryError", "PrologRefused", "QUERY_MODULE"]
+__all__ = ["Engine", "EngineThread", "NotFound", "Overloaded", "PrologQueryError", "PrologRefused"]

@@ -61,6 +61,8 @@ class Limits:
     subscribers: int = 32
     #: Seconds an idle keep-alive connection stays open (uvicorn's timeout_keep_alive).
     keep_alive_seconds: float = 5.0
+    #: Seconds a client may take to send a request's headers (a slow trickle is closed).
+    header_seconds: float = 10.0
 
 
 def allowed_hosts(bound: str, extra: tuple[str, ...] = ()) -> frozenset[str]:
@@ -239,6 +241,53 @@ def _with_safe_headers(headers: Any) -> list[tuple[bytes, bytes]]:
     return out
 
 
+def http_protocol(limits: Limits) -> Any:
+    """uvicorn's httptools protocol with a deadline on request headers: a connection that has
+    not sent a request's headers ``limits.header_seconds`` after it opened (or after its last
+    answer) is closed, so clients that send nothing or a byte at a time cannot hold sockets
+    (uvicorn times out idle keep-alive connections only). ``"auto"`` without httptools."""
+    try:
+        from uvicorn.protocols.http.httptools_impl import HttpToolsProtocol
+    except ImportError:
+        return "auto"
+
+    class HeaderDeadline(HttpToolsProtocol):
+        _deadline: Any = None
+
+        def connection_made(self, transport: Any) -> None:
+            super().connection_made(transport)
+            self._arm()
+
+        def on_headers_complete(self) -> None:
+            self._disarm()
+            super().on_headers_complete()
+
+        def on_response_complete(self) -> None:
+            super().on_response_complete()
+            if not self.pipeline and not self.transport.is_closing():
+                self._arm()
+
+        def connection_lost(self, exc: Exception | None) -> None:
+            self._disarm()
+            super().connection_lost(exc)
+
+        def _arm(self) -> None:
+            self._disarm()
+            self._deadline = self.loop.call_later(limits.header_seconds, self._too_slow)
+
+        def _disarm(self) -> None:
+            if self._deadline is not None:
+                self._deadline.cancel()
+                self._deadline = None
+
+        def _too_slow(self) -> None:
+            self._deadline = None
+            if not self.transport.is_closing():
+                self.transport.close()
+
+    return HeaderDeadline
+
+
 def _presented(headers: dict[str, str], query: bytes) -> str | None:
     header = headers.get("authorization", "")
     if header.lower().startswith("bearer "):
@@ -247,4 +296,4 @@ def _presented(headers: dict[str, str], query: bytes) -> str | None:
     return values[0] if values else None
 
 
-__all__ = ["Guard", "LOOPBACK_HOSTS", "Limits", "OPEN_PATHS", "Refusal", "allowed_hosts"]
+__all__ = ["Guard", "LOOPBACK_HOSTS", "Limits", "OPEN_PATHS", "Refusal", "allowed_hosts", "http_protocol"]

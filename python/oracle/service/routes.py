@@ -5,6 +5,7 @@ Handlers only move JSON: each hands one job to the engine thread and publishes w
 
 from __future__ import annotations
 
+import asyncio
 import threading
 import time
 from typing import TYPE_CHECKING, Annotated, Any, Literal
@@ -278,8 +279,13 @@ async def prolog(body: PrologIn, request: Request) -> dict[str, Any]:
         raise Overloaded(429, "another Prolog query is running; retry when it is done")
     ctx.queries += 1
     try:
-        return await ctx.thread.run(ctx.engine.prolog, neem, body.query, body.bindings, body.offset,
-                                    body.limit, body.timeout, ctx.prolog_writes)
+        if ctx.query_process is None:
+            return await ctx.thread.run(ctx.engine.prolog, neem, body.query, body.bindings, body.offset,
+                                        body.limit, body.timeout, ctx.prolog_writes)
+        # off the robot's path: not even the engine thread is asked (the NEEM is found there)
+        seconds = min(body.timeout, ctx.limits.query_seconds)
+        return await asyncio.get_running_loop().run_in_executor(
+            None, ctx.query_process.ask, neem, body.query, body.bindings, body.offset, body.limit, seconds)
     finally:
         ctx.queries -= 1
 
