@@ -58,6 +58,7 @@ kb_project/1 asserts statements built from the same vocabulary (see kb_project/1
 %   Head is defined by Body, a conjunction of triple/3 goals, other model predicates and
 %   Prolog goals (KnowRob's `?>` rules). Multifile: the model modules add their own.
 :- multifile kb_rule/2.
+:- dynamic kb_rule/2.                     % kb_add_rule/2 (kb_rules) adds to it at run time
 
 %!  kb_call(:Goal) is nondet.
 %!  kb_call(:Goal, +Scope) is nondet.
@@ -197,8 +198,14 @@ unfold((A, B), Mod, Scope, S0, S) :- !,
     unfold(B, Mod, Scope, S1, S).
 unfold((C -> T ; E), Mod, Scope, [ite(PC, PT, PE)|S], S) :- !,
     sub_plan(C, Mod, Scope, PC), sub_plan(T, Mod, Scope, PT), sub_plan(E, Mod, Scope, PE).
-unfold((A ; B), Mod, Scope, [or(PA, PB)|S], S) :- !,
-    sub_plan(A, Mod, Scope, PA), sub_plan(B, Mod, Scope, PB).
+unfold((A ; B), Mod, Scope, S0, S) :- !,
+    branch_steps(A, Mod, Scope, SA),
+    branch_steps(B, Mod, Scope, SB),
+    (   SA == fail -> SB \== fail, append(SB, S, S0)      % a branch no pragma allows is left out
+    ;   SB == fail -> append(SA, S, S0)
+    ;   group(compiled, SA, PA), group(compiled, SB, PB),
+        S0 = [or(PA, PB)|S]
+    ).
 unfold((C -> T), Mod, Scope, [ite(PC, PT, [call(fail)])|S], S) :- !,
     sub_plan(C, Mod, Scope, PC), sub_plan(T, Mod, Scope, PT).
 unfold(\+ G, Mod, Scope, [not(P)|S], S) :- !,
@@ -249,9 +256,23 @@ unfold(has_type(A, B), Mod, Scope, S0, S) :- !,
     ).
 unfold(occurs(E), Mod, Scope, S0, S) :- !,
     unfold(event_interval(E, B, End), Mod, any, S0, [call(kb_scope:scope_overlaps(Scope, B, End))|S]).
+unfold(pragma(G), Mod, _, S, S) :- !,         % KnowRob: evaluated when the goal is compiled
+    call(Mod:G).
+unfold(holds(Su, P, O), Mod, Scope, S0, S) :-    % holds(S, P, only(C)): OWL's class descriptions
+    owl_value(O, P, D), !,
+    unfold(instance_of_description(Su, D), Mod, Scope, S0, S).
 unfold(G, Mod, Scope, S0, S) :-
-    kb_rule(G, Body), !,
-    unfold(Body, Mod, Scope, S0, S).
+    callable(G), functor(G, F, N), functor(G0, F, N),
+    once(kb_rule(G0, _)), !,                      % a model predicate (no rule may fit this call)
+    findall(H-B, ( copy_term(G, H), kb_rule(H, B) ), Rules),
+    include(possible_rule(G, Mod, Scope), Rules, Possible),
+    (   Possible = [G-Body]
+    ->  unfold(Body, Mod, Scope, S0, S)
+    ;   Possible == []
+    ->  S0 = [call(fail)|S]
+    ;   rule_branches(Possible, G, Branches),
+        unfold(Branches, Mod, Scope, S0, S)
+    ).
 unfold(G, _, Scope, [call(Call)|S], S) :-
     kb_scoped_goal(G, Scope, Call), !.
 unfold(G, Mod, _, [call(Mod:G)|S], S).
@@ -289,8 +310,35 @@ integral_inverse(F, Inv) :-
     F < 1, Inv0 is 1 / F, Inv is round(Inv0), abs(Inv0 - Inv) < 1.0e-6.
 
 sub_plan(G, Mod, Scope, Plan) :-
-    unfold(G, Mod, Scope, Steps, []),
-    group(compiled, Steps, Plan).
+    (   unfold(G, Mod, Scope, Steps, [])
+    ->  group(compiled, Steps, Plan)
+    ;   Plan = [call(fail)]             % a pragma of G failed: G has no solution
+    ).
+
+%   The steps of a branch of a disjunction, or `fail` when its pragmas rule it out.
+branch_steps(G, Mod, Scope, Steps) :-
+    (   unfold(G, Mod, Scope, Steps0, []), Steps0 \= [call(fail)|_]
+    ->  Steps = Steps0
+    ;   Steps = fail
+    ).
+
+%   A rule of several for a goal is kept when its head unifies with the goal and its pragmas
+%   hold for it (KnowRob's rules dispatch on them: `pragma(\+ compound(Type))`); the rules
+%   kept become a disjunction, each branch unifying the goal with its head first.
+possible_rule(G, Mod, Scope, H-B) :-
+    \+ \+ ( G = H, catch(unfold(B, Mod, Scope, _, []), _, true) ).
+
+rule_branches([H-B], G, (G = H, B)) :- !.
+rule_branches([H-B|Rules], G, ((G = H, B) ; Rest)) :-
+    rule_branches(Rules, G, Rest).
+
+%   holds(S, P, only(C)) and its kin (KnowRob's OWL language extension): S is an instance of
+%   the class description on P.
+owl_value(O, P, D) :-
+    compound(O), O =.. [F|Args],
+    memberchk(F/N, [only/1, some/1, value/1, min/2, max/2, exactly/2]),
+    length(Args, N),
+    D =.. [F, P|Args].
 
 not_named_individual(B) :-
     B \== 'http://www.w3.org/2002/07/owl#NamedIndividual'.
@@ -487,6 +535,7 @@ unproject((A, B), T0, T) :- !, unproject(A, T0, T1), unproject(B, T1, T).
 unproject(triple(S, P, O), [t(S1, P1, O1)|T], T) :- !,
     kb_iri(S, S1), kb_iri(P, P1), kb_iri(O, O1).
 unproject(holds(S, P, O), T0, T) :- !, unproject(triple(S, P, O), T0, T).
+unproject(pragma(G), T, T) :- !, call(G).
 unproject(has_type(A, B), T0, T) :- !, unproject(triple(A, rdf:type, B), T0, T).
 unproject(G, T0, T) :-
     kb_rule(G, Body), !,
@@ -505,6 +554,8 @@ project([], _, _, T, T) :- !.
 project(true, _, _, T, T) :- !.
 project(ask(G), _, _, T, T) :- !,          % KnowRob's deprecated alias of kb_call/1
     once(kb_call(G)).
+project(pragma(G), _, _, T, T) :- !,
+    call(G).
 project([G|Gs], S, U, T0, T) :- !,
     project(G, S, U, T0, T1),
     project(Gs, S, U, T1, T).

@@ -28,8 +28,8 @@ list; new_iri/1,2 make an IRI not used as a subject yet.
 :- use_module('../lang/triple', [kb_iri/2]).
 
 :- multifile kb_query:kb_rule/2.
-kb_query:kb_rule(instance_of(A, B), triple(A, rdf:type, B)).
-kb_query:kb_rule(subclass_of(A, B), triple(A, rdfs:subClassOf, B)).
+kb_query:kb_rule(instance_of(A, B), ( pragma(\+ model_rdfs:owl_term(B)), triple(A, rdf:type, B) )).
+kb_query:kb_rule(subclass_of(A, B), ( pragma(\+ model_rdfs:owl_term(B)), triple(A, rdfs:subClassOf, B) )).
 kb_query:kb_rule(subproperty_of(A, B), triple(A, rdfs:subPropertyOf, B)).
 kb_query:kb_rule(is_resource(A), ( member(C, [rdfs:'Resource', rdfs:'Class', owl:'Class']), has_type(A, C) )).
 kb_query:kb_rule(is_property(A), ( member(C, [rdf:'Property', owl:'ObjectProperty', owl:'DatatypeProperty',
@@ -48,6 +48,14 @@ list_triples(L, [X|Xs], I, [triple(L, rdf:first, X), triple(L, rdf:rest, Next)|T
     kb_iri(L, L1), atomic_list_concat([L1, '_', I], Next),
     I1 is I + 1,
     list_triples(Next, Xs, I1, Ts).
+
+%   A class description of OWL (`only(P, C)`, `union_of(Cs)`, ...): model/owl_description
+%   answers instance_of/2 and subclass_of/2 for these.
+owl_term(T) :-
+    compound(T), T \= _:_,
+    functor(T, F, N),
+    memberchk(F/N, [union_of/1, intersection_of/1, complement_of/1, one_of/1, only/2, some/2, value/2,
+                    min/2, min/3, max/2, max/3, exactly/2, exactly/3, class/1]).
 
 %!  instance_of(?Individual, ?Class) is nondet.
 instance_of(A, B) :- kb_call(instance_of(A, B)).
