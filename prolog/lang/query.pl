@@ -12,7 +12,11 @@
       kb_project/1,             % +Statement
       kb_project/2,             % +Statement, +Scope
       kb_project/3,             % +Statement, +Scope, +Options
-      kb_unproject/1            % +Statement
+      kb_unproject/1,           % +Statement
+      kb_unproject/2,           % +Statement, +Scope
+      kb_unproject/3,           % +Statement, +Scope, +Options
+      ask/1,                    % :Statement
+      ask/2                     % :Statement, +Scope
     ]).
 /** <module> The query language: kb_call and kb_project (KnowRob 2.x src/lang/query.pl)
 
@@ -47,7 +51,7 @@ kb_project/1 asserts statements built from the same vocabulary (see kb_project/1
 
 :- meta_predicate
     kb_call(0), kb_call(0, +), kb_call(0, +, -), kb_call(0, +, -, +), kb_call_stepwise(0), kb_call_stepwise(0, +),
-    kb_findall(?, 0, +, -), kb_findall(?, 0, +, +, -), kb_group(?, ?, 0, +, -).
+    kb_findall(?, 0, +, -), kb_findall(?, 0, +, +, -), kb_group(?, ?, 0, +, -), ask(0), ask(0, +).
 
 %!  kb_scoped_goal(+Goal, +Scope, -Call) is semidet.
 %   Goal is not made of triples but depends on the question scope (e.g. is_at/2 reads tf
@@ -240,6 +244,12 @@ unfold(until(G, T), Mod, _, S0, S) :- !,
     ->  unfold(G, Mod, scope(T, T), S0, S)
     ;   S0 = [scoped(until, Mod:G, T)|S]
     ).
+unfold(holds(Su, P, O), Mod, Scope, S0, S) :-    % holds(S, P, only(C)): OWL's class descriptions
+    owl_value(O, P, D), !,
+    unfold(instance_of_description(Su, D), Mod, Scope, S0, S).
+unfold(G, _, Scope, [call(Call)|S], S) :-      % computable triples (kb_computable), ...
+    ( G = triple(_, _, _) ; G = holds(_, _, _) ),
+    kb_scoped_goal(G, Scope, Call), !.
 unfold(triple(Su, P, O), _, Scope, S0, S) :- !,
     triple_steps(Su, P, O, Scope, S0, S).
 unfold(holds(Su, P, O), _, Scope, S0, S) :-
@@ -258,17 +268,12 @@ unfold(occurs(E), Mod, Scope, S0, S) :- !,
     unfold(event_interval(E, B, End), Mod, any, S0, [call(kb_scope:scope_overlaps(Scope, B, End))|S]).
 unfold(pragma(G), Mod, _, S, S) :- !,         % KnowRob: evaluated when the goal is compiled
     call(Mod:G).
-unfold(holds(Su, P, O), Mod, Scope, S0, S) :-    % holds(S, P, only(C)): OWL's class descriptions
-    owl_value(O, P, D), !,
-    unfold(instance_of_description(Su, D), Mod, Scope, S0, S).
 unfold(G, Mod, Scope, S0, S) :-
     callable(G), functor(G, F, N), functor(G0, F, N),
     once(kb_rule(G0, _)), !,                      % a model predicate (no rule may fit this call)
     findall(H-B, ( copy_term(G, H), kb_rule(H, B) ), Rules),
     include(possible_rule(G, Mod, Scope), Rules, Possible),
-    (   Possible = [G-Body]
-    ->  unfold(Body, Mod, Scope, S0, S)
-    ;   Possible == []
+    (   Possible == []
     ->  S0 = [call(fail)|S]
     ;   rule_branches(Possible, G, Branches),
         unfold(Branches, Mod, Scope, S0, S)
@@ -324,13 +329,21 @@ branch_steps(G, Mod, Scope, Steps) :-
 
 %   A rule of several for a goal is kept when its head unifies with the goal and its pragmas
 %   hold for it (KnowRob's rules dispatch on them: `pragma(\+ compound(Type))`); the rules
-%   kept become a disjunction, each branch unifying the goal with its head first.
+%   kept become a disjunction (rule_branch/3).
 possible_rule(G, Mod, Scope, H-B) :-
     \+ \+ ( G = H, catch(unfold(B, Mod, Scope, _, []), _, true) ).
 
-rule_branches([H-B], G, (G = H, B)) :- !.
-rule_branches([H-B|Rules], G, ((G = H, B) ; Rest)) :-
+rule_branches([Rule], G, Branch) :- !,
+    rule_branch(Rule, G, Branch).
+rule_branches([Rule|Rules], G, (Branch ; Rest)) :-
+    rule_branch(Rule, G, Branch),
     rule_branches(Rules, G, Rest).
+
+%   A head more general than the goal is unified with it now (the body's patterns then hold
+%   the goal's constants); another (`is_union_of(C, union_of(L))` for a free description) at
+%   run time, so that the bindings it makes stay in its branch.
+rule_branch(H-B, G, B) :- subsumes_term(H, G), !, H = G.
+rule_branch(H-B, G, (G = H, B)).
 
 %   holds(S, P, only(C)) and its kin (KnowRob's OWL language extension): S is an instance of
 %   the class description on P.
@@ -520,6 +533,23 @@ kb_project_(Statement, S, U, Graph) :-
 narrowing(_:G) :- !, narrowing(G).
 narrowing(until(_, _)).
 narrowing(since(_, _)).
+
+%!  ask(:Statement) is nondet.
+%!  ask(:Statement, +Scope) is nondet.
+%   KnowRob's deprecated names of kb_call/1 and kb_call/2.
+ask(Statement) :- kb_call(Statement).
+ask(Statement, Scope) :- kb_call(Statement, Scope).
+
+%!  kb_unproject(+Statement, +Scope) is det.
+%!  kb_unproject(+Statement, +Scope, +Options) is det.
+%   kb_unproject/1 with KnowRob's scope and options: Scope must be a scope (checked), and the
+%   matching documents are deleted whatever their scopes; `graph(G)` is accepted.
+kb_unproject(Statement, Scope) :-
+    scope_term(Scope, _),
+    kb_unproject(Statement).
+kb_unproject(Statement, Scope, Options) :-
+    must_be(list, Options),
+    kb_unproject(Statement, Scope).
 
 %!  kb_unproject(+Statement) is det.
 %   Delete the triples Statement stands for (triple/3, holds/3, model predicates defined by

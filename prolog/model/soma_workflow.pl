@@ -7,7 +7,8 @@
       task_effect/2,            % ?Task, ?Effect
       has_kinematics_file/3,    % ?Object, ?Identifier, ?Format
       has_interval_duration/2,  % ?Interval, ?Duration
-      is_interval_equal/2       % ?Interval1, ?Interval2
+      is_interval_equal/2,      % ?Interval1, ?Interval2
+      workflow_sequence/2       % +WorkflowOrSteps, -Sequence
     ]).
 /** <module> Workflows, task effects, kinematics files and interval arithmetic (KnowRob 2.x src/model/SOMA.pl)
 
@@ -19,12 +20,13 @@ called from Prolog, kb_call/1 of itself; has_kinematics_file/3 also projects.
 
 :- use_module(library(lists)).
 :- use_module('../lang/query', [kb_call/1]).
+:- use_module(interval, [interval_order/2]).
 
 :- multifile kb_query:kb_rule/2.
 kb_query:kb_rule(workflow_step(W, S), holds(W, soma:hasStep, S)).
 kb_query:kb_rule(workflow_first_step(W, S), holds(W, soma:hasFirstStep, S)).
 kb_query:kb_rule(workflow_constituent(W, X),
-                 triple(W, in([dul:describes, dul:definesTask, soma:definesProcess]), X)).
+                 ( triple(W, dul:describes, X) ; triple(W, dul:definesTask, X) ; triple(W, soma:definesProcess, X) )).
 kb_query:kb_rule(workflow_role_range(W, R, T), ( workflow_constituent(W, Tsk), task_role_range(Tsk, R, T) )).
 kb_query:kb_rule(has_process_role(P, R), holds(P, soma:isProcessTypeOf, R)).
 kb_query:kb_rule(has_kinematics_file(O, Id, Format),
@@ -88,3 +90,13 @@ task_effect_(T, altered(X, Q)) :-
               has_parameter_range(T, P, Region), has_type(P, soma:'Setpoint') )),
     once(( kb_call(holds(Region, dul:isRegionFor, only(Q))),
            Q \== 'http://www.ontologydesignpatterns.org/ont/dul/DUL.owl#Quality' )).
+
+%!  workflow_sequence(+WorkflowOrSteps, -Sequence) is det.
+%   The steps of a workflow (or a list of steps) in the order their times or the Allen
+%   relations SOMA states among them (soma:before, soma:meets, ...) give them (KnowRob's
+%   src/reasoning/temporal/workflow.pl).
+workflow_sequence(WF, Seq) :-
+    (   is_list(WF) -> Steps = WF
+    ;   findall(S, workflow_step(WF, S), Steps0), sort(Steps0, Steps)
+    ),
+    interval_order(Steps, Seq).
