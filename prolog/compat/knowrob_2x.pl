@@ -33,6 +33,9 @@ stand for, as KnowRob's tests do through rdf_meta.
 :- use_module('../lang/db', [load_owl/2]).
 
 :- meta_predicate assert_true(0), assert_false(0), test_call(0, ?, +).
+%   rosprolog declares its assertions rdf_meta: prefixed names in a test's arguments are read as
+%   IRIs when the test is compiled (both arguments of assert_equals/2 and assert_unifies/2).
+:- rdf_meta assert_equals(t, t), assert_unifies(t, t).
 
 %!  knowrob_fixture(+Name, -File) is det.
 %   The Turtle file of a fixture (`family`, `lecturers`, `episode`, `events`).
@@ -73,10 +76,10 @@ knowrob_2x_score(Units, Passed, Total) :-
     aggregate_all(count, ( member(U, Units), plunit:passed(U, _, _, _, _) ), Passed).
 
 %!  assert_true(:Goal) is semidet.
-%   Goal succeeds (once).
+%   Goal succeeds; as rosprolog's (SWI-Prolog's assertion/1), its bindings are not kept.
 assert_true(M:G) :-
     rdf_global_term(G, G1),
-    once(M:G1).
+    \+ \+ once(M:G1).
 
 %!  assert_false(:Goal) is semidet.
 %   Goal fails.

@@ -16,7 +16,9 @@
       kb_unproject/2,           % +Statement, +Scope
       kb_unproject/3,           % +Statement, +Scope, +Options
       ask/1,                    % :Statement
-      ask/2                     % :Statement, +Scope
+      ask/2,                    % :Statement, +Scope
+      is_callable_with/2,       % ?Backend, :Goal
+      call_with/3               % +Backend, :Goal, +Options
     ]).
 /** <module> The query language: kb_call and kb_project (KnowRob 2.x src/lang/query.pl)
 
@@ -42,8 +44,10 @@ kb_project/1 asserts statements built from the same vocabulary (see kb_project/1
 :- use_module(library(lists)).
 :- use_module(library(apply)).
 :- use_module(library(pairs)).
+:- use_module(library(yall)).
 :- use_module('../neem_store', [store_match/2, store_match/3, store_match_scoped/3, store_insert/3,
-                                 store_retract/1, store_in_graphs/2]).
+                                 store_retract/1, store_in_graphs/2, store_annotation/3,
+                                 store_insert_annotations/1]).
 :- use_module(subgraph, [graph_filter/2]).
 :- use_module(triple, [kb_iri/2, iri_term/1, triple_steps/6, unit_factor/2]).
 :- use_module(scope, [current_scope/1, scope_check/1, scope_overlaps/3, runtime_scope/3,
@@ -63,6 +67,14 @@ kb_project/1 asserts statements built from the same vocabulary (see kb_project/1
 %   Prolog goals (KnowRob's `?>` rules). Multifile: the model modules add their own.
 :- multifile kb_rule/2.
 :- dynamic kb_rule/2.                     % kb_add_rule/2 (kb_rules) adds to it at run time
+
+%!  is_callable_with(?Backend, ?Goal) is nondet.
+%!  call_with(+Backend, +Goal, +Options) is nondet.
+%   KnowRob's query backends: a goal some Backend says it can answer (is_callable_with/2) is
+%   answered by call_with/3 of each such backend, their solutions one after the other, where it
+%   stands in the compiled goal. Dynamic and multifile: a backend adds its clauses.
+:- multifile is_callable_with/2, call_with/3.
+:- dynamic is_callable_with/2, call_with/3.
 
 %!  kb_call(:Goal) is nondet.
 %!  kb_call(:Goal, +Scope) is nondet.
@@ -280,6 +292,9 @@ unfold(G, Mod, Scope, S0, S) :-
     ).
 unfold(G, _, Scope, [call(Call)|S], S) :-
     kb_scoped_goal(G, Scope, Call), !.
+unfold(annotation(Su, P, V), _, _, [call(kb_query:annotation_value(Su, P, V))|S], S) :- !.
+unfold(G, _, _, [call(kb_query:backend_call(G))|S], S) :-
+    \+ \+ is_callable_with(_, G), !.
 unfold(G, Mod, _, [call(Mod:G)|S], S).
 
 %   holds(P(S,O)): the relation P between S and O.
@@ -352,6 +367,21 @@ owl_value(O, P, D) :-
     memberchk(F/N, [only/1, some/1, value/1, min/2, max/2, exactly/2]),
     length(Args, N),
     D =.. [F, P|Args].
+
+%   A goal query backends answer: each backend that can, in turn.
+backend_call(G) :-
+    findall(B, is_callable_with(B, G), Bs0),
+    list_to_set(Bs0, Bs),
+    member(B, Bs),
+    call_with(B, G, []).
+
+%   annotation/3 inside kb_call: subject and property must be known when it runs (KnowRob's
+%   instantiation error otherwise).
+annotation_value(Su0, P0, V) :-
+    kb_iri(Su0, Su), kb_iri(P0, P),
+    (   var(Su) -> instantiation_error(annotation(Su, P, V)) ; true ),
+    (   var(P) -> instantiation_error(annotation(Su, P, V)) ; true ),
+    store_annotation(Su, P, V).
 
 not_named_individual(B) :-
     B \== 'http://www.w3.org/2002/07/owl#NamedIndividual'.
@@ -527,7 +557,9 @@ kb_project_(Statement, S, U) :-
 
 kb_project_(Statement, S, U, Graph) :-
     (   narrowing(Statement) -> Merge = intersect ; Merge = union ),
-    project(Statement, S, U, Triples, []),
+    project(Statement, S, U, Items, []),
+    partition([X]>>(X = annotation(_, _, _)), Items, Annotations, Triples),
+    (   Annotations == [] -> true ; store_insert_annotations(Annotations) ),
     store_insert(Triples, Merge, Graph).
 
 narrowing(_:G) :- !, narrowing(G).
@@ -617,6 +649,12 @@ project(holds(S, P, O), Since, Until, T0, T) :- !,
     ;   X = O
     ),
     project(triple(S, P, X), Since, Until, T0, T).
+project(annotation(Su, P, V), _, _, [annotation(Su1, P1, V)|T], T) :- !,
+    (   ground(annotation(Su, P, V)) -> true
+    ;   throw(error(instantiation_error, project(annotation(Su, P, V))))   % KnowRob's context
+    ),
+    kb_iri(Su, Su1), kb_iri(P, P1),
+    must_be(atom, Su1), must_be(atom, P1).
 project(has_type(A, B), Since, Until, T0, T) :- !,
     project(triple(A, rdf:type, B), Since, Until, T0, T).
 project(event_interval(E, B, End), Since, Until, T0, T) :- !,

@@ -21,6 +21,9 @@ called from Prolog, kb_call/1 of itself; has_kinematics_file/3 also projects.
 :- use_module(library(lists)).
 :- use_module('../lang/query', [kb_call/1]).
 :- use_module(interval, [interval_order/2]).
+:- use_module(library(semweb/rdf_prefixes), [rdf_meta/1, rdf_global_term/2]).
+
+:- rdf_meta workflow_sequence(r, t).
 
 :- multifile kb_query:kb_rule/2.
 kb_query:kb_rule(workflow_step(W, S), holds(W, soma:hasStep, S)).
@@ -95,8 +98,11 @@ task_effect_(T, altered(X, Q)) :-
 %   The steps of a workflow (or a list of steps) in the order their times or the Allen
 %   relations SOMA states among them (soma:before, soma:meets, ...) give them (KnowRob's
 %   src/reasoning/temporal/workflow.pl).
-workflow_sequence(WF, Seq) :-
+workflow_sequence(WF0, Seq) :-
+    rdf_global_term(WF0, WF),
     (   is_list(WF) -> Steps = WF
     ;   findall(S, workflow_step(WF, S), Steps0), sort(Steps0, Steps)
     ),
-    interval_order(Steps, Seq).
+    interval_order(Steps, Seq0),
+    rdf_global_term(Seq, Seq1),
+    Seq1 = Seq0.
