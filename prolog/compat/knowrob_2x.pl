@@ -35,7 +35,7 @@ stand for, as KnowRob's tests do through rdf_meta.
 :- meta_predicate assert_true(0), assert_false(0), test_call(0, ?, +).
 %   rosprolog declares its assertions rdf_meta: prefixed names in a test's arguments are read as
 %   IRIs when the test is compiled (both arguments of assert_equals/2 and assert_unifies/2).
-:- rdf_meta assert_equals(t, t), assert_unifies(t, t).
+:- rdf_meta((assert_equals(t, t), assert_unifies(t, t))).
 
 %!  knowrob_fixture(+Name, -File) is det.
 %   The Turtle file of a fixture (`family`, `lecturers`, `episode`, `events`).

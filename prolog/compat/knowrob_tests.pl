@@ -36,8 +36,11 @@ tests KnowRob marks blocked or fixme, which are reported as such, never as passe
 :- use_module(library(option)).
 :- use_module(library(semweb/rdf_prefixes)).
 
-%   KnowRob's units declare `:- rdf_meta Head.` in their own text.
+%   KnowRob's units declare `:- rdf_meta Head.` in their own text and call rdf_equal/2 and
+%   rdf_global_term/2, which KnowRob's modules import from library(semweb/rdf_db).
 :- op(1150, fx, user:rdf_meta).
+:- use_module(user:library(semweb/rdf_prefixes), [rdf_global_term/2, rdf_global_id/2]).
+:- use_module(user:library(semweb/rdf_db), [rdf_equal/2]).
 :- use_module(knowrob_2x, [assert_true/1, assert_false/1, assert_equals/2, assert_unifies/2, test_call/3]).
 :- use_module('../neem_store', [store_reset/0]).
 :- use_module('../lang/db', [load_owl/2]).

@@ -116,7 +116,9 @@ description_range(union_of(Cs), P, R) :-       % a range every member of the uni
     forall(member(C, Rest), ( range_candidate(C, P, R1), ( R1 == R ; subclass_of(R1, R) ) )).
 
 most_specific(Rs, Specific) :-
-    include([R]>>( \+ ( member(X, Rs), X \== R, subclass_of(X, R) ) ), Rs, Specific).
+    include(none_below(Rs), Rs, Specific).
+
+none_below(Rs, R) :- \+ ( member(X, Rs), X \== R, subclass_of(X, R) ).
 
 %!  owl_property_cardinality(?Class, ?Property, ?Range, ?Min, ?Max) is nondet.
 %   Class's restrictions bound the number of Property values in Range of its instances
