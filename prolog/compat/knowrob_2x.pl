@@ -2,6 +2,7 @@
     [ knowrob_suite_setup/2,    % +Fixture, +Namespace
       knowrob_2x_units/1,       % -Units
       knowrob_2x_score/3,       % +Units, -Passed, -Total
+      knowrob_marked/2,         % ?Test, ?Mark
       knowrob_fixture/2,        % +Name, -File
       assert_true/1,            % :Goal
       assert_false/1,           % :Goal
@@ -33,9 +34,6 @@ stand for, as KnowRob's tests do through rdf_meta.
 :- use_module('../lang/db', [load_owl/2]).
 
 :- meta_predicate assert_true(0), assert_false(0), test_call(0, ?, +).
-%   rosprolog declares its assertions rdf_meta: prefixed names in a test's arguments are read as
-%   IRIs when the test is compiled (both arguments of assert_equals/2 and assert_unifies/2).
-:- rdf_meta((assert_equals(t, t), assert_unifies(t, t))).
 
 %!  knowrob_fixture(+Name, -File) is det.
 %   The Turtle file of a fixture (`family`, `lecturers`, `episode`, `events`).
@@ -68,12 +66,18 @@ knowrob_2x_units([knowrob_lang_triple, knowrob_lang_temporal, knowrob_lang_holds
                   knowrob_model_rdfs, knowrob_model_neem, knowrob_model_terms, knowrob_lang_scope]).
 
 %!  knowrob_2x_score(+Units, -Passed, -Total) is det.
-%   Run the units (loaded test files) and count: Total is the number of tests they hold,
-%   Passed those that passed (a unit whose set-up fails passes none).
+%   Run the units (loaded test files) and count: Total is the number of tests they hold but
+%   the ones KnowRob marks fixme or blocked (knowrob_marked/2: they run here, and are not
+%   counted), Passed those that passed (a unit whose set-up fails passes none).
 knowrob_2x_score(Units, Passed, Total) :-
     ( run_tests(Units) -> true ; true ),
-    aggregate_all(count, ( member(U, Units), plunit:current_test(U, _, _, _, _) ), Total),
-    aggregate_all(count, ( member(U, Units), plunit:passed(U, _, _, _, _) ), Passed).
+    aggregate_all(count, ( member(U, Units), plunit:current_test(U, N, _, _, _), \+ knowrob_marked(N, _) ), Total),
+    aggregate_all(count, ( member(U, Units), plunit:passed(U, N, _, _, _), \+ knowrob_marked(N, _) ), Passed).
+
+%!  knowrob_marked(?Test, ?Mark) is nondet.
+%   The restated tests KnowRob marks `fixme` or `blocked` in its own files.
+knowrob_marked('non utf8 character', fixme).
+knowrob_marked('holds/1 with ns', blocked).
 
 %!  assert_true(:Goal) is semidet.
 %   Goal succeeds; as rosprolog's (SWI-Prolog's assertion/1), its bindings are not kept.
@@ -89,14 +93,16 @@ assert_false(M:G) :-
 
 %!  assert_equals(+Actual, +Expected) is semidet.
 %   Actual and Expected are the same term (prefixed names read as IRIs).
-assert_equals(A, E) :-
+assert_equals(A, E) :-                 % rosprolog's are rdf_meta: both sides read
+    rdf_global_term(A, A1),
     rdf_global_term(E, E1),
-    A == E1.
+    A1 == E1.
 
 %!  assert_unifies(?Actual, ?Expected) is semidet.
 assert_unifies(A, E) :-
+    rdf_global_term(A, A1),
     rdf_global_term(E, E1),
-    A = E1.
+    A1 = E1.
 
 %!  test_call(:Goal, ?Var, +Value) is nondet.
 %   mongolog's test_call/3: Goal with Var assigned Value first, as one kb_call.

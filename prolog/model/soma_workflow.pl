@@ -21,9 +21,7 @@ called from Prolog, kb_call/1 of itself; has_kinematics_file/3 also projects.
 :- use_module(library(lists)).
 :- use_module('../lang/query', [kb_call/1]).
 :- use_module(interval, [interval_order/2]).
-:- use_module(library(semweb/rdf_prefixes), [rdf_meta/1, rdf_global_term/2]).
-
-:- rdf_meta(workflow_sequence(r, t)).
+:- use_module(library(semweb/rdf_prefixes), [rdf_global_term/2]).
 
 :- multifile kb_query:kb_rule/2.
 kb_query:kb_rule(workflow_step(W, S), holds(W, soma:hasStep, S)).
