@@ -43,7 +43,7 @@ def test_present_predicates(probed):
     _, rows = probed
     present = [r for r in rows if r.status != "absent"]
     print(f"{len(present)} of {len(rows)} present")
-    assert len(present) >= 78
+    assert len(present) >= 229
 
 
 def test_every_note_names_a_predicate_knowrob_exports(probed):
