@@ -16,6 +16,7 @@ import logging
 import time
 from contextlib import asynccontextmanager
 from dataclasses import dataclass, field
+from datetime import tzinfo
 from typing import Any
 from urllib.parse import parse_qs, urlsplit
 
@@ -28,12 +29,16 @@ from oracle.errors import NeemOracleError
 from oracle.service.engine import Engine, EngineThread, NotFound
 from oracle.service.events import EventHub
 from oracle.service.routes import router
+from oracle.service.page import Manner, render_token_page
 from oracle.service.session import OutOfOrder
+from oracle.service.words import TEXT, Lexicon, pick_lang
+from oracle.timeline import display_zone
 
 LOG = logging.getLogger("oracle.service")
-#: Paths that show no user data: the schema and its viewer need no token.
-OPEN_PATHS = ("/openapi.json", "/docs", "/docs/")
+#: Paths that show no user data: the schema, its viewer, the page's style, script and icon.
+OPEN_PATHS = ("/openapi.json", "/docs", "/docs/", "/favicon.ico")
 STATIC_DOCS = "/docs/static"
+STATIC_PAGE = "/static/"
 
 
 @dataclass
@@ -47,6 +52,12 @@ class Context:
     write_behind: bool = True
     hub: EventHub = field(default_factory=EventHub)
     stopping: asyncio.Event = field(default_factory=asyncio.Event)
+    #: The zone the page shows times in (``serve --tz``; None: the machine's).
+    zone: tzinfo = field(default_factory=lambda: display_zone(None))
+    #: How the page confirms and undoes a choice (``serve --confirm``, ``--undo``).
+    manner: Manner = field(default_factory=Manner)
+    #: The page's words (oracle.service.words), read on first use.
+    lexicon: Lexicon | None = None
 
 
 def create_app(ctx: Context) -> FastAPI:
@@ -131,16 +142,18 @@ class Guard:
             LOG.info("%s %s%s %d %.1f ms", scope["method"], route, f" neem={neem}" if neem else "", status[0],
                      (time.perf_counter() - started) * 1000)
 
-    def _refusal(self, scope: dict[str, Any], headers: dict[str, str]) -> JSONResponse | None:
+    def _refusal(self, scope: dict[str, Any], headers: dict[str, str]) -> Response | None:
         origin = headers.get("origin")
         if origin is not None and urlsplit(origin).netloc != headers.get("host"):
             return _error(403, "cross-origin requests are refused")
         path = scope["path"]
         token = self.ctx.token
-        if token is None or path in OPEN_PATHS or path.startswith(STATIC_DOCS):
+        if token is None or path in OPEN_PATHS or path.startswith((STATIC_DOCS, STATIC_PAGE)):
             return None
         given = _presented(headers, scope.get("query_string", b""))
         if given is None or not hmac.compare_digest(given.encode(), token.encode()):
+            if path == "/":  # a person opened the page: ask for the code rather than answer JSON
+                return _token_page(headers, scope.get("query_string", b""))
             return _error(401, "this service needs its token: Authorization: Bearer <token>")
         return None
 
@@ -153,23 +166,37 @@ def _presented(headers: dict[str, str], query: bytes) -> str | None:
     return values[0] if values else None
 
 
+def _token_page(headers: dict[str, str], query: bytes) -> Response:
+    from fastapi.responses import HTMLResponse
+
+    asked = parse_qs(query.decode("latin-1"))
+    lang = pick_lang(next(iter(asked.get("lang", [])), None), headers.get("accept-language"))
+    html = render_token_page(lang, TEXT[lang], next(iter(asked.get("neem", [])), None))
+    return HTMLResponse(html, status_code=401, headers={
+        "Content-Security-Policy": "default-src 'none'; style-src 'self'; img-src 'self'; form-action 'self'; base-uri 'none'",
+        "Cache-Control": "no-store"})
+
+
 def _offline_docs(app: FastAPI) -> None:
-    """Swagger UI from the swagger-ui-bundle package: /docs works without a network."""
+    """Swagger UI 5 (it reads OpenAPI 3.1) from the fastapi-offline package's files: /docs
+    works without a network."""
+    from pathlib import Path
+
     from fastapi.openapi.docs import get_swagger_ui_html
     from fastapi.staticfiles import StaticFiles
 
     try:
-        import swagger_ui_bundle  # type: ignore[import-untyped]
+        import fastapi_offline
     except ImportError:  # the schema stays at /openapi.json
         return
-    app.mount(STATIC_DOCS, StaticFiles(directory=swagger_ui_bundle.swagger_ui_path), name="docs-static")
+    app.mount(STATIC_DOCS, StaticFiles(directory=Path(fastapi_offline.__file__).parent / "static"), name="docs-static")
 
     @app.get("/docs", include_in_schema=False)
     async def docs() -> Response:
         return get_swagger_ui_html(openapi_url="/openapi.json", title="neem-oracle service",
                                    swagger_js_url=f"{STATIC_DOCS}/swagger-ui-bundle.js",
                                    swagger_css_url=f"{STATIC_DOCS}/swagger-ui.css",
-                                   swagger_favicon_url=f"{STATIC_DOCS}/favicon-32x32.png")
+                                   swagger_favicon_url=f"{STATIC_DOCS}/favicon.png")
 
 
 __all__ = ["Context", "create_app"]
