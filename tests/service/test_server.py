@@ -335,3 +335,67 @@ def test_simulate_against_no_service_fails_with_the_reason():
     assert result.returncode == 1
     assert "0 steps" in result.stdout and "1 errors" in result.stdout
     assert re.search(r"error: .*(refused|reach)", result.stdout, re.I), result.stdout
+
+
+@pytest.fixture(scope="module")
+def axe_source(tmp_path_factory) -> str:
+    """axe-core from npm, installed into a cache folder outside the tree (never committed)."""
+    npm = shutil.which("npm")
+    if npm is None:
+        pytest.skip("npm is not installed: axe-core cannot be fetched")
+    cache = Path(os.environ.get("NEEM_ORACLE_AXE_DIR", Path.home() / ".cache" / "neem-oracle" / "axe"))
+    script = cache / "node_modules" / "axe-core" / "axe.min.js"
+    if not script.exists():
+        result = subprocess.run([npm, "install", "--no-save", "--no-audit", "--no-fund", "--prefix", str(cache), "axe-core@4"],
+                                capture_output=True, text=True, timeout=300)
+        if result.returncode != 0 or not script.exists():
+            pytest.skip(f"npm could not install axe-core: {result.stderr.strip().splitlines()[-1:]}")
+    return script.read_text(encoding="utf-8")
+
+
+def serious(page, axe: str) -> list[str]:
+    """axe-core's serious and critical WCAG 2.2 A/AA violations on the page as it is now."""
+    if not page.evaluate("typeof axe !== 'undefined'"):
+        page.add_script_tag(content=axe)
+    found = page.evaluate("""axe.run(document, {runOnly: {type: 'tag', values: ['wcag2a', 'wcag2aa', 'wcag21a', 'wcag21aa',
+        'wcag22aa']}}).then(function (r) { return r.violations.filter(function (v) {
+        return v.impact === 'serious' || v.impact === 'critical'; }).map(function (v) {
+        return v.id + ': ' + v.nodes.map(function (n) { return n.target.join(' '); }).join(', '); }); })""")
+    return list(found)
+
+
+@pytest.mark.parametrize("width,lang", [(800, "en"), (390, "de")])
+def test_axe_finds_no_serious_violation_in_any_state_of_the_page(server, browser, axe_source, width, lang):
+    name = f"axe{width}"
+    routine_neem(server, name)
+    page = open_page(browser, server, f"neem={name}&lang={lang}&undo=30", width, 1280)
+    states = {"list": serious(page, axe_source)}
+    page.keyboard.press("Tab")  # on the list: the next ranking waits behind "New suggestions"
+    call(server, f"/api/neems/{name}/situation", {"available": AVAILABLE[:4], "at": at(2, 1)})
+    page.wait_for_function("document.getElementById('fresh').classList.contains('waiting')")
+    states["waiting"] = serious(page, axe_source)
+    page.locator("#fresh").click()
+    page.locator("#whatnext").click()
+    page.wait_for_function("document.getElementById('answer').textContent.length > 20")
+    states["answer"] = serious(page, axe_source)
+    page.locator("#tasks button.task").first.click()
+    states["sheet"] = serious(page, axe_source)
+    page.locator("#whyhere").click()
+    page.wait_for_function("document.getElementById('sheet-note').textContent.length > 20")
+    states["why"] = serious(page, axe_source)
+    page.locator("#confirm").click()
+    states["undo"] = serious(page, axe_source)
+    page.locator("#undo").click()
+    assert states == {state: [] for state in states}
+    page.close()
+
+
+def test_docs_render_the_schema_in_the_browser(server, browser):
+    page = browser.new_page(viewport={"width": 1280, "height": 900})
+    requests: list[str] = []
+    page.on("request", lambda r: requests.append(r.url))
+    page.goto(server + "/docs")
+    page.wait_for_selector('.opblock-summary-path[data-path="/api/neems/{neem}/situation"]', timeout=30_000)
+    assert page.locator("text=Unable to render").count() == 0
+    assert all(url.startswith(server) for url in requests), requests  # nothing from a CDN
+    page.close()
