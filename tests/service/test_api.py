@@ -210,7 +210,7 @@ def test_a_perceived_pose_goes_into_the_neem_and_prolog_says_where_the_object_wa
     ("/api/neems/ada/actions", {"call": "pick(red_mug)", "performed_by": "cat"}, 422, "performed_by"),
     ("/api/neems/ada/actions", {"call": "fly(red_mug)"}, 400, "fly"),
     ("/api/neems/ada/choice", {"task": "pick(red_mug)", "workflow": ["fly(x)"]}, 400, "workflow"),
-    ("/api/neems", {"user": "ada", "neem": "ada"}, 400, "already exists"),
+    ("/api/neems", {"user": "ada", "neem": "ada"}, 409, "already exists"),
     ("/api/neems", {"user": ""}, 422, "user"),
     ("/api/prolog", {"query": "X = 1", "neem": "nobody"}, 404, "nobody"),
     ("/api/prolog", {"query": "X = 1", "neem": "ada", "bindings": {"X": True}}, 400, "binding X"),
@@ -486,3 +486,11 @@ def test_a_choice_is_the_users_decision_in_the_neem_and_survives_a_restart(ctx, 
     with TestClient(create_app(again)) as restarted:
         back = restarted.get(f"/api/neems/{neem}/choice").json()
     assert (back["task"], back["workflow"], back["at"]) == ("open(small_drawer)", ["open(small_drawer)", "pick(red_mug)"], at(1, 1))
+
+
+def test_a_wrong_method_is_a_405_whose_allow_names_every_method_of_the_path(client, neem):
+    for path, allowed in [(f"/api/neems/{neem}/situation", "GET, POST"), (f"/api/neems/{neem}/choice", "GET, POST"),
+                          ("/api/neems", "GET, POST"), ("/api/prolog", "POST")]:
+        answer = client.delete(path)
+        assert (answer.status_code, answer.headers["allow"]) == (405, allowed), path
+        assert set(answer.json()) == {"error"}

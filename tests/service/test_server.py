@@ -50,6 +50,8 @@ def start_server(store: Path, port: int, *extra: str) -> subprocess.Popen:
         try:
             urllib.request.urlopen(base + "/api/neems", timeout=2).read()
             return process
+        except urllib.error.HTTPError:  # it answers (a token refused)
+            return process
         except OSError:
             if process.poll() is not None or time.monotonic() > deadline:
                 process.kill()
@@ -399,3 +401,42 @@ def test_docs_render_the_schema_in_the_browser(server, browser):
     assert page.locator("text=Unable to render").count() == 0
     assert all(url.startswith(server) for url in requests), requests  # nothing from a CDN
     page.close()
+
+
+def test_a_busy_port_is_one_line_and_no_banner(server):
+    port = int(server.rsplit(":", 1)[1])
+    result = subprocess.run([sys.executable, "-m", "oracle", "serve", "--port", str(port)], cwd=ROOT,
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 1 and result.stdout == ""
+    assert len(result.stderr.strip().splitlines()) == 1 and f"--port {port}: cannot listen" in result.stderr
+
+
+def test_ctrl_c_stops_within_a_second_with_one_line_while_the_page_listens(tmp_path, browser):
+    import signal
+
+    port = free_port()
+    process = start_server(tmp_path / "s.sqlite", port, "--token", "a-long-enough-token")
+    base = f"http://127.0.0.1:{port}"
+    page = browser.new_page(bypass_csp=True)
+    try:
+        page.goto(base + "/")  # without the token: the page asks for it instead of answering JSON
+        assert page.locator("input#token").count() == 1
+        request = urllib.request.Request(base + "/api/neems", data=json.dumps({"user": "fay", "neem": "fay"}).encode(),
+                                         headers={"Content-Type": "application/json", "Authorization": "Bearer a-long-enough-token"})
+        urllib.request.urlopen(request, timeout=30).read()
+        page.locator("input#token").fill("a-long-enough-token")
+        page.locator("form button").click()
+        page.wait_for_function("document.body.dataset.live === 'yes'")  # an open event stream
+        started = time.monotonic()
+        process.send_signal(signal.SIGINT)
+        process.wait(timeout=20)
+        took = time.monotonic() - started
+    finally:
+        page.close()
+        if process.poll() is None:
+            process.kill()
+    out = process.stdout.read() if process.stdout else ""
+    lines = [line for line in out.splitlines() if "oracle.service" not in line]  # the request log
+    assert lines[0].startswith("serving ") and f"http://127.0.0.1:{port}/?token=a-long-enough-token" in lines[0]
+    assert lines[1:] == ["stopped"] and "Traceback" not in out
+    assert took < 1.0, took

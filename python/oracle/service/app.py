@@ -28,7 +28,7 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 from oracle.errors import NeemOracleError
 from oracle.service.engine import Engine, EngineThread, NotFound
 from oracle.service.events import EventHub
-from oracle.service.routes import router
+from oracle.service.routes import DuplicateNeem, router
 from oracle.service.page import Manner, render_token_page
 from oracle.service.session import OutOfOrder
 from oracle.service.words import TEXT, Lexicon, pick_lang
@@ -75,7 +75,7 @@ def create_app(ctx: Context) -> FastAPI:
 
     @app.exception_handler(NeemOracleError)
     async def domain_error(request: Request, error: NeemOracleError) -> JSONResponse:
-        status = 404 if isinstance(error, NotFound) else 409 if isinstance(error, OutOfOrder) else 400
+        status = 404 if isinstance(error, NotFound) else 409 if isinstance(error, (OutOfOrder, DuplicateNeem)) else 400
         return _error(status, str(error))
 
     @app.exception_handler(RequestValidationError)
@@ -90,6 +90,8 @@ def create_app(ctx: Context) -> FastAPI:
         answer = _error(error.status_code, f"{request.method} {request.url.path}: {error.detail}")
         for name, value in (error.headers or {}).items():
             answer.headers[name] = value
+        if error.status_code == 405:  # every method of every route on the path, not the first route's
+            answer.headers["Allow"] = ", ".join(_methods(request.app, request.url.path))
         return answer
 
     @app.exception_handler(Exception)
@@ -103,6 +105,16 @@ def create_app(ctx: Context) -> FastAPI:
 def _error(status: int, message: str) -> JSONResponse:
     line = message.strip().splitlines()[0] if message.strip() else "error"
     return JSONResponse({"error": line}, status_code=status)
+
+
+def _methods(app: FastAPI, path: str) -> list[str]:
+    from starlette.routing import Route
+
+    found: set[str] = set()
+    for route in [*app.routes, *router.routes]:  # the API's routes sit in an included router
+        if isinstance(route, Route) and route.methods and route.path_regex.match(path):
+            found.update(route.methods)
+    return sorted(found)
 
 
 def _route(request: Request) -> str:

@@ -13,6 +13,7 @@ from fastapi import APIRouter, BackgroundTasks, Query, Request
 from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, StreamingResponse
 from pydantic import BaseModel, Field
 
+from oracle.errors import LoggingError
 from oracle.service import schemas as S
 from oracle.service.events import Event
 from oracle.service.page import STATIC, render_page
@@ -71,6 +72,10 @@ class PrologIn(BaseModel):
     timeout: float = Field(5.0, gt=0, le=60, description="seconds")
 
 
+class DuplicateNeem(LoggingError):
+    """A new NEEM named like one in the store (409)."""
+
+
 def _ctx(request: Request) -> Any:
     return request.app.state.ctx
 
@@ -93,7 +98,15 @@ async def list_neems(request: Request) -> list[dict[str, Any]]:
 @router.post("/api/neems", status_code=201, tags=["neems"], response_model=S.NeemMade)
 async def create_neem(body: NewNeem, request: Request) -> dict[str, Any]:
     ctx = _ctx(request)
-    made = await ctx.thread.run(ctx.engine.create, body.user, body.neem)
+
+    def job() -> dict[str, Any]:
+        from oracle.store.ids import find_neem
+
+        if body.neem is not None and find_neem(ctx.engine.store, body.neem) is not None:
+            raise DuplicateNeem(f"NEEM {body.neem!r} already exists: choose another name")
+        return ctx.engine.create(body.user, body.neem)
+
+    made = await ctx.thread.run(job)
     ctx.hub.publish(Event("neem", made["id"], {"id": made["id"]}))
     return made
 
