@@ -440,3 +440,24 @@ def test_ctrl_c_stops_within_a_second_with_one_line_while_the_page_listens(tmp_p
     assert lines[0].startswith("serving ") and f"http://127.0.0.1:{port}/?token=a-long-enough-token" in lines[0]
     assert lines[1:] == ["stopped"] and "Traceback" not in out
     assert took < 1.0, took
+
+
+def test_a_robot_following_the_tablet_does_what_the_person_chose(server):
+    import threading
+
+    from oracle.service.robot import drive, persona_rows
+
+    user, rows = persona_rows(1, 3, 1)
+    step = next(i for i, row in enumerate(rows) if len(row.available or ()) >= 2)
+    rows = rows[:step + 1]
+    other = next(str(c) for c in rows[-1].available if c != rows[-1].action)
+    done: list = []
+    robot = threading.Thread(target=lambda: done.append(drive(server, user, rows, "follow", follow=30.0)))
+    robot.start()
+    deadline = time.monotonic() + 60
+    while call(server, "/api/neems/follow/situation")[1].get("at") != rows[-1].time.timestamp() and time.monotonic() < deadline:
+        time.sleep(0.2)
+    time.sleep(0.5)  # the robot now waits for the person
+    assert call(server, "/api/neems/follow/choice", {"task": other})[0] == 200
+    robot.join(60)
+    assert done and done[0].errors == [] and done[0].executed[-1] == other != str(rows[-1].action)
