@@ -494,3 +494,20 @@ def test_a_wrong_method_is_a_405_whose_allow_names_every_method_of_the_path(clie
         answer = client.delete(path)
         assert (answer.status_code, answer.headers["allow"]) == (405, allowed), path
         assert set(answer.json()) == {"error"}
+
+
+def test_the_page_shows_times_on_the_zone_it_was_given_and_what_next_tells_choice_from_action(ctx, client, neem):
+    from oracle.timeline import display_zone
+
+    ctx.zone = display_zone("Europe/Berlin")
+    drive(client, neem, days=1)
+    client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(1, 0)})
+    assert client.get(f"/api/neems/{neem}/tablet").json()["clock"] == "Morning, 09:00"  # 08:00 UTC in March
+    client.post(f"/api/neems/{neem}/choice", json={"task": "pick(banana)", "at": at(1, 1)})
+    said = client.get(f"/api/neems/{neem}/what-next").json()["said"]
+    assert "You chose \u201cPick up the banana\u201d; the robot has not done it yet." in said
+    client.post(f"/api/neems/{neem}/actions", json={"call": "pick(banana)", "begin": at(1, 2)})
+    said = client.get(f"/api/neems/{neem}/what-next").json()["said"]
+    assert said.endswith("At 09:00 the robot did: Pick up the banana.")
+    with pytest.raises(Exception, match="no such time zone"):
+        display_zone("Mars/Olympus")

@@ -461,3 +461,26 @@ def test_a_robot_following_the_tablet_does_what_the_person_chose(server):
     assert call(server, "/api/neems/follow/choice", {"task": other})[0] == 200
     robot.join(60)
     assert done and done[0].errors == [] and done[0].executed[-1] == other != str(rows[-1].action)
+
+
+def test_dwell_confirms_by_itself_for_a_person_who_cannot_tap_twice(server, browser):
+    assert call(server, "/api/neems", {"user": "Gus", "neem": "gus"})[0] == 201
+    call(server, "/api/neems/gus/situation", {"available": ["open(fridge)", "pick(banana)"], "at": at(0, 0)})
+    context = browser.new_context(viewport={"width": 1024, "height": 1180}, bypass_csp=True)
+    page = context.new_page()
+    page.goto(f"{server}/?neem=gus&confirm=dwell&dwell=1&undo=1")
+    page.wait_for_function("document.body.dataset.live === 'yes'")
+    page.locator("#tasks button.task").nth(1).click()  # one tap; then the person only waits
+    page.wait_for_function("document.getElementById('sheet').dataset.phase === 'undo'")
+    page.wait_for_function("!document.getElementById('sheet').open")
+    chosen = page.evaluate("document.querySelectorAll('#tasks button.task')[1].dataset.task")
+    assert call(server, "/api/neems/gus/choice")[1]["task"] == chosen
+    # the setting is the person's: kept in this browser for this NEEM
+    again = context.new_page()
+    again.goto(f"{server}/?neem=gus")
+    again.wait_for_function("document.body.dataset.live === 'yes'")
+    again.locator("#tasks button.task").first.click()
+    again.wait_for_function("document.getElementById('sheet-count').textContent.startsWith('Chosen in')")
+    again.locator("#back").click()
+    assert not again.evaluate("document.getElementById('sheet').open")
+    context.close()
