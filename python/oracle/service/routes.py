@@ -17,6 +17,7 @@ from oracle.errors import LoggingError
 from oracle.service import schemas as S
 from oracle.service.events import Event
 from oracle.service.page import STATIC, render_page
+from oracle.service.tablet import decision_of as _decision, record_choice, recorded_choice
 
 if TYPE_CHECKING:
     from oracle.service.session import NeemSession
@@ -248,38 +249,10 @@ async def latest_choice(neem: str, request: Request) -> dict[str, Any]:
 
     def job() -> tuple[str, dict[str, Any] | None]:
         session = ctx.engine.session(neem)
-        if session.choice is None:
-            session.choice = recorded_choice(session)
-        return session.neem, session.choice
+        return session.neem, recorded_choice(session)
 
     neem, made = await ctx.thread.run(job)
     return {"neem": neem, "task": None, "workflow": None, **(made or {})}
-
-
-def record_choice(session: NeemSession, calls: list[Any], at: Time) -> dict[str, Any]:
-    """Write the user's decision into the NEEM (one transaction); the choice as answered."""
-    from oracle.neem.decisions import record_decision
-    from oracle.service.session import moment_of
-    from oracle.timeline import Instant
-
-    when = Instant.of(moment_of(at, "at")).seconds
-    made = record_decision(session.logger, calls, when)
-    session.logger.flush()
-    return {"task": made.task, "workflow": made.workflow, "at": made.at, "decision": made.iri}
-
-
-def recorded_choice(session: NeemSession) -> dict[str, Any] | None:
-    decision = _decision(session)
-    if decision is None:
-        return None
-    return {"task": decision.task, "workflow": decision.workflow, "at": decision.at, "decision": decision.iri}
-
-
-def _decision(session: NeemSession) -> Any:
-    from oracle.neem.decisions import latest_decision
-
-    logger = session.logger
-    return latest_decision(logger.store, logger.neem_id, logger.ns, logger.vocab.has_rank)
 
 
 def _refused(message: str) -> Exception:

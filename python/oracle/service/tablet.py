@@ -1,15 +1,18 @@
 """What the tablet page shows, in the person's words: the view of a NEEM's latest ranking
 (``GET .../tablet``) and the answers as one or two plain sentences (the ``said`` of why-not,
-what-next and something-else). Built from the JSON the robot's API answers, so the page and
-the robot always see the same ranking."""
+what-next and something-else), built from the JSON the robot's API answers, so the page and
+the robot always see the same ranking; and the person's choice, kept in the NEEM."""
 
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from oracle.neem.decisions import Decision
 from oracle.service.words import Words
+
+if TYPE_CHECKING:
+    from oracle.service.session import NeemSession
 
 
 def tablet_view(neem: str, user: str | None, latest: Mapping[str, Any] | None, words: Words) -> dict[str, Any]:
@@ -75,3 +78,38 @@ def something_else_said(answer: Mapping[str, Any], words: Words) -> str:
     current = answer.get("current")
     other = words.said(alternatives[0]["task"])
     return t["instead_of"].format(task=words.said(current), other=other) if current else t["next"].format(task=other)
+
+
+def record_choice(session: NeemSession, calls: list[Any], at: Any) -> dict[str, Any]:
+    """Write the user's decision into the NEEM (one transaction); the choice as answered."""
+    from oracle.neem.decisions import record_decision
+    from oracle.service.session import moment_of
+    from oracle.timeline import Instant
+
+    when = Instant.of(moment_of(at, "at")).seconds
+    made = record_decision(session.logger, calls, when)
+    session.logger.flush()
+    return {"task": made.task, "workflow": made.workflow, "at": made.at, "decision": made.iri}
+
+
+def recorded_choice(session: NeemSession) -> dict[str, Any] | None:
+    """The user's latest decision as ``GET .../choice`` answers it (None: the NEEM holds none)."""
+    decision_of(session)
+    return session.choice
+
+
+def decision_of(session: NeemSession) -> Decision | None:
+    """The user's latest decision: the one this service recorded, else the NEEM's (read once
+    per session, then kept as ``session.choice``; the NEEM has one writer, this service)."""
+    from oracle.neem.decisions import latest_decision
+
+    made = session.choice
+    if made is None:
+        logger = session.logger
+        found = latest_decision(logger.store, logger.neem_id, logger.ns, logger.vocab.has_rank)
+        if found is not None:
+            session.choice = {"task": found.task, "workflow": found.workflow, "at": found.at, "decision": found.iri}
+        return found
+    if made.get("decision") is None:
+        return None
+    return Decision(str(made["decision"]), float(made["at"]), tuple(made.get("workflow") or [made["task"]]))
