@@ -49,13 +49,8 @@ def record_decision(logger: NeemLogger, calls: Sequence[TaskCall], at: float) ->
     resolved = [logger._resolve(call) for call in calls]
     when = _instant(at)
     out = _Out()
-    action, task, order = logger._event("MentalAction"), logger._event("Task"), logger._event("Order")
-    out.add(task, RDF_TYPE, MENTAL_TASK)
-    out.add(task, RDF_TYPE, T.NAMED_INDIVIDUAL)
-    out.add(action, RDF_TYPE, T.MENTAL_ACTION)
-    out.add(action, T.EXECUTES, task)
-    out.add(action, T.PERFORMED_BY, logger._agent("user", out))
-    out.add(action, T.HAS_INTERVAL, logger._interval(when, when, out))
+    action = logger._mental(MENTAL_TASK, when, out, who="user")
+    order = logger._event("Order")
     out.add(action, DESCRIBED_BY, order)
     out.add(order, RDF_TYPE, T.ORDER)
     for step, call in enumerate(resolved, start=1):
