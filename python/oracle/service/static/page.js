@@ -55,7 +55,7 @@
   function incoming(view) {
     newest = view;
     if (same(view.tasks, shown && shown.tasks) && same(view.workflow, shown && shown.workflow)) {
-      shown = view; pending = null; showFresh(); return;
+      shown = view; pending = null; showFresh(); when.textContent = view.clock || ''; return;
     }
     if (engaged()) { pending = view; showFresh(); } else { apply(view); }
   }
@@ -122,7 +122,7 @@
     (choice.workflow || []).forEach(function (s) { steps.appendChild(el('li', '', s.said)); });
     steps.hidden = !choice.workflow;
     sheet.dataset.phase = 'ask';
-    undo.hidden = true; yes.hidden = false; why.hidden = !!choice.workflow; other.hidden = !!choice.workflow;
+    undo.hidden = true; back.hidden = false; yes.hidden = false; why.hidden = !!choice.workflow; other.hidden = !!choice.workflow;
     note.textContent = choice.workflow ? T.workflow_note : choice.reason;
     if (!available(choice)) {
       sheet.dataset.phase = 'gone'; yes.hidden = true; why.hidden = true; other.hidden = true;
@@ -156,7 +156,7 @@
     stopTimer();
     if (!choosing || !available(choosing)) { sheet.dataset.phase = 'gone'; note.textContent = T.gone; yes.hidden = true; back.focus(); return; }
     sheet.dataset.phase = 'undo';
-    yes.hidden = true; why.hidden = true; other.hidden = true; undo.hidden = false;
+    yes.hidden = true; why.hidden = true; other.hidden = true; back.hidden = true; undo.hidden = false;
     note.textContent = fill(T.sending, {task: choosing.workflow ? choosing.workflow[0].said : choosing.said});
     undo.focus();
     countdown(prefs.undo, T.undo_in, send);
