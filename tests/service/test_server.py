@@ -484,3 +484,15 @@ def test_dwell_confirms_by_itself_for_a_person_who_cannot_tap_twice(server, brow
     again.locator("#back").click()
     assert not again.evaluate("document.getElementById('sheet').open")
     context.close()
+
+
+def test_the_listening_socket_says_tcp_so_answers_go_out_without_nagles_delay():
+    import socket
+
+    from oracle.commands.serve import _listen
+
+    sock = _listen("127.0.0.1", 0)
+    try:  # asyncio sets TCP_NODELAY only on sockets whose proto is TCP; accepted ones inherit it
+        assert sock.proto == socket.IPPROTO_TCP
+    finally:
+        sock.close()
