@@ -233,6 +233,9 @@ def test_page_shows_a_workflows_steps_before_it_starts_and_speaks_german(server,
         for lang, (width, height) in [(lang, size) for lang in ("en", "de") for size in ((800, 1280), (390, 844))]:
             view = open_page(browser, server, f"neem=dora&lang={lang}", width, height)
             view.screenshot(path=f"{shot}/service-page-{lang}-{width}.png", full_page=True)
+            if width == 800:  # the sheet of the workflow: its steps before anything starts
+                view.locator("#workflow").click()
+                view.screenshot(path=f"{shot}/service-sheet-{lang}-{width}.png")
             view.close()
     page.close()
 
