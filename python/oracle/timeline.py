@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
-from datetime import datetime, timezone
+from datetime import datetime, timezone, tzinfo
 
 #: (first hour, local name) in day order; a part lasts until the next one starts.
 PARTS_OF_DAY: tuple[tuple[int, str], ...] = (
@@ -178,3 +178,23 @@ def has_clock(meta: Mapping[str, object]) -> bool:
 
 #: What callers may pass as a time: a datetime, unix seconds, or an Instant already read.
 Moment = datetime | float | int | Instant
+
+
+def display_zone(name: str | None) -> tzinfo:
+    """The zone a person is shown times in (``serve --tz``): the IANA zone ``name``, or the
+    machine's own. Showing is all it does: what is stored, ranked and answered keeps the rule
+    above. TimeValueError for a zone the machine does not know."""
+    if name is None:
+        local = datetime.now().astimezone().tzinfo
+        return local if local is not None else timezone.utc
+    from zoneinfo import ZoneInfo, ZoneInfoNotFoundError
+
+    try:
+        return ZoneInfo(name)
+    except (ZoneInfoNotFoundError, ValueError):
+        raise TimeValueError(f"--tz {name!r}: no such time zone (expected e.g. Europe/Berlin or UTC)") from None
+
+
+def shown_clock(seconds: float, zone: tzinfo) -> datetime:
+    """Unix seconds as the wall clock of ``zone``, for showing a person (``display_zone``)."""
+    return datetime.fromtimestamp(seconds, zone)

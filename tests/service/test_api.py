@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pytest
 
+from oracle.algorithm.params import Hyperparameters
 from oracle.service.app import create_app
 from tests.service.conftest import AVAILABLE, ROUTINE, at, drive
 
@@ -209,7 +210,7 @@ def test_a_perceived_pose_goes_into_the_neem_and_prolog_says_where_the_object_wa
     ("/api/neems/ada/actions", {"call": "pick(red_mug)", "performed_by": "cat"}, 422, "performed_by"),
     ("/api/neems/ada/actions", {"call": "fly(red_mug)"}, 400, "fly"),
     ("/api/neems/ada/choice", {"task": "pick(red_mug)", "workflow": ["fly(x)"]}, 400, "workflow"),
-    ("/api/neems", {"user": "ada", "neem": "ada"}, 400, "already exists"),
+    ("/api/neems", {"user": "ada", "neem": "ada"}, 409, "already exists"),
     ("/api/neems", {"user": ""}, 422, "user"),
     ("/api/prolog", {"query": "X = 1", "neem": "nobody"}, 404, "nobody"),
     ("/api/prolog", {"query": "X = 1", "neem": "ada", "bindings": {"X": True}}, 400, "binding X"),
@@ -311,15 +312,36 @@ def test_openapi_and_offline_docs(client):
     assert client.get("/docs/static/swagger-ui-bundle.js").status_code == 200
 
 
+def test_every_route_declares_its_answer_and_the_error_sent_is_the_one_documented(client, neem):
+    schema = client.get("/openapi.json").json()
+    for path, methods in schema["paths"].items():
+        for method, operation in methods.items():
+            ok = next(code for code in operation["responses"] if code.startswith("2"))
+            content = operation["responses"][ok].get("content", {})
+            if path == "/api/events":
+                continue  # a stream, not a JSON answer
+            assert content["application/json"]["schema"] != {}, (method, path)
+            assert operation["responses"]["422"]["content"]["application/json"]["schema"]["$ref"].endswith("/ErrorAnswer")
+    assert set(schema["components"]["schemas"]["ErrorAnswer"]["properties"]) == {"error"}
+    sent = client.post(f"/api/neems/{neem}/situation", json={"available": "x"}).json()
+    assert set(sent) == {"error"}
+
+
 def test_page_renders_the_latest_ranking_without_external_resources(client, neem):
     drive(client, neem, days=1)
     client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(1, 0)})
     page = client.get("/", params={"neem": neem})
     assert page.status_code == 200
     html = page.text
-    assert "open(small_drawer)" in html and "Why not?" in html
+    # the robot's call stays on the button (data-task); the person reads plain words
+    assert "data-task='open(small_drawer)'" in html and "Open the small drawer" in html
     assert "http://" not in html.replace("http://www.w3", "") and "https://" not in html
-    assert "default-src 'none'" in page.headers["content-security-policy"]
+    policy = page.headers["content-security-policy"]
+    assert "default-src 'none'" in policy and "unsafe-inline" not in policy
+    for name in ("page.js", "page.css"):
+        assert client.get(f"/static/{name}").status_code == 200
+    assert client.get("/favicon.ico").headers["content-type"] == "image/svg+xml"
+    assert client.get("/static/../app.py").status_code == 404
 
 
 def test_a_neem_logged_elsewhere_shows_its_latest_situation(ctx, onto):
@@ -413,3 +435,79 @@ def test_a_reason_says_a_task_is_newly_possible_where_no_context_backs_it():
     assert support_sentence({**done, "context_order": 2, "context": ["a", "b"]}) == "after a \u2192 b: 3\u00d7"
     back = {**done, "new": False, "resumed": True, "focus": ["red_mug"]}
     assert support_sentence(back) == "done 3\u00d7, not at this point; uses red_mug in hand; goes on from before the break"
+
+
+def test_tablet_view_speaks_the_persons_language_and_keeps_the_calls(client, neem):
+    drive(client, neem, days=2)
+    ranked = client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(2, 0)}).json()
+    english = client.get(f"/api/neems/{neem}/tablet", params={"lang": "en"}).json()
+    german = client.get(f"/api/neems/{neem}/tablet", headers={"Accept-Language": "de-DE,de;q=0.9,en;q=0.5"}).json()
+    assert [t["task"] for t in english["tasks"]] == [r["task"] for r in ranked["ranking"]] == [t["task"] for t in german["tasks"]]
+    said = {t["task"]: t["said"] for t in english["tasks"]}
+    assert said["pour(thermos, red_mug)"] == "Pour the coffee into the red mug"
+    assert {t["task"]: t["said"] for t in german["tasks"]}["open(small_drawer)"] == "Die kleine Schublade öffnen"
+    assert english["user"] == "ada" and english["clock"] == "Morning, 08:00" and german["clock"] == "Morgen, 08:00"
+    for view in (english, german):
+        for task in view["tasks"]:  # one short sentence, no call syntax, no scores
+            assert task["reason"].endswith(".") and task["reason"].count(". ") == 0 and "(" not in task["reason"], task
+    assert [s["task"] for s in english["workflow"]] == ranked["chain"]
+
+
+def test_why_not_in_plain_words_fits_every_task_the_top_one_included(client, neem):
+    drive(client, neem, days=2)
+    ranked = client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(2, 0)}).json()
+    for entry in ranked["ranking"]:
+        said = client.get(f"/api/neems/{neem}/why-not", params={"task": entry["task"], "lang": "en"}).json()["said"]
+        assert 1 <= said.count(". ") + 1 <= 2 and len(said) < 200 and "score" not in said, said
+        assert ("first suggestion" in said) == (entry["rank"] == 1), said
+    gone = client.get(f"/api/neems/{neem}/why-not", params={"task": "pick(apple)", "lang": "de"}).json()["said"]
+    assert gone.startswith("Das kann der Roboter jetzt nicht tun")
+
+
+def test_a_choice_is_the_users_decision_in_the_neem_and_survives_a_restart(ctx, onto, neem, client):
+    from fastapi.testclient import TestClient
+
+    from oracle.service import build_context
+
+    drive(client, neem, days=1)
+    client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(1, 0)})
+    made = client.post(f"/api/neems/{neem}/choice", json={"task": "open(small_drawer)", "at": at(1, 1),
+                                                          "workflow": ["open(small_drawer)", "pick(red_mug)"]}).json()
+    assert made["at"] == at(1, 1) and made["decision"]
+    # the decision is the user's: performed by the person, not the robot
+    performer = ctx.thread.call(lambda: [d["o"] for d in ctx.engine.store.find(
+        ctx.engine.resolve(neem), s=made["decision"], p="http://www.ease-crc.org/ont/SOMA.owl#isPerformedBy", exact=True)])
+    assert performer and "Agent_robot" not in performer[0]
+    bad = client.post(f"/api/neems/{neem}/choice", json={"task": "pick(red_mug)", "workflow": ["open(small_drawer)"]})
+    assert bad.status_code == 400
+    store = ctx.thread.call(lambda: ctx.engine.store.location)
+    ctx.thread.call(lambda: ctx.engine.store.close())
+    again = build_context(store, onto, Hyperparameters())
+    with TestClient(create_app(again), base_url="http://127.0.0.1") as restarted:
+        back = restarted.get(f"/api/neems/{neem}/choice").json()
+    assert (back["task"], back["workflow"], back["at"]) == ("open(small_drawer)", ["open(small_drawer)", "pick(red_mug)"], at(1, 1))
+
+
+def test_a_wrong_method_is_a_405_whose_allow_names_every_method_of_the_path(client, neem):
+    for path, allowed in [(f"/api/neems/{neem}/situation", "GET, POST"), (f"/api/neems/{neem}/choice", "GET, POST"),
+                          ("/api/neems", "GET, POST"), ("/api/prolog", "POST")]:
+        answer = client.delete(path)
+        assert (answer.status_code, answer.headers["allow"]) == (405, allowed), path
+        assert set(answer.json()) == {"error"}
+
+
+def test_the_page_shows_times_on_the_zone_it_was_given_and_what_next_tells_choice_from_action(ctx, client, neem):
+    from oracle.timeline import display_zone
+
+    ctx.zone = display_zone("Europe/Berlin")
+    drive(client, neem, days=1)
+    client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(1, 0)})
+    assert client.get(f"/api/neems/{neem}/tablet").json()["clock"] == "Morning, 09:00"  # 08:00 UTC in March
+    client.post(f"/api/neems/{neem}/choice", json={"task": "pick(banana)", "at": at(1, 1)})
+    said = client.get(f"/api/neems/{neem}/what-next").json()["said"]
+    assert "You chose \u201cPick up the banana\u201d; the robot has not done it yet." in said
+    client.post(f"/api/neems/{neem}/actions", json={"call": "pick(banana)", "begin": at(1, 2)})
+    said = client.get(f"/api/neems/{neem}/what-next").json()["said"]
+    assert said.endswith("At 09:00 the robot did: Pick up the banana.")
+    with pytest.raises(Exception, match="no such time zone"):
+        display_zone("Mars/Olympus")

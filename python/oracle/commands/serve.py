@@ -5,7 +5,9 @@ from __future__ import annotations
 import argparse
 import os
 import stat
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 from oracle.commands.common import METHOD, ONTOLOGY_OPTIONS, SETTINGS, STORE, add_options, ontology_from
 from oracle.errors import NeemOracleError
@@ -40,6 +42,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                              " situation just answered)")
     writes.add_argument("--sync-writes", action="store_true",
                         help="answer a situation only after its NEEM write is committed (the default)")
+    parser.add_argument("--tz", metavar="ZONE", help="the zone the page shows times in, e.g. Europe/Berlin (default: the machine's)")
+    parser.add_argument("--confirm", choices=("tap", "dwell"), default="tap",
+                        help="how the page confirms a choice: a second tap on Yes, or dwelling (default tap)")
+    parser.add_argument("--dwell", type=float, default=3.0, metavar="S", help="seconds a dwell takes to confirm (default 3)")
+    parser.add_argument("--undo", type=float, default=5.0, metavar="S",
+                        help="seconds a confirmed choice can be undone before it reaches the robot (default 5)")
     add_options(parser, *ONTOLOGY_OPTIONS)
     parser.set_defaults(handler=run)
 
@@ -76,12 +84,11 @@ def strong_token(token: str, where: str) -> str:
 def run(args: argparse.Namespace) -> int:
     import logging
 
-    import uvicorn
-
     from oracle.commands.common import method_from, settings_from
     from oracle.service import build_context, is_loopback
     from oracle.service.app import create_app
-    from oracle.service.guard import http_protocol
+    from oracle.service.page import Manner
+    from oracle.timeline import TimeValueError, display_zone
 
     token = read_token(args)
     if token is None and not is_loopback(args.host):
@@ -94,6 +101,13 @@ def run(args: argparse.Namespace) -> int:
         raise NeemOracleError(f"--max-body {args.max_body}: expected 1024 to {64 << 20} bytes")
     if not 1 <= args.port <= 65535:
         raise NeemOracleError(f"--port {args.port}: expected 1-65535")
+    if not (0 < args.dwell <= 60 and 0 <= args.undo <= 60):
+        raise NeemOracleError("--dwell and --undo: expected seconds in (0, 60] and [0, 60]")
+    try:
+        zone = display_zone(args.tz)
+    except TimeValueError as error:
+        raise NeemOracleError(str(error)) from None
+    listening = _listen(args.host, args.port)  # a busy port is one line, before anything is loaded
     settings = settings_from(args.settings)
     method_from(args)  # an unknown --method is refused before the store is opened
     ontology = ontology_from(args)
@@ -101,17 +115,78 @@ def run(args: argparse.Namespace) -> int:
     ctx = build_context(args.store, ontology, settings, args.neem, token, write_behind=args.write_behind,
                         method=method_from(args), host=args.host, extra_hosts=tuple(args.allowed_host),
                         limits=limits, prolog_writes=args.allow_prolog_writes)
+    ctx.zone = zone
+    ctx.manner = Manner(confirm=args.confirm, dwell_s=args.dwell, undo_s=args.undo)
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(name)s %(message)s")
     location = ctx.thread.call(lambda: ctx.engine.store.location)
-    print(f"serving {location} on http://{args.host}:{args.port}/ (API docs at /docs); Ctrl-C stops", flush=True)
+    print(f"serving {location}; the page: {page_url(args.host, args.port, token)} (API docs at /docs); Ctrl-C stops",
+          flush=True)
     os.umask(0o077)  # anything the service writes (a new SQLite file's journal) stays private
+    server = _server(create_app(ctx), ctx.hub.close, limits)
     try:
-        # an open event stream must not hold a stop (Ctrl-C, SIGTERM) for ever
-        # limit_concurrency: connections beyond it get 503 at once (the guard's in-flight limit is
-        # below it); timeout_keep_alive closes idle connections, so a slow crowd cannot hold sockets
-        uvicorn.run(create_app(ctx), host=args.host, port=args.port, access_log=False, log_level="warning",
-                    server_header=False, timeout_graceful_shutdown=5, limit_concurrency=limits.in_flight + 16,
-                    timeout_keep_alive=int(limits.keep_alive_seconds), backlog=128, http=http_protocol(limits))
+        server.run(sockets=[listening])
+    except KeyboardInterrupt:  # uvicorn raises the Ctrl-C it held once it has stopped
+        pass
     finally:
         ctx.thread.close()
+    print("stopped", flush=True)
     return 0
+
+
+def page_url(host: str, port: int, token: str | None) -> str:
+    """The address to open on the tablet (with ``?token=`` when the service has one)."""
+    from urllib.parse import quote
+
+    if host in ("0.0.0.0", "::"):
+        import socket
+
+        host = socket.gethostname()
+    shown = f"[{host}]" if ":" in host else host
+    return f"http://{shown}:{port}/" + (f"?token={quote(token, safe='')}" if token else "")
+
+
+def _listen(host: str, port: int) -> Any:
+    import socket
+
+    family = socket.AF_INET6 if ":" in host else socket.AF_INET
+    # IPPROTO_TCP named: asyncio turns Nagle off (TCP_NODELAY) only on sockets that say so, and an
+    # accepted socket inherits it; without it every answer waited ~40 ms for a delayed ACK
+    sock = socket.socket(family, socket.SOCK_STREAM, socket.IPPROTO_TCP)
+    sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+    try:
+        sock.bind((host, port))
+    except OSError as error:
+        sock.close()
+        raise NeemOracleError(f"--port {port}: cannot listen on {host}:{port} ({error.strerror or error}); "
+                              "another service may be using it: pick another --port") from None
+    sock.set_inheritable(True)
+    return sock
+
+
+def _server(app: Any, on_stop: Callable[[], None], limits: Any) -> Any:
+    """uvicorn's server, told to end the page's event streams as soon as it is asked to stop
+    (an open stream would otherwise hold Ctrl-C for the graceful timeout). limit_concurrency:
+    connections beyond it get 503 at once (the guard's in-flight limit is below it);
+    timeout_keep_alive closes idle connections, so a slow crowd cannot hold sockets; the http
+    protocol puts a deadline on request headers (guard.http_protocol)."""
+    from oracle.service.guard import http_protocol
+    import asyncio
+
+    import uvicorn
+
+    class Server(uvicorn.Server):
+        loop: asyncio.AbstractEventLoop | None = None
+
+        async def serve(self, sockets: Any = None) -> None:
+            self.loop = asyncio.get_running_loop()
+            await super().serve(sockets)
+
+        def handle_exit(self, sig: int, frame: Any) -> None:
+            super().handle_exit(sig, frame)
+            if self.loop is not None:
+                self.loop.call_soon_threadsafe(on_stop)
+
+    config = uvicorn.Config(app, access_log=False, log_level="warning", server_header=False, timeout_graceful_shutdown=1,
+                            limit_concurrency=limits.in_flight + 16, timeout_keep_alive=int(limits.keep_alive_seconds),
+                            backlog=128, http=http_protocol(limits))
+    return Server(config)

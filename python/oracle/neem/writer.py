@@ -435,14 +435,14 @@ class NeemLogger:
         out.add(interval, T.END, end.seconds)
         return interval
 
-    def _mental(self, task_class: str, at: Instant, out: _Out) -> str:
+    def _mental(self, task_class: str, at: Instant, out: _Out, who: str = "robot") -> str:
         action = self._event("MentalAction")
         task = self._event("Task")  # one task per action, mental ones too
         out.add(task, RDF_TYPE, task_class)
         out.add(task, RDF_TYPE, T.NAMED_INDIVIDUAL)
         out.add(action, RDF_TYPE, T.MENTAL_ACTION)
         out.add(action, T.EXECUTES, task)
-        out.add(action, T.PERFORMED_BY, self._agent("robot", out))
+        out.add(action, T.PERFORMED_BY, self._agent(who, out))
         out.add(action, T.HAS_INTERVAL, self._interval(at, at, out))
         return action
 

@@ -13,7 +13,9 @@ import asyncio
 import logging
 from contextlib import asynccontextmanager
 from dataclasses import dataclass, field
+from datetime import tzinfo
 from typing import Any
+from urllib.parse import parse_qs
 
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
@@ -25,9 +27,12 @@ from oracle.service.engine import Engine, EngineThread, NotFound, Overloaded, Pr
 from oracle.service.events import EventHub
 from oracle.service.guard import STATIC_DOCS, Guard, Limits, allowed_hosts
 from oracle.service.queries import NoSuchNeem, QueryProcess
-from oracle.service.routes import router
+from oracle.service.page import Manner, render_token_page
 from oracle.service.past_routes import router as past_router
+from oracle.service.routes import DuplicateNeem, router
 from oracle.service.session import OutOfOrder
+from oracle.service.words import TEXT, Lexicon, pick_lang
+from oracle.timeline import display_zone
 
 LOG = logging.getLogger("oracle.service")
 
@@ -52,6 +57,12 @@ class Context:
     query_process: QueryProcess | None = None
     hub: EventHub = field(default_factory=EventHub)
     stopping: asyncio.Event = field(default_factory=asyncio.Event)
+    #: The zone the page shows times in (``serve --tz``; None: the machine's).
+    zone: tzinfo = field(default_factory=lambda: display_zone(None))
+    #: How the page confirms and undoes a choice (``serve --confirm``, ``--undo``).
+    manner: Manner = field(default_factory=Manner)
+    #: The page's words (oracle.service.words), read on first use.
+    lexicon: Lexicon | None = None
 
 
 def create_app(ctx: Context) -> FastAPI:
@@ -68,11 +79,11 @@ def create_app(ctx: Context) -> FastAPI:
     app.include_router(router)
     app.include_router(past_router)
     _offline_docs(app)
-    app.add_middleware(Guard, ctx=ctx)
+    app.add_middleware(Guard, ctx=ctx, token_page=_token_page)
 
     @app.exception_handler(NeemOracleError)
     async def domain_error(request: Request, error: NeemOracleError) -> JSONResponse:
-        status = (404 if isinstance(error, (NotFound, NoSuchNeem)) else 409 if isinstance(error, OutOfOrder)
+        status = (404 if isinstance(error, (NotFound, NoSuchNeem)) else 409 if isinstance(error, (OutOfOrder, DuplicateNeem))
                   else 403 if isinstance(error, PrologRefused) else error.status if isinstance(error, Overloaded) else 400)
         return _error(status, str(error))
 
@@ -88,6 +99,8 @@ def create_app(ctx: Context) -> FastAPI:
         answer = _error(error.status_code, f"{request.method} {request.url.path}: {error.detail}")
         for name, value in (error.headers or {}).items():
             answer.headers[name] = value
+        if error.status_code == 405:  # every method of every route on the path, not the first route's
+            answer.headers["Allow"] = ", ".join(_methods(request.app, request.url.path))
         return answer
 
     @app.exception_handler(Exception)
@@ -103,27 +116,51 @@ def _error(status: int, message: str) -> JSONResponse:
     return JSONResponse({"error": line}, status_code=status)
 
 
+def _methods(app: FastAPI, path: str) -> list[str]:
+    from starlette.routing import Route
+
+    found: set[str] = set()
+    for route in [*app.routes, *router.routes]:  # the API's routes sit in an included router
+        if isinstance(route, Route) and route.methods and route.path_regex.match(path):
+            found.update(route.methods)
+    return sorted(found)
+
+
 def _route(request: Request) -> str:
     return getattr(request.scope.get("route"), "path", None) or "(no route)"
 
 
+def _token_page(headers: dict[str, str], query: bytes) -> Response:
+    from fastapi.responses import HTMLResponse
+
+    asked = parse_qs(query.decode("latin-1"))
+    lang = pick_lang(next(iter(asked.get("lang", [])), None), headers.get("accept-language"))
+    html = render_token_page(lang, TEXT[lang], next(iter(asked.get("neem", [])), None))
+    return HTMLResponse(html, status_code=401, headers={
+        "Content-Security-Policy": "default-src 'none'; style-src 'self'; img-src 'self'; form-action 'self'; base-uri 'none'",
+        "Cache-Control": "no-store"})
+
+
 def _offline_docs(app: FastAPI) -> None:
-    """Swagger UI from the swagger-ui-bundle package: /docs works without a network."""
+    """Swagger UI 5 (it reads OpenAPI 3.1) from the fastapi-offline package's files: /docs
+    works without a network."""
+    from pathlib import Path
+
     from fastapi.openapi.docs import get_swagger_ui_html
     from fastapi.staticfiles import StaticFiles
 
     try:
-        import swagger_ui_bundle  # type: ignore[import-untyped]
+        import fastapi_offline
     except ImportError:  # the schema stays at /openapi.json
         return
-    app.mount(STATIC_DOCS, StaticFiles(directory=swagger_ui_bundle.swagger_ui_path), name="docs-static")
+    app.mount(STATIC_DOCS, StaticFiles(directory=Path(fastapi_offline.__file__).parent / "static"), name="docs-static")
 
     @app.get("/docs", include_in_schema=False)
     async def docs() -> Response:
         return get_swagger_ui_html(openapi_url="/openapi.json", title="neem-oracle service",
                                    swagger_js_url=f"{STATIC_DOCS}/swagger-ui-bundle.js",
                                    swagger_css_url=f"{STATIC_DOCS}/swagger-ui.css",
-                                   swagger_favicon_url=f"{STATIC_DOCS}/favicon-32x32.png")
+                                   swagger_favicon_url=f"{STATIC_DOCS}/favicon.png")
 
 
 __all__ = ["Context", "create_app"]

@@ -21,6 +21,10 @@ KEEPALIVE_S = 15.0
 RETRY_MS = 2000
 
 
+#: What ``close`` puts in a subscriber's queue: the stream ends.
+_END = None
+
+
 @dataclass(frozen=True)
 class Event:
     kind: str  # situation | action | perception | choice | neem
@@ -34,12 +38,19 @@ class Event:
 
 class EventHub:
     def __init__(self) -> None:
-        self._subscribers: set[tuple[asyncio.Queue[tuple[int, Event]], str | None]] = set()
+        self._subscribers: set[tuple[asyncio.Queue[tuple[int, Event] | None], str | None]] = set()
         self._number = 0
 
     @property
     def subscribers(self) -> int:
         return len(self._subscribers)
+
+    def close(self) -> None:
+        """End every stream now (the service is stopping): each subscriber gets the end mark."""
+        for queue, _ in list(self._subscribers):
+            if queue.full():
+                queue.get_nowait()
+            queue.put_nowait(_END)
 
     def publish(self, event: Event) -> None:
         self._number += 1
@@ -52,17 +63,20 @@ class EventHub:
 
     async def stream(self, neem: str | None, until: asyncio.Event | None = None) -> AsyncIterator[str]:
         """SSE text for one subscriber, filtered to ``neem`` (None: every NEEM)."""
-        queue: asyncio.Queue[tuple[int, Event]] = asyncio.Queue(QUEUE_SIZE)
+        queue: asyncio.Queue[tuple[int, Event] | None] = asyncio.Queue(QUEUE_SIZE)
         entry = (queue, neem)
         self._subscribers.add(entry)
         try:
             yield f"retry: {RETRY_MS}\n: connected\n\n"
             while until is None or not until.is_set():
                 try:
-                    number, event = await asyncio.wait_for(queue.get(), KEEPALIVE_S)
+                    item = await asyncio.wait_for(queue.get(), KEEPALIVE_S)
                 except TimeoutError:
                     yield ": keep-alive\n\n"
                     continue
+                if item is None:
+                    return
+                number, event = item
                 yield event.sse(number)
         finally:
             self._subscribers.discard(entry)

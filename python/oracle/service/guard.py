@@ -24,9 +24,10 @@ from typing import Any
 from urllib.parse import parse_qs, urlsplit
 
 LOG = logging.getLogger("oracle.service")
-#: Paths that show no user data: the schema and its viewer need no token.
-OPEN_PATHS = ("/openapi.json", "/docs", "/docs/")
+#: Paths that show no user data: the schema, its viewer, the page's style, script and icon need no token.
+OPEN_PATHS = ("/openapi.json", "/docs", "/docs/", "/favicon.ico")
 STATIC_DOCS = "/docs/static"
+STATIC_PAGE = "/static/"
 #: Host names every service answers to (plus its bound address and ``--allowed-host`` names).
 LOOPBACK_HOSTS = frozenset({"localhost", "127.0.0.1", "::1"})
 #: Sent with every answer: no site may frame the page (clickjacking), no type sniffing.
@@ -103,9 +104,12 @@ class Guard:
     """The middleware (see the module docstring). ``ctx`` is the app's Context: its token, its
     allowed hosts and its limits."""
 
-    def __init__(self, app: Any, ctx: Any) -> None:
+    def __init__(self, app: Any, ctx: Any, token_page: Any = None) -> None:
         self.app = app
         self.ctx = ctx
+        #: ``token_page(headers, query) -> Response``: what a person opening ``/`` without the
+        #: token sees (a page asking for it) instead of a JSON refusal.
+        self.token_page = token_page
         self.in_flight = 0
 
     async def __call__(self, scope: dict[str, Any], receive: Any, send: Any) -> None:
@@ -135,7 +139,10 @@ class Guard:
             finally:
                 self.in_flight -= 1
         except Refusal as refusal:
-            if status[0] == 0:
+            if status[0] == 0 and refusal.status == 401 and scope["path"] == "/" and self.token_page is not None:
+                page = self.token_page(headers, scope.get("query_string", b""))
+                await page(scope, receive, framed)
+            elif status[0] == 0:
                 await _answer(framed, refusal)
         finally:
             route = getattr(scope.get("route"), "path", None) or "(no route)"
@@ -156,7 +163,7 @@ class Guard:
             raise Refusal(403, "cross-origin requests are refused")
         path = scope["path"]
         token = self.ctx.token
-        if token is None or path in OPEN_PATHS or path.startswith(STATIC_DOCS):
+        if token is None or path in OPEN_PATHS or path.startswith((STATIC_DOCS, STATIC_PAGE)):
             return
         given = _presented(headers, scope.get("query_string", b""))
         if given is None or not hmac.compare_digest(given.encode(), token.encode()):

@@ -10,7 +10,9 @@ from typing import Any
 
 from fastapi import APIRouter, Query, Request
 
-router = APIRouter(tags=["answers"])
+from oracle.service import schemas as S
+
+router = APIRouter(tags=["answers"], responses=S.ERRORS)
 
 
 def _seconds(at: str | None) -> float | None:
@@ -44,7 +46,7 @@ def _summary(engine: Any, neem: str, at: str | None) -> dict[str, Any]:
     return state_summary(bridge, _seconds(at), has_clock(engine.store.neem(bridge.neem_id).meta))
 
 
-@router.get("/api/neems/{neem}/ask")
+@router.get("/api/neems/{neem}/ask", response_model=S.PastAnswer)
 async def ask_route(neem: str, request: Request,
                     q: str = Query(min_length=1, max_length=500, description="a question, e.g. when did I last open the fridge?"),
                     at: str | None = Query(None, description="as of this time (default: the NEEM's latest event)")) -> dict[str, Any]:
@@ -53,7 +55,7 @@ async def ask_route(neem: str, request: Request,
     return await ctx.thread.run(_ask, ctx.engine, neem, q, at)
 
 
-@router.get("/api/neems/{neem}/summary")
+@router.get("/api/neems/{neem}/summary", response_model=S.StateSummary)
 async def summary_route(neem: str, request: Request,
                         at: str | None = Query(None, description="as of this time (default: the NEEM's latest event)")) -> dict[str, Any]:
     """The NEEM's state summary: recent actions, the latest and what usually follows it, the predicted chain."""

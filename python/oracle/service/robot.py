@@ -19,6 +19,8 @@ class Drive:
     latencies: dict[str, list[float]] = field(default_factory=dict)
     errors: list[str] = field(default_factory=list)
     steps: int = 0
+    #: The task executed at each step (the person's choice where the robot followed the tablet).
+    executed: list[str] = field(default_factory=list)
 
 
 def persona_rows(persona: int, seed: int, days: int) -> tuple[str, list[Any]]:
@@ -33,10 +35,12 @@ def persona_rows(persona: int, seed: int, days: int) -> tuple[str, list[Any]]:
 
 def drive(url: str, user: str, rows: list[Any], neem: str | None, token: str | None = None,
           delay: float = 0.0, stop: threading.Event | None = None, choices: bool = True,
-          announce: Callable[[str], None] | None = None) -> Drive:
+          announce: Callable[[str], None] | None = None, follow: float | None = None) -> Drive:
     """Create (or reuse) the NEEM (``announce`` is told its id) and post the rows step by step:
     perception of objects not seen before, the situation, the persona's choice as the tablet
-    posts it (``choices``), and the action the robot then executes."""
+    posts it (``choices``), and the action the robot then executes. With ``follow`` (seconds)
+    the robot follows the tablet instead: after each situation it waits that long for the
+    person's choice and executes it (the persona's when none comes)."""
     from oracle.service.client import Client, ServiceError
 
     client = Client(url, token)
@@ -76,12 +80,16 @@ def drive(url: str, user: str, rows: list[Any], neem: str | None, token: str | N
                 if "engine" in timing:
                     result.latencies.setdefault("server", []).append(timing["engine"] + timing.get("queue", 0.0))
                     result.latencies.setdefault("engine", []).append(timing["engine"])
-                if choices:
-                    _, ms = client.request("POST", f"{base}/choice", {"task": str(row.action)})
+                chosen = str(row.action)
+                if follow is not None:
+                    chosen = wait_for_choice(client, base, follow, available, stop) or chosen
+                elif choices:
+                    _, ms = client.request("POST", f"{base}/choice", {"task": str(row.action), "at": at})
                     result.latencies.setdefault("choice", []).append(ms)
                 end = row.end.isoformat() if row.end is not None else None
-                _, ms = client.request("POST", f"{base}/actions", {"call": str(row.action), "begin": at, "end": end})
+                _, ms = client.request("POST", f"{base}/actions", {"call": chosen, "begin": at, "end": end})
                 result.latencies.setdefault("action", []).append(ms)
+                result.executed.append(chosen)
             except ServiceError as error:
                 result.errors.append(str(error))
             result.steps += 1
@@ -90,6 +98,24 @@ def drive(url: str, user: str, rows: list[Any], neem: str | None, token: str | N
     finally:
         client.close()
     return result
+
+
+def wait_for_choice(client: Any, base: str, seconds: float, available: list[str],
+                    stop: threading.Event | None = None) -> str | None:
+    """The task the person chooses on the tablet within ``seconds`` (a decision newer than the
+    one there now, among ``available``); None when none comes."""
+    before = client.get(f"{base}/choice").get("decision")
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline and not (stop is not None and stop.is_set()):
+        made = client.get(f"{base}/choice")
+        if made.get("decision") not in (None, before) and made.get("task") in available:
+            return str(made["task"])
+        time.sleep(POLL_S)
+    return None
+
+
+#: How often a robot following the tablet asks for the person's choice.
+POLL_S = 0.25
 
 
 def percentile(sorted_values: list[float], q: float) -> float:

@@ -11,17 +11,20 @@ import time
 from typing import TYPE_CHECKING, Annotated, Any, Literal
 
 from fastapi import APIRouter, BackgroundTasks, Query, Request
-from fastapi.responses import HTMLResponse, JSONResponse, StreamingResponse
+from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, StreamingResponse
 from pydantic import BaseModel, Field
 
+from oracle.errors import LoggingError
+from oracle.service import schemas as S
 from oracle.service.events import Event
-from oracle.service.page import render_page
+from oracle.service.page import STATIC, render_page
+from oracle.service.tablet import decision_of as _decision, record_choice, recorded_choice
 
 if TYPE_CHECKING:
     from oracle.service.session import NeemSession
 
 Time = float | str | None
-router = APIRouter()
+router = APIRouter(responses=S.ERRORS)
 
 
 class NewNeem(BaseModel):
@@ -59,6 +62,7 @@ class ActionIn(BaseModel):
 class ChoiceIn(BaseModel):
     task: str = Field(description="the task the user chose")
     workflow: list[str] | None = Field(None, description="the whole predicted chain, when chosen as one workflow")
+    at: Time = Field(None, description="when the user confirmed it (default: now)")
 
 
 class PrologIn(BaseModel):
@@ -71,11 +75,15 @@ class PrologIn(BaseModel):
     timeout: float = Field(1.0, gt=0, le=60, description="seconds (at most the service's limit: serve --query-seconds, 1 s by default)")
 
 
+class DuplicateNeem(LoggingError):
+    """A new NEEM named like one in the store (409)."""
+
+
 def _ctx(request: Request) -> Any:
     return request.app.state.ctx
 
 
-@router.get("/api/health", tags=["neems"])
+@router.get("/api/health", tags=["neems"], response_model=S.Health)
 async def health(request: Request) -> dict[str, Any]:
     """A round trip through the engine thread doing nothing: the floor under every answer."""
     ctx = _ctx(request)
@@ -84,22 +92,30 @@ async def health(request: Request) -> dict[str, Any]:
 
 
 # -- NEEMs --------------------------------------------------------------------------------
-@router.get("/api/neems", tags=["neems"])
+@router.get("/api/neems", tags=["neems"], response_model=list[S.NeemListed])
 async def list_neems(request: Request) -> list[dict[str, Any]]:
     ctx = _ctx(request)
     return await ctx.thread.run(ctx.engine.neems)
 
 
-@router.post("/api/neems", status_code=201, tags=["neems"])
+@router.post("/api/neems", status_code=201, tags=["neems"], response_model=S.NeemMade)
 async def create_neem(body: NewNeem, request: Request) -> dict[str, Any]:
     ctx = _ctx(request)
-    made = await ctx.thread.run(ctx.engine.create, body.user, body.neem)
+
+    def job() -> dict[str, Any]:
+        from oracle.store.ids import find_neem
+
+        if body.neem is not None and find_neem(ctx.engine.store, body.neem) is not None:
+            raise DuplicateNeem(f"NEEM {body.neem!r} already exists: choose another name")
+        return ctx.engine.create(body.user, body.neem)
+
+    made = await ctx.thread.run(job)
     ctx.hub.publish(Event("neem", made["id"], {"id": made["id"]}))
     return made
 
 
 # -- the robot ------------------------------------------------------------------------------
-@router.post("/api/neems/{neem}/perception", tags=["robot"])
+@router.post("/api/neems/{neem}/perception", tags=["robot"], response_model=S.PerceptionAnswer)
 async def perception(neem: str, body: Perception, request: Request) -> dict[str, Any]:
     ctx = _ctx(request)
     seen = [(o.name, o.pose) for o in body.objects]
@@ -114,7 +130,7 @@ async def perception(neem: str, body: Perception, request: Request) -> dict[str,
     return {"neem": neem, **data}
 
 
-@router.post("/api/neems/{neem}/situation", tags=["robot"])
+@router.post("/api/neems/{neem}/situation", tags=["robot"], response_model=S.SituationAnswer)
 async def situation(neem: str, body: SituationIn, request: Request, background: BackgroundTasks) -> JSONResponse:
     """Log the available tasks as the imagined situation, rank them, write the ranking back as
     the imagined preference. The answer is sent once the write is committed (with serve
@@ -161,7 +177,7 @@ def _after(sent: threading.Event, write: Any) -> None:
 RELEASE_S = 1.0
 
 
-@router.get("/api/neems/{neem}/situation", tags=["robot"])
+@router.get("/api/neems/{neem}/situation", tags=["robot"], response_model=S.SituationAnswer)
 async def latest_situation(neem: str, request: Request) -> dict[str, Any]:
     """The latest ranking this service answered for the NEEM (`ranking` empty before the first)."""
     ctx = _ctx(request)
@@ -169,7 +185,7 @@ async def latest_situation(neem: str, request: Request) -> dict[str, Any]:
     return latest or {"neem": neem, "ranking": [], "chain": []}
 
 
-@router.post("/api/neems/{neem}/actions", tags=["robot"])
+@router.post("/api/neems/{neem}/actions", tags=["robot"], response_model=S.ActionAnswer)
 async def action(neem: str, body: ActionIn, request: Request) -> dict[str, Any]:
     """An executed action. `done` logs it at once; `begin` keeps it open (in memory) until its
     `end`. A gap of the logger's idle threshold before it is logged as an idle action."""
@@ -208,51 +224,137 @@ def _missing(field: str) -> Exception:
     return LoggingError(f"{field} is required for this phase")
 
 
-@router.post("/api/neems/{neem}/choice", tags=["tablet"])
+@router.post("/api/neems/{neem}/choice", tags=["tablet"], response_model=S.ChoiceAnswer)
 async def choice(neem: str, body: ChoiceIn, request: Request) -> dict[str, Any]:
-    """The user's decision on the tablet, handed to the robot (event `choice`, and GET
-    .../choice). The NEEM records it when the robot executes it, as the next action."""
+    """The user's confirmed decision on the tablet: recorded in the NEEM as the user's own
+    decision (oracle.neem.decisions) and handed to the robot (event `choice`, and GET
+    .../choice). What the robot then does is logged apart, as its action."""
     ctx = _ctx(request)
 
     def job() -> tuple[str, dict[str, Any]]:
         session = ctx.engine.session(neem)
-        task = str(session.calls([body.task], "task")[0])
-        workflow = [str(c) for c in session.calls(body.workflow, "workflow")] if body.workflow else None
-        session.choice = {"task": task, "workflow": workflow}
-        return session.neem, session.choice
+        task = session.calls([body.task], "task")[0]
+        workflow = session.calls(body.workflow, "workflow") if body.workflow else None
+        if workflow is not None and str(workflow[0]) != str(task):
+            raise _refused(f"workflow: its first step {workflow[0]} is not the task {task}")
+        made = record_choice(session, workflow or [task], body.at)
+        session.choice = made
+        return session.neem, made
 
     neem, made = await ctx.thread.run(job)
     ctx.hub.publish(Event("choice", neem, made))
     return {"neem": neem, **made}
 
 
-@router.get("/api/neems/{neem}/choice", tags=["tablet"])
+@router.get("/api/neems/{neem}/choice", tags=["tablet"], response_model=S.ChoiceAnswer)
 async def latest_choice(neem: str, request: Request) -> dict[str, Any]:
+    """The user's latest decision: this service's, or after a restart the NEEM's."""
     ctx = _ctx(request)
-    made = await ctx.thread.run(lambda: ctx.engine.session(neem).choice)
+
+    def job() -> tuple[str, dict[str, Any] | None]:
+        session = ctx.engine.session(neem)
+        return session.neem, recorded_choice(session)
+
+    neem, made = await ctx.thread.run(job)
     return {"neem": neem, "task": None, "workflow": None, **(made or {})}
 
 
+def _refused(message: str) -> Exception:
+    from oracle.errors import LoggingError
+
+    return LoggingError(message)
+
+
 # -- answers ------------------------------------------------------------------------------
-@router.get("/api/neems/{neem}/why-not", tags=["answers"])
+Lang = Query(None, description="the language of `said`: en or de (default: the browser's, else en)")
+
+
+@router.get("/api/neems/{neem}/why-not", tags=["answers"], response_model=S.SpokenAnswer)
 async def why_not(neem: str, request: Request, task: str = Query(description="a task call, e.g. pick(banana)"),
-                  at: str | None = Query(None, description="time asked about (default: the latest decision)")) -> dict[str, Any]:
+                  at: str | None = Query(None, description="time asked about (default: the latest decision)"),
+                  lang: str | None = Lang) -> dict[str, Any]:
     ctx = _ctx(request)
     when: Time = float(at) if at is not None and _is_number(at) else at
-    return await ctx.thread.run(ctx.engine.why_not, neem, task, when)
+    words = _words(request, lang)
+
+    def job() -> dict[str, Any]:
+        from oracle.service.tablet import why_not_said
+
+        made = ctx.engine.why_not(neem, task, when)
+        session = ctx.engine.session(neem)
+        call = str(session.calls([task], "task")[0])
+        return {**made, "said": why_not_said(call, session.latest, made["answer"], _decision(session), words)}
+
+    return await ctx.thread.run(job)
 
 
-@router.get("/api/neems/{neem}/what-next", tags=["answers"])
-async def what_next(neem: str, request: Request) -> dict[str, Any]:
+@router.get("/api/neems/{neem}/what-next", tags=["answers"], response_model=S.SpokenAnswer)
+async def what_next(neem: str, request: Request, lang: str | None = Lang) -> dict[str, Any]:
     ctx = _ctx(request)
-    return await ctx.thread.run(ctx.engine.what_next, neem)
+    words = _words(request, lang)
+
+    def job() -> dict[str, Any]:
+        from oracle.service.tablet import what_next_said
+
+        made = ctx.engine.what_next(neem)
+        session = ctx.engine.session(neem)
+        last = next(({"call": s.label, "begin": s.time} for s in reversed(session.ranker.steps) if not s.idle), None)
+        return {**made, "said": what_next_said(made["answer"], _decision(session), last, words)}
+
+    return await ctx.thread.run(job)
 
 
-@router.get("/api/neems/{neem}/something-else", tags=["answers"])
+@router.get("/api/neems/{neem}/something-else", tags=["answers"], response_model=S.SpokenAnswer)
 async def something_else(neem: str, request: Request,
-                         task: str | None = Query(None, description="proposed task (default: the latest action's)")) -> dict[str, Any]:
+                         task: str | None = Query(None, description="proposed task (default: the latest action's)"),
+                         lang: str | None = Lang) -> dict[str, Any]:
     ctx = _ctx(request)
-    return await ctx.thread.run(ctx.engine.something_else, neem, task)
+    words = _words(request, lang)
+
+    def job() -> dict[str, Any]:
+        from oracle.service.tablet import something_else_said
+
+        made = ctx.engine.something_else(neem, task)
+        return {**made, "said": something_else_said(made["answer"], words)}
+
+    return await ctx.thread.run(job)
+
+
+# -- the tablet's words -----------------------------------------------------------------------
+def _words(request: Request, lang: str | None) -> Any:
+    """The words for this request: ``lang``, else the browser's language; the service's zone."""
+    from oracle.service.words import Words, load_lexicon, pick_lang
+
+    ctx = _ctx(request)
+    if ctx.lexicon is None:
+        ctx.lexicon = load_lexicon(ontology=ctx.engine.ontology)
+    return Words(ctx.lexicon, pick_lang(lang, request.headers.get("accept-language")), ctx.zone)
+
+
+@router.get("/api/neems/{neem}/tablet", tags=["tablet"], response_model=S.TabletView)
+async def tablet(neem: str, request: Request, lang: str | None = Lang) -> dict[str, Any]:
+    """The latest ranking as the page shows it: plain words in the asked language, the time on
+    the person's clock, the user's name (the robot's calls kept beside each)."""
+    ctx = _ctx(request)
+    words = _words(request, lang)
+    return await ctx.thread.run(_view, ctx, neem, words)
+
+
+def _view(ctx: Any, neem: str, words: Any) -> dict[str, Any]:
+    from oracle.service.tablet import tablet_view
+
+    session = ctx.engine.session(neem)
+    return tablet_view(session.neem, session.logger.user, session.latest, words)
+
+
+@router.get("/api/neems/{neem}/words", tags=["tablet"], response_model=S.Said)
+async def said(neem: str, request: Request, call: str = Query(description="a task call, e.g. open(fridge)"),
+               lang: str | None = Lang) -> dict[str, Any]:
+    """A call as a person says it (what the page shows for the robot's latest action)."""
+    ctx = _ctx(request)
+    words = _words(request, lang)
+    parsed = await ctx.thread.run(lambda: ctx.engine.session(neem).calls([call], "call")[0])
+    return {"call": str(parsed), "said": words.said(parsed)}
 
 
 def _is_number(text: str) -> bool:
@@ -264,7 +366,7 @@ def _is_number(text: str) -> bool:
 
 
 # -- Prolog and events --------------------------------------------------------------------
-@router.post("/api/prolog", tags=["prolog"])
+@router.post("/api/prolog", tags=["prolog"], response_model=S.PrologAnswer)
 async def prolog(body: PrologIn, request: Request) -> dict[str, Any]:
     """A read-only Prolog query over one NEEM, answered as a page of JSON solutions."""
     ctx = _ctx(request)
@@ -313,25 +415,40 @@ async def _until_closed(request: Request, stream: Any) -> Any:
 
 # -- the page -----------------------------------------------------------------------------
 @router.get("/", response_class=HTMLResponse, include_in_schema=False)
-async def page(request: Request, neem: str | None = None) -> HTMLResponse:
+async def page(request: Request, neem: str | None = None, lang: str | None = None) -> HTMLResponse:
     ctx = _ctx(request)
+    words = _words(request, lang)
 
-    def job() -> tuple[str | None, dict[str, Any] | None]:
+    def job() -> dict[str, Any] | None:
         chosen = neem or ctx.default_neem or ctx.engine.newest()
-        if chosen is None:
-            return None, None
-        session = ctx.engine.session(chosen)
-        return session.neem, session.latest
+        return None if chosen is None else _view(ctx, chosen, words)
 
-    chosen, state = await ctx.thread.run(job)
-    html = render_page(chosen, state, ctx.token)
-    return HTMLResponse(html, headers=PAGE_HEADERS)
+    view = await ctx.thread.run(job)
+    text = dict(words.text)
+    return HTMLResponse(render_page(view, text, ctx.token, ctx.manner), headers=PAGE_HEADERS)
 
+
+@router.get("/static/{name}", include_in_schema=False)
+async def static(name: str) -> FileResponse:
+    """The page's own style, script and icon (nothing else is served from the folder)."""
+    if name not in STATIC_FILES:
+        from starlette.exceptions import HTTPException
+
+        raise HTTPException(404, "Not Found")
+    return FileResponse(STATIC / name, media_type=STATIC_FILES[name], headers={"Cache-Control": "no-cache"})
+
+
+@router.get("/favicon.ico", include_in_schema=False)
+async def favicon() -> FileResponse:
+    return FileResponse(STATIC / "favicon.svg", media_type="image/svg+xml")
+
+
+STATIC_FILES = {"page.js": "text/javascript", "page.css": "text/css", "favicon.svg": "image/svg+xml"}
 
 #: The page loads nothing from elsewhere; the policy makes that a promise the browser keeps.
 PAGE_HEADERS = {
-    "Content-Security-Policy": "default-src 'none'; script-src 'unsafe-inline'; style-src 'unsafe-inline'; "
-                               "connect-src 'self'; img-src 'self' data:; base-uri 'none'; form-action 'none'",
+    "Content-Security-Policy": "default-src 'none'; script-src 'self'; style-src 'self'; "
+                               "connect-src 'self'; img-src 'self'; base-uri 'none'; form-action 'self'",
     "Cache-Control": "no-store",
     "Referrer-Policy": "no-referrer",
 }

@@ -1,0 +1,150 @@
+"""The answers of the HTTP API as typed models: what /openapi.json documents is what is sent
+(every route declares its answer; every refusal is an ``ErrorAnswer``)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from pydantic import BaseModel, ConfigDict, Field
+
+
+class Answer(BaseModel):
+    model_config = ConfigDict(extra="allow")
+
+
+class ErrorAnswer(BaseModel):
+    error: str = Field(description="one line saying what was wrong")
+
+
+class Health(Answer):
+    ok: bool
+    sessions: int
+    subscribers: int
+
+
+class NeemListed(Answer):
+    id: str
+    name: str | None = None
+    user: str | None = None
+    created_at: str | None = None
+    temporary: bool = False
+
+
+class NeemMade(Answer):
+    id: str
+    name: str | None = None
+    user: str
+
+
+class PerceptionAnswer(Answer):
+    neem: str
+    objects: list[str]
+    logged: list[str]
+
+
+class RankedEntry(Answer):
+    rank: int
+    task: str = Field(description="the task call, e.g. pick(red_mug)")
+    score: float | None = None
+    support: int | None = None
+    probability: float | None = None
+    context_order: int | None = None
+    context: list[str] = []
+    situations: list[float] = []
+    reason: str = ""
+
+
+class SituationAnswer(Answer):
+    neem: str
+    ranking: list[RankedEntry]
+    chain: list[str]
+    at: float | None = None
+    time_of_day: str | None = None
+    history: int | None = None
+    ms: float | None = None
+
+
+class ActionAnswer(Answer):
+    neem: str
+    id: str
+    call: str
+    open: bool
+    begin: float | None = None
+    end: float | None = None
+    time_of_day: str | None = None
+    idle: str | None = None
+    history: int | None = None
+
+
+class ChoiceAnswer(Answer):
+    neem: str
+    task: str | None = Field(description="the task the user chose (the workflow's first step)")
+    workflow: list[str] | None = None
+    at: float | None = Field(None, description="when the user confirmed it (unix seconds)")
+    decision: str | None = Field(None, description="the decision's IRI in the NEEM")
+
+
+class SpokenAnswer(Answer):
+    sentence: str = Field(description="English, for the robot's log and speech")
+    said: str = Field(description="the same for the person, in plain words and the asked language")
+    answer: dict[str, Any]
+
+
+class PrologAnswer(Answer):
+    solutions: list[dict[str, Any]]
+    more: bool
+    offset: int
+
+
+class TabletTask(BaseModel):
+    task: str = Field(description="the call, as the robot names it")
+    rank: int
+    said: str = Field(description="the task as a person says it")
+    reason: str = Field(description="why it stands here, one short sentence")
+
+
+class TabletStep(BaseModel):
+    task: str
+    said: str
+
+
+class TabletView(BaseModel):
+    neem: str
+    user: str | None
+    lang: str
+    at: float | None
+    clock: str = Field(description="part of the day and time on the person's clock")
+    tasks: list[TabletTask]
+    workflow: list[TabletStep]
+
+
+class Said(BaseModel):
+    call: str
+    said: str
+
+
+#: Every refusal's body, for the routes' documented answers.
+class PastAnswer(Answer):
+    """A question about the past (oracle.past.ask): its form, language, the answer in both
+    languages and the evidence it rests on."""
+    question: str
+    form: str
+    language: str
+    text: str
+    english: str
+    german: str
+    evidence: dict[str, Any]
+
+
+class StateSummary(Answer):
+    """The NEEM's state summary (oracle.past.summary): what a language model may take as ground truth."""
+    format: int | str
+    neem: str
+    now: float | None = None
+    recent: list[dict[str, Any]] = []
+    latest: dict[str, Any] | None = None
+    usual_next: list[dict[str, Any]] = []
+    predicted: list[dict[str, Any]] = []
+
+
+ERRORS: dict[int | str, dict[str, Any]] = {code: {"model": ErrorAnswer} for code in (400, 401, 403, 404, 405, 409, 422, 500)}

@@ -1,0 +1,115 @@
+"""What the tablet page shows, in the person's words: the view of a NEEM's latest ranking
+(``GET .../tablet``) and the answers as one or two plain sentences (the ``said`` of why-not,
+what-next and something-else), built from the JSON the robot's API answers, so the page and
+the robot always see the same ranking; and the person's choice, kept in the NEEM."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
+
+from oracle.neem.decisions import Decision
+from oracle.service.words import Words
+
+if TYPE_CHECKING:
+    from oracle.service.session import NeemSession
+
+
+def tablet_view(neem: str, user: str | None, latest: Mapping[str, Any] | None, words: Words) -> dict[str, Any]:
+    """The page's view of the latest ranking: each task's call (kept for the robot's syntax),
+    rank, plain words and one-sentence reason; the workflow's steps; the time on the person's
+    clock."""
+    ranking = (latest or {}).get("ranking") or []
+    chain = (latest or {}).get("chain") or []
+    at = (latest or {}).get("at")
+    part = words.part_of_day((latest or {}).get("time_of_day"))
+    clock = ", ".join(x for x in (part, words.clock(at)) if x) if ranking else ""
+    return {
+        "neem": neem, "user": user, "lang": words.lang, "at": at, "clock": clock,
+        "tasks": [{"task": t["task"], "rank": t["rank"], "said": words.said(t["task"]), "reason": words.reason(t)}
+                  for t in ranking],
+        "workflow": [{"task": c, "said": words.said(c)} for c in chain] if len(chain) >= 2 else [],
+    }
+
+
+def why_not_said(task: str, latest: Mapping[str, Any] | None, answer: Mapping[str, Any], decision: Decision | None,
+                 words: Words) -> str:
+    """Why ``task`` is where it is, in one or two sentences that fit any task: its place in the
+    latest ranking and its reason (the top one included), or that the robot cannot do it now;
+    then, where the user chose something else since, what the user chose."""
+    t = words.text
+    ranking = (latest or {}).get("ranking") or []
+    placed = next((r for r in ranking if r["task"] == task), None)
+    if placed is None:
+        unseen = next((r.get("object") for r in answer.get("reasons") or []
+                       if r.get("reason") == "not_available" and r.get("why") == "object_not_perceived"), None)
+        first = t["not_seen"].format(object=words.obj(unseen)) if unseen else t["not_now"]
+    elif placed["rank"] == 1:
+        first = f"{t['top']} {words.reason(placed)}"
+    else:
+        first = f"{t['placed'].format(rank=placed['rank'], n=len(ranking))} {words.reason(placed)}"
+    if decision is not None and decision.task != task and (placed is None or placed["rank"] != 1):
+        return f"{first} {t['you_chose'].format(at=words.clock(decision.at), task=words.said(decision.task))}"
+    return first
+
+
+def what_next_said(answer: Mapping[str, Any], decision: Decision | None, last_action: Mapping[str, Any] | None,
+                   words: Words) -> str:
+    """What the robot expects next, and whether the user's latest choice is still to be done
+    (a choice made after the robot's latest action) or what the robot did last."""
+    t = words.text
+    chain = answer.get("chain") or []
+    if not chain:
+        return t["no_ranking"]
+    said = t["next"].format(task=words.said(chain[0]["task"]))
+    last_at = float(last_action["begin"]) if last_action and last_action.get("begin") is not None else None
+    if decision is not None and (last_at is None or decision.at > last_at):
+        return f"{said} {t['chosen_pending'].format(task=words.said(decision.task))}"
+    if last_action and last_action.get("call"):
+        return f"{said} {t['robot_did_at'].format(at=words.clock(last_at), task=words.said(last_action['call']))}"
+    return said
+
+
+def something_else_said(answer: Mapping[str, Any], words: Words) -> str:
+    t = words.text
+    alternatives = answer.get("alternatives") or []
+    if not alternatives:
+        return t["no_other"]
+    current = answer.get("current")
+    other = words.said(alternatives[0]["task"])
+    return t["instead_of"].format(task=words.said(current), other=other) if current else t["next"].format(task=other)
+
+
+def record_choice(session: NeemSession, calls: list[Any], at: Any) -> dict[str, Any]:
+    """Write the user's decision into the NEEM (one transaction); the choice as answered."""
+    from oracle.neem.decisions import record_decision
+    from oracle.service.session import moment_of
+    from oracle.timeline import Instant
+
+    when = Instant.of(moment_of(at, "at")).seconds
+    made = record_decision(session.logger, calls, when)
+    session.logger.flush()
+    return {"task": made.task, "workflow": made.workflow, "at": made.at, "decision": made.iri}
+
+
+def recorded_choice(session: NeemSession) -> dict[str, Any] | None:
+    """The user's latest decision as ``GET .../choice`` answers it (None: the NEEM holds none)."""
+    decision_of(session)
+    return session.choice
+
+
+def decision_of(session: NeemSession) -> Decision | None:
+    """The user's latest decision: the one this service recorded, else the NEEM's (read once
+    per session, then kept as ``session.choice``; the NEEM has one writer, this service)."""
+    from oracle.neem.decisions import latest_decision
+
+    made = session.choice
+    if made is None:
+        logger = session.logger
+        found = latest_decision(logger.store, logger.neem_id, logger.ns, logger.vocab.has_rank)
+        if found is not None:
+            session.choice = {"task": found.task, "workflow": found.workflow, "at": found.at, "decision": found.iri}
+        return found
+    if made.get("decision") is None:
+        return None
+    return Decision(str(made["decision"]), float(made["at"]), tuple(made.get("workflow") or [made["task"]]))

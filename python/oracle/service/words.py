@@ -1,0 +1,267 @@
+"""Plain words for the tablet page, in English or German: tasks and objects as a person says them
+("Open the fridge", "Pour the beer into the glass"), a ranked task's reason as one short
+sentence, the answers in one or two sentences, a time on the person's clock.
+
+Where a name comes from: an ``rdfs:label`` with the language's tag in the ontology, else
+``ontology/labels.yaml``, else the name itself with spaces ("the oven knob"). The robot's API
+keeps the call syntax; only the page (``GET .../tablet``, ``lang``) is worded here.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from datetime import tzinfo
+from pathlib import Path
+from typing import Any
+
+from oracle.chains import TaskCall, parse_call
+from oracle.errors import ChainSyntaxError, OntologyError
+from oracle.timeline import shown_clock
+
+#: The page's languages; the first is the default.
+LANGS = ("en", "de")
+_SLOT = re.compile(r"\{(\d)(?::(dat|content))?\}")
+
+
+@dataclass(frozen=True)
+class Lexicon:
+    """Object forms (``en``, ``de``, ``de_dat``, ``en_content``, ``de_content``) and task
+    templates (``en``, ``en_ing``, ``de``, ``de_pp``) by odb name."""
+
+    objects: Mapping[str, Mapping[str, str]]
+    tasks: Mapping[str, Mapping[str, str]]
+
+
+def load_lexicon(path: Path | None = None, ontology: Any = None) -> Lexicon:
+    """``ontology/labels.yaml`` (or ``path``), overridden by the ontology's language-tagged
+    rdfs:labels of its object classes (``ontology``: an OdbOntology, optional)."""
+    from oracle.paths import data_dir
+    from oracle.yamlfile import read_yaml
+
+    source = path or data_dir() / "labels.yaml"
+    data = read_yaml(source, OntologyError, "labels") if source.exists() else {}
+    if not isinstance(data, dict):
+        raise OntologyError(f"{source}: expected a mapping with 'objects' and 'tasks'")
+    objects = {str(k): dict(v) for k, v in (data.get("objects") or {}).items()}
+    tasks = {str(k): dict(v) for k, v in (data.get("tasks") or {}).items()}
+    if ontology is not None:
+        for name, forms in _tagged_labels(ontology).items():
+            objects[name] = {**objects.get(name, {}), **forms}
+    return Lexicon(objects, tasks)
+
+
+def _tagged_labels(ontology: Any) -> dict[str, dict[str, str]]:
+    """{object name: {lang: label}} from rdfs:label literals with a language tag (the generated
+    labels carry none: they are the odb names)."""
+    from rdflib import RDFS, URIRef
+
+    found: dict[str, dict[str, str]] = {}
+    for name, cls in ontology.objects.items():
+        for label in ontology.graph.objects(URIRef(cls.iri), RDFS.label):
+            lang = getattr(label, "language", None)
+            if lang in LANGS:
+                found.setdefault(name, {})[lang] = str(label)
+    return found
+
+
+def pick_lang(asked: str | None, accept_language: str | None = None) -> str:
+    """The page's language: ``asked`` (``?lang=``) when it is one of LANGS, else the first of the
+    browser's Accept-Language that is, else English."""
+    if asked and asked.lower()[:2] in LANGS:
+        return asked.lower()[:2]
+    for part in (accept_language or "").split(","):
+        code = part.split(";")[0].strip().lower()[:2]
+        if code in LANGS:
+            return code
+    return LANGS[0]
+
+
+@dataclass(frozen=True)
+class Words:
+    lexicon: Lexicon
+    lang: str
+    zone: tzinfo
+
+    @property
+    def text(self) -> Mapping[str, str]:
+        return TEXT[self.lang]
+
+    # -- names ----------------------------------------------------------------------------------
+    def obj(self, name: str, form: str = "") -> str:
+        forms = self.lexicon.objects.get(name, {})
+        if form == "content":
+            found = forms.get(f"{self.lang}_content")
+            if found:
+                return found
+        elif form == "dat" and self.lang == "de":
+            found = forms.get("de_dat")
+            if found:
+                return found
+        found = forms.get(self.lang)
+        if found:
+            return found
+        plain = name.replace("_", " ")
+        return f"the {plain}" if self.lang == "en" else plain
+
+    def said(self, call: TaskCall | str, form: str = "") -> str:
+        """The call as a person says it (``form``: "" the request, "after" what follows "after")."""
+        parsed = _parsed(call)
+        if parsed is None:
+            return str(call)
+        key = {"": self.lang, "after": f"{self.lang}_ing" if self.lang == "en" else "de_pp"}[form]
+        template = self.lexicon.tasks.get(parsed.task, {}).get(key)
+        if template is None:
+            args = " ".join(self.obj(a) for a in parsed.args)
+            words = parsed.task.replace("_", " ")
+            template_text = f"{words} {args}".strip() if self.lang == "en" else f"{args} {words}".strip()
+            return _capital(template_text) if not form else template_text
+        text = _SLOT.sub(lambda m: self._slot(parsed.args, int(m.group(1)), m.group(2) or ""), template)
+        return _capital(text) if not form else text
+
+    def _slot(self, args: Sequence[str], index: int, form: str) -> str:
+        return self.obj(args[index], form) if index < len(args) else "?"
+
+    # -- reasons --------------------------------------------------------------------------------
+    def reason(self, entry: Mapping[str, Any]) -> str:
+        """Why a ranked task stands where it does, as one short sentence (the API's entry)."""
+        t = self.text
+        n = int(entry.get("support") or 0)
+        order = entry.get("context_order")
+        if order is None:  # the thesis oracle: the similar past situations
+            return t["like_past"].format(n=n) if n else t["new_to_me"]
+        times = self.times(n)
+        if order > 0:
+            context = entry.get("context") or []
+            last = context[-1] if context else "idle"
+            if last == "idle":
+                return t["after_break"].format(times=times)
+            return t["after_task"].format(times=times, after=self.said(last, "after"))
+        held = entry.get("focus") or []
+        if entry.get("resumed"):
+            return t["resumed"]
+        if held:
+            return t["in_hand"].format(objects=self.join([self.obj(o) for o in held]))
+        if entry.get("new"):
+            return t["newly"]
+        since = entry.get("since")
+        if since is not None:
+            return t["since"].format(ago=self.ago(float(since)))
+        if order == 0 or entry.get("done"):
+            return t["done_elsewhere"].format(times=times) if n else t["done_before"]
+        return t["never"]
+
+    def times(self, n: int) -> str:
+        return self.text["once"] if n == 1 else self.text["n_times"].format(n=n)
+
+    def join(self, items: Sequence[str]) -> str:
+        if len(items) <= 1:
+            return "".join(items)
+        return ", ".join(items[:-1]) + self.text["and"] + items[-1]
+
+    def ago(self, seconds: float) -> str:
+        t = self.text
+        if seconds < 90:
+            return t["ago_s"].format(n=max(0, round(seconds)))
+        if seconds < 90 * 60:
+            return t["ago_min"].format(n=round(seconds / 60))
+        if seconds < 36 * 3600:
+            return t["ago_h"].format(n=round(seconds / 3600))
+        return t["ago_d"].format(n=round(seconds / 86400))
+
+    # -- times ----------------------------------------------------------------------------------
+    def clock(self, seconds: float | None) -> str:
+        """A time on the person's clock: ``08:05``, or with the day when it is not today's."""
+        if seconds is None:
+            return ""
+        return shown_clock(float(seconds), self.zone).strftime("%H:%M")
+
+    def part_of_day(self, part: str | None) -> str:
+        return self.text.get(f"part_{part}", part or "")
+
+
+def _parsed(call: TaskCall | str) -> TaskCall | None:
+    if isinstance(call, TaskCall):
+        return call
+    try:
+        return parse_call(call)
+    except ChainSyntaxError:
+        return None
+
+
+def _capital(text: str) -> str:
+    return text[:1].upper() + text[1:]
+
+
+#: Every sentence and label the page shows, by language. ``{...}`` are filled in by words.py or
+#: by the page's script.
+TEXT: dict[str, dict[str, str]] = {
+    "en": {
+        "title": "What would you like now?", "list": "Tasks the robot can do now, best first",
+        "fresh": "New suggestions", "fresh_hint": "The robot has new suggestions: tap to see them",
+        "waiting": "Waiting for the robot to say what it can do.",
+        "workflow": "Or all of these, one after the other", "workflow_title": "All of these, one after the other",
+        "workflow_note": "The robot does these steps in this order, starting with the first.",
+        "whatnext": "What next?", "confirm": "Yes, do this", "whyhere": "Why here?", "instead": "Something else?",
+        "back": "Back", "undo": "Undo", "gone": "The robot cannot do this any more. Go back for the new suggestions.",
+        "dwell": "Chosen in {n} s unless you go back.", "undo_in": "Sent to the robot in {n} s.",
+        "sending": "The robot will start: {task}.", "undone": "Undone: nothing was sent to the robot.",
+        "chose": "You chose: {task}. The robot will do it.", "chose_workflow": "You chose: {steps}.",
+        "not_sent": "Your choice was not sent: {why}", "asking": "Let me think\u2026", "no_answer": "No answer: {why}",
+        "robot_did": "The robot did: {task}.", "lost": "Lost the connection to the robot; reconnecting\u2026",
+        "for": "for {user}", "no_neem": "No one is using the robot yet.",
+        "token_title": "This robot needs its access code", "token_label": "Access code", "token_go": "Open",
+        "like_past": "Like {n} earlier situations.", "new_to_me": "New to me.",
+        "after_break": "You did this {times} after a break.", "after_task": "You did this {times} after {after}.",
+        "resumed": "This goes on from before your break.", "in_hand": "It uses {objects}, which you just used.",
+        "newly": "This has just become possible.", "since": "You last did this {ago}.",
+        "done_elsewhere": "You did this {times}, but not at this point.", "done_before": "You did this before, but not at this point.",
+        "never": "You have not done this yet; it is like what you do.", "once": "once", "n_times": "{n} times", "and": " and ",
+        "ago_s": "{n} seconds ago", "ago_min": "{n} minutes ago", "ago_h": "{n} hours ago", "ago_d": "{n} days ago",
+        "top": "This is my first suggestion.", "placed": "I put this in place {rank} of {n}.",
+        "first_is": "First comes: {task}.", "not_now": "The robot cannot do this now.",
+        "not_seen": "The robot cannot do this now: it has not seen {object}.",
+        "you_chose": "At {at} you chose: {task}.", "robot_did_at": "At {at} the robot did: {task}.",
+        "no_ranking": "I have not made any suggestions yet.", "next": "Next I expect: {task}.",
+        "then": "Then: {task}.", "chosen_pending": "You chose \u201c{task}\u201d; the robot has not done it yet.",
+        "instead_of": "Instead of \u201c{task}\u201d I would suggest: {other}.", "no_other": "I know of nothing else to suggest.",
+        "part_Morning": "Morning", "part_Midday": "Midday", "part_Evening": "Evening", "part_Night": "Night",
+    },
+    "de": {
+        "title": "Was möchten Sie jetzt?", "list": "Was der Roboter jetzt tun kann, das Beste zuerst",
+        "fresh": "Neue Vorschläge", "fresh_hint": "Der Roboter hat neue Vorschläge: tippen, um sie zu sehen",
+        "waiting": "Warte darauf, dass der Roboter sagt, was er tun kann.",
+        "workflow": "Oder alles davon, eins nach dem anderen", "workflow_title": "Alles davon, eins nach dem anderen",
+        "workflow_note": "Der Roboter macht diese Schritte in dieser Reihenfolge, den ersten zuerst.",
+        "whatnext": "Was kommt als Nächstes?", "confirm": "Ja, das tun", "whyhere": "Warum hier?",
+        "instead": "Etwas anderes?", "back": "Zurück", "undo": "Rückgängig",
+        "gone": "Das kann der Roboter nicht mehr tun. Gehen Sie zurück zu den neuen Vorschlägen.",
+        "dwell": "In {n} s gewählt, wenn Sie nicht zurückgehen.", "undo_in": "In {n} s an den Roboter gesendet.",
+        "sending": "Der Roboter beginnt: {task}.", "undone": "Rückgängig gemacht: nichts wurde an den Roboter gesendet.",
+        "chose": "Sie haben gewählt: {task}. Der Roboter macht es.", "chose_workflow": "Sie haben gewählt: {steps}.",
+        "not_sent": "Ihre Wahl wurde nicht gesendet: {why}", "asking": "Einen Moment\u2026", "no_answer": "Keine Antwort: {why}",
+        "robot_did": "Der Roboter hat gemacht: {task}.",
+        "lost": "Die Verbindung zum Roboter ist unterbrochen; verbinde neu\u2026",
+        "for": "für {user}", "no_neem": "Noch benutzt niemand den Roboter.",
+        "token_title": "Dieser Roboter braucht seinen Zugangscode", "token_label": "Zugangscode", "token_go": "Öffnen",
+        "like_past": "Wie {n} frühere Situationen.", "new_to_me": "Neu für mich.",
+        "after_break": "Das haben Sie {times} nach einer Pause gemacht.",
+        "after_task": "Das haben Sie {times} gemacht, nachdem Sie {after} haben.",
+        "resumed": "Das setzt fort, was Sie vor der Pause gemacht haben.",
+        "in_hand": "Das nutzt, was Sie gerade benutzt haben: {objects}.",
+        "newly": "Das ist gerade erst möglich geworden.", "since": "Das haben Sie zuletzt {ago} gemacht.",
+        "done_elsewhere": "Das haben Sie {times} gemacht, aber nicht an dieser Stelle.",
+        "done_before": "Das haben Sie schon gemacht, aber nicht an dieser Stelle.",
+        "never": "Das haben Sie noch nie gemacht; es ähnelt dem, was Sie tun.", "once": "einmal", "n_times": "{n}-mal",
+        "and": " und ", "ago_s": "vor {n} Sekunden", "ago_min": "vor {n} Minuten", "ago_h": "vor {n} Stunden",
+        "ago_d": "vor {n} Tagen", "top": "Das ist mein erster Vorschlag.", "placed": "Ich habe das auf Platz {rank} von {n} gesetzt.",
+        "first_is": "Zuerst kommt: {task}.", "not_now": "Das kann der Roboter jetzt nicht tun.",
+        "not_seen": "Das kann der Roboter jetzt nicht tun: er hat {object} nicht gesehen.",
+        "you_chose": "Um {at} haben Sie gewählt: {task}.", "robot_did_at": "Um {at} hat der Roboter gemacht: {task}.",
+        "no_ranking": "Ich habe noch nichts vorgeschlagen.", "next": "Als Nächstes erwarte ich: {task}.",
+        "then": "Danach: {task}.", "chosen_pending": "Sie haben \u201e{task}\u201c gewählt; der Roboter hat es noch nicht gemacht.",
+        "instead_of": "Statt \u201e{task}\u201c würde ich vorschlagen: {other}.", "no_other": "Ich weiß nichts anderes vorzuschlagen.",
+        "part_Morning": "Morgen", "part_Midday": "Mittag", "part_Evening": "Abend", "part_Night": "Nacht",
+    },
+}
