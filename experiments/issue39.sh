@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Issue 39's figures (docs/results.md, "Honest replay, learned baselines, chains"): the three
+# reported sets replayed once under the honest rules (docs/evaluation.md, "Replay") with every
+# baseline, the learned ones (logit, gbdt) and the stacked predictor; then the chain accuracy.
+# Data stays in out/; tables: python experiments/issue39-tables.py out.
+# The sets are made as scripts/make-results.sh makes them (converters' defaults; nothing here may
+# be changed to favour a method).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+PY=${PY:-.venv/bin/python}
+SHARED=${SHARED:-/work/shared/datasets}
+[ -f out/bench/test.jsonl ] || $PY -m oracle generate --personas 105 --days 7 --seed 0 --out out/bench
+[ -d out/kasteren ] || $PY -m oracle convert kasteren "$SHARED/kasteren_house_a" --out out/kasteren
+[ -d out/egtea ] || $PY -m oracle convert egtea "$SHARED/egtea_gaze_plus" --out out/egtea
+KA=(out/kasteren/chains.jsonl --odb out/kasteren/odb --mapping out/kasteren/mapping.yaml)
+EG=(out/egtea/chains.jsonl --odb out/egtea/odb --mapping out/egtea/mapping.yaml)
+$PY -m oracle evaluate "${KA[@]}" --baselines --also stacked --json out/i39-kasteren.json
+$PY -m oracle evaluate "${EG[@]}" --baselines --also stacked --json out/i39-egtea.json
+$PY -m oracle evaluate out/bench/test.jsonl --baselines --also stacked --json out/i39-persona.json
+$PY experiments/chains.py "${KA[@]}" --json out/i39-chains-kasteren.json
+$PY experiments/chains.py "${EG[@]}" --json out/i39-chains-egtea.json
+$PY experiments/chains.py out/bench/test.jsonl --json out/i39-chains-persona.json
