@@ -16,7 +16,14 @@ KA=(out/kasteren/chains.jsonl --odb out/kasteren/odb --mapping out/kasteren/mapp
 EG=(out/egtea/chains.jsonl --odb out/egtea/odb --mapping out/egtea/mapping.yaml)
 $PY -m oracle evaluate "${KA[@]}" --baselines --also stacked --json out/i39-kasteren.json
 $PY -m oracle evaluate "${EG[@]}" --baselines --also stacked --json out/i39-egtea.json
-$PY -m oracle evaluate out/bench/test.jsonl --baselines --also stacked --json out/i39-persona.json
+# the persona test split in three shards of users side by side, merged into what one evaluate writes
+for r in 0:30 30:60 60:; do
+  $PY experiments/shards.py run out/bench/test.jsonl --users "$r" --out "out/i39-persona-${r%%:*}.pkl" &
+done
+wait
+$PY experiments/shards.py merge out/i39-persona-0.pkl out/i39-persona-30.pkl out/i39-persona-60.pkl \
+    --json out/i39-persona.json
 $PY experiments/chains.py "${KA[@]}" --json out/i39-chains-kasteren.json
 $PY experiments/chains.py "${EG[@]}" --json out/i39-chains-egtea.json
-$PY experiments/chains.py out/bench/test.jsonl --json out/i39-chains-persona.json
+# chains copy the model twice per step and way: the persona test split's first 30 users
+$PY experiments/chains.py out/bench/test.jsonl --users 30 --json out/i39-chains-persona.json
