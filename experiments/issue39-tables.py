@@ -8,24 +8,25 @@ from __future__ import annotations
 
 import json
 import sys
+from collections.abc import Iterator
 from pathlib import Path
 
 SETS = (("persona", "Persona test split"), ("kasteren", "van Kasteren house A"), ("egtea", "EGTEA Gaze+"))
 KS = (1, 3, 5)
 
 
-def load(out: Path, name: str) -> dict | None:
-    path = out / name
-    return json.loads(path.read_text(encoding="utf-8")) if path.exists() else None
+def each(out: Path, prefix: str) -> Iterator[tuple[str, dict]]:
+    """(label, summary) of every set whose ``OUT/PREFIX-SET.json`` exists."""
+    for key, label in SETS:
+        path = out / f"{prefix}-{key}.json"
+        if path.exists():
+            yield label, json.loads(path.read_text(encoding="utf-8"))
 
 
 def targets(out: Path) -> None:
     print("| set | method | Top-1 | Top-3 | Top-5 | Top-3 minus `routine` [95 % CI] | cold start Top-1/3/5 |")
     print("| --- | --- | ---: | ---: | ---: | --- | --- |")
-    for key, label in SETS:
-        s = load(out, f"i39-{key}.json")
-        if s is None:
-            continue
+    for label, s in each(out, "i39"):
         ref = s["method"]
         paired = s["comparisons"]["methods"]
         cold = s["cold_start"]["methods"]
@@ -47,10 +48,7 @@ def targets(out: Path) -> None:
 
 
 def everything(out: Path) -> None:
-    for key, label in SETS:
-        s = load(out, f"i39-{key}.json")
-        if s is None:
-            continue
+    for label, s in each(out, "i39"):
         print(f"\n{label} (`{s['method']}` first; {s['mean_candidates']:.1f} candidates on average)\n")
         print("| method | Top-1 | Top-3 | Top-5 | ms / prediction |")
         print("| --- | ---: | ---: | ---: | ---: |")
@@ -62,10 +60,7 @@ def chains(out: Path) -> None:
     print("| set | step | n | plain Top-1/3/5 | forward tree Top-1/3/5 | feasible Top-1/3/5 | "
           "feasible minus plain, Top-3 [95 % CI] | feasible minus tree, Top-3 |")
     print("| --- | ---: | ---: | --- | --- | --- | --- | ---: |")
-    for key, label in SETS:
-        c = load(out, f"i39-chains-{key}.json")
-        if c is None:
-            continue
+    for label, c in each(out, "i39-chains"):
         for depth in (2, 3):
             e = c[f"step{depth}"]
             cells = [" / ".join(f"{e[kind][f'top{k}']:.3f}" for k in KS) for kind in ("plain", "tree", "feasible")]
@@ -78,10 +73,7 @@ def chains(out: Path) -> None:
 def normalized(out: Path) -> None:
     print("| set | thesis Top-1/3/5 | thesis-normalized Top-1/3/5 | Top-3 difference [95 % CI] |")
     print("| --- | --- | --- | --- |")
-    for key, label in SETS:
-        s = load(out, f"i39-normalized-{key}.json")
-        if s is None:
-            continue
+    for label, s in each(out, "i39-normalized"):
         a, b = s["methods"]["oracle"], s["methods"]["thesis-normalized"]
         d = s["comparisons"]["methods"]["thesis-normalized"]["top3"]
         print(f"| {label} | {a['top1']:.3f} / {a['top3']:.3f} / {a['top5']:.3f} | "
