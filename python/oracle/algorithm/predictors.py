@@ -16,6 +16,7 @@ from typing import Any, Protocol
 
 from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import Hyperparameters
+from oracle.algorithm.normalized import normalized_oracle
 from oracle.algorithm.routine import RoutineOracle
 from oracle.algorithm.stacked import StackedOracle
 from oracle.algorithm.records import Option, Ranking, Step
@@ -59,6 +60,10 @@ def _stacked(distances: Any, opening: frozenset[str], settings: Hyperparameters)
     return StackedOracle(distances, opening_tasks=opening)
 
 
+def _thesis_normalized(distances: Any, opening: frozenset[str], settings: Hyperparameters) -> Predictor:
+    return normalized_oracle(distances, settings, opening)
+
+
 def _thesis(distances: Any, opening: frozenset[str], settings: Hyperparameters) -> Predictor:
     return PreferenceOracle.from_settings(distances, settings, opening)
 
@@ -74,6 +79,8 @@ PREDICTORS: dict[str, PredictorSpec] = {
     "stacked": PredictorSpec("stacked", "the routine predictor's evidence combined by a per-user conditional logit "
                              "(docs/algorithm.md, 'Stacked predictor')", _stacked),
     "thesis": PredictorSpec("thesis", "the thesis PreferenceOracle (chapter 4) with the given settings", _thesis),
+    "thesis-normalized": PredictorSpec("thesis-normalized", "the thesis oracle over the normalised distances of "
+                                       "thesis 6.4 (docs/algorithm.md)", _thesis_normalized),
 }
 DEFAULT = "routine"
 THESIS = "thesis"

@@ -97,20 +97,27 @@ class StackedOracle(RoutineOracle):
     """The routine predictor with a learned combination of its evidence (module docstring);
     ``combine_window`` decisions, refitted every ``combine_every`` steps, penalty ``combine_shrink``."""
 
-    _param_names = RoutineOracle._param_names + ("combine_window", "combine_every", "combine_shrink")
+    _param_names = RoutineOracle._param_names + ("combine_window", "combine_every", "combine_shrink",
+                                                 "combine_margin")
 
     def __init__(self, distances: Any = None, *, combine_window: int = 300, combine_every: int = 25,
-                 combine_shrink: tuple[float, ...] = (1.0, 10.0, 100.0), **routine: Any) -> None:
+                 combine_shrink: tuple[float, ...] = (1.0, 10.0, 100.0), combine_margin: float = 2.0,
+                 **routine: Any) -> None:
         super().__init__(distances, **routine)
         self.combine_window = combine_window
         self.combine_every = combine_every
         self.combine_shrink = combine_shrink
+        self.combine_margin = combine_margin
 
     def fit(self, history: Iterable[Step]) -> StackedOracle:
         for name in ("combine_window", "combine_every"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int) or value < 1:
                 raise SettingsError(f"{type(self).__name__}: {name} must be a whole number >= 1, got {value!r}")
+        if (isinstance(self.combine_margin, bool) or not isinstance(self.combine_margin, (int, float))
+                or not 0 <= self.combine_margin < math.inf):
+            raise SettingsError(f"{type(self).__name__}: combine_margin must be a number >= 0, "
+                                f"got {self.combine_margin!r}")
         if not self.combine_shrink or any(isinstance(v, bool) or not isinstance(v, (int, float))
                                           or not 0 < v < math.inf for v in self.combine_shrink):
             raise SettingsError(f"{type(self).__name__}: combine_shrink must be positive numbers, "
@@ -171,7 +178,7 @@ class StackedOracle(RoutineOracle):
             return
         self.refit_at_ = due
         rows = [self.evidence_[p] for p in sorted(self.evidence_) if due - self.combine_window <= p < due]
-        shrink = chosen_shrink(rows, self.combine_shrink, self.switch_margin)
+        shrink = chosen_shrink(rows, self.combine_shrink, float(self.combine_margin))
         self.coef_, self.spread_ = fit_logit(rows, shrink) if shrink is not None else (None, None)
 
     def rank(self, current: Step | Iterable[Option], time_of_day: str | None = None, *,

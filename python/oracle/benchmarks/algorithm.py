@@ -20,6 +20,7 @@ from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import PRESETS
 from oracle.algorithm.reference import ReferenceOracle
 from oracle.algorithm.routine import RoutineOracle
+from oracle.algorithm.stacked import StackedOracle
 from oracle.algorithm.records import Option, Step
 from oracle.ontology.distance import DistanceMatrix
 from oracle.timeline import TIME_OF_DAY_NAMES
@@ -160,30 +161,38 @@ def run(quick: bool = False) -> list[dict]:
             print(f"{size:>8} {name:<14} {'fast add':<10} {np.median(adds):>10.3f} {np.percentile(adds, 99):>9.3f}",
                   flush=True)
         rows.extend(_routine_rows(matrix, prefix, queries, fast_queries, size))
+        rows.extend(_routine_rows(matrix, prefix, queries, fast_queries, size, StackedOracle, "stacked"))
     return rows
 
 
-def _routine_rows(matrix, prefix, queries, count: int, size: int) -> list[dict]:
-    """The routine predictor on the same history and queries (its own defaults, self-tuned)."""
-    model = RoutineOracle(matrix).fit(prefix)
+def _routine_rows(matrix, prefix, queries, count: int, size: int, cls: type = RoutineOracle,
+                  impl: str = "routine") -> list[dict]:
+    """The routine predictor (or ``cls``, ``impl``: the stacked one) on the same history and
+    queries (its own defaults, self-tuned): rank, partial_fit and one whole fit."""
+    start = time.perf_counter()
+    model = cls(matrix).fit(prefix)
+    fit_ms = (time.perf_counter() - start) * 1000.0
     model.rank(queries[0], tree_roots=1)
     times = _times(model, queries[:count], 3)
     median, p99 = float(np.median(times)), float(np.percentile(times, 99))
-    peak = _peak_mb(lambda: RoutineOracle(matrix), prefix, queries)
-    print(f"{size:>8} {'default':<14} {'routine':<10} {median:>10.3f} {p99:>9.3f} {peak:>8.1f}", flush=True)
+    peak = _peak_mb(lambda: cls(matrix), prefix, queries)
+    print(f"{size:>8} {'default':<14} {impl:<10} {median:>10.3f} {p99:>9.3f} {peak:>8.1f}   fit {fit_ms:.0f} ms",
+          flush=True)
     adds = []
-    model = RoutineOracle(matrix).fit(prefix[:-20])
+    model = cls(matrix).fit(prefix[:-20])
     for step in prefix[-20:]:  # adding a step also scores the variants on it: one rank
         start = time.perf_counter()
         model.partial_fit(step)
         adds.append((time.perf_counter() - start) * 1000.0)
-    print(f"{size:>8} {'default':<14} {'rout. add':<10} {np.median(adds):>10.3f} {np.percentile(adds, 99):>9.3f}",
-          flush=True)
-    return [{"area": "algorithm", "name": "rank", "history": size, "impl": "routine", "settings": "default",
+    print(f"{size:>8} {'default':<14} {impl[:5] + ' add':<10} {np.median(adds):>10.3f} "
+          f"{np.percentile(adds, 99):>9.3f}", flush=True)
+    return [{"area": "algorithm", "name": "rank", "history": size, "impl": impl, "settings": "default",
              "median_ms": round(median, 4), "p99_ms": round(p99, 4), "peak_mb": round(peak, 2)},
-            {"area": "algorithm", "name": "partial_fit", "history": size, "impl": "routine", "settings": "default",
+            {"area": "algorithm", "name": "partial_fit", "history": size, "impl": impl, "settings": "default",
              "median_ms": round(float(np.median(adds)), 4), "p99_ms": round(float(np.percentile(adds, 99)), 4),
-             "peak_mb": None}]
+             "peak_mb": None},
+            {"area": "algorithm", "name": "fit", "history": size, "impl": impl, "settings": "default",
+             "median_ms": round(fit_ms, 1), "p99_ms": None, "peak_mb": None}]
 
 
 if __name__ == "__main__":

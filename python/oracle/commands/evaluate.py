@@ -22,6 +22,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     evaluate.add_argument("--baselines", action="store_true",
                           help="also run the thesis oracle (unless it is --method) and every history-only "
                                "baseline (docs/evaluation.md), compared pairwise with --method")
+    evaluate.add_argument("--also", default="", metavar="NAME[,NAME]",
+                          help="also replay these predictors of the registry (e.g. stacked), compared with --method")
     evaluate.add_argument("--ablations", action="store_true", help="also replay the thesis Fig. 5.5 settings A-N")
     evaluate.add_argument("--json", type=Path, metavar="OUT", help="write the summary JSON here")
     evaluate.add_argument("--report", type=Path, metavar="FILE.md", help="write a markdown report here")
@@ -51,7 +53,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_evaluate(args: argparse.Namespace) -> int:
-    from oracle.evaluation.replay import (ReplayRules, check_users, load_users, make_methods, replay, stderr_progress,
+    from oracle.evaluation.replay import (OracleMethod, ReplayRules, check_users, load_users, make_methods, replay, stderr_progress,
                                           summarize)
 
     method = method_from(args)
@@ -62,6 +64,9 @@ def run_evaluate(args: argparse.Namespace) -> int:
     started = time.perf_counter()
     rules = ReplayRules(args.candidates, args.decision, not args.every_step)
     methods = make_methods(ontology, settings, args.baselines, method, rules.served)
+    for name in (n.strip() for n in args.also.split(",") if n.strip()):
+        methods.insert(1, OracleMethod(ontology, settings, method=method_from(argparse.Namespace(method=name)),
+                                       served=rules.served))
     result = replay(ontology, users, methods, args.seed, stderr_progress, rules)
     summary = summarize(result)
     summary["protocol"] = {"candidates": rules.candidates, "decision": rules.decision, "served": rules.served}

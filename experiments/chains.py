@@ -1,0 +1,164 @@
+"""Chain accuracy: how often the 2nd and 3rd predicted steps of the default predictor's chain are
+the user's next actions, plain chaining against feasible chaining (docs/evaluation.md, "Chains").
+
+At every decision t of the honest replay (``ReplayRules()``), the predictor ranks the offer; its
+first option is taken as done (a copy of the model, ``partial_fit`` of that hypothetical step) and
+the next step is ranked:
+- tree: the forward tree of the first option (thesis Fig. 4.6, ``successors``): the options that
+  followed its past situations, and for step 3 those under the tree's best child;
+- plain: over the same offer (what the robot can offer now; the page's chain);
+- feasible: over what was available after the same action before (the offer of the decision that
+  followed the user's latest execution of that option; the offer now when it was never done:
+  the task inference of a log without a world model), kept to the options the user did before when
+  the data has no available sets (the replay's candidate rule).
+Step 3 repeats this from the predicted step 2. Step k is scored at t only where actions t .. t+k-1
+exist with no idle gap between (the chain is one activity); a hit at Top-j means the action t+k-1 is
+among the first j options of the step's ranking. Intervals: the paired bootstrap of
+``oracle.evaluation.statistics`` over users (blocks of one user's predictions on sets with few users).
+
+usage: python experiments/chains.py CHAINS [--odb DIR --mapping YAML] [--users N] [--method routine]
+       [--json OUT]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import pickle
+import sys
+from collections import OrderedDict
+from pathlib import Path
+from typing import Any
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
+from oracle.algorithm.params import Hyperparameters  # noqa: E402
+from oracle.algorithm.records import Option, Step  # noqa: E402
+from oracle.evaluation.replay import KS, OracleMethod, Outcome, ReplayRules, load_users, replay  # noqa: E402
+from oracle.evaluation.statistics import comparison_summary  # noqa: E402
+from oracle.ontology import build_ontology  # noqa: E402
+
+
+class Chaining(OracleMethod):
+    """The predictor, recording at each decision its plain and feasible 2nd and 3rd steps."""
+
+    def reset(self) -> None:
+        super().reset()
+        self.chains: list[dict[str, list[list[Option]]]] = getattr(self, "chains", [])
+        self.after: dict[Option, tuple[Option, ...]] = {}   # option -> the offer of the decision after it
+        self.done: dict[Option, None] = {}
+        self.previous: Option | None = None
+
+    def rank(self, candidates: Any, time_of_day: str | None = None, at: float | None = None) -> list[Option]:
+        ranking = self.model.rank(list(candidates), time_of_day, tree_roots=1, at=at)
+        order = list(ranking.options())
+        record: dict[str, list[list[Option]]] = {"plain": [], "feasible": [], "tree": []}
+        # the forward tree of the first option (thesis Fig. 4.6): what followed its past situations
+        children = ranking.tasks[0].successors if ranking.tasks else ()
+        record["tree"] = [[n.option for n in children], [n.option for n in children[0].children] if children else []]
+        for kind in ("plain", "feasible"):
+            model, offer, first = self.model, list(candidates), order[0] if order else None
+            for _ in range(2):
+                if first is None:
+                    record[kind].append([])
+                    continue
+                model = pickle.loads(pickle.dumps(model))
+                model.partial_fit(Step(first.task, first.target, first.reference, tuple(offer), time_of_day, False,
+                                       str(first), at))
+                if kind == "feasible":
+                    offer = list(self.after.get(first, offer))
+                nxt = list(model.rank(offer, time_of_day, tree_roots=0, at=at).options()) if offer else []
+                record[kind].append(nxt)
+                first = nxt[0] if nxt else None
+        self.chains.append(record)
+        return order
+
+    def observe(self, step: Step) -> None:
+        if not step.idle:
+            option = step.option
+            if self.previous is not None and step.options:
+                self.after[self.previous] = step.options
+            self.previous = option
+            self.done[option] = None
+        else:
+            self.previous = None  # an idle gap: what follows is not "after" the action before it
+        super().observe(step)
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("chains")
+    parser.add_argument("--odb")
+    parser.add_argument("--mapping")
+    parser.add_argument("--users", type=int, default=0)
+    parser.add_argument("--method", default="routine")
+    parser.add_argument("--json", type=Path)
+    args = parser.parse_args()
+    ontology = build_ontology(args.odb, args.mapping)
+    users = load_users(args.chains)
+    if args.users:
+        users = OrderedDict(list(users.items())[:args.users])
+    method = Chaining(ontology, Hyperparameters(), method=args.method, served=True)
+    result = replay(ontology, users, [method], 0, None, ReplayRules())
+    # which decisions were ranked (a decision with no candidates is not), in replay order
+    ranked = iter(method.chains)
+    chains = [next(ranked) if o.n_candidates else None for o in result.outcomes]
+    outcomes: list[Outcome] = []
+    by_user: dict[str, list[int]] = {}
+    for i, o in enumerate(result.outcomes):
+        by_user.setdefault(o.user, []).append(i)
+    for user, positions in by_user.items():
+        rows_of = users[user]
+        for j, i in enumerate(positions):
+            record = chains[i]
+            if record is None:
+                continue
+            for depth in (2, 3):
+                later = j + depth - 1
+                if later >= len(positions) or _gap(rows_of, j, later):
+                    continue
+                truth = ontology_option(ontology, rows_of[later].action)
+                ranks: dict[str, int | None] = {}
+                for kind in ("plain", "feasible", "tree"):
+                    listed = record[kind][depth - 2]
+                    ranks[kind] = listed.index(truth) + 1 if truth in listed else None
+                outcomes.append(Outcome(f"{user}", depth * 1_000_000 + j, 0, True, ranks, dict.fromkeys(ranks, 0.0)))
+    report: dict[str, Any] = {"set": args.chains, "method": args.method, "users": len(users)}
+    for depth in (2, 3):
+        chosen = [o for o in outcomes if o.index // 1_000_000 == depth]
+        entry: dict[str, Any] = {"n": len(chosen)}
+        for kind in ("plain", "feasible", "tree"):
+            entry[kind] = {f"top{k}": sum(1 for o in chosen if (r := o.ranks[kind]) is not None and r <= k)
+                           / max(1, len(chosen)) for k in KS}
+        paired = comparison_summary(chosen, "plain", ["feasible", "tree"], 0)["methods"]
+        entry["feasible_minus_plain"], entry["tree_minus_plain"] = paired["feasible"], paired["tree"]
+        report[f"step{depth}"] = entry
+        print(f"step {depth} ({len(chosen)} predictions): " + "; ".join(
+            f"top{k} plain {entry['plain'][f'top{k}']:.3f} feasible {entry['feasible'][f'top{k}']:.3f} "
+            f"tree {entry['tree'][f'top{k}']:.3f} "
+            f"diff {100 * entry['feasible_minus_plain'][f'top{k}']['difference']:+.2f} "
+            f"[{100 * entry['feasible_minus_plain'][f'top{k}']['low']:+.2f}, "
+            f"{100 * entry['feasible_minus_plain'][f'top{k}']['high']:+.2f}]" for k in KS))
+    if args.json is not None:
+        args.json.write_text(json.dumps(report, indent=1) + "\n", encoding="utf-8")
+    return 0
+
+
+def _gap(rows: list[Any], first: int, last: int) -> bool:
+    """Whether an idle gap lies between rows ``first`` and ``last`` (the chain ended)."""
+    from oracle.timeline import is_idle_gap, seconds_of
+
+    for a, b in zip(rows[first:last], rows[first + 1:last + 1]):
+        if a.time is not None and b.time is not None and is_idle_gap(
+                seconds_of(a.end if a.end is not None else a.time), seconds_of(b.time)):
+            return True
+    return False
+
+
+def ontology_option(ontology: Any, call: Any) -> Option:
+    from oracle.calls import option_of
+
+    return option_of(ontology, call)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

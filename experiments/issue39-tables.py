@@ -1,0 +1,92 @@
+"""Print the tables of docs/results.md, "Honest replay, learned baselines, chains" from the JSON
+files of experiments/issue39.sh and experiments/issue39-normalized.sh.
+
+usage: python experiments/issue39-tables.py OUT [targets|all|chains|normalized]
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+
+SETS = (("persona", "Persona test split"), ("kasteren", "van Kasteren house A"), ("egtea", "EGTEA Gaze+"))
+KS = (1, 3, 5)
+
+
+def each(out: Path, prefix: str) -> Iterator[tuple[str, dict]]:
+    """(label, summary) of every set whose ``OUT/PREFIX-SET.json`` exists."""
+    for key, label in SETS:
+        path = out / f"{prefix}-{key}.json"
+        if path.exists():
+            yield label, json.loads(path.read_text(encoding="utf-8"))
+
+
+def targets(out: Path) -> None:
+    print("| set | method | Top-1 | Top-3 | Top-5 | Top-3 minus `routine` [95 % CI] | cold start Top-1/3/5 |")
+    print("| --- | --- | ---: | ---: | ---: | --- | --- |")
+    for label, s in each(out, "i39"):
+        ref = s["method"]
+        paired = s["comparisons"]["methods"]
+        cold = s["cold_start"]["methods"]
+        shown = [ref, "stacked", "logit", "gbdt", "oracle"]
+        best = max((n for n in s["methods"] if n not in shown), key=lambda n: s["methods"][n]["top3"])
+        for name in [*shown, best]:
+            if name not in s["methods"]:
+                continue
+            m = s["methods"][name]
+            d = paired.get(name, {}).get("top3")
+            diff = f"{100 * d['difference']:+.1f} [{100 * d['low']:+.1f}, {100 * d['high']:+.1f}]" if d else "-"
+            c = cold[name]
+            tag = f"`{name}`" + (" (best other baseline on Top-3)" if name == best else "")
+            print(f"| {label} | {tag} | {m['top1']:.3f} | {m['top3']:.3f} | {m['top5']:.3f} | {diff} | "
+                  f"{c['top1']:.3f} / {c['top3']:.3f} / {c['top5']:.3f} |")
+        print(f"| {label} | chance | {s['chance']['top1']:.3f} | {s['chance']['top3']:.3f} | "
+              f"{s['chance']['top5']:.3f} | {s['n_predictions']:,} predictions, {s['truth_not_offered']:,} "
+              f"not offered | |")
+
+
+def everything(out: Path) -> None:
+    for label, s in each(out, "i39"):
+        print(f"\n{label} (`{s['method']}` first; {s['mean_candidates']:.1f} candidates on average)\n")
+        print("| method | Top-1 | Top-3 | Top-5 | ms / prediction |")
+        print("| --- | ---: | ---: | ---: | ---: |")
+        for name, m in s["methods"].items():
+            print(f"| `{name}` | {m['top1']:.3f} | {m['top3']:.3f} | {m['top5']:.3f} | {m['ms_per_prediction']:.2f} |")
+
+
+def chains(out: Path) -> None:
+    print("| set | step | n | plain Top-1/3/5 | forward tree Top-1/3/5 | feasible Top-1/3/5 | "
+          "feasible minus plain, Top-3 [95 % CI] | feasible minus tree, Top-3 |")
+    print("| --- | ---: | ---: | --- | --- | --- | --- | ---: |")
+    for label, c in each(out, "i39-chains"):
+        for depth in (2, 3):
+            e = c[f"step{depth}"]
+            cells = [" / ".join(f"{e[kind][f'top{k}']:.3f}" for k in KS) for kind in ("plain", "tree", "feasible")]
+            d = e["feasible_minus_plain"]["top3"]
+            tree = 100 * (e["feasible"]["top3"] - e["tree"]["top3"])
+            print(f"| {label} | {depth} | {e['n']:,} | {cells[0]} | {cells[1]} | {cells[2]} | "
+                  f"{100 * d['difference']:+.1f} [{100 * d['low']:+.1f}, {100 * d['high']:+.1f}] | {tree:+.1f} |")
+
+
+def normalized(out: Path) -> None:
+    print("| set | thesis Top-1/3/5 | thesis-normalized Top-1/3/5 | Top-3 difference [95 % CI] |")
+    print("| --- | --- | --- | --- |")
+    for label, s in each(out, "i39-normalized"):
+        a, b = s["methods"]["oracle"], s["methods"]["thesis-normalized"]
+        d = s["comparisons"]["methods"]["thesis-normalized"]["top3"]
+        print(f"| {label} | {a['top1']:.3f} / {a['top3']:.3f} / {a['top5']:.3f} | "
+              f"{b['top1']:.3f} / {b['top3']:.3f} / {b['top5']:.3f} | "
+              f"{100 * d['difference']:+.1f} [{100 * d['low']:+.1f}, {100 * d['high']:+.1f}] |")
+
+
+def main() -> int:
+    out = Path(sys.argv[1] if len(sys.argv) > 1 else "out")
+    which = sys.argv[2] if len(sys.argv) > 2 else "targets"
+    {"targets": targets, "all": everything, "chains": chains, "normalized": normalized}[which](out)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
