@@ -31,6 +31,7 @@ import json
 import math
 import threading
 from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass
 from datetime import datetime
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -55,9 +56,17 @@ _LOCK = threading.RLock()
 _STATE: dict[str, Any] = {"bridge": None, "loaded": False, "request": None}
 _GENERATORS: dict[int, Iterator[str]] = {}
 _NEXT_KEY = [1]
-#: How many times Prolog called into Python (crossings), per foreign predicate.
-CROSSINGS = {"py_match": 0, "py_insert": 0, "py_retract": 0, "py_graph": 0, "py_request": 0, "py_scopes": 0,
-             "py_annotations": 0, "py_annotate": 0, "py_tf": 0}
+#: Crossings between the two languages: ``query``, every question Python asks Prolog; the
+#: others, every time Prolog called into Python, per foreign predicate (a py_match counted
+#: once, however many chunks it hands over).
+CROSSINGS = {"query": 0, "py_match": 0, "py_insert": 0, "py_retract": 0, "py_graph": 0, "py_request": 0,
+             "py_scopes": 0, "py_annotations": 0, "py_annotate": 0, "py_tf": 0}
+
+
+def crossings() -> int:
+    """Every crossing so far, both ways (``CROSSINGS``); the py_request a question reads its
+    values with is part of the question, not counted again."""
+    return sum(count for name, count in CROSSINGS.items() if name != "py_request")
 
 
 # -- values ------------------------------------------------------------------------------
@@ -466,6 +475,7 @@ def _run(query: str, maxresult: int = -1) -> list[dict[str, Any]]:
     from pyswip import Prolog
     from pyswip.prolog import PrologError as PySwipError
 
+    CROSSINGS["query"] += 1
     try:
         return list(Prolog.query(query, maxresult=maxresult))
     except PySwipError as error:
@@ -597,8 +607,37 @@ class Bridge:
         return history_rows(self._json("odb_history:situation_history_json", f"{number}, "))
 
     def latest_situation(self) -> dict[str, Any] | None:
-        """The latest imagined situation as ``{"begin", "available"}``, or None."""
+        """The latest imagined situation as ``{"begin", "available", "part"}`` (``part``: the
+        part of day its interval was logged with, ``none`` if none), or None."""
         return self._json("odb_history:latest_situation_json")
+
+    def history_view(self, after: float | None = None) -> HistoryView:
+        """The history (``after``: only its rows after the row that began then, as
+        ``history_after``) and the latest imagined situation, in one question
+        (odb_history:history_view_json/2)."""
+        if after is None:
+            reply = self._json("odb_history:history_view_json", "none, ")
+        else:
+            if isinstance(after, bool) or not isinstance(after, (int, float)) or not math.isfinite(after):
+                raise PrologError(f"history_view needs a finite number, got {after!r}")
+            reply = self._json("odb_history:history_view_json", f"{after!r}, ")
+        return HistoryView(history_rows(reply), reply["latest"])
+
+    def json_query(self, module: Path, query: str, bindings: dict[str, Any], offset: int, limit: int,
+                   seconds: float) -> dict[str, Any]:
+        """json_query:json_query/2 of the service's JSON endpoint (``module``, loaded on first
+        use): ``query`` run with ``bindings`` (strings as atoms, numbers, lists of them), its
+        solutions from ``offset``, at most ``limit``, within ``seconds``. QueryValueError for a
+        binding of another type."""
+        from pyswip import Atom
+
+        if not _STATE.get("json_query"):
+            self.ask("neem_store:py_request(R), R = [F], use_module(user:F)", [Atom(str(module))])
+            _STATE["json_query"] = True
+        pairs = [[Atom(name), _term_value(name, value)] for name, value in bindings.items()]
+        rows = self.ask("neem_store:py_request(R), json_query:json_query(R, J)", [query, pairs, offset, limit, float(seconds)])
+        text = rows[0]["J"]
+        return json.loads(text.decode("utf-8") if isinstance(text, bytes) else text)
 
     def solutions(self, goal: str, variables: Sequence[str], *, stepwise: bool = False) -> list[tuple[Any, ...]]:
         """All solutions of a kb_call goal (its text) as tuples of the named variables."""
@@ -612,6 +651,33 @@ class Bridge:
             if _STATE["bridge"] is self:
                 _STATE["bridge"] = None
                 _run("neem_store:store_use_memory")
+
+
+class QueryValueError(PrologError):
+    """A value a client bound in a query that Prolog cannot take."""
+
+
+def _term_value(name: str, value: Any) -> Any:
+    from pyswip import Atom
+
+    if isinstance(value, bool) or value is None:
+        raise QueryValueError(f"binding {name}: expected a string (atom) or a number, got {value!r}")
+    if isinstance(value, (int, float)):
+        return value
+    if isinstance(value, str):
+        return Atom(value)
+    if isinstance(value, list):
+        return [_term_value(name, v) for v in value]
+    raise QueryValueError(f"binding {name}: expected a string (atom), a number or a list, got {type(value).__name__}")
+
+
+@dataclass(frozen=True)
+class HistoryView:
+    """What the oracle reads of a NEEM: the ``situation_history`` rows (``Bridge.history``) and
+    the latest imagined situation (``Bridge.latest_situation``)."""
+
+    rows: list[dict[str, Any]]
+    latest: dict[str, Any] | None
 
 
 def history_rows(reply: dict[str, Any]) -> list[dict[str, Any]]:
@@ -644,4 +710,4 @@ def connect(store: Store, neem_id: str, ontology: OdbOntology | None = None) -> 
         raise
 
 
-__all__ = ["Bridge", "CROSSINGS", "connect", "quote_atom", "term_text"]
+__all__ = ["Bridge", "CROSSINGS", "HistoryView", "QueryValueError", "connect", "crossings", "quote_atom", "term_text"]

@@ -10,7 +10,6 @@ write-behind of a situation safe: its write is queued before any later request.
 from __future__ import annotations
 
 import asyncio
-import json
 import logging
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
@@ -20,12 +19,13 @@ from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.predictors import DEFAULT
 from oracle.answers import something_else_sentence, what_next_sentence, why_not_sentence
 from oracle.historycache import HistoryCache
-from oracle.bridge import Bridge
+from oracle.bridge import Bridge, QueryValueError
 from oracle.paths import prolog_dir
 from oracle.errors import NeemOracleError, StoreError
 from oracle.neem.writer import NeemLogger
 from oracle.timeline import Instant
 from oracle.ontology import OdbOntology
+from oracle.ranking import latest_instant
 from oracle.service.session import NeemSession, make_predictor, moment_of
 from oracle.store import Store
 from oracle.store.ids import alias_of, find_neem
@@ -86,7 +86,6 @@ class Engine:
         self.method = method
         self.sessions: dict[str, NeemSession] = {}
         self._bridge: Bridge | None = None
-        self._query_loaded = False
 
     # -- NEEMs --------------------------------------------------------------------------------
     def neems(self) -> list[dict[str, Any]]:
@@ -128,21 +127,22 @@ class Engine:
             neem = self.resolve(name)
             if neem in self.sessions:
                 return self.sessions[neem]
-            history = HistoryCache.default().history(self.bridge(neem))
+            view = HistoryCache.default().view(self.bridge(neem))
             logger = NeemLogger(self.store, self.ontology, neem, commit_every=NEVER)
-            session = NeemSession(neem, logger, self.ontology, make_predictor(self.ontology, self.settings, self.method), history)
+            session = NeemSession(neem, logger, self.ontology, make_predictor(self.ontology, self.settings, self.method),
+                                  view.rows)
             self.sessions[neem] = session
-            self._show_latest(session)
+            self._show_latest(session, view.latest)
         return session
 
-    def _show_latest(self, session: NeemSession) -> None:
+    def _show_latest(self, session: NeemSession, latest: dict[str, Any] | None) -> None:
         """Rank the NEEM's latest imagined situation (not written: it was ranked when logged), so
-        the page has something to show before the robot posts (e.g. right after ``make demo``)."""
-        latest = self.bridge(session.neem).latest_situation()
+        the page has something to show before the robot posts (e.g. right after ``make demo``),
+        at the time and part of day ``rank`` ranks it."""
         if latest is None:
             return
         try:
-            found, ranking, ms = session.situation(latest["available"], float(latest["begin"]))
+            found, ranking, ms = session.situation(latest["available"], latest_instant(latest, session.logger.clocked))
         except NeemOracleError:
             return  # an old situation, before the last action: nothing current to show
         session.describe(found, ranking, ms)
@@ -172,17 +172,11 @@ class Engine:
     # -- Prolog -------------------------------------------------------------------------------
     def prolog(self, neem: str, query: str, bindings: dict[str, Any], offset: int, limit: int,
                seconds: float) -> dict[str, Any]:
-        from pyswip import Atom
-
         bridge = self.bridge(self.session(neem).neem)  # a NotFound error for a missing NEEM
-        if not self._query_loaded:
-            bridge.ask("neem_store:py_request(R), R = [F], use_module(user:F)", [Atom(str(QUERY_MODULE))])
-            self._query_loaded = True
-        pairs = [[Atom(name), _term_value(name, value)] for name, value in bindings.items()]
-        rows = bridge.ask("neem_store:py_request(R), json_query:json_query(R, J)",
-                          [query, pairs, offset, limit, float(seconds)])
-        text = rows[0]["J"]
-        reply = json.loads(text.decode("utf-8") if isinstance(text, bytes) else text)
+        try:
+            reply = bridge.json_query(QUERY_MODULE, query, bindings, offset, limit, seconds)
+        except QueryValueError as error:
+            raise PrologQueryError(str(error)) from None
         if "error" in reply:
             raise PrologQueryError(reply["error"])
         return reply
@@ -194,20 +188,6 @@ class NotFound(StoreError):
 
 class PrologQueryError(NeemOracleError):
     """The query a client sent cannot be run (syntax, unsafe goal, an error it raised)."""
-
-
-def _term_value(name: str, value: Any) -> Any:
-    from pyswip import Atom
-
-    if isinstance(value, bool) or value is None:
-        raise PrologQueryError(f"binding {name}: expected a string (atom) or a number, got {value!r}")
-    if isinstance(value, (int, float)):
-        return value
-    if isinstance(value, str):
-        return Atom(value)
-    if isinstance(value, list):
-        return [_term_value(name, v) for v in value]
-    raise PrologQueryError(f"binding {name}: expected a string (atom), a number or a list, got {type(value).__name__}")
 
 
 __all__ = ["Engine", "EngineThread", "NotFound", "PrologQueryError", "QUERY_MODULE"]

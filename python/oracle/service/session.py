@@ -30,7 +30,7 @@ from oracle.calls import call_of, check_call, opening_tasks
 #: as the one workflow; the ranking itself does not depend on how many trees are built.
 TREE_ROOTS = 1
 
-Moment = datetime | float
+Moment = datetime | float | Instant
 
 
 @dataclass(frozen=True)
@@ -76,6 +76,8 @@ def moment_of(value: Any, what: str) -> Moment:
 def _moment(value: Any, what: str) -> Moment:
     if value is None:
         return time.time()
+    if isinstance(value, Instant):
+        return value  # a time read from the NEEM, with the part of day recorded with it
     if isinstance(value, bool):
         raise LoggingError(f"{what}: expected unix seconds or ISO-8601, got {value!r}")
     if isinstance(value, (int, float)):
@@ -112,7 +114,7 @@ class NeemSession:
         # the fit of a NEEM the CLI or an earlier service run ranked is kept (oracle.fitcache)
         # (never that of a temporary NEEM: it is wiped when the next session starts)
         #: The NEEM's ranking pipeline (oracle.ranking): its steps, fit, offers and breaks.
-        self.ranker = NeemRanker(ontology, predictor, list(history), neem=neem, store=logger.store.location,
+        self.ranker = NeemRanker(ontology, predictor, list(history), neem=neem, store=logger.store,
                                  clocked=logger.clocked, keep=not logger.store.neem(neem).temporary,
                                  idle_threshold=logger.idle_threshold)
         self.pending: Situation | None = None
