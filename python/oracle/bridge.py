@@ -53,7 +53,7 @@ MODULES = ("neem_store", "json_text", "lang/triple", "lang/scope", "lang/query",
 CHUNK = 5000
 
 _LOCK = threading.RLock()
-_STATE: dict[str, Any] = {"bridge": None, "loaded": False, "request": None}
+_STATE: dict[str, Any] = {"bridge": None, "active": None, "loaded": False, "request": None}
 _GENERATORS: dict[int, Iterator[str]] = {}
 _NEXT_KEY = [1]
 #: Crossings between the two languages: ``query``, every question Python asks Prolog; the
@@ -491,43 +491,50 @@ def _clean_prolog_error(text: str) -> str:
 
 class Bridge:
     """Prolog connected to one NEEM of a store. Only one bridge is active per process
-    (pyswip's Prolog is process-wide); creating a new one replaces the previous."""
+    (pyswip's Prolog is process-wide): the one that asked last; Prolog is loaded and pointed at
+    the bridge's NEEM on its first question (``_ready``)."""
 
     def __init__(self, store: Store, neem_id: str, ontology: OdbOntology | None = None) -> None:
-        from pyswip import Atom
-
         from oracle.store.ids import resolve_neem
 
         self.store = store
-        self.neem_id = neem_id = resolve_neem(store, neem_id)  # an id or an alias; StoreError when neither
-        #: The ontology the Prolog names were set from (set_ontology), None before.
-        self.ontology: OdbOntology | None = None
+        self.neem_id = resolve_neem(store, neem_id)  # an id or an alias; StoreError when neither
+        #: The ontology the Prolog names are set from (set_ontology), None before.
+        self.ontology: OdbOntology | None = ontology
+
+    def _ready(self) -> None:
+        """Prolog loaded and reading this bridge's NEEM with its ontology's names: done on the
+        first question, not when the bridge is made (a rank whose history and fit are kept asks
+        none), and again when another bridge was used since."""
+        from pyswip import Atom
+
         with _LOCK:
             _attach_engine()
             _ensure_loaded()
             _STATE["bridge"] = self
-            self._with_request([Atom(neem_id)], "neem_store:py_request(R), R = [N], neem_store:store_use_python(N)")
-            if ontology is not None:
-                self.set_ontology(ontology)
+            if _STATE.get("active") is self:
+                return
+            _STATE["request"] = [Atom(self.neem_id)]
+            try:
+                _run("neem_store:py_request(R), R = [N], neem_store:store_use_python(N)")
+                if self.ontology is not None:
+                    _STATE["request"] = _ontology_request(self.ontology)
+                    _run("neem_store:py_request(Q), Q = [NS, Rows], odb_names:odb_set_namespace(NS),"
+                         " forall(member([T, Ta, R], Rows), odb_names:odb_set_task_roles(T, Ta, R))")
+            finally:
+                _STATE["request"] = None
+            _STATE["active"] = self
 
     def set_ontology(self, ontology: OdbOntology) -> None:
         """Tell odb_names the ontology's namespace and which role of each task is which."""
-        from pyswip import Atom
-
-        self.ontology = ontology
-
-        rows = [
-            [Atom(task.iri), Atom(task.target_role or "none"), Atom(task.ref_role or "none")]
-            for task in ontology.tasks.values()
-        ]
         with _LOCK:
-            self._with_request([Atom(ontology.namespace), rows],
-                               "neem_store:py_request(Q), Q = [NS, Rows], odb_names:odb_set_namespace(NS),"
-                               " forall(member([T, Ta, R], Rows), odb_names:odb_set_task_roles(T, Ta, R))")
+            self.ontology = ontology
+            if _STATE.get("active") is self:
+                _STATE["active"] = None  # set again before the next question
 
     def _with_request(self, request: list[Any], query: str) -> list[dict[str, Any]]:
         with _LOCK:
-            _STATE["bridge"] = self
+            self._ready()
             _STATE["request"] = request
             try:
                 return _run(query)
@@ -538,7 +545,7 @@ class Bridge:
     def query(self, text: str, maxresult: int = -1) -> list[dict[str, Any]]:
         """Solutions of a Prolog query the user typed (text is the query, not data)."""
         with _LOCK:
-            _STATE["bridge"] = self
+            self._ready()
             return [{k: _python_value(v) for k, v in row.items()} for row in _run(text, maxresult)]
 
     def run_batch(self, max_answers: int | None = None) -> int:
@@ -569,16 +576,22 @@ class Bridge:
     def why_not(self, task: str, args: Sequence[str], at: float | None = None) -> dict[str, Any]:
         from pyswip import Atom
 
+        self._ready()  # an engine on this thread before any term is made
+
         return self.answer([Atom("why_not"), Atom(task), [Atom(a) for a in args],
                             float(at) if at is not None else Atom("none")])
 
     def what_next(self) -> dict[str, Any]:
         from pyswip import Atom
 
+        self._ready()  # an engine on this thread before any term is made
+
         return self.answer([Atom("what_next")])
 
     def something_else(self, task: str | None = None, args: Sequence[str] = ()) -> dict[str, Any]:
         from pyswip import Atom
+
+        self._ready()  # an engine on this thread before any term is made
 
         return self.answer([Atom("something_else"), Atom(task or "none"), [Atom(a) for a in args]])
 
@@ -631,6 +644,7 @@ class Bridge:
         binding of another type."""
         from pyswip import Atom
 
+        self._ready()  # an engine on this thread before any term is made
         if not _STATE.get("json_query"):
             self.ask("neem_store:py_request(R), R = [F], use_module(user:F)", [Atom(str(module))])
             _STATE["json_query"] = True
@@ -650,7 +664,18 @@ class Bridge:
         with _LOCK:
             if _STATE["bridge"] is self:
                 _STATE["bridge"] = None
-                _run("neem_store:store_use_memory")
+                if _STATE.get("active") is self:
+                    _STATE["active"] = None
+                    _run("neem_store:store_use_memory")
+
+
+def _ontology_request(ontology: OdbOntology) -> list[Any]:
+    """The namespace and each task's target and reference roles, as odb_names takes them."""
+    from pyswip import Atom
+
+    rows = [[Atom(task.iri), Atom(task.target_role or "none"), Atom(task.ref_role or "none")]
+            for task in ontology.tasks.values()]
+    return [Atom(ontology.namespace), rows]
 
 
 class QueryValueError(PrologError):

@@ -3,7 +3,8 @@ and the history read / ``rank`` / why_not at 1,000-50,000 actions against a plai
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import AbstractContextManager, contextmanager
 import shutil
 import tempfile
 import time
@@ -212,43 +213,144 @@ def _timed(fn, repeat: int = 3) -> tuple[dict[str, float], dict[str, float]]:
 
 def _rank_cli(store: Path, neem: str, grow: Callable[[], None] | None, repeat: int = 3) -> dict[str, dict[str, float]]:
     """``python -m oracle rank`` from start to exit, and the interpreter's own start and exit
-    (``python -c pass``) interleaved with it: wall and the child's CPU seconds of each. ``rank``
-    starts with nothing kept (oracle.fitcache, oracle.historycache emptied): the whole history
-    is read and fitted. ``rank_grown`` is the robot's case: a rank made just before (untimed)
-    kept its history and fit, then ``grow`` logged one more action and the next imagined
-    situation, and only those are read and fitted."""
-    import resource
+    (``python -c pass``) interleaved with it: wall and CPU seconds and peak RSS (MiB) of each.
+    ``rank`` starts with nothing kept in the user's cache (oracle.fitcache, oracle.historycache
+    emptied), the store as the import left it (its kept view and fit, oracle.store.kept);
+    ``rank_full`` with nothing kept in the store either: the whole history is read through Prolog
+    and fitted. ``rank_grown`` is the robot's case: a rank made just before (untimed) kept its
+    history and fit, then ``grow`` logged one more action and the next imagined situation, and
+    only those are read and fitted."""
     import subprocess
     import sys
 
+    from oracle.benchmarks.figures import run_measured
+
     base = [sys.executable, "-m", "oracle", "rank", "--store", str(store), "--neem", neem, "--no-write"]
-    argvs = {"rank": base, "start": [sys.executable, "-c", "pass"]}
+    argvs = {"rank": base, "rank_full": base, "start": [sys.executable, "-c", "pass"]}
     if grow is not None:
         argvs["rank_grown"] = base
-    walls: dict[str, list[float]] = {name: [] for name in argvs}
-    cpus: dict[str, list[float]] = {name: [] for name in argvs}
-    with tempfile.TemporaryDirectory() as cache:
+    figures: dict[str, dict[str, list[float]]] = {name: {"wall": [], "cpu": [], "rss": []} for name in argvs}
+    with tempfile.TemporaryDirectory() as cache, _kept_rows(store) as kept:
         # the ontology and the compiled Prolog modules are cached as a user's are, the
         # package's bytecode written as an install writes it
         env = installed_env(NEEM_ORACLE_CACHE=cache)
         subprocess.run(base, check=True, capture_output=True, env=env)
         for _ in range(repeat):
             for name, argv in argvs.items():
-                if name == "rank":
+                if name in ("rank", "rank_full"):
                     for folder in (FitCache.FOLDER, HistoryCache.FOLDER):
                         shutil.rmtree(Path(cache) / folder, ignore_errors=True)
                 if name == "rank_grown":
                     assert grow is not None
                     subprocess.run(base, check=True, capture_output=True, env=env)
                     grow()
-                before = resource.getrusage(resource.RUSAGE_CHILDREN)
-                start = time.perf_counter()
-                subprocess.run(argv, check=True, capture_output=True, env=env)
-                walls[name].append(time.perf_counter() - start)
-                after = resource.getrusage(resource.RUSAGE_CHILDREN)
-                cpus[name].append(after.ru_utime - before.ru_utime + after.ru_stime - before.ru_stime)
-    return {f"{name}_{kind}": _spread(values[name]) for name in argvs
-            for kind, values in (("wall", walls), ("cpu", cpus))}
+                with kept(name != "rank_full"):
+                    wall, cpu, peak = run_measured(argv, env)
+                figures[name]["wall"].append(wall)
+                figures[name]["cpu"].append(cpu)
+                figures[name]["rss"].append(peak / 1024)
+    return {f"{name}_{kind}": _spread(values) for name, by_kind in figures.items() for kind, values in by_kind.items()}
+
+
+@contextmanager
+def _kept_rows(store: Path) -> Iterator[Callable[[bool], AbstractContextManager[None]]]:
+    """``kept(False)``: a context in which the store keeps nothing (oracle.store.kept's rows
+    set aside, plain sqlite3, untimed, and put back after); ``kept(True)`` changes nothing."""
+    import sqlite3
+
+    from oracle.store.kept import TABLE
+
+    @contextmanager
+    def kept(present: bool) -> Iterator[None]:
+        if present:
+            yield
+            return
+        with sqlite3.connect(store) as conn:
+            conn.execute(f"CREATE TABLE IF NOT EXISTS bench_saved AS SELECT * FROM {TABLE}")
+            conn.execute(f"DELETE FROM {TABLE}")
+        try:
+            yield
+        finally:
+            with sqlite3.connect(store) as conn:
+                conn.execute(f"INSERT OR REPLACE INTO {TABLE} SELECT * FROM bench_saved")
+                conn.execute("DROP TABLE bench_saved")
+
+    yield kept
+
+
+def _kept_floor(path: Path, neem: str) -> None:
+    """The least a start from kept state reads: the NEEM's kept entries, plain sqlite3, and the
+    history's JSON parsed (nothing fitted, no Prolog)."""
+    import json
+    import sqlite3
+
+    from oracle.store.kept import TABLE
+
+    conn = sqlite3.connect(path)
+    for kind, data in conn.execute(f"SELECT kind, data FROM {TABLE} WHERE neem=?", (neem,)).fetchall():
+        if kind == "history":
+            json.loads(data)
+    conn.close()
+
+
+def _crossings(bridge: Any, onto: Any, folder: Path) -> dict[str, int]:
+    """Crossings between Python and Prolog (bridge.CROSSINGS, both ways) of one in-process rank
+    with nothing kept in the user's cache (``cold``), the same rank again (``warm``), and one
+    with nothing kept in the store either (``full``: its kept rows set aside)."""
+    from oracle.algorithm.params import Hyperparameters
+    from oracle.bridge import crossings
+    from oracle.ranking import rank_neem
+
+    counts = {}
+    for name in ("cold", "warm", "full"):
+        if name != "warm":
+            shutil.rmtree(folder, ignore_errors=True)
+        with _kept_rows(Path(bridge.store.location)) as kept, kept(name != "full"):
+            before = crossings()
+            rank_neem(bridge, onto, Hyperparameters(), write=False, cache=FitCache(folder / "fits"),
+                      histories=HistoryCache(folder / "histories"))
+            counts[name] = crossings() - before
+    return counts
+
+
+#: The service's first answer for a NEEM, in a process that started (the server's) with the
+#: store, the ontology and the engine made: opening the NEEM's session (its view, its fit, the
+#: latest situation ranked), as the page's first load asks for it.
+_FIRST_ANSWER = """
+import sys, time
+from oracle.algorithm.params import Hyperparameters
+from oracle.ontology import build_ontology
+from oracle.service.engine import Engine
+from oracle.store import open_store
+engine = Engine(open_store(sys.argv[1]), build_ontology(), Hyperparameters())
+start = time.perf_counter()
+session = engine.session(sys.argv[2])
+assert session.latest is not None and session.latest["ranking"]
+with open(sys.argv[3], "w") as out:
+    out.write(str(time.perf_counter() - start))
+"""
+
+
+def _service_first(store: Path, neem: str, repeat: int = 3) -> dict[str, dict[str, float]]:
+    """Seconds to the service's first answer for ``neem`` (``_FIRST_ANSWER``), the user's cache
+    emptied before each run, and the peak RSS of its process."""
+    import subprocess
+    import sys
+
+    from oracle.benchmarks.figures import run_measured
+
+    answers, rss = [], []
+    with tempfile.TemporaryDirectory() as cache:
+        env = installed_env(NEEM_ORACLE_CACHE=cache)
+        seconds = Path(cache) / "seconds"
+        argv = [sys.executable, "-c", _FIRST_ANSWER, str(store), neem, str(seconds)]
+        subprocess.run(argv, check=True, capture_output=True, env=env)  # the ontology and Prolog caches made
+        for _ in range(repeat):
+            for folder in (FitCache.FOLDER, HistoryCache.FOLDER):
+                shutil.rmtree(Path(cache) / folder, ignore_errors=True)
+            rss.append(run_measured(argv, env)[2] / 1024)
+            answers.append(float(seconds.read_text()))
+    return {"answer_s": _spread(answers), "rss_mib": _spread(rss)}
 
 
 def _one_more_action(store: Any, onto: Any, bridge: Any) -> Callable[[], None] | None:
@@ -323,19 +425,42 @@ def history_figures(quick: bool = False) -> list[dict]:
                   f" cpu {_fmt(cross_cpu, 1000, 1)} ms; {why_ratio:.1f}x floor"
                   f" (target <= {50 if n <= 10000 else 200} ms)", flush=True)
             cli = _rank_cli(path, neem, _one_more_action(store, onto, bridge))
-            # Floor of a rank from start to exit: the interpreter starting and exiting, plus the
-            # plain SQL read of the rows the history needs (both measured in this run).
-            rank_floor = cli["start_cpu"]["median"] + floor["median"]
+            # Floors of a rank from start to exit: the interpreter starting and exiting, plus the
+            # plain SQL read of what it needs (both measured in this run): the kept entries
+            # (``rank``), the rows the whole history needs (``rank_full``).
+            _, kept_floor = _timed(lambda: _kept_floor(path, bridge.neem_id))
+            rank_floor = cli["start_cpu"]["median"] + kept_floor["median"]
+            full_floor = cli["start_cpu"]["median"] + floor["median"]
             rank_ratio = cli["rank_cpu"]["median"] / rank_floor
-            print(f"rank start to exit, {n:>6,} actions: wall {_fmt(cli['rank_wall'])} s, cpu {_fmt(cli['rank_cpu'])} s"
-                  f" (min/median/max of 3); floor (python -c pass cpu {_fmt(cli['start_cpu'])} s + SQL floor)"
-                  f" {rank_floor:.3f} s cpu; {rank_ratio:.1f}x floor cpu (target < {1 if n <= 10000 else 4} s)", flush=True)
+            target = 1 if n <= 10000 else 2
+            print(f"rank start to exit, nothing kept in the user's cache (the store as the import left it),"
+                  f" {n:>6,} actions: wall {_fmt(cli['rank_wall'])} s, cpu {_fmt(cli['rank_cpu'])} s, peak RSS"
+                  f" {_fmt(cli['rank_rss'], 1, 0)} MiB (min/median/max of 3); floor (python -c pass cpu"
+                  f" {_fmt(cli['start_cpu'])} s + the kept entries read with plain SQL {_fmt(kept_floor)} s)"
+                  f" {rank_floor:.3f} s cpu; {rank_ratio:.1f}x floor cpu (target <= {target} s"
+                  f"{', <= 250 MiB' if n >= 50000 else ''})", flush=True)
+            print(f"rank start to exit, nothing kept in the store either (the whole history read and fitted),"
+                  f" {n:>6,} actions: wall {_fmt(cli['rank_full_wall'])} s, cpu {_fmt(cli['rank_full_cpu'])} s, peak"
+                  f" RSS {_fmt(cli['rank_full_rss'], 1, 0)} MiB; floor (python -c pass + SQL floor) {full_floor:.3f} s"
+                  f" cpu; {cli['rank_full_cpu']['median'] / full_floor:.1f}x floor cpu", flush=True)
+            counts = _crossings(bridge, onto, Path(tmp) / f"crossings{n}")
+            print(f"crossings Python<->Prolog per rank, {n:>6,} actions: cold {counts['cold']}, warm {counts['warm']}"
+                  f" (target <= 6 / <= 2); with nothing kept in the store either {counts['full']}", flush=True)
+            if n in (10000, max(sizes)):
+                first = _service_first(path, neem)
+                print(f"service's first answer for the NEEM (session opened: view, fit, latest situation ranked),"
+                      f" {n:>6,} actions: {_fmt(first['answer_s'])} s, peak RSS {_fmt(first['rss_mib'], 1, 0)} MiB"
+                      f" (min/median/max of 3; floor: the kept entries read with plain SQL {_fmt(kept_floor)} s;"
+                      f" target <= 1 s at 10,000)", flush=True)
+                rows.append({"area": "prolog", "name": "service first answer", "actions": n, **first,
+                             "kept_floor_s": kept_floor})
+            rows.append({"area": "prolog", "name": "crossings per rank", "actions": n, **counts})
             if "rank_grown_wall" in cli:
                 print(f"rank start to exit after one more action was logged (history and fit of the rest kept),"
                       f" {n:>6,} actions:"
                       f" wall {_fmt(cli['rank_grown_wall'])} s, cpu {_fmt(cli['rank_grown_cpu'])} s;"
                       f" {cli['rank_grown_cpu']['median'] / rank_floor:.1f}x floor cpu"
-                      f" (target < {1 if n <= 10000 else 4} s)", flush=True)
+                      f" (target <= {target} s)", flush=True)
                 medians.setdefault("rank_grown_wall", []).append(cli["rank_grown_wall"]["median"])
             medians["history_cpu"].append(cpu["median"])
             medians["rank_wall"].append(cli["rank_wall"]["median"])
@@ -347,8 +472,10 @@ def history_figures(quick: bool = False) -> list[dict]:
                          "why_not_cpu_ms": {k: v * 1000 for k, v in why_cpu.items()},
                          "why_not_floor_cpu_ms": {k: v * 1000 for k, v in cross_cpu.items()},
                          "why_not_floor_ratio": why_ratio,
-                         "rank_wall_s": cli["rank_wall"], "rank_cpu_s": cli["rank_cpu"],
+                         "rank_wall_s": cli["rank_wall"], "rank_cpu_s": cli["rank_cpu"], "rank_rss_mib": cli["rank_rss"],
                          "rank_floor_cpu_s": rank_floor, "rank_floor_ratio": rank_ratio,
+                         "rank_full_wall_s": cli["rank_full_wall"], "rank_full_cpu_s": cli["rank_full_cpu"],
+                         "rank_full_rss_mib": cli["rank_full_rss"], "rank_full_floor_cpu_s": full_floor,
                          "rank_grown_wall_s": cli.get("rank_grown_wall"), "rank_grown_cpu_s": cli.get("rank_grown_cpu"),
                          "start_wall_s": cli["start_wall"], "start_cpu_s": cli["start_cpu"]})
             if n == 10000:
