@@ -34,7 +34,7 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from datetime import datetime
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypedDict
 
 from oracle.errors import PrologError, StoreError
 from oracle.paths import prolog_dir
@@ -604,13 +604,13 @@ class Bridge:
         text = rows[0]["J"]
         return json.loads(text.decode("utf-8") if isinstance(text, bytes) else text)
 
-    def history(self) -> list[dict[str, Any]]:
+    def history(self) -> list[HistoryRow]:
         """odb_history:situation_history/1 in one crossing: every executed action in begin order
         as ``{"begin", "end", "call", "part", "available"}`` (calls in the chain syntax). The
         situations that found the same set available share one list (Prolog writes each set once)."""
         return history_rows(self._json("odb_history:situation_history_json"))
 
-    def history_after(self, after: float) -> list[dict[str, Any]]:
+    def history_after(self, after: float) -> list[HistoryRow]:
         """The rows of history() whose action began after ``after``, as history() gives them
         when its row before them began at ``after`` (odb_history:situation_history_after/2):
         a few store queries, from the intervals that began after it."""
@@ -619,7 +619,7 @@ class Bridge:
         number = repr(after) if isinstance(after, int) else repr(float(after))
         return history_rows(self._json("odb_history:situation_history_json", f"{number}, "))
 
-    def latest_situation(self) -> dict[str, Any] | None:
+    def latest_situation(self) -> LatestSituation | None:
         """The latest imagined situation as ``{"begin", "available", "part"}`` (``part``: the
         part of day its interval was logged with, ``none`` if none), or None."""
         return self._json("odb_history:latest_situation_json")
@@ -696,22 +696,44 @@ def _term_value(name: str, value: Any) -> Any:
     raise QueryValueError(f"binding {name}: expected a string (atom), a number or a list, got {type(value).__name__}")
 
 
+class HistoryRow(TypedDict):
+    """One executed action of the oracle's history (odb_history:situation_history/1), in begin
+    order: its interval (unix seconds, or positions on a NEEM's sequence clock), its call in the
+    chain syntax (``idle`` for an odb:IdleTask action), the part of the day it was logged with
+    (``none`` if not) and the calls of the imagined situation it was chosen in (None: none)."""
+
+    begin: float
+    end: float
+    call: str
+    part: str
+    available: list[str] | None
+
+
+class LatestSituation(TypedDict):
+    """The NEEM's latest imagined situation (odb_history:latest_situation/3): when it began,
+    the calls it found available (sorted) and the part of the day it was logged with."""
+
+    begin: float
+    available: list[str]
+    part: str
+
+
 @dataclass(frozen=True)
 class HistoryView:
     """What the oracle reads of a NEEM: the ``situation_history`` rows (``Bridge.history``) and
     the latest imagined situation (``Bridge.latest_situation``)."""
 
-    rows: list[dict[str, Any]]
-    latest: dict[str, Any] | None
+    rows: list[HistoryRow]
+    latest: LatestSituation | None
 
 
-def history_rows(reply: dict[str, Any]) -> list[dict[str, Any]]:
+def history_rows(reply: dict[str, Any]) -> list[HistoryRow]:
     """odb_history:situation_history_json's reply as rows (Bridge.history)."""
     calls: list[str] = reply["calls"]
     sets = [[calls[i] for i in indexes] for indexes in reply["sets"]]
     flat = reply["rows"]
-    return [{"begin": flat[i], "end": flat[i + 1], "call": calls[flat[i + 2]], "part": flat[i + 3],
-             "available": sets[flat[i + 4]] if flat[i + 4] >= 0 else None}
+    return [HistoryRow(begin=flat[i], end=flat[i + 1], call=calls[flat[i + 2]], part=flat[i + 3],
+                       available=sets[flat[i + 4]] if flat[i + 4] >= 0 else None)
             for i in range(0, len(flat), 5)]
 
 
@@ -735,4 +757,5 @@ def connect(store: Store, neem_id: str, ontology: OdbOntology | None = None) -> 
         raise
 
 
-__all__ = ["Bridge", "CROSSINGS", "HistoryView", "QueryValueError", "connect", "crossings", "quote_atom", "term_text"]
+__all__ = ["Bridge", "CROSSINGS", "HistoryRow", "HistoryView", "LatestSituation", "QueryValueError", "connect", "crossings",
+           "quote_atom", "term_text"]

@@ -39,12 +39,12 @@ import hashlib
 import json
 import math
 import os
-from collections.abc import Collection, Mapping
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, ClassVar
 
-from oracle.bridge import Bridge, HistoryView, history_rows
+from oracle.bridge import Bridge, HistoryRow, HistoryView, history_rows
 from oracle.files import CacheFolder, write_private_bytes, written_by_user_alone
 from oracle.neem.terms import BEGIN, EXECUTES, HAS_INTERVAL, IMAGINING
 from oracle.store.base import Appended, AppendMark
@@ -73,7 +73,7 @@ class HistoryCache(CacheFolder):
     FOLDER: ClassVar[str] = "histories"
     SUFFIX: ClassVar[str] = ".json"
 
-    def history(self, bridge: Bridge) -> list[dict[str, Any]]:
+    def history(self, bridge: Bridge) -> list[HistoryRow]:
         """``bridge.history()``, as ``view`` keeps it."""
         return self.view(bridge).rows
 
@@ -276,7 +276,7 @@ def _properties(doc: Mapping[str, Any]) -> Collection[Any]:
     return {doc.get("p"), *(stars if isinstance(stars, list) else ())}
 
 
-def compact(rows: list[dict[str, Any]]) -> dict[str, Any]:
+def compact(rows: Sequence[HistoryRow]) -> dict[str, Any]:
     """Rows in the shape of odb_history:situation_history_json (each distinct call and each
     distinct available set written once); ``history_rows`` reads it back."""
     calls: dict[str, int] = {}

@@ -20,7 +20,8 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from oracle.algorithm.params import Hyperparameters
-from oracle.algorithm.predictors import DEFAULT, Predictor, make_predictor
+from oracle.algorithm.predictors import DEFAULT, Predictor
+from oracle.algorithm.predictors import make_predictor as make_named
 from oracle.algorithm.records import Option, RankedTask, Ranking, Step, local_name
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError, NeemOracleError
@@ -32,7 +33,7 @@ from oracle.ontology import OdbOntology
 from oracle.timeline import IDLE_THRESHOLD_S, Instant, clock, has_clock, is_idle_gap, now, part_of_day_at
 
 if TYPE_CHECKING:
-    from oracle.bridge import Bridge, HistoryView
+    from oracle.bridge import Bridge, HistoryRow, HistoryView, LatestSituation
     from oracle.store import Store
 
 #: Score written for options without similar history (the store and JSON need a finite number).
@@ -52,6 +53,13 @@ class NeemRanking:
     written: str | None
     note: str | None
     method: str = DEFAULT
+
+
+def make_predictor(ontology: OdbOntology, settings: Hyperparameters | None = None, method: str = DEFAULT) -> Predictor:
+    """The predictor ``method`` names (oracle.algorithm.predictors: ``routine``, the default, or
+    ``thesis``) for ``ontology``'s tasks and distances, unfitted; ``settings`` (default: the
+    thesis's Table 4.2) apply to ``thesis``. What ``rank``, the service and the import fit."""
+    return make_named(method, ontology.distances(), opening_tasks(ontology), settings or Hyperparameters())
 
 
 def finite(score: float) -> float:
@@ -99,7 +107,7 @@ def rank_neem(
     info = bridge.store.neem(bridge.neem_id)
     clocked = has_clock(info.meta)
     calls, instant, offered = _offer(bridge.neem_id, ontology, view, available, at, clocked)
-    ranker = NeemRanker(ontology, make_predictor(method, ontology.distances(), opening_tasks(ontology), settings),
+    ranker = NeemRanker(ontology, make_predictor(ontology, settings, method),
                         [row for row in view.rows if float(row["begin"]) < instant.seconds],
                         neem=bridge.neem_id, store=bridge.store, clocked=clocked, keep=not info.temporary, fits=cache)
     decision = ranker.rank(calls, instant)
@@ -134,7 +142,7 @@ def keep_neem(store: Store, ontology: OdbOntology, neem: str, settings: Hyperpar
     finally:
         bridge.close()
     before = float(view.latest["begin"]) if view.latest is not None else math.inf  # what rank fits
-    NeemRanker(ontology, make_predictor(method, ontology.distances(), opening_tasks(ontology), settings or Hyperparameters()),
+    NeemRanker(ontology, make_predictor(ontology, settings, method),
                [row for row in view.rows if float(row["begin"]) < before], neem=neem, store=store,
                clocked=has_clock(info.meta))
 
@@ -171,7 +179,7 @@ def _offer(neem: str, ontology: OdbOntology, view: HistoryView, available: list[
     return [parse_call(text) for text in latest["available"]], latest_instant(latest, clocked), None
 
 
-def latest_instant(latest: dict[str, Any], clocked: bool) -> Instant:
+def latest_instant(latest: LatestSituation, clocked: bool) -> Instant:
     """When the latest imagined situation (``Bridge.latest_situation``) holds: its begin, at the
     part of day recorded with it (oracle.timeline's rule where none was; none without a clock)."""
     begin = float(latest["begin"])
@@ -207,7 +215,7 @@ class NeemRanker:
     latest one that began after the previous action and not after this one,
     odb_history:situation_history's rule; else the actions done so far)."""
 
-    def __init__(self, ontology: OdbOntology, predictor: Predictor, rows: Sequence[dict[str, Any]], *,
+    def __init__(self, ontology: OdbOntology, predictor: Predictor, rows: Sequence[HistoryRow], *,
                  neem: str, store: Store, clocked: bool, keep: bool = True, idle_threshold: float = IDLE_THRESHOLD_S,
                  fits: FitCache | None = None) -> None:
         self.ontology = ontology

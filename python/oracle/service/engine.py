@@ -19,14 +19,14 @@ from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.predictors import DEFAULT
 from oracle.answers import something_else_sentence, what_next_sentence, why_not_sentence
 from oracle.historycache import HistoryCache
-from oracle.bridge import Bridge, QueryValueError
+from oracle.bridge import Bridge, LatestSituation, QueryValueError
 from oracle.paths import prolog_dir
 from oracle.errors import NeemOracleError, StoreError
 from oracle.neem.writer import NeemLogger
 from oracle.timeline import Instant
 from oracle.ontology import OdbOntology
-from oracle.ranking import latest_instant
-from oracle.service.session import NeemSession, make_predictor, moment_of
+from oracle.ranking import latest_instant, make_predictor
+from oracle.service.session import NeemSession, moment_of
 from oracle.store import Store
 from oracle.store.ids import alias_of, find_neem
 
@@ -135,7 +135,7 @@ class Engine:
             self._show_latest(session, view.latest)
         return session
 
-    def _show_latest(self, session: NeemSession, latest: dict[str, Any] | None) -> None:
+    def _show_latest(self, session: NeemSession, latest: LatestSituation | None) -> None:
         """Rank the NEEM's latest imagined situation (not written: it was ranked when logged), so
         the page has something to show before the robot posts (e.g. right after ``make demo``),
         at the time and part of day ``rank`` ranks it."""
