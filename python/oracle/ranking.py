@@ -130,12 +130,13 @@ def keep_neem(store: Store, ontology: OdbOntology, neem: str, settings: Hyperpar
               method: str = DEFAULT) -> None:
     """Read and fit what the first ``rank`` of NEEM ``neem`` needs, and keep both in the store
     (oracle.historycache, oracle.fitcache): the import calls it, so that rank and the service
-    start from what was kept and read only what is logged after. A temporary NEEM keeps nothing."""
+    start from what was kept and read only what is logged after. A temporary NEEM keeps nothing,
+    nor does a store that cannot tell what was added since (MongoDB: a rank reads it whole)."""
     from oracle.bridge import Bridge
 
     info = store.neem(neem)
-    if info.temporary:
-        return
+    if info.temporary or store.append_mark(neem) is None:
+        return  # nothing may outlive it, or a store that cannot tell what was added (MongoDB)
     bridge = Bridge(store, neem, ontology)
     try:
         view = HistoryCache.default().view(bridge)
