@@ -24,8 +24,8 @@ since cannot change them (``extends``):
   decision ranked earlier); and every interval an added triple gives an event is itself added:
   new actions and imaginings come after the kept ones, and
   odb_history:situation_history_after/2 reads exactly them. When every added event is such a
-  preference (``unchanged``), neither the rows nor the latest situation change, and nothing
-  is read.
+  preference (``extends`` with no last begin), neither the rows nor the latest situation
+  change, and nothing is read.
 
 Otherwise (a store that cannot tell, such as MongoDB; an entry missing, damaged or not the
 user's own; anything else) the whole history is read and the entry replaced. A temporary NEEM
@@ -125,8 +125,8 @@ def _extended(bridge: Bridge, entry: _Entry, mark: AppendMark) -> HistoryView | 
     if added is None:
         return None
     namespace = None if bridge.ontology is None else bridge.ontology.namespace
-    if unchanged(added, namespace):
-        return entry.view
+    if extends(added, None, namespace):
+        return entry.view  # only rankings written since
     rows = entry.view.rows
     if not rows or not extends(added, rows[-1]["begin"], namespace):
         return None
@@ -199,12 +199,13 @@ def same_tables(kept: AppendMark, now: AppendMark) -> bool:
     return kept.token == now.token and kept.changes == now.changes and now.last >= kept.last
 
 
-def extends(added: Appended, after: float, namespace: str | None) -> bool:
+def extends(added: Appended, after: float | None, namespace: str | None) -> bool:
     """The triples ``added`` after a history whose last row began at ``after`` only add rows
     after it (module docstring). An added interval that begins at or before ``after`` is
     harmless only when it belongs to added events that execute added tasks of no class that
     makes a situation or an imagining (an odb class of ``namespace``, soma:Imagining): a
-    preference written for a decision ranked earlier."""
+    preference written for a decision ranked earlier. ``after`` None: every added interval
+    must be harmless, and then neither the rows nor the latest situation change."""
     if not added.fresh:
         return False
     docs_of, owners = _indexed(added)
@@ -216,24 +217,9 @@ def extends(added: Appended, after: float, namespace: str | None) -> bool:
             begin = decode_value(doc.get("o"))
             if isinstance(begin, bool) or not isinstance(begin, (int, float)):
                 return False
-            if not begin > after and not _no_situation(owners.get(doc.get("s"), []), docs_of, namespace):
+            new = after is not None and begin > after
+            if not new and not _no_situation(owners.get(doc.get("s"), []), docs_of, namespace):
                 return False
-    return True
-
-
-def unchanged(added: Appended, namespace: str | None) -> bool:
-    """The triples ``added`` change neither the history nor the latest situation: every event
-    they give an interval is added with them and executes added tasks of no class that makes
-    a situation or an imagining (``_no_situation``; a preference written for a decision)."""
-    if not added.fresh:
-        return False
-    docs_of, owners = _indexed(added)
-    for doc in added.docs:
-        properties = _properties(doc)
-        if HAS_INTERVAL in properties and doc.get("o") not in docs_of:
-            return False
-        if BEGIN in properties and not _no_situation(owners.get(doc.get("s"), []), docs_of, namespace):
-            return False
     return True
 
 
