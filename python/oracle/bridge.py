@@ -565,6 +565,18 @@ class Bridge:
         with _LOCK:
             return [{k: _python_value(v) for k, v in row.items()} for row in self._with_request(request, query)]
 
+    def use_module(self, path: Path, loaded: str) -> None:
+        """Load the Prolog module file ``path`` into ``user`` unless ``loaded`` (a predicate
+        indicator, ``module:name/arity``) is already defined (one question when it is)."""
+        if not self.ask(f"current_predicate({loaded})", []):
+            self.ask("neem_store:py_request(R), R = [F], use_module(user:F)", [_atom(str(path))])
+
+    def ask_plain(self, query: str, values: Sequence[Any]) -> list[dict[str, Any]]:
+        """``ask`` with plain Python values: a string becomes an atom, None the atom ``none``,
+        a number a float, a list a list of these."""
+        self._ready()  # an engine on this thread before any term is made
+        return self.ask(query, [_plain_term(value) for value in values])
+
     def answer(self, request: list[Any]) -> dict[str, Any]:
         """answers:answer_json/1 on a request; values travel as terms."""
         rows = self._with_request(request, "answers:answer_json(J)")
@@ -637,11 +649,11 @@ class Bridge:
         return HistoryView(history_rows(reply), reply["latest"])
 
     def json_query(self, module: Path, query: str, bindings: dict[str, Any], offset: int, limit: int,
-                   seconds: float) -> dict[str, Any]:
+                   seconds: float, writes: bool = False) -> dict[str, Any]:
         """json_query:json_query/2 of the service's JSON endpoint (``module``, loaded on first
         use): ``query`` run with ``bindings`` (strings as atoms, numbers, lists of them), its
-        solutions from ``offset``, at most ``limit``, within ``seconds``. QueryValueError for a
-        binding of another type."""
+        solutions from ``offset``, at most ``limit``, within ``seconds`` (``writes``: also the
+        predicates it classes as writes). QueryValueError for a binding of another type."""
         from pyswip import Atom
 
         self._ready()  # an engine on this thread before any term is made
@@ -649,7 +661,8 @@ class Bridge:
             self.ask("neem_store:py_request(R), R = [F], use_module(user:F)", [Atom(str(module))])
             _STATE["json_query"] = True
         pairs = [[Atom(name), _term_value(name, value)] for name, value in bindings.items()]
-        rows = self.ask("neem_store:py_request(R), json_query:json_query(R, J)", [query, pairs, offset, limit, float(seconds)])
+        rows = self.ask("neem_store:py_request(R), json_query:json_query(R, J)",
+                        [query, pairs, offset, limit, float(seconds), Atom("true" if writes else "false")])
         text = rows[0]["J"]
         return json.loads(text.decode("utf-8") if isinstance(text, bytes) else text)
 
@@ -676,6 +689,23 @@ def _ontology_request(ontology: OdbOntology) -> list[Any]:
     rows = [[Atom(task.iri), Atom(task.target_role or "none"), Atom(task.ref_role or "none")]
             for task in ontology.tasks.values()]
     return [Atom(ontology.namespace), rows]
+
+
+def _atom(text: str) -> Any:
+    from pyswip import Atom
+
+    return Atom(text)
+
+
+def _plain_term(value: Any) -> Any:
+    """``Bridge.ask_plain``'s rule for one value."""
+    if value is None:
+        return _atom("none")
+    if isinstance(value, str):
+        return _atom(value)
+    if isinstance(value, list):
+        return [_plain_term(v) for v in value]
+    return float(value) if isinstance(value, (int, float)) and not isinstance(value, bool) else value
 
 
 class QueryValueError(PrologError):

@@ -19,21 +19,20 @@ from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.predictors import DEFAULT
 from oracle.answers import something_else_sentence, what_next_sentence, why_not_sentence
 from oracle.historycache import HistoryCache
-from oracle.bridge import Bridge, LatestSituation, QueryValueError
-from oracle.paths import prolog_dir
+from oracle.bridge import Bridge, LatestSituation
 from oracle.errors import NeemOracleError, StoreError
 from oracle.neem.writer import NeemLogger
 from oracle.timeline import Instant
 from oracle.ontology import OdbOntology
 from oracle.ranking import latest_instant, make_predictor
+from oracle.service.guard import Limits
+from oracle.service.queries import PrologQueryError, PrologRefused, ask
 from oracle.service.session import NeemSession, moment_of
 from oracle.store import Store
 from oracle.store.ids import alias_of, find_neem
 
 T = TypeVar("T")
 LOG = logging.getLogger("oracle.service")
-#: The service's Prolog query module (json_query/2): loaded once into the bridge's engine.
-QUERY_MODULE = prolog_dir() / "json_query.pl"
 #: A whole request is one transaction: the logger never commits on its own.
 NEVER = 10**9
 
@@ -78,8 +77,11 @@ def _log_failure(future: Any) -> None:
 class Engine:
     """The live model of the store. Call its methods on the engine thread only."""
 
-    def __init__(self, store: Store, ontology: OdbOntology, settings: Hyperparameters, method: str = DEFAULT) -> None:
+    def __init__(self, store: Store, ontology: OdbOntology, settings: Hyperparameters, method: str = DEFAULT,
+                 limits: Limits | None = None) -> None:
         self.store = store
+        self.limits = limits or Limits()
+        self.created = 0
         self.ontology = ontology
         self.settings = settings
         #: The predictor every session fits (``serve --method``; default: the routine predictor).
@@ -99,6 +101,10 @@ class Engine:
 
     def create(self, user: str, neem: str | None) -> dict[str, Any]:
         """A new NEEM (``neem``: its name; an existing NEEM of that name or id is a LoggingError)."""
+        if self.created >= self.limits.new_neems:
+            raise Overloaded(429, f"this service has created {self.created} NEEMs, its limit; restart it to make more")
+        self._room_for_a_session()
+        self.created += 1
         logger = NeemLogger.create(self.store, self.ontology, user=user, neem_id=neem, commit_every=NEVER)
         self.sessions[logger.neem_id] = NeemSession(logger.neem_id, logger, self.ontology,
                                                     make_predictor(self.ontology, self.settings, self.method), [])
@@ -127,6 +133,7 @@ class Engine:
             neem = self.resolve(name)
             if neem in self.sessions:
                 return self.sessions[neem]
+            self._room_for_a_session()
             view = HistoryCache.default().view(self.bridge(neem))
             logger = NeemLogger(self.store, self.ontology, neem, commit_every=NEVER)
             session = NeemSession(neem, logger, self.ontology, make_predictor(self.ontology, self.settings, self.method),
@@ -134,6 +141,10 @@ class Engine:
             self.sessions[neem] = session
             self._show_latest(session, view.latest)
         return session
+
+    def _room_for_a_session(self) -> None:
+        if len(self.sessions) >= self.limits.sessions:
+            raise Overloaded(503, f"{len(self.sessions)} NEEMs are open, this service's limit")
 
     def _show_latest(self, session: NeemSession, latest: LatestSituation | None) -> None:
         """Rank the NEEM's latest imagined situation (not written: it was ranked when logged), so
@@ -171,23 +182,25 @@ class Engine:
 
     # -- Prolog -------------------------------------------------------------------------------
     def prolog(self, neem: str, query: str, bindings: dict[str, Any], offset: int, limit: int,
-               seconds: float) -> dict[str, Any]:
+               seconds: float, writes: bool = False) -> dict[str, Any]:
+        """A page of the query's solutions, run here on the engine thread (the service runs
+        read-only queries in its query process instead, service/queries.py); it runs at most
+        ``limits.query_seconds`` and only predicates json_query allows (``writes``: also its
+        `write` class)."""
         bridge = self.bridge(self.session(neem).neem)  # a NotFound error for a missing NEEM
-        try:
-            reply = bridge.json_query(QUERY_MODULE, query, bindings, offset, limit, seconds)
-        except QueryValueError as error:
-            raise PrologQueryError(str(error)) from None
-        if "error" in reply:
-            raise PrologQueryError(reply["error"])
-        return reply
+        return ask(bridge, query, bindings, offset, limit, min(seconds, self.limits.query_seconds), writes)
 
 
 class NotFound(StoreError):
     """The NEEM a request names is not in the store."""
 
 
-class PrologQueryError(NeemOracleError):
-    """The query a client sent cannot be run (syntax, unsafe goal, an error it raised)."""
+class Overloaded(NeemOracleError):
+    """A limit of the process is reached (``status``: 429 or 503)."""
+
+    def __init__(self, status: int, message: str) -> None:
+        super().__init__(message)
+        self.status = status
 
 
-__all__ = ["Engine", "EngineThread", "NotFound", "PrologQueryError", "QUERY_MODULE"]
+__all__ = ["Engine", "EngineThread", "NotFound", "Overloaded", "PrologQueryError", "PrologRefused"]
