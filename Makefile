@@ -8,7 +8,7 @@ PLT := $(sort $(shell find prolog -name '*.plt'))
 
 help:
 	@echo "make setup      install python3-venv and SWI-Prolog (Debian) if missing, create $(VENV), install the package"
-	@echo "make test       lint, plunit suites, then pytest"
+	@echo "make test       lint, plunit suites, then pytest (the tests marked slow too where CI is set, or with SLOW=1)"
 	@echo "make lint       ruff and mypy (config in pyproject.toml)"
 	@echo "make bench      benchmarks (printed figures)"
 	@echo "make demo       the main job on the embedded default store"
@@ -43,8 +43,12 @@ test-prolog:
 	  swipl -q -g "load_files(['$$m'],[]),load_test_files([]),(run_tests->halt(0);halt(1))" -t 'halt(1)'; \
 	done
 
+# The tests marked slow (a 10,000-action NEEM imported and ranked, a wheel built) run in a second
+# invocation, in CI (where CI is set: .ci/run sets it) or when asked: make test SLOW=1.
 test-python:
-	$(PY) -m pytest -q
+	$(PY) -m pytest -q -m "not slow"
+	@if [ -n "$(SLOW)$$CI" ]; then echo "slow tests:"; $(PY) -m pytest -q -m slow; \
+	else echo "slow tests skipped here (they run in CI; make test SLOW=1 runs them)"; fi
 
 bench:
 	$(PY) -m oracle bench

@@ -24,7 +24,7 @@ import numpy as np
 
 from oracle.calls import steps_before
 from oracle.commands.common import connect
-from oracle.ranking import DEFAULT, make_predictor, opening_tasks
+from oracle.ranking import DEFAULT, make_predictor
 from oracle.algorithm.params import Hyperparameters
 
 SETTINGS: tuple[dict[str, Any], ...] = ({}, {"novelty": (True,), "lowest_orders": (1,)}, {"timed_shrink": True},
@@ -44,7 +44,7 @@ def main() -> None:
     steps = steps_before(onto, bridge.history(), float("inf"))
 
     def model(**settings: Any) -> Any:
-        made = make_predictor(DEFAULT, onto.distances(), opening_tasks(onto), Hyperparameters())
+        made = make_predictor(onto, Hyperparameters(), DEFAULT)
         settings = {**settings, **args.params}
         return made.set_params(**settings) if settings else made
 

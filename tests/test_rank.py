@@ -6,6 +6,7 @@ import shutil
 import pytest
 
 from oracle.cli import main
+from oracle.store import open_store
 
 pytestmark = pytest.mark.skipif(shutil.which("swipl") is None, reason="SWI-Prolog (swipl) is not installed; run make setup")
 
@@ -144,28 +145,36 @@ def test_a_decision_after_a_pause_is_ranked_after_an_idle_step(store, capsys):
 
 
 def test_rank_keeps_its_fit_and_answers_the_same_with_it(store, tmp_path, monkeypatch, capsys):
-    """The second rank of the same history finds the first one's fit (oracle.fitcache) and gives
-    the same ranking; a rank at an earlier moment (a shorter history) fits afresh, as before."""
-    monkeypatch.setenv("NEEM_ORACLE_CACHE", str(tmp_path / "cache"))
+    """The import kept the NEEM's fit in the store (oracle.fitcache): ranks find it and give the
+    same ranking as a fit made afresh; a rank at an earlier moment (a shorter history) fits
+    afresh, kept in the user's cache where the store is read-only (``--no-write``)."""
+    from oracle.fitcache import KIND
+
     argv = ["rank", "--store", str(store), "--no-write", "--json"]
     capsys.readouterr()
     outs = []
-    for _ in range(2):
+    for cache in ("kept", "kept", "afresh"):
+        if cache == "afresh":
+            with open_store(store) as writer:  # nothing kept in the store: fitted afresh
+                writer.write_kept(writer.neems()[0].id, KIND, b"")
+        monkeypatch.setenv("NEEM_ORACLE_CACHE", str(tmp_path / cache))
         assert main(argv) == 0
         out = json.loads(capsys.readouterr().out)
         out.pop("ms")
         outs.append(out)
-    assert outs[0] == outs[1]
-    entry, = (tmp_path / "cache" / "fits").glob("*.fit")
-    assert entry.stat().st_mode & 0o777 == 0o600
-    written = entry.stat().st_mtime_ns
-    assert main(argv) == 0 and entry.stat().st_mtime_ns == written  # nothing new: nothing written
-    capsys.readouterr()
+    assert outs[0] == outs[1] == outs[2]
+    assert not (tmp_path / "kept" / "fits").exists()  # the store's fit served both
+    monkeypatch.setenv("NEEM_ORACLE_CACHE", str(tmp_path / "cache"))
     early = ["rank", "--store", str(store), "--available", "pick(red_mug)", "open(small_drawer)",
              "--at", "2026-03-03T08:00:20", "--no-write", "--json"]
     assert main(early) == 0
     first = json.loads(capsys.readouterr().out)
-    (tmp_path / "cache" / "fits").joinpath(entry.name).unlink()
+    entry, = (tmp_path / "cache" / "fits").glob("*.fit")
+    assert entry.stat().st_mode & 0o777 == 0o600
+    written = entry.stat().st_mtime_ns
+    assert main(early) == 0 and entry.stat().st_mtime_ns == written  # nothing new: nothing written
+    capsys.readouterr()
+    entry.unlink()
     assert main(early) == 0
     fresh = json.loads(capsys.readouterr().out)
     assert first["ranking"] == fresh["ranking"] and first["history"] == fresh["history"] < outs[0]["history"]

@@ -2,6 +2,7 @@
     [ task_class/2,               % ?TaskIndividual, ?Class
       task_call/2,                % +TaskIndividual, -Call
       task_calls/2,               % +Tasks, -Pairs
+      task_calls_reached/3,       % :Reach, ?Task, -Pairs
       call_tasks/2,               % +Call, -TaskIndividuals
       call_task_times/3,          % +Call, +Tasks, -Times
       call_time/4,                % +Call, ?BeginTest, ?EndTest, -Begin
@@ -113,6 +114,28 @@ task_calls(Ts, Pairs) :-
     ->  findall(T-C, ( member(T, Distinct), task_call(T, C) ), Pairs)
     ;   factor_calls(Distinct, Pairs)
     ).
+
+%!  task_calls_reached(+Reach, ?Task, -Pairs) is det.
+%   task_calls/2 for the tasks the kb_call goal Reach binds Task to (the tasks an imagining
+%   found available), in two store queries however many tasks: the rows task_call/2 reads,
+%   of all of them in one join after Reach, and their types (the class of a task without
+%   roles). A join comes in the ids of its patterns in order, so each task's rows come in
+%   the order task_call/2 reads them and the calls are its calls.
+task_calls_reached(Reach, T, Pairs) :-
+    task_role_rows(T, C, R, RC, OC, Rows),
+    kb_findall(T-(C-R-RC-OC), ( Reach, Rows ), any, Found),
+    kb_findall(T-TC, ( Reach, triple(T, rdf:type, TC) ), any, Types),
+    ordered_groups(Found, RowsOf),
+    ordered_groups(Types, TypesOf),
+    assoc_to_keys(TypesOf, Ts),
+    findall(Tk-Call, ( member(Tk, Ts), reached_call(RowsOf, TypesOf, Tk, Call) ), Pairs).
+
+reached_call(RowsOf, _, T, Call) :-
+    get_assoc(T, RowsOf, Rows), !,
+    rows_call(T, Rows, Call).
+reached_call(_, TypesOf, T, Name) :-
+    get_assoc(T, TypesOf, TCs),
+    once(( member(C, TCs), odb_iri(Name, C) )).
 
 %   factor_calls(+Distinct, -Pairs): task_calls/2 from the four factors, however few tasks.
 factor_calls(Distinct, Pairs) :-

@@ -51,6 +51,15 @@ test(task_calls_equals_task_call, [cleanup(store_reset)]) :-
              task_calls(Few, FewPairs), odb_calls:factor_calls(Few, FewFactored),
              assertion(FewPairs == FewFactored) )).
 
+test(task_calls_reached_equals_task_call, [cleanup(store_reset)]) :-
+    forall(member(Load, [load_generated_episode(200, 5), ( load_test_episode, odd_tasks )]),
+           ( call(Load),
+             task_calls_reached(( triple(T, rdf:type, C), atom(C) ), T, Pairs),
+             findall(T1-Call, ( member(T1-_, Pairs), task_call(T1, Call) ), Expected),
+             assertion(Pairs == Expected),
+             findall(T2, kb_call(( triple(T2, rdf:type, C2), atom(C2) ), any), Ts0), sort(Ts0, Ts),
+             task_calls(Ts, All), assertion(Pairs == All) )).
+
 %   After the test episode: N pours of the thermos into a red mug from t=300, 10 s apart,
 %   each its own task individual (the call shares its first object's class with the
 %   episode's pour into the green mug, so these tasks are candidates of that call too),

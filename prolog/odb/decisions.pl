@@ -32,7 +32,7 @@ Times are unix seconds; the lookups by time ask the store for the one row they n
 :- use_module('../model/object', []).
 :- use_module('../model/situation', []).
 :- use_module(names, [odb_iri/2, call_classes/3]).
-:- use_module(calls, [task_call/2, task_calls/2, task_class/2]).
+:- use_module(calls, [task_call/2, task_calls/2, task_calls_reached/3, task_class/2]).
 
 %!  decision(?Kind, ?MentalAction, ?Begin) is nondet.
 %   Kind `situation`: an imagining of the available tasks; `preference`: a reasoning
@@ -158,12 +158,12 @@ test_object(Test, V, cmp(Op, Arg, V)) :-
 test_object(_, V, V).
 
 %!  imagined_available(+Imagining, -Calls) is det.
-%   The task calls an imagining found available, sorted.
+%   The task calls an imagining found available, sorted: two store queries, however many
+%   tasks (task_calls_reached/3).
 imagined_available(M, Calls) :-
     must_be(atom, M),
-    findall(T, kb_call(( holds(M, odb:imagines_situation, P),
-                         plan_defines_task(P, T) ), any), Ts),
-    findall(C, ( member(T, Ts), task_call(T, C) ), Calls0),
+    task_calls_reached(( holds(M, odb:imagines_situation, P), plan_defines_task(P, T) ), T, Pairs),
+    pairs_values(Pairs, Calls0),
     sort(Calls0, Calls).
 
 %!  available_tasks_at(+Time, -Calls) is semidet.

@@ -4,7 +4,9 @@
       situation_history_json/1,   % -JSONString
       situation_history_json/2,   % +After, -JSONString
       latest_situation/2,         % -Begin, -Calls
-      latest_situation_json/1     % -JSONString
+      latest_situation/3,         % -Begin, -Calls, -Part
+      latest_situation_json/1,    % -JSONString
+      history_view_json/2         % +After, -JSONString
     ]).
 /** <module> odb history: the oracle's view of a NEEM (thesis 4.2)
 
@@ -238,15 +240,40 @@ write_separated([X|Xs]) :-
 %   The latest imagined situation of the NEEM: when it began and the calls it found
 %   available (sorted). Fails when nothing was ever imagined.
 latest_situation(B, Calls) :-
+    latest_situation(B, Calls, _).
+
+%!  latest_situation(-Begin, -Calls, -Part) is semidet.
+%   latest_situation/2 and the part of the day its interval was logged with (`none` if not).
+latest_situation(B, Calls, Part) :-
     latest_decision(situation, any, M, B),
-    imagined_available(M, Calls).
+    imagined_available(M, Calls),
+    kb_findall(PC, ( has_time_interval(M, I), triple(I, rdf:type, PC) ), any, PCs),
+    (   member(PC, PCs), member(Part, ['Morning', 'Midday', 'Evening', 'Night']), odb_iri(Part, PC)
+    ->  true
+    ;   Part = none
+    ).
 
 %!  latest_situation_json(-JSON) is det.
-%   latest_situation/2 as `{"begin": B, "available": [...]}`, or `null` when there is none.
+%   latest_situation/3 as `{"begin": B, "available": [...], "part": P}`, or `null` when there
+%   is none.
 latest_situation_json(JSON) :-
-    (   latest_situation(B, Calls)
-    ->  findall(X, ( member(C, Calls), format(atom(X), '~w', [C]) ), Xs),
-        Dict = _{begin:B, available:Xs}
-    ;   Dict = null
-    ),
+    latest_dict(Dict),
     json_text(Dict, JSON).
+
+latest_dict(Dict) :-
+    (   latest_situation(B, Calls, Part)
+    ->  findall(X, ( member(C, Calls), format(atom(X), '~w', [C]) ), Xs),
+        Dict = _{begin:B, available:Xs, part:Part}
+    ;   Dict = null
+    ).
+
+%!  history_view_json(+After, -JSON) is det.
+%   What the oracle reads of a NEEM, in one reply: situation_history_json/2 (After `none`:
+%   the whole history) with the latest imagined situation as `"latest"` (latest_situation_json/1).
+history_view_json(After, JSON) :-
+    situation_history_json(After, History),
+    latest_dict(Dict),
+    json_text(Dict, Latest),
+    sub_string(History, 0, _, 1, Open),    % without its closing brace
+    string_concat(Open, ",\"latest\":", Head),
+    atomics_to_string([Head, Latest, "}"], JSON).

@@ -27,6 +27,16 @@ test(latest_situation, [nondet, setup(load_test_episode), cleanup(store_reset)])
     latest_situation(B, C), B =:= 200, C == [pick(apple)],
     latest_situation_json(J), sub_string(J, _, _, _, "\"begin\":200").
 
+test(latest_situation_has_its_part_of_day, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
+    latest_situation(B, C, P), B =:= 200, C == [pick(apple)], P == 'Morning',   % as the fixture logs it
+    latest_situation_json(J), atom_json_dict(J, D, []), D.part == "Morning".
+
+test(history_view_is_the_history_and_the_latest_situation, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
+    history_view_json(none, J), atom_json_dict(J, D, []),
+    situation_history_json(H), atom_json_dict(H, DH, []),
+    D.rows == DH.rows, D.calls == DH.calls, D.sets == DH.sets,
+    D.latest.begin =:= 200, D.latest.available == ["pick(apple)"].
+
 test(one_pass_equals_reference, [cleanup(store_reset)]) :-
     forall(member(Seed, [1, 2, 3, 4]),
            ( load_generated_episode(300, Seed),

@@ -31,9 +31,10 @@ import json
 import math
 import threading
 from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass
 from datetime import datetime
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypedDict
 
 from oracle.errors import PrologError, StoreError
 from oracle.paths import prolog_dir
@@ -55,12 +56,20 @@ MODULES = ("neem_store", "json_text", "lang/triple", "lang/scope", "lang/query",
 CHUNK = 5000
 
 _LOCK = threading.RLock()
-_STATE: dict[str, Any] = {"bridge": None, "loaded": False, "request": None}
+_STATE: dict[str, Any] = {"bridge": None, "active": None, "loaded": False, "request": None}
 _GENERATORS: dict[int, Iterator[str]] = {}
 _NEXT_KEY = [1]
-#: How many times Prolog called into Python (crossings), per foreign predicate.
-CROSSINGS = {"py_match": 0, "py_insert": 0, "py_retract": 0, "py_graph": 0, "py_request": 0, "py_scopes": 0,
-             "py_annotations": 0, "py_annotate": 0, "py_tf": 0}
+#: Crossings between the two languages: ``query``, every question Python asks Prolog; the
+#: others, every time Prolog called into Python, per foreign predicate (a py_match counted
+#: once, however many chunks it hands over).
+CROSSINGS = {"query": 0, "py_match": 0, "py_insert": 0, "py_retract": 0, "py_graph": 0, "py_request": 0,
+             "py_scopes": 0, "py_annotations": 0, "py_annotate": 0, "py_tf": 0}
+
+
+def crossings() -> int:
+    """Every crossing so far, both ways (``CROSSINGS``); the py_request a question reads its
+    values with is part of the question, not counted again."""
+    return sum(count for name, count in CROSSINGS.items() if name != "py_request")
 
 
 # -- values ------------------------------------------------------------------------------
@@ -469,6 +478,7 @@ def _run(query: str, maxresult: int = -1) -> list[dict[str, Any]]:
     from pyswip import Prolog
     from pyswip.prolog import PrologError as PySwipError
 
+    CROSSINGS["query"] += 1
     try:
         return list(Prolog.query(query, maxresult=maxresult))
     except PySwipError as error:
@@ -484,43 +494,50 @@ def _clean_prolog_error(text: str) -> str:
 
 class Bridge:
     """Prolog connected to one NEEM of a store. Only one bridge is active per process
-    (pyswip's Prolog is process-wide); creating a new one replaces the previous."""
+    (pyswip's Prolog is process-wide): the one that asked last; Prolog is loaded and pointed at
+    the bridge's NEEM on its first question (``_ready``)."""
 
     def __init__(self, store: Store, neem_id: str, ontology: OdbOntology | None = None) -> None:
-        from pyswip import Atom
-
         from oracle.store.ids import resolve_neem
 
         self.store = store
-        self.neem_id = neem_id = resolve_neem(store, neem_id)  # an id or an alias; StoreError when neither
-        #: The ontology the Prolog names were set from (set_ontology), None before.
-        self.ontology: OdbOntology | None = None
+        self.neem_id = resolve_neem(store, neem_id)  # an id or an alias; StoreError when neither
+        #: The ontology the Prolog names are set from (set_ontology), None before.
+        self.ontology: OdbOntology | None = ontology
+
+    def _ready(self) -> None:
+        """Prolog loaded and reading this bridge's NEEM with its ontology's names: done on the
+        first question, not when the bridge is made (a rank whose history and fit are kept asks
+        none), and again when another bridge was used since."""
+        from pyswip import Atom
+
         with _LOCK:
             _attach_engine()
             _ensure_loaded()
             _STATE["bridge"] = self
-            self._with_request([Atom(neem_id)], "neem_store:py_request(R), R = [N], neem_store:store_use_python(N)")
-            if ontology is not None:
-                self.set_ontology(ontology)
+            if _STATE.get("active") is self:
+                return
+            _STATE["request"] = [Atom(self.neem_id)]
+            try:
+                _run("neem_store:py_request(R), R = [N], neem_store:store_use_python(N)")
+                if self.ontology is not None:
+                    _STATE["request"] = _ontology_request(self.ontology)
+                    _run("neem_store:py_request(Q), Q = [NS, Rows], odb_names:odb_set_namespace(NS),"
+                         " forall(member([T, Ta, R], Rows), odb_names:odb_set_task_roles(T, Ta, R))")
+            finally:
+                _STATE["request"] = None
+            _STATE["active"] = self
 
     def set_ontology(self, ontology: OdbOntology) -> None:
         """Tell odb_names the ontology's namespace and which role of each task is which."""
-        from pyswip import Atom
-
-        self.ontology = ontology
-
-        rows = [
-            [Atom(task.iri), Atom(task.target_role or "none"), Atom(task.ref_role or "none")]
-            for task in ontology.tasks.values()
-        ]
         with _LOCK:
-            self._with_request([Atom(ontology.namespace), rows],
-                               "neem_store:py_request(Q), Q = [NS, Rows], odb_names:odb_set_namespace(NS),"
-                               " forall(member([T, Ta, R], Rows), odb_names:odb_set_task_roles(T, Ta, R))")
+            self.ontology = ontology
+            if _STATE.get("active") is self:
+                _STATE["active"] = None  # set again before the next question
 
     def _with_request(self, request: list[Any], query: str) -> list[dict[str, Any]]:
         with _LOCK:
-            _STATE["bridge"] = self
+            self._ready()
             _STATE["request"] = request
             try:
                 return _run(query)
@@ -531,7 +548,7 @@ class Bridge:
     def query(self, text: str, maxresult: int = -1) -> list[dict[str, Any]]:
         """Solutions of a Prolog query the user typed (text is the query, not data)."""
         with _LOCK:
-            _STATE["bridge"] = self
+            self._ready()
             return [{k: _python_value(v) for k, v in row.items()} for row in _run(text, maxresult)]
 
     def run_batch(self, max_answers: int | None = None) -> int:
@@ -551,6 +568,18 @@ class Bridge:
         with _LOCK:
             return [{k: _python_value(v) for k, v in row.items()} for row in self._with_request(request, query)]
 
+    def use_module(self, path: Path, loaded: str) -> None:
+        """Load the Prolog module file ``path`` into ``user`` unless ``loaded`` (a predicate
+        indicator, ``module:name/arity``) is already defined (one question when it is)."""
+        if not self.ask(f"current_predicate({loaded})", []):
+            self.ask("neem_store:py_request(R), R = [F], use_module(user:F)", [_atom(str(path))])
+
+    def ask_plain(self, query: str, values: Sequence[Any]) -> list[dict[str, Any]]:
+        """``ask`` with plain Python values: a string becomes an atom, None the atom ``none``,
+        a number a float, a list a list of these."""
+        self._ready()  # an engine on this thread before any term is made
+        return self.ask(query, [_plain_term(value) for value in values])
+
     def answer(self, request: list[Any]) -> dict[str, Any]:
         """answers:answer_json/1 on a request; values travel as terms."""
         rows = self._with_request(request, "answers:answer_json(J)")
@@ -562,16 +591,22 @@ class Bridge:
     def why_not(self, task: str, args: Sequence[str], at: float | None = None) -> dict[str, Any]:
         from pyswip import Atom
 
+        self._ready()  # an engine on this thread before any term is made
+
         return self.answer([Atom("why_not"), Atom(task), [Atom(a) for a in args],
                             float(at) if at is not None else Atom("none")])
 
     def what_next(self) -> dict[str, Any]:
         from pyswip import Atom
 
+        self._ready()  # an engine on this thread before any term is made
+
         return self.answer([Atom("what_next")])
 
     def something_else(self, task: str | None = None, args: Sequence[str] = ()) -> dict[str, Any]:
         from pyswip import Atom
+
+        self._ready()  # an engine on this thread before any term is made
 
         return self.answer([Atom("something_else"), Atom(task or "none"), [Atom(a) for a in args]])
 
@@ -584,13 +619,13 @@ class Bridge:
         text = rows[0]["J"]
         return json.loads(text.decode("utf-8") if isinstance(text, bytes) else text)
 
-    def history(self) -> list[dict[str, Any]]:
+    def history(self) -> list[HistoryRow]:
         """odb_history:situation_history/1 in one crossing: every executed action in begin order
         as ``{"begin", "end", "call", "part", "available"}`` (calls in the chain syntax). The
         situations that found the same set available share one list (Prolog writes each set once)."""
         return history_rows(self._json("odb_history:situation_history_json"))
 
-    def history_after(self, after: float) -> list[dict[str, Any]]:
+    def history_after(self, after: float) -> list[HistoryRow]:
         """The rows of history() whose action began after ``after``, as history() gives them
         when its row before them began at ``after`` (odb_history:situation_history_after/2):
         a few store queries, from the intervals that began after it."""
@@ -599,9 +634,40 @@ class Bridge:
         number = repr(after) if isinstance(after, int) else repr(float(after))
         return history_rows(self._json("odb_history:situation_history_json", f"{number}, "))
 
-    def latest_situation(self) -> dict[str, Any] | None:
-        """The latest imagined situation as ``{"begin", "available"}``, or None."""
+    def latest_situation(self) -> LatestSituation | None:
+        """The latest imagined situation as ``{"begin", "available", "part"}`` (``part``: the
+        part of day its interval was logged with, ``none`` if none), or None."""
         return self._json("odb_history:latest_situation_json")
+
+    def history_view(self, after: float | None = None) -> HistoryView:
+        """The history (``after``: only its rows after the row that began then, as
+        ``history_after``) and the latest imagined situation, in one question
+        (odb_history:history_view_json/2)."""
+        if after is None:
+            reply = self._json("odb_history:history_view_json", "none, ")
+        else:
+            if isinstance(after, bool) or not isinstance(after, (int, float)) or not math.isfinite(after):
+                raise PrologError(f"history_view needs a finite number, got {after!r}")
+            reply = self._json("odb_history:history_view_json", f"{after!r}, ")
+        return HistoryView(history_rows(reply), reply["latest"])
+
+    def json_query(self, module: Path, query: str, bindings: dict[str, Any], offset: int, limit: int,
+                   seconds: float, writes: bool = False) -> dict[str, Any]:
+        """json_query:json_query/2 of the service's JSON endpoint (``module``, loaded on first
+        use): ``query`` run with ``bindings`` (strings as atoms, numbers, lists of them), its
+        solutions from ``offset``, at most ``limit``, within ``seconds`` (``writes``: also the
+        predicates it classes as writes). QueryValueError for a binding of another type."""
+        from pyswip import Atom
+
+        self._ready()  # an engine on this thread before any term is made
+        if not _STATE.get("json_query"):
+            self.ask("neem_store:py_request(R), R = [F], use_module(user:F)", [Atom(str(module))])
+            _STATE["json_query"] = True
+        pairs = [[Atom(name), _term_value(name, value)] for name, value in bindings.items()]
+        rows = self.ask("neem_store:py_request(R), json_query:json_query(R, J)",
+                        [query, pairs, offset, limit, float(seconds), Atom("true" if writes else "false")])
+        text = rows[0]["J"]
+        return json.loads(text.decode("utf-8") if isinstance(text, bytes) else text)
 
     def solutions(self, goal: str, variables: Sequence[str], *, stepwise: bool = False) -> list[tuple[Any, ...]]:
         """All solutions of a kb_call goal (its text) as tuples of the named variables."""
@@ -614,16 +680,93 @@ class Bridge:
         with _LOCK:
             if _STATE["bridge"] is self:
                 _STATE["bridge"] = None
-                _run("neem_store:store_use_memory")
+                if _STATE.get("active") is self:
+                    _STATE["active"] = None
+                    _run("neem_store:store_use_memory")
 
 
-def history_rows(reply: dict[str, Any]) -> list[dict[str, Any]]:
+def _ontology_request(ontology: OdbOntology) -> list[Any]:
+    """The namespace and each task's target and reference roles, as odb_names takes them."""
+    from pyswip import Atom
+
+    rows = [[Atom(task.iri), Atom(task.target_role or "none"), Atom(task.ref_role or "none")]
+            for task in ontology.tasks.values()]
+    return [Atom(ontology.namespace), rows]
+
+
+def _atom(text: str) -> Any:
+    from pyswip import Atom
+
+    return Atom(text)
+
+
+def _plain_term(value: Any) -> Any:
+    """``Bridge.ask_plain``'s rule for one value."""
+    if value is None:
+        return _atom("none")
+    if isinstance(value, str):
+        return _atom(value)
+    if isinstance(value, list):
+        return [_plain_term(v) for v in value]
+    return float(value) if isinstance(value, (int, float)) and not isinstance(value, bool) else value
+
+
+class QueryValueError(PrologError):
+    """A value a client bound in a query that Prolog cannot take."""
+
+
+def _term_value(name: str, value: Any) -> Any:
+    from pyswip import Atom
+
+    if isinstance(value, bool) or value is None:
+        raise QueryValueError(f"binding {name}: expected a string (atom) or a number, got {value!r}")
+    if isinstance(value, (int, float)):
+        return value
+    if isinstance(value, str):
+        return Atom(value)
+    if isinstance(value, list):
+        return [_term_value(name, v) for v in value]
+    raise QueryValueError(f"binding {name}: expected a string (atom), a number or a list, got {type(value).__name__}")
+
+
+class HistoryRow(TypedDict):
+    """One executed action of the oracle's history (odb_history:situation_history/1), in begin
+    order: its interval (unix seconds, or positions on a NEEM's sequence clock), its call in the
+    chain syntax (``idle`` for an odb:IdleTask action), the part of the day it was logged with
+    (``none`` if not) and the calls of the imagined situation it was chosen in (None: none)."""
+
+    begin: float
+    end: float
+    call: str
+    part: str
+    available: list[str] | None
+
+
+class LatestSituation(TypedDict):
+    """The NEEM's latest imagined situation (odb_history:latest_situation/3): when it began,
+    the calls it found available (sorted) and the part of the day it was logged with."""
+
+    begin: float
+    available: list[str]
+    part: str
+
+
+@dataclass(frozen=True)
+class HistoryView:
+    """What the oracle reads of a NEEM: the ``situation_history`` rows (``Bridge.history``) and
+    the latest imagined situation (``Bridge.latest_situation``)."""
+
+    rows: list[HistoryRow]
+    latest: LatestSituation | None
+
+
+def history_rows(reply: dict[str, Any]) -> list[HistoryRow]:
     """odb_history:situation_history_json's reply as rows (Bridge.history)."""
     calls: list[str] = reply["calls"]
     sets = [[calls[i] for i in indexes] for indexes in reply["sets"]]
     flat = reply["rows"]
-    return [{"begin": flat[i], "end": flat[i + 1], "call": calls[flat[i + 2]], "part": flat[i + 3],
-             "available": sets[flat[i + 4]] if flat[i + 4] >= 0 else None}
+    return [HistoryRow(begin=flat[i], end=flat[i + 1], call=calls[flat[i + 2]], part=flat[i + 3],
+                       available=sets[flat[i + 4]] if flat[i + 4] >= 0 else None)
             for i in range(0, len(flat), 5)]
 
 
@@ -647,4 +790,5 @@ def connect(store: Store, neem_id: str, ontology: OdbOntology | None = None) -> 
         raise
 
 
-__all__ = ["Bridge", "CROSSINGS", "connect", "quote_atom", "term_text"]
+__all__ = ["Bridge", "CROSSINGS", "HistoryRow", "HistoryView", "LatestSituation", "QueryValueError", "connect", "crossings",
+           "quote_atom", "term_text"]

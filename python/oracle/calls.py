@@ -6,7 +6,7 @@ argument fills which slot is ``TaskClass.slots`` (the logger's roles follow the 
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from datetime import datetime
 from typing import Any
@@ -85,7 +85,7 @@ class DoneBefore:
         self.done.setdefault(option, None)
 
 
-def steps_from_history(ontology: OdbOntology, rows: Iterable[dict], clocked: bool = True) -> list[Step]:
+def steps_from_history(ontology: OdbOntology, rows: Iterable[Mapping[str, Any]], clocked: bool = True) -> list[Step]:
     """The oracle's history from the Prolog bridge's ``situation_history`` rows (begin order);
     each action's step carries its begin as ``time`` when the NEEM has a clock (``clocked``: on
     the sequence clock a begin is a position, not a time)."""
@@ -142,7 +142,7 @@ def steps_from_history(ontology: OdbOntology, rows: Iterable[dict], clocked: boo
     return steps
 
 
-def steps_before(ontology: OdbOntology, rows: Iterable[dict], at: float, clocked: bool = True) -> list[Step]:
+def steps_before(ontology: OdbOntology, rows: Iterable[Mapping[str, Any]], at: float, clocked: bool = True) -> list[Step]:
     """The history a decision at unix seconds ``at`` is ranked with: the ``situation_history``
     rows that began before it and, when the pause since the last action's end is an idle gap,
     the idle step the logger will write before the next action (the replay's rule:

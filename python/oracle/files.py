@@ -125,10 +125,21 @@ def cached_pickle(path: Path, key: str, make: Callable[[], _Value], valid: Calla
     return value
 
 
+def default_cache_dir() -> Path:
+    """The user's private cache of this package: ``$NEEM_ORACLE_CACHE``, else the platform's
+    (``~/.cache/neem-oracle`` on Linux)."""
+    override = os.environ.get("NEEM_ORACLE_CACHE")
+    if override:
+        return Path(override)
+    import platformdirs
+
+    return Path(platformdirs.user_cache_dir("neem-oracle"))
+
+
 @dataclass(frozen=True)
 class CacheFolder:
-    """A folder of the user's private cache (``FOLDER`` of oracle.ontology.distance's
-    default_cache_dir) with one ``*SUFFIX`` file per entry, the least recently written pruned."""
+    """A folder of the user's private cache (``FOLDER`` of ``default_cache_dir``) with one
+    ``*SUFFIX`` file per entry, the least recently written pruned."""
 
     root: Path
     FOLDER: ClassVar[str] = ""
@@ -138,8 +149,6 @@ class CacheFolder:
 
     @classmethod
     def default(cls: type[_Cache]) -> _Cache:
-        from oracle.ontology.distance import default_cache_dir
-
         return cls(default_cache_dir() / cls.FOLDER)
 
     def _prune(self) -> None:

@@ -1,12 +1,16 @@
 """The fitted predictor of a NEEM's history, kept between calls: a rank after one more action
 adds that action to the model fitted before instead of fitting the whole history again.
 
-One entry per NEEM and predictor, a file in the user's private cache (``fits/`` beside the
-compiled Prolog modules; folder 0700, file 0600). Its name is a digest of everything a fit
-depends on besides the history: the predictor's class and parameters, the distance matrix's
-content, the source of ``oracle.algorithm`` and the Python and numpy versions. Inside: the
-number of steps fitted, the digest of those steps (their pickle) and the model, pickled without
-its distance matrix (the caller's, of the same content, is put back).
+One entry per NEEM and predictor, kept in the store beside the NEEM where the store can keep
+it (oracle.store.kept; one fit per NEEM there, so the first rank after an import finds the fit
+the import made), else a file in the user's private cache (``fits/`` beside the compiled Prolog
+modules; folder 0700, file 0600). Its key is a digest of everything a fit depends on besides
+the history: the predictor's class and parameters, the distance matrix's content, the source of
+``oracle.algorithm`` and the Python and numpy versions. Inside: the key, the number of steps
+fitted, the digest of those steps (their pickle) and the model, pickled without its distance
+matrix (the caller's, of the same content, is put back). A store's file may come from someone
+else: its entries are unpickled by ``_Unpickler`` with ``trusted`` False, which makes nothing
+but the predictors' own classes, numpy arrays and builtin containers.
 
 A predictor takes part when it has ``extend(history)`` (the routine predictor: the model
 ``fit(history)`` gives, from the one fitted on a prefix of it, bit for bit). An entry is used
@@ -25,14 +29,19 @@ import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
 from oracle.algorithm.records import Step
 from oracle.files import CacheFolder, write_private_bytes, written_by_user_alone
 
-_FORMAT = b"neem-oracle fit 1"
+if TYPE_CHECKING:
+    from oracle.store.base import Store
+
+_FORMAT = b"neem-oracle fit 2"
+#: The kind of entry the store keeps (oracle.store.kept).
+KIND = "fit"
 _DISTANCES = "distances"
 
 
@@ -43,22 +52,33 @@ class FitCache(CacheFolder):
     FOLDER: ClassVar[str] = "fits"
     SUFFIX: ClassVar[str] = ".fit"
 
-    def fitted(self, model: Any, steps: Sequence[Step], store: str, neem: str, *, keep: bool = True) -> Any:
+    def fitted(self, model: Any, steps: Sequence[Step], store: str, neem: str, *, keep: bool = True,
+               kept: Store | None = None) -> Any:
         """``model.fit(steps)``, extended from the entry of NEEM ``neem`` of the store at
-        ``store`` (its location) when the entry's steps are the first steps of ``steps``; the
-        entry then holds the new fit. ``keep`` False (a temporary NEEM, wiped when its session
-        ends: nothing made from it may outlive it) fits afresh and keeps nothing."""
+        ``store`` (its location; ``kept``: the store itself, which may keep the entry) when the
+        entry's steps are the first steps of ``steps``; the entry then holds the new fit.
+        ``keep`` False (a temporary NEEM, wiped when its session ends: nothing made from it may
+        outlive it) fits afresh and keeps nothing."""
         if not keep or not callable(getattr(model, "extend", None)):
             return model.fit(steps)
-        path = self.root / f"{_entry_key(model, store, neem)}{self.SUFFIX}"
-        cached = self._load(path, model, steps)
+        key = _entry_key(model, neem)
+        path = self.root / f"{_file_name(key, store)}{self.SUFFIX}"
+        found = [entry for entry in (self._kept(kept, neem, key, model, steps), self._load(path, key, model, steps))
+                 if entry is not None]
+        cached = max(found, key=lambda m: m.fitted_steps_, default=None)
         if cached is not None and cached.fitted_steps_ == len(steps):
             return cached
         fitted = cached.extend(steps) if cached is not None else model.fit(steps)
-        self._store(path, fitted, steps)
+        data = self._dumps(key, fitted, steps)
+        if data is not None and (kept is None or not kept.write_kept(neem, KIND, data)):
+            self._store(path, data)
         return fitted
 
-    def _load(self, path: Path, model: Any, steps: Sequence[Step]) -> Any | None:
+    def _kept(self, kept: Store | None, neem: str, key: str, model: Any, steps: Sequence[Step]) -> Any | None:
+        raw = None if kept is None else kept.read_kept(neem, KIND)
+        return None if raw is None else _parse(raw, key, model, steps, trusted=False)
+
+    def _load(self, path: Path, key: str, model: Any, steps: Sequence[Step]) -> Any | None:
         try:
             with path.open("rb") as handle:
                 info = os.fstat(handle.fileno())
@@ -67,26 +87,37 @@ class FitCache(CacheFolder):
                 data = handle.read()
         except OSError:
             return None
-        try:
-            head, count, digest, body = pickle.loads(data)
-            if head != _FORMAT or count > len(steps) or digest != _steps_digest(steps[:count]):
-                return None
-            cached = _Unpickler(io.BytesIO(body), model.distances).load()
-        except Exception:  # a damaged or foreign entry: fit afresh (it is replaced)
-            return None
-        if type(cached) is not type(model) or getattr(cached, "fitted_steps_", None) != count:
-            return None
-        return cached
+        return _parse(data, key, model, steps, trusted=True)
 
-    def _store(self, path: Path, model: Any, steps: Sequence[Step]) -> None:
+    def _dumps(self, key: str, model: Any, steps: Sequence[Step]) -> bytes | None:
         try:
             body = io.BytesIO()
             _Pickler(body, model.distances).dump(model)
-            data = pickle.dumps((_FORMAT, len(steps), _steps_digest(steps), body.getvalue()), protocol=5)
+            return pickle.dumps((_FORMAT, key, len(steps), _steps_digest(steps), body.getvalue()), protocol=5)
+        except pickle.PicklingError:
+            return None
+
+    def _store(self, path: Path, data: bytes) -> None:
+        try:
             write_private_bytes(path, data)
             self._prune()
-        except (OSError, pickle.PicklingError):
+        except OSError:
             return  # read-only or full: the next call fits afresh
+
+
+def _parse(data: bytes, key: str, model: Any, steps: Sequence[Step], *, trusted: bool) -> Any | None:
+    """The model of an entry written by ``_dumps`` for ``key`` whose steps are the first of
+    ``steps``; None otherwise (a damaged or foreign entry is fitted afresh and replaced)."""
+    try:
+        head, entry_key, count, digest, body = _Unpickler(io.BytesIO(data), None, trusted).load()
+        if head != _FORMAT or entry_key != key or count > len(steps) or digest != _steps_digest(steps[:count]):
+            return None
+        cached = _Unpickler(io.BytesIO(body), model.distances, trusted).load()
+    except Exception:
+        return None
+    if type(cached) is not type(model) or getattr(cached, "fitted_steps_", None) != count:
+        return None
+    return cached
 
 
 class _Pickler(pickle.Pickler):
@@ -100,10 +131,31 @@ class _Pickler(pickle.Pickler):
         return _DISTANCES if obj is self._distances else None
 
 
+#: What an entry from a store may make (``trusted`` False): the predictors' own classes, numpy's
+#: arrays, builtin containers.
+_SAFE_MODULES = ("oracle.algorithm.",)
+_SAFE_GLOBALS = {("numpy", "dtype"), ("numpy", "ndarray"), ("numpy._core.numeric", "_frombuffer"),
+                 ("numpy.core.numeric", "_frombuffer"), ("numpy._core.multiarray", "_reconstruct"),
+                 ("numpy.core.multiarray", "_reconstruct"), ("numpy._core.multiarray", "scalar"),
+                 ("numpy.core.multiarray", "scalar"), ("copyreg", "_reconstructor"), ("builtins", "set"),
+                 ("builtins", "frozenset"), ("builtins", "slice"), ("builtins", "complex"), ("builtins", "object"),
+                 ("collections", "OrderedDict"), ("collections", "defaultdict"), ("collections", "Counter"),
+                 ("collections", "deque")}
+
+
 class _Unpickler(pickle.Unpickler):
-    def __init__(self, data: io.BytesIO, distances: Any) -> None:
+    def __init__(self, data: io.BytesIO, distances: Any, trusted: bool = True) -> None:
         super().__init__(data)
         self._distances = distances
+        self._trusted = trusted
+
+    def find_class(self, module: str, name: str) -> Any:
+        if not self._trusted and (module, name) not in _SAFE_GLOBALS:
+            found = super().find_class(module, name) if module.startswith(_SAFE_MODULES) else None
+            if not isinstance(found, type):
+                raise pickle.UnpicklingError(f"{module}.{name} is not made from a kept fit")
+            return found
+        return super().find_class(module, name)
 
     def persistent_load(self, pid: Any) -> Any:
         if pid != _DISTANCES:
@@ -116,9 +168,14 @@ def _steps_digest(steps: Sequence[Step]) -> str:
     return hashlib.sha256(pickle.dumps(list(steps), protocol=5)).hexdigest()
 
 
-def _entry_key(model: Any, store: str, neem: str) -> str:
+def _file_name(key: str, store: str) -> str:
+    """The user-cache file of an entry: its key, for the store at ``store``."""
+    return hashlib.sha256(f"{key}\0{store}".encode()).hexdigest()[:32]
+
+
+def _entry_key(model: Any, neem: str) -> str:
     digest = hashlib.sha256()
-    for part in (_FORMAT.decode(), type(model).__module__, type(model).__qualname__, store, neem, sys.version,
+    for part in (_FORMAT.decode(), type(model).__module__, type(model).__qualname__, neem, sys.version,
                  np.__version__, _code_digest()):
         digest.update(part.encode() + b"\0")
     for name, value in model.get_params().items():

@@ -1,10 +1,15 @@
-"""The oracle's history of a NEEM (``Bridge.history``), kept between calls: a rank after the robot
-logged one more action reads that action from the store, not the whole NEEM again.
+"""The oracle's view of a NEEM (``Bridge.history_view``: its history and its latest imagined
+situation), kept between calls: a rank after the robot logged one more action reads that action
+from the store, not the whole NEEM again, and a rank after nothing but rankings were written
+reads nothing through Prolog at all.
 
-One entry per store and NEEM, a file in the user's private cache (``histories/`` beside the kept
-fits; folder 0700, file 0600), named by a digest of the store's location, the NEEM id, the
-Prolog sources and the ontology's fingerprint (what the rows are computed with). Inside, as
-JSON: the store's AppendMark taken before the rows were read, and the rows.
+Kept in the store itself where it can keep it (oracle.store.kept: the SQLite file, beside the
+NEEM's triples, so the first rank after an import finds what the import kept), else in a file
+of the user's private cache (``histories/`` beside the kept fits; folder 0700, file 0600) named
+by a digest of the store's location and the entry's key. The key is a digest of the NEEM id,
+the Prolog sources and the ontology's fingerprint (what the rows are computed with). Inside,
+as JSON: the key, the store's AppendMark taken before the rows were read, the rows and the
+latest situation.
 
 The kept rows are extended, not read again, only when the store shows that what was added
 since cannot change them (``extends``):
@@ -18,7 +23,9 @@ since cannot change them (``extends``):
   that execute added tasks of no odb class and not soma:Imagining (a preference written for a
   decision ranked earlier); and every interval an added triple gives an event is itself added:
   new actions and imaginings come after the kept ones, and
-  odb_history:situation_history_after/2 reads exactly them.
+  odb_history:situation_history_after/2 reads exactly them. When every added event is such a
+  preference (``extends`` with no last begin), neither the rows nor the latest situation
+  change, and nothing is read.
 
 Otherwise (a store that cannot tell, such as MongoDB; an entry missing, damaged or not the
 user's own; anything else) the whole history is read and the entry replaced. A temporary NEEM
@@ -32,12 +39,12 @@ import hashlib
 import json
 import math
 import os
-from collections.abc import Collection, Mapping
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, ClassVar
 
-from oracle.bridge import Bridge, history_rows
+from oracle.bridge import Bridge, HistoryRow, HistoryView, history_rows
 from oracle.files import CacheFolder, write_private_bytes, written_by_user_alone
 from oracle.neem.terms import BEGIN, EXECUTES, HAS_INTERVAL, IMAGINING
 from oracle.store.base import Appended, AppendMark
@@ -46,81 +53,144 @@ from oracle.store.model import RDF_TYPE, decode_value
 #: More triples added than this (~500 logged actions) and the whole history is read instead:
 #: checking and reading that many added triples costs about as much.
 MAX_APPENDED = 20_000
-_FORMAT = "neem-oracle history 1"
+_FORMAT = "neem-oracle history 2"
+
+
+#: The kind of entry the store keeps (oracle.store.kept).
+KIND = "history"
+
+
+@dataclass(frozen=True)
+class _Entry:
+    mark: AppendMark
+    view: HistoryView
 
 
 @dataclass(frozen=True)
 class HistoryCache(CacheFolder):
-    """Histories under ``root`` (one file each)."""
+    """Views kept in the store, or else under ``root`` (one file each)."""
 
     FOLDER: ClassVar[str] = "histories"
     SUFFIX: ClassVar[str] = ".json"
 
-    def history(self, bridge: Bridge) -> list[dict[str, Any]]:
-        """``bridge.history()``, from the kept entry and the actions added since when the
+    def history(self, bridge: Bridge) -> list[HistoryRow]:
+        """``bridge.history()``, as ``view`` keeps it."""
+        return self.view(bridge).rows
+
+    def view(self, bridge: Bridge) -> HistoryView:
+        """``bridge.history_view()``, from the kept entry and the actions added since when the
         store shows they extend it (module docstring); the entry then holds the result."""
         store, neem = bridge.store, bridge.neem_id
         if store.neem(neem).temporary:
-            return bridge.history()  # wiped when its session ends: nothing of it may outlive it
+            return bridge.history_view()  # wiped when its session ends: nothing of it may outlive it
         mark = store.append_mark(neem)
         if mark is None:
-            return bridge.history()
-        path = self.root / f"{_entry_key(bridge)}{self.SUFFIX}"
-        kept = self._load(path)
-        rows: list[dict[str, Any]] | None = None
-        if kept is not None and kept[0] == mark:
-            return kept[1]
-        if kept is not None and kept[1] and same_tables(kept[0], mark) and mark.last - kept[0].last <= MAX_APPENDED:
-            after = kept[1][-1]["begin"]
-            added = store.appended(neem, kept[0].last)
-            namespace = None if bridge.ontology is None else bridge.ontology.namespace
-            if added is not None and extends(added, after, namespace):
-                rows = kept[1] + bridge.history_after(after)
-        if rows is None:
-            rows = bridge.history()
-        self._store(path, mark, rows)
-        return rows
+            return bridge.history_view()
+        key = _entry_key(bridge)
+        path = self.root / f"{_file_name(key, store.location)}{self.SUFFIX}"
+        kept = [entry for entry in (_parse(store.read_kept(neem, KIND), key), self._load(path, key)) if entry is not None]
+        for entry in kept:
+            if entry.mark == mark:
+                return entry.view
+        usable = [entry for entry in kept if same_tables(entry.mark, mark) and mark.last - entry.mark.last <= MAX_APPENDED]
+        view = _extended(bridge, max(usable, key=lambda e: e.mark.last), mark) if usable else None
+        if view is None:
+            view = bridge.history_view()
+        data = _dumps(key, mark, view)
+        if not store.write_kept(neem, KIND, data):
+            self._store(path, data)
+        return view
 
-    def _load(self, path: Path) -> tuple[AppendMark, list[dict[str, Any]]] | None:
+    def _load(self, path: Path, key: str) -> _Entry | None:
         try:
             with path.open("rb") as handle:
                 if not written_by_user_alone(os.fstat(handle.fileno())):
                     return None
-                data = json.loads(handle.read())
-            if data["format"] != _FORMAT:
-                return None
-            token, changes, last = data["mark"]
-            mark = AppendMark(str(token), int(changes), int(last))
-            if not _well_formed(data["history"]):
-                return None  # valid JSON, but not a history (edited or damaged)
-            rows = history_rows(data["history"])
-        except (OSError, ValueError, KeyError, TypeError, IndexError):
-            return None  # missing or damaged: the whole history is read, the entry replaced
-        return mark, rows
+                return _parse(handle.read(), key)
+        except OSError:
+            return None
 
-    def _store(self, path: Path, mark: AppendMark, rows: list[dict[str, Any]]) -> None:
-        data = {"format": _FORMAT, "mark": [mark.token, mark.changes, mark.last], "history": compact(rows)}
+    def _store(self, path: Path, data: bytes) -> None:
         try:
-            write_private_bytes(path, json.dumps(data, separators=(",", ":")).encode())
+            write_private_bytes(path, data)
             self._prune()
         except OSError:
             return  # read-only or full: the next call reads the whole history
 
 
+def _extended(bridge: Bridge, entry: _Entry, mark: AppendMark) -> HistoryView | None:
+    """The kept view with what was added since its mark, when that only adds (module
+    docstring); None when the whole view must be read."""
+    added = bridge.store.appended(bridge.neem_id, entry.mark.last)
+    if added is None:
+        return None
+    namespace = None if bridge.ontology is None else bridge.ontology.namespace
+    if extends(added, None, namespace):
+        return entry.view  # only rankings written since
+    rows = entry.view.rows
+    if not rows or not extends(added, rows[-1]["begin"], namespace):
+        return None
+    after = bridge.history_view(rows[-1]["begin"])
+    return HistoryView(rows + after.rows, after.latest)
+
+
+def _dumps(key: str, mark: AppendMark, view: HistoryView) -> bytes:
+    data = {"format": _FORMAT, "key": key, "mark": [mark.token, mark.changes, mark.last], "history": compact(view.rows),
+            "latest": view.latest}
+    return json.dumps(data, separators=(",", ":")).encode()
+
+
+def _parse(raw: bytes | None, key: str) -> _Entry | None:
+    """An entry's bytes as written by ``_dumps`` for ``key``; None when missing, damaged or another's."""
+    if raw is None:
+        return None
+    try:
+        data = json.loads(raw)
+        if data["format"] != _FORMAT or data["key"] != key:
+            return None
+        token, changes, last = data["mark"]
+        mark = AppendMark(str(token), int(changes), int(last))
+        latest = data["latest"]
+        if not _well_formed(data["history"]) or not _well_formed_latest(latest):
+            return None  # valid JSON, but not a history (edited or damaged)
+        return _Entry(mark, HistoryView(history_rows(data["history"]), latest))
+    except (ValueError, KeyError, TypeError, IndexError):
+        return None  # damaged: the whole history is read, the entry replaced
+
+
+def _well_formed_latest(latest: Any) -> bool:
+    """``Bridge.latest_situation``'s shape: None, or a finite begin, call texts and a part of day."""
+    if latest is None:
+        return True
+    begin = latest["begin"]
+    return (type(begin) in (int, float) and math.isfinite(begin) and isinstance(latest["available"], list)
+            and all(type(c) is str for c in latest["available"]) and type(latest["part"]) is str)
+
+
 def _well_formed(history: Any) -> bool:
     """``compact``'s shape: call texts, sets of call indexes, and rows of a finite begin and
-    end, a call index, a part of day and a set index (-1: none)."""
+    end, a call index, a part of day and a set index (-1: none). Each column is checked by the
+    types it holds and its least and greatest value (a kept view of 50,000 rows is read at
+    every cold start)."""
     calls, sets, flat = history["calls"], history["sets"], history["rows"]
     if not (isinstance(calls, list) and isinstance(sets, list) and isinstance(flat, list) and len(flat) % 5 == 0):
         return False
-    n_calls, n_sets = len(calls), len(sets)
-    index = lambda x, n: type(x) is int and 0 <= x < n  # noqa: E731
-    number = lambda x: type(x) in (int, float) and math.isfinite(x)  # noqa: E731
-    return (all(type(c) is str for c in calls)
-            and all(isinstance(s, list) and all(index(i, n_calls) for i in s) for s in sets)
-            and all(map(number, flat[0::5])) and all(map(number, flat[1::5]))
-            and all(index(i, n_calls) for i in flat[2::5]) and all(type(p) is str for p in flat[3::5])
-            and all(i == -1 or index(i, n_sets) for i in flat[4::5]))
+    members = [i for s in sets if isinstance(s, list) for i in s]
+    return (all(isinstance(s, list) for s in sets) and {type(c) for c in calls} <= {str}
+            and _numbers(flat[0::5]) and _numbers(flat[1::5]) and _indexes(flat[2::5], 0, len(calls))
+            and {type(p) for p in flat[3::5]} <= {str} and _indexes(flat[4::5], -1, len(sets))
+            and _indexes(members, 0, len(calls)))
+
+
+def _numbers(column: list[Any]) -> bool:
+    """Every value a finite number (an int or a float, not a bool): a NaN or an infinity makes
+    the sum one (the values are times, far from overflowing it)."""
+    return not column or ({type(x) for x in column} <= {int, float} and math.isfinite(sum(column)))
+
+
+def _indexes(column: list[Any], least: int, end: int) -> bool:
+    """Every value an int in [least, end)."""
+    return not column or ({type(x) for x in column} == {int} and min(column) >= least and max(column) < end)
 
 
 def same_tables(kept: AppendMark, now: AppendMark) -> bool:
@@ -129,20 +199,16 @@ def same_tables(kept: AppendMark, now: AppendMark) -> bool:
     return kept.token == now.token and kept.changes == now.changes and now.last >= kept.last
 
 
-def extends(added: Appended, after: float, namespace: str | None) -> bool:
+def extends(added: Appended, after: float | None, namespace: str | None) -> bool:
     """The triples ``added`` after a history whose last row began at ``after`` only add rows
     after it (module docstring). An added interval that begins at or before ``after`` is
     harmless only when it belongs to added events that execute added tasks of no class that
     makes a situation or an imagining (an odb class of ``namespace``, soma:Imagining): a
-    preference written for a decision ranked earlier."""
+    preference written for a decision ranked earlier. ``after`` None: every added interval
+    must be harmless, and then neither the rows nor the latest situation change."""
     if not added.fresh:
         return False
-    docs_of: dict[Any, list[Mapping[str, Any]]] = {}
-    owners: dict[Any, list[Any]] = {}
-    for doc in added.docs:
-        docs_of.setdefault(doc.get("s"), []).append(doc)
-        if HAS_INTERVAL in _properties(doc):
-            owners.setdefault(doc.get("o"), []).append(doc.get("s"))
+    docs_of, owners = _indexed(added)
     for doc in added.docs:
         properties = _properties(doc)
         if HAS_INTERVAL in properties and doc.get("o") not in docs_of:
@@ -151,9 +217,21 @@ def extends(added: Appended, after: float, namespace: str | None) -> bool:
             begin = decode_value(doc.get("o"))
             if isinstance(begin, bool) or not isinstance(begin, (int, float)):
                 return False
-            if not begin > after and not _no_situation(owners.get(doc.get("s"), []), docs_of, namespace):
+            new = after is not None and begin > after
+            if not new and not _no_situation(owners.get(doc.get("s"), []), docs_of, namespace):
                 return False
     return True
+
+
+def _indexed(added: Appended) -> tuple[dict[Any, list[Mapping[str, Any]]], dict[Any, list[Any]]]:
+    """The added documents by subject, and the events of each added interval."""
+    docs_of: dict[Any, list[Mapping[str, Any]]] = {}
+    owners: dict[Any, list[Any]] = {}
+    for doc in added.docs:
+        docs_of.setdefault(doc.get("s"), []).append(doc)
+        if HAS_INTERVAL in _properties(doc):
+            owners.setdefault(doc.get("o"), []).append(doc.get("s"))
+    return docs_of, owners
 
 
 def _no_situation(events: list[Any], docs_of: Mapping[Any, list[Mapping[str, Any]]], namespace: str | None) -> bool:
@@ -184,7 +262,7 @@ def _properties(doc: Mapping[str, Any]) -> Collection[Any]:
     return {doc.get("p"), *(stars if isinstance(stars, list) else ())}
 
 
-def compact(rows: list[dict[str, Any]]) -> dict[str, Any]:
+def compact(rows: Sequence[HistoryRow]) -> dict[str, Any]:
     """Rows in the shape of odb_history:situation_history_json (each distinct call and each
     distinct available set written once); ``history_rows`` reads it back."""
     calls: dict[str, int] = {}
@@ -209,12 +287,18 @@ def compact(rows: list[dict[str, Any]]) -> dict[str, Any]:
 
 
 def _entry_key(bridge: Bridge) -> str:
+    """What the rows are computed with: the NEEM, the Prolog sources and the ontology."""
     from oracle import modulecache
     from oracle.ontology.provenance import fingerprint
     from oracle.paths import prolog_dir
 
     digest = hashlib.sha256()
     ontology = "none" if bridge.ontology is None else fingerprint(bridge.ontology)
-    for part in (_FORMAT, bridge.store.location, bridge.neem_id, modulecache.modules_key(prolog_dir(), ""), ontology):
+    for part in (_FORMAT, bridge.neem_id, modulecache.modules_key(prolog_dir(), ""), ontology):
         digest.update(part.encode() + b"\0")
     return digest.hexdigest()[:32]
+
+
+def _file_name(key: str, location: str) -> str:
+    """The user-cache file of an entry: its key, for the store at ``location``."""
+    return hashlib.sha256(f"{key}\0{location}".encode()).hexdigest()[:32]

@@ -14,7 +14,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 
 from oracle.files import prune_cache, used
-from oracle.ontology.distance import default_cache_dir
+from oracle.files import default_cache_dir
 
 #: The cache's sub-folder; each entry is a folder named by its key.
 FOLDER = "prolog"

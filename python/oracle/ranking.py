@@ -20,20 +20,21 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from oracle.algorithm.params import Hyperparameters
-from oracle.algorithm.predictors import DEFAULT, Predictor, make_predictor
+from oracle.algorithm.predictors import DEFAULT, Predictor
+from oracle.algorithm.predictors import make_predictor as make_named
 from oracle.algorithm.records import Option, RankedTask, Ranking, Step, local_name
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError, NeemOracleError
 from oracle.fitcache import FitCache
 from oracle.historycache import HistoryCache
 from oracle.calls import DoneBefore, call_of, check_call, idle_step, opening_tasks, option_of, steps_from_history
-from oracle.neem.query import recorded_part_of_day
 from oracle.neem.writer import NeemLogger
 from oracle.ontology import OdbOntology
 from oracle.timeline import IDLE_THRESHOLD_S, Instant, clock, has_clock, is_idle_gap, now, part_of_day_at
 
 if TYPE_CHECKING:
-    from oracle.bridge import Bridge
+    from oracle.bridge import Bridge, HistoryRow, HistoryView, LatestSituation
+    from oracle.store import Store
 
 #: Score written for options without similar history (the store and JSON need a finite number).
 NO_HISTORY_SCORE = 1e9
@@ -52,6 +53,13 @@ class NeemRanking:
     written: str | None
     note: str | None
     method: str = DEFAULT
+
+
+def make_predictor(ontology: OdbOntology, settings: Hyperparameters | None = None, method: str = DEFAULT) -> Predictor:
+    """The predictor ``method`` names (oracle.algorithm.predictors: ``routine``, the default, or
+    ``thesis``) for ``ontology``'s tasks and distances, unfitted; ``settings`` (default: the
+    thesis's Table 4.2) apply to ``thesis``. What ``rank``, the service and the import fit."""
+    return make_named(method, ontology.distances(), opening_tasks(ontology), settings or Hyperparameters())
 
 
 def finite(score: float) -> float:
@@ -95,14 +103,13 @@ def rank_neem(
     after the last action. The fit is kept in ``cache`` (default: the user's, oracle.fitcache)
     and extended by the actions logged since; so is the history read (``histories``, default:
     the user's, oracle.historycache)."""
-    history = (histories or HistoryCache.default()).history(bridge)
+    view = (histories or HistoryCache.default()).view(bridge)
     info = bridge.store.neem(bridge.neem_id)
     clocked = has_clock(info.meta)
-    calls, instant, offered = _offer(bridge, ontology, history, available, at, clocked)
-    ranker = NeemRanker(ontology, make_predictor(method, ontology.distances(), opening_tasks(ontology), settings),
-                        [row for row in history if float(row["begin"]) < instant.seconds],
-                        neem=bridge.neem_id, store=bridge.store.location, clocked=clocked, keep=not info.temporary,
-                        fits=cache)
+    calls, instant, offered = _offer(bridge.neem_id, ontology, view, available, at, clocked)
+    ranker = NeemRanker(ontology, make_predictor(ontology, settings, method),
+                        [row for row in view.rows if float(row["begin"]) < instant.seconds],
+                        neem=bridge.neem_id, store=bridge.store, clocked=clocked, keep=not info.temporary, fits=cache)
     decision = ranker.rank(calls, instant)
     ranking = decision.ranking
     written = note = None
@@ -119,20 +126,43 @@ def rank_neem(
                        tuple(call_of(ontology, o) for o in ranking.chain()), decision.ms, written, note, method)
 
 
-def _offer(bridge: Bridge, ontology: OdbOntology, history: Sequence[dict[str, Any]], available: list[str] | None,
+def keep_neem(store: Store, ontology: OdbOntology, neem: str, settings: Hyperparameters | None = None,
+              method: str = DEFAULT) -> None:
+    """Read and fit what the first ``rank`` of NEEM ``neem`` needs, and keep both in the store
+    (oracle.historycache, oracle.fitcache): the import calls it, so that rank and the service
+    start from what was kept and read only what is logged after. A temporary NEEM keeps nothing,
+    nor does a store that cannot tell what was added since (MongoDB: a rank reads it whole)."""
+    from oracle.bridge import Bridge
+
+    info = store.neem(neem)
+    if info.temporary or store.append_mark(neem) is None:
+        return  # nothing may outlive it, or a store that cannot tell what was added (MongoDB)
+    bridge = Bridge(store, neem, ontology)
+    try:
+        view = HistoryCache.default().view(bridge)
+    finally:
+        bridge.close()
+    before = float(view.latest["begin"]) if view.latest is not None else math.inf  # what rank fits
+    NeemRanker(ontology, make_predictor(ontology, settings, method),
+               [row for row in view.rows if float(row["begin"]) < before], neem=neem, store=store,
+               clocked=has_clock(info.meta))
+
+
+def _offer(neem: str, ontology: OdbOntology, view: HistoryView, available: list[str] | None,
            at: Instant | None, clocked: bool) -> tuple[list[TaskCall], Instant, str | None]:
     """What a ``rank`` ranks and when: the calls given (at ``at``, default now; on the sequence
     clock the position after the last action), else the latest imagined situation at its
     begin and recorded part of day, else the actions done before ``at``; and a note saying so
     in the last case."""
-    latest = None if available else bridge.latest_situation()
+    history = view.rows
+    latest = None if available else view.latest
     offered = None
     if not available and latest is None:
         before = at.seconds if at is not None else math.inf   # what was done before the decision
         available = list(dict.fromkeys(row["call"] for row in history
                                        if row["call"] != "idle" and float(row["begin"]) < before))
         if not available:
-            raise NeemOracleError(f"NEEM {bridge.neem_id!r} has no imagined situation and no action to rank; "
+            raise NeemOracleError(f"NEEM {neem!r} has no imagined situation and no action to rank; "
                                   "give the available calls")
         offered = (f"no imagined situation in the NEEM: ranked the {len(available)} actions done so far "
                    "(--available ranks others)")
@@ -147,10 +177,15 @@ def _offer(bridge: Bridge, ontology: OdbOntology, history: Sequence[dict[str, An
             instant = Instant(at.seconds if at is not None else last, None)
         return calls, instant, offered
     assert latest is not None  # no available calls: the NEEM's latest situation, found above
+    return [parse_call(text) for text in latest["available"]], latest_instant(latest, clocked), None
+
+
+def latest_instant(latest: LatestSituation, clocked: bool) -> Instant:
+    """When the latest imagined situation (``Bridge.latest_situation``) holds: its begin, at the
+    part of day recorded with it (oracle.timeline's rule where none was; none without a clock)."""
     begin = float(latest["begin"])
-    recorded = recorded_part_of_day(bridge.store, bridge.neem_id, ontology.vocab, begin)
-    return ([parse_call(text) for text in latest["available"]],
-            Instant(begin, (recorded or part_of_day_at(begin)) if clocked else None), None)
+    recorded = latest.get("part") if latest.get("part") != "none" else None
+    return Instant(begin, (recorded or part_of_day_at(begin)) if clocked else None)
 
 
 @dataclass(frozen=True)
@@ -181,8 +216,8 @@ class NeemRanker:
     latest one that began after the previous action and not after this one,
     odb_history:situation_history's rule; else the actions done so far)."""
 
-    def __init__(self, ontology: OdbOntology, predictor: Predictor, rows: Sequence[dict[str, Any]], *,
-                 neem: str, store: str, clocked: bool, keep: bool = True, idle_threshold: float = IDLE_THRESHOLD_S,
+    def __init__(self, ontology: OdbOntology, predictor: Predictor, rows: Sequence[HistoryRow], *,
+                 neem: str, store: Store, clocked: bool, keep: bool = True, idle_threshold: float = IDLE_THRESHOLD_S,
                  fits: FitCache | None = None) -> None:
         self.ontology = ontology
         self.clocked = clocked
@@ -191,7 +226,8 @@ class NeemRanker:
         #: a ranking's supporting past situations are shown as).
         self.steps: list[Step] = steps_from_history(ontology, rows, clocked)
         self.begins: list[float] = [float(row["begin"]) for row in rows]
-        self.predictor = (fits or FitCache.default()).fitted(predictor, self.steps, store, neem, keep=keep)
+        self.predictor = (fits or FitCache.default()).fitted(predictor, self.steps, store.location, neem, keep=keep,
+                                                             kept=store)
         #: What the user did so far: the offer of an action logged without an imagined
         #: situation, and which ranked tasks were done before.
         self.done_before = DoneBefore()

@@ -190,3 +190,55 @@ def test_unwritable_cache_still_ranks_and_predictors_without_extend_just_fit(tmp
     _same(RoutineOracle(matrix).fit(steps), model, steps[-3:])
     thesis = FitCache(tmp_path / "fits").fitted(PreferenceOracle(matrix), steps, "s", "n")
     assert thesis.n_steps_ == 40 and not (tmp_path / "fits").exists()
+
+
+class _KeptStore:
+    """A store that keeps entries (oracle.store.kept's interface)."""
+
+    def __init__(self) -> None:
+        self.kept: dict[tuple[str, str], bytes] = {}
+
+    def read_kept(self, neem: str, kind: str) -> bytes | None:
+        return self.kept.get((neem, kind))
+
+    def write_kept(self, neem: str, kind: str, data: bytes) -> bool:
+        self.kept[(neem, kind)] = data
+        return True
+
+
+def test_a_fit_kept_in_the_store_serves_the_next_process(tmp_path, monkeypatch):
+    store = _KeptStore()
+    matrix = random_matrix(5)
+    steps = synthetic_history(80, 5)
+    first = FitCache(tmp_path / "a").fitted(RoutineOracle(matrix), steps[:60], "s", "n", kept=store)
+    assert store.kept and not (tmp_path / "a").exists()  # the store kept it, not the user's cache
+    monkeypatch.setattr(RoutineOracle, "fit", lambda self, history: pytest.fail("fitted afresh"))
+    again = FitCache(tmp_path / "b").fitted(RoutineOracle(matrix), steps[:60], "s", "n", kept=store)
+    _same(first, again, steps[-5:])
+    grown = FitCache(tmp_path / "b").fitted(RoutineOracle(matrix), steps, "s", "n", kept=store)  # extended
+    monkeypatch.undo()
+    _same(RoutineOracle(matrix).fit(steps), grown, steps[-5:])
+
+
+class _Planted:
+    def __init__(self, path) -> None:
+        self.path = path
+
+    def __reduce__(self):
+        return (open, (str(self.path), "w"))
+
+
+def test_an_entry_from_a_store_makes_nothing_but_the_predictors_own_classes(tmp_path):
+    # a store file may come from someone else: its entry must not run what it names
+    import oracle.fitcache as fitcache
+
+    matrix = random_matrix(5)
+    steps = synthetic_history(30, 5)
+    planted = tmp_path / "planted"
+    entry = pickle.dumps((fitcache._FORMAT, fitcache._entry_key(RoutineOracle(matrix), "n"), 0,
+                          fitcache._steps_digest([]), pickle.dumps(_Planted(planted))))
+    store = _KeptStore()
+    store.kept[("n", fitcache.KIND)] = entry
+    model = FitCache(tmp_path / "fits").fitted(RoutineOracle(matrix), steps, "s", "n", kept=store)
+    assert not planted.exists() and store.kept[("n", fitcache.KIND)] != entry  # refitted, replaced
+    _same(RoutineOracle(matrix).fit(steps), model, steps[-3:])

@@ -1,6 +1,8 @@
 """The kept history (oracle.historycache): extended by what the logger adds, it equals the whole
 history read afresh; anything else the store shows (an update, a deletion, a triple about an
-earlier individual, an action in the past, other tables) makes it read the whole history."""
+earlier individual, an action in the past, other tables) makes it read the whole history. It is
+kept in the store (the next process finds it), or in the user's cache where the store is
+read-only; a ranking written since reads nothing through Prolog."""
 
 from __future__ import annotations
 
@@ -21,18 +23,27 @@ CALLS = ["pick(apple)", "pour(thermos, green_mug)", "pick(banana)", "open(fridge
 
 
 class Counting:
-    """A bridge whose whole-history reads are counted."""
+    """A bridge whose whole-history reads (``full``) and reads of what was added (``after``) are counted."""
 
     def __init__(self, bridge: Bridge) -> None:
         self.bridge = bridge
         self.full = 0
+        self.after = 0
 
     def __getattr__(self, name):
         return getattr(self.bridge, name)
 
-    def history(self):
-        self.full += 1
-        return self.bridge.history()
+    def history_view(self, after=None):
+        if after is None:
+            self.full += 1
+        else:
+            self.after += 1
+        return self.bridge.history_view(after)
+
+
+class NoProlog(Counting):
+    def history_view(self, after=None):
+        raise AssertionError("read again")
 
 
 def _log_some(log: NeemLogger, rng: random.Random, t: datetime, n: int, durations=(2, 25)) -> datetime:
@@ -94,15 +105,42 @@ def test_nothing_added_reads_nothing(neem, tmp_path):
     store, log, bridge, rng, t = neem
     cache = HistoryCache(tmp_path / "histories")
     first = cache.history(bridge)
-
-    class NoProlog(Counting):
-        def history(self):
-            raise AssertionError("read again")
-
-        def history_after(self, after):
-            raise AssertionError("read again")
-
     assert cache.history(NoProlog(bridge)) == first
+
+
+def test_the_next_process_finds_the_view_in_the_store(neem, tmp_path):
+    store, log, bridge, rng, t = neem
+    HistoryCache(tmp_path / "histories").view(bridge)
+    assert not (tmp_path / "histories").exists()  # the store kept it
+    view = HistoryCache(tmp_path / "elsewhere").view(NoProlog(bridge))
+    assert view.rows == bridge.history() and view.latest == bridge.latest_situation()
+
+
+def test_a_ranking_written_since_reads_nothing(neem, tmp_path):
+    # rank writes its preference at the latest situation's begin, after the last action
+    store, log, bridge, rng, t = neem
+    cache = HistoryCache(tmp_path / "histories")
+    t += timedelta(seconds=40)
+    log.available(CALLS[:2], t)
+    log.flush()
+    cache.view(bridge)
+    log.preference([(c, 0.5) for c in CALLS[:2]], t)
+    log.flush()
+    view = cache.view(NoProlog(bridge))
+    assert view.rows == bridge.history() and view.latest == bridge.latest_situation() and view.latest["begin"] > view.rows[-1]["begin"]
+
+
+def test_the_latest_situation_grows_with_the_history(neem, tmp_path):
+    store, log, bridge, rng, t = neem
+    cache, counting = HistoryCache(tmp_path / "histories"), Counting(bridge)
+    for _ in range(3):
+        t = _log_some(log, rng, t, 2)
+        t += timedelta(seconds=3)
+        log.available(rng.sample(CALLS, 2), t)
+        log.flush()
+        view = cache.view(counting)
+        assert view.rows == bridge.history() and view.latest == bridge.latest_situation()
+    assert counting.full == 1 and counting.after == 2
 
 
 def _full_after(cache, bridge, change) -> int:
@@ -165,8 +203,35 @@ def test_a_replaced_neem_reads_everything(neem, tmp_path, onto):
     fresh.close()
 
 
+def test_a_damaged_entry_in_the_store_is_not_used(neem, tmp_path):
+    import json
+
+    from oracle.historycache import KIND
+
+    store, log, bridge, rng, t = neem
+    cache, nid = HistoryCache(tmp_path / "histories"), bridge.neem_id
+    cache.history(bridge)
+    kept = store.read_kept(nid, KIND)
+    store.write_kept(nid, KIND, b"{not json")
+    counting = Counting(bridge)
+    assert cache.history(counting) == bridge.history() and counting.full == 1
+    data = json.loads(kept)
+    data["history"]["rows"][0] = "soon"  # valid JSON, not a history
+    store.write_kept(nid, KIND, json.dumps(data).encode())
+    counting = Counting(bridge)
+    assert cache.history(counting) == bridge.history() and counting.full == 1
+    data = json.loads(kept)
+    data["latest"] = {"begin": "soon", "available": [], "part": "none"}
+    store.write_kept(nid, KIND, json.dumps(data).encode())
+    counting = Counting(bridge)
+    assert cache.history(counting) == bridge.history() and counting.full == 1
+
+
 def test_a_damaged_or_foreign_entry_is_not_used(neem, tmp_path):
     store, log, bridge, rng, t = neem
+    bridge.close()
+    reader = open_store(tmp_path / "h.sqlite", read_only=True)  # keeps nothing: the user's cache does
+    bridge = Bridge(reader, "r", log.onto)
     cache = HistoryCache(tmp_path / "histories")
     cache.history(bridge)
     (entry,) = (tmp_path / "histories").glob("*.json")
@@ -212,7 +277,7 @@ def test_a_temporary_neem_is_never_kept(tmp_path, onto):
     bridge = Bridge(store, "s", onto)
     cache = HistoryCache(tmp_path / "histories")
     assert cache.history(bridge) == bridge.history()
-    assert not (tmp_path / "histories").exists()
+    assert not (tmp_path / "histories").exists() and store.read_kept(bridge.neem_id, "history") is None
     bridge.close()
 
 

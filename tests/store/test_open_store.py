@@ -116,3 +116,13 @@ def test_a_command_with_a_bad_password_file_exits_with_one_line(monkeypatch, tmp
     assert main(["neems"]) != 0
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "NEEM_MONGO_PASSWORD_FILE" in err and "cannot read it" in err
+
+
+def test_a_host_name_no_resolver_answers_is_refused_before_any_lookup():
+    # a lookup of "ho st" would wait for the resolver's timeout (9 s for three commands)
+    from oracle.errors import StoreError
+    from oracle.store import open_store
+
+    with pytest.raises(StoreError, match=r"host 'ho st' is not a host name") as refused:
+        open_store("mongodb://alice:s3cret@ho st/db")
+    assert "s3cret" not in str(refused.value)

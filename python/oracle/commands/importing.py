@@ -14,6 +14,7 @@ from oracle.commands.common import NUMBERS, ONTOLOGY_OPTIONS, STORE, add_options
 from oracle.errors import NeemOracleError
 
 if TYPE_CHECKING:
+    from oracle.ontology import OdbOntology
     from oracle.store import Store
 
 
@@ -56,9 +57,24 @@ def run(args: argparse.Namespace) -> int:
             print(f"interrupted: {sum(report.values())} actions committed", file=sys.stderr)
             return 130
         _print(report, store)
+        _keep(store, onto, report)
     for line in refused:
         print(line, file=sys.stderr)
     return 1 if refused else 0
+
+
+def _keep(store: Store, onto: OdbOntology, report: dict[str, int]) -> None:
+    """What the first rank of each imported NEEM needs, kept in the store (oracle.ranking.keep_neem):
+    an optimisation, so a failure only leaves that rank to read and fit everything."""
+    from oracle.ranking import keep_neem
+
+    public = {info.id for info in store.neems()}
+    for neem_id in report:
+        if neem_id in public:
+            try:
+                keep_neem(store, onto, neem_id)
+            except NeemOracleError:
+                continue
 
 
 @contextlib.contextmanager

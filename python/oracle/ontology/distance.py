@@ -17,10 +17,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-import platformdirs
 
 from oracle.errors import OntologyError
-from oracle.files import prune_cache, used
+from oracle.files import default_cache_dir, prune_cache, used
 from oracle.ontology.taxonomy import Taxonomy
 
 if TYPE_CHECKING:  # numpy is imported where a matrix is made: why-not and neems never need one
@@ -151,6 +150,3 @@ def taxonomy_key(taxonomy: Taxonomy) -> str:
     return hashlib.sha256(blob).hexdigest()[:24]
 
 
-def default_cache_dir() -> Path:
-    override = os.environ.get("NEEM_ORACLE_CACHE")
-    return Path(override) if override else Path(platformdirs.user_cache_dir("neem-oracle"))

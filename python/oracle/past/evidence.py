@@ -22,16 +22,13 @@ PAST_MODULE = prolog_dir() / "odb" / "past.pl"
 
 def ensure_loaded(bridge: Bridge) -> None:
     """Load odb_past into Prolog unless it is (one query when it is)."""
-    from pyswip import Atom
-
-    if not bridge.ask("current_predicate(odb_past:past_answer_json/1)", []):
-        bridge.ask("neem_store:py_request(R), R = [F], use_module(user:F)", [Atom(str(PAST_MODULE))])
+    bridge.use_module(PAST_MODULE, "odb_past:past_answer_json/1")
 
 
 def request(bridge: Bridge, words: Sequence[Any]) -> dict[str, Any]:
     """odb_past:past_answer_json/1 on ``words`` (strings become atoms, None the atom none)."""
     ensure_loaded(bridge)
-    rows = bridge.ask("odb_past:past_answer_json(J)", [_term(w) for w in words])
+    rows = bridge.ask_plain("odb_past:past_answer_json(J)", list(words))
     if not rows:
         raise PrologError(f"Prolog found no answer to {words[0]}")
     text = rows[0]["J"]
@@ -42,18 +39,6 @@ def request(bridge: Bridge, words: Sequence[Any]) -> dict[str, Any]:
 def call_words(call: TaskCall) -> list[Any]:
     """A call as the request's name and argument list."""
     return [call.task, list(call.args)]
-
-
-def _term(value: Any) -> Any:
-    from pyswip import Atom
-
-    if value is None:
-        return Atom("none")
-    if isinstance(value, str):
-        return Atom(value)
-    if isinstance(value, list):
-        return [_term(v) for v in value]
-    return float(value) if isinstance(value, (int, float)) and not isinstance(value, bool) else value
 
 
 def now_of(bridge: Bridge) -> float | None:

@@ -19,14 +19,15 @@ from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.predictors import DEFAULT
 from oracle.answers import something_else_sentence, what_next_sentence, why_not_sentence
 from oracle.historycache import HistoryCache
-from oracle.bridge import Bridge
+from oracle.bridge import Bridge, LatestSituation
 from oracle.errors import NeemOracleError, StoreError
 from oracle.neem.writer import NeemLogger
 from oracle.timeline import Instant
 from oracle.ontology import OdbOntology
+from oracle.ranking import latest_instant, make_predictor
 from oracle.service.guard import Limits
 from oracle.service.queries import PrologQueryError, PrologRefused, ask
-from oracle.service.session import NeemSession, make_predictor, moment_of
+from oracle.service.session import NeemSession, moment_of
 from oracle.store import Store
 from oracle.store.ids import alias_of, find_neem
 
@@ -133,25 +134,26 @@ class Engine:
             if neem in self.sessions:
                 return self.sessions[neem]
             self._room_for_a_session()
-            history = HistoryCache.default().history(self.bridge(neem))
+            view = HistoryCache.default().view(self.bridge(neem))
             logger = NeemLogger(self.store, self.ontology, neem, commit_every=NEVER)
-            session = NeemSession(neem, logger, self.ontology, make_predictor(self.ontology, self.settings, self.method), history)
+            session = NeemSession(neem, logger, self.ontology, make_predictor(self.ontology, self.settings, self.method),
+                                  view.rows)
             self.sessions[neem] = session
-            self._show_latest(session)
+            self._show_latest(session, view.latest)
         return session
 
     def _room_for_a_session(self) -> None:
         if len(self.sessions) >= self.limits.sessions:
             raise Overloaded(503, f"{len(self.sessions)} NEEMs are open, this service's limit")
 
-    def _show_latest(self, session: NeemSession) -> None:
+    def _show_latest(self, session: NeemSession, latest: LatestSituation | None) -> None:
         """Rank the NEEM's latest imagined situation (not written: it was ranked when logged), so
-        the page has something to show before the robot posts (e.g. right after ``make demo``)."""
-        latest = self.bridge(session.neem).latest_situation()
+        the page has something to show before the robot posts (e.g. right after ``make demo``),
+        at the time and part of day ``rank`` ranks it."""
         if latest is None:
             return
         try:
-            found, ranking, ms = session.situation(latest["available"], float(latest["begin"]))
+            found, ranking, ms = session.situation(latest["available"], latest_instant(latest, session.logger.clocked))
         except NeemOracleError:
             return  # an old situation, before the last action: nothing current to show
         session.describe(found, ranking, ms)

@@ -12,7 +12,6 @@ the engine thread: the service stays the NEEM's only writer.
 
 from __future__ import annotations
 
-import json
 import multiprocessing
 import os
 import threading
@@ -54,31 +53,15 @@ class NoSuchNeem(PrologQueryError):
 def ask(bridge: Bridge, query: str, bindings: dict[str, Any], offset: int, limit: int, seconds: float,
         writes: bool) -> dict[str, Any]:
     """A page of the query's solutions through ``bridge`` (json_query/2 checks and runs it)."""
-    from pyswip import Atom
+    from oracle.bridge import QueryValueError
 
-    bridge.ask("neem_store:py_request(R), R = [F], use_module(user:F)", [Atom(str(QUERY_MODULE))])
-    pairs = [[Atom(name), _term_value(name, value)] for name, value in bindings.items()]
-    rows = bridge.ask("neem_store:py_request(R), json_query:json_query(R, J)",
-                      [query, pairs, offset, limit, float(seconds), Atom("true" if writes else "false")])
-    text = rows[0]["J"]
-    reply = json.loads(text.decode("utf-8") if isinstance(text, bytes) else text)
+    try:
+        reply = bridge.json_query(QUERY_MODULE, query, bindings, offset, limit, seconds, writes)
+    except QueryValueError as error:
+        raise PrologQueryError(str(error)) from None
     if "error" in reply:
         raise (PrologRefused if reply.get("refused") else PrologQueryError)(reply["error"])
     return dict(reply)
-
-
-def _term_value(name: str, value: Any) -> Any:
-    from pyswip import Atom
-
-    if isinstance(value, bool) or value is None:
-        raise PrologQueryError(f"binding {name}: expected a string (atom) or a number, got {value!r}")
-    if isinstance(value, (int, float)):
-        return value
-    if isinstance(value, str):
-        return Atom(value)
-    if isinstance(value, list):
-        return [_term_value(name, v) for v in value]
-    raise PrologQueryError(f"binding {name}: expected a string (atom), a number or a list, got {type(value).__name__}")
 
 
 class QueryProcess:

@@ -10,11 +10,9 @@ import time
 from collections.abc import Sequence
 from dataclasses import dataclass
 from datetime import datetime
-from typing import Any
+from typing import Any, TypedDict
 
-from oracle.algorithm.params import Hyperparameters
-from oracle.algorithm.predictors import DEFAULT, Predictor
-from oracle.algorithm.predictors import make_predictor as make_named
+from oracle.algorithm.predictors import Predictor
 from oracle.algorithm.records import RankedTask, Ranking
 from oracle.answers import support_sentence
 from oracle.chains import TaskCall, parse_call
@@ -23,14 +21,15 @@ from oracle.neem.tf import Pose
 from oracle.neem.writer import LoggedAction, NeemLogger, check_performer
 from oracle.timeline import Instant, TimeValueError, parse_iso
 from oracle.ontology import OdbOntology
+from oracle.bridge import HistoryRow
 from oracle.ranking import NeemRanker, finite, support_fields
-from oracle.calls import call_of, check_call, opening_tasks
+from oracle.calls import call_of, check_call
 
 #: The forward tree is built for the top suggestion only: the page and the API offer its chain
 #: as the one workflow; the ranking itself does not depend on how many trees are built.
 TREE_ROOTS = 1
 
-Moment = datetime | float
+Moment = datetime | float | Instant
 
 
 @dataclass(frozen=True)
@@ -40,6 +39,37 @@ class Situation:
     calls: tuple[TaskCall, ...]
     when: Instant
     moment: Moment
+
+
+class RankedEntry(TypedDict):
+    """One ranked task of a situation answer (``NeemSession._entry`` says what each field is)."""
+
+    rank: int
+    task: str
+    score: float
+    support: int
+    probability: float | None
+    context_order: int | None
+    context: list[str]
+    focus: list[str]
+    new: bool
+    resumed: bool
+    since: float | None
+    situations: list[float]
+    reason: str
+
+
+class SituationAnswer(TypedDict):
+    """The service's answer to a situation: the NEEM, when (seconds, part of day), how many steps
+    the predictor was fitted on, the ranking, the predicted chain and how long ranking took (ms)."""
+
+    neem: str
+    at: float
+    time_of_day: str | None
+    history: int
+    ranking: list[RankedEntry]
+    chain: list[str]
+    ms: float
 
 
 @dataclass(frozen=True)
@@ -56,12 +86,6 @@ class OutOfOrder(LoggingError):
     """A time before the end of the NEEM's last action: the NEEM's clock only goes forward."""
 
 
-def make_predictor(ontology: OdbOntology, settings: Hyperparameters, method: str = DEFAULT) -> Predictor:
-    """The predictor a session fits: ``method`` by name (oracle.algorithm.predictors; the
-    settings apply to ``thesis``), the same one ``rank`` uses by default."""
-    return make_named(method, ontology.distances(), opening_tasks(ontology), settings)
-
-
 def moment_of(value: Any, what: str) -> Moment:
     """A time the API received: unix seconds, or ISO-8601 (naive: the logger's rule, UTC),
     within the range every store accepts."""
@@ -76,6 +100,8 @@ def moment_of(value: Any, what: str) -> Moment:
 def _moment(value: Any, what: str) -> Moment:
     if value is None:
         return time.time()
+    if isinstance(value, Instant):
+        return value  # a time read from the NEEM, with the part of day recorded with it
     if isinstance(value, bool):
         raise LoggingError(f"{what}: expected unix seconds or ISO-8601, got {value!r}")
     if isinstance(value, (int, float)):
@@ -105,18 +131,18 @@ class NeemSession:
     leaves both the NEEM and this object as they were."""
 
     def __init__(self, neem: str, logger: NeemLogger, ontology: OdbOntology, predictor: Predictor,
-                 history: Sequence[dict[str, Any]]) -> None:
+                 history: Sequence[HistoryRow]) -> None:
         self.neem = neem
         self.logger = logger
         self.ontology = ontology
         # the fit of a NEEM the CLI or an earlier service run ranked is kept (oracle.fitcache)
         # (never that of a temporary NEEM: it is wiped when the next session starts)
         #: The NEEM's ranking pipeline (oracle.ranking): its steps, fit, offers and breaks.
-        self.ranker = NeemRanker(ontology, predictor, list(history), neem=neem, store=logger.store.location,
+        self.ranker = NeemRanker(ontology, predictor, list(history), neem=neem, store=logger.store,
                                  clocked=logger.clocked, keep=not logger.store.neem(neem).temporary,
                                  idle_threshold=logger.idle_threshold)
         self.pending: Situation | None = None
-        self.latest: dict[str, Any] | None = None
+        self.latest: SituationAnswer | None = None
         self.open: dict[str, OpenAction] = {}
         self.poses: dict[str, list[float]] = {}
         self.choice: dict[str, Any] | None = None
@@ -182,18 +208,18 @@ class NeemSession:
         self.ranker.imagine(situation.calls, situation.when.seconds)
         return order
 
-    def describe(self, situation: Situation, ranking: Ranking, ms: float) -> dict[str, Any]:
+    def describe(self, situation: Situation, ranking: Ranking, ms: float) -> SituationAnswer:
         calls = [str(call_of(self.ontology, t.option)) for t in ranking]
-        self.latest = {
-            "neem": self.neem, "at": situation.when.seconds, "time_of_day": situation.when.part_of_day,
-            "history": self.predictor.n_steps_,
-            "ranking": [self._entry(t, call) for t, call in zip(ranking, calls, strict=True)],
-            "chain": [str(call_of(self.ontology, o)) for o in ranking.chain()],
-            "ms": round(ms, 3),
-        }
+        self.latest = SituationAnswer(
+            neem=self.neem, at=situation.when.seconds, time_of_day=situation.when.part_of_day,
+            history=self.predictor.n_steps_,
+            ranking=[self._entry(t, call) for t, call in zip(ranking, calls, strict=True)],
+            chain=[str(call_of(self.ontology, o)) for o in ranking.chain()],
+            ms=round(ms, 3),
+        )
         return self.latest
 
-    def _entry(self, task: RankedTask, call: str) -> dict[str, Any]:
+    def _entry(self, task: RankedTask, call: str) -> RankedEntry:
         """One ranked task as the API answers it: ``support`` is how many past situations back
         it (the thesis oracle: |H(s_o)|; the routine predictor: how often the user did it after
         the same exact context), ``situations`` when the latest of those began (at most 5),
@@ -203,12 +229,11 @@ class NeemSession:
         few words."""
         fields = support_fields(task)
         begins = self.ranker.begins
-        entry: dict[str, Any] = {"rank": task.rank, "task": call, "score": finite(task.score), "support": task.n_similar,
-                                 "probability": fields.get("probability"), "context_order": fields.get("context_order"),
-                                 "context": fields.get("context", []), "focus": fields.get("focus", []),
-                                 "new": fields.get("new", False), "resumed": fields.get("resumed", False),
-                                 "since": fields.get("since"),
-                                 "situations": [begins[p] for p in fields.get("situations", []) if p < len(begins)]}
+        entry = RankedEntry(rank=task.rank, task=call, score=finite(task.score), support=task.n_similar,
+                            probability=fields.get("probability"), context_order=fields.get("context_order"),
+                            context=fields.get("context", []), focus=fields.get("focus", []),
+                            new=fields.get("new", False), resumed=fields.get("resumed", False), since=fields.get("since"),
+                            situations=[begins[p] for p in fields.get("situations", []) if p < len(begins)], reason="")
         entry["reason"] = support_sentence({**entry, "done": task.option in self.ranker.done_before.done})
         return entry
 

@@ -125,6 +125,10 @@ def open_mongo(uri: str, *, number_format: NumberFormat = "decimal128", timeout_
 
     try:
         parsed = uri_parser.parse_uri(uri)
+        for name, _ in parsed["nodelist"]:
+            # no resolver answers such a name: refused here, not after a lookup's timeout
+            if not name or any(ch.isspace() or not ch.isprintable() for ch in name):
+                raise ValueError(f"host {name!r} is not a host name")
         client: pymongo.MongoClient[dict[str, Any]] = pymongo.MongoClient(uri, serverSelectionTimeoutMS=timeout_ms)
     except Exception as error:
         # The URI may hold a password (from --store or $NEEM_MONGO_URI): never echo it.

@@ -388,6 +388,16 @@ class Store(ABC):
         """The triples added after id ``last`` (an AppendMark's), or None (as append_mark)."""
         return None
 
+    def read_kept(self, neem_id: str, kind: str) -> bytes | None:
+        """What a reader kept of the NEEM under ``kind`` (oracle.store.kept), or None; a backend
+        that keeps nothing returns None."""
+        return None
+
+    def write_kept(self, neem_id: str, kind: str, data: bytes) -> bool:
+        """Keep ``data`` for the NEEM under ``kind``; False where nothing can be kept (a backend
+        without the table, a read-only store)."""
+        return False
+
     def write_mark(self, neem_id: str) -> int:
         """A number that changes whenever triples are added to a NEEM (what a kept summary is
         checked against); backends override it with one that costs the same at every size."""

@@ -73,6 +73,7 @@ from oracle.store.sql import (
     sql_value,
 )
 from oracle.store.chunks import MatchChunk, concatenated_chunks, raw_chunks
+from oracle.store import kept
 from oracle.store.integrity import IntegrityCheck, damaged, problems_of
 
 SCHEMA_VERSION = "4"
@@ -563,6 +564,7 @@ class SQLiteStore(Store):
             self._conn.execute("DELETE FROM neems WHERE id=?", (neem_id,))
             self._conn.execute("DELETE FROM side_tables WHERE neem=?", (neem_id,))
             self._conn.execute("DELETE FROM revisions WHERE neem=?", (neem_id,))
+            kept.drop(self._conn, neem_id)
         self._present.discard(neem_id)
         self._tracked.discard(neem_id)
 
@@ -578,6 +580,7 @@ class SQLiteStore(Store):
             # created later under an id whose names are taken gets other names (_indexes).
             self._conn.execute("UPDATE neems SET id=? WHERE id=?", (new_id, neem_id))
             self._conn.execute("UPDATE revisions SET neem=? WHERE neem=?", (new_id, neem_id))
+            kept.rename(self._conn, neem_id, new_id)
         self._present.discard(neem_id)
         self._tracked.discard(neem_id)
 
@@ -636,6 +639,17 @@ class SQLiteStore(Store):
         finally:
             if self._conn.conn.in_transaction:
                 self._conn.execute("COMMIT")
+
+    def read_kept(self, neem_id: str, kind: str) -> bytes | None:
+        with self._reading():
+            return kept.read(self._conn, neem_id, kind)
+
+    def write_kept(self, neem_id: str, kind: str, data: bytes) -> bool:
+        if self.read_only:
+            return False
+        with self.transaction():
+            kept.write(self._conn, neem_id, kind, data)
+        return True
 
     def appended(self, neem_id: str, last: int) -> Appended | None:
         self._require(neem_id)
