@@ -1,0 +1,39 @@
+"""The routines of one NEEM: mined from its history through Prolog, with the names the user
+gave the stored workflows they continue, and the one in progress."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from oracle.past.routines import InProgress, MiningSettings, Routine, done_from_history, in_progress, mine_routines
+from oracle.past.workflows import keep_user_names, stored_routines
+
+if TYPE_CHECKING:
+    from oracle.bridge import Bridge
+
+
+@dataclass(frozen=True)
+class NeemRoutines:
+    """A NEEM's routines (``named``: the keys whose names the user gave), the one in progress at
+    ``now`` (None when none) and whether they are stored in the NEEM as mined."""
+
+    routines: tuple[Routine, ...]
+    named: tuple[str, ...]
+    current: InProgress | None
+    now: float | None
+
+    def to_json(self) -> dict[str, Any]:
+        return {"now": self.now, "routines": [{**r.to_json(), "named_by_user": r.key in self.named} for r in self.routines],
+                "in_progress": self.current.to_json() if self.current else None}
+
+
+def neem_routines(bridge: Bridge, at: float | None = None, settings: MiningSettings | None = None) -> NeemRoutines:
+    """Mine the NEEM's history (the actions begun by ``at``, default all) into routines."""
+    done = done_from_history(bridge.history())
+    if at is not None:
+        done = [d for d in done if d.begin <= at]
+    routines, named = keep_user_names(mine_routines(done, settings), stored_routines(bridge))
+    now = at if at is not None else (max(d.end for d in done) if done else None)
+    current = in_progress(routines, done, now) if now is not None else None
+    return NeemRoutines(tuple(routines), tuple(named), current, now)
