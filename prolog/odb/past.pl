@@ -1,6 +1,7 @@
 :- module(odb_past,
     [ latest_time/1,              % -Time
       done_between/3,             % +From, +To, -Done
+      last_before/2,              % +Time, -Done
       last_done/3,                % +Call, +Before, -Begin
       done_times/4,               % +Call, +From, +To, -Begins
       usual_after/3,              % +Call, -Occurrences, -Counts
@@ -27,7 +28,7 @@ The sentences are made in Python (oracle.past); this module hands over the evide
 :- use_module(library(assoc)).
 :- use_module('../json_text', [json_text/2]).
 :- use_module('../neem_store', [store_match/3, store_python_request/1, store_pose/4]).
-:- use_module('../lang/query', [kb_call/2, kb_findall/4]).
+:- use_module('../lang/query', [kb_call/2, kb_findall/4, kb_findall/5]).
 :- use_module('../lang/triple', [kb_iri/2]).
 :- use_module('../model/rdfs', []).
 :- use_module('../model/event', []).
@@ -48,29 +49,49 @@ latest_time(T) :-
 %!  done_between(+From, +To, -Done) is det.
 %   The non-idle actions that began in [From, To] (`none`: no bound), by begin, as
 %   `done(Begin, End, Call)`: one store query from the begins the store finds by value,
-%   then each distinct task's call once (task_calls/2).
+%   then each distinct odb task's call once (task_calls/2).
 done_between(From, To, Done) :-
     bound_or_none(From), bound_or_none(To),
     (   From == none
     ->  BSpec = B
     ;   BSpec = (>=(From) -> B)
     ),
-    kb_findall(B-E-T, ( triple(I, soma:hasIntervalBegin, BSpec), has_time_interval(A, I),
-                        has_interval_end(I, E), executes_task(A, T) ), any, Rows0),
-    include(begins_by(To), Rows0, Rows),
+    kb_findall(B-E-T-C, ( triple(I, soma:hasIntervalBegin, BSpec), has_time_interval(A, I),
+                          has_interval_end(I, E), executes_task(A, T), triple(T, rdf:type, C) ), any, Rows0),
+    odb_iri('IdleTask', Idle),
+    % the odb-typed, non-idle actions only: the mental actions' tasks need no call
+    findall(B-E-T, ( member(B-E-T-C, Rows0), C \== Idle, odb_iri(_, C), begins_by(To, B) ), Rows1),
+    sort(Rows1, Rows),
     findall(T, member(_-_-T, Rows), Ts),
     task_calls(Ts, Pairs),
     list_to_assoc(Pairs, CallOf),
-    findall(done(B1, E1, C),
-            ( member(B1-E1-T1, Rows), get_assoc(T1, CallOf, C), C \== 'IdleTask' ),
-            Done0),
+    findall(done(B1, E1, C1), ( member(B1-E1-T1, Rows), get_assoc(T1, CallOf, C1) ), Done0),
     sort(Done0, Done).
 
 begins_by(none, _) :- !.
-begins_by(To, B-_-_) :- B =< To.
+begins_by(To, B) :- B =< To.
 
 bound_or_none(none) :- !.
 bound_or_none(X) :- must_be(number, X).
+
+%!  last_before(+Time, -Done) is semidet.
+%   The latest non-idle action that began before Time, as `done(Begin, End, Call)`: the
+%   store sends the latest odb-typed actions a few at a time (ordered, limited), not a day's.
+last_before(Time, Done) :-
+    must_be(number, Time),
+    odb_iri('IdleTask', Idle),
+    last_before(Time, Idle, 8, Done).
+
+last_before(Time, Idle, N, Done) :-
+    kb_findall(B-E-T-C, ( triple(I, soma:hasIntervalBegin, (<(Time) -> B)), has_time_interval(A, I),
+                          has_interval_end(I, E), executes_task(A, T), triple(T, rdf:type, C) ),
+               any, [order([desc(B)]), limit(N)], Rows),
+    (   member(B-E-T-C, Rows), odb_iri(_, C), C \== Idle, task_calls([T], [T-Call])
+    ->  Done = done(B, E, Call)
+    ;   length(Rows, N),
+        N1 is N * 4,
+        last_before(Time, Idle, N1, Done)
+    ).
 
 %!  last_done(+Call, +Before, -Begin) is semidet.
 %   The latest begin at or before Before (`none`: ever) of an action that executed Call.
@@ -208,6 +229,11 @@ past_answer([after, Name, Args], _{task: Text, occurrences: N, next: Ds}) :-
     call_of(Name, Args, Call, Text),
     usual_after(Call, N, Counts),
     findall(_{task: T, count: K}, ( member(C-K, Counts), call_text(C, T) ), Ds).
+past_answer([before, Time], _{action: D}) :-
+    (   last_before(Time, done(B, E, C))
+    ->  call_text(C, T), D = _{task: T, begin: B, end: E}
+    ;   D = null
+    ).
 past_answer([done, From, To], _{actions: Ds}) :-
     done_between(From, To, Done),
     findall(_{task: T, begin: B, end: E}, ( member(done(B, E, C), Done), call_text(C, T) ), Ds).

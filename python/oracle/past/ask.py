@@ -19,10 +19,6 @@ if TYPE_CHECKING:
     from oracle.bridge import Bridge
     from oracle.ontology import OdbOntology
 
-#: How far back "why did you suggest" looks for the action before the suggestion (seconds).
-BEFORE_WINDOW_S = 24 * 3600.0
-
-
 @dataclass(frozen=True)
 class Answer:
     """An answer: the form it was read as, the question's language, the sentence in English and
@@ -97,13 +93,24 @@ def _suggested(bridge: Bridge, q: Question, now: float | None) -> dict[str, Any]
     if reply["time"] is None:
         return reply
     at = float(reply["time"])
-    done = request(bridge, ["done", at - BEFORE_WINDOW_S, at])["actions"]
-    if not done:
+    reply = {**reply, "routine": _routine_step(bridge, at, reply["task"])}
+    last = request(bridge, ["before", at])["action"]
+    if last is None:
         return {**reply, "before": None}
-    previous = done[-1]["task"]
+    previous = last["task"]
     from oracle.chains import parse_call
 
     after = request(bridge, ["after", *call_words(parse_call(previous))])
     followed = next((n["count"] for n in after["next"] if n["task"] == reply["task"]), 0)
-    return {**reply, "before": {"task": previous, "time": done[-1]["begin"], "occurrences": after["occurrences"],
+    return {**reply, "before": {"task": previous, "time": last["begin"], "occurrences": after["occurrences"],
                                 "followed": followed}}
+
+
+def _routine_step(bridge: Bridge, at: float, task: str) -> dict[str, Any] | None:
+    """The routine in progress at ``at`` when ``task`` is its next step (oracle.past.mine)."""
+    from oracle.past.mine import neem_routines
+
+    current = neem_routines(bridge, at).current
+    if current is None or current.remaining[:1] != (task,):
+        return None
+    return {"key": current.routine.key, "name": current.routine.name, "left": len(current.remaining)}

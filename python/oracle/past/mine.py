@@ -29,8 +29,11 @@ class NeemRoutines:
 
 
 def neem_routines(bridge: Bridge, at: float | None = None, settings: MiningSettings | None = None) -> NeemRoutines:
-    """Mine the NEEM's history (the actions begun by ``at``, default all) into routines."""
-    done = done_from_history(bridge.history())
+    """Mine the NEEM's history (the actions begun by ``at``, default all) into routines; the
+    history comes from the user's kept copy when the NEEM only grew since (oracle.historycache)."""
+    from oracle.historycache import HistoryCache
+
+    done = done_from_history(HistoryCache.default().history(bridge))
     if at is not None:
         done = [d for d in done if d.begin <= at]
     routines, named = keep_user_names(mine_routines(done, settings), stored_routines(bridge))

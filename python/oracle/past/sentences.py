@@ -122,6 +122,10 @@ def _suggested(e: dict[str, Any], now: float | None) -> tuple[str, str]:
     if e["rank"] != 1:
         en += f"; first was {e['top']}"
         de += f"; vorn lag {e['top']}"
+    routine = e.get("routine")
+    if routine is not None:
+        en += f". It was the next step of your routine \"{routine['name']}\" ({routine['left']} steps left)"
+        de += f". Es war der nächste Schritt deiner Routine \"{routine['name']}\" (noch {routine['left']} Schritte)"
     before = e.get("before")
     if before is not None:
         en += (f". The action before was {before['task']}, after which {task} came "

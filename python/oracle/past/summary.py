@@ -22,11 +22,11 @@ FORMAT = 1
 def state_summary(bridge: Bridge, at: float | None = None, clocked: bool = True) -> dict[str, Any]:
     """The summary as of ``at`` (default: the NEEM's latest event): the latest actions (today's,
     or the last ``RECENT`` of the NEEM when today has none), the latest action and what usually
-    follows it, the robot's latest predicted chain."""
+    follows it, the routine in progress, the robot's latest predicted chain."""
     now = at if at is not None else now_of(bridge)
     summary: dict[str, Any] = {"format": FORMAT, "neem": bridge.neem_id, "now": now, "clock": None,
                                "part_of_day": None, "recent": [], "latest": None, "usual_next": [],
-                               "predicted": []}
+                               "routine": None, "predicted": []}
     if now is None:
         return summary
     if clocked:
@@ -44,6 +44,15 @@ def state_summary(bridge: Bridge, at: float | None = None, clocked: bool = True)
         summary["latest"] = latest
         after = request(bridge, ["after", *call_words(parse_call(latest["task"]))])
         summary["usual_next"] = after["next"]
+    summary["routine"] = _routine(bridge, now)
     summary["predicted"] = [{"task": r["task"], "rank": r["rank"], "score": r["score"]}
                             for r in bridge.what_next().get("chain", [])]
     return summary
+
+
+def _routine(bridge: Bridge, now: float) -> dict[str, Any] | None:
+    """The routine in progress at ``now`` (oracle.past.mine), with what remains of it."""
+    from oracle.past.mine import neem_routines
+
+    current = neem_routines(bridge, now).current
+    return current.to_json() if current is not None else None

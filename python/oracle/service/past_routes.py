@@ -1,4 +1,4 @@
-"""The HTTP routes of the questions about the past and the state summary (docs/beyond.md).
+"""The HTTP routes of the questions about the past, the state summary and the routines (docs/beyond.md).
 
 Each reads the NEEM through the engine's one bridge, on the engine thread; nothing is fitted
 and nothing written, so an answer costs its few Prolog queries (tens of milliseconds).
@@ -44,6 +44,12 @@ def _summary(engine: Any, neem: str, at: str | None) -> dict[str, Any]:
     return state_summary(bridge, _seconds(at), has_clock(engine.store.neem(bridge.neem_id).meta))
 
 
+def _routines(engine: Any, neem: str, at: str | None) -> dict[str, Any]:
+    from oracle.past.mine import neem_routines
+
+    return neem_routines(engine.bridge(engine.resolve(neem)), _seconds(at)).to_json()
+
+
 @router.get("/api/neems/{neem}/ask")
 async def ask_route(neem: str, request: Request,
                     q: str = Query(min_length=1, max_length=500, description="a question, e.g. when did I last open the fridge?"),
@@ -59,3 +65,11 @@ async def summary_route(neem: str, request: Request,
     """The NEEM's state summary: recent actions, the latest and what usually follows it, the predicted chain."""
     ctx = request.app.state.ctx
     return await ctx.thread.run(_summary, ctx.engine, neem, at)
+
+
+@router.get("/api/neems/{neem}/routines")
+async def routines_route(neem: str, request: Request,
+                         at: str | None = Query(None, description="as of this time (default: the NEEM's latest action)")) -> dict[str, Any]:
+    """The user's routines mined from the NEEM (names the user gave kept) and the one in progress."""
+    ctx = request.app.state.ctx
+    return await ctx.thread.run(_routines, ctx.engine, neem, at)
