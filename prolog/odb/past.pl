@@ -2,6 +2,7 @@
     [ latest_time/1,              % -Time
       done_between/3,             % +From, +To, -Done
       last_before/2,              % +Time, -Done
+      latest_before/3,            % +Time, +N, -Done
       last_done/3,                % +Call, +Before, -Begin
       done_times/4,               % +Call, +From, +To, -Begins
       usual_after/3,              % +Call, -Occurrences, -Counts
@@ -75,22 +76,36 @@ bound_or_none(none) :- !.
 bound_or_none(X) :- must_be(number, X).
 
 %!  last_before(+Time, -Done) is semidet.
-%   The latest non-idle action that began before Time, as `done(Begin, End, Call)`: the
-%   store sends the latest odb-typed actions a few at a time (ordered, limited), not a day's.
+%   The latest non-idle action that began before Time, as `done(Begin, End, Call)`.
 last_before(Time, Done) :-
-    must_be(number, Time),
-    odb_iri('IdleTask', Idle),
-    last_before(Time, Idle, 8, Done).
+    latest_before(Time, 1, [Done]).
 
-last_before(Time, Idle, N, Done) :-
+%!  latest_before(+Time, +N, -Done) is det.
+%   The (at most N) latest non-idle actions that began before Time, oldest first, as
+%   `done(Begin, End, Call)`: the store sends the latest odb-typed actions a few at a time
+%   (ordered, limited), never the whole NEEM's.
+latest_before(Time, N, Done) :-
+    must_be(number, Time), must_be(positive_integer, N),
+    odb_iri('IdleTask', Idle),
+    Ask is 2*N + 4,
+    latest_before(Time, Idle, N, Ask, Done).
+
+latest_before(Time, Idle, N, Ask, Done) :-
     kb_findall(B-E-T-C, ( triple(I, soma:hasIntervalBegin, (<(Time) -> B)), has_time_interval(A, I),
                           has_interval_end(I, E), executes_task(A, T), triple(T, rdf:type, C) ),
-               any, [order([desc(B)]), limit(N)], Rows),
-    (   member(B-E-T-C, Rows), odb_iri(_, C), C \== Idle, task_calls([T], [T-Call])
-    ->  Done = done(B, E, Call)
-    ;   length(Rows, N),
-        N1 is N * 4,
-        last_before(Time, Idle, N1, Done)
+               any, [order([desc(B)]), limit(Ask)], Rows),
+    findall(B-E-T, ( member(B-E-T-C, Rows), C \== Idle, odb_iri(_, C) ), Actions0),
+    sort(0, @>=, Actions0, Actions),
+    findall(T, member(_-_-T, Actions), Ts),
+    task_calls(Ts, Pairs),
+    findall(done(B, E, Call), ( member(B-E-T, Actions), memberchk(T-Call, Pairs) ), Found),
+    length(Rows, Got),
+    (   ( length(Found, K), K >= N ; Got < Ask )
+    ->  length(Found, K1), Keep is min(N, K1),
+        length(Latest, Keep), append(Latest, _, Found),
+        reverse(Latest, Done)
+    ;   Ask1 is Ask * 4,
+        latest_before(Time, Idle, N, Ask1, Done)
     ).
 
 %!  last_done(+Call, +Before, -Begin) is semidet.
@@ -115,8 +130,9 @@ done_times(Call, From, To, Begins) :-
 
 %!  usual_after(+Call, -Occurrences, -Counts) is det.
 %   What followed Call: Occurrences is how often Call was done, Counts the list of
-%   `Next-N` (the next non-idle action's call, how often), most often first (ties in the
-%   standard order of the calls). The last action of the NEEM has no next one. Reads Call's
+%   `Next-N` (the next non-idle action's call, how often), most often first (ties by the
+%   calls' text). The rule of oracle.past.routines.follows, which the service runs on the
+%   kept history (tests/past/test_follows.py holds the two equal). The last action of the NEEM has no next one. Reads Call's
 %   actions, every odb action's begin and task (one query each), then the calls of the few tasks
 %   that follow an occurrence: not the call of every task of the NEEM.
 usual_after(Call, Occurrences, Counts) :-
@@ -151,11 +167,11 @@ first_call(Tasks, CallOf, Call) :-
     get_assoc(T, CallOf, Call),
     Call \== 'IdleTask', !.
 
-%   Items as Item-N pairs, most often first, ties in the standard order.
+%   Items as Item-N pairs, most often first, ties by the calls' text.
 counted(Items, Counts) :-
     msort(Items, Sorted),
     clumped(Sorted, Pairs),
-    findall(Neg-(I-N), ( member(I-N, Pairs), Neg is -N ), Keyed),
+    findall((Neg-Text)-(I-N), ( member(I-N, Pairs), Neg is -N, call_text(I, Text) ), Keyed),
     keysort(Keyed, ByCount),
     pairs_values(ByCount, Counts).
 
@@ -229,11 +245,9 @@ past_answer([after, Name, Args], _{task: Text, occurrences: N, next: Ds}) :-
     call_of(Name, Args, Call, Text),
     usual_after(Call, N, Counts),
     findall(_{task: T, count: K}, ( member(C-K, Counts), call_text(C, T) ), Ds).
-past_answer([before, Time], _{action: D}) :-
-    (   last_before(Time, done(B, E, C))
-    ->  call_text(C, T), D = _{task: T, begin: B, end: E}
-    ;   D = null
-    ).
+past_answer([before, Time, N], _{actions: Ds}) :-
+    latest_before(Time, N, Done),
+    findall(_{task: T, begin: B, end: E}, ( member(done(B, E, C), Done), call_text(C, T) ), Ds).
 past_answer([done, From, To], _{actions: Ds}) :-
     done_between(From, To, Done),
     findall(_{task: T, begin: B, end: E}, ( member(done(B, E, C), Done), call_text(C, T) ), Ds).

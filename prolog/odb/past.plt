@@ -19,7 +19,9 @@ test(done_between_skips_idle_and_mental_actions, [nondet, setup(load_test_episod
 test(last_before_skips_idle_and_mental_actions, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
     last_before(300, D1), D1 == done(201, 205, pick(apple)),
     last_before(201, D2), D2 == done(101, 110, pour(thermos, green_mug)),
-    \+ last_before(101, _).
+    \+ last_before(101, _),
+    latest_before(300, 5, L), L == [done(101, 110, pour(thermos, green_mug)), done(201, 205, pick(apple))],
+    latest_before(300, 1, [done(201, 205, pick(apple))]).
 
 test(last_done_before_a_time, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
     last_done(pick(apple), none, B), B =:= 201,

@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 from oracle.past.evidence import call_words, now_of, request, window
 from oracle.past.forms import Question, QuestionError, read_question
+from oracle.past.routines import Done, done_from_history, follows
 from oracle.past.sentences import sentences
 
 if TYPE_CHECKING:
@@ -76,7 +77,7 @@ def _evidence(bridge: Bridge, q: Question, now: float | None) -> dict[str, Any]:
     if q.form == "last":
         return request(bridge, ["last", *call_words(q.call), now])
     if q.form == "after":
-        return request(bridge, ["after", *call_words(q.call)])
+        return usual_after(bridge, str(q.call))
     if q.form == "count":
         assert q.period is not None
         start, end = window(q.period, now) if now is not None else (0.0, 0.0)
@@ -93,24 +94,39 @@ def _suggested(bridge: Bridge, q: Question, now: float | None) -> dict[str, Any]
     if reply["time"] is None:
         return reply
     at = float(reply["time"])
-    reply = {**reply, "routine": _routine_step(bridge, at, reply["task"])}
-    last = request(bridge, ["before", at])["action"]
-    if last is None:
+    done = kept_done(bridge)
+    reply = {**reply, "routine": _routine_step(bridge, done, at, reply["task"])}
+    found = request(bridge, ["before", at, 1])["actions"]
+    if not found:
         return {**reply, "before": None}
+    last = found[-1]
     previous = last["task"]
-    from oracle.chains import parse_call
-
-    after = request(bridge, ["after", *call_words(parse_call(previous))])
+    after = usual_after(bridge, previous, done)
     followed = next((n["count"] for n in after["next"] if n["task"] == reply["task"]), 0)
     return {**reply, "before": {"task": previous, "time": last["begin"], "occurrences": after["occurrences"],
                                 "followed": followed}}
 
 
-def _routine_step(bridge: Bridge, at: float, task: str) -> dict[str, Any] | None:
+def _routine_step(bridge: Bridge, done: list[Done], at: float, task: str) -> dict[str, Any] | None:
     """The routine in progress at ``at`` when ``task`` is its next step (oracle.past.mine)."""
     from oracle.past.mine import neem_routines
 
-    current = neem_routines(bridge, at).current
+    current = neem_routines(bridge, at, done=done).current
     if current is None or current.remaining[:1] != (task,):
         return None
     return {"key": current.routine.key, "name": current.routine.name, "left": len(current.remaining)}
+
+
+def kept_done(bridge: Bridge) -> list[Done]:
+    """The NEEM's actions as the predictor keeps its history (oracle.historycache: read through
+    Prolog, extended by the actions since)."""
+    from oracle.historycache import HistoryCache
+
+    return done_from_history(HistoryCache.default().history(bridge))
+
+
+def usual_after(bridge: Bridge, call: str, done: list[Done] | None = None) -> dict[str, Any]:
+    """What followed ``call`` (oracle.past.routines.follows) in the kept history (``done``
+    when the caller has read it), in the shape of odb_past's `after` answer."""
+    n, counts = follows(kept_done(bridge) if done is None else done, call)
+    return {"task": call, "occurrences": n, "next": [{"task": t, "count": k} for t, k in counts]}

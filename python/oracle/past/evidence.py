@@ -53,7 +53,7 @@ def _term(value: Any) -> Any:
         return Atom(value)
     if isinstance(value, list):
         return [_term(v) for v in value]
-    return float(value) if isinstance(value, (int, float)) and not isinstance(value, bool) else value
+    return value
 
 
 def now_of(bridge: Bridge) -> float | None:

@@ -6,7 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from oracle.past.routines import InProgress, MiningSettings, Routine, done_from_history, in_progress, mine_routines
+from oracle.past.routines import Done, InProgress, MiningSettings, Routine, done_from_history, in_progress, mine_routines
 from oracle.past.workflows import keep_user_names, stored_routines
 
 if TYPE_CHECKING:
@@ -28,12 +28,14 @@ class NeemRoutines:
                 "in_progress": self.current.to_json() if self.current else None}
 
 
-def neem_routines(bridge: Bridge, at: float | None = None, settings: MiningSettings | None = None) -> NeemRoutines:
+def neem_routines(bridge: Bridge, at: float | None = None, settings: MiningSettings | None = None,
+                  done: list[Done] | None = None) -> NeemRoutines:
     """Mine the NEEM's history (the actions begun by ``at``, default all) into routines; the
     history comes from the user's kept copy when the NEEM only grew since (oracle.historycache)."""
     from oracle.historycache import HistoryCache
 
-    done = done_from_history(HistoryCache.default().history(bridge))
+    if done is None:
+        done = done_from_history(HistoryCache.default().history(bridge))
     if at is not None:
         done = [d for d in done if d.begin <= at]
     routines, named = keep_user_names(mine_routines(done, settings), stored_routines(bridge))

@@ -12,6 +12,7 @@ its most typical episode (the medoid), as the user did them.
 from __future__ import annotations
 
 import statistics
+from collections import Counter
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -271,6 +272,15 @@ def done_from_history(rows: Sequence[dict[str, object]]) -> list[Done]:
     """The non-idle actions of ``Bridge.history()`` rows."""
     return [Done(float(r["begin"]), float(r["end"]), str(parse_call(str(r["call"]))))  # type: ignore[arg-type]
             for r in rows if r["call"] != "idle"]
+
+
+def follows(done: Sequence[Done], call: str) -> tuple[int, list[tuple[str, int]]]:
+    """How often ``call`` was done, and what the next action was after it (by begin), with how
+    often: most often first, ties by the call's text. The same rule as prolog/odb/past.pl's
+    usual_after/3, held equal to it by tests/past/test_follows.py."""
+    calls = [d.call for d in sorted(done, key=lambda d: (d.begin, d.call))]
+    nexts = Counter(b for a, b in zip(calls, calls[1:]) if a == call)
+    return calls.count(call), sorted(nexts.items(), key=lambda item: (-item[1], item[0]))
 
 
 def in_progress(routines: Sequence[Routine], done: Sequence[Done], now: float) -> InProgress | None:

@@ -6,12 +6,13 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from oracle.chains import parse_call
-from oracle.past.evidence import call_words, now_of, request, window
+from oracle.past.ask import kept_done, usual_after
+from oracle.past.evidence import now_of, request, window
 from oracle.timeline import format_clock, part_of_day_at
 
 if TYPE_CHECKING:
     from oracle.bridge import Bridge
+    from oracle.past.routines import Done
 
 #: How many of the latest actions the summary lists.
 RECENT = 10
@@ -36,23 +37,23 @@ def state_summary(bridge: Bridge, at: float | None = None, clocked: bool = True)
         today = request(bridge, ["done", start, now])["actions"]
     else:
         today = []
-    recent = today or request(bridge, ["done", None, now])["actions"]
+    recent = today or request(bridge, ["before", now, RECENT])["actions"]
     summary["recent"] = recent[-RECENT:]
     summary["today"] = len(today)
+    done = kept_done(bridge)
     if recent:
         latest = recent[-1]
         summary["latest"] = latest
-        after = request(bridge, ["after", *call_words(parse_call(latest["task"]))])
-        summary["usual_next"] = after["next"]
-    summary["routine"] = _routine(bridge, now)
+        summary["usual_next"] = usual_after(bridge, latest["task"], done)["next"]
+    summary["routine"] = _routine(bridge, now, done)
     summary["predicted"] = [{"task": r["task"], "rank": r["rank"], "score": r["score"]}
                             for r in bridge.what_next().get("chain", [])]
     return summary
 
 
-def _routine(bridge: Bridge, now: float) -> dict[str, Any] | None:
+def _routine(bridge: Bridge, now: float, done: list[Done]) -> dict[str, Any] | None:
     """The routine in progress at ``now`` (oracle.past.mine), with what remains of it."""
     from oracle.past.mine import neem_routines
 
-    current = neem_routines(bridge, now).current
+    current = neem_routines(bridge, now, done=done).current
     return current.to_json() if current is not None else None
