@@ -38,7 +38,7 @@ The sentences are made in Python (oracle.past); this module hands over the evide
 :- use_module('../model/tf', [object_frame_name/2]).
 :- use_module(names, [odb_iri/2, call_classes/3]).
 :- use_module(calls, [task_calls/2, call_tasks/2, call_task_times/3, call_time/5]).
-:- use_module(decisions, [decision/3, imagined_preference/2]).
+:- use_module(decisions, [decision/3, imagined_preference/2, preference_at/3]).
 :- use_module('../answers', [call_text/2]).
 
 %!  latest_time(-Time) is semidet.
@@ -248,6 +248,9 @@ past_answer([after, Name, Args], _{task: Text, occurrences: N, next: Ds}) :-
 past_answer([before, Time, N], _{actions: Ds}) :-
     latest_before(Time, N, Done),
     findall(_{task: T, begin: B, end: E}, ( member(done(B, E, C), Done), call_text(C, T) ), Ds).
+past_answer([predicted, Time], _{predicted: Ds}) :-
+    (   preference_at(Time, _, Ranked) -> true ; Ranked = [] ),
+    findall(_{task: T, rank: R, score: S}, ( member(ranked(C, R, S), Ranked), call_text(C, T) ), Ds).
 past_answer([done, From, To], _{actions: Ds}) :-
     done_between(From, To, Done),
     findall(_{task: T, begin: B, end: E}, ( member(done(B, E, C), Done), call_text(C, T) ), Ds).

@@ -23,7 +23,7 @@ FORMAT = 1
 def state_summary(bridge: Bridge, at: float | None = None, clocked: bool = True) -> dict[str, Any]:
     """The summary as of ``at`` (default: the NEEM's latest event): the latest actions (today's,
     or the last ``RECENT`` of the NEEM when today has none), the latest action and what usually
-    follows it, the routine in progress, the robot's latest predicted chain."""
+    follows it, the routine in progress, the robot's latest ranking by then."""
     now = at if at is not None else now_of(bridge)
     summary: dict[str, Any] = {"format": FORMAT, "neem": bridge.neem_id, "now": now, "clock": None,
                                "part_of_day": None, "recent": [], "latest": None, "usual_next": [],
@@ -46,8 +46,7 @@ def state_summary(bridge: Bridge, at: float | None = None, clocked: bool = True)
         summary["latest"] = latest
         summary["usual_next"] = usual_after(bridge, latest["task"], done)["next"]
     summary["routine"] = _routine(bridge, now, done)
-    summary["predicted"] = [{"task": r["task"], "rank": r["rank"], "score": r["score"]}
-                            for r in bridge.what_next().get("chain", [])]
+    summary["predicted"] = request(bridge, ["predicted", now])["predicted"]
     return summary
 
 
