@@ -47,7 +47,8 @@ if TYPE_CHECKING:
 #: odb extension in odb/); each is imported into ``user`` so a typed query sees its exports.
 MODULES = ("neem_store", "json_text", "lang/triple", "lang/scope", "lang/query", "lang/holds", "lang/temporal", "lang/db",
            "model/rdfs", "model/event", "model/object", "model/situation", "model/action", "model/interval", "model/tf",
-           "odb/names", "odb/calls", "odb/events", "odb/decisions", "odb/history", "answers", "batch_toplevel")
+           "odb/names", "odb/calls", "odb/events", "odb/decisions", "odb/history", "answers", "batch_toplevel",
+           "odb/past", "odb/routines")
 #: Rows per chunk handed to Prolog by one solution of py_match/2.
 CHUNK = 5000
 

@@ -9,28 +9,14 @@ from datetime import timedelta
 from typing import TYPE_CHECKING, Any
 
 from oracle.errors import PrologError
-from oracle.paths import prolog_dir
 from oracle.timeline import PARTS_OF_DAY, clock, first_hour, seconds_of
 
 if TYPE_CHECKING:
     from oracle.bridge import Bridge
     from oracle.chains import TaskCall
 
-#: The Prolog module of the answers, loaded into the bridge's engine on first use.
-PAST_MODULE = prolog_dir() / "odb" / "past.pl"
-
-
-def ensure_loaded(bridge: Bridge) -> None:
-    """Load odb_past into Prolog unless it is (one query when it is)."""
-    from pyswip import Atom
-
-    if not bridge.ask("current_predicate(odb_past:past_answer_json/1)", []):
-        bridge.ask("neem_store:py_request(R), R = [F], use_module(user:F)", [Atom(str(PAST_MODULE))])
-
-
 def request(bridge: Bridge, words: Sequence[Any]) -> dict[str, Any]:
     """odb_past:past_answer_json/1 on ``words`` (strings become atoms, None the atom none)."""
-    ensure_loaded(bridge)
     rows = bridge.ask("odb_past:past_answer_json(J)", [_term(w) for w in words])
     if not rows:
         raise PrologError(f"Prolog found no answer to {words[0]}")

@@ -88,12 +88,6 @@ def stored_routines(bridge: Bridge) -> list[dict[str, Any]]:
     ``{"iri", "name", "steps", "days", "hour", "by_user"}`` each."""
     import json
 
-    from pyswip import Atom
-
-    from oracle.paths import prolog_dir
-
-    if not bridge.ask("current_predicate(odb_routines:stored_routines_json/1)", []):
-        bridge.ask("neem_store:py_request(R), R = [F], use_module(user:F)", [Atom(str(prolog_dir() / "odb" / "routines.pl"))])
     rows = bridge.ask("odb_routines:stored_routines_json(J)", [])
     text = rows[0]["J"]
     found: list[dict[str, Any]] = json.loads(text.decode("utf-8") if isinstance(text, bytes) else text)
