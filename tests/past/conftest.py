@@ -66,3 +66,21 @@ def bridge(small_store, onto):
     yield bridge
     bridge.close()
     store.close()
+
+
+@pytest.fixture()
+def routine_store(tmp_path, onto):
+    """Four days of breakfast at 07:00 and coffee at 15:00; the fifth day's breakfast begun."""
+    from oracle.neem.writer import NeemLogger
+    from oracle.store import open_store
+
+    path = tmp_path / "r.sqlite"
+    store = open_store(path)
+    log = NeemLogger.create(store, onto, user="sam", neem_id="weekly")
+    from tests.past.test_routines import BREAKFAST, day, week
+
+    for action in week(4)[:-2] + day(4, 7, BREAKFAST[:3]):
+        log.action(action.call, action.begin, action.end)
+    log.close()
+    store.close()
+    return path

@@ -55,3 +55,9 @@ def test_summary_route(client):
 def test_routines_route(client):
     body = client.get("/api/neems/small/routines").json()
     assert body["routines"] == [] and body["in_progress"] is None  # two days: nothing recurs on three
+
+
+def test_prepare_route(client):
+    body = client.get("/api/neems/small/prepare", params={"for": "Morning"}).json()
+    assert body["for"] == "Morning" and body["prepare"] == []  # no routine yet
+    assert client.get("/api/neems/small/prepare", params={"for": "teatime"}).status_code == 422

@@ -64,21 +64,6 @@ def test_a_routine_in_progress_is_recognised_with_what_remains():
     assert recognise(routines, COFFEE[:2], 7.0) is None  # the coffee is not a morning routine
 
 
-@pytest.fixture()
-def routine_store(tmp_path, onto):
-    from oracle.neem.writer import NeemLogger
-    from oracle.store import open_store
-
-    path = tmp_path / "r.sqlite"
-    store = open_store(path)
-    log = NeemLogger.create(store, onto, user="sam", neem_id="weekly")
-    for action in week(4)[:-2] + day(4, 7, BREAKFAST[:3]):
-        log.action(action.call, action.begin, action.end)
-    log.close()
-    store.close()
-    return path
-
-
 def test_routines_are_stored_as_workflows_and_read_back_through_prolog(routine_store, onto):
     from oracle.bridge import Bridge
     from oracle.past.mine import neem_routines

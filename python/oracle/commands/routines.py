@@ -70,7 +70,8 @@ def register_evaluation(subparsers: argparse._SubParsersAction) -> None:
         "routines-eval", help="score routine mining and recognition against the persona generator's routines",
         description="Per persona of the split: routines mined from all days against its daily routine (precision, "
         "recall); routines mined from the first --train-days, then each later episode of a routine entry "
-        "recognised after 1, 2 and 3 steps.")
+        "recognised after 1, 2 and 3 steps; and the objects suggested each evening from the fourth day for the next morning, "
+        "against the most used objects.")
     parser.add_argument("--personas", type=bounded_int(1, 10_000), default=105)
     parser.add_argument("--days", type=bounded_int(2, 366), default=7)
     parser.add_argument("--seed", type=bounded_int(0, 1_000_000), default=0)
@@ -83,17 +84,21 @@ def register_evaluation(subparsers: argparse._SubParsersAction) -> None:
 def run_evaluation(args: argparse.Namespace) -> int:
     from dataclasses import asdict
 
-    from oracle.evaluation.routines import score_routines
+    from oracle.evaluation.routines import score_preparation, score_routines
 
     if args.train_days >= args.days:
         raise NeemOracleError(f"--train-days ({args.train_days}) must be fewer than --days ({args.days})")
     scores = score_routines(args.personas, args.days, args.seed, args.train_days, args.split)
+    prepared = score_preparation(args.personas, args.days, args.seed, split=args.split)
     if args.json:
-        print(json.dumps(asdict(scores), indent=2))
+        print(json.dumps({**asdict(scores), "prepare": asdict(prepared)}, indent=2))
         return 0
     print(f"{scores.personas} personas ({args.split} split, {args.days} days, seed {args.seed}):")
     print(f"  routines recovered: precision {scores.precision:.3f}, recall {scores.recall:.3f}")
     shown = ", ".join(f"{n} step{'s' if n > 1 else ''} {share:.1%}" for n, share in scores.recognised.items())
     print(f"  in progress recognised (days after {args.train_days}, {scores.runs} runs): {shown}")
     print(f"  episodes of no routine taken for one after 2 steps: {scores.false_alarm_rate:.1%} of {scores.others}")
+    print(f"  prepare (the evening before, for the morning; {prepared.nights} nights): used next morning "
+          f"{prepared.routines:.1%} of {prepared.suggested} suggested, most-used-objects baseline "
+          f"{prepared.baseline:.1%} of {prepared.baseline_suggested}")
     return 0

@@ -112,3 +112,45 @@ def score_routines(personas: int = 105, days: int = 7, seed: int = 0, train_days
     recognised = {n: sum(s.runs[n] for s in scores) / runs if runs else 0.0 for n in (1, 2, 3)}
     return RoutineScores(len(scores), matched / mined if mined else 0.0, matched / truth if truth else 0.0,
                          recognised, runs, sum(s.false_alarms for s in scores) / others if others else 0.0, others)
+
+
+@dataclass(frozen=True)
+class PrepareScores:
+    """Of the objects suggested the evening before, the share used the next morning (and the
+    same for the most-used-objects baseline), over the nights scored."""
+
+    personas: int
+    nights: int
+    routines: float
+    baseline: float
+    suggested: int
+    baseline_suggested: int
+
+
+def score_preparation(personas: int = 105, days: int = 7, seed: int = 0, first_night: int = 3, split: str = "test",
+                      settings: MiningSettings | None = None) -> PrepareScores:
+    """For each persona and each night from ``first_night`` on: the routines mined from the days
+    before, the objects to prepare for the next Morning, and whether each is used then."""
+    from oracle.past.prepare import most_used, to_prepare, used_in
+
+    settings = settings or MiningSettings()
+    hits = base_hits = shown = base_shown = nights = count = 0
+    for persona in make_personas(personas, seed):
+        if persona.split != split:
+            continue
+        count += 1
+        done, _ = _labelled(persona, days, seed)
+        for night in range(first_night, days):
+            cut = seconds_of(FIRST_DAY + timedelta(days=night))
+            before = [d for d in done if d.begin < cut]
+            morning = (FIRST_DAY + timedelta(days=night)).date().isoformat()
+            used = used_in(done, morning, "Morning")
+            ours = [p.obj for p in to_prepare(mine_routines(before, settings), before, "Morning")]
+            base = most_used(before)
+            nights += 1
+            hits += sum(o in used for o in ours)
+            shown += len(ours)
+            base_hits += sum(o in used for o in base)
+            base_shown += len(base)
+    return PrepareScores(count, nights, hits / shown if shown else 0.0, base_hits / base_shown if base_shown else 0.0,
+                         shown, base_shown)

@@ -42,3 +42,26 @@ def neem_routines(bridge: Bridge, at: float | None = None, settings: MiningSetti
     now = at if at is not None else (max(d.end for d in done) if done else None)
     current = in_progress(routines, done, now) if now is not None else None
     return NeemRoutines(tuple(routines), tuple(named), current, now)
+
+
+def neem_preparation(bridge: Bridge, part: str | None = None, at: float | None = None) -> dict[str, Any]:
+    """What to prepare now for ``part`` of the day (default: the part after now's): the objects
+    the routines of that part need (oracle.past.prepare), each with its reason and where the NEEM
+    last had it (odb_past:object_place/3)."""
+    from oracle.past.evidence import now_of, request
+    from oracle.past.prepare import next_part, to_prepare
+    from oracle.historycache import HistoryCache
+
+    done = done_from_history(HistoryCache.default().history(bridge))
+    now = at if at is not None else now_of(bridge)
+    if at is not None:
+        done = [d for d in done if d.begin <= at]
+    if now is None:
+        return {"now": None, "for": part, "prepare": []}
+    target = part or next_part(now)
+    routines = neem_routines(bridge, at, done=done).routines
+    items = []
+    for prep in to_prepare(routines, done, target):
+        place = request(bridge, ["where", prep.obj, now])
+        items.append({**prep.to_json(), "pose": place["pose"], "last_used": place["used"]})
+    return {"now": now, "for": target, "prepare": items}

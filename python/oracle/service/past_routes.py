@@ -6,7 +6,7 @@ and nothing written, so an answer costs its few Prolog queries (tens of millisec
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Literal
 
 from fastapi import APIRouter, Query, Request
 
@@ -73,3 +73,19 @@ async def routines_route(neem: str, request: Request,
     """The user's routines mined from the NEEM (names the user gave kept) and the one in progress."""
     ctx = request.app.state.ctx
     return await ctx.thread.run(_routines, ctx.engine, neem, at)
+
+
+def _prepare(engine: Any, neem: str, part: str | None, at: str | None) -> dict[str, Any]:
+    from oracle.past.mine import neem_preparation
+
+    return neem_preparation(engine.bridge(engine.resolve(neem)), part, _seconds(at))
+
+
+@router.get("/api/neems/{neem}/prepare")
+async def prepare_route(neem: str, request: Request,
+                        part: Literal["Morning", "Midday", "Evening", "Night"] | None = Query(
+                            None, alias="for", description="the part of the day (default: the part after now's)"),
+                        at: str | None = Query(None, description="as of this time (default: the NEEM's latest event)")) -> dict[str, Any]:
+    """The objects worth preparing now for the user's routines of the coming part of the day, with reasons."""
+    ctx = request.app.state.ctx
+    return await ctx.thread.run(_prepare, ctx.engine, neem, part, at)
