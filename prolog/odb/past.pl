@@ -8,6 +8,7 @@
       usual_after/3,              % +Call, -Occurrences, -Counts
       suggestion/3,               % +Call, +Before, -Suggestion
       object_place/3,             % +ObjectName, +At, -Place
+      performers/2,               % +Call, -Modes
       past_answer_json/1          % -JSONString
     ]).
 /** <module> Questions about the past: the evidence of the NEEM (RACCOON's state summaries)
@@ -214,6 +215,28 @@ object_place(Name, At, place(Pose, Used)) :-
         Used = used(UB, UC)
     ).
 
+%!  performers(+Call, -Modes) is det.
+%   Who performed each action of Call, by begin: `Begin-Mode`, Mode `user` when the
+%   performer (soma:isPerformedBy) is a dul:NaturalPerson, `robot` when another
+%   dul:PhysicalAgent, `unknown` without a performer of either type.
+performers(Call, Modes) :-
+    check_call(Call),
+    call_tasks(Call, Tasks),
+    findall(B-Mode,
+            ( member(T, Tasks),
+              kb_call(( executes_task(A, T), event_interval(A, B, _) ), any),
+              performer_mode(A, Mode) ),
+            Modes0),
+    msort(Modes0, Modes).
+
+performer_mode(A, Mode) :-
+    (   kb_call(( is_performed_by(A, Agent), instance_of(Agent, dul:'NaturalPerson') ), any)
+    ->  Mode = user
+    ;   kb_call(( is_performed_by(A, Agent), instance_of(Agent, dul:'PhysicalAgent') ), any)
+    ->  Mode = robot
+    ;   Mode = unknown
+    ).
+
 began_by(none, _) :- !.
 began_by(At, B-_) :- B =< At.
 
@@ -248,6 +271,10 @@ past_answer([after, Name, Args], _{task: Text, occurrences: N, next: Ds}) :-
 past_answer([before, Time, N], _{actions: Ds}) :-
     latest_before(Time, N, Done),
     findall(_{task: T, begin: B, end: E}, ( member(done(B, E, C), Done), call_text(C, T) ), Ds).
+past_answer([who, Name, Args], _{task: Text, modes: Ds}) :-
+    call_of(Name, Args, Call, Text),
+    performers(Call, Modes),
+    findall(_{time: B, mode: M}, member(B-M, Modes), Ds).
 past_answer([predicted, Time], _{predicted: Ds}) :-
     (   preference_at(Time, _, Ranked) -> true ; Ranked = [] ),
     findall(_{task: T, rank: R, score: S}, ( member(ranked(C, R, S), Ranked), call_text(C, T) ), Ds).

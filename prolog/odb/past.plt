@@ -3,6 +3,7 @@
 :- use_module(past).
 :- use_module('../neem_store').
 :- use_module('../fixtures/test_episode').
+:- use_module('../fixtures/triples', [fixture_assert/4]).
 
 %   The test episode: pour(thermos, green_mug) during [101, 110], idle [110, 200],
 %   pick(apple) during [201, 205]; decisions at 100 (pour ranked 1st, pick 2nd) and at 200.
@@ -52,6 +53,12 @@ test(object_place_with_pose, [nondet, setup(load_test_episode), cleanup(store_re
     store_assert_pose(mug1, 150, ['map', [0.4, 1.2, 0.9], [0, 0, 0, 1]]),
     object_place(green_mug, none, place(pose(S, map, [X, _, _]), _)), S =:= 150, X =:= 0.4,
     object_place(green_mug, 120, place(none, _)).
+
+test(performers_from_is_performed_by, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
+    % the test episode's actions are performed by `edan`, typed nothing: unknown
+    performers(pick(apple), [B-unknown]), B =:= 201,
+    fixture_assert('http://example.org/neem#', edan, rdf:type, dul:'PhysicalAgent'),
+    performers(pour(thermos, green_mug), [_-robot]).
 
 test(bad_call_is_an_error, [nondet, setup(load_test_episode), cleanup(store_reset),
                             error(type_error(callable, 3))]) :-

@@ -71,7 +71,8 @@ def register_evaluation(subparsers: argparse._SubParsersAction) -> None:
         description="Per persona of the split: routines mined from all days against its daily routine (precision, "
         "recall); routines mined from the first --train-days, then each later episode of a routine entry "
         "recognised after 1, 2 and 3 steps; and the objects suggested each evening from the fourth day for the next morning, "
-        "against the most used objects.")
+        "against the most used objects; and who performs each action (the persona's autonomy profile), predicted "
+        "from the earlier actions against the per-task majority.")
     parser.add_argument("--personas", type=bounded_int(1, 10_000), default=105)
     parser.add_argument("--days", type=bounded_int(2, 366), default=7)
     parser.add_argument("--seed", type=bounded_int(0, 1_000_000), default=0)
@@ -84,14 +85,15 @@ def register_evaluation(subparsers: argparse._SubParsersAction) -> None:
 def run_evaluation(args: argparse.Namespace) -> int:
     from dataclasses import asdict
 
-    from oracle.evaluation.routines import score_preparation, score_routines
+    from oracle.evaluation.routines import score_autonomy, score_preparation, score_routines
 
     if args.train_days >= args.days:
         raise NeemOracleError(f"--train-days ({args.train_days}) must be fewer than --days ({args.days})")
     scores = score_routines(args.personas, args.days, args.seed, args.train_days, args.split)
     prepared = score_preparation(args.personas, args.days, args.seed, split=args.split)
+    modes = score_autonomy(args.personas, args.days, args.seed, args.split)
     if args.json:
-        print(json.dumps({**asdict(scores), "prepare": asdict(prepared)}, indent=2))
+        print(json.dumps({**asdict(scores), "prepare": asdict(prepared), "autonomy": asdict(modes)}, indent=2))
         return 0
     print(f"{scores.personas} personas ({args.split} split, {args.days} days, seed {args.seed}):")
     print(f"  routines recovered: precision {scores.precision:.3f}, recall {scores.recall:.3f}")
@@ -101,4 +103,7 @@ def run_evaluation(args: argparse.Namespace) -> int:
     print(f"  prepare (the evening before, for the morning; {prepared.nights} nights): used next morning "
           f"{prepared.routines:.1%} of {prepared.suggested} suggested, most-used-objects baseline "
           f"{prepared.baseline:.1%} of {prepared.baseline_suggested}")
+    print(f"  autonomy mode ({modes.actions} actions, {modes.robot_share:.1%} by the robot): predicted right "
+          f"{modes.context:.1%}, per-task majority {modes.task_majority:.1%}, the generator's own odds {modes.ceiling:.1%}; "
+          f"right only by the predictor {modes.context_only}, only by the baseline {modes.baseline_only}")
     return 0

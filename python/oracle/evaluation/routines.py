@@ -154,3 +154,54 @@ def score_preparation(personas: int = 105, days: int = 7, seed: int = 0, first_n
             base_shown += len(base)
     return PrepareScores(count, nights, hits / shown if shown else 0.0, base_hits / base_shown if base_shown else 0.0,
                          shown, base_shown)
+
+
+@dataclass(frozen=True)
+class AutonomyScores:
+    """Share of actions whose mode was predicted right, replayed progressively (each from the
+    earlier actions only), for the context predictor and the per-task majority baseline."""
+
+    personas: int
+    actions: int
+    context: float
+    task_majority: float
+    robot_share: float
+    ceiling: float  # the generator's own more likely mode, which no predictor beats on average
+    context_only: int  # actions the context predictor got right and the baseline wrong
+    baseline_only: int  # and the other way round (the discordant pairs of a McNemar test)
+
+
+def score_autonomy(personas: int = 105, days: int = 7, seed: int = 0, split: str = "test") -> AutonomyScores:
+    from collections import Counter
+
+    from oracle.past.autonomy import ModeCounts, Performed, majority
+    from oracle.timeline import part_of_day_at
+    from oracle.world.autonomy import autonomy_profile, modes_of
+
+    right = base_right = total = robot = count = best = only = base_only = 0
+    for persona in make_personas(personas, seed):
+        if persona.split != split:
+            continue
+        count += 1
+        rows, _ = simulate_entries(persona, load_world(), days, seed)
+        modes = modes_of(persona, rows, seed)
+        profile = autonomy_profile(persona, seed)
+        model = ModeCounts()
+        by_task: dict[str, Counter[str]] = {}
+        for row, mode in zip(rows, modes):
+            call, part = str(row.action), part_of_day_at(seconds_of(row.time)) if row.time else "Midday"
+            guess, _ = model.predict(call, part)
+            task_counts = by_task.get(row.action.task)
+            base = majority(task_counts) if task_counts else "user"
+            hour = row.time.hour + row.time.minute / 60.0 if row.time else 12.0
+            best += ("user" if profile.by_hand(row.action.task, row.action.args, hour) >= 0.5 else "robot") == mode
+            right += guess == mode
+            base_right += base == mode
+            only += guess == mode != base
+            base_only += base == mode != guess
+            total += 1
+            robot += mode == "robot"
+            model.add(Performed(call, part, mode))
+            by_task.setdefault(row.action.task, Counter())[mode] += 1
+    return AutonomyScores(count, total, right / total if total else 0.0, base_right / total if total else 0.0,
+                          robot / total if total else 0.0, best / total if total else 0.0, only, base_only)

@@ -78,6 +78,8 @@ def _evidence(bridge: Bridge, q: Question, now: float | None) -> dict[str, Any]:
         return request(bridge, ["last", *call_words(q.call), now])
     if q.form == "after":
         return usual_after(bridge, str(q.call))
+    if q.form == "who":
+        return _who(bridge, q, now)
     if q.form == "count":
         assert q.period is not None
         start, end = window(q.period, now) if now is not None else (0.0, 0.0)
@@ -130,3 +132,20 @@ def usual_after(bridge: Bridge, call: str, done: list[Done] | None = None) -> di
     when the caller has read it), in the shape of odb_past's `after` answer."""
     n, counts = follows(kept_done(bridge) if done is None else done, call)
     return {"task": call, "occurrences": n, "next": [{"task": t, "count": k} for t, k in counts]}
+
+
+def _who(bridge: Bridge, q: Question, now: float | None) -> dict[str, Any]:
+    """Who performed the call's actions (odb_past:performers/2) and who usually does it in the
+    part of the day of now (oracle.past.autonomy, from the call's own actions)."""
+    from oracle.past.autonomy import ModeCounts, Performed
+    from oracle.timeline import part_of_day_at
+
+    reply = request(bridge, ["who", *call_words(q.call)])  # type: ignore[arg-type]
+    model = ModeCounts()
+    for row in reply["modes"]:
+        if row["mode"] != "unknown":
+            model.add(Performed(reply["task"], part_of_day_at(row["time"]), row["mode"]))
+    part = part_of_day_at(now) if now is not None else "Midday"
+    usual, source = model.predict(reply["task"], part)
+    counts = {mode: sum(1 for r in reply["modes"] if r["mode"] == mode) for mode in ("user", "robot", "unknown")}
+    return {**reply, "usual": usual if source != "none" else None, "part": part, "counts": counts}

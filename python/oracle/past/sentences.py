@@ -135,4 +135,18 @@ def _suggested(e: dict[str, Any], now: float | None) -> tuple[str, str]:
     return en + ".", de + "."
 
 
-_SAY = {"last": _last, "count": _count, "after": _after, "done": _done, "where": _where, "suggested": _suggested}
+def _who(e: dict[str, Any], now: float | None) -> tuple[str, str]:
+    task, usual, counts = e["task"], e["usual"], e["counts"]
+    known = counts["user"] + counts["robot"]
+    if usual is None:
+        return (f"I have no record of who did {task}.", f"Ich weiß nicht, wer {task} gemacht hat.")
+    mine = counts[usual]
+    times = "time" if known == 1 else "times"
+    if usual == "user":
+        return (f"You usually do {task} yourself ({mine} of {known} {times}).",
+                f"Du machst {task} meistens selbst ({mine} von {known} Malen).")
+    return (f"The robot usually does {task} for you ({mine} of {known} {times}).",
+            f"Der Roboter macht {task} meistens für dich ({mine} von {known} Malen).")
+
+
+_SAY = {"last": _last, "count": _count, "after": _after, "done": _done, "where": _where, "suggested": _suggested, "who": _who}
