@@ -28,6 +28,7 @@ The sentences are made in Python (oracle.past); this module hands over the evide
 :- use_module(library(apply)).
 :- use_module(library(pairs)).
 :- use_module(library(assoc)).
+:- use_module(library(ordsets)).
 :- use_module('../json_text', [json_text/2]).
 :- use_module('../neem_store', [store_match/3, store_python_request/1, store_pose/4]).
 :- use_module('../lang/query', [kb_call/2, kb_findall/4, kb_findall/5]).
@@ -218,22 +219,23 @@ object_place(Name, At, place(Pose, Used)) :-
 %!  performers(+Call, -Modes) is det.
 %   Who performed each action of Call, by begin: `Begin-Mode`, Mode `user` when the
 %   performer (soma:isPerformedBy) is a dul:NaturalPerson, `robot` when another
-%   dul:PhysicalAgent, `unknown` without a performer of either type.
+%   dul:PhysicalAgent, `unknown` without a performer of either type. One store query for
+%   every action's performer types (a row or three per action), kept for Call's tasks.
 performers(Call, Modes) :-
     check_call(Call),
-    call_tasks(Call, Tasks),
-    findall(B-Mode,
-            ( member(T, Tasks),
-              kb_call(( executes_task(A, T), event_interval(A, B, _) ), any),
-              performer_mode(A, Mode) ),
-            Modes0),
+    call_tasks(Call, Tasks0),
+    sort(Tasks0, Tasks),
+    kb_findall(T-B-A, ( executes_task(A, T), event_interval(A, B, _) ), any, Actions0),
+    findall(A-B, ( member(T-B-A, Actions0), ord_memberchk(T, Tasks) ), Actions),
+    kb_findall(A-C, ( is_performed_by(A, Ag), triple(Ag, rdf:type, C) ), any, Typed0),
+    sort(Typed0, Typed),
+    kb_iri(dul:'NaturalPerson', Person), kb_iri(dul:'PhysicalAgent', Agent),
+    findall(B-Mode, ( member(A-B, Actions), performer_mode(A, Typed, Person, Agent, Mode) ), Modes0),
     msort(Modes0, Modes).
 
-performer_mode(A, Mode) :-
-    (   kb_call(( is_performed_by(A, Agent), instance_of(Agent, dul:'NaturalPerson') ), any)
-    ->  Mode = user
-    ;   kb_call(( is_performed_by(A, Agent), instance_of(Agent, dul:'PhysicalAgent') ), any)
-    ->  Mode = robot
+performer_mode(A, Typed, Person, Agent, Mode) :-
+    (   ord_memberchk(A-Person, Typed) -> Mode = user
+    ;   ord_memberchk(A-Agent, Typed) -> Mode = robot
     ;   Mode = unknown
     ).
 

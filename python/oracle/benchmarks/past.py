@@ -14,7 +14,7 @@ from oracle.benchmarks.figures import spread, spread_text
 #: One question per form, as the docs' worked example asks them of the demo user.
 QUESTIONS = ("when did I last open the fridge?", "how often did I open(fridge) this week?",
              "what do I usually do after open(fridge)?", "what did you do today?",
-             "where is the drinking glass?", "why did you suggest open(fridge)?",
+             "where is the drinking glass?", "why did you suggest open(fridge)?", "who usually does open(fridge)?",
              "Wann habe ich zuletzt pick(beer_bottle) gemacht?")
 
 
