@@ -1,17 +1,20 @@
 :- module(json_query,
     [ json_query/2,               % +Request, -JSON
-      safe_query/1                % +Goal
+      safe_query/1,               % +Goal
+      safe_query/2                % +Goal, +Classes
     ]).
 /** <module> Client queries over the live service, answered as JSON solutions
 
 The way rosprolog/json_prolog serve KnowRob queries, without their state: the client sends a
 query text, values for some of its variables, an offset and a limit, and gets a page of
-solutions. A query is read as a term (its text is never concatenated with values), checked against a
-whitelist so that it can only read: KnowRob's query language and model predicates (lang/,
-model/), the odb model (odb/),
-the robot's answers, control constructs and pure builtins; never halt, I/O, assert or a store
-write, also not hidden inside kb_call/1 (which would call an unknown goal as Prolog). It runs
-under a time limit. Every failure becomes `{"error": Message}`; nothing is thrown to the caller.
+solutions. The text must be exactly one clause (text after its full stop is refused, not
+ignored) and is read as a term: it is never concatenated with values. Before anything runs,
+every goal in it (inside control constructs, findall/forall/aggregate_all and kb_call bodies
+alike) is resolved to the module that defines it and looked up in query_policy's allow-list:
+only `read` predicates run (and `write` ones when the service allows writes). A predicate
+that loads or reads files, writes, or is not on the table is refused, naming it. The query runs
+under a time limit and a stack limit. Every failure becomes `{"error": Message}` (plus
+`"refused": true` for a refused predicate); nothing is thrown to the caller.
 */
 
 :- use_module(library(error)).
@@ -19,33 +22,58 @@ under a time limit. Every failure becomes `{"error": Message}`; nothing is throw
 :- use_module(library(apply)).
 :- use_module(library(time)).
 :- use_module(library(http/json)).
-
+:- use_module(query_policy, [exposed/3, goal_argument/3]).
 
 %!  json_query(+Request, -JSON) is det.
-%   Request is `[Text, Bindings, Offset, Limit, Seconds]`: the query text, a list of
+%   Request is `[Text, Bindings, Offset, Limit, Seconds, Writes]`: the query text, a list of
 %   `[Name, Value]` pairs binding the query's variables by name, how many solutions to skip,
-%   at most how many to return, and the time limit in seconds. JSON is a string:
+%   at most how many to return, the time limit in seconds and `true` when `write` predicates
+%   may run (`false` otherwise). JSON is a string:
 %   `{"solutions": [{Var: Value}], "more": Bool, "offset": N}` or `{"error": Message}`.
 json_query(Request, JSON) :-
     catch(page(Request, Dict), Error, error_dict(Error, Dict)),
     !,
     with_output_to(string(JSON), json_write_dict(current_output, Dict, [width(0)])).
 
-page([Text, Bindings, Offset, Limit, Seconds], _{solutions: Solutions, more: More, offset: Offset}) :-
+%   The stack a query may use (bytes): a query building a huge term fails alone, the
+%   service does not grow by gigabytes.
+query_stack_limit(64 000 000).
+
+page([Text, Bindings, Offset, Limit, Seconds, Writes], _{solutions: Solutions, more: More, offset: Offset}) :-
     must_be(nonneg, Offset),
     must_be(positive_integer, Limit),
     must_be(number, Seconds),
-    term_string(Goal, Text, [variable_names(Names)]),
+    must_be(boolean, Writes),
+    one_clause(Text, Goal, Names),
     maplist(bind(Names), Bindings),
-    safe_query(Goal),
+    (   Writes == true -> safe_query(Goal, [read, write]) ; safe_query(Goal, [read]) ),
     Take is Limit + 1,
-    call_with_time_limit(Seconds, findall(Names, limit(Take, offset(Offset, user:Goal)), Rows)),
+    query_stack_limit(Stack),
+    current_prolog_flag(stack_limit, Old),
+    setup_call_cleanup(
+        set_prolog_flag(stack_limit, Stack),
+        call_with_time_limit(Seconds, findall(Names, limit(Take, offset(Offset, user:Goal)), Rows)),
+        set_prolog_flag(stack_limit, Old)),
     length(Rows, Got),
     (   Got > Limit
     ->  More = true, length(Page, Limit), append(Page, _, Rows)
     ;   More = false, Page = Rows
     ),
     maplist(solution_dict, Page, Solutions).
+
+%   one_clause(+Text, -Goal, -Names): Text holds exactly one term (the final full stop may be
+%   left out); anything after it is a syntax error, never silently dropped.
+one_clause(Text, Goal, Names) :-
+    must_be(string, Text),
+    split_string(Text, "", " \t\r\n", [Trimmed]),
+    (   Trimmed == "" -> domain_error(query_text, empty) ; true ),
+    (   sub_string(Trimmed, _, 1, 0, ".") -> Full = Trimmed ; string_concat(Trimmed, "\n.", Full) ),
+    setup_call_cleanup(
+        open_string(Full, In),
+        ( read_term(In, Goal, [variable_names(Names), syntax_errors(error), module(user)]),
+          read_term(In, Rest, [syntax_errors(error), module(user)]) ),
+        close(In)),
+    (   Rest == end_of_file -> true ; domain_error(query_text, more_than_one_clause) ).
 
 bind(Names, [Name, Value]) :-
     (   memberchk(Name = Var, Names)
@@ -72,12 +100,15 @@ json_value(V, S) :- format(string(S), '~q', [V]).
 
 float_special(V) :- float(V), ( V =:= inf ; V =:= -inf ; V =\= V ).
 
+error_dict(error(permission_error(call, service_query, PI), _), _{error: Message, refused: true}) :- !,
+    format(string(Message), "~q is not allowed in a service query (only predicates on the read-only allow-list, prolog/query_policy.pl)", [PI]).
 error_dict(Error, _{error: Message}) :-
     error_message(Error, Message).
 
 error_message(time_limit_exceeded, "the query ran past its time limit") :- !.
-error_message(error(permission_error(call, service_query, PI), _), M) :- !,
-    format(string(M), "~q is not allowed in a service query (only KnowRob model predicates, the odb model, the answers and pure builtins)", [PI]).
+error_message(error(resource_error(_), _), "the query needed more memory than a service query may use") :- !.
+error_message(error(domain_error(query_text, more_than_one_clause), _), "the query must be one clause: text after its full stop is not allowed") :- !.
+error_message(error(domain_error(query_text, empty), _), "the query is empty") :- !.
 error_message(error(syntax_error(What), context(_, _)), M) :- !,
     format(string(M), "syntax error in the query: ~w", [What]).
 error_message(error(syntax_error(What), string(_, At)), M) :- !,
@@ -94,67 +125,52 @@ error_message(Error, M) :-
     format(string(M), "~q", [Error]).
 
 %!  safe_query(+Goal) is det.
-%   True when Goal only reads; otherwise raises `permission_error(call, service_query, PI)`
-%   naming the first predicate that is not allowed (or an instantiation error for a variable).
+%!  safe_query(+Goal, +Classes) is det.
+%   True when every predicate Goal calls is on query_policy's table in one of Classes (default
+%   `[read]`); otherwise raises `permission_error(call, service_query, PI)` naming the first
+%   that is not (or an instantiation error for a goal that is a variable). Goals are resolved
+%   in module `user`, where the service runs them.
 safe_query(Goal) :-
+    safe_query(Goal, [read]).
+safe_query(Goal, Classes) :-
+    must_be(list(oneof([read, write])), Classes),
+    safe_goal(Goal, user, prolog, Classes).
+
+%   safe_goal(+Goal, +Module, +Language, +Classes): Language is `prolog`, or `kb` inside a
+%   kb_call body, where a few more forms mean a goal (lang/query.pl's unfold/5).
+safe_goal(Goal, _, _, _) :-
     var(Goal), !,
     instantiation_error(Goal).
-safe_query(Module:Goal) :- !,
-    (   atom(Module), model_module(Module), callable(Goal), functor(Goal, N, A), exported(Module, N/A)
-    ->  safe_query(Goal)
+safe_goal(Module:Goal, _, Language, Classes) :- !,
+    (   atom(Module), current_module(Module)
+    ->  safe_goal(Goal, Module, Language, Classes)
     ;   permission_error(call, service_query, Module:Goal)
     ).
-safe_query(Goal) :-
+safe_goal(Goal, Module, Language, Classes) :-
     control(Goal, Inner), !,
-    maplist(safe_query, Inner).
-safe_query(Goal) :-
-    callable(Goal),
+    maplist([G]>>safe_goal(G, Module, Language, Classes), Inner).
+safe_goal(Goal, Module, kb, Classes) :-
+    kb_form(Goal, Inner), !,
+    maplist([G]>>safe_goal(G, Module, kb, Classes), Inner).
+safe_goal(Goal, Module, _, Classes) :-
+    (   callable(Goal) -> true ; type_error(callable, Goal) ),
     functor(Goal, Name, Arity),
-    (   builtin(Name/Arity)
-    ->  true
-    ;   meta_model(Name/Arity, Index)
-    ->  arg(Index, Goal, Inner),
-        safe_query(Inner)
-    ;   model_module(M), exported(M, Name/Arity), \+ writer(Name/Arity)
-    ->  true
+    (   defining_module(Module, Goal, Home),
+        exposed(Home, Name/Arity, Class),
+        memberchk(Class, Classes)
+    ->  forall(goal_argument(Home, Name/Arity, Index),
+               ( arg(Index, Goal, Inner), safe_goal(Inner, Module, kb, Classes) ))
     ;   permission_error(call, service_query, Name/Arity)
     ).
 
-%   The project's model modules: every module loaded from this folder's lang/, model/ and
-%   odb/ (KnowRob's layout) and the answers; never the store itself, this module or fixtures.
-:- dynamic prolog_dir/1.
-:- prolog_load_context(directory, Dir), atom_concat(Dir, '/', Prefix),
-   retractall(prolog_dir(_)), assertz(prolog_dir(Prefix)).
-
-model_module(Module) :-
-    prolog_dir(Prefix),
-    module_property(Module, file(File)),
-    atom_concat(Prefix, Relative, File),
-    (   sub_atom(Relative, 0, _, _, 'lang/')
-    ;   sub_atom(Relative, 0, _, _, 'model/')
-    ;   sub_atom(Relative, 0, _, _, 'odb/')
-    ;   Relative == 'answers.pl'
-    ).
-
-exported(Module, PI) :-
-    module_property(Module, exports(List)),
-    memberchk(PI, List).
-
-%   Exported predicates that change state: the robot API writes, queries do not.
-writer(kb_project/1).
-writer(odb_set_namespace/1).
-writer(odb_set_task_roles/3).
-writer(answer_json/1).
-
-%   Model predicates whose argument Index is itself a goal (compiled, or called).
-meta_model(kb_call/1, 1).
-meta_model(kb_call/2, 1).
-meta_model(kb_call_stepwise/1, 1).
-meta_model(kb_call_stepwise/2, 1).
-meta_model(kb_compile/3, 1).
-meta_model(during/2, 1).
-meta_model(since/2, 1).
-meta_model(until/2, 1).
+%   The module whose predicate Goal calls from Module; fails for an unknown one. Checking
+%   `defined` first loads nothing that is not loaded (no autoloading of an unknown name).
+defining_module(Module, Goal, Home) :-
+    predicate_property(Module:Goal, imported_from(Home)), !.
+defining_module(_, Goal, system) :-
+    predicate_property(system:Goal, built_in), !.
+defining_module(Module, Goal, Module) :-
+    predicate_property(Module:Goal, defined).
 
 control((A, B), [A, B]).
 control((A ; B), [A, B]).
@@ -166,24 +182,25 @@ control(ignore(A), [A]).
 control(forall(A, B), [A, B]).
 control(findall(_, A, _), [A]).
 control(findall(_, A, _, _), [A]).
-control(aggregate_all(_, A, _), [A]).
+control(aggregate_all(count, A, _), [A]).
+control(aggregate_all(sum(_), A, _), [A]).
+control(aggregate_all(max(_), A, _), [A]).
+control(aggregate_all(min(_), A, _), [A]).
+control(aggregate_all(bag(_), A, _), [A]).
+control(aggregate_all(set(_), A, _), [A]).
 control(limit(_, A), [A]).
 control(offset(_, A), [A]).
 control(order_by(_, A), [A]).
+control(distinct(_, A), [A]).
 
-builtin(true/0). builtin(fail/0). builtin(false/0).
-builtin((=)/2). builtin((\=)/2). builtin((==)/2). builtin((\==)/2).
-builtin((@<)/2). builtin((@>)/2). builtin((@=<)/2). builtin((@>=)/2). builtin(compare/3).
-builtin((is)/2). builtin((<)/2). builtin((>)/2). builtin((=<)/2). builtin((>=)/2).
-builtin((=:=)/2). builtin((=\=)/2).
-builtin(var/1). builtin(nonvar/1). builtin(atom/1). builtin(number/1). builtin(integer/1).
-builtin(float/1). builtin(string/1). builtin(is_list/1). builtin(compound/1). builtin(ground/1).
-builtin(functor/3). builtin(arg/3). builtin((=..)/2).
-builtin(atom_concat/3). builtin(sub_atom/5). builtin(atom_string/2). builtin(atom_length/2).
-builtin(atom_number/2). builtin(term_to_atom/2). builtin(atomic_list_concat/2).
-builtin(atomic_list_concat/3). builtin(split_string/4). builtin(string_concat/3).
-builtin(member/2). builtin(memberchk/2). builtin(length/2). builtin(nth0/3). builtin(nth1/3).
-builtin(last/2). builtin(append/3). builtin(reverse/2). builtin(msort/2). builtin(sort/2).
-builtin(sort/4).
-builtin(list_to_set/2). builtin(sum_list/2). builtin(max_list/2). builtin(min_list/2).
-builtin(between/3). builtin(succ/2). builtin(plus/3). builtin(pairs_keys_values/3).
+%   Forms a kb_call body gives a meaning of its own (lang/query.pl unfold/5).
+kb_form([], []).
+kb_form([G|Gs], [G, Gs]).
+kb_form(call(G), [G]).
+kb_form(call_with_context(G, _), [G]).
+kb_form(assign(_, _), []).
+kb_form(triple(_, _, _), []).
+kb_form(holds(_, _, _), []).
+kb_form(holds(_), []).
+kb_form(has_type(_, _), []).
+kb_form(occurs(_), []).

@@ -49,7 +49,9 @@ def _session_workflow(spec: str, tmp_path, capsys) -> None:
     ada = chains(tmp_path, "ada")
     assert main(["import", str(ada), "--store", spec]) == 0
     assert main(["persist", "--neem", "ada", "--as", "ada-monday", "--store", spec]) == 0
-    assert main(["import", str(ada), "--store", spec]) == 0  # a new NEEM takes the old id
+    assert main(["import", str(ada), "--store", spec]) == 1  # ada has a NEEM: refused, one line
+    assert "--as-new" in capsys.readouterr().err
+    assert main(["import", str(ada), "--store", spec, "--as-new"]) == 0  # a new NEEM takes the old id
     assert main(["import", str(ada), "--store", spec, "--session"]) == 0
     session = capsys.readouterr().out.strip().splitlines()[-1].split("\t")[0]
     assert main(["persist", "--neem", session, "--as", "ada-tuesday", "--store", spec]) == 0

@@ -21,7 +21,7 @@ def client(small_store, onto, tmp_path):
     copy = tmp_path / "s.sqlite"
     shutil.copy(small_store, copy)
     ctx = build_context(str(copy), onto, Hyperparameters())
-    with TestClient(create_app(ctx)) as test_client:
+    with TestClient(create_app(ctx), base_url="http://127.0.0.1") as test_client:
         yield test_client
     ctx.thread.close()
 

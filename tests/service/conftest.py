@@ -43,7 +43,7 @@ def client(ctx) -> Iterator:
 
     from oracle.service.app import create_app
 
-    with TestClient(create_app(ctx)) as test_client:
+    with TestClient(create_app(ctx), base_url="http://127.0.0.1") as test_client:
         yield test_client
 
 

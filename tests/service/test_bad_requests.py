@@ -91,7 +91,7 @@ def served(ctx):
 
     from oracle.service.app import create_app
 
-    with TestClient(create_app(ctx), raise_server_exceptions=False) as client:
+    with TestClient(create_app(ctx), raise_server_exceptions=False, base_url="http://127.0.0.1") as client:
         yield _driven(client)
 
 

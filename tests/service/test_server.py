@@ -82,7 +82,7 @@ def test_real_server_runs_the_loop_and_survives_bad_requests(server):
         assert call(server, "/api/neems/bea/actions", {"call": action, "begin": at(0, 10 * i)})[0] == 200
     status, error = call(server, "/api/neems/bea/situation", {"available": "pick(red_mug)"})
     assert status == 422 and "\n" not in error["error"]
-    assert call(server, "/api/prolog", {"query": "halt", "neem": "bea"})[0] == 400
+    assert call(server, "/api/prolog", {"query": "halt", "neem": "bea"})[0] == 403
     status, answer = call(server, "/api/neems/bea/why-not?task=pick(banana)")
     assert status == 200 and "pick(banana)" in answer["sentence"]
 

@@ -63,7 +63,7 @@ def run(quick: bool = False) -> list[dict]:
             _log(path, days)
             ctx = build_context(str(path), build_ontology(), Hyperparameters())
             try:
-                with TestClient(create_app(ctx)) as client:
+                with TestClient(create_app(ctx), base_url="http://127.0.0.1") as client:
                     floor = _times(lambda: client.get("/api/health"), repeats)
                     rows.append(_row(days, "floor: /api/health", floor))
                     for question in QUESTIONS:

@@ -155,7 +155,7 @@ def run(quick: bool = False) -> list[dict]:
         finally:
             timer.cancel()
             _stop(process)
-        rows.extend(_sync_writes(store, plans[0], steps))
+        rows.extend(_write_behind(store, plans[0], steps))
     return rows
 
 
@@ -167,15 +167,16 @@ def _stop(process: subprocess.Popen) -> None:
         process.kill()
 
 
-def _sync_writes(store: Path, plan: tuple[str, str, list], steps: int) -> list[dict]:
-    """The same robot against a service started with --sync-writes: what write-behind saves."""
+def _write_behind(store: Path, plan: tuple[str, str, list], steps: int) -> list[dict]:
+    """The same robot against a service started with --write-behind (answer before the commit):
+    what acknowledging only committed situations (the default) costs."""
     neem, user, todo = plan
-    process, url = _serve(store, "--sync-writes")
+    process, url = _serve(store, "--write-behind")
     try:
         _open_sessions(url, [plan])
         later = todo[2 * steps:] or todo[steps:]
         done = drive(url, user, later[: max(10, steps // 3)], neem, choices=False)
-        return [_row("1 robot, --sync-writes", kind, done.latencies.get(kind, []), 1, len(done.errors))
+        return [_row("1 robot, --write-behind", kind, done.latencies.get(kind, []), 1, len(done.errors))
                 for kind in ("situation", "action")]
     finally:
         _stop(process)

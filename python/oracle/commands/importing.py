@@ -21,7 +21,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     parser = subparsers.add_parser("import", help="log action chains (JSONL) as one NEEM per user")
     parser.add_argument("chains", type=Path, metavar="CHAINS.jsonl")
     add_options(parser, STORE, NUMBERS, *ONTOLOGY_OPTIONS)
-    parser.add_argument("--replace", action="store_true", help="replace a user's NEEM instead of adding a new one")
+    which = parser.add_mutually_exclusive_group()
+    which.add_argument("--replace", action="store_true",
+                       help="replace the NEEM of a user who has one (default: refuse that user, import the others)")
+    which.add_argument("--as-new", action="store_true", help="add a new NEEM for a user who has one")
     parser.add_argument("--session", action="store_true",
                         help="log into temporary NEEMs, wiping earlier temporary ones (keep them with 'persist')")
     parser.add_argument("--no-clock", action="store_true",
@@ -40,9 +43,11 @@ def run(args: argparse.Namespace) -> int:
     checked = check_chains(onto, args.chains, no_clock=args.no_clock)  # before the store is opened: a bad file creates nothing
     with open_store(args.store, number_format=args.numbers) as store, _first_ctrl_c_between_rows() as stop:
         report: dict[str, int] = {}
+        refused: list[str] = []
+        existing = "replace" if args.replace else "new" if args.as_new else "refuse"
         try:
-            import_chains(store, onto, args.chains, replace=args.replace, report=report, commit_every=args.commit_every,
-                          session=args.session, checked=checked, no_clock=args.no_clock, stop=stop)
+            import_chains(store, onto, args.chains, report=report, commit_every=args.commit_every, session=args.session,
+                          checked=checked, no_clock=args.no_clock, stop=stop, existing=existing, refused=refused)
         except NeemOracleError:
             _print(report, store)
             raise
@@ -51,7 +56,9 @@ def run(args: argparse.Namespace) -> int:
             print(f"interrupted: {sum(report.values())} actions committed", file=sys.stderr)
             return 130
         _print(report, store)
-    return 0
+    for line in refused:
+        print(line, file=sys.stderr)
+    return 1 if refused else 0
 
 
 @contextlib.contextmanager

@@ -72,6 +72,7 @@ def _iso(seconds: float | None, clocked: bool = True) -> str | None:
 
 
 def run_neems(args: argparse.Namespace) -> int:
+    from oracle.neem.importing import INCOMPLETE_KEY
     from oracle.neem.query import summarize_neem
     from oracle.store import open_store
     from oracle.timeline import has_clock
@@ -82,9 +83,10 @@ def run_neems(args: argparse.Namespace) -> int:
         infos = list(store.neems())
         rows = [summarize_neem(store, info.id) for info in infos]
     clocked = {info.id: has_clock(info.meta) for info in infos}
+    cut = {info.id for info in infos if info.meta.get(INCOMPLETE_KEY)}
     if args.json:
-        print(json.dumps([{**row.__dict__, "begin": _iso(row.begin, clocked[row.id]), "end": _iso(row.end, clocked[row.id])}
-                          for row in rows], indent=2))
+        print(json.dumps([{**row.__dict__, "begin": _iso(row.begin, clocked[row.id]), "end": _iso(row.end, clocked[row.id]),
+                           "incomplete": row.id in cut} for row in rows], indent=2))
         return 0
     wid = max([4] + [len(row.id) for row in rows])
     wname = max([4] + [len(row.name or "-") for row in rows])
@@ -95,6 +97,7 @@ def run_neems(args: argparse.Namespace) -> int:
             f"{row.id:<{wid}}  {row.name or '-':<{wname}}"
             f"  {row.user or '-':<{wuser}}  {row.actions:>7}  {_iso(row.begin, clocked[row.id]) or '-':<25}"
             f"  {_iso(row.end, clocked[row.id]) or '-':<25}  {'no' if row.temporary else 'yes'}"
+            + ("  INCOMPLETE (its import was cut; importing this user again replaces it)" if row.id in cut else "")
         )
     return 0
 

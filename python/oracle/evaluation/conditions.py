@@ -15,6 +15,7 @@ from collections.abc import Iterable, Iterator
 from dataclasses import replace
 from pathlib import Path
 
+from oracle.files import private_file
 from oracle.chains import ChainRow, read_chains
 
 #: Each condition and the fields it drops (``duration`` is read into ``end``).
@@ -43,10 +44,8 @@ def write_conditions(source: Path | str, out: Path | str) -> dict[str, Path]:
     rows = list(read_chains(source))
     written = {}
     for condition in CONDITIONS:
-        folder = Path(out) / condition
-        folder.mkdir(parents=True, exist_ok=True)
-        target = folder / source.name
-        with target.open("w") as handle:
+        target = Path(out) / condition / source.name
+        with private_file(target) as handle:  # a person's chains: 0600 in 0700 folders
             for row in derive(rows, condition):
                 handle.write(json.dumps(row.to_json()) + "\n")
         written[condition] = target

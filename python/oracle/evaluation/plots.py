@@ -14,8 +14,15 @@ from oracle.evaluation.replay import KS, ReplayResult  # noqa: E402
 
 
 def _save(fig, path: Path) -> Path:
-    fig.savefig(path, dpi=110)
+    """The figure as a private file (0600: a plot is a person's routine)."""
+    import io
+
+    from oracle.files import write_private_bytes
+
+    buffer = io.BytesIO()
+    fig.savefig(buffer, dpi=110, format=path.suffix.lstrip(".") or "png")
     plt.close(fig)
+    write_private_bytes(path, buffer.getvalue())
     return path
 
 

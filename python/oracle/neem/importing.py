@@ -25,6 +25,13 @@ from oracle.store import Store
 from oracle.store.tbox import TBox, tbox_for
 from oracle.timeline import CLOCK_KEY, IDLE_THRESHOLD_S, SEQUENCE_CLOCK, Instant, TimeValueError, seconds_of, sequence_instant
 
+#: Registry key of a NEEM whose import has not reached its user's last row: set when the
+#: NEEM is made, cleared once that row is committed. ``neems`` names such a NEEM incomplete
+#: and the next import of the same user replaces it.
+INCOMPLETE_KEY = "import_incomplete"
+#: What an import does with a user who already has a complete NEEM in the store.
+EXISTING = ("refuse", "replace", "new")
+
 #: The first pass keeps at most this many parsed rows for the second (about 0.5 kB each with
 #: their calls shared); beyond it the file is read again.
 KEPT_ROWS = 100_000
@@ -148,6 +155,8 @@ def import_chains(
     checked: CheckedChains | None = None,
     no_clock: bool = False,
     stop: Callable[[], bool] | None = None,
+    existing: str | None = None,
+    refused: list[str] | None = None,
 ) -> dict[str, int]:
     """Log a chains JSONL file, one NEEM per user; return {NEEM id: actions committed}.
 
@@ -165,9 +174,18 @@ def import_chains(
     n + 1 of the sequence clock, and the NEEMs are marked as having no clock.
     ``stop`` is asked before each row; when it says True (Ctrl-C was pressed) the import ends
     there with KeyboardInterrupt, between two rows, so ``report`` counts exactly what is stored.
+
+    ``existing`` says what happens to a user who already has a complete NEEM: ``refuse`` (the
+    default) skips that user's rows and appends one line saying so to ``refused``, ``replace``
+    (also ``replace=True``) replaces the NEEM, ``new`` adds another. A user's NEEM that an
+    earlier import left incomplete (killed before the user's last row) is always replaced.
     """
     if commit_every < 1:
         raise LoggingError(f"commit_every must be at least 1, got {commit_every}")
+    existing = existing or ("replace" if replace else "refuse")
+    if existing not in EXISTING:
+        raise LoggingError(f"existing must be one of {', '.join(EXISTING)}, got {existing!r}")
+    refused = [] if refused is None else refused
     checked = check_chains(onto, path, no_clock=no_clock) if checked is None else checked
     plans = checked.plans
     positions: dict[str, int] = {}
@@ -176,6 +194,12 @@ def import_chains(
     tbox = tbox if tbox is not None else tbox_for(onto)
     where = str(path)
     done = False
+    # each user's choice, made once before anything is written: True replaces, False adds,
+    # None skips the user's rows
+    replacing = {} if session else _choices(store, plans, existing, refused)
+    meta: dict[str, object] = {CLOCK_KEY: SEQUENCE_CLOCK} if no_clock else {}
+    if not session:
+        meta[INCOMPLETE_KEY] = True  # until the user's last row is committed
     try:
         if session:
             wipe_temporary_neems(store)
@@ -185,9 +209,11 @@ def import_chains(
             where = f"{path}:{row.line}"
             logger = loggers.get(row.user)
             if logger is None:
-                logger = NeemLogger.create(store, onto, user=row.user, replace=replace, tbox=tbox, temporary=session,
-                                           idle_threshold=idle_threshold, commit_every=commit_every,
-                                           hidden=session, meta={CLOCK_KEY: SEQUENCE_CLOCK} if no_clock else None)  # fmt: skip
+                if replacing.get(row.user, False) is None:
+                    continue
+                logger = NeemLogger.create(store, onto, user=row.user, replace=bool(replacing.get(row.user, replace)), tbox=tbox,
+                                           temporary=session, idle_threshold=idle_threshold, commit_every=commit_every,
+                                           hidden=session, meta=meta or None)  # fmt: skip
                 loggers[row.user] = logger
                 report[logger._replaces or logger.neem_id] = 0
             action_id = row.extra.get("id")
@@ -207,6 +233,8 @@ def import_chains(
             name = logger._replaces or logger.neem_id
             if row.line == plans[row.user].last_line:
                 logger.close()  # the user's rows end here: commit (and swap in a replacement) now
+                if not session:
+                    store.update_meta(logger.neem_id, **{INCOMPLETE_KEY: None})
                 report[name] = logger.committed
                 del loggers[row.user]  # done: its caches need not stay in memory (many users)
             else:
@@ -223,3 +251,26 @@ def import_chains(
                 logger.abandon()  # the old NEEM stays as it was
                 report.pop(name, None)
     return report
+
+
+def _choices(store: Store, plans: dict[str, _UserPlan], existing: str, refused: list[str]) -> dict[str, bool | None]:
+    """For each user of the file with a NEEM in the store: True to replace it, False to add a
+    new one, None to skip the user (a line in ``refused`` says why). Users without one: absent."""
+    complete: dict[str, str] = {}
+    cut: set[str] = set()
+    for info in store.neems():
+        if info.temporary or info.user not in plans:
+            continue
+        if info.meta.get(INCOMPLETE_KEY):
+            cut.add(info.user)
+        else:
+            complete.setdefault(info.user, info.id)
+    choices: dict[str, bool | None] = {user: True for user in cut}
+    for user, neem_id in complete.items():
+        if existing == "refuse":
+            choices[user] = None
+            refused.append(f"user {user!r} already has NEEM {neem_id}: not imported (--replace replaces it,"
+                           " --as-new adds another)")
+        else:
+            choices[user] = existing == "replace"
+    return choices

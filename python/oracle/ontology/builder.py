@@ -84,10 +84,9 @@ def write_ontology(ontology: OdbOntology, out: Path | str) -> Path:
     out = Path(out)
     fmt = "turtle" if out.suffix in (".ttl", ".turtle") else "xml"
     try:
-        out.parent.mkdir(parents=True, exist_ok=True)
-        tmp = out.with_name(out.name + ".tmp")
-        ontology.graph.serialize(destination=tmp, format=fmt)
-        tmp.replace(out)
+        from oracle.files import write_private_bytes
+
+        write_private_bytes(out, ontology.graph.serialize(format=fmt, encoding="utf-8"))
     except OSError as error:
         raise OntologyError(f"{out}: cannot write ({error.strerror})") from None
     return out

@@ -14,6 +14,7 @@ if TYPE_CHECKING:  # the package is imported by every command's --help: keep it 
     from oracle.algorithm.params import Hyperparameters
     from oracle.ontology import OdbOntology
     from oracle.service.app import Context
+    from oracle.service.guard import Limits
 
 
 def is_loopback(host: str) -> bool:
@@ -30,18 +31,24 @@ def is_loopback(host: str) -> bool:
 
 
 def build_context(store_spec: str | None, ontology: OdbOntology, settings: Hyperparameters, neem: str | None = None,
-                  token: str | None = None, write_behind: bool = True, method: str | None = None) -> Context:
+                  token: str | None = None, write_behind: bool = False, method: str | None = None,
+                  host: str = "127.0.0.1", extra_hosts: tuple[str, ...] = (), limits: Limits | None = None,
+                  prolog_writes: bool = False) -> Context:
     """Open the store on the engine thread (its connection belongs there) and check ``neem``;
-    sessions fit the predictor ``method`` (default: the one ``rank`` uses)."""
+    sessions fit the predictor ``method`` (default: the one ``rank`` uses). ``host`` is the bound
+    address: with ``extra_hosts`` it makes the Host names the service answers to."""
     from oracle.algorithm.predictors import DEFAULT
     from oracle.service.app import Context
     from oracle.service.engine import Engine, EngineThread
+    from oracle.service.guard import Limits, allowed_hosts
     from oracle.store import open_store
+
+    limits = limits or Limits()
 
     thread = EngineThread()
 
     def start() -> Engine:
-        engine = Engine(open_store(store_spec), ontology, settings, method or DEFAULT)
+        engine = Engine(open_store(store_spec), ontology, settings, method or DEFAULT, limits)
         if neem is not None:
             engine.session(neem)  # NotFound now rather than on the first request
         return engine
@@ -51,7 +58,8 @@ def build_context(store_spec: str | None, ontology: OdbOntology, settings: Hyper
     except NeemOracleError:
         thread.close()
         raise
-    return Context(engine=engine, thread=thread, default_neem=neem, token=token, write_behind=write_behind)
+    return Context(engine=engine, thread=thread, default_neem=neem, token=token, write_behind=write_behind,
+                   allowed_hosts=allowed_hosts(host, extra_hosts), limits=limits, prolog_writes=prolog_writes)
 
 
 __all__ = ["build_context", "is_loopback"]

@@ -3,21 +3,17 @@
 Privacy (thesis 3.5): the service binds to loopback unless it has a token; with a token every
 API call, the event stream and the page must present it (``Authorization: Bearer T``, or
 ``?token=T`` where a browser cannot set headers). There is no CORS: a page from elsewhere
-cannot read the answers, and a request whose Origin is another site is refused. The request
-log holds the method, the route template, the NEEM id, the status and the time; never a task,
-an object, a query or a token.
+cannot read the answers. Host names, origins, the token and the limits are checked by
+guard.Guard before any handler runs (docs/security.md).
 """
 
 from __future__ import annotations
 
 import asyncio
-import hmac
 import logging
-import time
 from contextlib import asynccontextmanager
 from dataclasses import dataclass, field
 from typing import Any
-from urllib.parse import parse_qs, urlsplit
 
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
@@ -25,16 +21,14 @@ from fastapi.responses import JSONResponse, Response
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from oracle.errors import NeemOracleError
-from oracle.service.engine import Engine, EngineThread, NotFound
+from oracle.service.engine import Engine, EngineThread, NotFound, Overloaded, PrologRefused
 from oracle.service.events import EventHub
+from oracle.service.guard import STATIC_DOCS, Guard, Limits, allowed_hosts
 from oracle.service.routes import router
 from oracle.service.past_routes import router as past_router
 from oracle.service.session import OutOfOrder
 
 LOG = logging.getLogger("oracle.service")
-#: Paths that show no user data: the schema and its viewer need no token.
-OPEN_PATHS = ("/openapi.json", "/docs", "/docs/")
-STATIC_DOCS = "/docs/static"
 
 
 @dataclass
@@ -45,7 +39,14 @@ class Context:
     thread: EngineThread
     default_neem: str | None = None
     token: str | None = None
-    write_behind: bool = True
+    write_behind: bool = False
+    #: Host names the service answers to (guard.allowed_hosts of the bound address).
+    allowed_hosts: frozenset[str] = field(default_factory=lambda: allowed_hosts("127.0.0.1"))
+    limits: Limits = field(default_factory=Limits)
+    #: /api/prolog may run `write` predicates (serve --allow-prolog-writes, which needs a token).
+    prolog_writes: bool = False
+    #: Prolog queries running now (at most limits.queries).
+    queries: int = 0
     hub: EventHub = field(default_factory=EventHub)
     stopping: asyncio.Event = field(default_factory=asyncio.Event)
 
@@ -66,7 +67,8 @@ def create_app(ctx: Context) -> FastAPI:
 
     @app.exception_handler(NeemOracleError)
     async def domain_error(request: Request, error: NeemOracleError) -> JSONResponse:
-        status = 404 if isinstance(error, NotFound) else 409 if isinstance(error, OutOfOrder) else 400
+        status = (404 if isinstance(error, NotFound) else 409 if isinstance(error, OutOfOrder)
+                  else 403 if isinstance(error, PrologRefused) else error.status if isinstance(error, Overloaded) else 400)
         return _error(status, str(error))
 
     @app.exception_handler(RequestValidationError)
@@ -98,61 +100,6 @@ def _error(status: int, message: str) -> JSONResponse:
 
 def _route(request: Request) -> str:
     return getattr(request.scope.get("route"), "path", None) or "(no route)"
-
-
-class Guard:
-    """Pure ASGI middleware (cheaper than Starlette's BaseHTTPMiddleware on every request):
-    refuses other origins and missing tokens, and writes the id-only request log."""
-
-    def __init__(self, app: Any, ctx: Context) -> None:
-        self.app = app
-        self.ctx = ctx
-
-    async def __call__(self, scope: dict[str, Any], receive: Any, send: Any) -> None:
-        if scope["type"] != "http":
-            await self.app(scope, receive, send)
-            return
-        started = time.perf_counter()
-        headers = {k.decode("latin-1"): v.decode("latin-1") for k, v in scope["headers"]}
-        refusal = self._refusal(scope, headers)
-        if refusal is not None:
-            await refusal(scope, receive, send)
-            return
-        status = [0]
-
-        async def record(message: dict[str, Any]) -> None:
-            if message["type"] == "http.response.start":
-                status[0] = message["status"]
-            await send(message)
-
-        try:
-            await self.app(scope, receive, record)
-        finally:
-            route = getattr(scope.get("route"), "path", None) or "(no route)"
-            neem = scope.get("path_params", {}).get("neem")
-            LOG.info("%s %s%s %d %.1f ms", scope["method"], route, f" neem={neem}" if neem else "", status[0],
-                     (time.perf_counter() - started) * 1000)
-
-    def _refusal(self, scope: dict[str, Any], headers: dict[str, str]) -> JSONResponse | None:
-        origin = headers.get("origin")
-        if origin is not None and urlsplit(origin).netloc != headers.get("host"):
-            return _error(403, "cross-origin requests are refused")
-        path = scope["path"]
-        token = self.ctx.token
-        if token is None or path in OPEN_PATHS or path.startswith(STATIC_DOCS):
-            return None
-        given = _presented(headers, scope.get("query_string", b""))
-        if given is None or not hmac.compare_digest(given.encode(), token.encode()):
-            return _error(401, "this service needs its token: Authorization: Bearer <token>")
-        return None
-
-
-def _presented(headers: dict[str, str], query: bytes) -> str | None:
-    header = headers.get("authorization", "")
-    if header.lower().startswith("bearer "):
-        return header[7:].strip()
-    values = parse_qs(query.decode("latin-1")).get("token")
-    return values[0] if values else None
 
 
 def _offline_docs(app: FastAPI) -> None:

@@ -26,6 +26,7 @@ from oracle.errors import NeemOracleError, StoreError
 from oracle.neem.writer import NeemLogger
 from oracle.timeline import Instant
 from oracle.ontology import OdbOntology
+from oracle.service.guard import Limits
 from oracle.service.session import NeemSession, make_predictor, moment_of
 from oracle.store import Store
 from oracle.store.ids import alias_of, find_neem
@@ -78,8 +79,11 @@ def _log_failure(future: Any) -> None:
 class Engine:
     """The live model of the store. Call its methods on the engine thread only."""
 
-    def __init__(self, store: Store, ontology: OdbOntology, settings: Hyperparameters, method: str = DEFAULT) -> None:
+    def __init__(self, store: Store, ontology: OdbOntology, settings: Hyperparameters, method: str = DEFAULT,
+                 limits: Limits | None = None) -> None:
         self.store = store
+        self.limits = limits or Limits()
+        self.created = 0
         self.ontology = ontology
         self.settings = settings
         #: The predictor every session fits (``serve --method``; default: the routine predictor).
@@ -100,6 +104,10 @@ class Engine:
 
     def create(self, user: str, neem: str | None) -> dict[str, Any]:
         """A new NEEM (``neem``: its name; an existing NEEM of that name or id is a LoggingError)."""
+        if self.created >= self.limits.new_neems:
+            raise Overloaded(429, f"this service has created {self.created} NEEMs, its limit; restart it to make more")
+        self._room_for_a_session()
+        self.created += 1
         logger = NeemLogger.create(self.store, self.ontology, user=user, neem_id=neem, commit_every=NEVER)
         self.sessions[logger.neem_id] = NeemSession(logger.neem_id, logger, self.ontology,
                                                     make_predictor(self.ontology, self.settings, self.method), [])
@@ -128,12 +136,17 @@ class Engine:
             neem = self.resolve(name)
             if neem in self.sessions:
                 return self.sessions[neem]
+            self._room_for_a_session()
             history = HistoryCache.default().history(self.bridge(neem))
             logger = NeemLogger(self.store, self.ontology, neem, commit_every=NEVER)
             session = NeemSession(neem, logger, self.ontology, make_predictor(self.ontology, self.settings, self.method), history)
             self.sessions[neem] = session
             self._show_latest(session)
         return session
+
+    def _room_for_a_session(self) -> None:
+        if len(self.sessions) >= self.limits.sessions:
+            raise Overloaded(503, f"{len(self.sessions)} NEEMs are open, this service's limit")
 
     def _show_latest(self, session: NeemSession) -> None:
         """Rank the NEEM's latest imagined situation (not written: it was ranked when logged), so
@@ -171,7 +184,9 @@ class Engine:
 
     # -- Prolog -------------------------------------------------------------------------------
     def prolog(self, neem: str, query: str, bindings: dict[str, Any], offset: int, limit: int,
-               seconds: float) -> dict[str, Any]:
+               seconds: float, writes: bool = False) -> dict[str, Any]:
+        """A page of the query's solutions; it runs at most ``limits.query_seconds`` and only
+        predicates json_query allows (``writes``: also its `write` class)."""
         from pyswip import Atom
 
         bridge = self.bridge(self.session(neem).neem)  # a NotFound error for a missing NEEM
@@ -180,11 +195,12 @@ class Engine:
             self._query_loaded = True
         pairs = [[Atom(name), _term_value(name, value)] for name, value in bindings.items()]
         rows = bridge.ask("neem_store:py_request(R), json_query:json_query(R, J)",
-                          [query, pairs, offset, limit, float(seconds)])
+                          [query, pairs, offset, limit, float(min(seconds, self.limits.query_seconds)),
+                           Atom("true" if writes else "false")])
         text = rows[0]["J"]
         reply = json.loads(text.decode("utf-8") if isinstance(text, bytes) else text)
         if "error" in reply:
-            raise PrologQueryError(reply["error"])
+            raise (PrologRefused if reply.get("refused") else PrologQueryError)(reply["error"])
         return reply
 
 
@@ -194,6 +210,18 @@ class NotFound(StoreError):
 
 class PrologQueryError(NeemOracleError):
     """The query a client sent cannot be run (syntax, unsafe goal, an error it raised)."""
+
+
+class PrologRefused(PrologQueryError):
+    """The query calls a predicate that is not on the read-only allow-list (HTTP 403)."""
+
+
+class Overloaded(NeemOracleError):
+    """A limit of the process is reached (``status``: 429 or 503)."""
+
+    def __init__(self, status: int, message: str) -> None:
+        super().__init__(message)
+        self.status = status
 
 
 def _term_value(name: str, value: Any) -> Any:
@@ -210,4 +238,4 @@ def _term_value(name: str, value: Any) -> Any:
     raise PrologQueryError(f"binding {name}: expected a string (atom), a number or a list, got {type(value).__name__}")
 
 
-__all__ = ["Engine", "EngineThread", "NotFound", "PrologQueryError", "QUERY_MODULE"]
+__all__ = ["Engine", "EngineThread", "NotFound", "Overloaded", "PrologQueryError", "PrologRefused", "QUERY_MODULE"]

@@ -17,6 +17,7 @@ from pathlib import Path
 import yaml
 
 from oracle.chains import ChainRow, TaskCall, parse_call, write_chains
+from oracle.files import private_file
 from oracle.errors import NeemOracleError
 from oracle.timeline import first_hour
 from oracle.world.personas import MUGS, Persona, RoutineEntry, make_personas
@@ -378,7 +379,8 @@ def generate(out: Path | str, personas: int = 105, days: int = 7, seed: int = 0,
         "personas": [p.to_yaml() for p in people],
     }
     try:
-        (out / "personas.yaml").write_text(yaml.safe_dump(header, sort_keys=False, allow_unicode=True, width=100))
+        with private_file(out / "personas.yaml") as handle:
+            handle.write(yaml.safe_dump(header, sort_keys=False, allow_unicode=True, width=100))
         for name, rows in splits.items():
             write_chains(rows, out / f"{name}.jsonl")
     except OSError as error:

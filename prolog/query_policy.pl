@@ -1,0 +1,297 @@
+:- module(query_policy,
+    [ exposed/3,                  % ?Module, ?Name/Arity, ?Class
+      goal_argument/3             % ?Module, ?Name/Arity, ?Index
+    ]).
+/** <module> Which predicates a service query may call: one table line per predicate
+
+`/api/prolog` (json_query/2) runs a goal only when every predicate in it is on this table as
+`read`: a pure reader of the NEEM, the ontology or a term. The table is an allow-list: a
+predicate that is not on it is refused, whatever its name. Every predicate exported by a module
+under prolog/ has a line here (query_policy.plt fails naming any that has none), so a new
+export is exposed only when someone decides it reads.
+
+Classes:
+  - `read`: reads only (no store write, no global state, no file, no output);
+  - `write`: changes the NEEM or the session's state; refused unless the service runs with
+    `--allow-prolog-writes` (which needs a token);
+  - `hidden`: never exposed: the store's own access, file loading, test fixtures, the
+    service's plumbing, anything that calls a goal it was given as data.
+
+The builtins and library predicates at the end are the pure ones a query needs for terms,
+atoms, arithmetic and lists; they are classed by the module that defines them (`system`,
+`lists`, `pairs`), as json_query resolves a goal to its defining module before looking it up.
+*/
+
+%!  exposed(?Module, ?PI, ?Class) is nondet.
+%   The predicate Name/Arity of Module is in Class: `read`, `write` or `hidden`.
+
+% -- the robot's answers (prolog/answers.pl)
+exposed(answers, why_not/2, read).
+exposed(answers, why_not/3, read).
+exposed(answers, what_next/1, read).
+exposed(answers, something_else/2, read).
+exposed(answers, something_else/3, read).
+exposed(answers, chosen_after/3, read).
+exposed(answers, call_text/2, read).
+exposed(answers, reason_dict/2, read).
+exposed(answers, answer_json/1, hidden).       % answers the bridge's pending request
+% -- service and tool plumbing
+exposed(batch_toplevel, batch_queries/3, hidden).
+exposed(batch_toplevel, batch_goal/2, hidden).
+exposed(json_query, json_query/2, hidden).
+exposed(json_query, safe_query/1, hidden).
+exposed(json_query, safe_query/2, hidden).
+exposed(json_text, json_text/2, hidden).
+exposed(json_text, json_data_text/2, hidden).
+exposed(query_policy, exposed/3, hidden).
+exposed(query_policy, goal_argument/3, hidden).
+% -- KnowRob 2.x conformance harness and test fixtures
+exposed(knowrob_2x, knowrob_suite_setup/2, hidden).
+exposed(knowrob_2x, knowrob_2x_units/1, hidden).
+exposed(knowrob_2x, knowrob_2x_score/3, hidden).
+exposed(knowrob_2x, knowrob_fixture/2, hidden).
+exposed(knowrob_2x, assert_true/1, hidden).
+exposed(knowrob_2x, assert_false/1, hidden).
+exposed(knowrob_2x, assert_equals/2, hidden).
+exposed(knowrob_2x, assert_unifies/2, hidden).
+exposed(knowrob_2x, test_call/3, hidden).
+exposed(history_reference, situation_history_reference/1, hidden).
+exposed(history_reference, load_generated_episode/2, hidden).
+exposed(test_episode, load_test_episode/0, hidden).
+exposed(fixture_triples, fixture_assert/4, hidden).
+% -- the store itself (prolog/neem_store.pl): reached only through the language
+exposed(neem_store, store_backend/1, hidden).
+exposed(neem_store, store_use_memory/0, hidden).
+exposed(neem_store, store_use_python/1, hidden).
+exposed(neem_store, store_current_neem/1, hidden).
+exposed(neem_store, store_assert/1, hidden).
+exposed(neem_store, store_assert/3, hidden).
+exposed(neem_store, store_reset/0, hidden).
+exposed(neem_store, store_match/2, hidden).
+exposed(neem_store, store_match/3, hidden).
+exposed(neem_store, store_match_scoped/3, hidden).
+exposed(neem_store, store_in_graphs/2, hidden).
+exposed(neem_store, store_insert/1, hidden).
+exposed(neem_store, store_insert/2, hidden).
+exposed(neem_store, store_insert/3, hidden).
+exposed(neem_store, store_graph_version/2, hidden).
+exposed(neem_store, store_set_graph_version/3, hidden).
+exposed(neem_store, store_drop_graph/1, hidden).
+exposed(neem_store, store_retract/1, hidden).
+exposed(neem_store, store_annotation/3, hidden).
+exposed(neem_store, store_insert_annotations/1, hidden).
+exposed(neem_store, store_pose/4, hidden).
+exposed(neem_store, store_assert_pose/3, hidden).
+exposed(neem_store, store_taxonomic/1, hidden).
+exposed(neem_store, store_scope_now/1, hidden).
+exposed(neem_store, store_python_request/1, hidden).
+exposed(neem_store, store_set_request/1, hidden).
+% -- the query language (prolog/lang/)
+exposed(kb_db, load_owl/1, hidden).             % reads a file, replaces a graph
+exposed(kb_db, load_owl/2, hidden).
+exposed(kb_db, annotation/3, read).
+exposed(kb_db, has_label/2, read).
+exposed(kb_db, has_comment/2, read).
+exposed(kb_holds, holds/1, read).
+exposed(kb_holds, holds/3, read).
+exposed(kb_query, kb_call/1, read).
+exposed(kb_query, kb_call/2, read).
+exposed(kb_query, kb_call/3, read).
+exposed(kb_query, kb_call/4, read).
+exposed(kb_query, kb_call_stepwise/1, read).
+exposed(kb_query, kb_call_stepwise/2, read).
+exposed(kb_query, kb_compile/3, hidden).
+exposed(kb_query, kb_findall/4, read).
+exposed(kb_query, kb_findall/5, read).
+exposed(kb_query, kb_group/5, read).
+exposed(kb_query, kb_project/1, write).
+exposed(kb_query, kb_project/2, write).
+exposed(kb_query, kb_project/3, write).
+exposed(kb_query, kb_unproject/1, write).
+exposed(kb_scope, universal_scope/1, read).
+exposed(kb_scope, current_scope/1, read).
+exposed(kb_scope, scope_check/1, read).
+exposed(kb_scope, scope_overlaps/3, read).
+exposed(kb_scope, runtime_scope/3, read).
+exposed(kb_scope, scope_term/2, read).
+exposed(kb_scope, scope_dict/2, read).
+exposed(kb_scope, wildcard_scope/1, read).
+exposed(kb_scope, time_scope/3, read).
+exposed(kb_scope, time_scope_data/2, read).
+exposed(kb_scope, subscope_of/2, read).
+exposed(kb_scope, scope_intersect/3, read).
+exposed(kb_subgraph, add_subgraph/2, write).
+exposed(kb_subgraph, get_supgraphs/2, read).
+exposed(kb_subgraph, graph_filter/2, read).
+exposed(kb_subgraph, subgraph_reset/0, write).
+exposed(kb_temporal, during/2, read).
+exposed(kb_temporal, since/2, read).
+exposed(kb_temporal, until/2, read).
+exposed(kb_temporal, occurs/1, read).
+exposed(kb_triple, triple/3, read).
+exposed(kb_triple, kb_iri/2, read).
+exposed(kb_triple, iri_term/1, read).
+exposed(kb_triple, triple_steps/6, hidden).     % the compiler's internals
+exposed(kb_triple, value_test/3, read).
+exposed(kb_triple, modified_triple/4, hidden).
+exposed(kb_triple, unit_factor/2, read).
+% -- the model (prolog/model/)
+exposed(soma_action, action_status/2, read).
+exposed(soma_action, action_succeeded/1, read).
+exposed(soma_action, action_failed/1, read).
+exposed(soma_action, action_active/1, read).
+exposed(soma_action, action_paused/1, read).
+exposed(dul_event, is_event/1, read).
+exposed(dul_event, is_action/1, read).
+exposed(dul_event, is_mental_action/1, read).
+exposed(dul_event, executes_task/2, read).
+exposed(dul_event, is_performed_by/2, read).
+exposed(dul_event, has_participant/2, read).
+exposed(dul_event, has_participant/3, read).
+exposed(dul_event, has_subevent/2, read).
+exposed(dul_event, has_time_interval/2, read).
+exposed(dul_event, has_interval_begin/2, read).
+exposed(dul_event, has_interval_end/2, read).
+exposed(dul_event, event_interval/3, read).
+exposed(allen_interval, interval/2, read).
+exposed(allen_interval, interval_before/2, read).
+exposed(allen_interval, interval_after/2, read).
+exposed(allen_interval, interval_meets/2, read).
+exposed(allen_interval, interval_met_by/2, read).
+exposed(allen_interval, interval_overlaps/2, read).
+exposed(allen_interval, interval_overlapped_by/2, read).
+exposed(allen_interval, interval_starts/2, read).
+exposed(allen_interval, interval_started_by/2, read).
+exposed(allen_interval, interval_during/2, read).
+exposed(allen_interval, interval_contains/2, read).
+exposed(allen_interval, interval_finishes/2, read).
+exposed(allen_interval, interval_finished_by/2, read).
+exposed(allen_interval, interval_equals/2, read).
+exposed(dul_object, is_object/1, read).
+exposed(dul_object, is_physical_object/1, read).
+exposed(dul_object, is_agent/1, read).
+exposed(dul_object, is_role/1, read).
+exposed(dul_object, has_role/2, read).
+exposed(dul_object, is_classified_by/2, read).
+exposed(dul_object, has_region/2, read).
+exposed(model_rdfs, instance_of/2, read).
+exposed(model_rdfs, subclass_of/2, read).
+exposed(model_rdfs, subproperty_of/2, read).
+exposed(model_rdfs, has_type/2, read).
+exposed(model_rdfs, is_resource/1, read).
+exposed(model_rdfs, is_property/1, read).
+exposed(model_rdfs, has_range/2, read).
+exposed(model_rdfs, has_domain/2, read).
+exposed(model_rdfs, rdf_list/2, read).
+exposed(model_rdfs, rdf_list_head/2, read).
+exposed(model_rdfs, new_iri/1, hidden).         % mints IRIs for writers
+exposed(model_rdfs, new_iri/2, hidden).
+exposed(dul_situation, is_task/1, read).
+exposed(dul_situation, is_physical_task/1, read).
+exposed(dul_situation, is_episode/1, read).
+exposed(dul_situation, task_role/2, read).
+exposed(dul_situation, plan_defines_task/2, read).
+exposed(dul_situation, is_setting_for/2, read).
+exposed(dul_situation, satisfies/2, read).
+exposed(dul_situation, is_diagnosis/1, read).
+exposed(kb_tf, is_at/2, read).
+exposed(kb_tf, tf_get_pose/3, read).
+exposed(kb_tf, object_frame_name/2, read).
+% -- the odb model (prolog/odb/)
+exposed(odb_calls, task_class/2, read).
+exposed(odb_calls, task_call/2, read).
+exposed(odb_calls, task_calls/2, read).
+exposed(odb_calls, call_tasks/2, read).
+exposed(odb_calls, call_task_times/3, read).
+exposed(odb_calls, call_time/4, read).
+exposed(odb_calls, call_time/5, read).
+exposed(odb_calls, action_call/4, read).
+exposed(odb_calls, times_done/2, read).
+exposed(odb_calls, chain_before/3, read).
+exposed(odb_decisions, decision/3, read).
+exposed(odb_decisions, decision_at/3, read).
+exposed(odb_decisions, latest_decision/4, read).
+exposed(odb_decisions, imagined_available/2, read).
+exposed(odb_decisions, available_tasks_at/2, read).
+exposed(odb_decisions, imagined_preference/2, read).
+exposed(odb_decisions, preference_at/3, read).
+exposed(odb_decisions, latest_preference/3, read).
+exposed(odb_decisions, times_available/2, read).
+exposed(odb_decisions, action_time/5, read).
+exposed(odb_events, event_time_of_day/2, read).
+exposed(odb_events, is_idle_action/1, read).
+exposed(odb_events, idle_action/3, read).
+exposed(odb_events, perceived_at/2, read).
+exposed(odb_history, situation_history/1, read).
+exposed(odb_history, situation_history_after/2, read).
+exposed(odb_history, situation_history_json/1, read).
+exposed(odb_history, situation_history_json/2, read).
+exposed(odb_history, latest_situation/2, read).
+exposed(odb_history, latest_situation_json/1, read).
+exposed(odb_names, odb_iri/2, read).
+exposed(odb_names, odb_set_namespace/1, write).
+exposed(odb_names, odb_set_task_roles/3, write).
+exposed(odb_names, odb_task_roles/3, read).
+exposed(odb_names, call_classes/3, read).
+exposed(odb_past, latest_time/1, read).
+exposed(odb_past, done_between/3, read).
+exposed(odb_past, last_done/3, read).
+exposed(odb_past, done_times/4, read).
+exposed(odb_past, usual_after/3, read).
+exposed(odb_past, suggestion/3, read).
+exposed(odb_past, object_place/3, read).
+exposed(odb_past, last_before/2, read).
+exposed(odb_past, latest_before/3, read).
+exposed(odb_past, performers/2, read).
+exposed(odb_past, past_answer_json/1, hidden).   % answers the bridge's pending request
+exposed(odb_routines, routine_workflow/1, read).
+exposed(odb_routines, workflow_calls/2, read).
+exposed(odb_routines, stored_routines_json/1, read).
+% -- pure builtins and library predicates: terms, comparison, arithmetic, atoms, lists
+exposed(system, Name/Arity, read) :- pure_builtin(Name/Arity).
+exposed(lists, member/2, read).
+exposed(lists, nth0/3, read).
+exposed(lists, nth1/3, read).
+exposed(lists, last/2, read).
+exposed(lists, append/3, read).
+exposed(lists, reverse/2, read).
+exposed(lists, list_to_set/2, read).
+exposed(lists, sum_list/2, read).
+exposed(lists, max_list/2, read).
+exposed(lists, min_list/2, read).
+exposed(pairs, pairs_keys_values/3, read).
+
+pure_builtin(true/0). pure_builtin(fail/0). pure_builtin(false/0).
+pure_builtin((=)/2). pure_builtin((\=)/2). pure_builtin((==)/2). pure_builtin((\==)/2).
+pure_builtin((@<)/2). pure_builtin((@>)/2). pure_builtin((@=<)/2). pure_builtin((@>=)/2).
+pure_builtin(compare/3).
+pure_builtin((is)/2). pure_builtin((<)/2). pure_builtin((>)/2). pure_builtin((=<)/2).
+pure_builtin((>=)/2). pure_builtin((=:=)/2). pure_builtin((=\=)/2).
+pure_builtin(var/1). pure_builtin(nonvar/1). pure_builtin(atom/1). pure_builtin(number/1).
+pure_builtin(integer/1). pure_builtin(float/1). pure_builtin(string/1). pure_builtin(is_list/1).
+pure_builtin(compound/1). pure_builtin(ground/1). pure_builtin(atomic/1). pure_builtin(callable/1).
+pure_builtin(functor/3). pure_builtin(arg/3). pure_builtin((=..)/2).
+pure_builtin(atom_concat/3). pure_builtin(sub_atom/5). pure_builtin(atom_string/2).
+pure_builtin(atom_length/2). pure_builtin(atom_number/2). pure_builtin(term_to_atom/2).
+pure_builtin(atomic_list_concat/2). pure_builtin(atomic_list_concat/3).
+pure_builtin(split_string/4). pure_builtin(string_concat/3). pure_builtin(sub_string/5).
+pure_builtin(string_length/2). pure_builtin(number_codes/2). pure_builtin(atom_codes/2).
+pure_builtin(memberchk/2). pure_builtin(length/2). pure_builtin(msort/2). pure_builtin(sort/2).
+pure_builtin(sort/4).
+pure_builtin(between/3). pure_builtin(succ/2). pure_builtin(plus/3).
+
+%!  goal_argument(?Module, ?PI, ?Index) is nondet.
+%   Argument Index of the `read` predicate Module:PI is a goal (KnowRob's query language or a
+%   scope modifier): json_query checks it with the same table before anything runs.
+goal_argument(kb_query, kb_call/1, 1).
+goal_argument(kb_query, kb_call/2, 1).
+goal_argument(kb_query, kb_call/3, 1).
+goal_argument(kb_query, kb_call/4, 1).
+goal_argument(kb_query, kb_call_stepwise/1, 1).
+goal_argument(kb_query, kb_call_stepwise/2, 1).
+goal_argument(kb_query, kb_findall/4, 2).
+goal_argument(kb_query, kb_findall/5, 2).
+goal_argument(kb_query, kb_group/5, 3).
+goal_argument(kb_temporal, during/2, 1).
+goal_argument(kb_temporal, since/2, 1).
+goal_argument(kb_temporal, until/2, 1).

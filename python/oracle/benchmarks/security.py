@@ -1,0 +1,229 @@
+"""The service under attack (issue 35, docs/security.md): a real ``serve`` process on a free
+loopback port, sent what a flood would send. Printed: how fast and how small the answer to a
+50 MB body is, the server's peak resident memory through four such bodies at once, and the
+robot's situation round trip alone and while Prolog queries that run to their time limit keep
+coming. tests/security uses the same client functions to assert the behaviour.
+"""
+
+from __future__ import annotations
+
+import json
+import select
+import socket
+import subprocess
+import sys
+import threading
+import time
+import urllib.error
+import urllib.request
+from dataclasses import dataclass
+from pathlib import Path
+
+#: A body this large is what a flood sends (the limit is 1 MiB).
+FLOOD_BYTES = 50 * 1024 * 1024
+#: A query that runs until the service's time limit stops it.
+ENDLESS_QUERY = "between(1, inf, X), X < 0"
+
+
+@dataclass(frozen=True)
+class Service:
+    process: subprocess.Popen
+    port: int
+
+    @property
+    def url(self) -> str:
+        return f"http://127.0.0.1:{self.port}"
+
+
+@dataclass(frozen=True)
+class Answer:
+    status: int
+    body: bytes
+    seconds: float
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+def start(store: Path, *extra: str, port: int | None = None, wait_s: float = 120) -> Service:
+    """``oracle serve`` over ``store``, once it answers /api/health."""
+    port = port or free_port()
+    process = subprocess.Popen([sys.executable, "-m", "oracle", "serve", "--store", str(store), "--port", str(port), *extra],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    deadline = time.monotonic() + wait_s
+    while time.monotonic() < deadline:
+        try:
+            urllib.request.urlopen(f"http://127.0.0.1:{port}/api/health", timeout=2).read()
+            return Service(process, port)
+        except OSError:
+            if process.poll() is not None:
+                break
+            time.sleep(0.1)
+    process.kill()
+    raise RuntimeError(f"the service did not start: {process.stderr.read().decode() if process.stderr else ''}")
+
+
+def stop(service: Service) -> None:
+    service.process.terminate()
+    try:
+        service.process.wait(timeout=20)
+    except subprocess.TimeoutExpired:
+        service.process.kill()
+        service.process.wait()
+
+
+def call(url: str, path: str, body: object = None, headers: dict[str, str] | None = None,
+         timeout: float = 60) -> tuple[int, dict, dict[str, str]]:
+    """One request; its status, JSON answer and headers (lower-case names)."""
+    data = None if body is None else json.dumps(body).encode()
+    request = urllib.request.Request(url + path, data=data, headers={"Content-Type": "application/json", **(headers or {})})
+    try:
+        with urllib.request.urlopen(request, timeout=timeout) as response:
+            raw, status, got = response.read(), response.status, response.headers
+    except urllib.error.HTTPError as error:
+        raw, status, got = error.read(), error.code, error.headers
+    try:
+        answer = json.loads(raw) if raw else {}
+    except ValueError:
+        answer = {"text": raw.decode("utf-8", "replace")}
+    return status, answer, {k.lower(): v for k, v in got.items()}
+
+
+def post_oversized(port: int, size: int = FLOOD_BYTES, chunked: bool = False, path: str = "/api/prolog") -> Answer:
+    """POST ``size`` bytes of JSON-looking text, stopping as soon as the server answers; the
+    answer's status and bytes, and the seconds from the first byte sent to the answer read."""
+    started = time.perf_counter()
+    with socket.create_connection(("127.0.0.1", port), timeout=30) as sock:
+        length = b"Transfer-Encoding: chunked" if chunked else f"Content-Length: {size}".encode()
+        sock.sendall(b"POST " + path.encode() + b" HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
+                     + length + b"\r\n\r\n")
+        piece = b"[" * 65536
+        sent = 0
+        try:
+            while sent < size:
+                readable, _, _ = select.select([sock], [], [], 0)
+                if readable:
+                    break  # the server has answered: stop sending
+                chunk = piece if not chunked else b"%x\r\n" % len(piece) + piece + b"\r\n"
+                sock.sendall(chunk)
+                sent += len(piece)
+            if chunked and sent >= size:
+                sock.sendall(b"0\r\n\r\n")
+        except (BrokenPipeError, ConnectionResetError):
+            pass  # closed by the server after its answer
+        data = b""
+        try:
+            while True:
+                got = sock.recv(65536)
+                if not got:
+                    break
+                data += got
+                if b"\r\n\r\n" in data and _complete(data):
+                    break
+        except (ConnectionResetError, TimeoutError):
+            pass
+    seconds = time.perf_counter() - started
+    head, _, body = data.partition(b"\r\n\r\n")
+    status = int(head.split(b" ")[1]) if head.startswith(b"HTTP/") else 0
+    return Answer(status, body, seconds)
+
+
+def _complete(data: bytes) -> bool:
+    head, _, body = data.partition(b"\r\n\r\n")
+    for line in head.split(b"\r\n"):
+        if line.lower().startswith(b"content-length:"):
+            return len(body) >= int(line.split(b":")[1])
+    return False
+
+
+def peak_rss_mb(pid: int) -> float:
+    """The process's peak resident memory so far (VmHWM), MB."""
+    for line in Path(f"/proc/{pid}/status").read_text().splitlines():
+        if line.startswith("VmHWM:"):
+            return int(line.split()[1]) / 1024
+    return float("nan")
+
+
+def flood(port: int, bodies: int = 4) -> list[Answer]:
+    """``bodies`` oversized POSTs at once, half with a Content-Length, half chunked."""
+    answers: list[Answer] = [Answer(0, b"", 0.0)] * bodies
+
+    def one(i: int) -> None:
+        answers[i] = post_oversized(port, chunked=bool(i % 2))
+
+    threads = [threading.Thread(target=one, args=(i,)) for i in range(bodies)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    return answers
+
+
+def situation_latencies(url: str, neem: str, available: list[str], first_at: float, n: int) -> list[float]:
+    """``n`` situations posted one after another, 1 s apart in NEEM time; round trips in ms."""
+    times = []
+    for i in range(n):
+        started = time.perf_counter()
+        status, _, _ = call(url, f"/api/neems/{neem}/situation", {"available": available, "at": first_at + i})
+        times.append((time.perf_counter() - started) * 1000)
+        if status != 200:
+            raise RuntimeError(f"situation answered {status}")
+    return sorted(times)
+
+
+def run(quick: bool = False) -> list[dict]:
+    import tempfile
+
+    from oracle.service.robot import percentile, persona_rows
+
+    rows: list[dict] = []
+    n = 30 if quick else 100
+    with tempfile.TemporaryDirectory() as folder:
+        service = start(Path(folder) / "s.sqlite")
+        try:
+            user, steps = persona_rows(0, 3, 3)
+            call(service.url, "/api/neems", {"user": user, "neem": "sec"})
+            for row in steps[:20]:
+                call(service.url, "/api/neems/sec/actions", {"call": str(row.action), "begin": row.time.timestamp()})
+            available = sorted({str(c) for row in steps[:20] for c in row.available} | {str(steps[0].action)})
+            at = steps[19].time.timestamp() + 10
+            rss_before = peak_rss_mb(service.process.pid)
+            one = post_oversized(service.port)
+            print(f"  50 MB body (Content-Length): {one.status} in {one.seconds * 1000:.1f} ms, answer {len(one.body)} bytes",
+                  flush=True)
+            chunked = post_oversized(service.port, chunked=True)
+            print(f"  50 MB body (chunked):        {chunked.status} in {chunked.seconds * 1000:.1f} ms,"
+                  f" answer {len(chunked.body)} bytes", flush=True)
+            answers = flood(service.port, 4)
+            rss_after = peak_rss_mb(service.process.pid)
+            print(f"  4 x 50 MB at once: statuses {sorted(a.status for a in answers)}; peak RSS {rss_before:.0f} MB before,"
+                  f" {rss_after:.0f} MB after", flush=True)
+            rows += [{"area": "security", "name": "413 for 50 MB", "ms": round(one.seconds * 1000, 1), "bytes": len(one.body)},
+                     {"area": "security", "name": "413 for 50 MB chunked", "ms": round(chunked.seconds * 1000, 1),
+                      "bytes": len(chunked.body)},
+                     {"area": "security", "name": "peak RSS, 4 floods", "mb": round(rss_after, 1)}]
+            call(service.url, "/api/neems/sec/situation", {"available": available, "at": at})  # the session's fit
+            alone = situation_latencies(service.url, "sec", available, at + 1, n)
+            busy = threading.Event()
+
+            def queries() -> None:
+                while not busy.is_set():
+                    call(service.url, "/api/prolog", {"query": ENDLESS_QUERY, "neem": "sec"})
+
+            thread = threading.Thread(target=queries)
+            thread.start()
+            try:
+                loaded = situation_latencies(service.url, "sec", available, at + 1 + n, n)
+            finally:
+                busy.set()
+                thread.join()
+            for name, values in (("situation alone", alone), ("situation, queries running", loaded)):
+                p50, p99 = percentile(values, 50), percentile(values, 99)
+                print(f"  {name:28s} n={len(values)} p50 {p50:7.1f} ms  p99 {p99:7.1f} ms", flush=True)
+                rows.append({"area": "security", "name": name, "p50_ms": round(p50, 2), "p99_ms": round(p99, 2)})
+        finally:
+            stop(service)
+    return rows

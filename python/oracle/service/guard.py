@@ -1,0 +1,250 @@
+"""The service's front door: what a request must be before any handler sees it.
+
+One pure ASGI middleware (cheaper than Starlette's BaseHTTPMiddleware on every request), in
+this order: the Host must be one this service answers to (DNS rebinding: a page of another
+site that resolves its name to 127.0.0.1 sends its own name as Host) -> 421; an Origin of
+another site -> 403; the token when there is one -> 401; too many requests at once -> 503;
+a body over the limit -> 413 (from Content-Length, or while it streams in; never echoed);
+JSON nested too deep -> 400. Every answer carries the headers that keep the page out of
+frames and stop content sniffing. The request log holds the method, the route template, the
+NEEM id, the status and the time; never a task, an object, a query or a token.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import hmac
+import ipaddress
+import json
+import logging
+import re
+import time
+from dataclasses import dataclass
+from typing import Any
+from urllib.parse import parse_qs, urlsplit
+
+LOG = logging.getLogger("oracle.service")
+#: Paths that show no user data: the schema and its viewer need no token.
+OPEN_PATHS = ("/openapi.json", "/docs", "/docs/")
+STATIC_DOCS = "/docs/static"
+#: Host names every service answers to (plus its bound address and ``--allowed-host`` names).
+LOOPBACK_HOSTS = frozenset({"localhost", "127.0.0.1", "::1"})
+#: Sent with every answer: no site may frame the page (clickjacking), no type sniffing.
+FRAME_POLICY = "frame-ancestors 'none'"
+SAFE_HEADERS = ((b"x-frame-options", b"DENY"), (b"x-content-type-options", b"nosniff"))
+#: JSON strings, removed before brackets are counted (a bracket inside a string nests nothing).
+_STRING = re.compile(rb'"(?:[^"\\]|\\.)*"', re.DOTALL)
+_NOT_BRACKET = bytes(b for b in range(256) if b not in b"[]{}")
+
+
+@dataclass(frozen=True)
+class Limits:
+    """What one request and one process may take (docs/security.md lists them with why)."""
+
+    #: Largest request body, bytes (413 above it).
+    body_bytes: int = 1 << 20
+    #: Deepest JSON nesting of a body (400 deeper).
+    json_depth: int = 32
+    #: Seconds a client may take to send its body once its headers are in (408 after).
+    body_seconds: float = 10.0
+    #: Requests handled at once; more get 503 (uvicorn's limit_concurrency is set above it).
+    in_flight: int = 48
+    #: Prolog queries running or queued at once; more get 429.
+    queries: int = 1
+    #: Longest a Prolog query may run, seconds (a client asking more gets this).
+    query_seconds: float = 1.0
+    #: Live NEEM sessions a process keeps; opening more gets 503.
+    sessions: int = 64
+    #: NEEMs one process may create; more get 429 (the store is the person's, not a dump).
+    new_neems: int = 256
+    #: Event stream subscribers at once; more get 503.
+    subscribers: int = 32
+    #: Seconds an idle keep-alive connection stays open (uvicorn's timeout_keep_alive).
+    keep_alive_seconds: float = 5.0
+
+
+def allowed_hosts(bound: str, extra: tuple[str, ...] = ()) -> frozenset[str]:
+    """The Host names a service bound to ``bound`` answers to (lower case, no port)."""
+    return frozenset({*LOOPBACK_HOSTS, _host_name(bound), *(_host_name(name) for name in extra)})
+
+
+def _host_name(host: str) -> str:
+    """``Example.org:8765`` -> ``example.org``; ``[::1]:8765`` -> ``::1``."""
+    host = host.strip().lower()
+    if host.startswith("["):
+        return host[1:host.find("]")] if "]" in host else host
+    return host.rsplit(":", 1)[0] if host.count(":") == 1 else host
+
+
+def _wildcard(hosts: frozenset[str]) -> bool:
+    return "0.0.0.0" in hosts or "::" in hosts
+
+
+def _is_address(name: str) -> bool:
+    try:
+        ipaddress.ip_address(name)
+    except ValueError:
+        return False
+    return True
+
+
+class Refusal(Exception):
+    """A request the guard answers itself: its status and one line."""
+
+    def __init__(self, status: int, message: str, headers: tuple[tuple[bytes, bytes], ...] = ()) -> None:
+        super().__init__(message)
+        self.status = status
+        self.headers = headers
+
+
+class Guard:
+    """The middleware (see the module docstring). ``ctx`` is the app's Context: its token, its
+    allowed hosts and its limits."""
+
+    def __init__(self, app: Any, ctx: Any) -> None:
+        self.app = app
+        self.ctx = ctx
+        self.in_flight = 0
+
+    async def __call__(self, scope: dict[str, Any], receive: Any, send: Any) -> None:
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)
+            return
+        started = time.perf_counter()
+        status = [0]
+
+        async def framed(message: dict[str, Any]) -> None:
+            if message["type"] == "http.response.start":
+                status[0] = message["status"]
+                message = {**message, "headers": _with_safe_headers(message.get("headers", []))}
+            await send(message)
+
+        limits: Limits = self.ctx.limits
+        try:
+            headers = {k.decode("latin-1").lower(): v.decode("latin-1") for k, v in scope["headers"]}
+            self._check(scope, headers)
+            if self.in_flight >= limits.in_flight:
+                raise Refusal(503, "the service is busy: too many requests at once; retry shortly",
+                              ((b"retry-after", b"1"),))
+            self.in_flight += 1
+            try:
+                body = await _read_body(receive, headers, limits)
+                await self.app(scope, _replay(body, receive), framed)
+            finally:
+                self.in_flight -= 1
+        except Refusal as refusal:
+            if status[0] == 0:
+                await _answer(framed, refusal)
+        finally:
+            route = getattr(scope.get("route"), "path", None) or "(no route)"
+            neem = scope.get("path_params", {}).get("neem")
+            LOG.info("%s %s%s %d %.1f ms", scope["method"], route, f" neem={neem}" if neem else "", status[0],
+                     (time.perf_counter() - started) * 1000)
+
+    def _check(self, scope: dict[str, Any], headers: dict[str, str]) -> None:
+        host = headers.get("host")
+        if host is None:
+            raise Refusal(400, "the request has no Host header")
+        hosts: frozenset[str] = self.ctx.allowed_hosts
+        name = _host_name(host)
+        if name not in hosts and not (_wildcard(hosts) and _is_address(name)):
+            raise Refusal(421, "this service does not answer to that Host name (serve --allowed-host NAME adds one)")
+        origin = headers.get("origin")
+        if origin is not None and urlsplit(origin).netloc.lower() != host.lower():
+            raise Refusal(403, "cross-origin requests are refused")
+        path = scope["path"]
+        token = self.ctx.token
+        if token is None or path in OPEN_PATHS or path.startswith(STATIC_DOCS):
+            return
+        given = _presented(headers, scope.get("query_string", b""))
+        if given is None or not hmac.compare_digest(given.encode(), token.encode()):
+            raise Refusal(401, "this service needs its token: Authorization: Bearer <token>")
+
+
+async def _read_body(receive: Any, headers: dict[str, str], limits: Limits) -> bytes:
+    """The whole body, at most ``limits.body_bytes`` of it: decided from Content-Length before
+    anything is read, and again while it streams in (a chunked body has no length)."""
+    too_big = Refusal(413, f"the request body is larger than {limits.body_bytes} bytes",
+                      ((b"connection", b"close"),))
+    declared = headers.get("content-length")
+    if declared is not None:
+        if not declared.strip().isdigit():
+            raise Refusal(400, "Content-Length is not a number")
+        if int(declared) > limits.body_bytes:
+            raise too_big
+    chunks: list[bytes] = []
+    size = 0
+    more = True
+    deadline = time.monotonic() + limits.body_seconds
+    while more:
+        try:
+            message = await asyncio.wait_for(receive(), max(0.0, deadline - time.monotonic()))
+        except TimeoutError:
+            raise Refusal(408, "the request body came too slowly", ((b"connection", b"close"),)) from None
+        if message["type"] != "http.request":
+            break  # the client went away; the handler sees an empty body and its disconnect
+        chunk = message.get("body", b"")
+        size += len(chunk)
+        if size > limits.body_bytes:
+            raise too_big
+        chunks.append(chunk)
+        more = message.get("more_body", False)
+    body = b"".join(chunks)
+    if body and _depth(body) > limits.json_depth:
+        raise Refusal(400, f"the request body nests deeper than {limits.json_depth} levels")
+    return body
+
+
+def _depth(body: bytes) -> int:
+    """How deep the brackets of a JSON text nest (strings skipped); linear in the body."""
+    depth = deepest = 0
+    for byte in _STRING.sub(b"", body).translate(None, _NOT_BRACKET):
+        depth += 1 if byte in b"[{" else -1
+        deepest = max(deepest, depth)
+    return deepest
+
+
+def _replay(body: bytes, receive: Any) -> Any:
+    """A receive that hands the app the body already read, then the client's later messages
+    (its disconnect)."""
+    sent = [False]
+
+    async def replay() -> dict[str, Any]:
+        if not sent[0]:
+            sent[0] = True
+            return {"type": "http.request", "body": body, "more_body": False}
+        return dict(await receive())
+
+    return replay
+
+
+async def _answer(send: Any, refusal: Refusal) -> None:
+    body = json.dumps({"error": str(refusal)}).encode()
+    headers = [(b"content-type", b"application/json"), (b"content-length", str(len(body)).encode()), *refusal.headers]
+    await send({"type": "http.response.start", "status": refusal.status, "headers": headers})
+    await send({"type": "http.response.body", "body": body})
+
+
+def _with_safe_headers(headers: Any) -> list[tuple[bytes, bytes]]:
+    out = [(bytes(k), bytes(v)) for k, v in headers]
+    names = {k.lower() for k, _ in out}
+    out.extend(pair for pair in SAFE_HEADERS if pair[0] not in names)
+    for i, (key, value) in enumerate(out):
+        if key.lower() == b"content-security-policy":
+            if b"frame-ancestors" not in value:
+                out[i] = (key, value + b"; " + FRAME_POLICY.encode())
+            break
+    else:
+        out.append((b"content-security-policy", FRAME_POLICY.encode()))
+    return out
+
+
+def _presented(headers: dict[str, str], query: bytes) -> str | None:
+    header = headers.get("authorization", "")
+    if header.lower().startswith("bearer "):
+        return header[7:].strip()
+    values = parse_qs(query.decode("latin-1")).get("token")
+    return values[0] if values else None
+
+
+__all__ = ["Guard", "LOOPBACK_HOSTS", "Limits", "OPEN_PATHS", "Refusal", "allowed_hosts"]
