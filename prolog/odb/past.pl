@@ -219,15 +219,18 @@ object_place(Name, At, place(Pose, Used)) :-
 %!  performers(+Call, -Modes) is det.
 %   Who performed each action of Call, by begin: `Begin-Mode`, Mode `user` when the
 %   performer (soma:isPerformedBy) is a dul:NaturalPerson, `robot` when another
-%   dul:PhysicalAgent, `unknown` without a performer of either type. One store query for
-%   every action's performer types (a row or three per action), kept for Call's tasks.
+%   dul:PhysicalAgent, `unknown` without a performer of either type. One store query over
+%   the actions of Call's task class with their performers' types, kept for Call's tasks.
 performers(Call, Modes) :-
     check_call(Call),
+    call_classes(Call, TC, _),
     call_tasks(Call, Tasks0),
     sort(Tasks0, Tasks),
-    kb_findall(T-B-A, ( executes_task(A, T), event_interval(A, B, _) ), any, Actions0),
-    findall(A-B, ( member(T-B-A, Actions0), ord_memberchk(T, Tasks) ), Actions),
-    kb_findall(A-C, ( is_performed_by(A, Ag), triple(Ag, rdf:type, C) ), any, Typed0),
+    kb_findall(A-B-T, ( triple(T, rdf:type, TC), executes_task(A, T), has_time_interval(A, I),
+                        has_interval_begin(I, B) ), any, Actions0),
+    findall(A-B, ( member(A-B-T, Actions0), ord_memberchk(T, Tasks) ), Actions),
+    kb_findall(A-C, ( triple(T, rdf:type, TC), executes_task(A, T), is_performed_by(A, Ag),
+                      triple(Ag, rdf:type, C) ), any, Typed0),
     sort(Typed0, Typed),
     kb_iri(dul:'NaturalPerson', Person), kb_iri(dul:'PhysicalAgent', Agent),
     findall(B-Mode, ( member(A-B, Actions), performer_mode(A, Typed, Person, Agent, Mode) ), Modes0),

@@ -115,19 +115,25 @@ def mine_routines(done: Sequence[Done], settings: MiningSettings | None = None) 
     settings = settings or MiningSettings()
     episodes = episodes_of(done)
     clusters: list[list[Episode]] = []
+    sets: list[list[frozenset[str]]] = []  # each member's set of calls, made once
+    hours: list[float] = []  # the sum of the members' start hours
     for episode in episodes:
+        mine = frozenset(episode.calls)
         best, best_score = None, settings.min_similarity
-        for cluster in clusters:
-            mean_hour = statistics.fmean(e.hour for e in cluster)
-            if _hours_apart(episode.hour, mean_hour) > settings.max_hours:
+        for index, cluster in enumerate(clusters):
+            if _hours_apart(episode.hour, hours[index] / len(cluster)) > settings.max_hours:
                 continue
-            score = statistics.fmean(jaccard(episode.calls, e.calls) for e in cluster)
+            score = statistics.fmean(len(mine & other) / len(mine | other) for other in sets[index])
             if score >= best_score:
-                best, best_score = cluster, score
+                best, best_score = index, score
         if best is None:
             clusters.append([episode])
+            sets.append([mine])
+            hours.append(episode.hour)
         else:
-            best.append(episode)
+            clusters[best].append(episode)
+            sets[best].append(mine)
+            hours[best] += episode.hour
     observed = len({e.day for e in episodes})
     needed = max(settings.min_days, settings.min_share * observed)
     kept = [c for c in clusters if len({e.day for e in c}) >= needed]
