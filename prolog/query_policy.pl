@@ -201,6 +201,7 @@ exposed(kb_tf, object_frame_name/2, read).
 exposed(odb_calls, task_class/2, read).
 exposed(odb_calls, task_call/2, read).
 exposed(odb_calls, task_calls/2, read).
+exposed(odb_calls, task_calls_reached/3, hidden).   % calls the goal it is given
 exposed(odb_calls, call_tasks/2, read).
 exposed(odb_calls, call_task_times/3, read).
 exposed(odb_calls, call_time/4, read).
@@ -227,6 +228,8 @@ exposed(odb_history, situation_history_after/2, read).
 exposed(odb_history, situation_history_json/1, read).
 exposed(odb_history, situation_history_json/2, read).
 exposed(odb_history, latest_situation/2, read).
+exposed(odb_history, latest_situation/3, read).
+exposed(odb_history, history_view_json/2, read).
 exposed(odb_history, latest_situation_json/1, read).
 exposed(odb_names, odb_iri/2, read).
 exposed(odb_names, odb_set_namespace/1, write).
@@ -240,6 +243,9 @@ exposed(odb_past, done_times/4, read).
 exposed(odb_past, usual_after/3, read).
 exposed(odb_past, suggestion/3, read).
 exposed(odb_past, object_place/3, read).
+exposed(odb_past, last_before/2, read).
+exposed(odb_past, latest_before/3, read).
+exposed(odb_past, performers/2, read).
 exposed(odb_past, past_answer_json/1, hidden).   % answers the bridge's pending request
 % -- model_owl_description
 exposed(model_owl_description, is_owl_term/1, read).
@@ -424,6 +430,9 @@ exposed(kb_computable, drop_computable_predicate/1, write).
 exposed(kb_computable, drop_computable_predicate/2, write).
 exposed(kb_computable, drop_computable_property/1, write).
 exposed(kb_computable, drop_computable_property/2, write).
+exposed(odb_routines, routine_workflow/1, read).
+exposed(odb_routines, workflow_calls/2, read).
+exposed(odb_routines, stored_routines_json/1, read).
 % -- pure builtins and library predicates: terms, comparison, arithmetic, atoms, lists
 exposed(system, Name/Arity, read) :- pure_builtin(Name/Arity).
 exposed(lists, member/2, read).

@@ -1,11 +1,14 @@
 :- module(odb_past,
     [ latest_time/1,              % -Time
       done_between/3,             % +From, +To, -Done
+      last_before/2,              % +Time, -Done
+      latest_before/3,            % +Time, +N, -Done
       last_done/3,                % +Call, +Before, -Begin
       done_times/4,               % +Call, +From, +To, -Begins
       usual_after/3,              % +Call, -Occurrences, -Counts
       suggestion/3,               % +Call, +Before, -Suggestion
       object_place/3,             % +ObjectName, +At, -Place
+      performers/2,               % +Call, -Modes
       past_answer_json/1          % -JSONString
     ]).
 /** <module> Questions about the past: the evidence of the NEEM (RACCOON's state summaries)
@@ -25,9 +28,10 @@ The sentences are made in Python (oracle.past); this module hands over the evide
 :- use_module(library(apply)).
 :- use_module(library(pairs)).
 :- use_module(library(assoc)).
+:- use_module(library(ordsets)).
 :- use_module('../json_text', [json_text/2]).
 :- use_module('../neem_store', [store_match/3, store_python_request/1, store_pose/4]).
-:- use_module('../lang/query', [kb_call/2, kb_findall/4]).
+:- use_module('../lang/query', [kb_call/2, kb_findall/4, kb_findall/5]).
 :- use_module('../lang/triple', [kb_iri/2]).
 :- use_module('../model/rdfs', []).
 :- use_module('../model/event', []).
@@ -36,7 +40,7 @@ The sentences are made in Python (oracle.past); this module hands over the evide
 :- use_module('../model/tf', [object_frame_name/2]).
 :- use_module(names, [odb_iri/2, call_classes/3]).
 :- use_module(calls, [task_calls/2, call_tasks/2, call_task_times/3, call_time/5]).
-:- use_module(decisions, [decision/3, imagined_preference/2]).
+:- use_module(decisions, [decision/3, imagined_preference/2, preference_at/3]).
 :- use_module('../answers', [call_text/2]).
 
 %!  latest_time(-Time) is semidet.
@@ -48,29 +52,63 @@ latest_time(T) :-
 %!  done_between(+From, +To, -Done) is det.
 %   The non-idle actions that began in [From, To] (`none`: no bound), by begin, as
 %   `done(Begin, End, Call)`: one store query from the begins the store finds by value,
-%   then each distinct task's call once (task_calls/2).
+%   then each distinct odb task's call once (task_calls/2).
 done_between(From, To, Done) :-
     bound_or_none(From), bound_or_none(To),
     (   From == none
     ->  BSpec = B
     ;   BSpec = (>=(From) -> B)
     ),
-    kb_findall(B-E-T, ( triple(I, soma:hasIntervalBegin, BSpec), has_time_interval(A, I),
-                        has_interval_end(I, E), executes_task(A, T) ), any, Rows0),
-    include(begins_by(To), Rows0, Rows),
+    kb_findall(B-E-T-C, ( triple(I, soma:hasIntervalBegin, BSpec), has_time_interval(A, I),
+                          has_interval_end(I, E), executes_task(A, T), triple(T, rdf:type, C) ), any, Rows0),
+    odb_iri('IdleTask', Idle),
+    % the odb-typed, non-idle actions only: the mental actions' tasks need no call
+    findall(B-E-T, ( member(B-E-T-C, Rows0), C \== Idle, odb_iri(_, C), begins_by(To, B) ), Rows1),
+    sort(Rows1, Rows),
     findall(T, member(_-_-T, Rows), Ts),
     task_calls(Ts, Pairs),
     list_to_assoc(Pairs, CallOf),
-    findall(done(B1, E1, C),
-            ( member(B1-E1-T1, Rows), get_assoc(T1, CallOf, C), C \== 'IdleTask' ),
-            Done0),
+    findall(done(B1, E1, C1), ( member(B1-E1-T1, Rows), get_assoc(T1, CallOf, C1) ), Done0),
     sort(Done0, Done).
 
 begins_by(none, _) :- !.
-begins_by(To, B-_-_) :- B =< To.
+begins_by(To, B) :- B =< To.
 
 bound_or_none(none) :- !.
 bound_or_none(X) :- must_be(number, X).
+
+%!  last_before(+Time, -Done) is semidet.
+%   The latest non-idle action that began before Time, as `done(Begin, End, Call)`.
+last_before(Time, Done) :-
+    latest_before(Time, 1, [Done]).
+
+%!  latest_before(+Time, +N, -Done) is det.
+%   The (at most N) latest non-idle actions that began before Time, oldest first, as
+%   `done(Begin, End, Call)`: the store sends the latest odb-typed actions a few at a time
+%   (ordered, limited), never the whole NEEM's.
+latest_before(Time, N, Done) :-
+    must_be(number, Time), must_be(positive_integer, N),
+    odb_iri('IdleTask', Idle),
+    Ask is 2*N + 4,
+    latest_before(Time, Idle, N, Ask, Done).
+
+latest_before(Time, Idle, N, Ask, Done) :-
+    kb_findall(B-E-T-C, ( triple(I, soma:hasIntervalBegin, (<(Time) -> B)), has_time_interval(A, I),
+                          has_interval_end(I, E), executes_task(A, T), triple(T, rdf:type, C) ),
+               any, [order([desc(B)]), limit(Ask)], Rows),
+    findall(B-E-T, ( member(B-E-T-C, Rows), C \== Idle, odb_iri(_, C) ), Actions0),
+    sort(0, @>=, Actions0, Actions),
+    findall(T, member(_-_-T, Actions), Ts),
+    task_calls(Ts, Pairs),
+    findall(done(B, E, Call), ( member(B-E-T, Actions), memberchk(T-Call, Pairs) ), Found),
+    length(Rows, Got),
+    (   ( length(Found, K), K >= N ; Got < Ask )
+    ->  length(Found, K1), Keep is min(N, K1),
+        length(Latest, Keep), append(Latest, _, Found),
+        reverse(Latest, Done)
+    ;   Ask1 is Ask * 4,
+        latest_before(Time, Idle, N, Ask1, Done)
+    ).
 
 %!  last_done(+Call, +Before, -Begin) is semidet.
 %   The latest begin at or before Before (`none`: ever) of an action that executed Call.
@@ -94,8 +132,9 @@ done_times(Call, From, To, Begins) :-
 
 %!  usual_after(+Call, -Occurrences, -Counts) is det.
 %   What followed Call: Occurrences is how often Call was done, Counts the list of
-%   `Next-N` (the next non-idle action's call, how often), most often first (ties in the
-%   standard order of the calls). The last action of the NEEM has no next one. Reads Call's
+%   `Next-N` (the next non-idle action's call, how often), most often first (ties by the
+%   calls' text). The rule of oracle.past.routines.follows, which the service runs on the
+%   kept history (tests/past/test_follows.py holds the two equal). The last action of the NEEM has no next one. Reads Call's
 %   actions, every odb action's begin and task (one query each), then the calls of the few tasks
 %   that follow an occurrence: not the call of every task of the NEEM.
 usual_after(Call, Occurrences, Counts) :-
@@ -130,11 +169,11 @@ first_call(Tasks, CallOf, Call) :-
     get_assoc(T, CallOf, Call),
     Call \== 'IdleTask', !.
 
-%   Items as Item-N pairs, most often first, ties in the standard order.
+%   Items as Item-N pairs, most often first, ties by the calls' text.
 counted(Items, Counts) :-
     msort(Items, Sorted),
     clumped(Sorted, Pairs),
-    findall(Neg-(I-N), ( member(I-N, Pairs), Neg is -N ), Keyed),
+    findall((Neg-Text)-(I-N), ( member(I-N, Pairs), Neg is -N, call_text(I, Text) ), Keyed),
     keysort(Keyed, ByCount),
     pairs_values(ByCount, Counts).
 
@@ -177,6 +216,32 @@ object_place(Name, At, place(Pose, Used)) :-
         Used = used(UB, UC)
     ).
 
+%!  performers(+Call, -Modes) is det.
+%   Who performed each action of Call, by begin: `Begin-Mode`, Mode `user` when the
+%   performer (soma:isPerformedBy) is a dul:NaturalPerson, `robot` when another
+%   dul:PhysicalAgent, `unknown` without a performer of either type. One store query over
+%   the actions of Call's task class with their performers' types, kept for Call's tasks.
+performers(Call, Modes) :-
+    check_call(Call),
+    call_classes(Call, TC, _),
+    call_tasks(Call, Tasks0),
+    sort(Tasks0, Tasks),
+    kb_findall(A-B-T, ( triple(T, rdf:type, TC), executes_task(A, T), has_time_interval(A, I),
+                        has_interval_begin(I, B) ), any, Actions0),
+    findall(A-B, ( member(A-B-T, Actions0), ord_memberchk(T, Tasks) ), Actions),
+    kb_findall(A-C, ( triple(T, rdf:type, TC), executes_task(A, T), is_performed_by(A, Ag),
+                      triple(Ag, rdf:type, C) ), any, Typed0),
+    sort(Typed0, Typed),
+    kb_iri(dul:'NaturalPerson', Person), kb_iri(dul:'PhysicalAgent', Agent),
+    findall(B-Mode, ( member(A-B, Actions), performer_mode(A, Typed, Person, Agent, Mode) ), Modes0),
+    msort(Modes0, Modes).
+
+performer_mode(A, Typed, Person, Agent, Mode) :-
+    (   ord_memberchk(A-Person, Typed) -> Mode = user
+    ;   ord_memberchk(A-Agent, Typed) -> Mode = robot
+    ;   Mode = unknown
+    ).
+
 began_by(none, _) :- !.
 began_by(At, B-_) :- B =< At.
 
@@ -208,6 +273,16 @@ past_answer([after, Name, Args], _{task: Text, occurrences: N, next: Ds}) :-
     call_of(Name, Args, Call, Text),
     usual_after(Call, N, Counts),
     findall(_{task: T, count: K}, ( member(C-K, Counts), call_text(C, T) ), Ds).
+past_answer([before, Time, N], _{actions: Ds}) :-
+    latest_before(Time, N, Done),
+    findall(_{task: T, begin: B, end: E}, ( member(done(B, E, C), Done), call_text(C, T) ), Ds).
+past_answer([who, Name, Args], _{task: Text, modes: Ds}) :-
+    call_of(Name, Args, Call, Text),
+    performers(Call, Modes),
+    findall(_{time: B, mode: M}, member(B-M, Modes), Ds).
+past_answer([predicted, Time], _{predicted: Ds}) :-
+    (   preference_at(Time, _, Ranked) -> true ; Ranked = [] ),
+    findall(_{task: T, rank: R, score: S}, ( member(ranked(C, R, S), Ranked), call_text(C, T) ), Ds).
 past_answer([done, From, To], _{actions: Ds}) :-
     done_between(From, To, Done),
     findall(_{task: T, begin: B, end: E}, ( member(done(B, E, C), Done), call_text(C, T) ), Ds).

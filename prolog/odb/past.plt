@@ -3,6 +3,7 @@
 :- use_module(past).
 :- use_module('../neem_store').
 :- use_module('../fixtures/test_episode').
+:- use_module('../fixtures/triples', [fixture_assert/4]).
 
 %   The test episode: pour(thermos, green_mug) during [101, 110], idle [110, 200],
 %   pick(apple) during [201, 205]; decisions at 100 (pour ranked 1st, pick 2nd) and at 200.
@@ -15,6 +16,13 @@ test(done_between_skips_idle_and_mental_actions, [nondet, setup(load_test_episod
     All == [done(101, 110, pour(thermos, green_mug)), done(201, 205, pick(apple))],
     done_between(102, none, Later), Later == [done(201, 205, pick(apple))],
     done_between(none, 200, Earlier), Earlier == [done(101, 110, pour(thermos, green_mug))].
+
+test(last_before_skips_idle_and_mental_actions, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
+    last_before(300, D1), D1 == done(201, 205, pick(apple)),
+    last_before(201, D2), D2 == done(101, 110, pour(thermos, green_mug)),
+    \+ last_before(101, _),
+    latest_before(300, 5, L), L == [done(101, 110, pour(thermos, green_mug)), done(201, 205, pick(apple))],
+    latest_before(300, 1, [done(201, 205, pick(apple))]).
 
 test(last_done_before_a_time, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
     last_done(pick(apple), none, B), B =:= 201,
@@ -45,6 +53,12 @@ test(object_place_with_pose, [nondet, setup(load_test_episode), cleanup(store_re
     store_assert_pose(mug1, 150, ['map', [0.4, 1.2, 0.9], [0, 0, 0, 1]]),
     object_place(green_mug, none, place(pose(S, map, [X, _, _]), _)), S =:= 150, X =:= 0.4,
     object_place(green_mug, 120, place(none, _)).
+
+test(performers_from_is_performed_by, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
+    % the test episode's actions are performed by `edan`, typed nothing: unknown
+    performers(pick(apple), [B-unknown]), B =:= 201,
+    fixture_assert('http://example.org/neem#', edan, rdf:type, dul:'PhysicalAgent'),
+    performers(pour(thermos, green_mug), [_-robot]).
 
 test(bad_call_is_an_error, [nondet, setup(load_test_episode), cleanup(store_reset),
                             error(type_error(callable, 3))]) :-

@@ -576,7 +576,7 @@ class Bridge:
 
     def ask_plain(self, query: str, values: Sequence[Any]) -> list[dict[str, Any]]:
         """``ask`` with plain Python values: a string becomes an atom, None the atom ``none``,
-        a number a float, a list a list of these."""
+        a number itself (an int stays an int: Prolog's 1 and 1.0 do not unify), a list a list of these."""
         self._ready()  # an engine on this thread before any term is made
         return self.ask(query, [_plain_term(value) for value in values])
 
@@ -708,7 +708,7 @@ def _plain_term(value: Any) -> Any:
         return _atom(value)
     if isinstance(value, list):
         return [_plain_term(v) for v in value]
-    return float(value) if isinstance(value, (int, float)) and not isinstance(value, bool) else value
+    return value
 
 
 class QueryValueError(PrologError):

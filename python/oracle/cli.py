@@ -30,6 +30,8 @@ COMMAND_MODULES = (
     "serve",
     "simulate",
     "ask",
+    "routines",
+    "prepare",
 )
 
 

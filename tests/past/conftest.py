@@ -23,7 +23,8 @@ def t(day: int, hour: int, minute: int = 0, second: int = 0) -> datetime:
 
 
 def log_small_neem(store, onto, neem_id: str = "small") -> None:
-    """Monday: breakfast at 07:00 (three steps, 15 s apart), an apple at 12:00. Tuesday:
+    """Monday: breakfast at 07:00 (three steps, 15 s apart), an apple at 12:00 (eaten by the
+    user, every other action performed by the robot). Tuesday:
     breakfast at 07:05; the green mug perceived at 08:00 at (0.4, 1.2, 0.9); at 08:01 the
     robot offers pick(green_mug) first and open(fridge) second; the user picks the mug at
     08:01:10 and places it on the kitchen table at 08:01:30 (the NEEM's latest event)."""
@@ -34,7 +35,7 @@ def log_small_neem(store, onto, neem_id: str = "small") -> None:
         if day == 0:
             log.action("open(fridge)", t(0, 12, 0, 0), t(0, 12, 0, 10))
             log.action("pick(apple)", t(0, 12, 0, 15), t(0, 12, 0, 25))
-            log.action("eat(apple)", t(0, 12, 0, 30), t(0, 12, 0, 40))
+            log.action("eat(apple)", t(0, 12, 0, 30), t(0, 12, 0, 40), performed_by="user")
     log.perceive("green_mug", t(1, 8), Pose((0.4, 1.2, 0.9)))
     log.available(["pick(green_mug)", "open(fridge)"], t(1, 8, 1))
     log.preference([("pick(green_mug)", 0.1), ("open(fridge)", 0.5)], t(1, 8, 1))
@@ -66,3 +67,21 @@ def bridge(small_store, onto):
     yield bridge
     bridge.close()
     store.close()
+
+
+@pytest.fixture()
+def routine_store(tmp_path, onto):
+    """Four days of breakfast at 07:00 and coffee at 15:00; the fifth day's breakfast begun."""
+    from oracle.neem.writer import NeemLogger
+    from oracle.store import open_store
+
+    path = tmp_path / "r.sqlite"
+    store = open_store(path)
+    log = NeemLogger.create(store, onto, user="sam", neem_id="weekly")
+    from tests.past.test_routines import BREAKFAST, day, week
+
+    for action in week(4)[:-2] + day(4, 7, BREAKFAST[:3]):
+        log.action(action.call, action.begin, action.end)
+    log.close()
+    store.close()
+    return path

@@ -79,6 +79,14 @@ def test_why_did_you_suggest(bridge, onto):
     assert ask(bridge, onto, "warum hast du pick(apple) vorgeschlagen?").text == "Ich habe pick(apple) nie vorgeschlagen."
 
 
+def test_who_usually_does(bridge, onto):
+    answer = ask(bridge, onto, "who usually does eat the apple?")
+    assert answer.evidence["counts"] == {"user": 1, "robot": 0, "unknown": 0}
+    assert answer.text == "You usually do eat(apple) yourself (1 of 1 time)."
+    german = ask(bridge, onto, "Wer macht meistens open(fridge)?")
+    assert german.text == "Der Roboter macht open(fridge) meistens für dich (3 von 3 Malen)."
+
+
 @pytest.mark.parametrize("text", ["what's up?", "", "when did I last fly(plane)", "where is the unicorn",
                                   "when did I last pick the unicorn"])
 def test_bad_questions_are_one_line_errors(onto, text):

@@ -50,3 +50,14 @@ def test_bad_question_and_missing_neem_are_one_line_errors(client):
 def test_summary_route(client):
     body = client.get("/api/neems/small/summary").json()
     assert body["latest"]["task"] == "place(green_mug, kitchen_table)" and body["today"] == 5
+
+
+def test_routines_route(client):
+    body = client.get("/api/neems/small/routines").json()
+    assert body["routines"] == [] and body["in_progress"] is None  # two days: nothing recurs on three
+
+
+def test_prepare_route(client):
+    body = client.get("/api/neems/small/prepare", params={"for": "Morning"}).json()
+    assert body["for"] == "Morning" and body["prepare"] == []  # no routine yet
+    assert client.get("/api/neems/small/prepare", params={"for": "teatime"}).status_code == 422

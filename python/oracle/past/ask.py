@@ -13,15 +13,12 @@ from typing import TYPE_CHECKING, Any
 
 from oracle.past.evidence import call_words, now_of, request, window
 from oracle.past.forms import Question, QuestionError, read_question
+from oracle.past.routines import Done, done_from_history, follows
 from oracle.past.sentences import sentences
 
 if TYPE_CHECKING:
     from oracle.bridge import Bridge
     from oracle.ontology import OdbOntology
-
-#: How far back "why did you suggest" looks for the action before the suggestion (seconds).
-BEFORE_WINDOW_S = 24 * 3600.0
-
 
 @dataclass(frozen=True)
 class Answer:
@@ -80,7 +77,9 @@ def _evidence(bridge: Bridge, q: Question, now: float | None) -> dict[str, Any]:
     if q.form == "last":
         return request(bridge, ["last", *call_words(q.call), now])
     if q.form == "after":
-        return request(bridge, ["after", *call_words(q.call)])
+        return usual_after(bridge, str(q.call))
+    if q.form == "who":
+        return _who(bridge, q, now)
     if q.form == "count":
         assert q.period is not None
         start, end = window(q.period, now) if now is not None else (0.0, 0.0)
@@ -97,13 +96,56 @@ def _suggested(bridge: Bridge, q: Question, now: float | None) -> dict[str, Any]
     if reply["time"] is None:
         return reply
     at = float(reply["time"])
-    done = request(bridge, ["done", at - BEFORE_WINDOW_S, at])["actions"]
-    if not done:
+    done = kept_done(bridge)
+    reply = {**reply, "routine": _routine_step(bridge, done, at, reply["task"])}
+    found = request(bridge, ["before", at, 1])["actions"]
+    if not found:
         return {**reply, "before": None}
-    previous = done[-1]["task"]
-    from oracle.chains import parse_call
-
-    after = request(bridge, ["after", *call_words(parse_call(previous))])
+    last = found[-1]
+    previous = last["task"]
+    after = usual_after(bridge, previous, done)
     followed = next((n["count"] for n in after["next"] if n["task"] == reply["task"]), 0)
-    return {**reply, "before": {"task": previous, "time": done[-1]["begin"], "occurrences": after["occurrences"],
+    return {**reply, "before": {"task": previous, "time": last["begin"], "occurrences": after["occurrences"],
                                 "followed": followed}}
+
+
+def _routine_step(bridge: Bridge, done: list[Done], at: float, task: str) -> dict[str, Any] | None:
+    """The routine in progress at ``at`` when ``task`` is its next step (oracle.past.mine)."""
+    from oracle.past.mine import neem_routines
+
+    current = neem_routines(bridge, at, done=done).current
+    if current is None or current.remaining[:1] != (task,):
+        return None
+    return {"key": current.routine.key, "name": current.routine.name, "left": len(current.remaining)}
+
+
+def kept_done(bridge: Bridge) -> list[Done]:
+    """The NEEM's actions as the predictor keeps its history (oracle.historycache: read through
+    Prolog, extended by the actions since)."""
+    from oracle.historycache import HistoryCache
+
+    return done_from_history(HistoryCache.default().history(bridge))
+
+
+def usual_after(bridge: Bridge, call: str, done: list[Done] | None = None) -> dict[str, Any]:
+    """What followed ``call`` (oracle.past.routines.follows) in the kept history (``done``
+    when the caller has read it), in the shape of odb_past's `after` answer."""
+    n, counts = follows(kept_done(bridge) if done is None else done, call)
+    return {"task": call, "occurrences": n, "next": [{"task": t, "count": k} for t, k in counts]}
+
+
+def _who(bridge: Bridge, q: Question, now: float | None) -> dict[str, Any]:
+    """Who performed the call's actions (odb_past:performers/2) and who usually does it in the
+    part of the day of now (oracle.past.autonomy, from the call's own actions)."""
+    from oracle.past.autonomy import ModeCounts, Performed
+    from oracle.timeline import part_of_day_at
+
+    reply = request(bridge, ["who", *call_words(q.call)])  # type: ignore[arg-type]
+    model = ModeCounts()
+    for row in reply["modes"]:
+        if row["mode"] != "unknown":
+            model.add(Performed(reply["task"], part_of_day_at(row["time"]), row["mode"]))
+    part = part_of_day_at(now) if now is not None else "Midday"
+    usual, source = model.predict(reply["task"], part)
+    counts = {mode: sum(1 for r in reply["modes"] if r["mode"] == mode) for mode in ("user", "robot", "unknown")}
+    return {**reply, "usual": usual if source != "none" else None, "part": part, "counts": counts}

@@ -122,6 +122,10 @@ def _suggested(e: dict[str, Any], now: float | None) -> tuple[str, str]:
     if e["rank"] != 1:
         en += f"; first was {e['top']}"
         de += f"; vorn lag {e['top']}"
+    routine = e.get("routine")
+    if routine is not None:
+        en += f". It was the next step of your routine \"{routine['name']}\" ({routine['left']} steps left)"
+        de += f". Es war der nächste Schritt deiner Routine \"{routine['name']}\" (noch {routine['left']} Schritte)"
     before = e.get("before")
     if before is not None:
         en += (f". The action before was {before['task']}, after which {task} came "
@@ -131,4 +135,18 @@ def _suggested(e: dict[str, Any], now: float | None) -> tuple[str, str]:
     return en + ".", de + "."
 
 
-_SAY = {"last": _last, "count": _count, "after": _after, "done": _done, "where": _where, "suggested": _suggested}
+def _who(e: dict[str, Any], now: float | None) -> tuple[str, str]:
+    task, usual, counts = e["task"], e["usual"], e["counts"]
+    known = counts["user"] + counts["robot"]
+    if usual is None:
+        return (f"I have no record of who did {task}.", f"Ich weiß nicht, wer {task} gemacht hat.")
+    mine = counts[usual]
+    times = "time" if known == 1 else "times"
+    if usual == "user":
+        return (f"You usually do {task} yourself ({mine} of {known} {times}).",
+                f"Du machst {task} meistens selbst ({mine} von {known} Malen).")
+    return (f"The robot usually does {task} for you ({mine} of {known} {times}).",
+            f"Der Roboter macht {task} meistens für dich ({mine} von {known} Malen).")
+
+
+_SAY = {"last": _last, "count": _count, "after": _after, "done": _done, "where": _where, "suggested": _suggested, "who": _who}

@@ -6,12 +6,13 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from oracle.chains import parse_call
-from oracle.past.evidence import call_words, now_of, request, window
+from oracle.past.ask import kept_done, usual_after
+from oracle.past.evidence import now_of, request, window
 from oracle.timeline import format_clock, part_of_day_at
 
 if TYPE_CHECKING:
     from oracle.bridge import Bridge
+    from oracle.past.routines import Done
 
 #: How many of the latest actions the summary lists.
 RECENT = 10
@@ -22,11 +23,11 @@ FORMAT = 1
 def state_summary(bridge: Bridge, at: float | None = None, clocked: bool = True) -> dict[str, Any]:
     """The summary as of ``at`` (default: the NEEM's latest event): the latest actions (today's,
     or the last ``RECENT`` of the NEEM when today has none), the latest action and what usually
-    follows it, the robot's latest predicted chain."""
+    follows it, the routine in progress, the robot's latest ranking by then."""
     now = at if at is not None else now_of(bridge)
     summary: dict[str, Any] = {"format": FORMAT, "neem": bridge.neem_id, "now": now, "clock": None,
                                "part_of_day": None, "recent": [], "latest": None, "usual_next": [],
-                               "predicted": []}
+                               "routine": None, "predicted": []}
     if now is None:
         return summary
     if clocked:
@@ -36,14 +37,22 @@ def state_summary(bridge: Bridge, at: float | None = None, clocked: bool = True)
         today = request(bridge, ["done", start, now])["actions"]
     else:
         today = []
-    recent = today or request(bridge, ["done", None, now])["actions"]
+    recent = today or request(bridge, ["before", now, RECENT])["actions"]
     summary["recent"] = recent[-RECENT:]
     summary["today"] = len(today)
+    done = kept_done(bridge)
     if recent:
         latest = recent[-1]
         summary["latest"] = latest
-        after = request(bridge, ["after", *call_words(parse_call(latest["task"]))])
-        summary["usual_next"] = after["next"]
-    summary["predicted"] = [{"task": r["task"], "rank": r["rank"], "score": r["score"]}
-                            for r in bridge.what_next().get("chain", [])]
+        summary["usual_next"] = usual_after(bridge, latest["task"], done)["next"]
+    summary["routine"] = _routine(bridge, now, done)
+    summary["predicted"] = request(bridge, ["predicted", now])["predicted"]
     return summary
+
+
+def _routine(bridge: Bridge, now: float, done: list[Done]) -> dict[str, Any] | None:
+    """The routine in progress at ``now`` (oracle.past.mine), with what remains of it."""
+    from oracle.past.mine import neem_routines
+
+    current = neem_routines(bridge, now, done=done).current
+    return current.to_json() if current is not None else None

@@ -1,4 +1,4 @@
-"""The HTTP routes of the questions about the past and the state summary (docs/beyond.md).
+"""The HTTP routes of the questions about the past, the state summary and the routines (docs/beyond.md).
 
 Each reads the NEEM through the engine's one bridge, on the engine thread; nothing is fitted
 and nothing written, so an answer costs its few Prolog queries (tens of milliseconds).
@@ -6,7 +6,7 @@ and nothing written, so an answer costs its few Prolog queries (tens of millisec
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Literal
 
 from fastapi import APIRouter, Query, Request
 
@@ -46,6 +46,12 @@ def _summary(engine: Any, neem: str, at: str | None) -> dict[str, Any]:
     return state_summary(bridge, _seconds(at), has_clock(engine.store.neem(bridge.neem_id).meta))
 
 
+def _routines(engine: Any, neem: str, at: str | None) -> dict[str, Any]:
+    from oracle.past.mine import neem_routines
+
+    return neem_routines(engine.bridge(engine.resolve(neem)), _seconds(at)).to_json()
+
+
 @router.get("/api/neems/{neem}/ask", response_model=S.PastAnswer)
 async def ask_route(neem: str, request: Request,
                     q: str = Query(min_length=1, max_length=500, description="a question, e.g. when did I last open the fridge?"),
@@ -61,3 +67,27 @@ async def summary_route(neem: str, request: Request,
     """The NEEM's state summary: recent actions, the latest and what usually follows it, the predicted chain."""
     ctx = request.app.state.ctx
     return await ctx.thread.run(_summary, ctx.engine, neem, at)
+
+
+@router.get("/api/neems/{neem}/routines", response_model=S.RoutinesAnswer)
+async def routines_route(neem: str, request: Request,
+                         at: str | None = Query(None, description="as of this time (default: the NEEM's latest action)")) -> dict[str, Any]:
+    """The user's routines mined from the NEEM (names the user gave kept) and the one in progress."""
+    ctx = request.app.state.ctx
+    return await ctx.thread.run(_routines, ctx.engine, neem, at)
+
+
+def _prepare(engine: Any, neem: str, part: str | None, at: str | None) -> dict[str, Any]:
+    from oracle.past.mine import neem_preparation
+
+    return neem_preparation(engine.bridge(engine.resolve(neem)), part, _seconds(at))
+
+
+@router.get("/api/neems/{neem}/prepare", response_model=S.PrepareAnswer)
+async def prepare_route(neem: str, request: Request,
+                        part: Literal["Morning", "Midday", "Evening", "Night"] | None = Query(
+                            None, alias="for", description="the part of the day (default: the part after now's)"),
+                        at: str | None = Query(None, description="as of this time (default: the NEEM's latest event)")) -> dict[str, Any]:
+    """The objects worth preparing now for the user's routines of the coming part of the day, with reasons."""
+    ctx = request.app.state.ctx
+    return await ctx.thread.run(_prepare, ctx.engine, neem, part, at)

@@ -1,6 +1,11 @@
 """The HTTP API: robot calls, answers, Prolog queries, events and the page.
 
 Handlers only move JSON: each hands one job to the engine thread and publishes what happened.
+
+Why this module is large: it is the one router of the robot API (every route, its input model
+and its typed answer side by side, as /openapi.json documents them); each handler is a few
+lines that hand one job to the engine. The questions about the past have their own router
+(past_routes.py).
 """
 
 from __future__ import annotations

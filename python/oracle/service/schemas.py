@@ -147,4 +147,15 @@ class StateSummary(Answer):
     predicted: list[dict[str, Any]] = []
 
 
+class RoutinesAnswer(Answer):
+    """The user's routines mined from the NEEM (oracle.past.mine) and the one in progress."""
+    now: float | None = None
+    routines: list[dict[str, Any]] = []
+    in_progress: dict[str, Any] | None = None
+
+
+class PrepareAnswer(Answer):
+    """What is worth preparing now for the coming part of the day (oracle.past.mine)."""
+
+
 ERRORS: dict[int | str, dict[str, Any]] = {code: {"model": ErrorAnswer} for code in (400, 401, 403, 404, 405, 409, 422, 500)}

@@ -252,6 +252,8 @@ class _Simulator:
         self.rng = random.Random(f"days:{seed}:{persona.file_name}")
         self.homes = {name: spec.at for name, spec in world.objects.items() if spec.at is not None}
         self.skipped = 0
+        #: The routine entry behind each row yielded, in order (what routine mining is scored on).
+        self.entries: list[RoutineEntry] = []
 
     def week(self, days: int) -> Iterator[ChainRow]:
         clock = FIRST_DAY
@@ -265,6 +267,7 @@ class _Simulator:
                 steps = INTENTIONS[entry.intention](day, state) + self._closing(day)
                 # _execute hands back the state and clock after each row: the next intention starts there
                 for row, state, clock in self._execute(day, steps, state, clock):  # noqa: B007, B020
+                    self.entries.append(entry)
                     yield row
 
     def _agenda(self) -> list[RoutineEntry]:
@@ -333,6 +336,13 @@ def simulate(persona: Persona, world: World, days: int, seed: int) -> tuple[list
     simulator = _Simulator(world, persona, seed)
     rows = list(simulator.week(days))
     return rows, simulator.skipped
+
+
+def simulate_entries(persona: Persona, world: World, days: int, seed: int) -> tuple[list[ChainRow], list[RoutineEntry]]:
+    """The rows of ``simulate`` with the routine entry (daily or variation) each row served."""
+    simulator = _Simulator(world, persona, seed)
+    rows = list(simulator.week(days))
+    return rows, simulator.entries
 
 
 def generate(out: Path | str, personas: int = 105, days: int = 7, seed: int = 0, world: World | None = None,

@@ -1,0 +1,94 @@
+"""Benchmark of the questions about the past (docs/beyond.md): each question form asked of the
+live service (the real ASGI app, in process) over a simulated user's NEEM of 5 and 28 days,
+median of repeated asks after the first; the floor is /api/health in the same run (a round
+trip through the engine thread doing nothing). Target: every form under 100 ms."""
+
+from __future__ import annotations
+
+import tempfile
+import time
+from pathlib import Path
+
+from oracle.benchmarks.figures import spread, spread_text
+
+#: One question per form, as the docs' worked example asks them of the demo user.
+QUESTIONS = ("when did I last open the fridge?", "how often did I open(fridge) this week?",
+             "what do I usually do after open(fridge)?", "what did you do today?",
+             "where is the drinking glass?", "why did you suggest open(fridge)?", "who usually does open(fridge)?",
+             "Wann habe ich zuletzt pick(beer_bottle) gemacht?")
+
+
+def _log(path: Path, days: int) -> None:
+    from datetime import datetime
+
+    from oracle.neem.writer import NeemLogger
+    from oracle.ontology import build_ontology
+    from oracle.store import open_store
+    from oracle.world.generate import simulate
+    from oracle.world.personas import make_persona
+    from oracle.world.worldfile import load_world
+
+    onto = build_ontology()
+    rows, _ = simulate(make_persona(3, 0), load_world(), days + 1, 3)
+    last = rows[-1].time.date() if rows[-1].time else None
+    store = open_store(path)
+    log = NeemLogger.create(store, onto, user="bench", neem_id="bench", commit_every=500)
+    now = None
+    for row in rows:
+        assert isinstance(row.time, datetime)
+        if row.time.date() == last:
+            now = row
+            break
+        log.action(row.action, row.time, row.end, available=row.available)
+    if now is not None and now.time is not None:
+        log.available(now.available or (), now.time)
+        log.preference([(call, float(i)) for i, call in enumerate(now.available or ())], now.time)
+    log.close()
+    store.close()
+
+
+def run(quick: bool = False) -> list[dict]:
+    from fastapi.testclient import TestClient
+
+    from oracle.algorithm.params import Hyperparameters
+    from oracle.ontology import build_ontology
+    from oracle.service import build_context
+    from oracle.service.app import create_app
+
+    rows: list[dict] = []
+    repeats = 5 if quick else 15
+    for days in ((5,) if quick else (5, 28)):
+        with tempfile.TemporaryDirectory() as folder:
+            path = Path(folder) / "past.sqlite"
+            _log(path, days)
+            ctx = build_context(str(path), build_ontology(), Hyperparameters())
+            try:
+                with TestClient(create_app(ctx), base_url="http://127.0.0.1") as client:
+                    floor = _times(lambda: client.get("/api/health"), repeats)
+                    rows.append(_row(days, "floor: /api/health", floor))
+                    for question in QUESTIONS:
+                        ms = _times(lambda q=question: client.get("/api/neems/bench/ask", params={"q": q}), repeats)
+                        rows.append(_row(days, question, ms))
+                    ms = _times(lambda: client.get("/api/neems/bench/summary"), repeats)
+                    rows.append(_row(days, "state summary", ms))
+            finally:
+                ctx.thread.close()
+    return rows
+
+
+def _times(call, repeats: int) -> list[float]:  # noqa: ANN001 - a zero-argument request
+    first = call()
+    if first.status_code != 200:
+        raise RuntimeError(f"benchmark request failed: {first.status_code} {first.text}")
+    samples = []
+    for _ in range(repeats):
+        started = time.perf_counter()
+        call()
+        samples.append((time.perf_counter() - started) * 1000)
+    return samples
+
+
+def _row(days: int, name: str, samples: list[float]) -> dict:
+    figure = spread(samples)
+    print(f"  {days:>2} days  {name:<52} {spread_text(figure, digits=1)} ms (min/median/max)", flush=True)
+    return {"area": "past", "name": name, "days": days, "ms": figure}

@@ -1,0 +1,67 @@
+"""The routines of one NEEM: mined from its history through Prolog, with the names the user
+gave the stored workflows they continue, and the one in progress."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from oracle.past.routines import Done, InProgress, MiningSettings, Routine, done_from_history, in_progress, mine_routines
+from oracle.past.workflows import keep_user_names, stored_routines
+
+if TYPE_CHECKING:
+    from oracle.bridge import Bridge
+
+
+@dataclass(frozen=True)
+class NeemRoutines:
+    """A NEEM's routines (``named``: the keys whose names the user gave), the one in progress at
+    ``now`` (None when none) and whether they are stored in the NEEM as mined."""
+
+    routines: tuple[Routine, ...]
+    named: tuple[str, ...]
+    current: InProgress | None
+    now: float | None
+
+    def to_json(self) -> dict[str, Any]:
+        return {"now": self.now, "routines": [{**r.to_json(), "named_by_user": r.key in self.named} for r in self.routines],
+                "in_progress": self.current.to_json() if self.current else None}
+
+
+def neem_routines(bridge: Bridge, at: float | None = None, settings: MiningSettings | None = None,
+                  done: list[Done] | None = None) -> NeemRoutines:
+    """Mine the NEEM's history (the actions begun by ``at``, default all) into routines; the
+    history comes from the user's kept copy when the NEEM only grew since (oracle.historycache)."""
+    from oracle.historycache import HistoryCache
+
+    if done is None:
+        done = done_from_history(HistoryCache.default().history(bridge))
+    if at is not None:
+        done = [d for d in done if d.begin <= at]
+    routines, named = keep_user_names(mine_routines(done, settings), stored_routines(bridge))
+    now = at if at is not None else (max(d.end for d in done) if done else None)
+    current = in_progress(routines, done, now) if now is not None else None
+    return NeemRoutines(tuple(routines), tuple(named), current, now)
+
+
+def neem_preparation(bridge: Bridge, part: str | None = None, at: float | None = None) -> dict[str, Any]:
+    """What to prepare now for ``part`` of the day (default: the part after now's): the objects
+    the routines of that part need (oracle.past.prepare), each with its reason and where the NEEM
+    last had it (odb_past:object_place/3)."""
+    from oracle.past.evidence import now_of, request
+    from oracle.past.prepare import next_part, to_prepare
+    from oracle.historycache import HistoryCache
+
+    done = done_from_history(HistoryCache.default().history(bridge))
+    now = at if at is not None else now_of(bridge)
+    if at is not None:
+        done = [d for d in done if d.begin <= at]
+    if now is None:
+        return {"now": None, "for": part, "prepare": []}
+    target = part or next_part(now)
+    routines = neem_routines(bridge, at, done=done).routines
+    items = []
+    for prep in to_prepare(routines, done, target):
+        place = request(bridge, ["where", prep.obj, now])
+        items.append({**prep.to_json(), "pose": place["pose"], "last_used": place["used"]})
+    return {"now": now, "for": target, "prepare": items}
