@@ -46,6 +46,9 @@ Two backends implement it:
 
 A question scope is `scope(Since, Until)`: a fact is visible when its own scope contains
 `[Since, Until]` (KnowRob's `since =< Since, until >= Until`), or `any` for no time filter.
+Whatever the question scope, a fact is seen only where its scope has an extent
+(`since < until`) and a conjunction only where its facts' scopes share one, as mongolog drops
+every row whose running scope intersection `v_scope` is empty (KnowRob's triple.pl).
 */
 
 :- use_module(library(error)).
@@ -386,7 +389,7 @@ doc_scope(Neem, Scope, t(S, P, O0), Acc, FS) :-
 scope_intersection(scope(S0, U0), S1, U1, scope(S, U)) :-
     num_max(S0, S1, S),
     num_min(U0, U1, U),
-    S =< U.
+    S < U.
 
 %   A comparison whose value is already bound is that value, if it passes.
 bound_comparison(t(S, P, C), t(S, P, O)) :-
@@ -661,10 +664,9 @@ store_set_request(R) :-
                  *        MEMORY BACKEND        *
                  *******************************/
 
-mem_conj([], _).
-mem_conj([t(S,P,O)|Ps], Scope) :-
-    mem_pattern(S, P, O, Scope, _, _),
-    mem_conj(Ps, Scope).
+mem_conj(Patterns, Scope) :-
+    Inf is inf,
+    mem_conj_scoped(Patterns, Scope, scope(0.0, Inf), _).
 
 mem_conj_scoped([], _, FS, FS).
 mem_conj_scoped([t(S,P,O)|Ps], Scope, FS0, FS) :-
@@ -714,8 +716,13 @@ compare_value(=<, X, A) :- X =< A.
 compare_value(>, X, A) :- X > A.
 compare_value(>=, X, A) :- X >= A.
 
-in_scope(any, _, _) :- !.
+%   KnowRob's rule (src/lang/terms/triple.pl, scope_intersect/5): a fact is seen only where
+%   its scope has an extent, `Since < Until`, whatever the question scope; a question scope
+%   `scope(QS, QU)` further asks that it contain [QS, QU].
+in_scope(any, Since, Until) :- !,
+    Since < Until.
 in_scope(scope(QS, QU), Since, Until) :-
+    Since < Until,
     Since =< QS,
     Until >= QU.
 

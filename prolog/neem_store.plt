@@ -43,6 +43,19 @@ test(scope_containment, [setup(setup), cleanup(store_reset)]) :-
     \+ store_match([t(A, HasPart, Odd)], scope(5.0, 18.0)),
     \+ store_match([t(A, HasPart, Odd)], scope(30.0, 30.0)).
 
+test(no_extent_no_fact, [setup(setup), cleanup(store_reset)]) :-
+    % KnowRob drops a fact whose scope has no extent (since < until fails), whatever the
+    % question scope, and a conjunction whose facts' scopes do not share one.
+    maplist(ex, [c, d, e, hasPart], [C, D, E, HasPart]),
+    store_assert(triple(C, HasPart, D), 5.0, 5.0),
+    store_assert(triple(D, HasPart, E), 1.0, 5.0),
+    store_assert(triple(E, HasPart, C), 5.0, 9.0),
+    \+ store_match([t(C, HasPart, _)], any),
+    \+ store_match([t(C, HasPart, _)], scope(5.0, 5.0)),
+    store_match([t(D, HasPart, E)], scope(2.0, 3.0)),
+    \+ store_match([t(D, HasPart, E), t(E, HasPart, C)], any),
+    \+ store_match_scoped([t(D, HasPart, E), t(E, HasPart, C)], any, _).
+
 test(conjunction_join, [setup(setup), cleanup(store_reset)]) :-
     maplist(ex, [a, b, hasPart, 'Container'], [A, B, HasPart, Container]), type(T),
     findall(X-Y, store_match([t(X, HasPart, Y), t(Y, T, Container)], scope(100.0, 100.0)), Ps),

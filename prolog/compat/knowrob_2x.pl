@@ -2,6 +2,7 @@
     [ knowrob_suite_setup/2,    % +Fixture, +Namespace
       knowrob_2x_units/1,       % -Units
       knowrob_2x_score/3,       % +Units, -Passed, -Total
+      knowrob_marked/2,         % ?Test, ?Mark
       knowrob_fixture/2,        % +Name, -File
       assert_true/1,            % :Goal
       assert_false/1,           % :Goal
@@ -65,18 +66,24 @@ knowrob_2x_units([knowrob_lang_triple, knowrob_lang_temporal, knowrob_lang_holds
                   knowrob_model_rdfs, knowrob_model_neem, knowrob_model_terms, knowrob_lang_scope]).
 
 %!  knowrob_2x_score(+Units, -Passed, -Total) is det.
-%   Run the units (loaded test files) and count: Total is the number of tests they hold,
-%   Passed those that passed (a unit whose set-up fails passes none).
+%   Run the units (loaded test files) and count: Total is the number of tests they hold but
+%   the ones KnowRob marks fixme or blocked (knowrob_marked/2: they run here, and are not
+%   counted), Passed those that passed (a unit whose set-up fails passes none).
 knowrob_2x_score(Units, Passed, Total) :-
     ( run_tests(Units) -> true ; true ),
-    aggregate_all(count, ( member(U, Units), plunit:current_test(U, _, _, _, _) ), Total),
-    aggregate_all(count, ( member(U, Units), plunit:passed(U, _, _, _, _) ), Passed).
+    aggregate_all(count, ( member(U, Units), plunit:current_test(U, N, _, _, _), \+ knowrob_marked(N, _) ), Total),
+    aggregate_all(count, ( member(U, Units), plunit:passed(U, N, _, _, _), \+ knowrob_marked(N, _) ), Passed).
+
+%!  knowrob_marked(?Test, ?Mark) is nondet.
+%   The restated tests KnowRob marks `fixme` or `blocked` in its own files.
+knowrob_marked('non utf8 character', fixme).
+knowrob_marked('holds/1 with ns', blocked).
 
 %!  assert_true(:Goal) is semidet.
-%   Goal succeeds (once).
+%   Goal succeeds; as rosprolog's (SWI-Prolog's assertion/1), its bindings are not kept.
 assert_true(M:G) :-
     rdf_global_term(G, G1),
-    once(M:G1).
+    \+ \+ once(M:G1).
 
 %!  assert_false(:Goal) is semidet.
 %   Goal fails.
@@ -86,14 +93,16 @@ assert_false(M:G) :-
 
 %!  assert_equals(+Actual, +Expected) is semidet.
 %   Actual and Expected are the same term (prefixed names read as IRIs).
-assert_equals(A, E) :-
+assert_equals(A, E) :-                 % rosprolog's are rdf_meta: both sides read
+    rdf_global_term(A, A1),
     rdf_global_term(E, E1),
-    A == E1.
+    A1 == E1.
 
 %!  assert_unifies(?Actual, ?Expected) is semidet.
 assert_unifies(A, E) :-
+    rdf_global_term(A, A1),
     rdf_global_term(E, E1),
-    A = E1.
+    A1 = E1.
 
 %!  test_call(:Goal, ?Var, +Value) is nondet.
 %   mongolog's test_call/3: Goal with Var assigned Value first, as one kb_call.

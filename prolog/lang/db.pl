@@ -1,6 +1,7 @@
 :- module(kb_db,
     [ load_owl/1,               % +URL
       load_owl/2,               % +URL, +Options
+      load_owl/3,               % +URL, +Scope, +ParentGraph
       annotation/3,             % ?Subject, ?Property, ?Value
       has_label/2,              % ?Resource, ?Label
       has_comment/2             % ?Resource, ?Comment
@@ -26,8 +27,10 @@ is not loaded again; a changed one replaces its graph (KnowRob's drop_graph/1, t
 The NEEMs logged with `--soma DIR` carry the same markers, so loading the same file here, or
 in KnowRob, finds it loaded.
 
-A `package://Pkg/Path` URL (a ROS package) is resolved through the multifile hook
-kb_db:package_path/2; without ROS there is none, so such a URL is an error naming it.
+A `package://Pkg/Path` URL (a ROS package) is resolved without ROS: through the multifile
+hook kb_db:package_path/2, else along the search path `$KNOWROB_PACKAGE_PATH` (folders
+separated by `:`; package Pkg is the folder `Dir/Pkg`, or `Dir` itself when it is named
+Pkg), as ROS's `$ROS_PACKAGE_PATH`; a package found nowhere is an error naming the URL.
 */
 
 :- use_module(library(error)).
@@ -78,6 +81,24 @@ load_owl(URL, Options) :-
     ),
     add_subgraph(OntoGraph, Parent).
 
+%!  load_owl(+URL, +Scope, +ParentGraph) is det.
+%   KnowRob's load_owl/3: the file into its own graph, below ParentGraph; Scope is checked
+%   (ontology statements are universal here, as in every NEEM).
+load_owl(URL, Scope, Parent) :-
+    must_be(nonvar, Scope),
+    load_owl(URL, [parent_graph(Parent)]).
+
+%   A package's folder: the hook, else the search path of $KNOWROB_PACKAGE_PATH.
+package_dir(Pkg, Dir) :-
+    package_path(Pkg, Dir), !.
+package_dir(Pkg, Dir) :-
+    getenv('KNOWROB_PACKAGE_PATH', Path),
+    atomic_list_concat(Dirs, ':', Path),
+    member(D, Dirs), D \== '',
+    (   file_base_name(D, Pkg), exists_directory(D) -> Dir = D
+    ;   atomic_list_concat([D, '/', Pkg], Dir), exists_directory(Dir)
+    ), !.
+
 %   KnowRob's file_version/2 of a local file: its modification time (the number KnowRob
 %   compares a graph's recorded version with, after reading that version as a number).
 file_version(File, Stamp) :-
@@ -91,7 +112,7 @@ owl_file(URL, File) :-
     (   string_concat("package://", Rest, S)
     ->  (   sub_string(Rest, B, _, A, "/"), !,
             sub_string(Rest, 0, B, _, Pkg), sub_string(Rest, _, A, 0, Path),
-            atom_string(PkgA, Pkg), package_path(PkgA, Dir)
+            atom_string(PkgA, Pkg), package_dir(PkgA, Dir)
         ->  atomic_list_concat([Dir, '/', Path], File0)
         ;   domain_error(ros_package_url, URL)
         )

@@ -12,7 +12,13 @@
       kb_project/1,             % +Statement
       kb_project/2,             % +Statement, +Scope
       kb_project/3,             % +Statement, +Scope, +Options
-      kb_unproject/1            % +Statement
+      kb_unproject/1,           % +Statement
+      kb_unproject/2,           % +Statement, +Scope
+      kb_unproject/3,           % +Statement, +Scope, +Options
+      ask/1,                    % :Statement
+      ask/2,                    % :Statement, +Scope
+      is_callable_with/2,       % ?Backend, :Goal
+      call_with/3               % +Backend, :Goal, +Options
     ]).
 /** <module> The query language: kb_call and kb_project (KnowRob 2.x src/lang/query.pl)
 
@@ -38,8 +44,10 @@ kb_project/1 asserts statements built from the same vocabulary (see kb_project/1
 :- use_module(library(lists)).
 :- use_module(library(apply)).
 :- use_module(library(pairs)).
+:- use_module(library(yall)).
 :- use_module('../neem_store', [store_match/2, store_match/3, store_match_scoped/3, store_insert/3,
-                                 store_retract/1, store_in_graphs/2]).
+                                 store_retract/1, store_in_graphs/2, store_annotation/3,
+                                 store_insert_annotations/1]).
 :- use_module(subgraph, [graph_filter/2]).
 :- use_module(triple, [kb_iri/2, iri_term/1, triple_steps/6, unit_factor/2]).
 :- use_module(scope, [current_scope/1, scope_check/1, scope_overlaps/3, runtime_scope/3,
@@ -47,7 +55,7 @@ kb_project/1 asserts statements built from the same vocabulary (see kb_project/1
 
 :- meta_predicate
     kb_call(0), kb_call(0, +), kb_call(0, +, -), kb_call(0, +, -, +), kb_call_stepwise(0), kb_call_stepwise(0, +),
-    kb_findall(?, 0, +, -), kb_findall(?, 0, +, +, -), kb_group(?, ?, 0, +, -).
+    kb_findall(?, 0, +, -), kb_findall(?, 0, +, +, -), kb_group(?, ?, 0, +, -), ask(0), ask(0, +).
 
 %!  kb_scoped_goal(+Goal, +Scope, -Call) is semidet.
 %   Goal is not made of triples but depends on the question scope (e.g. is_at/2 reads tf
@@ -58,6 +66,15 @@ kb_project/1 asserts statements built from the same vocabulary (see kb_project/1
 %   Head is defined by Body, a conjunction of triple/3 goals, other model predicates and
 %   Prolog goals (KnowRob's `?>` rules). Multifile: the model modules add their own.
 :- multifile kb_rule/2.
+:- dynamic kb_rule/2.                     % kb_add_rule/2 (kb_rules) adds to it at run time
+
+%!  is_callable_with(?Backend, ?Goal) is nondet.
+%!  call_with(+Backend, +Goal, +Options) is nondet.
+%   KnowRob's query backends: a goal some Backend says it can answer (is_callable_with/2) is
+%   answered by call_with/3 of each such backend, their solutions one after the other, where it
+%   stands in the compiled goal. Dynamic and multifile: a backend adds its clauses.
+:- multifile is_callable_with/2, call_with/3.
+:- dynamic is_callable_with/2, call_with/3.
 
 %!  kb_call(:Goal) is nondet.
 %!  kb_call(:Goal, +Scope) is nondet.
@@ -197,8 +214,14 @@ unfold((A, B), Mod, Scope, S0, S) :- !,
     unfold(B, Mod, Scope, S1, S).
 unfold((C -> T ; E), Mod, Scope, [ite(PC, PT, PE)|S], S) :- !,
     sub_plan(C, Mod, Scope, PC), sub_plan(T, Mod, Scope, PT), sub_plan(E, Mod, Scope, PE).
-unfold((A ; B), Mod, Scope, [or(PA, PB)|S], S) :- !,
-    sub_plan(A, Mod, Scope, PA), sub_plan(B, Mod, Scope, PB).
+unfold((A ; B), Mod, Scope, S0, S) :- !,
+    branch_steps(A, Mod, Scope, SA),
+    branch_steps(B, Mod, Scope, SB),
+    (   SA == fail -> SB \== fail, append(SB, S, S0)      % a branch no pragma allows is left out
+    ;   SB == fail -> append(SA, S, S0)
+    ;   group(compiled, SA, PA), group(compiled, SB, PB),
+        S0 = [or(PA, PB)|S]
+    ).
 unfold((C -> T), Mod, Scope, [ite(PC, PT, [call(fail)])|S], S) :- !,
     sub_plan(C, Mod, Scope, PC), sub_plan(T, Mod, Scope, PT).
 unfold(\+ G, Mod, Scope, [not(P)|S], S) :- !,
@@ -233,6 +256,12 @@ unfold(until(G, T), Mod, _, S0, S) :- !,
     ->  unfold(G, Mod, scope(T, T), S0, S)
     ;   S0 = [scoped(until, Mod:G, T)|S]
     ).
+unfold(holds(Su, P, O), Mod, Scope, S0, S) :-    % holds(S, P, only(C)): OWL's class descriptions
+    owl_value(O, P, D), !,
+    unfold(instance_of_description(Su, D), Mod, Scope, S0, S).
+unfold(G, _, Scope, [call(Call)|S], S) :-      % computable triples (kb_computable), ...
+    ( G = triple(_, _, _) ; G = holds(_, _, _) ),
+    kb_scoped_goal(G, Scope, Call), !.
 unfold(triple(Su, P, O), _, Scope, S0, S) :- !,
     triple_steps(Su, P, O, Scope, S0, S).
 unfold(holds(Su, P, O), _, Scope, S0, S) :-
@@ -249,11 +278,23 @@ unfold(has_type(A, B), Mod, Scope, S0, S) :- !,
     ).
 unfold(occurs(E), Mod, Scope, S0, S) :- !,
     unfold(event_interval(E, B, End), Mod, any, S0, [call(kb_scope:scope_overlaps(Scope, B, End))|S]).
+unfold(pragma(G), Mod, _, S, S) :- !,         % KnowRob: evaluated when the goal is compiled
+    call(Mod:G).
 unfold(G, Mod, Scope, S0, S) :-
-    kb_rule(G, Body), !,
-    unfold(Body, Mod, Scope, S0, S).
+    callable(G), functor(G, F, N), functor(G0, F, N),
+    once(kb_rule(G0, _)), !,                      % a model predicate (no rule may fit this call)
+    findall(H-B, ( copy_term(G, H), kb_rule(H, B) ), Rules),
+    include(possible_rule(G, Mod, Scope), Rules, Possible),
+    (   Possible == []
+    ->  S0 = [call(fail)|S]
+    ;   rule_branches(Possible, G, Branches),
+        unfold(Branches, Mod, Scope, S0, S)
+    ).
 unfold(G, _, Scope, [call(Call)|S], S) :-
     kb_scoped_goal(G, Scope, Call), !.
+unfold(annotation(Su, P, V), _, _, [call(kb_query:annotation_value(Su, P, V))|S], S) :- !.
+unfold(G, _, _, [call(kb_query:backend_call(G))|S], S) :-
+    \+ \+ is_callable_with(_, G), !.
 unfold(G, Mod, _, [call(Mod:G)|S], S).
 
 %   holds(P(S,O)): the relation P between S and O.
@@ -289,8 +330,58 @@ integral_inverse(F, Inv) :-
     F < 1, Inv0 is 1 / F, Inv is round(Inv0), abs(Inv0 - Inv) < 1.0e-6.
 
 sub_plan(G, Mod, Scope, Plan) :-
-    unfold(G, Mod, Scope, Steps, []),
-    group(compiled, Steps, Plan).
+    (   unfold(G, Mod, Scope, Steps, [])
+    ->  group(compiled, Steps, Plan)
+    ;   Plan = [call(fail)]             % a pragma of G failed: G has no solution
+    ).
+
+%   The steps of a branch of a disjunction, or `fail` when its pragmas rule it out.
+branch_steps(G, Mod, Scope, Steps) :-
+    (   unfold(G, Mod, Scope, Steps0, []), Steps0 \= [call(fail)|_]
+    ->  Steps = Steps0
+    ;   Steps = fail
+    ).
+
+%   A rule of several for a goal is kept when its head unifies with the goal and its pragmas
+%   hold for it (KnowRob's rules dispatch on them: `pragma(\+ compound(Type))`); the rules
+%   kept become a disjunction (rule_branch/3).
+possible_rule(G, Mod, Scope, H-B) :-
+    \+ \+ ( G = H, catch(unfold(B, Mod, Scope, _, []), _, true) ).
+
+rule_branches([Rule], G, Branch) :- !,
+    rule_branch(Rule, G, Branch).
+rule_branches([Rule|Rules], G, (Branch ; Rest)) :-
+    rule_branch(Rule, G, Branch),
+    rule_branches(Rules, G, Rest).
+
+%   A head more general than the goal is unified with it now (the body's patterns then hold
+%   the goal's constants); another (`is_union_of(C, union_of(L))` for a free description) at
+%   run time, so that the bindings it makes stay in its branch.
+rule_branch(H-B, G, B) :- subsumes_term(H, G), !, H = G.
+rule_branch(H-B, G, (G = H, B)).
+
+%   holds(S, P, only(C)) and its kin (KnowRob's OWL language extension): S is an instance of
+%   the class description on P.
+owl_value(O, P, D) :-
+    compound(O), O =.. [F|Args],
+    memberchk(F/N, [only/1, some/1, value/1, min/2, max/2, exactly/2]),
+    length(Args, N),
+    D =.. [F, P|Args].
+
+%   A goal query backends answer: each backend that can, in turn.
+backend_call(G) :-
+    findall(B, is_callable_with(B, G), Bs0),
+    list_to_set(Bs0, Bs),
+    member(B, Bs),
+    call_with(B, G, []).
+
+%   annotation/3 inside kb_call: subject and property must be known when it runs (KnowRob's
+%   instantiation error otherwise).
+annotation_value(Su0, P0, V) :-
+    kb_iri(Su0, Su), kb_iri(P0, P),
+    (   var(Su) -> instantiation_error(annotation(Su, P, V)) ; true ),
+    (   var(P) -> instantiation_error(annotation(Su, P, V)) ; true ),
+    store_annotation(Su, P, V).
 
 not_named_individual(B) :-
     B \== 'http://www.w3.org/2002/07/owl#NamedIndividual'.
@@ -466,12 +557,31 @@ kb_project_(Statement, S, U) :-
 
 kb_project_(Statement, S, U, Graph) :-
     (   narrowing(Statement) -> Merge = intersect ; Merge = union ),
-    project(Statement, S, U, Triples, []),
+    project(Statement, S, U, Items, []),
+    partition([X]>>(X = annotation(_, _, _)), Items, Annotations, Triples),
+    (   Annotations == [] -> true ; store_insert_annotations(Annotations) ),
     store_insert(Triples, Merge, Graph).
 
 narrowing(_:G) :- !, narrowing(G).
 narrowing(until(_, _)).
 narrowing(since(_, _)).
+
+%!  ask(:Statement) is nondet.
+%!  ask(:Statement, +Scope) is nondet.
+%   KnowRob's deprecated names of kb_call/1 and kb_call/2.
+ask(Statement) :- kb_call(Statement).
+ask(Statement, Scope) :- kb_call(Statement, Scope).
+
+%!  kb_unproject(+Statement, +Scope) is det.
+%!  kb_unproject(+Statement, +Scope, +Options) is det.
+%   kb_unproject/1 with KnowRob's scope and options: Scope must be a scope (checked), and the
+%   matching documents are deleted whatever their scopes; `graph(G)` is accepted.
+kb_unproject(Statement, Scope) :-
+    scope_term(Scope, _),
+    kb_unproject(Statement).
+kb_unproject(Statement, Scope, Options) :-
+    must_be(list, Options),
+    kb_unproject(Statement, Scope).
 
 %!  kb_unproject(+Statement) is det.
 %   Delete the triples Statement stands for (triple/3, holds/3, model predicates defined by
@@ -487,6 +597,7 @@ unproject((A, B), T0, T) :- !, unproject(A, T0, T1), unproject(B, T1, T).
 unproject(triple(S, P, O), [t(S1, P1, O1)|T], T) :- !,
     kb_iri(S, S1), kb_iri(P, P1), kb_iri(O, O1).
 unproject(holds(S, P, O), T0, T) :- !, unproject(triple(S, P, O), T0, T).
+unproject(pragma(G), T, T) :- !, call(G).
 unproject(has_type(A, B), T0, T) :- !, unproject(triple(A, rdf:type, B), T0, T).
 unproject(G, T0, T) :-
     kb_rule(G, Body), !,
@@ -505,6 +616,8 @@ project([], _, _, T, T) :- !.
 project(true, _, _, T, T) :- !.
 project(ask(G), _, _, T, T) :- !,          % KnowRob's deprecated alias of kb_call/1
     once(kb_call(G)).
+project(pragma(G), _, _, T, T) :- !,
+    call(G).
 project([G|Gs], S, U, T0, T) :- !,
     project(G, S, U, T0, T1),
     project(Gs, S, U, T1, T).
@@ -536,6 +649,12 @@ project(holds(S, P, O), Since, Until, T0, T) :- !,
     ;   X = O
     ),
     project(triple(S, P, X), Since, Until, T0, T).
+project(annotation(Su, P, V), _, _, [annotation(Su1, P1, V)|T], T) :- !,
+    (   ground(annotation(Su, P, V)) -> true
+    ;   throw(error(instantiation_error, project(annotation(Su, P, V))))   % KnowRob's context
+    ),
+    kb_iri(Su, Su1), kb_iri(P, P1),
+    must_be(atom, Su1), must_be(atom, P1).
 project(has_type(A, B), Since, Until, T0, T) :- !,
     project(triple(A, rdf:type, B), Since, Until, T0, T).
 project(event_interval(E, B, End), Since, Until, T0, T) :- !,

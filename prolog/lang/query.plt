@@ -178,4 +178,25 @@ test(ask_in_projection, [nondet, setup(store_reset), cleanup(store_reset)]) :-
     kb_project((ask(C = g), triple(e, f, C))),
     kb_call(triple(e, f, g)).
 
+test(ask_and_scoped_unproject, [nondet, cleanup(store_reset)]) :-
+    store_reset,
+    kb_project(triple(e, f, g)),
+    ask(triple(e, f, X)), X == g, ask(triple(e, f, g), dict{}),
+    kb_unproject(triple(e, f, g), dict{}), \+ ask(triple(e, f, _)),
+    kb_project(triple(e, f, h)), kb_unproject(triple(e, f, _), dict{}, [graph(user)]), \+ ask(triple(e, _, _)),
+    catch(kb_unproject(triple(e, f, g), _), error(instantiation_error, _), true).
+
+test(several_rules_are_alternatives, [nondet, cleanup(( store_reset, retractall(kb_query:kb_rule(two_ways(_), _)) ))]) :-
+    store_reset,
+    assertz(kb_query:kb_rule(two_ways(X), triple(X, p, a))),
+    assertz(kb_query:kb_rule(two_ways(X), ( pragma(true), triple(X, q, b) ))),
+    assertz(kb_query:kb_rule(two_ways(only), ( pragma(fail), triple(_, never, _) ))),
+    kb_project(( triple(s1, p, a), triple(s2, q, b) )),
+    findall(X, kb_call(two_ways(X)), Xs), msort(Xs, [s1, s2]),
+    kb_compile(two_ways(only), any, Plan), Plan = [or(_, _)].
+
+test(pragma_runs_when_compiled, [nondet]) :-
+    kb_compile(( pragma(X = 3), triple(s, p, X) ), any, Plan),
+    Plan == [match([t(s, p, 3)], any)].
+
 :- end_tests(kb_query).

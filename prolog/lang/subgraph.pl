@@ -2,7 +2,9 @@
     [ add_subgraph/2,           % +Sub, +Sup
       get_supgraphs/2,          % +Graph, -Graphs
       graph_filter/2,           % +GraphOption, -Filter
-      subgraph_reset/0
+      subgraph_reset/0,
+      get_subgraphs/2,          % +Graph, -Graphs
+      load_graph_structure/0
     ]).
 /** <module> The sub-graph hierarchy of named graphs (KnowRob 2.x src/lang/subgraph.pl)
 
@@ -97,3 +99,17 @@ graph_filter(G, Filter) :-
     must_be(atom, G),
     get_supgraphs(G, Graphs),
     (   memberchk(user, Graphs) -> Filter = all ; Filter = Graphs ).
+
+%!  get_subgraphs(+Graph, -Graphs) is det.
+%   Graph and the graphs below it, each as `string(G)` (KnowRob's form), among the graphs the
+%   hierarchy names (load_owl/2's graphs, add_subgraph/2's edges, `user`, `test`, `common`).
+get_subgraphs(G, Graphs) :-
+    must_be(atom, G),
+    findall(X, ( subgraph_of_(X, _) ; subgraph_of_(_, X) ), Xs0),
+    sort([G|Xs0], Xs),
+    findall(string(X), ( member(X, Xs), atom(X), ( X == G -> true ; get_supgraphs(X, Sups), memberchk(G, Sups) ) ), Graphs).
+
+%!  load_graph_structure is det.
+%   KnowRob reads the stored graphs into its hierarchy at start-up; here the store's part of
+%   the hierarchy is read whenever a query asks for a graph, so there is nothing to load.
+load_graph_structure.

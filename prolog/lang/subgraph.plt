@@ -77,4 +77,11 @@ test(load_owl_parent_graph, [nondet, setup(reset), cleanup(reset)]) :-
 test(bad_graph_list, [error(domain_error(non_empty_graph_list, []))]) :-
     store_in_graphs([], true).
 
+test(subgraphs, [cleanup(subgraph_reset)]) :-
+    subgraph_reset,
+    add_subgraph(g1, common), add_subgraph(g2, g1),
+    get_subgraphs(g1, Gs), msort(Gs, [string(g1), string(g2)]),
+    get_subgraphs(common, Cs), memberchk(string(user), Cs), memberchk(string(g2), Cs),
+    load_graph_structure.
+
 :- end_tests(kb_subgraph).

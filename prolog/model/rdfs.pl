@@ -10,7 +10,12 @@
       rdf_list/2,               % ?RDFList, ?List
       rdf_list_head/2,          % ?SubList, ?Head
       new_iri/1,                % -IRI
-      new_iri/2                 % -IRI, +Type
+      new_iri/2,                % -IRI, +Type
+      is_literal/1,             % ?Entity
+      is_datatype/1,            % ?Entity
+      is_a/2,                   % +Resource, ?Type
+      get_unique_name/2,        % +Prefix, -Name
+      is_unique_name/1          % +Name
     ]).
 /** <module> RDFS vocabulary (KnowRob 2.x src/model/RDFS.pl)
 
@@ -28,13 +33,15 @@ list; new_iri/1,2 make an IRI not used as a subject yet.
 :- use_module('../lang/triple', [kb_iri/2]).
 
 :- multifile kb_query:kb_rule/2.
-kb_query:kb_rule(instance_of(A, B), triple(A, rdf:type, B)).
-kb_query:kb_rule(subclass_of(A, B), triple(A, rdfs:subClassOf, B)).
+kb_query:kb_rule(instance_of(A, B), ( pragma(\+ model_rdfs:owl_term(B)), triple(A, rdf:type, B) )).
+kb_query:kb_rule(subclass_of(A, B), ( pragma(\+ model_rdfs:owl_term(B)), triple(A, rdfs:subClassOf, B) )).
 kb_query:kb_rule(subproperty_of(A, B), triple(A, rdfs:subPropertyOf, B)).
 kb_query:kb_rule(is_resource(A), ( member(C, [rdfs:'Resource', rdfs:'Class', owl:'Class']), has_type(A, C) )).
 kb_query:kb_rule(is_property(A), ( member(C, [rdf:'Property', owl:'ObjectProperty', owl:'DatatypeProperty',
                                              owl:'AnnotationProperty']), has_type(A, C) )).
 kb_query:kb_rule(has_range(P, R), triple(P, rdfs:range, R)).
+kb_query:kb_rule(is_literal(A), has_type(A, rdfs:'Literal')).
+kb_query:kb_rule(is_datatype(A), has_type(A, rdfs:'Datatype')).
 kb_query:kb_rule(has_domain(P, D), triple(P, rdfs:domain, D)).
 
 :- multifile kb_query:kb_projection/2.
@@ -48,6 +55,14 @@ list_triples(L, [X|Xs], I, [triple(L, rdf:first, X), triple(L, rdf:rest, Next)|T
     kb_iri(L, L1), atomic_list_concat([L1, '_', I], Next),
     I1 is I + 1,
     list_triples(Next, Xs, I1, Ts).
+
+%   A class description of OWL (`only(P, C)`, `union_of(Cs)`, ...): model/owl_description
+%   answers instance_of/2 and subclass_of/2 for these.
+owl_term(T) :-
+    compound(T), T \= _:_,
+    functor(T, F, N),
+    memberchk(F/N, [union_of/1, intersection_of/1, complement_of/1, one_of/1, only/2, some/2, value/2,
+                    min/2, min/3, max/2, max/3, exactly/2, exactly/3, class/1]).
 
 %!  instance_of(?Individual, ?Class) is nondet.
 instance_of(A, B) :- kb_call(instance_of(A, B)).
@@ -114,3 +129,40 @@ random_name(Name) :-
     length(Cs, 10),
     maplist([C]>>(random_between(0, 51, I), nth0(I, `ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz`, C)), Cs),
     atom_codes(Name, Cs).
+
+%!  is_literal(?Entity) is nondet.
+%   Typed rdfs:Literal.
+is_literal(A) :- kb_call(is_literal(A)).
+%!  is_datatype(?Entity) is nondet.
+%   Typed rdfs:Datatype.
+is_datatype(A) :- kb_call(is_datatype(A)).
+
+%!  is_a(+Resource, ?Type) is nondet.
+%   subclass_of/2 for a class (typed owl:Class or rdfs:Class), instance_of/2 otherwise
+%   (KnowRob's model/terms.pl).
+is_a(A0, B) :-
+    kb_iri(A0, A),
+    must_be(atom, A),
+    (   kb_call(( member(C, [owl:'Class', rdfs:'Class']), has_type(A, C) ))
+    ->  kb_call(subclass_of(A, B))
+    ;   kb_call(instance_of(A, B))
+    ).
+
+%!  get_unique_name(+Prefix, -Name) is det.
+%   Prefix followed by `_` and eight random capitals, no subject in the store yet.
+get_unique_name(Prefix0, Name) :-
+    kb_iri(Prefix0, Prefix),
+    must_be(atom, Prefix),
+    repeat,
+    length(Cs, 8),
+    maplist([C]>>random_between(0'A, 0'Z, C), Cs),
+    atom_codes(Sub, Cs),
+    atomic_list_concat([Prefix, '_', Sub], Name),
+    is_unique_name(Name), !.
+
+%!  is_unique_name(+Name) is semidet.
+%   No triple has Name as its subject.
+is_unique_name(Name0) :-
+    kb_iri(Name0, Name),
+    must_be(atom, Name),
+    \+ kb_call(triple(Name, _, _), any).

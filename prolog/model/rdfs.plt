@@ -33,4 +33,18 @@ test(new_iri, [nondet, setup(store_reset), cleanup(store_reset)]) :-
     sub_atom(I, 0, _, _, 'http://www.ontologydesignpatterns.org/ont/dul/DUL.owl#Action_'),
     new_iri(J), I \== J.
 
+test(literal_datatype_is_a, [nondet, cleanup(store_reset)]) :-
+    store_reset,
+    kb_project(( has_type(x, rdfs:'Literal'), has_type(d, rdfs:'Datatype'), has_type(c, owl:'Class'),
+                 subclass_of(c, k), has_type(i, c) )),
+    is_literal(x), \+ is_literal(d), is_datatype(d),
+    is_a(c, k), \+ is_a(c, c2), is_a(i, c), is_a(i, k), \+ is_a(i, i).
+
+test(unique_names, [cleanup(store_reset)]) :-
+    store_reset,
+    kb_project(triple(taken, p, o)),
+    \+ is_unique_name(taken), is_unique_name(free),
+    get_unique_name(dul:'Action', N), sub_atom(N, 0, _, 8, 'http://www.ontologydesignpatterns.org/ont/dul/DUL.owl#Action_'),
+    is_unique_name(N).
+
 :- end_tests(model_rdfs).

@@ -47,6 +47,9 @@ if TYPE_CHECKING:
 #: odb extension in odb/); each is imported into ``user`` so a typed query sees its exports.
 MODULES = ("neem_store", "json_text", "lang/triple", "lang/scope", "lang/query", "lang/holds", "lang/temporal", "lang/db",
            "model/rdfs", "model/event", "model/object", "model/situation", "model/action", "model/interval", "model/tf",
+           "model/owl", "model/owl_description", "model/dul_object_types", "model/dul_description", "model/soma_types",
+           "model/soma_object", "model/soma_workflow", "model/soma_shape", "model/qudt", "reasoning/plowl",
+           "lang/subgraph", "lang/rules", "lang/mongolog", "lang/computable",
            "odb/names", "odb/calls", "odb/events", "odb/decisions", "odb/history", "answers", "batch_toplevel")
 #: Rows per chunk handed to Prolog by one solution of py_match/2.
 CHUNK = 5000

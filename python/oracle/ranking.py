@@ -1,5 +1,8 @@
 """The oracle in the system: history from the NEEM (through Prolog), ranking, write-back.
 
+``NeemRanker`` is the one ranking pipeline: ``rank`` builds one per call, the service holds one
+per NEEM and extends it as the robot logs (oracle.service.session).
+
 NEEM -> ``odb_history:situation_history`` (one crossing) -> Steps -> the chosen predictor (its fit
 kept between calls, oracle.fitcache) -> ranking -> ``NeemLogger.preference`` (an imagined preference the Prolog answers read).
 
@@ -12,21 +15,22 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from oracle.algorithm.params import Hyperparameters
-from oracle.algorithm.predictors import DEFAULT, make_predictor
-from oracle.algorithm.records import RankedTask, Ranking, local_name
+from oracle.algorithm.predictors import DEFAULT, Predictor, make_predictor
+from oracle.algorithm.records import Option, RankedTask, Ranking, Step, local_name
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError, NeemOracleError
 from oracle.fitcache import FitCache
 from oracle.historycache import HistoryCache
-from oracle.calls import call_of, check_call, opening_tasks, option_of, steps_before
+from oracle.calls import DoneBefore, call_of, check_call, idle_step, opening_tasks, option_of, steps_from_history
 from oracle.neem.query import recorded_part_of_day
 from oracle.neem.writer import NeemLogger
 from oracle.ontology import OdbOntology
-from oracle.timeline import Instant, has_clock, now, part_of_day_at
+from oracle.timeline import IDLE_THRESHOLD_S, Instant, clock, has_clock, is_idle_gap, now, part_of_day_at
 
 if TYPE_CHECKING:
     from oracle.bridge import Bridge
@@ -94,6 +98,33 @@ def rank_neem(
     history = (histories or HistoryCache.default()).history(bridge)
     info = bridge.store.neem(bridge.neem_id)
     clocked = has_clock(info.meta)
+    calls, instant, offered = _offer(bridge, ontology, history, available, at, clocked)
+    ranker = NeemRanker(ontology, make_predictor(method, ontology.distances(), opening_tasks(ontology), settings),
+                        [row for row in history if float(row["begin"]) < instant.seconds],
+                        neem=bridge.neem_id, store=bridge.store.location, clocked=clocked, keep=not info.temporary,
+                        fits=cache)
+    decision = ranker.rank(calls, instant)
+    ranking = decision.ranking
+    written = note = None
+    if write:
+        logger = NeemLogger(bridge.store, ontology, bridge.neem_id)
+        try:
+            written = logger.preference([(call_of(ontology, t.option), finite(t.score)) for t in ranking], instant)
+        except LoggingError as error:
+            note = f"ranking not written: {error}"
+    if offered is not None:
+        note = offered if note is None else f"{offered}; {note}"
+    return NeemRanking(bridge.neem_id, instant.seconds, instant.part_of_day, len(ranker.steps), ranking,
+                       tuple(call_of(ontology, t.option) for t in ranking),
+                       tuple(call_of(ontology, o) for o in ranking.chain()), decision.ms, written, note, method)
+
+
+def _offer(bridge: Bridge, ontology: OdbOntology, history: Sequence[dict[str, Any]], available: list[str] | None,
+           at: Instant | None, clocked: bool) -> tuple[list[TaskCall], Instant, str | None]:
+    """What a ``rank`` ranks and when: the calls given (at ``at``, default now; on the sequence
+    clock the position after the last action), else the latest imagined situation at its
+    begin and recorded part of day, else the actions done before ``at``; and a note saying so
+    in the last case."""
     latest = None if available else bridge.latest_situation()
     offered = None
     if not available and latest is None:
@@ -114,29 +145,124 @@ def rank_neem(
         else:
             last = 0.0 if at is not None else max((float(row["end"]) for row in history), default=0.0)
             instant = Instant(at.seconds if at is not None else last, None)
-    else:
-        assert latest is not None  # no available calls: the NEEM's latest situation, found above
-        calls = [parse_call(text) for text in latest["available"]]
-        begin = float(latest["begin"])
-        recorded = recorded_part_of_day(bridge.store, bridge.neem_id, ontology.vocab, begin)
-        instant = Instant(begin, (recorded or part_of_day_at(begin)) if clocked else None)
-    when, part = instant.seconds, instant.part_of_day
-    steps = steps_before(ontology, history, when, clocked)
-    model = make_predictor(method, ontology.distances(), opening_tasks(ontology), settings)
-    oracle = (cache or FitCache.default()).fitted(model, steps, bridge.store.location, bridge.neem_id,
-                                                  keep=not info.temporary)
-    started = time.perf_counter()
-    ranking = oracle.rank([option_of(ontology, c) for c in calls], part, at=when if clocked else None)
-    elapsed = (time.perf_counter() - started) * 1000
-    written = note = None
-    if write:
-        logger = NeemLogger(bridge.store, ontology, bridge.neem_id)
-        try:
-            written = logger.preference([(call_of(ontology, t.option), finite(t.score)) for t in ranking], instant)
-        except LoggingError as error:
-            note = f"ranking not written: {error}"
-    if offered is not None:
-        note = offered if note is None else f"{offered}; {note}"
-    return NeemRanking(bridge.neem_id, when, part, len(steps), ranking,
-                       tuple(call_of(ontology, t.option) for t in ranking),
-                       tuple(call_of(ontology, o) for o in ranking.chain()), elapsed, written, note, method)
+        return calls, instant, offered
+    assert latest is not None  # no available calls: the NEEM's latest situation, found above
+    begin = float(latest["begin"])
+    recorded = recorded_part_of_day(bridge.store, bridge.neem_id, ontology.vocab, begin)
+    return ([parse_call(text) for text in latest["available"]],
+            Instant(begin, (recorded or part_of_day_at(begin)) if clocked else None), None)
+
+
+@dataclass(frozen=True)
+class Decision:
+    """A ranking of one decision: the ranking, the instant it is for and how long the
+    predictor took (ms; the fit of the steps before it not counted)."""
+
+    ranking: Ranking
+    when: Instant
+    ms: float
+
+
+@dataclass(frozen=True)
+class Imagined:
+    """The situation imagined since the last action: its calls and when it began (seconds)."""
+
+    calls: tuple[TaskCall, ...]
+    seconds: float
+
+
+class NeemRanker:
+    """One NEEM's ranking pipeline, the same for ``rank``, the answers and the service: the
+    oracle's steps of its history (``situation_history`` rows), the predictor fitted on them
+    (kept between calls by ``fits``, oracle.fitcache), and, as the NEEM grows, the step each
+    logged action adds, with the offer it had. The two rules a decision needs live here once:
+    the idle step before a decision that follows a break (fitted before the logger writes it,
+    as the replay ranks), and which imagined situation counts as an action's offer (the
+    latest one that began after the previous action and not after this one,
+    odb_history:situation_history's rule; else the actions done so far)."""
+
+    def __init__(self, ontology: OdbOntology, predictor: Predictor, rows: Sequence[dict[str, Any]], *,
+                 neem: str, store: str, clocked: bool, keep: bool = True, idle_threshold: float = IDLE_THRESHOLD_S,
+                 fits: FitCache | None = None) -> None:
+        self.ontology = ontology
+        self.clocked = clocked
+        self.idle_threshold = idle_threshold
+        #: The steps fitted so far, and when each began (the predictor's history positions: what
+        #: a ranking's supporting past situations are shown as).
+        self.steps: list[Step] = steps_from_history(ontology, rows, clocked)
+        self.begins: list[float] = [float(row["begin"]) for row in rows]
+        self.predictor = (fits or FitCache.default()).fitted(predictor, self.steps, store, neem, keep=keep)
+        #: What the user did so far: the offer of an action logged without an imagined
+        #: situation, and which ranked tasks were done before.
+        self.done_before = DoneBefore()
+        for step in self.steps:
+            if not step.idle:
+                self.done_before.add(Option(step.task, step.target, step.reference))
+        ends = [float(row["end"] if row.get("end") is not None else row["begin"]) for row in rows]
+        #: The end of the last action: nothing may be logged before it.
+        self.last_end: float | None = max(ends) if ends else None
+        #: The begin of the last action: a situation counts for the next action only after it.
+        self.prev_begin: float | None = max(self.begins) if self.begins else None
+        #: Whether the last step is the idle step of the current break, fitted before its idle
+        #: action is logged (the logger writes it only with the next action).
+        self.idle_fitted = False
+        self.imagined: Imagined | None = None
+
+    def options(self, calls: Sequence[TaskCall]) -> list[Option]:
+        return [option_of(self.ontology, call) for call in calls]
+
+    def rank(self, calls: Sequence[TaskCall], when: Instant, *, tree_roots: int | None = None) -> Decision:
+        """Rank ``calls`` at ``when`` (never written; the predictor sees the break before it)."""
+        self._fit_break(when.seconds)
+        options = self.options(calls)
+        started = time.perf_counter()
+        at = when.seconds if self.clocked else None
+        ranking = (self.predictor.rank(options, when.part_of_day, at=at) if tree_roots is None
+                   else self.predictor.rank(options, when.part_of_day, tree_roots=tree_roots, at=at))
+        return Decision(ranking, when, (time.perf_counter() - started) * 1000)
+
+    def imagine(self, calls: Sequence[TaskCall], seconds: float) -> None:
+        """The robot imagined ``calls`` available at ``seconds`` (the next action's offer if it counts)."""
+        self.imagined = Imagined(tuple(calls), seconds)
+
+    def acted(self, call: TaskCall, begin: float, end: float, part_of_day: str | None, *, after_idle: bool) -> None:
+        """The step an action logged from ``begin`` to ``end`` adds (``after_idle``: the logger
+        wrote an idle action before it), as the NEEM's history will show it."""
+        if after_idle and self.last_end is not None:
+            if not self.idle_fitted:
+                self._fit(idle_step(self.ontology, clock(self.last_end)), self.last_end)
+            self.prev_begin = self.last_end
+        elif self.idle_fitted:
+            # the action began before the break the predictor was told of (within the idle gap
+            # of the last action): the NEEM holds no idle action, so neither may the predictor
+            self.steps.pop()
+            self.begins.pop()
+            self.predictor = self.predictor.fit(self.steps)
+        self.idle_fitted = False
+        imagined = self.imagined
+        counts = (imagined is not None and imagined.seconds <= begin
+                  and (self.prev_begin is None or imagined.seconds > self.prev_begin))
+        options = (tuple(self.options(sorted(set(imagined.calls), key=str))) if counts and imagined
+                   else self.done_before.offer())
+        option = option_of(self.ontology, call)
+        self._fit(Step(option.task, option.target, option.reference, options, part_of_day, False, str(call),
+                       begin if self.clocked else None), begin)
+        self.last_end = end
+        self.prev_begin = begin
+        self.imagined = None
+
+    def _fit(self, step: Step, begin: float) -> None:
+        self.predictor.partial_fit(step)
+        self.steps.append(step)
+        self.begins.append(begin)
+        if not step.idle:
+            self.done_before.add(Option(step.task, step.target, step.reference))
+
+    def _fit_break(self, now: float) -> None:
+        """The idle step before a decision after an idle gap since the last action's end: the
+        NEEM will hold it once the next action is logged; the predictor must see it now."""
+        if (not self.idle_fitted and self.steps and not self.steps[-1].idle
+                and is_idle_gap(self.last_end, now, self.idle_threshold)):
+            assert self.last_end is not None
+            self._fit(idle_step(self.ontology, clock(self.last_end)), self.last_end)  # as the logger will date it
+            self.idle_fitted = True

@@ -7,7 +7,7 @@ import pytest
 
 from oracle.chains import read_chains
 from oracle.evaluation.conditions import derive, write_conditions
-from oracle.evaluation.replay import load_users, replay
+from oracle.evaluation.replay import LEGACY, load_users, replay
 from oracle.ontology import build_ontology
 
 SCRIPT = Path(__file__).resolve().parents[2] / "scripts" / "dev-conditions.py"
@@ -72,7 +72,7 @@ def test_replay_of_derived_sets_offers_all_actions_and_reads_no_clock(chains, tm
     seen = {}
     for condition in ("open", "clockless"):
         method = seen[condition] = Seen()
-        replay(kitchen, load_users(written[condition]), [method])
+        replay(kitchen, load_users(written[condition]), [method], protocol=LEGACY)  # the vocabulary rule
     # the source has an idle gap (08:00:05 -> 09:00) and parts of day; open keeps them
     assert seen["open"].idle == 1
     assert seen["open"].ranked == [(2, "Morning")] * 3

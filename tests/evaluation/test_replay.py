@@ -8,7 +8,9 @@ from oracle.algorithm.records import Option, Step
 from oracle.cli import main
 from oracle.errors import OntologyError
 from oracle.evaluation.baselines import BASELINES, Bigram, MostFrequent, NGram, chance_hit
-from oracle.evaluation.replay import OracleMethod, check_users, load_users, replay, summarize
+from oracle.evaluation.replay import (LEGACY, OracleMethod, ReplayRules, check_users, decision_time, load_users, replay,
+                                      summarize)
+from oracle.timeline import IDLE_THRESHOLD_S
 from oracle.ontology import build_ontology
 
 
@@ -65,11 +67,52 @@ def test_replay_learns_a_routine_and_beats_chance(tmp_path, kitchen):
     assert sum(o.ranks["oracle"] == 1 for o in last_day) >= 4
 
 
-def test_missing_available_uses_all_user_actions(tmp_path, kitchen):
+def test_missing_available_offers_what_the_user_did_before_or_the_vocabulary_as_an_option(tmp_path, kitchen):
     path = tmp_path / "c.jsonl"
-    write_chain(path, "bo", ["pick(red_mug)", "place(red_mug)", "pick(apple)"])
-    result = replay(kitchen, load_users(path), [MostFrequent()])
-    assert [o.n_candidates for o in result.outcomes] == [3, 3, 3]
+    write_chain(path, "bo", ["pick(red_mug)", "place(red_mug)", "pick(red_mug)", "pick(apple)"])
+    honest = replay(kitchen, load_users(path), [MostFrequent()])
+    # never a future action: a first use is not offered, and every method misses it
+    assert [o.n_candidates for o in honest.outcomes] == [0, 1, 2, 2]
+    assert [o.truth_offered for o in honest.outcomes] == [False, False, True, False]
+    assert [o.ranks["most_frequent"] for o in honest.outcomes] == [None, None, 1, None]
+    old = replay(kitchen, load_users(path), [MostFrequent()], protocol=ReplayRules("vocabulary", "start", False))
+    assert [o.n_candidates for o in old.outcomes] == [3, 3, 3, 3]
+
+
+def test_decision_time_never_reads_the_true_start_beyond_the_gap():
+    assert decision_time(None, 1000.0, "previous-end") is None  # a user's first action: no clock yet
+    assert decision_time(990.0, 1000.0, "previous-end") == 990.0
+    assert decision_time(900.0, 5000.0, "previous-end") == 900.0 + IDLE_THRESHOLD_S  # the gap became one
+    assert decision_time(900.0, 5000.0, "previous-end") == decision_time(900.0, 9000.0, "previous-end")
+    assert decision_time(900.0, 5000.0, "start") == 5000.0
+    with pytest.raises(ValueError, match="candidates"):
+        ReplayRules("future")
+
+
+class Clocked(MostFrequent):
+    """Records the decision times and parts of day it is asked at."""
+
+    def reset(self):
+        super().reset()
+        self.asked = []
+
+    def rank(self, candidates, time_of_day=None, at=None):
+        self.asked.append((at, time_of_day))
+        return super().rank(candidates, time_of_day, at)
+
+
+def test_the_replay_ranks_at_the_decision_time_of_its_rules(tmp_path, kitchen):
+    path = tmp_path / "c.jsonl"
+    actions = ["pick(red_mug)", "place(red_mug)", "pick(red_mug)"]
+    write_chain(path, "bo", actions, available=actions, start=datetime(2026, 3, 2, 10, 59, 0), gap=600)
+    clocked = Clocked()
+    replay(kitchen, load_users(path), [clocked])
+    start = datetime(2026, 3, 2, 10, 59, 0).timestamp()
+    # rows have no end: the previous action ends when it starts; gaps of 600 s are idle gaps
+    assert [at for at, _ in clocked.asked] == [None, start + 20, start + 620]
+    assert [tod for _, tod in clocked.asked] == [None, "Morning", "Midday"]
+    replay(kitchen, load_users(path), [clocked], protocol=LEGACY)
+    assert [at for at, _ in clocked.asked] == [start, start + 600, start + 1200]
 
 
 def test_unknown_object_is_reported_with_line(tmp_path, kitchen):
@@ -93,7 +136,9 @@ def test_evaluate_command_writes_json_report_and_plots(tmp_path, capsys):
     assert reference == summary["method"] == "routine"
     assert set(BASELINES) | {"routine", "oracle"} <= set(summary["methods"])
     assert set(summary["chance"]) == {"top1", "top3", "top5"} and summary["n_predictions"] == 12
-    assert summary["methods"]["oracle"]["per_user"]["cy"]["top5"] == 1.0
+    # the four first uses of day one are offered nothing (honest candidates); the rest are all in the top 5
+    assert summary["methods"]["oracle"]["per_user"]["cy"]["top5"] == 8 / 12 and summary["truth_not_offered"] == 4
+    assert summary["protocol"] == {"candidates": "history", "decision": "previous-end", "served": True}
     # every other method is compared with the first one, on the same predictions
     paired = summary["comparisons"]
     assert paired["reference"] == reference and set(paired["methods"]) == set(summary["methods"]) - {reference}

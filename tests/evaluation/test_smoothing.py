@@ -7,7 +7,7 @@ from nltk.lm import KneserNeyInterpolated, WittenBellInterpolated
 from nltk.util import everygrams
 
 from oracle.algorithm.records import Option, Step
-from oracle.evaluation.smoothing import KN_DISCOUNT, KneserNey, WittenBell
+from oracle.evaluation.smoothing import KN_DISCOUNT, MODIFIED, KneserNey, WittenBell, modified_discounts
 
 
 def random_texts(count, seed=11):
@@ -59,3 +59,27 @@ def test_kneser_ney_hand_example():
 def test_rejects_a_discount_outside_the_unit_interval():
     with pytest.raises(ValueError, match="discount"):
         KneserNey(3, discount=1.5)
+
+
+def test_modified_discounts_follow_chen_and_goodman():
+    # n1..n4 = 10, 5, 2, 1: Y = 10 / 20 = .5, D1 = 1 - 2 * .5 * 5/10 = .5, D2 = 2 - 3 * .5 * 2/5 = 1.4,
+    # D3+ = 3 - 4 * .5 * 1/2 = 2
+    assert modified_discounts(10, 5, 2, 1) == pytest.approx((0.5, 1.4, 2.0))
+    assert modified_discounts(0, 5, 2, 1) == (KN_DISCOUNT,) * 3  # nothing seen once: the fixed discount
+    assert modified_discounts(10, 5, 0, 0)[1] == KN_DISCOUNT
+
+
+def test_modified_kneser_ney_estimates_from_its_counts_and_sums_to_one():
+    rng = random.Random(5)
+    words = [Option(ch) for ch in "abcdefg"]
+    for order in (2, 3, 5):
+        model = KneserNey(order, MODIFIED)
+        for i in range(300):
+            model.observe(Step(rng.choice("abcdefg"[:rng.randint(2, 7)])))
+            if i > 3:  # once a bigram was seen (the base level counts bigram types)
+                assert sum(model.probabilities(words)) == pytest.approx(1.0)
+        top = model.count_of_counts[order - 1]
+        raw = model.follow[order - 1]
+        assert top[1] == sum(1 for c in raw.values() for n in c.values() if n == 1)
+        assert model.discounts(order - 1) == modified_discounts(top[1], top[2], top[3], top[4])
+        assert model.discounts(order - 1) != (KN_DISCOUNT,) * 3

@@ -32,7 +32,9 @@ def run_knowrob_suite() -> tuple[int, int]:
 
 @pytest.mark.skipif(shutil.which("swipl") is None, reason="needs swipl")
 def test_knowrob_2x_own_tests_pass():
-    assert run_knowrob_suite() == (73, 73)  # the 60 of the mirrored predicates and lang/scope's 13
+    # the 60 of the mirrored predicates and lang/scope's 13, but the one KnowRob marks fixme and
+    # the one it marks blocked: they run here, and are not counted as passes
+    assert run_knowrob_suite() == (71, 71)
 
 
 def _sqlite(tmp_path):
@@ -83,7 +85,7 @@ def test_free_interval_bound_to_fact_scope(bridge):
 
 
 def test_knowrob_2x_own_tests_on_the_python_stores(bridge):
-    """The same 73 tests with every unit on a fresh NEEM of the store (SQLite, mongomock-ng)."""
+    """The same tests with every unit on a fresh NEEM of the store (SQLite, mongomock-ng)."""
     from pyswip import Atom, Prolog
 
     ids = itertools.count(1)
@@ -105,9 +107,9 @@ def test_knowrob_2x_own_tests_on_the_python_stores(bridge):
         bridge.query("retractall(knowrob_2x:fresh_store_hook)")
     failed = {name.decode() if isinstance(name, bytes) else str(name) for name in row["F"]}
     print(f"KnowRob 2.x tests on {type(bridge.store).__name__}: {row['P']}/{row['T']}, failed: {sorted(failed)}")
-    assert row["T"] == 73
+    assert row["T"] == 71  # KnowRob's fixme and blocked tests not counted
     assert failed == set()  # merging, narrowing and deleting included (store.project)
-    assert row["P"] == 73
+    assert row["P"] == 71
 
 
 def test_kb_project_merges_narrows_and_unprojects_in_the_store(bridge):

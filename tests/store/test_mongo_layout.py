@@ -6,7 +6,7 @@ from bson.decimal128 import Decimal128
 from bson.objectid import ObjectId
 
 from oracle.store import RDF_TYPE, Triple, TriplePattern, Var
-from oracle.store.mongo import TRIPLE_INDEXES, compile_pipeline
+from oracle.store.mongo import _EXTENT, TRIPLE_INDEXES, compile_pipeline
 from tests.store.conftest import make_store
 
 X = "http://example.org/x#"
@@ -47,10 +47,13 @@ def test_a_conjunction_is_one_aggregation_on_one():
     lookups = [stage["$lookup"] for stage in pipeline if "$lookup" in stage]
     assert [lk["from"] for lk in lookups] == ["n_triples", "n_triples"]
     assert "let" not in lookups[0] and lookups[1]["let"] == {"v_O": "$v_O"}
-    assert lookups[0]["pipeline"][0]["$match"] == {"p*": X + "hasParticipant"}
+    # every lookup also keeps only documents whose scope has an extent (KnowRob's since < until)
+    assert lookups[0]["pipeline"][0]["$match"] == {"p*": X + "hasParticipant", "$expr": _EXTENT}
     second = lookups[1]["pipeline"][0]["$match"]
     assert second["p"] == RDF_TYPE and second["o*"] == X + "Cup"
-    assert second["$expr"] == {"$eq": ["$s", "$$v_O"]}
+    assert second["$expr"] == {"$and": [{"$eq": ["$s", "$$v_O"]}, _EXTENT]}
+    # and the rows, where the joined documents' scopes share one (mongolog's v_scope)
+    assert {"$match": {"$expr": {"$lt": ["$k_since", "$k_until"]}}} in pipeline
 
 
 def test_numbers_written_as_decimal128_are_found_by_a_double(tmp_path):

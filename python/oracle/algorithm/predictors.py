@@ -17,6 +17,7 @@ from typing import Any, Protocol
 from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.routine import RoutineOracle
+from oracle.algorithm.stacked import StackedOracle
 from oracle.algorithm.records import Option, Ranking, Step
 from oracle.errors import SettingsError
 
@@ -54,6 +55,10 @@ def _routine_tuned(tuning: str) -> Callable[[Any, frozenset[str], Hyperparameter
     return build
 
 
+def _stacked(distances: Any, opening: frozenset[str], settings: Hyperparameters) -> Predictor:
+    return StackedOracle(distances, opening_tasks=opening)
+
+
 def _thesis(distances: Any, opening: frozenset[str], settings: Hyperparameters) -> Predictor:
     return PreferenceOracle.from_settings(distances, settings, opening)
 
@@ -66,6 +71,8 @@ PREDICTORS: dict[str, PredictorSpec] = {
                                    _routine_tuned("fixed")),
     "routine-mixture": PredictorSpec("routine-mixture", "the routine predictor, variants mixed by their likelihood",
                                      _routine_tuned("mixture")),
+    "stacked": PredictorSpec("stacked", "the routine predictor's evidence combined by a per-user conditional logit "
+                             "(docs/algorithm.md, 'Stacked predictor')", _stacked),
     "thesis": PredictorSpec("thesis", "the thesis PreferenceOracle (chapter 4) with the given settings", _thesis),
 }
 DEFAULT = "routine"

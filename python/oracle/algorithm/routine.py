@@ -82,7 +82,7 @@ class RoutineOracle(EstimatorParams):
     latest ``tuning_window`` steps (``extend`` continues a fit exactly).
     """
 
-    _param_names = ("distances", "opening_tasks", "orders", "temperatures", "lowest_orders", "timed", "timed_from",
+    _param_names: tuple[str, ...] = ("distances", "opening_tasks", "orders", "temperatures", "lowest_orders", "timed", "timed_from",
                     "discounts", "discount_from", "discount_evidence", "timed_discount_from", "timed_shrink", "timed_to",
                     "timed_blend", "focus", "focus_level", "focus_odds", "fresh", "fresh_level", "resume", "recency", "recency_gate",
                     "streams",

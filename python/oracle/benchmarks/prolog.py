@@ -4,6 +4,7 @@ and the history read / ``rank`` / why_not at 1,000-50,000 actions against a plai
 from __future__ import annotations
 
 from collections.abc import Callable
+import os
 import shutil
 import tempfile
 import time
@@ -12,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from oracle.benchmarks.figures import installed_env, growth_exponent, spread, spread_text
+from oracle.benchmarks.ontology import SHARED_SOMA
 from oracle.fitcache import FitCache
 from oracle.historycache import HistoryCache
 
@@ -99,6 +101,67 @@ def run(quick: bool = False) -> list[dict]:
         bridge.close()
         store.close()
     rows.extend(history_figures(quick))
+    rows.extend(owl_figures(quick))
+    return rows
+
+
+# -- OWL reasoning with the full SOMA loaded (issue 37) ----------------------------------------
+#: The official SOMA/DUL files: the ontology bench's folder, or ``$NEEM_SOMA_DIR``.
+SOMA_DIR = Path(os.environ.get("NEEM_SOMA_DIR") or SHARED_SOMA)
+#: kb_call goals over the OWL predicates, each compiled into one store query, and what they ask.
+OWL_QUERIES = (
+    ("subclass_of(soma:'Pouring', only(P, R))", "the `only` restrictions of a SOMA class (all solutions)"),
+    ("executes_task(A, T), instance_of(T, only(P, R))", "the `only` restrictions an action's task is under (A bound)"),
+    ("is_restriction(X, exactly(P, N, C))", "every qualified cardinality restriction of SOMA/DUL"),
+)  # fmt: skip
+#: The floor: one one-pattern store query through the same crossing (a class's direct superclasses).
+OWL_FLOOR = "triple(soma:'Pouring', rdfs:subClassOf, X)"
+
+
+def owl_figures(quick: bool = False, repeat: int = 7) -> list[dict]:
+    """kb_call over the OWL predicates on a NEEM logged with the official SOMA/DUL TBox (10,000
+    actions; 1,000 when quick), min/median/max of ``repeat`` runs of each query, beside the floor
+    (a one-pattern kb_call) measured in the same run."""
+    from oracle.bridge import Bridge
+    from oracle.ontology import build_ontology
+    from oracle.store import open_store
+
+    if not (SOMA_DIR / "SOMA.owl").exists():
+        print(f"OWL kb_call: skipped, no official SOMA/DUL at {SOMA_DIR} (set NEEM_SOMA_DIR)")
+        return []
+    n = 1000 if quick else 10000
+    rows: list[dict] = []
+    onto = build_ontology(soma_dir=SOMA_DIR)
+    with tempfile.TemporaryDirectory() as tmp:
+        store = open_store(Path(tmp) / "owl.sqlite")
+        _neem(store, onto, n)
+        bridge = Bridge(store, "bench", onto)
+        (first,) = bridge.query("once(kb_call((executes_task(A, T), instance_of(T, odb:pick)))), atom_string(A, S)")
+        action = first["S"].decode() if isinstance(first["S"], bytes) else str(first["S"])
+
+        def timed(goal: str) -> tuple[dict[str, float], int]:
+            text = f"A = '{action}', findall(x, kb_call(({goal})), L), length(L, N)"
+            counts: list[int] = []
+            samples = []
+            bridge.query(text)  # warm: compile and the store's page cache
+            for _ in range(repeat):
+                start = time.perf_counter()
+                counts.append(bridge.query(text)[0]["N"])
+                samples.append(time.perf_counter() - start)
+            return spread(samples), counts[-1]
+
+        floor, _ = timed(OWL_FLOOR)
+        print(f"OWL kb_call on {n:,} actions with the official SOMA/DUL TBox, ms min/median/max of {repeat} "
+              f"(floor: one-pattern kb_call {spread_text(floor, 1000)} ms)")
+        for goal, what in OWL_QUERIES:
+            figure, solutions = timed(goal)
+            print(f"  {goal:52s} {spread_text(figure, 1000)} ms  {solutions:5d} solutions  "
+                  f"({figure['median'] / floor['median']:.1f}x floor; {what})")
+            rows.append({"area": "prolog", "name": f"owl kb_call {goal}", "actions": n, "solutions": solutions,
+                         "ms": figure["median"] * 1000, "min_ms": figure["min"] * 1000, "max_ms": figure["max"] * 1000,
+                         "floor_ms": floor["median"] * 1000})
+        bridge.close()
+        store.close()
     return rows
 
 

@@ -27,6 +27,16 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     evaluate.add_argument("--report", type=Path, metavar="FILE.md", help="write a markdown report here")
     evaluate.add_argument("--plots", type=Path, metavar="DIR", help="write PNG plots into DIR")
     evaluate.add_argument("--seed", type=int, default=0, help="seed of the candidate shuffling (default 0)")
+    evaluate.add_argument("--candidates", choices=("history", "vocabulary"), default="history",
+                          help="a row without available options is offered the user's actions before it "
+                               "(history, default) or every action of the user in the file (vocabulary: "
+                               "future ones too, the rule before issue 39)")
+    evaluate.add_argument("--decision", choices=("previous-end", "start"), default="previous-end",
+                          help="rank each decision at the previous action's end, or when an idle gap became one "
+                               "(default), or at the true start (the rule before issue 39)")
+    evaluate.add_argument("--every-step", action="store_true",
+                          help="keep predictors by partial_fit (self-tuning on every step) instead of as rank "
+                               "serves them (fit on the history: the latest tuning window)")
     evaluate.set_defaults(handler=run_evaluate)
 
     tune = subparsers.add_parser("tune", help="tune the hyperparameters by coordinate search (thesis 4.5)")
@@ -41,7 +51,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run_evaluate(args: argparse.Namespace) -> int:
-    from oracle.evaluation.replay import check_users, load_users, make_methods, replay, stderr_progress, summarize
+    from oracle.evaluation.replay import (ReplayRules, check_users, load_users, make_methods, replay, stderr_progress,
+                                          summarize)
 
     method = method_from(args)
     ontology = ontology_from(args)
@@ -49,9 +60,11 @@ def run_evaluate(args: argparse.Namespace) -> int:
     users = load_users(args.chains)
     check_users(ontology, users, str(args.chains))
     started = time.perf_counter()
-    methods = make_methods(ontology, settings, args.baselines, method)
-    result = replay(ontology, users, methods, args.seed, stderr_progress)
+    rules = ReplayRules(args.candidates, args.decision, not args.every_step)
+    methods = make_methods(ontology, settings, args.baselines, method, rules.served)
+    result = replay(ontology, users, methods, args.seed, stderr_progress, rules)
     summary = summarize(result)
+    summary["protocol"] = {"candidates": rules.candidates, "decision": rules.decision, "served": rules.served}
     summary["method"] = methods[0].name
     names = result.methods()
     if len(names) > 1:

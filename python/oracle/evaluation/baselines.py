@@ -6,7 +6,8 @@
 - ``ngram``: PPM-C blending of contexts up to order 3 (without exclusion), backing off to the
   user's action frequencies and finally to uniform; ``ppmc1`` ... ``ppmc5`` the same at other orders.
 - ``ppmx3``, ``ppmx5``: PPM-C with full exclusion (Cleary & Witten 1984, Moffat 1990).
-- ``kn3``, ``kn5``, ``wb3``, ``wb5``: interpolated Kneser-Ney and Witten-Bell n-grams (smoothing.py).
+- ``kn3``, ``kn5``: interpolated modified Kneser-Ney (discounts estimated from count-of-counts);
+  ``wb3``, ``wb5``: interpolated Witten-Bell n-grams (smoothing.py).
 - ``lz78``, ``alz``: the LZ78 predictor and Active LeZi (lempel_ziv.py).
 
 Formulas and references: docs/evaluation.md. Each method ranks by a score and breaks ties by the
@@ -22,7 +23,7 @@ from functools import partial
 
 from oracle.algorithm.records import Option, Step
 from oracle.evaluation.lempel_ziv import LZ78, ActiveLeZi
-from oracle.evaluation.smoothing import KneserNey, WittenBell
+from oracle.evaluation.smoothing import MODIFIED, KneserNey, WittenBell
 from oracle.evaluation.tokens import IDLE_TOKEN, CountingMethod, token
 
 
@@ -146,7 +147,7 @@ BASELINES: dict[str, Callable[[], CountingMethod | LZ78 | ActiveLeZi | KneserNey
     "ngram": NGram,
     **{f"ppmc{n}": partial(NGram, n, f"ppmc{n}") for n in (1, 2, 4, 5)},
     **{f"ppmx{n}": partial(PPMExclusion, n, f"ppmx{n}") for n in (3, 5)},
-    **{f"kn{n}": partial(KneserNey, n, name=f"kn{n}") for n in (3, 5)},
+    **{f"kn{n}": partial(KneserNey, n, MODIFIED, name=f"kn{n}") for n in (3, 5)},
     **{f"wb{n}": partial(WittenBell, n, name=f"wb{n}") for n in (3, 5)},
     "lz78": LZ78,
     "alz": ActiveLeZi,

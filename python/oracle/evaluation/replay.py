@@ -1,10 +1,15 @@
 """Progressive replay: before each action, every method ranks that step's candidates using only
 the user's earlier actions (thesis 5.3); then the action joins the history.
 
-Rows without an ``available`` set get as candidates every distinct action of that user in the
-input. Candidate sets are shuffled with a generator seeded by user and position, identically for
-every method. A gap of ``oracle.timeline.IDLE_THRESHOLD_S`` or more between one action's end (its start when the
-row has no end) and the next start inserts an odb:IdleTask step into the history (it is a chain delimiter, never a prediction target).
+The ``ReplayRules`` say what a decision may know (docs/evaluation.md, "Replay"). By default
+(honest): a row without an ``available`` set is offered the distinct actions its user did before
+it (``candidates="history"``; the old rule, every action of the user anywhere in the file, is
+``"vocabulary"``), and the decision is taken at the end of the previous action, or, when the user
+paused for an idle gap, at the moment that gap became one (``decision="previous-end"``; the true
+start is ``"start"``). Candidate sets are shuffled with a generator seeded by user and position,
+identically for every method. A gap of ``oracle.timeline.IDLE_THRESHOLD_S`` or more between one
+action's end (its start when the row has no end) and the next start inserts an odb:IdleTask step
+into the history (it is a chain delimiter, never a prediction target).
 """
 
 from __future__ import annotations
@@ -27,9 +32,47 @@ from oracle.errors import ChainSyntaxError
 from oracle.evaluation.baselines import BASELINES, chance_hit
 from oracle.ontology import OdbOntology
 from oracle.calls import check_call, idle_step, opening_tasks, option_of
-from oracle.timeline import is_idle_gap, seconds_of, time_of_day
+from oracle.timeline import IDLE_THRESHOLD_S, clock, is_idle_gap, seconds_of, time_of_day
 
 KS = (1, 3, 5)
+CANDIDATE_RULES = ("history", "vocabulary")
+DECISION_RULES = ("previous-end", "start")
+
+
+@dataclass(frozen=True)
+class ReplayRules:
+    """What a replayed decision may know. ``candidates``: for a row without ``available``,
+    "history" (the user's distinct actions before it) or "vocabulary" (every action of the user
+    in the input, future ones included); ``decision``: the time the decision is ranked at,
+    "previous-end" (the previous action's end, or the moment an idle gap became one) or "start"
+    (the true action's start); ``served``: a predictor with ``extend`` is kept as ``rank`` keeps it
+    (``fit(history)``: self-tuning on the latest window), not by ``partial_fit``."""
+
+    candidates: str = "history"
+    decision: str = "previous-end"
+    served: bool = True
+
+    def __post_init__(self) -> None:
+        if self.candidates not in CANDIDATE_RULES:
+            raise ValueError(f"candidates must be one of {', '.join(CANDIDATE_RULES)}, got {self.candidates!r}")
+        if self.decision not in DECISION_RULES:
+            raise ValueError(f"decision must be one of {', '.join(DECISION_RULES)}, got {self.decision!r}")
+
+
+#: The protocol of the results before issue 39: future actions offered, decisions at the true start.
+LEGACY = ReplayRules("vocabulary", "start", False)
+
+
+def decision_time(previous_end: float | None, start: float | None, rule: str) -> float | None:
+    """The unix seconds a decision is ranked at. "previous-end": the previous action's end, or
+    ``previous_end + IDLE_THRESHOLD_S`` when the user paused longer (the moment the logger writes
+    the idle step: all a live system knows then is that nothing began before it); None for a
+    user's first action. "start": the true start."""
+    if rule == "start" or start is None:
+        return start
+    if previous_end is None:
+        return None
+    return previous_end + IDLE_THRESHOLD_S if is_idle_gap(previous_end, start) else previous_end
 
 
 class Method(Protocol):
@@ -49,8 +92,9 @@ class OracleMethod:
     column it gets in the summary (default: the method's name; "oracle" for the thesis)."""
 
     def __init__(self, ontology: OdbOntology, settings: Hyperparameters, name: str | None = None,
-                 method: str = THESIS) -> None:
+                 method: str = THESIS, served: bool = False) -> None:
         self.method = method
+        self.served = served
         self.name = name if name is not None else ("oracle" if method == THESIS else method)
         self.settings = settings
         self.distances = ontology.distances()
@@ -59,12 +103,19 @@ class OracleMethod:
 
     def reset(self) -> None:
         self.model = make_predictor(self.method, self.distances, self.opening, self.settings).fit([])
+        self.history: list[Step] = []
 
     def rank(self, candidates: Sequence[Option], time_of_day: str | None = None, at: float | None = None) -> list[Option]:
         return list(self.model.rank(list(candidates), time_of_day, tree_roots=0, at=at).options())
 
     def observe(self, step: Step) -> None:
-        self.model.partial_fit(step)
+        extend = getattr(self.model, "extend", None)
+        if self.served and extend is not None:
+            # as rank serves it: the model fit(history) gives, self-tuned on the latest window
+            self.history.append(step)
+            extend(self.history)
+        else:
+            self.model.partial_fit(step)
 
 
 @dataclass(frozen=True)
@@ -123,6 +174,7 @@ def replay(
     methods: Sequence[Method],
     seed: int = 0,
     progress: Callable[[int, int, str], None] | None = None,
+    protocol: ReplayRules = ReplayRules(),
 ) -> ReplayResult:
     result = ReplayResult()
     known: dict = {}
@@ -136,13 +188,16 @@ def replay(
     for number, (user, rows) in enumerate(users.items(), start=1):
         if progress is not None:
             progress(number, len(users), user)
-        fallback = list(OrderedDict.fromkeys(option_of(ontology, row.action) for row in rows))
+        vocabulary = list(OrderedDict.fromkeys(option_of(ontology, row.action) for row in rows))
+        done: OrderedDict[Option, None] = OrderedDict()  # the user's actions so far, in first-use order
         for method in methods:
             method.reset()
         previous_end: float | None = None
         for index, row in enumerate(rows):
-            if row.time is not None and is_idle_gap(previous_end, seconds_of(row.time)):
-                idle = idle_step(ontology, row.time)
+            start_s = seconds_of(row.time) if row.time is not None else None
+            at = decision_time(previous_end, start_s, protocol.decision)
+            if start_s is not None and is_idle_gap(previous_end, start_s):
+                idle = idle_step(ontology, clock(at) if at is not None else row.time)
                 for method in methods:
                     method.observe(idle)
             if row.time is not None:
@@ -150,22 +205,25 @@ def replay(
             truth = convert(row.action)
             if row.available is not None:
                 candidates = list(OrderedDict.fromkeys(convert(call) for call in row.available))
+            elif protocol.candidates == "history":
+                candidates = list(done)
             else:
-                candidates = list(fallback)
+                candidates = list(vocabulary)
             _rng(user, index, seed).shuffle(candidates)
-            tod = time_of_day(row.time) if row.time is not None else None
-            at = seconds_of(row.time) if row.time is not None else None
+            tod = time_of_day(clock(at)) if at is not None else None
             ranks: dict[str, int | None] = {}
             seconds: dict[str, float] = {}
             offered = truth in candidates
             for method in methods:
-                start = time.perf_counter()
-                order = method.rank(candidates, tod, at)
-                seconds[method.name] = time.perf_counter() - start
+                begin = time.perf_counter()
+                order = method.rank(candidates, tod, at) if candidates else []
+                seconds[method.name] = time.perf_counter() - begin
                 ranks[method.name] = order.index(truth) + 1 if offered else None
             result.outcomes.append(Outcome(user, index, len(candidates), offered, ranks, seconds))
-            observed = Step(truth.task, truth.target, truth.reference, tuple(candidates), tod, False, str(row.action),
-                            at)
+            # the step joins the history as it happened: when it began, at its own part of day
+            observed = Step(truth.task, truth.target, truth.reference, tuple(candidates),
+                            time_of_day(row.time) if row.time is not None else None, False, str(row.action), start_s)
+            done[truth] = None
             for method in methods:
                 method.observe(observed)
     return result
@@ -186,14 +244,17 @@ def stderr_progress(done: int, total: int, user: str) -> None:
 
 
 def make_methods(ontology: OdbOntology, settings: Hyperparameters, baselines: bool,
-                 method: str = DEFAULT) -> list[Method]:
+                 method: str = DEFAULT, served: bool = True) -> list[Method]:
     """The predictor ``method``; with ``baselines`` also the thesis oracle (when it is not the one
-    chosen) and every baseline."""
-    methods: list[Method] = [OracleMethod(ontology, settings, method=method)]
+    chosen) and every baseline (``served``: predictors kept as ``rank`` keeps them, ``ReplayRules``)."""
+    methods: list[Method] = [OracleMethod(ontology, settings, method=method, served=served)]
     if baselines:
         if method != THESIS:
-            methods.append(OracleMethod(ontology, settings, method=THESIS))
+            methods.append(OracleMethod(ontology, settings, method=THESIS, served=served))
         methods.extend(cls() for cls in BASELINES.values())
+        from oracle.evaluation.learned import learned_baselines
+
+        methods.extend(learned_baselines(ontology.distances(), opening_tasks(ontology)))
     return methods
 
 
@@ -225,5 +286,6 @@ def _rate(outcomes: Iterable[Outcome], name: str, k: int) -> float:
     return hits / len(outcomes) if outcomes else 0.0
 
 
-__all__ = ["KS", "Method", "OracleMethod", "Outcome", "ReplayResult", "check_users",
+__all__ = ["CANDIDATE_RULES", "DECISION_RULES", "KS", "LEGACY", "Method", "OracleMethod", "Outcome", "ReplayResult",
+           "ReplayRules", "check_users", "decision_time",
            "load_users", "make_methods", "opening_tasks", "replay", "stderr_progress", "summarize"]

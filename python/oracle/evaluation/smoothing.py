@@ -20,6 +20,22 @@ from oracle.evaluation.tokens import order_by_score, token
 #: Kneser & Ney (1995) and Chen & Goodman (1999) use one absolute discount near 0.75; nltk's default 0.1
 #: is a toy value (it keeps almost all mass on the observed counts).
 KN_DISCOUNT = 0.75
+#: ``KneserNey(discount=MODIFIED)``: three discounts per order estimated from its count-of-counts
+#: (Chen & Goodman 1999, modified Kneser-Ney), as the ``kn3`` and ``kn5`` baselines use.
+MODIFIED = "modified"
+
+
+def modified_discounts(n1: int, n2: int, n3: int, n4: int) -> tuple[float, float, float]:
+    """Chen & Goodman's discounts D1, D2, D3+ of an order whose counts hold ``n1`` .. ``n4``
+    n-grams seen exactly 1 .. 4 times: ``Y = n1 / (n1 + 2 n2)``, ``D_k = k - (k + 1) Y n_(k+1) / n_k``,
+    each kept in [0, k]; ``KN_DISCOUNT`` for each while its counts are missing (short histories)."""
+    if not n1 or not n2:
+        return (KN_DISCOUNT, KN_DISCOUNT, KN_DISCOUNT)
+    y = n1 / (n1 + 2 * n2)
+    d1 = min(max(1 - 2 * y * n2 / n1, 0.0), 1.0)
+    d2 = min(max(2 - 3 * y * n3 / n2, 0.0), 2.0) if n3 else KN_DISCOUNT
+    d3 = min(max(3 - 4 * y * n4 / n3, 0.0), 3.0) if n3 and n4 else d2
+    return (d1, d2, d3)
 
 
 class _NgramCounts:
@@ -79,13 +95,16 @@ class KneserNey(_NgramCounts):
     P(w | c) = max(N(c w) - D, 0) / N(c .) + D * T(c) / N(c .) * P(w | c'),  c' = c without its oldest token,
     where N are raw counts at the highest order and continuation counts N1+(. c w) below it, T(c) the
     number of distinct w with N(c w) > 0, and the base case is P(w) = N1+(. w) / N1+(. .).
+    With ``discount=MODIFIED`` D depends on the count (D1, D2, D3+, ``modified_discounts`` of the
+    order's count-of-counts, kept as the counts grow) and ``D T(c)`` becomes
+    ``D1 N1(c .) + D2 N2(c .) + D3+ N3+(c .)`` (Chen & Goodman 1999).
     """
 
     name = "kn"
 
-    def __init__(self, order: int = 3, discount: float = KN_DISCOUNT, name: str | None = None) -> None:
-        if not 0 <= discount <= 1:
-            raise ValueError(f"Kneser-Ney discount must be in [0, 1], got {discount}")
+    def __init__(self, order: int = 3, discount: float | str = KN_DISCOUNT, name: str | None = None) -> None:
+        if discount != MODIFIED and (isinstance(discount, str) or not 0 <= discount <= 1):
+            raise ValueError(f"Kneser-Ney discount must be in [0, 1] or {MODIFIED!r}, got {discount}")
         self.discount = discount
         super().__init__(order, name)
 
@@ -94,14 +113,37 @@ class KneserNey(_NgramCounts):
         # continuation[n][ctx][w]: how many distinct tokens x preceded ctx + w; cont_totals: their sum over w
         self.continuation: list[dict[tuple, Counter[object]]] = [defaultdict(Counter) for _ in range(self.order)]
         self.cont_totals: list[Counter[tuple]] = [Counter() for _ in range(self.order)]
+        # per order: how many of the counts the order discounts hold each value 1..4 (modified discounts)
+        self.count_of_counts: list[Counter[int]] = [Counter() for _ in range(self.order)]
+
+    def observe(self, step: Step) -> None:
+        top = self.order - 1
+        if len(self.tokens) >= top:  # the highest order discounts raw counts: track their count-of-counts
+            context = tuple(self.tokens[-top:]) if top else ()
+            self._recount(top, self.follow[top].get(context, Counter())[token(step)])
+        super().observe(step)
+
+    def _recount(self, n: int, old: int) -> None:
+        if old:
+            self.count_of_counts[n][old] -= 1
+        self.count_of_counts[n][old + 1] += 1
 
     def _new_type(self, n: int, context: tuple, word: object) -> None:
         if n >= 1:
+            if n - 1 < self.order - 1:
+                self._recount(n - 1, self.continuation[n - 1][context[1:]][word])
             self.continuation[n - 1][context[1:]][word] += 1
             self.cont_totals[n - 1][context[1:]] += 1
 
+    def discounts(self, n: int) -> tuple[float, float, float]:
+        """The discounts of counts 1, 2 and 3+ at order ``n`` (context length)."""
+        if self.discount == MODIFIED:
+            c = self.count_of_counts[n]
+            return modified_discounts(c[1], c[2], c[3], c[4])
+        d = float(self.discount)
+        return (d, d, d)
+
     def probabilities(self, words: Sequence[object]) -> list[float]:
-        d = self.discount
         base = self.continuation[0].get(()) or Counter()
         base_total = self.cont_totals[0][()]
         # nltk divides by zero here (no bigram yet); this level then contributes nothing
@@ -118,8 +160,15 @@ class KneserNey(_NgramCounts):
             # the interpolation weight counts the distinct words the level's own counts saw after the
             # context; nltk counts raw followers here, which breaks normalisation when the context's
             # only left-less occurrence (the history's first tokens) had a follower seen nowhere else
-            gamma = d * len(counts) / total
-            probs = [max(counts[w] - d, 0.0) / total + gamma * p for w, p in zip(words, probs)]
+            ds = self.discounts(n)
+            if ds[0] == ds[1] == ds[2]:
+                d = ds[0]
+                gamma = d * len(counts) / total
+                probs = [max(counts[w] - d, 0.0) / total + gamma * p for w, p in zip(words, probs)]
+                continue
+            gamma = sum(ds[min(c, 3) - 1] for c in counts.values() if c > 0) / total
+            probs = [(counts[w] - ds[min(counts[w], 3) - 1] if counts[w] > 0 else 0.0) / total + gamma * p
+                     for w, p in zip(words, probs)]
         return probs
 
 
@@ -142,4 +191,4 @@ class WittenBell(_NgramCounts):
         return probs
 
 
-__all__ = ["KN_DISCOUNT", "KneserNey", "WittenBell"]
+__all__ = ["KN_DISCOUNT", "MODIFIED", "KneserNey", "WittenBell", "modified_discounts"]

@@ -16,6 +16,7 @@ per call. Objects and agents are shared by every event of the NEEM. See docs/sto
 
 from __future__ import annotations
 
+import math
 import os
 import re
 import time
@@ -80,6 +81,15 @@ class _Out(list[TripleRow]):
 
     def add(self, s: str, p: str, o: Value, since: float = 0.0, until: float = INFINITY) -> None:
         self.append((s, p, o, USER_GRAPH, since, until))
+
+
+def fact_extent(begin: float, end: float) -> tuple[float, float]:
+    """The scope of a fact that holds during an action from ``begin`` to ``end``. KnowRob sees a
+    fact only where its scope has an extent (since < until, ``kb_scope``), so an instantaneous
+    action (logged with a start only) scopes its facts to the shortest interval a double holds,
+    ``[begin, nextafter(begin)]``: ``has_role(O, R) during A`` then answers as it does for any
+    action, and the extent ends before any later action starts (docs/store.md)."""
+    return (begin, end) if end > begin else (begin, math.nextafter(begin, math.inf))
 
 
 def _slug(text: str) -> str:
@@ -388,7 +398,7 @@ class NeemLogger:
             out.add(role, RDF_TYPE, role_class)
             out.add(role, RDF_TYPE, T.NAMED_INDIVIDUAL)
             out.add(task, T.IS_TASK_OF, role)
-            out.add(role, T.CLASSIFIES, self.object_iri(arg), begin.seconds, end.seconds)
+            out.add(role, T.CLASSIFIES, self.object_iri(arg), *fact_extent(begin.seconds, end.seconds))
         return task
 
     def _plan(self, call: TaskCall, out: _Out, since: float) -> str:

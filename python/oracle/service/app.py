@@ -26,6 +26,7 @@ from oracle.service.events import EventHub
 from oracle.service.guard import STATIC_DOCS, Guard, Limits, allowed_hosts
 from oracle.service.queries import NoSuchNeem, QueryProcess
 from oracle.service.routes import router
+from oracle.service.past_routes import router as past_router
 from oracle.service.session import OutOfOrder
 
 LOG = logging.getLogger("oracle.service")
@@ -65,6 +66,7 @@ def create_app(ctx: Context) -> FastAPI:
                   description="The robot's live NEEM logger and PreferenceOracle (docs/service.md).")
     app.state.ctx = ctx
     app.include_router(router)
+    app.include_router(past_router)
     _offline_docs(app)
     app.add_middleware(Guard, ctx=ctx)
 

@@ -15,17 +15,16 @@ from typing import Any
 from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.predictors import DEFAULT, Predictor
 from oracle.algorithm.predictors import make_predictor as make_named
-from oracle.algorithm.records import Option, RankedTask, Ranking, Step
+from oracle.algorithm.records import RankedTask, Ranking
 from oracle.answers import support_sentence
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError
-from oracle.fitcache import FitCache
 from oracle.neem.tf import Pose
 from oracle.neem.writer import LoggedAction, NeemLogger, check_performer
-from oracle.timeline import Instant, TimeValueError, clock, is_idle_gap
+from oracle.timeline import Instant, TimeValueError, parse_iso
 from oracle.ontology import OdbOntology
-from oracle.ranking import finite, support_fields
-from oracle.calls import DoneBefore, call_of, check_call, idle_step, opening_tasks, option_of, steps_from_history
+from oracle.ranking import NeemRanker, finite, support_fields
+from oracle.calls import call_of, check_call, opening_tasks
 
 #: The forward tree is built for the top suggestion only: the page and the API offer its chain
 #: as the one workflow; the ranking itself does not depend on how many trees are built.
@@ -83,8 +82,8 @@ def _moment(value: Any, what: str) -> Moment:
         return float(value)
     if isinstance(value, str):
         try:
-            return datetime.fromisoformat(value.replace("Z", "+00:00"))
-        except ValueError:
+            return parse_iso(value)
+        except TimeValueError:
             pass
     raise LoggingError(f"{what}: expected unix seconds or ISO-8601 (2024-05-01T08:30), got {value!r}")
 
@@ -110,37 +109,23 @@ class NeemSession:
         self.neem = neem
         self.logger = logger
         self.ontology = ontology
-        #: The steps fitted so far, and when each began (the predictor's history positions: what
-        #: a ranking's supporting past situations are shown as).
-        self.steps: list[Step] = steps_from_history(ontology, history, logger.clocked)
-        self.begins: list[float] = [float(row["begin"]) for row in history]
         # the fit of a NEEM the CLI or an earlier service run ranked is kept (oracle.fitcache)
         # (never that of a temporary NEEM: it is wiped when the next session starts)
-        self.predictor = FitCache.default().fitted(predictor, self.steps, logger.store.location, neem,
-                                                   keep=not logger.store.neem(neem).temporary)
-        #: What the user did so far: the offer of an action logged without an imagined
-        #: situation, as the history read gives it, and which ranked tasks were done before.
-        self.done_before = DoneBefore()
-        for step in self.steps:
-            if not step.idle:
-                self.done_before.add(Option(step.task, step.target, step.reference))
-        ends = [float(row["end"]) for row in history]
-        begins = [float(row["begin"]) for row in history]
-        #: The logger's clock: nothing may be logged before the end of the last action.
-        self.last_end: float | None = max(ends) if ends else None
-        #: Begin of the last logged action: a situation counts for the next action only when it
-        #: came after it (odb_history:situation_history's rule).
-        self.prev_begin: float | None = max(begins) if begins else None
-        #: The idle step of the current pause is fitted before its idle action is logged: by the
-        #: first situation after an idle gap, ranked as the replay ranks it (the logger writes the
-        #: idle action only with the next action, which then fits nothing more).
-        self.idle_fitted = False
+        #: The NEEM's ranking pipeline (oracle.ranking): its steps, fit, offers and breaks.
+        self.ranker = NeemRanker(ontology, predictor, list(history), neem=neem, store=logger.store.location,
+                                 clocked=logger.clocked, keep=not logger.store.neem(neem).temporary,
+                                 idle_threshold=logger.idle_threshold)
         self.pending: Situation | None = None
         self.latest: dict[str, Any] | None = None
         self.open: dict[str, OpenAction] = {}
         self.poses: dict[str, list[float]] = {}
         self.choice: dict[str, Any] | None = None
         self._keys = 0
+
+    @property
+    def predictor(self) -> Predictor:
+        """The predictor fitted on the NEEM's history so far."""
+        return self.ranker.predictor
 
     # -- validation ---------------------------------------------------------------------------
     def calls(self, texts: Sequence[str], where: str) -> tuple[TaskCall, ...]:
@@ -152,9 +137,10 @@ class NeemSession:
         return tuple(calls)
 
     def _check_time(self, when: Instant, what: str) -> None:
-        if self.last_end is not None and when.seconds < self.last_end:
+        last_end = self.ranker.last_end
+        if last_end is not None and when.seconds < last_end:
             raise OutOfOrder(f"time goes backwards: {what} at {when.seconds:.3f} is before the end of the"
-                               f" last action ({self.last_end:.3f}) in NEEM {self.neem!r}")
+                               f" last action ({last_end:.3f}) in NEEM {self.neem!r}")
 
     # -- perception -------------------------------------------------------------------------
     def perceive(self, objects: Sequence[tuple[str, list[float] | None]], at: Any) -> list[str]:
@@ -182,25 +168,8 @@ class NeemSession:
         moment = moment_of(at, "at")
         when = Instant.of(moment)
         self._check_time(when, "situation")
-        self._fit_break(when.seconds)
-        started = time.perf_counter()
-        ranking = self.predictor.rank([option_of(self.ontology, c) for c in calls], when.part_of_day,
-                                      tree_roots=TREE_ROOTS, at=when.seconds if self.logger.clocked else None)
-        return Situation(calls, when, moment), ranking, (time.perf_counter() - started) * 1000
-
-    def _fit(self, step: Step, begin: float) -> None:
-        self.predictor.partial_fit(step)
-        self.steps.append(step)
-        self.begins.append(begin)
-        if not step.idle:
-            self.done_before.add(Option(step.task, step.target, step.reference))
-
-    def _fit_break(self, now: float) -> None:
-        """The idle step before a situation posted an idle gap after the last action's end: the
-        NEEM will hold it once the next action is logged; the predictor must see it now."""
-        if not self.idle_fitted and self.last_end is not None and is_idle_gap(self.last_end, now, self.logger.idle_threshold):
-            self._fit(idle_step(self.ontology, clock(self.last_end)), self.last_end)
-            self.idle_fitted = True
+        decision = self.ranker.rank(calls, when, tree_roots=TREE_ROOTS)
+        return Situation(calls, when, moment), decision.ranking, decision.ms
 
     def write_situation(self, situation: Situation, ranking: Ranking) -> str:
         """Log the situation as the imagined one and the ranking as the imagined preference,
@@ -210,6 +179,7 @@ class NeemSession:
             [(call_of(self.ontology, t.option), finite(t.score)) for t in ranking], situation.moment)
         self.logger.flush()
         self.pending = situation
+        self.ranker.imagine(situation.calls, situation.when.seconds)
         return order
 
     def describe(self, situation: Situation, ranking: Ranking, ms: float) -> dict[str, Any]:
@@ -232,13 +202,14 @@ class NeemSession:
         ago the user last did it (where the clock weighed the ranking), ``reason`` the same in a
         few words."""
         fields = support_fields(task)
+        begins = self.ranker.begins
         entry: dict[str, Any] = {"rank": task.rank, "task": call, "score": finite(task.score), "support": task.n_similar,
                                  "probability": fields.get("probability"), "context_order": fields.get("context_order"),
                                  "context": fields.get("context", []), "focus": fields.get("focus", []),
                                  "new": fields.get("new", False), "resumed": fields.get("resumed", False),
                                  "since": fields.get("since"),
-                                 "situations": [self.begins[p] for p in fields.get("situations", []) if p < len(self.begins)]}
-        entry["reason"] = support_sentence({**entry, "done": task.option in self.done_before.done})
+                                 "situations": [begins[p] for p in fields.get("situations", []) if p < len(begins)]}
+        entry["reason"] = support_sentence({**entry, "done": task.option in self.ranker.done_before.done})
         return entry
 
     # -- actions ------------------------------------------------------------------------------
@@ -280,26 +251,6 @@ class NeemSession:
         self._check_time(Instant.of(start), f"action {call}")
         logged = self.logger.action(call, start, stop, performed_by=performed_by)
         self.logger.flush()
-        if logged.idle is not None and self.last_end is not None:
-            if not self.idle_fitted:
-                self._fit(idle_step(self.ontology, clock(self.last_end)), self.last_end)
-            self.prev_begin = self.last_end
-        elif self.idle_fitted:
-            # the action began before the break the predictor was told of (within the idle gap
-            # of the last action): the NEEM holds no idle action, so neither may the predictor
-            self.steps.pop()
-            self.begins.pop()
-            self.predictor = self.predictor.fit(self.steps)
-        self.idle_fitted = False
-        pending = self.pending
-        counts = (pending is not None and pending.when.seconds <= logged.begin
-                  and (self.prev_begin is None or pending.when.seconds > self.prev_begin))
-        options = (tuple(option_of(self.ontology, c) for c in sorted(set(pending.calls), key=str)) if counts and pending
-                   else self.done_before.offer())
-        option = option_of(self.ontology, call)
-        self._fit(Step(option.task, option.target, option.reference, options, logged.part_of_day, False, str(call),
-                       logged.begin if self.logger.clocked else None), logged.begin)
-        self.last_end = logged.end
-        self.prev_begin = logged.begin
+        self.ranker.acted(call, logged.begin, logged.end, logged.part_of_day, after_idle=logged.idle is not None)
         self.pending = None
         return logged

@@ -374,8 +374,8 @@ def compile_pipeline(
                 exprs.append({"$eq": [f"${field}", f"${new[name]}"]})
             else:
                 new[name] = field
-        if exprs:
-            match["$expr"] = exprs[0] if len(exprs) == 1 else {"$and": exprs}
+        exprs.append(_EXTENT)
+        match["$expr"] = exprs[0] if len(exprs) == 1 else {"$and": exprs}
         lookup: dict[str, Any] = {"from": collection, "as": "next", "pipeline": [{"$match": match}]}
         if not new and index > 0:
             # No new variable: a test, as goal by goal (a ground goal succeeds once however
@@ -387,6 +387,10 @@ def compile_pipeline(
         stages.append({"$unwind": "$next"})
         if new:
             stages.append({"$set": {name: f"$next.{field}" for name, field in new.items()}})
+        if index > 0:
+            stages.extend(_intersect_scope())
+        else:
+            stages.append({"$set": {"k_since": _SINCE, "k_until": _UNTIL}})
         stages.append({"$unset": "next"})
         bound.update(name[2:] for name in new)
     if order:
@@ -394,6 +398,23 @@ def compile_pipeline(
     if limit is not None:
         stages.append({"$limit": int(limit)})
     return stages
+
+
+#: KnowRob's extent rule (``kb_scope``): a document's scope (an open end where it has none).
+_SINCE: dict[str, Any] = {"$ifNull": ["$next.scope.time.since", 0.0]}
+_UNTIL: dict[str, Any] = {"$ifNull": ["$next.scope.time.until", math.inf]}
+#: A document is seen only where its scope has an extent (since < until).
+_EXTENT: dict[str, Any] = {"$lt": [{"$ifNull": ["$scope.time.since", 0.0]}, {"$ifNull": ["$scope.time.until", math.inf]}]}
+
+
+def _intersect_scope() -> list[dict[str, Any]]:
+    """mongolog's ``v_scope``: the running intersection of the joined documents' scopes,
+    dropping a solution where it has no extent. ``$cond`` rather than ``$max``/``$min``, which
+    the mongomock-ng test double cannot apply to Decimal128."""
+    since = {"$cond": [{"$gt": [_SINCE, "$k_since"]}, _SINCE, "$k_since"]}
+    until = {"$cond": [{"$lt": [_UNTIL, "$k_until"]}, _UNTIL, "$k_until"]}
+    return [{"$set": {"k_since": since, "k_until": until}},
+            {"$match": {"$expr": {"$lt": ["$k_since", "$k_until"]}}}]  # fmt: skip
 
 
 _MONGO_OPS = {"<": "$lt", "=<": "$lte", ">": "$gt", ">=": "$gte"}

@@ -141,6 +141,11 @@ class SqlCompiler:
         #: through the class closure), so the compiled query gives the same solutions.
         self.semi_joins = False
         self.semi: set[int] = set()
+        #: KnowRob's extent rule (``kb_scope``): a document is seen only where its scope has an
+        #: extent (since < until), and a solution only where the scopes of the documents joined
+        #: share one (mongolog's ``v_scope``); set for ``match``, the queries Prolog asks.
+        #: ``find`` (the store's own reads: dumps, the writer) sees every document.
+        self.knowrob_extent = False
 
     def from_clause(self) -> str:
         return ", ".join(f"{self.sources[i]} AS {self.aliases[i]}" for i in self.joined_patterns())
@@ -155,7 +160,13 @@ class SqlCompiler:
         return [i for i in range(len(self.aliases)) if i not in self.semi]
 
     def where(self) -> str:
-        return " AND ".join(self.conds) if self.conds else "1"
+        conds = self.conds
+        joined = self.joined_patterns()
+        if self.knowrob_extent and len(joined) > 1:
+            since = ", ".join(f"coalesce({self.aliases[i]}.since, 0)" for i in joined)
+            until = ", ".join(f"coalesce({self.aliases[i]}.until, 9e999)" for i in joined)
+            conds = [*conds, f"max({since}) < min({until})"]
+        return " AND ".join(conds) if conds else "1"
 
     def _iri(self, value: Any) -> int:
         return self.store.known_term_id(value) if isinstance(value, str) else -1
@@ -287,6 +298,8 @@ class SqlCompiler:
         if self.scope is not None:
             self.conds.append(f"({a}.since IS NULL OR {a}.since<=?) AND ({a}.until IS NULL OR {a}.until>=?)")
             self.params.extend([self.scope.until, self.scope.since])
+        if self.knowrob_extent:
+            self.conds.append(f"({a}.since IS NULL OR {a}.until IS NULL OR {a}.since < {a}.until)")
 
     def _term(self, term: Term, column: str, kind_column: str | None) -> None:
         if term is None:

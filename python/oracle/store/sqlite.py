@@ -1343,6 +1343,7 @@ class SQLiteStore(Store):
         self._require(neem_id)
         query = SqlCompiler(self, _table(neem_id, "triples"), scope, self._side(neem_id))
         query.semi_joins = True
+        query.knowrob_extent = True
         if written_order:  # with an order too: joined as written, then sorted (a top-N sort)
             plan, joined = list(range(len(patterns))), _joined_in_order(patterns)
         elif order:

@@ -15,6 +15,7 @@ import socket
 from datetime import datetime, timezone
 
 from oracle.store.base import STAGING, Store
+from oracle.timeline import TimeValueError, parse_iso
 
 #: Registry field of a staging NEEM: the process building it ({"host": ..., "pid": ...}).
 STAGED_BY = "staged_by"
@@ -76,8 +77,8 @@ def _process_alive(pid: int) -> bool:
 
 def _age_s(created_at: object, now: datetime) -> float:
     try:
-        made = datetime.fromisoformat(str(created_at))
-    except ValueError:
+        made = parse_iso(str(created_at))
+    except TimeValueError:
         return float("inf")  # no readable creation time: nobody can be building it still
     if made.tzinfo is None:
         made = made.replace(tzinfo=timezone.utc)

@@ -14,6 +14,7 @@ from bson.decimal128 import Decimal128
 
 from oracle.errors import StoreError
 from oracle.store.model import TriplePattern
+from oracle.timeline import TimeValueError, parse_iso
 
 #: Registry fields and the types a reader expects of them (None allowed for each).
 _META_TYPES: dict[str, tuple[type, ...]] = {"created_by": (str,), "created_at": (str,), "temporary": (bool,),
@@ -121,8 +122,8 @@ def check_meta(meta: Mapping[str, Any], where: str) -> None:
     created = meta.get("created_at")
     if isinstance(created, str):
         try:
-            datetime.fromisoformat(created.replace("Z", "+00:00"))
-        except ValueError:
+            parse_iso(created)
+        except TimeValueError:
             raise StoreError(f"{where}: 'created_at' {created[:40]!r} is not an ISO-8601 time") from None
 
 

@@ -1,0 +1,229 @@
+:- module(odb_past,
+    [ latest_time/1,              % -Time
+      done_between/3,             % +From, +To, -Done
+      last_done/3,                % +Call, +Before, -Begin
+      done_times/4,               % +Call, +From, +To, -Begins
+      usual_after/3,              % +Call, -Occurrences, -Counts
+      suggestion/3,               % +Call, +Before, -Suggestion
+      object_place/3,             % +ObjectName, +At, -Place
+      past_answer_json/1          % -JSONString
+    ]).
+/** <module> Questions about the past: the evidence of the NEEM (RACCOON's state summaries)
+
+The facts behind "when did I last X", "how often did I X", "what do I usually do after X",
+"what did you do this morning", "where is the Y" and "why did you suggest X", read with
+KnowRob's predicates (executes_task, event_interval, has_role, task_role, the tf fluent)
+and the odb modules. Times are unix seconds; the windows (today, this week, this morning)
+are chosen by the caller (Python's timeline, the one home of the clock). Calls are chain
+terms such as `pick(banana)`; an odb:IdleTask action is never an answer.
+
+The sentences are made in Python (oracle.past); this module hands over the evidence only.
+*/
+
+:- use_module(library(error)).
+:- use_module(library(lists)).
+:- use_module(library(apply)).
+:- use_module(library(pairs)).
+:- use_module(library(assoc)).
+:- use_module('../json_text', [json_text/2]).
+:- use_module('../neem_store', [store_match/3, store_python_request/1, store_pose/4]).
+:- use_module('../lang/query', [kb_call/2, kb_findall/4]).
+:- use_module('../lang/triple', [kb_iri/2]).
+:- use_module('../model/rdfs', []).
+:- use_module('../model/event', []).
+:- use_module('../model/object', []).
+:- use_module('../model/situation', []).
+:- use_module('../model/tf', [object_frame_name/2]).
+:- use_module(names, [odb_iri/2, call_classes/3]).
+:- use_module(calls, [task_calls/2, call_tasks/2, call_task_times/3, call_time/5]).
+:- use_module(decisions, [decision/3, imagined_preference/2]).
+:- use_module('../answers', [call_text/2]).
+
+%!  latest_time(-Time) is semidet.
+%   The latest begin of any event of the NEEM (an action, an imagining): the NEEM's "now".
+latest_time(T) :-
+    kb_iri(soma:hasIntervalBegin, BeginP),
+    once(store_match([t(_, BeginP, T)], any, [order([desc(T)]), limit(1)])).
+
+%!  done_between(+From, +To, -Done) is det.
+%   The non-idle actions that began in [From, To] (`none`: no bound), by begin, as
+%   `done(Begin, End, Call)`: one store query from the begins the store finds by value,
+%   then each distinct task's call once (task_calls/2).
+done_between(From, To, Done) :-
+    bound_or_none(From), bound_or_none(To),
+    (   From == none
+    ->  BSpec = B
+    ;   BSpec = (>=(From) -> B)
+    ),
+    kb_findall(B-E-T, ( triple(I, soma:hasIntervalBegin, BSpec), has_time_interval(A, I),
+                        has_interval_end(I, E), executes_task(A, T) ), any, Rows0),
+    include(begins_by(To), Rows0, Rows),
+    findall(T, member(_-_-T, Rows), Ts),
+    task_calls(Ts, Pairs),
+    list_to_assoc(Pairs, CallOf),
+    findall(done(B1, E1, C),
+            ( member(B1-E1-T1, Rows), get_assoc(T1, CallOf, C), C \== 'IdleTask' ),
+            Done0),
+    sort(Done0, Done).
+
+begins_by(none, _) :- !.
+begins_by(To, B-_-_) :- B =< To.
+
+bound_or_none(none) :- !.
+bound_or_none(X) :- must_be(number, X).
+
+%!  last_done(+Call, +Before, -Begin) is semidet.
+%   The latest begin at or before Before (`none`: ever) of an action that executed Call.
+last_done(Call, Before, B) :-
+    check_call(Call),
+    bound_or_none(Before),
+    (   Before == none
+    ->  call_time(Call, _, _, desc, B)
+    ;   call_time(Call, =<(Before), _, desc, B)
+    ).
+
+%!  done_times(+Call, +From, +To, -Begins) is det.
+%   The begins, ascending, of the actions that executed Call and began in [From, To].
+done_times(Call, From, To, Begins) :-
+    check_call(Call),
+    must_be(number, From), must_be(number, To),
+    call_tasks(Call, Tasks),
+    call_task_times(Call, Tasks, Times),
+    findall(B, ( member(B-_, Times), B >= From, B =< To ), Bs),
+    msort(Bs, Begins).
+
+%!  usual_after(+Call, -Occurrences, -Counts) is det.
+%   What followed Call: Occurrences is how often Call was done, Counts the list of
+%   `Next-N` (the next non-idle action's call, how often), most often first (ties in the
+%   standard order of the calls). The last action of the NEEM has no next one. Reads Call's
+%   actions, every odb action's begin and task (one query each), then the calls of the few tasks
+%   that follow an occurrence: not the call of every task of the NEEM.
+usual_after(Call, Occurrences, Counts) :-
+    check_call(Call),
+    call_tasks(Call, Tasks),
+    call_task_times(Call, Tasks, Times0),
+    msort(Times0, Times),
+    length(Times, Occurrences),
+    kb_findall(B-T-C, ( executes_task(A, T), triple(T, rdf:type, C), has_time_interval(A, I),
+                        has_interval_begin(I, B) ), any, Typed),
+    findall(B-T, ( member(B-T-C, Typed), odb_iri(_, C) ), Rows0),
+    sort(Rows0, Rows),
+    findall(Follow, ( member(B0-_, Times), following(Rows, B0, Follow) ), Follows),
+    append(Follows, Ts),
+    task_calls(Ts, Pairs),
+    list_to_assoc(Pairs, CallOf),
+    findall(Next, ( member(F, Follows), first_call(F, CallOf, Next) ), Nexts),
+    counted(Nexts, Counts).
+
+%!  following(+Rows, +Begin, -Tasks) is det.
+%   The tasks of the (at most 2) odb actions that began after Begin, in begin order: the
+%   next non-idle action is among them (an idle gap may come first).
+following(Rows, B0, Tasks) :-
+    findall(T, ( member(B-T, Rows), B > B0 ), After),
+    length(After, N),
+    K is min(N, 2),
+    length(Tasks, K),
+    append(Tasks, _, After).
+
+first_call(Tasks, CallOf, Call) :-
+    member(T, Tasks),
+    get_assoc(T, CallOf, Call),
+    Call \== 'IdleTask', !.
+
+%   Items as Item-N pairs, most often first, ties in the standard order.
+counted(Items, Counts) :-
+    msort(Items, Sorted),
+    clumped(Sorted, Pairs),
+    findall(Neg-(I-N), ( member(I-N, Pairs), Neg is -N ), Keyed),
+    keysort(Keyed, ByCount),
+    pairs_values(ByCount, Counts).
+
+%!  suggestion(+Call, +Before, -Suggestion) is semidet.
+%   The latest imagined preference that began at or before Before (`none`: any) and ranked
+%   Call, as `suggested(Time, Rank, Score, Top)`, Top its first `ranked(Call, Rank, Score)`.
+suggestion(Call, Before, suggested(T, Rank, Score, Top)) :-
+    check_call(Call),
+    bound_or_none(Before),
+    findall(B-M, ( decision(preference, M, B), began_by(Before, B-M) ), Pairs),
+    sort(0, @>=, Pairs, Latest),
+    member(T-M, Latest),
+    imagined_preference(M, Ranked),
+    memberchk(ranked(Call, Rank, Score), Ranked), !,
+    Ranked = [Top|_].
+
+%!  object_place(+ObjectName, +At, -Place) is det.
+%   Where an object of the odb class ObjectName was at At (`none`: latest), as
+%   `place(Pose, Used)`: Pose the latest tf pose recorded by then, `pose(Stamp, Frame,
+%   [X,Y,Z])` or `none`; Used the latest action by then in which an object of that class had
+%   a role, `used(Begin, Call)` or `none`.
+object_place(Name, At, place(Pose, Used)) :-
+    must_be(atom, Name),
+    bound_or_none(At),
+    odb_iri(Name, C),
+    kb_findall(O, triple(O, rdf:type, C), any, Os0),
+    sort(Os0, Os),
+    (   At == none -> When = any ; When = At ),
+    findall(S-pose(S, Ref, Pos),
+            ( member(O, Os), object_frame_name(O, F), store_pose(F, When, [Ref, Pos, _], S) ),
+            Poses),
+    (   Poses == [] -> Pose = none ; max_member(_-Pose, Poses) ),
+    kb_findall(B-T, ( triple(O1, rdf:type, C), has_role(O1, R), task_role(T, R),
+                      executes_task(A, T), event_interval(A, B, _) ), any, Uses0),
+    include(began_by(At), Uses0, Uses),
+    (   Uses == []
+    ->  Used = none
+    ;   max_member(UB-UT, Uses),
+        task_calls([UT], [UT-UC]),
+        Used = used(UB, UC)
+    ).
+
+began_by(none, _) :- !.
+began_by(At, B-_) :- B =< At.
+
+check_call(Call) :-
+    must_be(callable, Call),
+    call_classes(Call, _, _).
+
+                 /*******************************
+                 *        FOR THE BRIDGE        *
+                 *******************************/
+
+%!  past_answer_json(-JSON) is det.
+%   Answer the request the Python bridge handed over (store_python_request/1) as a JSON
+%   string (oracle.past.evidence reads it); values arrive as terms, never as query text.
+past_answer_json(JSON) :-
+    store_python_request(Request),
+    past_answer(Request, Dict),
+    json_text(Dict, JSON).
+
+past_answer([now], _{time: T}) :-
+    (   latest_time(T0) -> T = T0 ; T = null ).
+past_answer([last, Name, Args, Before], _{task: Text, begin: B}) :-
+    call_of(Name, Args, Call, Text),
+    (   last_done(Call, Before, B0) -> B = B0 ; B = null ).
+past_answer([count, Name, Args, From, To], _{task: Text, begins: Bs}) :-
+    call_of(Name, Args, Call, Text),
+    done_times(Call, From, To, Bs).
+past_answer([after, Name, Args], _{task: Text, occurrences: N, next: Ds}) :-
+    call_of(Name, Args, Call, Text),
+    usual_after(Call, N, Counts),
+    findall(_{task: T, count: K}, ( member(C-K, Counts), call_text(C, T) ), Ds).
+past_answer([done, From, To], _{actions: Ds}) :-
+    done_between(From, To, Done),
+    findall(_{task: T, begin: B, end: E}, ( member(done(B, E, C), Done), call_text(C, T) ), Ds).
+past_answer([where, Name, At], _{object: Name, pose: PD, used: UD}) :-
+    object_place(Name, At, place(Pose, Used)),
+    (   Pose = pose(S, F, Pos) -> PD = _{time: S, frame: F, position: Pos} ; PD = null ),
+    (   Used = used(B, C) -> call_text(C, T), UD = _{time: B, task: T} ; UD = null ).
+past_answer([suggested, Name, Args, Before], D) :-
+    call_of(Name, Args, Call, Text),
+    (   suggestion(Call, Before, suggested(T, R, S, ranked(TC, _, _)))
+    ->  call_text(TC, Top),
+        D = _{task: Text, time: T, rank: R, score: S, top: Top}
+    ;   D = _{task: Text, time: null}
+    ).
+
+call_of(Name, Args, Call, Text) :-
+    must_be(atom, Name), must_be(list, Args),
+    Call =.. [Name|Args],
+    call_text(Call, Text).

@@ -1,0 +1,79 @@
+"""The routine predictor's evidence about each offered option, as one feature row per option.
+
+One home for the features that the learned rankers (``stacked``, the default's combination, and
+the ``logit`` and ``gbdt`` baselines of the evaluation) read: every column is something the
+routine predictor already computes from the user's own history (docs/algorithm.md, "Stacked
+predictor"). Nothing here changes the model.
+"""
+
+from __future__ import annotations
+
+import math
+from bisect import bisect_right
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from oracle.algorithm.records import Option
+from oracle.algorithm.selftune import FLOOR
+from oracle.timeline import TIME_OF_DAY_NAMES
+
+_TOD = {name: code for code, name in enumerate(TIME_OF_DAY_NAMES)}
+#: exact-context orders whose follower counts are columns
+CONTEXT_ORDERS = (1, 2, 3)
+
+
+def feature_names(model: Any) -> tuple[str, ...]:
+    """The column names of ``features`` for a fitted ``RoutineOracle``, in order."""
+    variants = tuple(f"logp[{'/'.join(str(part) for part in v)}]" for v in model.variants_)
+    contexts = tuple(name for n in CONTEXT_ORDERS for name in (f"share{n}", f"count{n}"))
+    buckets = tuple(f"since<{edge:g}s" for edge in model.recency) + (f"since>={model.recency[-1]:g}s" if
+                                                                       model.recency else "since", "never-since")
+    return (variants + contexts + ("count0", "never", "share-part-of-day", "in-hand", "newly-offered",
+                                   "resumed", "nearest") + buckets + ("no-clock",))
+
+
+def features(model: Any, offered: Sequence[Option], time_of_day: str | None, at: float | None) -> np.ndarray:
+    """Per offered option (rows, in the order given), the routine predictor's evidence (columns,
+    ``feature_names``): the log-probability every variant gives it (with the lifts of the objects
+    in hand, newly offered options and resumption), the share and log count of its followings of
+    the current exact contexts of orders 1-3, its log count of uses, whether it was never done,
+    its share of the uses at this part of day, the three lifts' flags, its nearest Algorithm 2
+    distance to a past action, and the bucket of the time since it was last done (``at``; a
+    column "no clock" when there is none)."""
+    ids = model._offer_ids(offered)
+    inside = model._in_focus(offered) if model.focus else None
+    new, resumed = model._offer_flags(ids)
+    probabilities, _, cand = model._variant_probabilities(offered, ids, time_of_day, None, inside, new, resumed)
+    size = len(offered)
+    columns: list[np.ndarray] = [np.log(np.maximum(p, FLOOR)) for p in probabilities]
+    counts = model._streams[model.streams[0]].counts
+    for n in CONTEXT_ORDERS:
+        context = counts.context(n) if n <= counts.max_order else None
+        followers = counts.levels[n].tables.get(context) if context is not None else None
+        seen = np.array([followers.get(i, 0) for i in ids], dtype=np.float64) if followers else np.zeros(size)
+        columns.append(seen / counts.levels[n].totals[context] if followers else seen)
+        columns.append(np.log1p(seen))
+    done = counts.levels[0].tables.get(()) or {}
+    uses = np.array([done.get(i, 0) for i in ids], dtype=np.float64)
+    columns.append(np.log1p(uses))
+    columns.append((uses == 0).astype(np.float64))
+    part = _TOD.get(time_of_day or "", -1)
+    timed = counts.timed[0].tables.get((part,)) if part >= 0 else None
+    columns.append(np.array([timed.get(i, 0) for i in ids], dtype=np.float64) / counts.timed[0].totals[(part,)]
+                   if timed else np.zeros(size))
+    for flags in (inside, new, resumed):
+        columns.append(np.asarray(flags, dtype=np.float64) if flags is not None else np.zeros(size))
+    nearest = cand.min(axis=1) if cand.shape[1] else np.full(size, math.inf)
+    columns.append(np.minimum(nearest, 2 * model.penalty + model.task_factor))
+    edges = tuple(model.recency)
+    buckets = np.zeros((size, len(edges) + 2))
+    last = model.clock_.last
+    if at is not None:
+        for row, i in enumerate(ids):
+            t = last.get(i)
+            buckets[row, len(edges) + 1 if t is None else bisect_right(edges, at - t)] = 1.0
+    columns.extend(buckets.T)
+    columns.append(np.full(size, 1.0 if at is None else 0.0))
+    return np.column_stack(columns)
