@@ -259,7 +259,8 @@ def test_the_id_and_the_name_reach_one_session(client, neem, ctx):
     query = {"query": "kb_call(executes_task(A, T))", "limit": 100}
     by_name = client.post("/api/prolog", json={**query, "neem": neem}).json()["solutions"]
     by_id = client.post("/api/prolog", json={**query, "neem": neem_id}).json()["solutions"]
-    assert len(by_name) == 2 and by_name == by_id  # Prolog reads the one NEEM either names
+    # Prolog reads the one NEEM either names (two actions, and the top-level action of their episode)
+    assert len(by_name) == 3 and by_name == by_id
 
 
 def test_prolog_pages_solutions_and_binds_values_as_terms(client, neem):
@@ -268,8 +269,9 @@ def test_prolog_pages_solutions_and_binds_values_as_terms(client, neem):
     first = client.post("/api/prolog", json=query).json()
     assert len(first["solutions"]) == 3 and first["more"] is True
     rest = client.post("/api/prolog", json={**query, "offset": 3, "limit": 100}).json()
-    assert rest["more"] is False and len(first["solutions"]) + len(rest["solutions"]) == 3 * len(ROUTINE)
-    # (each step: the action, and the imagining and the reasoning of its situation)
+    assert rest["more"] is False and len(first["solutions"]) + len(rest["solutions"]) == 3 * len(ROUTINE) + 1
+    # (each step: the action, and the imagining and the reasoning of its situation; and the
+    # top-level action of the day's episode)
     # a value with quotes and a comma stays one atom: it is bound, never spliced into the text
     tricky = "x'), halt, ('"
     bound = client.post("/api/prolog", json={"query": "atom_length(X, N)", "bindings": {"X": tricky}, "neem": neem}).json()

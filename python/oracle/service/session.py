@@ -271,14 +271,14 @@ class NeemSession:
         del self.open[key]
         return logged
 
-    def log(self, call_text: str, begin: Any, end: Any, performed_by: str = "robot") -> LoggedAction:
+    def log(self, call_text: str, begin: Any, end: Any, performed_by: str = "robot", state: str | None = None) -> LoggedAction:
         """Log an executed action (the logger inserts the idle action before a long gap) and
         teach the predictor the same steps the NEEM's history will show."""
         call = self.calls([call_text], "call")[0]
         start = moment_of(begin, "begin")
         stop = moment_of(end, "end") if end is not None else start
         self._check_time(Instant.of(start), f"action {call}")
-        logged = self.logger.action(call, start, stop, performed_by=performed_by)
+        logged = self.logger.action(call, start, stop, performed_by=performed_by, state=state)
         self.logger.flush()
         if logged.idle is not None and self.last_end is not None:
             if not self.idle_fitted:
