@@ -63,7 +63,7 @@ kb_project/1 asserts statements built from the same vocabulary (see kb_project/1
 %   How kb_project/1 names an individual whose has_type/2 statement leaves it unbound
 %   (multifile: prolog/compat/neem_interface.pl names it as new_iri/2 does, which
 %   neem-interface's add_participant_with_role/3 needs); without a clause, an instantiation
-%   error as KnowRob 2.x raises (its issue #299).
+%   error as KnowRob 2.x raises (a known KnowRob bug).
 :- multifile fresh_individual/2.
 :- dynamic fresh_individual/2.
 
