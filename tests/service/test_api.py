@@ -415,3 +415,22 @@ def test_a_reason_says_a_task_is_newly_possible_where_no_context_backs_it():
     assert support_sentence({**done, "context_order": 2, "context": ["a", "b"]}) == "after a \u2192 b: 3\u00d7"
     back = {**done, "new": False, "resumed": True, "focus": ["red_mug"]}
     assert support_sentence(back) == "done 3\u00d7, not at this point; uses red_mug in hand; goes on from before the break"
+
+
+def test_neem_interface_reads_through_the_json_prolog_endpoint(client, neem):
+    """neem_interface_python's reading methods against the service's JSON Prolog endpoint (in
+    place of rosprolog); its logging methods are refused there (the endpoint is read-only)."""
+    from oracle.service.neem_interface import NEEMError, NEEMInterface, OverHttp
+
+    drive(client, neem, days=1)
+    ni = NEEMInterface(OverHttp("http://in-process", neem, post=lambda path, body: client.post(path, json=body).json()))
+    actions = ni.get_all_actions()
+    assert len(actions) >= len(ROUTINE)  # the routine's actions, and the day's top-level action
+    tasks = {a: ni.get_tasks_for_action(a) for a in actions}
+    picks = [a for a, ts in tasks.items() if any("#pick_" in t for t in ts)]
+    assert len(picks) == 2  # pick(red_mug), pick(thermos): tasks named <TaskClass>_<id>
+    begins = sorted(ni.get_interval_for_event(a)[0] for a in picks)
+    assert begins == [at(0, 10), at(0, 40)]
+    assert ni.get_tf_trajectory("http://e.org/x#cup", 0.0, 1e10) == []
+    with pytest.raises(NEEMError):
+        ni.add_participant_with_role(picks[0], "http://e.org/x#cup", "soma:'Patient'")

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import re
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Protocol
@@ -42,12 +42,16 @@ class InProcess:
 
 
 class OverHttp:
-    """Queries through ``serve``'s ``POST /api/prolog`` (read-only), paged until the last one."""
+    """Queries through ``serve``'s ``POST /api/prolog`` (read-only), paged until the last one.
+    ``post`` (path, JSON body -> JSON answer) replaces the HTTP client, e.g. an in-process one."""
 
-    def __init__(self, url: str, neem: str | None = None, token: str | None = None, page: int = 1000) -> None:
-        from oracle.service.client import Client
+    def __init__(self, url: str, neem: str | None = None, token: str | None = None, page: int = 1000,
+                 post: Callable[[str, dict[str, Any]], Any] | None = None) -> None:  # fmt: skip
+        if post is None:
+            from oracle.service.client import Client
 
-        self.client, self.neem, self.page = Client(url, token), neem, page
+            post = Client(url, token).post
+        self.post, self.neem, self.page = post, neem, page
 
     def all_solutions(self, query: str) -> list[dict[str, Any]]:
         from oracle.service.client import ServiceError
@@ -55,8 +59,7 @@ class OverHttp:
         found: list[dict[str, Any]] = []
         while True:
             try:
-                answer = self.client.post("/api/prolog", {"query": query, "neem": self.neem, "offset": len(found),
-                                                          "limit": self.page})  # fmt: skip
+                answer = self.post("/api/prolog", {"query": query, "neem": self.neem, "offset": len(found), "limit": self.page})
             except ServiceError as error:
                 raise NEEMError(f"{query}: {error}") from None
             if "error" in answer:
