@@ -29,7 +29,7 @@ test(missing_file, [setup(store_reset), cleanup(store_reset), error(existence_er
     urdf_load('http://e.org/r#Arm', '/no/such.urdf', []).
 
 test(not_a_urdf, [setup(store_reset), cleanup(store_reset), error(domain_error(urdf_file, _))]) :-
-    tmp_file_stream(text, F, S), format(S, '<?xml version="1.0"?><html/>~n', []), close(S),
+    tmp_file_stream(text, F, S), format(S, '<?xml version="1.0"?><scene/>~n', []), close(S),
     urdf_load('http://e.org/r#Arm', F, []).
 
 :- end_tests(kb_urdf).
