@@ -21,6 +21,7 @@
       store_insert_annotations/1, % +Annotations
       store_pose/4,             % +Frame, +At, -Pose, -Stamp
       store_assert_pose/3,      % +Frame, +Stamp, +Pose
+      store_poses/4,            % +Frame, +Begin, +End, -Trajectory
       store_taxonomic/1,        % ?Property
       store_scope_now/1,        % -Scope
       store_python_request/1,   % -Request
@@ -285,13 +286,30 @@ store_pose(Frame, At, Pose, Stamp) :-
     ).
 
 %!  store_assert_pose(+Frame, +Stamp, +Pose) is det.
-%   Add a transform to the memory backend (tests; the logger writes the Python stores).
+%   Add a transform of Frame stamped Stamp to the NEEM's tf collection (KnowRob's
+%   tf_set_pose/3 and the tf logger write them).
 store_assert_pose(Frame, Stamp, Pose) :-
     must_be(atom, Frame), must_be(number, Stamp),
     (   Pose = [Ref, [X, Y, Z], [QX, QY, QZ, QW]], atom(Ref),
         maplist(number, [X, Y, Z, QX, QY, QZ, QW])
-    ->  assertz(mem_tf(Frame, Stamp, Pose))
+    ->  (   backend_(python(Neem))
+        ->  neem_store:py_tf([Neem, Frame, Stamp, Ref, X, Y, Z, QX, QY, QZ, QW, write], Reply),
+            reply_rows(Reply, _)
+        ;   assertz(mem_tf(Frame, Stamp, Pose))
+        )
     ;   type_error(pose, Pose)
+    ).
+
+%!  store_poses(+Frame, +Begin, +End, -Trajectory) is det.
+%   Every transform of Frame stamped in [Begin, End], as `Stamp-Pose` pairs in time order.
+store_poses(Frame, Begin, End, Trajectory) :-
+    must_be(atom, Frame), must_be(number, Begin), must_be(number, End),
+    (   backend_(python(Neem))
+    ->  neem_store:py_tf([Neem, Frame, Begin, End], Reply),
+        reply_rows(Reply, Rows),
+        findall(St-[Ref, [X, Y, Z], [QX, QY, QZ, QW]], member([St, Ref, X, Y, Z, QX, QY, QZ, QW], Rows), Trajectory)
+    ;   findall(St-P, ( mem_tf(Frame, St, P), St >= Begin, St =< End ), Ps),
+        keysort(Ps, Trajectory)
     ).
 
 check_annotation(annotation(S, P, V)) :- !,

@@ -433,6 +433,32 @@ exposed(kb_computable, drop_computable_property/2, write).
 exposed(odb_routines, routine_workflow/1, read).
 exposed(odb_routines, workflow_calls/2, read).
 exposed(odb_routines, stored_routines_json/1, read).
+% -- neem-interface's needs: tf, urdf, mng_client, memorize/remember, execution states
+exposed(soma_action, action_pending/1, read).
+exposed(soma_action, action_cancelled/1, read).
+exposed(kb_tf, tf_get_pose/4, read).
+exposed(kb_tf, tf_set_pose/3, write).
+exposed(kb_tf, tf_mng_trajectory/4, read).
+exposed(kb_tf, pose_compose/3, read).
+exposed(kb_tf, tf_logger_enable/0, write).
+exposed(kb_tf, tf_logger_disable/0, write).
+exposed(kb_tf, tf_mem_clear/0, write).
+exposed(neem_store, store_poses/4, hidden).
+exposed(mng_client, mng_db_name/1, read).
+exposed(mng_client, mng_drop/2, write).
+exposed(kb_urdf, urdf_load/2, hidden).   % reads a file
+exposed(kb_urdf, urdf_load/3, hidden).   % reads a file
+exposed(kb_urdf, is_urdf_link/1, read).
+exposed(kb_urdf, is_urdf_joint/1, read).
+exposed(kb_urdf, has_base_link_name/2, read).
+exposed(kb_urdf, has_urdf_prefix/2, read).
+exposed(kb_urdf, has_base_link/2, read).
+exposed(kb_urdf, has_child_link/2, read).
+exposed(kb_urdf, has_parent_link/2, read).
+exposed(kb_urdf, has_kinematics_file/3, read).
+exposed(kb_db, drop_graph/1, write).
+exposed(kb_db, memorize/1, hidden).   % writes a dump folder
+exposed(kb_db, remember/1, hidden).   % reads a dump folder
 % -- pure builtins and library predicates: terms, comparison, arithmetic, atoms, lists
 exposed(system, Name/Arity, read) :- pure_builtin(Name/Arity).
 exposed(lists, member/2, read).

@@ -4,7 +4,10 @@
       load_owl/3,               % +URL, +Scope, +ParentGraph
       annotation/3,             % ?Subject, ?Property, ?Value
       has_label/2,              % ?Resource, ?Label
-      has_comment/2             % ?Resource, ?Comment
+      has_comment/2,            % ?Resource, ?Comment
+      drop_graph/1,             % +Graph
+      memorize/1,               % +Directory
+      remember/1                % +Directory
     ]).
 /** <module> Ontology files into the store, and annotations (KnowRob 2.x src/lang/db.pl)
 
@@ -39,10 +42,41 @@ Pkg), as ROS's `$ROS_PACKAGE_PATH`; a package found nowhere is an error naming t
 :- use_module(library(option)).
 % The RDF parsers (~60 ms to load) are needed only when an OWL file is loaded: on first use.
 :- autoload(library(semweb/rdf_db), [rdf_load/2, rdf/4, rdf_unload_graph/1]).
-:- use_module('../neem_store', [store_insert/3, store_insert_annotations/1, store_annotation/3,
+:- use_module('../neem_store', [store_insert/3, store_insert_annotations/1, store_annotation/3, store_backend/1,
                                  store_graph_version/2, store_set_graph_version/3, store_drop_graph/1]).
 :- use_module(triple, [kb_iri/2]).
 :- use_module(subgraph, [add_subgraph/2]).
+
+%!  drop_graph(+Graph) is det.
+%   KnowRob's drop_graph/1: delete every fact of named graph Graph (`user`: everything
+%   asserted at run time) from the current NEEM.
+drop_graph(Graph) :-
+    must_be(atom, Graph),
+    store_drop_graph(Graph).
+
+%!  memorize(+Directory) is det.
+%   KnowRob's memorize/1: the current NEEM as a mongodump folder in Directory (triples/,
+%   annotations/, tf/, inferred/, plus the registry entry), which remember/1, `oracle load`
+%   and KnowRob's remember/1 read. Only a NEEM of a store can be memorized.
+memorize(Dir) :-
+    dump_request(memorize, Dir).
+
+%!  remember(+Directory) is det.
+%   KnowRob's remember/1: add the documents of the NEEM dump in Directory to the current NEEM
+%   (as mongorestore adds them to the current collections: what is stored stays, a document
+%   stored already is not added twice).
+remember(Dir) :-
+    dump_request(remember, Dir).
+
+dump_request(Action, Dir0) :-
+    must_be(atomic, Dir0),
+    atom_string(Dir, Dir0),
+    (   store_backend(python(Neem))
+    ->  neem_store:py_dump([Action, Neem, Dir], Reply),
+        term_string(T, Reply),
+        (   T = error(Message) -> throw(error(neem_store_error(Message), _)) ; true )
+    ;   throw(error(existence_error(neem, Action), context(Action/1, 'the memory backend holds no NEEM to dump')))
+    ).
 
 %!  package_path(+Package, -Directory) is semidet.
 %   Where a ROS package's files are (multifile and dynamic: a ROS set-up adds its packages).

@@ -76,6 +76,14 @@ kb_project/1 asserts statements built from the same vocabulary (see kb_project/1
 :- multifile is_callable_with/2, call_with/3.
 :- dynamic is_callable_with/2, call_with/3.
 
+%!  fresh_individual(-Individual, +Class) is det.
+%   How kb_project/1 names an individual whose has_type/2 statement leaves it unbound
+%   (multifile: prolog/compat/neem_interface.pl names it as new_iri/2 does, which
+%   neem-interface's add_participant_with_role/3 needs); without a clause, an instantiation
+%   error as KnowRob 2.x raises (a known KnowRob bug).
+:- multifile fresh_individual/2.
+:- dynamic fresh_individual/2.
+
 %!  kb_call(:Goal) is nondet.
 %!  kb_call(:Goal, +Scope) is nondet.
 %   Solve Goal, compiled: every run of triple goals becomes one store query. Scope is
@@ -595,7 +603,8 @@ unproject(V, _, _) :-
 unproject(_:G, T0, T) :- !, unproject(G, T0, T).
 unproject((A, B), T0, T) :- !, unproject(A, T0, T1), unproject(B, T1, T).
 unproject(triple(S, P, O), [t(S1, P1, O1)|T], T) :- !,
-    kb_iri(S, S1), kb_iri(P, P1), kb_iri(O, O1).
+    kb_iri(S, S1), kb_iri(P, P1),
+    (   var(O) -> O1 = O ; value_atomic(O, O1) ).
 unproject(holds(S, P, O), T0, T) :- !, unproject(triple(S, P, O), T0, T).
 unproject(pragma(G), T, T) :- !, call(G).
 unproject(has_type(A, B), T0, T) :- !, unproject(triple(A, rdf:type, B), T0, T).
@@ -656,6 +665,7 @@ project(annotation(Su, P, V), _, _, [annotation(Su1, P1, V)|T], T) :- !,
     kb_iri(Su, Su1), kb_iri(P, P1),
     must_be(atom, Su1), must_be(atom, P1).
 project(has_type(A, B), Since, Until, T0, T) :- !,
+    (   var(A), clause(fresh_individual(_, _), _) -> fresh_individual(A, B) ; true ),
     project(triple(A, rdf:type, B), Since, Until, T0, T).
 project(event_interval(E, B, End), Since, Until, T0, T) :- !,
     must_be(number, B), must_be(number, End),
@@ -686,6 +696,9 @@ to_float(X, F) :- must_be(number, X), F is float(X).
 
 %   `term(T)` values are stored as their text (KnowRob's term/1), other values as they are.
 value_atomic(term(T), A) :- !, must_be(ground, T), term_to_atom(T, A).
+value_atomic(O, X) :-                       % KnowRob's typed values: double(V), int(V), ...
+    compound(O), O =.. [Type, V], memberchk(Type, [double, float, number, int, integer, long, short, byte]), !,
+    (   V == 'Infinity' -> X is inf ; V == '-Infinity' -> X is -inf ; must_be(number, V), X = V ).
 value_atomic(O, O1) :- kb_iri(O, O1).
 
 %!  kb_projection(?Statement, ?Expanded) is nondet.

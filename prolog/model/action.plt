@@ -14,4 +14,8 @@ test(failed_and_active, [nondet, setup(store_reset), cleanup(store_reset)]) :-
     kb_project((action_failed(a), action_active(b))),
     action_failed(a), action_active(b), \+ action_paused(b).
 
+test(cancelled_and_pending, [nondet, setup(store_reset), cleanup(store_reset)]) :-
+    kb_project((action_cancelled(c), action_pending(d))),
+    action_cancelled(c), action_pending(d), \+ action_cancelled(d), \+ action_succeeded(c).
+
 :- end_tests(soma_action).

@@ -51,6 +51,7 @@ MODULES = ("neem_store", "json_text", "lang/triple", "lang/scope", "lang/query",
            "model/owl", "model/owl_description", "model/dul_object_types", "model/dul_description", "model/soma_types",
            "model/soma_object", "model/soma_workflow", "model/soma_shape", "model/qudt", "reasoning/plowl",
            "lang/subgraph", "lang/rules", "lang/mongolog", "lang/computable",
+           "compat/neem_interface", "compat/urdf", "compat/library/db/mongo/client",
            "odb/names", "odb/calls", "odb/events", "odb/decisions", "odb/history", "answers", "batch_toplevel")
 #: Rows per chunk handed to Prolog by one solution of py_match/2.
 CHUNK = 5000
@@ -63,7 +64,7 @@ _NEXT_KEY = [1]
 #: others, every time Prolog called into Python, per foreign predicate (a py_match counted
 #: once, however many chunks it hands over).
 CROSSINGS = {"query": 0, "py_match": 0, "py_insert": 0, "py_retract": 0, "py_graph": 0, "py_request": 0,
-             "py_scopes": 0, "py_annotations": 0, "py_annotate": 0, "py_tf": 0}
+             "py_scopes": 0, "py_annotations": 0, "py_annotate": 0, "py_tf": 0, "py_dump": 0}
 
 
 def crossings() -> int:
@@ -377,18 +378,46 @@ def py_annotate(req: Any) -> str:
 
 @_foreign
 def py_tf(req: Any) -> str:
-    """The latest transform of a tf frame stamped at or before a time (-1: any time), as
-    ``[[Stamp, RefFrame, X, Y, Z, QX, QY, QZ, QW]]`` or ``[]``."""
-    from oracle.neem.tf import pose_at
+    """tf reads and writes, as rows ``[Stamp, RefFrame, X, Y, Z, QX, QY, QZ, QW]``:
+    ``[Neem, Frame, At]`` the latest transform stamped at or before At (-1: any time), ``[]``
+    for none; ``[Neem, Frame, Begin, End]`` every transform stamped in [Begin, End], in time
+    order; ``[Neem, Frame, Stamp, Ref, X, Y, Z, QX, QY, QZ, QW, write]`` adds one (``[]``)."""
+    from oracle.neem.tf import Pose, pose_at, poses_between, tf_document
 
     bridge = _connected()
-    neem, frame, at = _plain(req[0]), _plain(req[1]), req[2]
-    found = pose_at(bridge.store, neem, frame, None if at == -1 else float(at))
-    if found is None:
+    neem, frame = _plain(req[0]), _plain(req[1])
+    if len(req) == 12:
+        stamp, ref, *numbers = req[2], _plain(req[3]), *(float(v) for v in req[4:11])
+        pose = Pose((numbers[0], numbers[1], numbers[2]), (numbers[3], numbers[4], numbers[5], numbers[6]), ref)
+        bridge.store.write_documents(neem, "tf", [tf_document(frame, pose, float(stamp), 0)])
         return "[]"
-    stamp, pose = found
-    values = [stamp, pose.frame, *pose.position, *pose.rotation]
-    return "[[" + ",".join(term_text(v) for v in values) + "]]"
+    if len(req) == 4:
+        rows = poses_between(bridge.store, neem, frame, float(req[2]), float(req[3]))
+    else:
+        at = req[2]
+        found = pose_at(bridge.store, neem, frame, None if at == -1 else float(at))
+        rows = [] if found is None else [found]
+    return "[" + ",".join("[" + ",".join(term_text(v) for v in [stamp, pose.frame, *pose.position, *pose.rotation]) + "]"
+                          for stamp, pose in rows) + "]"  # fmt: skip
+
+
+@_foreign
+def py_dump(req: Any) -> str:
+    """KnowRob's memorize/1 and remember/1 on the current NEEM: ``[memorize, Neem, Dir]``
+    writes its dump to Dir, ``[remember, Neem, Dir]`` adds a dump's documents to it. ``[]``,
+    or ``error(Message)``."""
+    from oracle.store.dump import export_neem, remember_dump
+
+    bridge = _connected()
+    action, neem, folder = _plain(req[0]), _plain(req[1]), _plain(req[2])
+    try:
+        if action == "memorize":
+            export_neem(bridge.store, neem, folder)
+        else:
+            remember_dump(bridge.store, neem, folder)
+    except StoreError as error:
+        return f"error({term_text(str(error))})"
+    return "[]"
 
 
 def py_request(out: Any) -> bool:
@@ -415,6 +444,7 @@ def _ensure_loaded() -> None:
     Prolog.register_foreign(py_annotations, arity=2, module="neem_store")
     Prolog.register_foreign(py_annotate, arity=2, module="neem_store")
     Prolog.register_foreign(py_tf, arity=2, module="neem_store")
+    Prolog.register_foreign(py_dump, arity=2, module="neem_store")
     folder = prolog_dir()
     paths = [folder / f"{name}.pl" for name in MODULES]
     for path in paths:

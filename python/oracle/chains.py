@@ -1,7 +1,9 @@
 """Action chains in text: ``task(obj1[, obj2])`` (thesis 5.2) and their JSONL files.
 
 A JSONL row is ``{"user", "time", "end" | "duration", "action", "available"}``; only ``user`` and
-``action`` are required. ``end`` matters for idle detection: a gap of 20 s or more between one
+``action`` are required. Optional: ``id``, ``performed_by``, ``state`` (one of EXECUTION_STATES,
+what the robot reports) and ``session`` (the recording session, one soma:Episode each; default
+the UTC day). ``end`` matters for idle detection: a gap of 20 s or more between one
 action's end (its start when no end is given) and the next start is an odb:IdleTask.
 
 A call names an odb task and zero, one or two odb objects. With two arguments the first plays
@@ -29,6 +31,9 @@ from oracle.timeline import TimeValueError, check_seconds, parse_iso, seconds_of
 MAX_LINE = 1 << 20
 #: Longest user name or action id (characters).
 MAX_NAME = 200
+#: What a robot may report of an action it did (optional ``state`` of a row): KnowRob's
+#: execution states (``soma:ExecutionState_Succeeded`` ..., action_succeeded/1 and kin).
+EXECUTION_STATES = ("succeeded", "failed", "cancelled", "active", "paused", "pending")
 
 _NAME = r"[A-Za-z_][A-Za-z0-9_\-]*"
 _CALL = re.compile(rf"^\s*({_NAME})\s*(?:\(\s*(.*?)\s*\))?\s*$")
@@ -129,6 +134,10 @@ def parse_row(obj: object, where: str = "<row>") -> ChainRow:
             isinstance(action_id, str) and not _printable_name(action_id)
         ) or len(str(action_id)) > MAX_NAME:
             raise ChainSyntaxError(f"{where}: 'id' must be a string of 1-{MAX_NAME} printable characters or an integer")
+    if "state" in obj and obj["state"] not in EXECUTION_STATES:
+        raise ChainSyntaxError(f"{where}: 'state' must be one of {', '.join(EXECUTION_STATES)}, got {_short(obj['state'])}")
+    if "session" in obj and not (isinstance(obj["session"], str) and _printable_name(obj["session"])):
+        raise ChainSyntaxError(f"{where}: 'session' must be a string of 1-{MAX_NAME} printable characters")
     if "action" not in obj:
         raise ChainSyntaxError(f"{where}: missing 'action'")
     try:

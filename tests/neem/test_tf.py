@@ -99,3 +99,47 @@ def test_a_bad_pose_argument_writes_nothing(tmp_path, onto):
     log.flush()
     assert store.count(log.neem_id) == before and list(store.read_documents(log.neem_id, "tf")) == []
     store.close()
+
+
+def test_is_at_walks_the_frame_chain_to_map(tmp_path, onto):
+    """A small tf tree recorded by the logger (the thermos in map, turned 90 degrees about z;
+    the mug on the thermos' frame; the apple on the mug's, turned 90 degrees): the poses in map
+    equal the hand computation to 1e-9, in SQLite through Prolog, and so do KnowRob's
+    tf_get_pose/4 and tf_mng_trajectory/4."""
+    import math
+
+    h = math.sqrt(0.5)
+    store = SQLiteStore(tmp_path / "s.sqlite")
+    log = NeemLogger.create(store, onto, user="alice")
+    log.perceive("thermos", T0, pose=Pose((1.0, 2.0, 0.0), (0.0, 0.0, h, h), "map"))
+    log.perceive("green_mug", T0, pose=Pose((0.5, 0.0, 0.8), frame="Object_thermos"))
+    log.perceive("apple", T0, pose=Pose((0.1, 0.0, 0.0), (0.0, 0.0, h, h), "Object_green_mug"))
+    log.perceive("thermos", T0 + timedelta(minutes=1), pose=Pose((5.0, 5.0, 0.0), frame="map"))
+    log.flush()
+    t0 = T0.replace(tzinfo=timezone.utc).timestamp()
+    bridge = Bridge(store, log.neem_id, onto)
+    try:
+        def pose(obj: str, frame: str, at: float) -> tuple[list[float], list[float]]:
+            (row,) = bridge.query(f"kb_call(is_at(odb:'Object_{obj}', ['{frame}', P, R]) until {at})")
+            return row["P"], row["R"]
+
+        def close(a: list[float], b: list[float]) -> bool:
+            return all(abs(x - y) <= 1e-9 for x, y in zip(a, b, strict=True))
+
+        p, r = pose("green_mug", "map", t0 + 10)  # (1,2,0) + Rz90 (0.5,0,0.8)
+        assert close(p, [1.0, 2.5, 0.8]) and close(r, [0.0, 0.0, h, h])
+        p, r = pose("apple", "map", t0 + 10)  # the mug's (1,2.5,0.8) + Rz90 (0.1,0,0); Rz180
+        assert close(p, [1.0, 2.6, 0.8]) and close(r, [0.0, 0.0, 1.0, 0.0])
+        p, _ = pose("apple", "Object_thermos", t0 + 10)  # an ancestor that is not map
+        assert close(p, [0.6, 0.0, 0.8])
+        p, _ = pose("green_mug", "map", t0 + 120)  # the thermos moved, no longer turned
+        assert close(p, [5.5, 5.0, 0.8])
+        assert bridge.query(f"kb_call(is_at(odb:'Object_green_mug', [kitchen, _, _]) until {t0 + 10})") == []
+        (got,) = bridge.query(f"time_scope(=({t0 + 10}), =({t0 + 10}), Q), tf_get_pose(odb:'Object_apple', [map, P, _], Q, F),"
+                              " get_dict(time, F, T), get_dict(since, T, S)")  # fmt: skip
+        assert close(got["P"], [1.0, 2.6, 0.8]) and got["S"] == t0
+        (traj,) = bridge.query(f"tf_mng_trajectory(odb:'Object_thermos', {t0 - 1}, {t0 + 100}, L), length(L, N)")
+        assert traj["N"] == 2
+    finally:
+        bridge.close()
+        store.close()

@@ -260,7 +260,8 @@ def test_the_id_and_the_name_reach_one_session(client, neem, ctx):
     query = {"query": "kb_call(executes_task(A, T))", "limit": 100}
     by_name = client.post("/api/prolog", json={**query, "neem": neem}).json()["solutions"]
     by_id = client.post("/api/prolog", json={**query, "neem": neem_id}).json()["solutions"]
-    assert len(by_name) == 2 and by_name == by_id  # Prolog reads the one NEEM either names
+    # Prolog reads the one NEEM either names (two actions, and the top-level action of their episode)
+    assert len(by_name) == 3 and by_name == by_id
 
 
 def test_prolog_pages_solutions_and_binds_values_as_terms(client, neem):
@@ -269,8 +270,9 @@ def test_prolog_pages_solutions_and_binds_values_as_terms(client, neem):
     first = client.post("/api/prolog", json=query).json()
     assert len(first["solutions"]) == 3 and first["more"] is True
     rest = client.post("/api/prolog", json={**query, "offset": 3, "limit": 100}).json()
-    assert rest["more"] is False and len(first["solutions"]) + len(rest["solutions"]) == 3 * len(ROUTINE)
-    # (each step: the action, and the imagining and the reasoning of its situation)
+    assert rest["more"] is False and len(first["solutions"]) + len(rest["solutions"]) == 3 * len(ROUTINE) + 1
+    # (each step: the action, and the imagining and the reasoning of its situation; and the
+    # top-level action of the day's episode)
     # a value with quotes and a comma stays one atom: it is bound, never spliced into the text
     tricky = "x'), halt, ('"
     bound = client.post("/api/prolog", json={"query": "atom_length(X, N)", "bindings": {"X": tricky}, "neem": neem}).json()
@@ -511,3 +513,22 @@ def test_the_page_shows_times_on_the_zone_it_was_given_and_what_next_tells_choic
     assert said.endswith("At 09:00 the robot did: Pick up the banana.")
     with pytest.raises(Exception, match="no such time zone"):
         display_zone("Mars/Olympus")
+
+
+def test_neem_interface_reads_through_the_json_prolog_endpoint(client, neem):
+    """neem_interface_python's reading methods against the service's JSON Prolog endpoint (in
+    place of rosprolog); its logging methods are refused there (the endpoint is read-only)."""
+    from oracle.service.neem_interface import NEEMError, NEEMInterface, OverHttp
+
+    drive(client, neem, days=1)
+    ni = NEEMInterface(OverHttp("http://in-process", neem, post=lambda path, body: client.post(path, json=body).json()))
+    actions = ni.get_all_actions()
+    assert len(actions) >= len(ROUTINE)  # the routine's actions, and the day's top-level action
+    tasks = {a: ni.get_tasks_for_action(a) for a in actions}
+    picks = [a for a, ts in tasks.items() if any("#pick_" in t for t in ts)]
+    assert len(picks) == 2  # pick(red_mug), pick(thermos): tasks named <TaskClass>_<id>
+    begins = sorted(ni.get_interval_for_event(a)[0] for a in picks)
+    assert begins == [at(0, 10), at(0, 40)]
+    assert ni.get_tf_trajectory("http://e.org/x#cup", 0.0, 1e10) == []
+    with pytest.raises(NEEMError):
+        ni.add_participant_with_role(picks[0], "http://e.org/x#cup", "soma:'Patient'")

@@ -25,7 +25,9 @@ DUL = "http://www.ontologydesignpatterns.org/ont/dul/DUL.owl#"
 
 
 def bson_files(root):
-    return {p.relative_to(root): p.read_bytes() for p in sorted(root.rglob("*.bson"))}
+    """The collections of a dump; not the hub registry document (``meta/``), which names the
+    NEEM it describes: two NEEMs with the same documents have two registry entries."""
+    return {p.relative_to(root): p.read_bytes() for p in sorted(root.rglob("*.bson")) if p.relative_to(root).parts[0] != "meta"}
 
 
 def small_neem(store, neem="n1"):

@@ -23,6 +23,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     top.add_argument("-g", dest="goals", action="append", metavar="GOAL", help="run GOAL once, then exit (repeatable)")
     top.add_argument("-q", "--quiet", action="store_true", help="no banner")
     top.add_argument("--answers", type=int, metavar="N", help="piped queries: print at most N answers each")
+    top.add_argument("--create", action="store_true",
+                     help="start a new, empty NEEM named --neem (holding the ontology's TBox) and work on it, "
+                     "as neem-interface's mem_episode_start expects (the store is made if missing)")
     _common(top)
     top.set_defaults(handler=run_toplevel)
 
@@ -59,6 +62,8 @@ def _parse_task(text: str, onto: OdbOntology) -> tuple[str, list[str]]:
 def run_toplevel(args: argparse.Namespace) -> int:
     if args.answers is not None and args.answers < 1:
         raise NeemOracleError("--answers must be at least 1")
+    if args.create:
+        _create(args)
     bridge, _ = connect(args, write=True)  # a query typed at the toplevel may assert facts
     interactive = not args.goals and sys.stdin.isatty()
     if not args.quiet:
@@ -75,6 +80,19 @@ def run_toplevel(args: argparse.Namespace) -> int:
         return bridge.run_batch(args.answers)
     bridge.query("prolog")
     return 0
+
+
+def _create(args: argparse.Namespace) -> None:
+    """A new NEEM ``--neem`` for a Prolog session to log into (a name in use is an error)."""
+    from oracle.commands.common import ontology_from
+    from oracle.neem.writer import NeemLogger
+    from oracle.store import open_store
+
+    if args.neem is None:
+        raise NeemOracleError("--create needs --neem NAME, the new NEEM's name")
+    onto = ontology_from(args)
+    with open_store(args.store) as store:
+        NeemLogger.create(store, onto, user=args.neem, neem_id=args.neem).close()
 
 
 def run_why_not(args: argparse.Namespace) -> int:

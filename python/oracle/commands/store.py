@@ -14,6 +14,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     add_options(export, STORE, NUMBERS)
     export.add_argument("--neem", metavar="ID", help="the NEEM to export (default: every NEEM, one folder each)")
     export.add_argument("--out", type=Path, required=True, metavar="DIR")
+    export.add_argument("--hub", action="store_true",
+                        help="the NEEM hub's layout: collections <id>_triples etc. in database 'neems' (openEASE)")
+    export.add_argument("--visibility", choices=("public", "private"), default=None,
+                        help="the registry entry's visibility on a NEEM hub (default: private, said on stderr)")
+    export.add_argument("--soma", type=Path, metavar="DIR",
+                        help="folder with SOMA.owl, DUL.owl, SOMA-HOME.owl: their whole graphs go into the NEEM")
     export.set_defaults(handler=run_export)
 
     load = subparsers.add_parser("load", help="load NEEM dumps (ours or openEASE/KnowRob ones) into the store")
@@ -37,16 +43,37 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 def run_export(args: argparse.Namespace) -> int:
     from oracle.store import open_store
     from oracle.store.dump import export_all, export_neem
+    from oracle.store.mongo import DEFAULT_DB
     from oracle.store.ids import resolve_neem
 
+    import sys
+
+    from oracle.errors import StoreError
+
+    files: list[Path] = []
+    if args.soma is not None:
+        files = [args.soma / name for name in ("SOMA.owl", "DUL.owl", "SOMA-HOME.owl")]
+        missing = [str(f) for f in files if not f.is_file()]
+        if missing:
+            names = ", ".join(Path(m).name for m in missing)
+            raise StoreError(f"{args.soma}: no {names} there (--soma names the folder of the official files)")
+    options = {"db_name": "neems" if args.hub else DEFAULT_DB, "hub_prefix": args.hub,
+               "visibility": args.visibility == "public", "ontology_files": files}
     with open_store(args.store, number_format=args.numbers, read_only=True) as store:
         if args.neem is not None:
             neem_id = resolve_neem(store, args.neem)
-            counts = export_neem(store, neem_id, args.out)
+            counts = export_neem(store, neem_id, args.out, **options)
             print(f"{neem_id}: {counts['triples']} triples -> {args.out}")
         else:
-            for neem_id, counts in export_all(store, args.out).items():
+            for neem_id, counts in export_all(store, args.out, **options).items():
                 print(f"{neem_id}: {counts['triples']} triples -> {args.out / neem_id}")
+    # said after the export succeeded: a failed one prints its one error line only
+    if args.soma is None:
+        print("hint: the NEEM carries the SOMA/DUL extract it was logged with; --soma DIR writes the whole graphs"
+              " (a read-only KnowRob such as openEASE loads no ontology)", file=sys.stderr)
+    if args.visibility is None:
+        print("hint: registry entry written private (visibility: false); --visibility public lists it on a NEEM hub",
+              file=sys.stderr)
     return 0
 
 

@@ -229,6 +229,8 @@ def import_chains(
                 performed_by=str(row.extra.get("performed_by", "robot")),
                 action_id=None if action_id is None else str(action_id),
                 available=row.available,
+                state=None if row.extra.get("state") is None else str(row.extra["state"]),
+                session=None if row.extra.get("session") is None else str(row.extra["session"]),
             )
             name = logger._replaces or logger.neem_id
             if row.line == plans[row.user].last_line:

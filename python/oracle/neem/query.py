@@ -97,10 +97,14 @@ def summarize_neem(store: Store, neem_id: str, info: NeemInfo | None = None) -> 
 
 def count_actions(store: Store, neem_id: str) -> tuple[int, float | None, float | None]:
     """Executed actions, earliest begin and latest end of a NEEM, read from its triples."""
+    # An episode's top-level action (KnowRob's `is_setting_for(Episode, Action)`, ours and
+    # neem-interface's) holds the executed ones as constituents: it is no action of its own.
+    tops = {doc["s"] for doc in store.find(neem_id, p=T.HAS_CONSTITUENT)}
+    tops.update(doc["o"] for p in (T.INCLUDES_ACTION, T.IS_SETTING_FOR) for doc in store.find(neem_id, p=p))
     actions = {
         doc["s"]
         for doc in store.find(neem_id, p=RDF_TYPE, o=T.ACTION)
-        if T.MENTAL_ACTION not in (doc.get("o*") or ()) and doc.get("o") != T.MENTAL_ACTION
+        if T.MENTAL_ACTION not in (doc.get("o*") or ()) and doc.get("o") != T.MENTAL_ACTION and doc["s"] not in tops
     }
     begins = [row["B"] for row in store.match(neem_id, [TriplePattern(Var("I"), T.BEGIN, Var("B"))])]
     ends = [row["E"] for row in store.match(neem_id, [TriplePattern(Var("I"), T.END, Var("E"))])]

@@ -67,6 +67,25 @@ def tf_document(child: str, pose: Pose, stamp: float, seq: int) -> dict[str, Any
     }
 
 
+def _pose_of(doc: dict[str, Any]) -> Pose:
+    t, r = doc["transform"]["translation"], doc["transform"]["rotation"]
+    return Pose((t["x"], t["y"], t["z"]), (r["x"], r["y"], r["z"], r["w"]), doc["header"]["frame_id"])
+
+
+def poses_between(store: Store, neem_id: str, child: str, begin: float, end: float) -> list[tuple[float, Pose]]:
+    """Every transform of ``child`` stamped in [begin, end], in time order (KnowRob's
+    ``tf_mng_trajectory/4``)."""
+    found = []
+    for doc in store.read_documents(neem_id, "tf"):
+        if doc.get("child_frame_id") != child:
+            continue
+        stamp = unix_seconds((doc.get("header") or {}).get("stamp"))
+        if stamp is not None and begin <= stamp <= end:
+            found.append((stamp, _pose_of(doc)))
+    found.sort(key=lambda item: item[0])
+    return found
+
+
 def pose_at(store: Store, neem_id: str, child: str, at: float | None) -> tuple[float, Pose] | None:
     """The latest transform of ``child`` stamped at or before ``at`` (any time when None), with
     its stamp; None when there is none. Reads the NEEM's tf collection in one pass."""
@@ -82,6 +101,4 @@ def pose_at(store: Store, neem_id: str, child: str, at: float | None) -> tuple[f
     if best is None:
         return None
     stamp, doc = best
-    t, r = doc["transform"]["translation"], doc["transform"]["rotation"]
-    pose = Pose((t["x"], t["y"], t["z"]), (r["x"], r["y"], r["z"], r["w"]), doc["header"]["frame_id"])
-    return stamp, pose
+    return stamp, _pose_of(doc)

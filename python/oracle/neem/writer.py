@@ -56,6 +56,21 @@ def _instant(moment: Moment) -> Instant:
 
 
 @dataclass(frozen=True)
+class _Episode:
+    """The recording session being written: its soma:Episode, the top-level action it is the
+    setting for (whose constituents the logged actions are), that action's interval and the
+    latest end logged in it (the interval's end, written when the session closes)."""
+
+    key: str
+    iri: str
+    top: str
+    interval: str
+    end: float
+    #: The session's actions, written as the top-level action's constituents when it closes.
+    members: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
 class LoggedAction:
     """What ``NeemLogger.action`` wrote: the action, and the idle action it inserted before it."""
 
@@ -90,6 +105,12 @@ def fact_extent(begin: float, end: float) -> tuple[float, float]:
     ``[begin, nextafter(begin)]``: ``has_role(O, R) during A`` then answers as it does for any
     action, and the extent ends before any later action starts (docs/store.md)."""
     return (begin, end) if end > begin else (begin, math.nextafter(begin, math.inf))
+
+
+def check_state(state: object) -> None:
+    """LoggingError unless ``state`` is None or an execution state KnowRob names."""
+    if state is not None and state not in T.EXECUTION_STATES:
+        raise LoggingError(f"state must be one of {', '.join(T.EXECUTION_STATES)}, got {state!r}")
 
 
 def _slug(text: str) -> str:
@@ -208,6 +229,8 @@ class NeemLogger:
         self._last_begin: Instant | None = None
         self._last_end: Instant | None = None
         self._clock_resumed = False
+        #: The open recording session (None before the first action of this logger's run).
+        self._episode: _Episode | None = None
         #: What ``neems`` lists, as committed; moved on with every commit (oracle.neem.query).
         known = summarize_neem(store, neem_id, info)
         self._summary = {"actions": known.actions, "begin": known.begin, "end": known.end}
@@ -290,6 +313,12 @@ class NeemLogger:
         self._counter = counter = (self._counter + 1) & 0xFFFFFF
         return f"{self.ns}{kind}_{int(time.time()):08x}{self._random}{counter:06x}"
 
+    def _named(self, cls_iri: str) -> str:
+        """A fresh individual of a class, named as KnowRob's ``new_iri(I, Class)`` names it:
+        the class IRI, ``_``, a unique id (openEASE labels a timeline's bars from that name)."""
+        self._counter = counter = (self._counter + 1) & 0xFFFFFF
+        return f"{cls_iri}_{int(time.time()):08x}{self._random}{counter:06x}"
+
     def _exists(self, iri: str) -> bool:
         if iri in self._known:
             return True
@@ -371,8 +400,8 @@ class NeemLogger:
             out.add(role, T.CLASSIFIES, obj)
         return task
 
-    def _typed_task(self, task: str, call: TaskCall, out: _Out) -> tuple[str | None, ...]:
-        """Type ``task`` with the call's task class; the SOMA role class of each argument."""
+    def _task_class(self, call: TaskCall) -> tuple[str, tuple[str | None, ...]]:
+        """The call's task class and the SOMA role class of each argument."""
         known = self._task_classes.get(call)
         if known is None:
             try:
@@ -381,6 +410,11 @@ class NeemLogger:
                 raise LoggingError(str(error)) from None
             if len(self._task_classes) < 100_000:
                 self._task_classes[call] = known
+        return known
+
+    def _typed_task(self, task: str, call: TaskCall, out: _Out) -> tuple[str | None, ...]:
+        """Type ``task`` with the call's task class; the SOMA role class of each argument."""
+        known = self._task_class(call)
         out.add(task, RDF_TYPE, known[0])
         out.add(task, RDF_TYPE, T.NAMED_INDIVIDUAL)
         return known[1]
@@ -389,7 +423,7 @@ class NeemLogger:
         """A fresh task individual for one action, with one role per argument; the role
         classifies its object during the action only (neem-interface's
         ``has_role(Obj, Role) during Action``), the task's type and roles hold always."""
-        task = self._event("Task")
+        task = self._named(self._task_class(call)[0])
         roles = self._typed_task(task, call, out)
         for arg, role_class in zip(call.args, roles):
             if role_class is None:
@@ -437,7 +471,7 @@ class NeemLogger:
 
     def _mental(self, task_class: str, at: Instant, out: _Out, who: str = "robot") -> str:
         action = self._event("MentalAction")
-        task = self._event("Task")  # one task per action, mental ones too
+        task = self._named(task_class)  # one task per action, mental ones too
         out.add(task, RDF_TYPE, task_class)
         out.add(task, RDF_TYPE, T.NAMED_INDIVIDUAL)
         out.add(action, RDF_TYPE, T.MENTAL_ACTION)
@@ -534,10 +568,20 @@ class NeemLogger:
         performed_by: str = "robot",
         action_id: str | None = None,
         available: Iterable[TaskCall | str] | None = None,
+        state: str | None = None,
+        session: str | None = None,
     ) -> LoggedAction:
         """Log an executed action (and, in the same transaction, the tasks available when it
-        started and the idle action filling a gap of ``idle_threshold`` seconds or more)."""
+        started and the idle action filling a gap of ``idle_threshold`` seconds or more).
+
+        ``state`` is what the robot reports of it (``succeeded``, ``failed``, ``cancelled``, ...:
+        ``soma:hasExecutionState``, KnowRob's action_succeeded/1 and kin); None writes none.
+        ``session`` names the recording session (one soma:Episode each); None: the UTC day of
+        ``begin`` (one session per time-less log)."""
         call = self._resolve(call)
+        check_state(state)
+        if session is not None and (not isinstance(session, str) or not session.strip()):
+            raise LoggingError(f"session must be a non-empty string, got {session!r}")
         start = _instant(begin)
         stop = start if end is None else _instant(end)
         if stop.seconds < start.seconds:
@@ -570,6 +614,11 @@ class NeemLogger:
         out.add(iri, T.EXECUTES, task)
         out.add(iri, T.PERFORMED_BY, self._agent(performed_by, out))
         out.add(iri, T.HAS_INTERVAL, self._interval(start, stop, out))
+        if state is not None:
+            self._state(iri, state, out)
+        if idle is not None:  # the gap before an action is part of its session
+            self._constituent(idle, start, start, session, out, begin=self._last_end)
+        self._constituent(iri, start, stop, session, out)
         self._write(out)
         if known_plans is None and type(available) is tuple:  # immutable: the same set next time
             if len(self._sets) >= 4096:
@@ -580,9 +629,66 @@ class NeemLogger:
             self._last_end = stop
         return LoggedAction(iri, call, start.seconds, stop.seconds, start.part_of_day, task, idle, imagining)
 
+    def _state(self, action: str, state: str, out: _Out) -> None:
+        region = T.EXECUTION_STATES[state]
+        self._individual(region, T.EXECUTION_STATE_REGION, out)
+        out.add(action, T.EXECUTION_STATE, region)
+
+    def _constituent(self, action: str, start: Instant, stop: Instant, session: str | None, out: _Out,
+                     begin: Instant | None = None) -> None:  # fmt: skip
+        """``action`` (which starts at ``begin``, default ``start``) a constituent of the session
+        of ``start``; a session of another key (a new day, another name) first closes the open
+        one and opens its own."""
+        if session is not None:
+            key = session
+        elif not self.clocked:
+            key = "sequence"
+        else:
+            key = datetime.fromtimestamp(start.seconds, timezone.utc).date().isoformat()
+        episode = self._episode
+        if episode is not None and episode.key != key:
+            self._end_episode(out)
+            episode = None
+        if episode is None:
+            episode = self._open_episode(key, start if begin is None else begin, out)
+        self._episode = _Episode(episode.key, episode.iri, episode.top, episode.interval, max(episode.end, stop.seconds),
+                                 (*episode.members, action))  # fmt: skip
+
+    def _open_episode(self, key: str, start: Instant, out: _Out) -> _Episode:
+        """neem-interface's ``mem_episode_start``: an episode that is the setting for a top-level
+        action executing a physical task, performed by the robot, which plays an agent role."""
+        episode, top, task, role = (self._named(c) for c in (T.EPISODE, T.PHYSICAL_ACTION, T.PHYSICAL_TASK, T.AGENT_ROLE))
+        interval = self._event("TimeInterval")
+        robot = self._agent("robot", out)
+        for iri, cls_iri in ((episode, T.EPISODE), (top, T.PHYSICAL_ACTION), (task, T.PHYSICAL_TASK), (role, T.AGENT_ROLE)):
+            out.add(iri, RDF_TYPE, cls_iri)
+            out.add(iri, RDF_TYPE, T.NAMED_INDIVIDUAL)
+        out.add(interval, RDF_TYPE, T.TIME_INTERVAL)  # typed as the actions' intervals are
+        out.add(episode, T.INCLUDES_ACTION, top)
+        out.add(top, T.EXECUTES, task)
+        out.add(top, T.PERFORMED_BY, robot)
+        out.add(task, T.IS_TASK_OF, role)
+        out.add(role, T.CLASSIFIES, robot)
+        out.add(top, T.HAS_INTERVAL, interval)
+        out.add(interval, T.BEGIN, start.seconds)
+        return _Episode(key, episode, top, interval, start.seconds)
+
+    def _end_episode(self, out: _Out) -> None:
+        """neem-interface's ``mem_episode_stop``: the session's actions become constituents of its
+        top-level action, whose interval ends with the latest end logged in the session.
+
+        Written together when the session closes, not one by one: a triple whose subject is an
+        earlier individual (the top-level action) would make every later history read whole
+        (oracle.historycache keeps a history only while every added subject is new)."""
+        episode = self._episode
+        if episode is not None:
+            out.extend([(episode.top, T.HAS_CONSTITUENT, member, USER_GRAPH, 0.0, INFINITY) for member in episode.members])
+            out.add(episode.interval, T.END, episode.end)
+            self._episode = None
+
     def _idle(self, begin: Instant, end: Instant, out: _Out) -> str:
         idle = self._event("Action")
-        task = self._event("Task")
+        task = self._named(self.vocab.idle_task)
         out.add(task, RDF_TYPE, self.vocab.idle_task)
         out.add(task, RDF_TYPE, T.NAMED_INDIVIDUAL)
         out.add(idle, RDF_TYPE, T.ACTION)
@@ -647,6 +753,7 @@ class NeemLogger:
             except BaseException as error:
                 # The in-memory view may now name individuals that were never stored.
                 self._known.clear()
+                self._episode = None
                 self._plans.clear()
                 self._sets.clear()
                 if isinstance(error, StoreError):
@@ -660,7 +767,12 @@ class NeemLogger:
         return repr(self._replaces or self.neem_id)
 
     def close(self) -> None:
-        """Commit what is buffered; a replacement NEEM then takes the place of the old one."""
+        """End the recording session, commit what is buffered; a replacement NEEM then takes the
+        place of the old one."""
+        if self._episode is not None:
+            out = _Out()
+            self._end_episode(out)
+            self._buffer.extend(out)  # part of the last call's commit, not a call of its own
         self.flush()
         if self._replaces is not None:
             self.store.swap_in(self.neem_id, self._replaces, replace=self._may_replace)

@@ -62,6 +62,8 @@ class ActionIn(BaseModel):
     end: Time = Field(None, description="phase done: when it ended (default: its begin)")
     id: str | None = Field(None, max_length=100, description="the action's key, to end it later")
     performed_by: Literal["robot", "user"] = "robot"
+    state: Literal["succeeded", "failed", "cancelled"] | None = Field(
+        None, description="phase done: how it went, as the robot reports it (soma:hasExecutionState)")
 
 
 class ChoiceIn(BaseModel):
@@ -217,7 +219,7 @@ def _logged_action(session: NeemSession, body: ActionIn) -> dict[str, Any]:
     else:
         if body.call is None:
             raise _missing("call")
-        logged = session.log(body.call, body.begin, body.end, body.performed_by)
+        logged = session.log(body.call, body.begin, body.end, body.performed_by, body.state)
     return {"id": logged.iri, "call": str(logged.call), "begin": logged.begin, "end": logged.end,
             "time_of_day": logged.part_of_day, "idle": logged.idle, "open": False,
             "history": session.predictor.n_steps_}

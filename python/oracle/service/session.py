@@ -267,14 +267,14 @@ class NeemSession:
         del self.open[key]
         return logged
 
-    def log(self, call_text: str, begin: Any, end: Any, performed_by: str = "robot") -> LoggedAction:
+    def log(self, call_text: str, begin: Any, end: Any, performed_by: str = "robot", state: str | None = None) -> LoggedAction:
         """Log an executed action (the logger inserts the idle action before a long gap) and
         teach the predictor the same steps the NEEM's history will show."""
         call = self.calls([call_text], "call")[0]
         start = moment_of(begin, "begin")
         stop = moment_of(end, "end") if end is not None else start
         self._check_time(Instant.of(start), f"action {call}")
-        logged = self.logger.action(call, start, stop, performed_by=performed_by)
+        logged = self.logger.action(call, start, stop, performed_by=performed_by, state=state)
         self.logger.flush()
         self.ranker.acted(call, logged.begin, logged.end, logged.part_of_day, after_idle=logged.idle is not None)
         self.pending = None

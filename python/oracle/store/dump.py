@@ -8,10 +8,12 @@ the registry entry. Documents are copied unchanged, so dump -> load -> dump is t
 from __future__ import annotations
 
 import contextlib
+import itertools
 import os
 import re
 import struct
-from collections.abc import Iterable, Iterator, Mapping
+import tempfile
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any, BinaryIO
 
@@ -22,6 +24,7 @@ from bson.codec_options import DEFAULT_CODEC_OPTIONS, DatetimeConversion
 from oracle.errors import StoreError
 from oracle.store.base import COLLECTION_KINDS, STAGING, SUMMARY_KEY, Store, check_neem_id
 from oracle.store.ids import ALIAS_KEY, alias_of, check_alias, find_neem, is_object_id, new_neem_id
+from oracle.store.meta import hub_document, hub_text_index, loaded_meta
 from oracle.store.staging import READY, STAGED_BY
 from oracle.store.validate import check_meta
 from oracle.store.mongo import DEFAULT_DB, INDEXES
@@ -76,6 +79,7 @@ def write_dump(
     meta: Mapping[str, Any] | None = None,
     db_name: str = DEFAULT_DB,
     prefix: str | None = None,
+    registry: Mapping[str, Any] | None = None,
 ) -> dict[str, int]:
     """Write collections in the mongodump layout; return documents written per kind.
 
@@ -108,10 +112,22 @@ def write_dump(
             with private(folder / f"{collection}.metadata.json") as handle:
                 handle.write(json_util.dumps(metadata(collection, kind), json_options=_CANONICAL).encode())
             counts[kind] = count
+        if registry is not None:  # the hub's registry: collection ``meta`` (never prefixed), text-indexed
+            folder = out / "meta" / db_name
+            _mkdir(folder, out)
+            with private(folder / "meta.bson") as handle:
+                handle.write(bson.encode(dict(registry), codec_options=_CODEC))
+                os.fsync(handle.fileno())
+            with private(folder / "meta.metadata.json") as handle:
+                indexes = [{"v": 2, "key": {"_id": 1}, "name": "_id_"}, hub_text_index()]
+                handle.write(json_util.dumps({"indexes": indexes, "collectionName": "meta", "type": "collection"},
+                                             json_options=_CANONICAL).encode())  # fmt: skip
         if meta is not None:
             _mkdir(out, out)
             with private(out / META_FILE) as handle:
-                handle.write(json_util.dumps(dict(meta), indent=2, sort_keys=True).encode() + b"\n")
+                # the counts written: load then tells a .bson cut at a document boundary from a whole one
+                record = {**meta, COUNTS_KEY: dict(counts)}
+                handle.write(json_util.dumps(record, indent=2, sort_keys=True).encode() + b"\n")
                 os.fsync(handle.fileno())
         for temporary, path in written:
             os.replace(temporary, path)  # replaces a file (or a link planted since), never writes through it
@@ -126,26 +142,60 @@ def write_dump(
     return counts
 
 
-def export_neem(store: Store, neem_id: str, out: Path | str, *, db_name: str = DEFAULT_DB) -> dict[str, int]:
-    """Write one NEEM as a KnowRob dump folder."""
+def export_neem(store: Store, neem_id: str, out: Path | str, *, db_name: str = DEFAULT_DB, hub_prefix: bool = False,
+                visibility: bool = False, ontology_files: Sequence[Path] = ()) -> dict[str, int]:  # fmt: skip
+    """Write one NEEM as a KnowRob dump folder, with its registry entry as ``meta.json`` (which
+    ``load`` reads) and as the NEEM hub's ``meta`` collection (ObjectId ``_id``, ``visibility``
+    as given, the text index openEASE searches). ``hub_prefix``: collections named
+    ``<id>_triples`` etc., as the hub keeps them (a NEEM whose id is no ObjectId takes the new
+    ObjectId of its registry document). ``ontology_files``: whole OWL files (the official SOMA,
+    DUL, SOMA-HOME) written into the NEEM's triples in place of its extract of those graphs, so a
+    read-only KnowRob (openEASE), which loads no ontology, sees all of them."""
     info = store.neem(neem_id)
     # The kept summary belongs to this store's write marks, not to the dump.
     meta = {k: v for k, v in info.meta.items() if k not in ("temporary", STAGING, STAGED_BY, READY, COUNTS_KEY, SUMMARY_KEY)}
+    registry = hub_document(meta, neem_id, visibility=visibility)
     meta["id"] = neem_id
-    meta[COUNTS_KEY] = {kind: store.count(neem_id, kind) for kind in COLLECTION_KINDS}
     docs = {kind: store.read_documents(neem_id, kind) for kind in COLLECTION_KINDS}
-    try:
-        return write_dump(out, docs, meta, db_name)
-    finally:
-        for reader in docs.values():
-            close = getattr(reader, "close", None)
-            if close is not None:
-                close()  # a dump that failed mid-way leaves no read open on the store
+    with contextlib.ExitStack() as stack:
+        if ontology_files:
+            graphs, extra = _ontology_documents(ontology_files, stack)
+            # the NEEM's own copy of those graphs (an extract) gives way to the whole files
+            kept = (doc for doc in docs["triples"] if doc.get("graph") not in graphs)
+            docs["triples"] = itertools.chain(kept, extra["triples"])
+            docs["annotations"] = itertools.chain(docs["annotations"], extra["annotations"])
+        try:
+            counts = write_dump(out, docs, meta, db_name, str(registry["_id"]) if hub_prefix else None, registry)
+        finally:
+            for reader in store_readers(docs):
+                reader.close()  # a dump that failed mid-way leaves no read open on the store
+    return counts
 
 
-def export_all(store: Store, out: Path | str, *, db_name: str = DEFAULT_DB) -> dict[str, dict[str, int]]:
-    """Every NEEM of the store, each in ``OUT/<neem id>/``."""
-    return {info.id: export_neem(store, info.id, Path(out) / info.id, db_name=db_name) for info in store.neems()}
+def store_readers(docs: Mapping[str, Any]) -> list[Any]:
+    return [reader for reader in docs.values() if getattr(reader, "close", None) is not None]
+
+
+def _ontology_documents(files: Sequence[Path], stack: contextlib.ExitStack) -> tuple[set[str], dict[str, Iterator[dict[str, Any]]]]:
+    """The documents KnowRob's ``load_owl`` makes of whole OWL files (each its own graph), made
+    in a scratch store in a private temporary folder: the graphs and their triples/annotations."""
+    from oracle.store.owlfile import graph_of_file, tbox_from_files
+    from oracle.store.sqlite import SQLiteStore
+    from oracle.store.tbox import load_tbox
+
+    for path in files:
+        if not Path(path).is_file():
+            raise StoreError(f"{path}: no such OWL file")
+    scratch = stack.enter_context(tempfile.TemporaryDirectory(prefix="neem-oracle-owl-"))
+    owl = stack.enter_context(SQLiteStore(Path(scratch) / "owl.sqlite"))
+    owl.create_neem("owl")
+    load_tbox(owl, "owl", tbox_from_files(list(files)))
+    return {graph_of_file(p) for p in files}, {k: owl.read_documents("owl", k) for k in ("triples", "annotations")}
+
+
+def export_all(store: Store, out: Path | str, **options: Any) -> dict[str, dict[str, int]]:
+    """Every NEEM of the store, each in ``OUT/<neem id>/`` (options: those of export_neem)."""
+    return {info.id: export_neem(store, info.id, Path(out) / info.id, **options) for info in store.neems()}
 
 
 class LoadedDocument(dict):  # type: ignore[type-arg]
@@ -199,6 +249,10 @@ def _neem_groups(root: Path) -> dict[tuple[Path, str | None], dict[str, Path]]:
         parts = path.relative_to(root).parts
         folder = root / Path(*parts[: parts.index(kind)]) if kind in parts[:-1] else path.parent
         groups.setdefault((folder, prefix), {})[kind] = path
+    for (folder, prefix), files in groups.items():
+        if "triples" not in files:  # a NEEM is its triples: a dump without them is cut
+            name = f"{prefix}_triples.bson" if prefix else "triples.bson"
+            raise StoreError(f"{folder}: no {name} beside {', '.join(sorted(p.name for p in files.values()))}; the dump is incomplete")
     return groups
 
 
@@ -244,6 +298,9 @@ def load_dump(store: Store, path: Path | str, *, neem_id: str | None = None, rep
             target = _named_target(store, neem_id, meta)
         for key in ("id", SUMMARY_KEY, STAGING, STAGED_BY, READY):
             meta.pop(key, None)
+        meta = loaded_meta(meta, folder.resolve().name)
+        if not meta.get("name"):
+            meta["name"] = meta.get(ALIAS_KEY) or target  # never the staging NEEM's id
         check_neem_id(target)
         if store.has_neem(target) and not replace:
             raise StoreError(f"{store.location}: NEEM {target!r} already exists (load with --replace)")
@@ -279,6 +336,37 @@ def load_dump(store: Store, path: Path | str, *, neem_id: str | None = None, rep
                 store.drop_neem(staging)  # the old NEEM, if any, was never touched
         raise
     return [target for target, *_ in plans]
+
+
+def remember_dump(store: Store, neem_id: str, path: Path | str) -> dict[str, int]:
+    """KnowRob's ``remember/1``: the documents of one NEEM dump added to the NEEM ``neem_id``
+    (mongorestore into the current collections: what is already there stays, and a document
+    already stored is not added again, as mongorestore skips a duplicate ``_id``; a triple
+    counts as stored when its s, p, o and graph are). Return documents added per kind."""
+    root = Path(path)
+    if not root.is_dir():
+        raise StoreError(f"{root}: not a folder with a NEEM dump")
+    groups = _neem_groups(root)
+    if len(groups) != 1:
+        raise StoreError(f"{root}: holds {len(groups)} NEEMs; remember/1 reads one" if groups else
+                         f"{root}: no triples/annotations/tf/inferred .bson files found")  # fmt: skip
+    (files,) = groups.values()
+    added: dict[str, int] = {}
+    with store.transaction():
+        for kind, file in files.items():
+            ids = set() if kind == "triples" else {doc.get("_id") for doc in store.read_documents(neem_id, kind)}
+            docs = [doc for doc in iter_bson(file) if not _stored(store, neem_id, kind, doc, ids)]
+            added[kind] = store.write_documents(neem_id, kind, docs)
+    return added
+
+
+def _stored(store: Store, neem_id: str, kind: str, doc: dict[str, Any], ids: set[Any]) -> bool:
+    """The dump's document is in the NEEM already: a triple with its s, p, o and graph, another
+    document with its ``_id`` (among ``ids``)."""
+    if kind != "triples":
+        return doc.get("_id") in ids
+    found = store.find(neem_id, s=doc.get("s"), p=doc.get("p"), o=doc.get("o"), graph=doc.get("graph"), limit=1, exact=True)
+    return next(found, None) is not None
 
 
 def _named_target(store: Store, name: str, meta: dict[str, Any]) -> str:
@@ -323,4 +411,4 @@ def _read_meta(folder: Path) -> dict[str, Any]:
     return meta
 
 
-__all__ = ["export_all", "export_neem", "iter_bson", "load_dump", "metadata", "write_dump"]
+__all__ = ["export_all", "export_neem", "iter_bson", "load_dump", "metadata", "remember_dump", "write_dump"]

@@ -3,9 +3,12 @@ NEEM handbook read, with this tool's defaults."""
 
 from __future__ import annotations
 
+import hashlib
 from collections.abc import Mapping
 from datetime import datetime, timezone
 from typing import Any
+
+from bson.objectid import ObjectId
 
 from oracle.store.validate import check_meta
 
@@ -34,3 +37,56 @@ def new_meta(
     meta.update(extra or {})
     check_meta(meta, "registry entry")
     return meta
+
+
+#: The fields openEASE's NEEM hub searches (its ``meta`` collection's ``$text`` index), with
+#: their weights: the name first, then what the NEEM is about, then who and where.
+HUB_TEXT_FIELDS: dict[str, int] = {"name": 10, "description": 5, "keywords": 5, "activity.name": 3,
+                                   "environment": 2, "agent": 2, "created_by": 1}  # fmt: skip
+HUB_TEXT_INDEX = "neem_hub_text"
+#: Internal fields of our registry that a hub document leaves out.
+_PRIVATE = ("temporary", "alias", "summary", "documents", "ontology", "clock", "id")
+
+
+def hub_text_index() -> dict[str, Any]:
+    """The text index of the hub's ``meta`` collection, as mongodump's ``.metadata.json`` and
+    ``create_index`` state it."""
+    return {"v": 2, "key": {"_fts": "text", "_ftsx": 1}, "name": HUB_TEXT_INDEX, "weights": dict(HUB_TEXT_FIELDS),
+            "default_language": "english", "language_override": "language", "textIndexVersion": 3}  # fmt: skip
+
+
+def hub_id(neem_id: str) -> ObjectId:
+    """The hub's ObjectId of a NEEM: its id when that is one (24 hex digits), else one derived
+    from it (the first 12 bytes of its SHA-1), so that exporting a NEEM twice gives one id."""
+    if ObjectId.is_valid(neem_id) and len(neem_id) == 24:
+        return ObjectId(neem_id)
+    return ObjectId(hashlib.sha1(neem_id.encode("utf-8")).digest()[:12])
+
+
+def hub_document(meta: Mapping[str, Any], neem_id: str, *, visibility: bool) -> dict[str, Any]:
+    """The registry entry as a document of openEASE's ``meta`` collection: ``_id`` the NEEM's
+    ObjectId (``hub_id``; the collections' prefix of a hub export), every field the hub shows
+    (missing ones empty, claiming nothing), and ``visibility`` as chosen."""
+    doc: dict[str, Any] = {"_id": hub_id(neem_id)}
+    doc.update({k: v for k, v in meta.items() if k not in _PRIVATE and not k.startswith("_")})
+    for field in OPENEASE_FIELDS:
+        doc.setdefault(field, "")
+    doc.setdefault("keywords", [])
+    doc["visibility"] = bool(visibility)
+    return doc
+
+
+def loaded_meta(meta: Mapping[str, Any], source: str) -> dict[str, Any]:
+    """Registry fields of a NEEM someone else recorded, loaded from ``source`` (a dump folder's
+    name): what its dump says, and where it says nothing, no claim that this tool logged it."""
+    honest: dict[str, Any] = {
+        "description": f"A NEEM loaded from the dump {source!r}",
+        "created_by": None,
+        "keywords": [],
+        "model_version": "",
+        "activity": {"name": "", "url": ""},
+        "environment": "",
+        "agent": "",
+    }
+    honest.update(meta)
+    return honest

@@ -18,6 +18,7 @@ from bson.objectid import ObjectId
 
 from oracle.errors import StoreError
 from oracle.store.base import COLLECTION_KINDS, STAGING, NeemInfo, Store
+from oracle.store.meta import HUB_TEXT_FIELDS, HUB_TEXT_INDEX
 from oracle.store.model import (
     HIERARCHY,
     TAXONOMIC,
@@ -42,7 +43,8 @@ TRIPLE_INDEXES: tuple[tuple[str, ...], ...] = (
     ("s", "o", "p"), ("s", "o", "p*"), ("s", "o*", "p"),
 )  # fmt: skip
 ANNOTATION_INDEXES: tuple[tuple[str, ...], ...] = (("s",), ("p",), ("s", "p"))
-TF_INDEXES: tuple[tuple[str, ...], ...] = (("header.stamp",), ("child_frame_id", "header.stamp"))
+#: KnowRob's order (mongolog_add_fluent for tf: the time field, then the time field and the key).
+TF_INDEXES: tuple[tuple[str, ...], ...] = (("header.stamp",), ("header.stamp", "child_frame_id"))
 INDEXES: dict[str, tuple[tuple[str, ...], ...]] = {
     "triples": TRIPLE_INDEXES,
     "annotations": ANNOTATION_INDEXES,
@@ -135,6 +137,9 @@ class MongoStore(Store):
             for keys in INDEXES[kind]:
                 coll.create_index([(key, 1) for key in keys])
         self.db[META].insert_one({"_id": meta_key(neem_id), **record})
+        # openEASE's NEEM hub searches the registry with $text (idempotent: created once)
+        self.db[META].create_index([(field, "text") for field in HUB_TEXT_FIELDS], name=HUB_TEXT_INDEX,
+                                   weights=HUB_TEXT_FIELDS)  # fmt: skip
 
     def _drop_neem(self, neem_id: str) -> None:
         for kind in COLLECTION_KINDS:
