@@ -33,7 +33,8 @@ time, as a plain Prolog conjunction would; both give the same solutions.
 
 The compiler knows the control constructs (`,`, `;`, `->`, `\+`), triple/3 and holds/3
 (kb_triple), the scope modifiers `during`, `since` and `until` (kb_scope), `has_type/2`
-(no compound class expressions, no owl:NamedIndividual when the type is free) and
+(no compound class expressions; with the type free, every asserted type, owl:NamedIndividual
+included, as KnowRob) and
 `occurs/1` (an event whose interval overlaps the question scope). Any other goal is
 called as Prolog in the caller's module.
 
@@ -51,7 +52,7 @@ kb_project/1 asserts statements built from the same vocabulary (see kb_project/1
 :- use_module(subgraph, [graph_filter/2]).
 :- use_module(triple, [kb_iri/2, iri_term/1, triple_steps/6, unit_factor/2]).
 :- use_module(scope, [current_scope/1, scope_check/1, scope_overlaps/3, runtime_scope/3,
-                       scope_term/2, scope_dict/2, universal_scope/1]).
+                       scope_term/2, scope_dict/2, universal_scope/1, time_scope/3]).
 
 :- meta_predicate
     kb_call(0), kb_call(0, +), kb_call(0, +, -), kb_call(0, +, -, +), kb_call_stepwise(0), kb_call_stepwise(0, +),
@@ -280,14 +281,13 @@ unfold(holds(Su, P, O), _, Scope, S0, S) :- !,
 unfold(has_type(A, B), Mod, Scope, S0, S) :- !,
     (   nonvar(B), \+ iri_term(B)
     ->  S0 = [call(fail)|S]          % compound class expressions are not types
-    ;   var(B)
-    ->  unfold(instance_of(A, B), Mod, Scope, S0, [call(kb_query:not_named_individual(B))|S])
     ;   unfold(instance_of(A, B), Mod, Scope, S0, S)
     ).
 unfold(occurs(E), Mod, Scope, S0, S) :- !,
     unfold(event_interval(E, B, End), Mod, any, S0, [call(kb_scope:scope_overlaps(Scope, B, End))|S]).
 unfold(pragma(G), Mod, _, S, S) :- !,         % KnowRob: evaluated when the goal is compiled
     call(Mod:G).
+unfold(context(Option), _, Scope, [call(kb_query:query_context(Option, Scope))|S], S) :- !.
 unfold(G, Mod, Scope, S0, S) :-
     callable(G), functor(G, F, N), functor(G0, F, N),
     once(kb_rule(G0, _)), !,                      % a model predicate (no rule may fit this call)
@@ -376,6 +376,12 @@ owl_value(O, P, D) :-
     length(Args, N),
     D =.. [F, P|Args].
 
+%   mongolog's context/1: the options of the query being answered, `scope(Dict)` its question
+%   scope as KnowRob's scope dictionary.
+query_context(scope(D), Scope) :- !,
+    (   Scope = scope(S, U) -> time_scope(=<(S), >=(U), D) ; D = dict{} ).
+query_context(Option, _) :- domain_error(query_context_option, Option).
+
 %   A goal query backends answer: each backend that can, in turn.
 backend_call(G) :-
     findall(B, is_callable_with(B, G), Bs0),
@@ -390,9 +396,6 @@ annotation_value(Su0, P0, V) :-
     (   var(Su) -> instantiation_error(annotation(Su, P, V)) ; true ),
     (   var(P) -> instantiation_error(annotation(Su, P, V)) ; true ),
     store_annotation(Su, P, V).
-
-not_named_individual(B) :-
-    B \== 'http://www.w3.org/2002/07/owl#NamedIndividual'.
 
                  /*******************************
                  *           GROUPING           *

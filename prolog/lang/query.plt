@@ -195,6 +195,10 @@ test(several_rules_are_alternatives, [nondet, cleanup(( store_reset, retractall(
     findall(X, kb_call(two_ways(X)), Xs), msort(Xs, [s1, s2]),
     kb_compile(two_ways(only), any, Plan), Plan = [or(_, _)].
 
+test(context_gives_the_question_scope, [nondet]) :-
+    kb_call(context(scope(D)), scope(10, 20)),
+    get_dict(time, D, T), get_dict(since, T, S), get_dict(until, T, U), S == =<(10), U == >=(20).
+
 test(pragma_runs_when_compiled, [nondet]) :-
     kb_compile(( pragma(X = 3), triple(s, p, X) ), any, Plan),
     Plan == [match([t(s, p, 3)], any)].

@@ -215,7 +215,9 @@ dedup([X|Xs], [X|Ys]) :- exclude(==(X), Xs, Xs1), dedup(Xs1, Ys).
 %   include_parents on a taxonomic property: the asserted object and its ancestors.
 parents_triple(S, P, O, Scope) :-
     (   store_taxonomic(P)
-    ->  kb_iri(rdfs:subClassOf, Sub),
+    ->  (   kb_iri(rdfs:subPropertyOf, P) -> Sub = P   % a property's super-properties
+        ;   kb_iri(rdfs:subClassOf, Sub)                % a class's (or a type's) ancestors
+        ),
         (   nonvar(O)
         ->  store_match([t(S, P, O)], Scope)
         ;   distinct(S-O, ( store_match([t(S, P, D)], Scope),

@@ -71,4 +71,11 @@ test(include_parents, [nondet, setup(load_test_episode), cleanup(store_reset)]) 
     subset([Pick, PU, Task], Cs),
     findall(C, triple(T, rdf:type, C), Direct), \+ memberchk(Task, Direct).
 
+test(include_parents_of_a_property, [nondet, cleanup(store_reset)]) :-
+    store_reset,
+    kb_project(( subproperty_of(hasBrother, hasSibling), subproperty_of(hasSibling, hasRelative),
+                 subclass_of(hasSibling, notAProperty) )),
+    findall(Q, triple(hasBrother, include_parents(rdfs:subPropertyOf), Q), Qs),
+    msort(Qs, [hasRelative, hasSibling]).
+
 :- end_tests(kb_triple).

@@ -28,7 +28,8 @@ kb_query:kb_rule(is_mental_action(A), has_type(A, soma:'MentalAction')).
 kb_query:kb_rule(executes_task(A, T), holds(A, dul:executesTask, T)).
 kb_query:kb_rule(is_performed_by(A, Agent), holds(A, soma:isPerformedBy, Agent)).
 kb_query:kb_rule(has_participant(E, O), holds(E, dul:hasParticipant, O)).
-kb_query:kb_rule(has_participant(E, O, C), ( holds(E, dul:hasParticipant, O), has_type(O, C) )).
+kb_query:kb_rule(has_participant(E, O, C), ( holds(E, dul:hasParticipant, O), has_type(O, C),
+                                             C \== 'http://www.w3.org/2002/07/owl#NamedIndividual' )).
 kb_query:kb_rule(has_subevent(E, S), holds(E, dul:hasConstituent, S)).
 kb_query:kb_rule(has_time_interval(E, I), triple(E, dul:hasTimeInterval, I)).
 kb_query:kb_rule(has_interval_begin(I, B), triple(I, soma:hasIntervalBegin, B)).

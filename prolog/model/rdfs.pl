@@ -21,8 +21,8 @@
 
 instance_of/2 and subclass_of/2 are taxonomic triple goals: a bound class matches the
 asserted class and its ancestors (`o*`), a free class binds the asserted one. has_type/2
-is instance_of/2 that refuses compound class expressions and, with a free class, leaves
-out owl:NamedIndividual. is_resource/1 and is_property/1 are typed rdfs:Resource and
+is instance_of/2 that refuses compound class expressions (with a free class, every asserted
+type, owl:NamedIndividual included, as KnowRob's). is_resource/1 and is_property/1 are typed rdfs:Resource and
 rdf:Property; rdf_list/2 reads (and, through kb_project/1, writes) an rdf:first/rdf:rest
 list; new_iri/1,2 make an IRI not used as a subject yet.
 */

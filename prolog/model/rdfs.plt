@@ -11,9 +11,10 @@ test(instance_of_closure, [nondet, setup(load_test_episode), cleanup(store_reset
     n(pick1, P), instance_of(P, dul:'Task'),
     subclass_of(odb:pick, dul:'Task').
 
-test(has_type_skips_named_individual, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
-    n(apple1, A),
-    findall(C, has_type(A, C), Cs), Cs == ['https://ontology.dlr.de/soma/odb#apple'],
+test(has_type_names_every_asserted_type, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
+    n(apple1, A),                                 % owl:NamedIndividual too, as KnowRob's
+    findall(C, has_type(A, C), Cs0), msort(Cs0, Cs),
+    Cs == ['http://www.w3.org/2002/07/owl#NamedIndividual', 'https://ontology.dlr.de/soma/odb#apple'],
     \+ has_type(A, some(x)).
 
 test(resource_and_property, [nondet, setup(store_reset), cleanup(store_reset)]) :-
