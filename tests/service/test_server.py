@@ -177,7 +177,7 @@ def test_page_holds_the_list_while_the_user_is_on_it_and_confirms_before_it_send
     assert call(server, "/api/neems/cem/choice")[1] == before  # not yet
     page.wait_for_function("!document.getElementById('sheet').open")
     assert call(server, "/api/neems/cem/choice")[1]["task"] == latest["ranking"][0]["task"]
-    assert page.locator("#answer").text_content().startswith("You chose: ")
+    page.wait_for_function("document.getElementById('answer').textContent.startsWith('You chose: ')")
     # undo: nothing is sent
     made = call(server, "/api/neems/cem/choice")[1]
     tasks.nth(1).click()
@@ -499,3 +499,16 @@ def test_the_listening_socket_says_tcp_so_answers_go_out_without_nagles_delay():
         assert sock.proto == socket.IPPROTO_TCP
     finally:
         sock.close()
+
+
+def test_a_touch_user_who_let_go_gets_the_new_ranking_at_once(server, browser):
+    assert call(server, "/api/neems", {"user": "Hal", "neem": "hal"})[0] == 201
+    call(server, "/api/neems/hal/situation", {"available": ["open(fridge)", "pick(banana)"], "at": at(0, 0)})
+    page = open_page(browser, server, "neem=hal&hold=1")
+    page.locator("#tasks button.task").first.click()  # a tap: the button keeps an invisible focus
+    page.locator("#back").click()
+    assert page.evaluate("document.activeElement.dataset.task") == "open(fridge)"
+    call(server, "/api/neems/hal/situation", {"available": ["open(fridge)", "pick(banana)", "pick(red_mug)"], "at": at(0, 1)})
+    page.wait_for_function("document.querySelectorAll('#tasks .task').length === 3")  # after the 1 s hold
+    assert not page.locator("#fresh.waiting").count()
+    page.close()
