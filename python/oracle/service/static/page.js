@@ -27,14 +27,15 @@
   function fill(text, values) { return text.replace(/\{(\w+)\}/g, function (_, k) { return values[k]; }); }
 
   // -- who uses the page: confirm by a second tap or by dwelling, the undo window -------------
-  // Set per person by the carer with ?confirm=tap|dwell&dwell=S&undo=S, kept in this browser.
+  // Set per person by the carer with ?confirm=tap|dwell&dwell=S&undo=S&hold=S, kept in this browser.
   function settings() {
     var key = 'oracle-prefs-' + cfg.neem, saved = {};
     try { saved = JSON.parse(localStorage.getItem(key) || '{}'); } catch (e) { saved = {}; }
     var q = new URLSearchParams(location.search), out = {
       confirm: q.get('confirm') || saved.confirm || cfg.confirm,
       dwell: parseFloat(q.get('dwell') || saved.dwell || cfg.dwell_s),
-      undo: parseFloat(q.get('undo') || saved.undo || cfg.undo_s)
+      undo: parseFloat(q.get('undo') || saved.undo || cfg.undo_s),
+      hold: parseFloat(q.get('hold') || saved.hold || cfg.hold_ms / 1000)
     };
     if (out.confirm !== 'dwell') out.confirm = 'tap';
     try { localStorage.setItem(key, JSON.stringify(out)); } catch (e) { /* private mode */ }
@@ -42,13 +43,17 @@
   }
 
   // -- steady targets -------------------------------------------------------------------------
-  // While the user is on the page (a touch, pointer or key within HOLD_MS, focus on the list, the
-  // sheet open), a new ranking waits behind "New suggestions"; otherwise it is shown at once.
+  // While the user is on the page (a touch, pointer or key within the hold time, the keyboard's or
+  // switch's focus on the list, the sheet open), a new ranking waits behind "New suggestions";
+  // otherwise it is shown at once. A tapped button keeps the focus too, but not a visible one: a
+  // touch user who has let go is idle.
   ['pointerdown', 'pointermove', 'touchstart', 'keydown', 'wheel'].forEach(function (kind) {
     document.addEventListener(kind, function () { lastTouch = Date.now(); }, {capture: true, passive: true});
   });
   function engaged() {
-    return Date.now() - lastTouch < cfg.hold_ms || list.contains(document.activeElement) || sheet.open;
+    var focused = document.activeElement;
+    return Date.now() - lastTouch < prefs.hold * 1000 || sheet.open ||
+      (list.contains(focused) && focused.matches(':focus-visible'));
   }
   function calls(view) { return (view && view.tasks || []).map(function (t) { return t.task; }); }
   function same(a, b) { return JSON.stringify(a) === JSON.stringify(b); }
