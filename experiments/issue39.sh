@@ -15,7 +15,11 @@ SHARED=${SHARED:-/work/shared/datasets}
 KA=(out/kasteren/chains.jsonl --odb out/kasteren/odb --mapping out/kasteren/mapping.yaml)
 EG=(out/egtea/chains.jsonl --odb out/egtea/odb --mapping out/egtea/mapping.yaml)
 $PY -m oracle evaluate "${KA[@]}" --baselines --also stacked --json out/i39-kasteren.json
-$PY -m oracle evaluate "${EG[@]}" --baselines --also stacked --json out/i39-egtea.json
+for r in 0:8 8:16 16:24 24:; do
+  $PY experiments/shards.py run "${EG[@]}" --users "$r" --out "out/i39-egtea-${r%%:*}.pkl" &
+done
+wait
+$PY experiments/shards.py merge out/i39-egtea-{0,8,16,24}.pkl --json out/i39-egtea.json
 # the persona test split in three shards of users side by side, merged into what one evaluate writes
 for r in 0:30 30:60 60:; do
   $PY experiments/shards.py run out/bench/test.jsonl --users "$r" --out "out/i39-persona-${r%%:*}.pkl" &
