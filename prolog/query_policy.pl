@@ -455,7 +455,6 @@ exposed(kb_urdf, has_urdf_prefix/2, read).
 exposed(kb_urdf, has_base_link/2, read).
 exposed(kb_urdf, has_child_link/2, read).
 exposed(kb_urdf, has_parent_link/2, read).
-exposed(kb_urdf, has_kinematics_file/3, read).
 exposed(kb_db, drop_graph/1, write).
 exposed(kb_db, memorize/1, hidden).   % writes a dump folder
 exposed(kb_db, remember/1, hidden).   % reads a dump folder

@@ -7,8 +7,7 @@
       has_urdf_prefix/2,        % ?Object, ?Prefix
       has_base_link/2,          % ?Object, ?Link
       has_child_link/2,         % ?Joint, ?Link
-      has_parent_link/2,        % ?Joint, ?Link
-      has_kinematics_file/3     % ?Object, ?Identifier, ?Format
+      has_parent_link/2         % ?Joint, ?Link
     ]).
 /** <module> Robot and environment descriptions into the NEEM (KnowRob 2.x src/ros/urdf/URDF.pl)
 
@@ -33,6 +32,7 @@ object is named as that frame), as KnowRob does for its tf memory.
 :- use_module('../neem_store', [store_assert_pose/3]).
 :- use_module('../model/rdfs', [new_iri/2]).
 :- use_module('../model/tf', [object_frame_name/2]).
+:- use_module('../model/soma_workflow', []).         % has_kinematics_file/3's rule (KnowRob's model/SOMA.pl)
 
 urdf(Local, IRI) :- atom_concat('http://knowrob.org/kb/urdf.owl#', Local, IRI).
 
@@ -44,10 +44,6 @@ kb_query:kb_rule(has_urdf_prefix(O, P), triple(O, 'http://knowrob.org/kb/urdf.ow
 kb_query:kb_rule(has_base_link(O, L), triple(O, 'http://knowrob.org/kb/urdf.owl#hasBaseLink', L)).
 kb_query:kb_rule(has_child_link(J, L), triple(J, 'http://knowrob.org/kb/urdf.owl#hasChildLink', L)).
 kb_query:kb_rule(has_parent_link(J, L), triple(J, 'http://knowrob.org/kb/urdf.owl#hasParentLink', L)).
-kb_query:kb_rule(has_kinematics_file(O, Id, Format),
-                 ( triple(IO, dul:isAbout, O), has_type(IO, soma:'KinoDynamicData'),
-                   triple(IR, dul:realizes, IO), triple(IR, soma:hasPersistentIdentifier, Id),
-                   triple(IR, soma:hasDataFormat, Format) )).
 
 %!  is_urdf_link(?Entity) is nondet.
 is_urdf_link(E) :- kb_call(is_urdf_link(E), any).
@@ -63,8 +59,6 @@ has_base_link(O, L) :- kb_call(has_base_link(O, L), any).
 has_child_link(J, L) :- kb_call(has_child_link(J, L), any).
 %!  has_parent_link(?Joint, ?Link) is nondet.
 has_parent_link(J, L) :- kb_call(has_parent_link(J, L), any).
-%!  has_kinematics_file(?Object, ?Identifier, ?Format) is nondet.
-has_kinematics_file(O, Id, F) :- kb_call(has_kinematics_file(O, Id, F), any).
 
 %!  urdf_load(+Object, +File) is det.
 urdf_load(Object, File) :- urdf_load(Object, File, []).

@@ -3,6 +3,7 @@
 :- use_module(urdf).
 :- use_module('../neem_store').
 :- use_module('../lang/query').
+:- use_module('../model/soma_workflow', [has_kinematics_file/3]).
 
 urdf_file(F) :-
     tmp_file_stream(text, F, S),
