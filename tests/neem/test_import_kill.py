@@ -18,6 +18,8 @@ import sys
 import time
 from pathlib import Path
 
+import pytest
+
 from oracle.store import open_store
 from oracle.store.staging import drop_abandoned
 
@@ -69,6 +71,7 @@ def _state(store: Path) -> tuple[dict[str, int], dict[str, int]]:
     return actions, tbox
 
 
+@pytest.mark.slow  # 21 imports in subprocesses, 20 of them killed (81 s at a load of 17, ~10 s quiet)
 def test_random_kills_lose_at_most_the_rows_since_the_last_commit_of_the_user_in_flight(tmp_path):
     chains = _chains(tmp_path / "c.jsonl")
     full = tmp_path / "full.sqlite"
