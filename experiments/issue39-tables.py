@@ -42,6 +42,14 @@ def targets(out: Path) -> None:
             tag = f"`{name}`" + (" (best other baseline on Top-3)" if name == best else "")
             print(f"| {label} | {tag} | {m['top1']:.3f} | {m['top3']:.3f} | {m['top5']:.3f} | {diff} | "
                   f"{c['top1']:.3f} / {c['top3']:.3f} / {c['top5']:.3f} |")
+        others = [n for n in s["methods"] if n not in (ref, "stacked")]
+        strongest = []
+        for k in KS:
+            top = max(others, key=lambda n: s["methods"][n][f"top{k}"])
+            strongest.append(f"`{top}` {s['methods'][top][f'top{k}']:.3f}")
+        ahead = all(s["methods"][ref][f"top{k}"] >= max(s["methods"][n][f"top{k}"] for n in others) for k in KS)
+        print(f"| {label} | strongest baseline per k | {' | '.join(strongest)} | `{ref}` >= all three: "
+              f"{'yes' if ahead else 'no'} | |")
         print(f"| {label} | chance | {s['chance']['top1']:.3f} | {s['chance']['top3']:.3f} | "
               f"{s['chance']['top5']:.3f} | {s['n_predictions']:,} predictions, {s['truth_not_offered']:,} "
               f"not offered | |")
