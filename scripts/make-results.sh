@@ -6,18 +6,21 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 PY=${PY:-.venv/bin/python}
 SHARED=${SHARED:-../shared/datasets}
+# the replay rules these figures were made under, before issue 39 (docs/evaluation.md, "Replay");
+# the honest rules' figures are experiments/issue39.sh's
+OLD=(--candidates vocabulary --decision start --every-step)
 $PY -m oracle generate --personas 105 --days 7 --seed 0 --out out/bench
-$PY -m oracle evaluate out/bench/test.jsonl --baselines --ablations \
+$PY -m oracle evaluate out/bench/test.jsonl "${OLD[@]}" --baselines --ablations \
     --json out/persona-recommended.json --report out/persona-recommended.md --plots docs/results/persona
 $PY -m oracle tune out/bench/tune.jsonl --metric top1 --budget 80 --out out/tuned-top1.yaml
-$PY -m oracle evaluate out/bench/test.jsonl --settings out/tuned-top1.yaml --baselines \
+$PY -m oracle evaluate out/bench/test.jsonl "${OLD[@]}" --settings out/tuned-top1.yaml --baselines \
     --json out/persona-tuned.json --report out/persona-tuned.md --plots docs/results/persona-tuned
 if [ -d "$SHARED/kasteren_house_a" ]; then
   $PY -m oracle convert kasteren "$SHARED/kasteren_house_a" --out out/kasteren
   for s in recommended out/tuned-top1.yaml; do
     tag=$(basename "$s" .yaml)
     $PY -m oracle evaluate out/kasteren/chains.jsonl --odb out/kasteren/odb --mapping out/kasteren/mapping.yaml \
-        --settings "$s" --baselines --json "out/kasteren-$tag.json" --report "out/kasteren-$tag.md" \
+        "${OLD[@]}" --settings "$s" --baselines --json "out/kasteren-$tag.json" --report "out/kasteren-$tag.md" \
         --plots "docs/results/kasteren-$tag"
   done
 fi
@@ -26,20 +29,20 @@ if [ -d "$SHARED/egtea_gaze_plus" ]; then
   for s in recommended out/tuned-top1.yaml; do
     tag=$(basename "$s" .yaml)
     $PY -m oracle evaluate out/egtea/chains.jsonl --odb out/egtea/odb --mapping out/egtea/mapping.yaml \
-        --settings "$s" --baselines --json "out/egtea-$tag.json" --report "out/egtea-$tag.md" \
+        "${OLD[@]}" --settings "$s" --baselines --json "out/egtea-$tag.json" --report "out/egtea-$tag.md" \
         --plots "docs/results/egtea-$tag"
   done
 fi
 # self-tuning ablations of the routine predictor: its first variant alone, and the likelihood mixture
 for m in routine-fixed routine-mixture; do
-  $PY -m oracle evaluate out/bench/test.jsonl --method "$m" --json "out/persona-$m.json"
+  $PY -m oracle evaluate out/bench/test.jsonl "${OLD[@]}" --method "$m" --json "out/persona-$m.json"
   if [ -d out/kasteren ]; then
     $PY -m oracle evaluate out/kasteren/chains.jsonl --odb out/kasteren/odb --mapping out/kasteren/mapping.yaml \
-        --method "$m" --json "out/kasteren-$m.json"
+        "${OLD[@]}" --method "$m" --json "out/kasteren-$m.json"
   fi
   if [ -d out/egtea ]; then
     $PY -m oracle evaluate out/egtea/chains.jsonl --odb out/egtea/odb --mapping out/egtea/mapping.yaml \
-        --method "$m" --json "out/egtea-$m.json"
+        "${OLD[@]}" --method "$m" --json "out/egtea-$m.json"
   fi
 done
 # nltk.lm against the online Kneser-Ney of the baselines (docs/evaluation.md, "Kneser-Ney and Witten-Bell")
