@@ -50,8 +50,13 @@ def client(ctx) -> Iterator:
 def drive(client, neem: str, days: int = 2) -> None:
     """The robot's loop for ``days`` mornings: situation, then the action done, for each step."""
     for day in range(days):
-        for i, call in enumerate(ROUTINE):
-            begin = at(day, 10 * i)
-            assert client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": begin}).status_code == 200
-            response = client.post(f"/api/neems/{neem}/actions", json={"call": call, "begin": begin, "end": begin + 5})
-            assert response.status_code == 200, response.text
+        drive_day(client, neem, day)
+
+
+def drive_day(client, neem: str, day: int) -> None:
+    """One morning of the routine: situation, then the action done, for each step."""
+    for i, call in enumerate(ROUTINE):
+        begin = at(day, 10 * i)
+        assert client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": begin}).status_code == 200
+        response = client.post(f"/api/neems/{neem}/actions", json={"call": call, "begin": begin, "end": begin + 5})
+        assert response.status_code == 200, response.text

@@ -6,7 +6,7 @@ import pytest
 
 from oracle.algorithm.params import Hyperparameters
 from oracle.service.app import create_app
-from tests.service.conftest import AVAILABLE, ROUTINE, at, drive
+from tests.service.conftest import AVAILABLE, ROUTINE, at, drive, drive_day
 
 pytestmark = pytest.mark.usefixtures("onto")
 
@@ -532,3 +532,23 @@ def test_neem_interface_reads_through_the_json_prolog_endpoint(client, neem):
     assert ni.get_tf_trajectory("http://e.org/x#cup", 0.0, 1e10) == []
     with pytest.raises(NEEMError):
         ni.add_participant_with_role(picks[0], "http://e.org/x#cup", "soma:'Patient'")
+
+
+def test_the_situation_answer_names_the_routine_in_progress_and_what_remains(client):
+    client.post("/api/neems", json={"user": "Rae", "neem": "rae"})
+    drive(client, "rae", days=2)
+    two_days = client.post("/api/neems/rae/situation", json={"available": AVAILABLE, "at": at(2, 0)}).json()
+    assert two_days["routine"] is None  # seen on two days: not yet a routine
+    drive_day(client, "rae", 2)
+    for i, call in enumerate(ROUTINE[:2]):  # the fourth morning: two steps done
+        done = {"call": call, "begin": at(3, 10 * i), "end": at(3, 10 * i + 5)}
+        assert client.post("/api/neems/rae/actions", json=done).status_code == 200
+    body = client.post("/api/neems/rae/situation", json={"available": AVAILABLE, "at": at(3, 25)}).json()
+    assert body["routine"]["remaining"] == ROUTINE[2:] and body["routine"]["steps_left"] == 5
+    assert body["routine"]["done"] == 2 and body["routine"]["key"] == "r1" and body["routine"]["name"]
+    assert client.get("/api/neems/rae/situation").json()["routine"] == body["routine"]
+    view = client.get("/api/neems/rae/tablet", params={"lang": "en"}).json()["routine"]
+    assert view["label"] == f"Finish \u201c{body['routine']['name']}\u201d (5 steps left)"
+    assert [s["task"] for s in view["steps"]] == ROUTINE[2:]
+    later = client.post("/api/neems/rae/situation", json={"available": AVAILABLE, "at": at(3, 3600)}).json()
+    assert later["routine"] is None  # an hour idle since: no routine in progress

@@ -21,6 +21,7 @@ from oracle.chains import TaskCall, parse_call
 from oracle.timeline import clock, is_idle_gap, time_of_day
 
 if TYPE_CHECKING:
+    from oracle.algorithm.records import Step
     from oracle.bridge import HistoryRow
 
 
@@ -281,6 +282,22 @@ def recognise(routines: Sequence[Routine], prefix: Sequence[str], hour: float, *
 def done_from_history(rows: Sequence[HistoryRow]) -> list[Done]:
     """The non-idle actions of ``Bridge.history()`` rows."""
     return [Done(float(r["begin"]), float(r["end"]), str(parse_call(r["call"]))) for r in rows if r["call"] != "idle"]
+
+
+def done_from_steps(steps: Sequence[Step], begins: Sequence[float], last_end: float | None) -> list[Done]:
+    """The non-idle actions of the predictor's steps (``NeemRanker.steps`` and ``.begins``), with
+    no read of the NEEM: an action followed by an idle step ends where the idle step begins (the
+    logger dates the idle action from the end before it), one followed by an action where that
+    begins (no idle gap: the logger wrote none), the last at ``last_end``. So the episodes are
+    cut where the NEEM's idle actions stand, as ``done_from_history`` cuts them."""
+    done = []
+    for index, step in enumerate(steps):
+        if step.idle:
+            continue
+        after = index + 1
+        end = begins[after] if after < len(steps) else (last_end if last_end is not None else begins[index])
+        done.append(Done(float(begins[index]), float(end), step.label))
+    return done
 
 
 def follows(done: Sequence[Done], call: str) -> tuple[int, list[tuple[str, int]]]:

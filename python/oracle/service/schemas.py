@@ -54,10 +54,22 @@ class RankedEntry(Answer):
     reason: str = ""
 
 
+class RoutineNow(BaseModel):
+    """The routine the user is in (oracle.past.routines.recognise): its key and name, how many of
+    its steps are done, the calls that remain and how many."""
+    key: str
+    name: str
+    done: int
+    remaining: list[str]
+    steps_left: int
+    score: float
+
+
 class SituationAnswer(Answer):
     neem: str
     ranking: list[RankedEntry]
     chain: list[str]
+    routine: RoutineNow | None = Field(None, description="the routine in progress and what remains (null: none)")
     at: float | None = None
     time_of_day: str | None = None
     history: int | None = None
@@ -108,6 +120,14 @@ class TabletStep(BaseModel):
     said: str
 
 
+class TabletRoutine(BaseModel):
+    key: str
+    name: str
+    steps_left: int
+    label: str = Field(description="the page's control, e.g. Finish \u201cCoffee in the red mug\u201d (3 steps left)")
+    steps: list[TabletStep] = Field(description="the steps that remain, in order")
+
+
 class TabletView(BaseModel):
     neem: str
     user: str | None
@@ -116,6 +136,7 @@ class TabletView(BaseModel):
     clock: str = Field(description="part of the day and time on the person's clock")
     tasks: list[TabletTask]
     workflow: list[TabletStep]
+    routine: TabletRoutine | None = Field(None, description="the routine in progress (null: none)")
 
 
 class Said(BaseModel):

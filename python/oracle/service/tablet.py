@@ -17,8 +17,8 @@ if TYPE_CHECKING:
 
 def tablet_view(neem: str, user: str | None, latest: Mapping[str, Any] | None, words: Words) -> dict[str, Any]:
     """The page's view of the latest ranking: each task's call (kept for the robot's syntax),
-    rank, plain words and one-sentence reason; the workflow's steps; the time on the person's
-    clock."""
+    rank, plain words and one-sentence reason; the workflow's steps; the routine in progress
+    (None: none) with the steps that remain; the time on the person's clock."""
     ranking = (latest or {}).get("ranking") or []
     chain = (latest or {}).get("chain") or []
     at = (latest or {}).get("at")
@@ -29,7 +29,18 @@ def tablet_view(neem: str, user: str | None, latest: Mapping[str, Any] | None, w
         "tasks": [{"task": t["task"], "rank": t["rank"], "said": words.said(t["task"]), "reason": words.reason(t)}
                   for t in ranking],
         "workflow": [{"task": c, "said": words.said(c)} for c in chain] if len(chain) >= 2 else [],
+        "routine": _routine_view((latest or {}).get("routine"), words),
     }
+
+
+def _routine_view(routine: Mapping[str, Any] | None, words: Words) -> dict[str, Any] | None:
+    """The routine in progress as the page offers it: its label and the steps that remain."""
+    if not routine or not routine.get("remaining"):
+        return None
+    remaining = list(routine["remaining"])
+    return {"key": routine["key"], "name": routine["name"], "steps_left": len(remaining),
+            "label": words.routine(str(routine["name"]), len(remaining)),
+            "steps": [{"task": c, "said": words.said(c)} for c in remaining]}
 
 
 def why_not_said(task: str, latest: Mapping[str, Any] | None, answer: Mapping[str, Any], decision: Decision | None,

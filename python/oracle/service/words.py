@@ -177,6 +177,10 @@ class Words:
             return ""
         return shown_clock(float(seconds), self.zone).strftime("%H:%M")
 
+    def routine(self, name: str, left: int) -> str:
+        """The page's control for a routine in progress: "Finish “Coffee in the red mug” (3 steps left)"."""
+        return (self.text["routine_one"] if left == 1 else self.text["routine_n"]).format(name=name, n=left)
+
     def part_of_day(self, part: str | None) -> str:
         return self.text.get(f"part_{part}", part or "")
 
@@ -203,6 +207,8 @@ TEXT: dict[str, dict[str, str]] = {
         "waiting": "Waiting for the robot to say what it can do.",
         "workflow": "Or all of these, one after the other", "workflow_title": "All of these, one after the other",
         "workflow_note": "The robot does these steps in this order, starting with the first.",
+        "routine_n": "Finish \u201c{name}\u201d ({n} steps left)", "routine_one": "Finish \u201c{name}\u201d (1 step left)",
+        "routine_note": "Your usual routine: the robot does the steps that are left, in this order.",
         "whatnext": "What next?", "confirm": "Yes, do this", "whyhere": "Why here?", "instead": "Something else?",
         "back": "Back", "undo": "Undo", "gone": "The robot cannot do this any more. Go back for the new suggestions.",
         "dwell": "Chosen in {n} s unless you go back.", "undo_in": "Sent to the robot in {n} s.",
@@ -234,6 +240,9 @@ TEXT: dict[str, dict[str, str]] = {
         "waiting": "Warte darauf, dass der Roboter sagt, was er tun kann.",
         "workflow": "Oder alles davon, eins nach dem anderen", "workflow_title": "Alles davon, eins nach dem anderen",
         "workflow_note": "Der Roboter macht diese Schritte in dieser Reihenfolge, den ersten zuerst.",
+        "routine_n": "\u201e{name}\u201c zu Ende f\u00fchren (noch {n} Schritte)",
+        "routine_one": "\u201e{name}\u201c zu Ende f\u00fchren (noch 1 Schritt)",
+        "routine_note": "Ihre gewohnte Routine: Der Roboter macht die restlichen Schritte in dieser Reihenfolge.",
         "whatnext": "Was kommt als Nächstes?", "confirm": "Ja, das tun", "whyhere": "Warum hier?",
         "instead": "Etwas anderes?", "back": "Zurück", "undo": "Rückgängig",
         "gone": "Das kann der Roboter nicht mehr tun. Gehen Sie zurück zu den neuen Vorschlägen.",
