@@ -132,6 +132,16 @@ def routine_neem(server: str, name: str) -> dict:
     return call(server, f"/api/neems/{name}/situation", {"available": AVAILABLE, "at": at(2, 0)})[1]
 
 
+def routine_in_progress_neem(server: str, name: str) -> dict:
+    """Three mornings of the routine (a mined routine), two steps of the fourth and its situation."""
+    assert call(server, "/api/neems", {"user": name.title(), "neem": name})[0] == 201
+    for day in range(4):
+        for i, action in enumerate(ROUTINE if day < 3 else ROUTINE[:2]):
+            call(server, f"/api/neems/{name}/situation", {"available": AVAILABLE, "at": at(day, 10 * i)})
+            call(server, f"/api/neems/{name}/actions", {"call": action, "begin": at(day, 10 * i), "end": at(day, 10 * i + 5)})
+    return call(server, f"/api/neems/{name}/situation", {"available": AVAILABLE, "at": at(3, 25)})[1]
+
+
 def open_page(browser, server: str, query: str, width: int = 1024, height: int = 1180, lang: str = "en-US"):
     # the test evaluates its own expressions in the page, which the page's CSP (no eval) would refuse
     page = browser.new_page(viewport={"width": width, "height": height}, bypass_csp=True, locale=lang)
@@ -512,4 +522,40 @@ def test_a_touch_user_who_let_go_gets_the_new_ranking_at_once(server, browser):
     call(server, "/api/neems/hal/situation", {"available": ["open(fridge)", "pick(banana)", "pick(red_mug)"], "at": at(0, 1)})
     page.wait_for_function("document.querySelectorAll('#tasks .task').length === 3")  # after the 1 s hold
     assert not page.locator("#fresh.waiting").count()
+    page.close()
+
+
+@pytest.mark.parametrize("width,lang", [(390, "de"), (800, "en")])
+def test_page_offers_to_finish_the_routine_in_progress(server, browser, axe_source, width, lang):
+    name = f"fin{width}"
+    situation = routine_in_progress_neem(server, name)
+    left = situation["routine"]["remaining"]
+    assert left == ROUTINE[2:]
+    page = open_page(browser, server, f"neem={name}&lang={lang}&undo=1", width, 1280)
+    assert page.evaluate("document.documentElement.scrollWidth") <= width
+    control = page.locator("#routine")
+    words = {"en": f"Finish \u201c{situation['routine']['name']}\u201d (5 steps left)",
+             "de": f"\u201e{situation['routine']['name']}\u201c zu Ende f\u00fchren (noch 5 Schritte)"}
+    assert control.text_content() == words[lang]
+    box = control.bounding_box()
+    assert box["height"] >= 88 and box["width"] >= 110
+    # one more target than the workflow's page: N tasks, the workflow, the routine, what next, new suggestions
+    n = page.locator("#tasks button.task").count()
+    shown = page.evaluate("""Array.from(document.querySelectorAll('main > :not(dialog) button')).filter(function (b) {
+        return !b.disabled && getComputedStyle(b).visibility === 'visible'; }).length""")
+    assert shown <= n + 4
+    ids = set()
+    for _ in range(n + 4):
+        page.keyboard.press("Tab")
+        ids.add(page.evaluate("document.activeElement.dataset.task || document.activeElement.id"))
+    assert {"routine", "whatnext"} <= ids
+    assert serious(page, axe_source) == []
+    control.click()
+    said = page.locator("#sheet-steps li").all_text_contents()
+    assert len(said) == len(left) and page.locator("#sheet-title").text_content() == words[lang]
+    assert serious(page, axe_source) == []
+    page.locator("#confirm").click()
+    page.wait_for_function("document.querySelector('#tasks li.routine').classList.contains('chosen')")
+    assert call(server, f"/api/neems/{name}/choice")[1]["workflow"] == left
+    assert page.locator("button.task[data-task]").count() == n  # the task buttons are as they were
     page.close()

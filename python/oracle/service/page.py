@@ -79,6 +79,8 @@ def _items(view: Mapping[str, Any], text: Mapping[str, str]) -> str:
             steps = escape(" \u2192 ".join(s["said"] for s in flow))
             out.append(f"<li class='flow'><button id='workflow' type='button'><span class='label'>{escape(text['workflow'])}"
                        f"</span><span class='steps'>{steps}</span></button></li>")
+        if index == 0 and view.get("routine"):
+            out.append(f"<li class='routine'><button id='routine' type='button'>{escape(view['routine']['label'])}</button></li>")
     return "".join(out)
 
 

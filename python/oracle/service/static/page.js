@@ -59,7 +59,8 @@
   function same(a, b) { return JSON.stringify(a) === JSON.stringify(b); }
   function incoming(view) {
     newest = view;
-    if (same(view.tasks, shown && shown.tasks) && same(view.workflow, shown && shown.workflow)) {
+    if (same(view.tasks, shown && shown.tasks) && same(view.workflow, shown && shown.workflow) &&
+        same(view.routine, shown && shown.routine)) {
       shown = view; pending = null; showFresh(); when.textContent = view.clock || ''; return;
     }
     if (engaged()) { pending = view; showFresh(); } else { apply(view); }
@@ -68,10 +69,11 @@
   setInterval(function () { if (pending && !engaged()) apply(pending); }, 500);
   function apply(view) {
     var focused = document.activeElement && document.activeElement.dataset.task;
-    var onFlow = document.activeElement && document.activeElement.id === 'workflow';
+    var onFlow = document.activeElement && (document.activeElement.id === 'workflow' || document.activeElement.id === 'routine')
+      ? document.activeElement.id : null;
     render(view);
     pending = null; showFresh();
-    var target = onFlow ? document.getElementById('workflow') : focused && list.querySelector('button.task[data-task="' + CSS.escape(focused) + '"]');
+    var target = onFlow ? document.getElementById(onFlow) : focused && list.querySelector('button.task[data-task="' + CSS.escape(focused) + '"]');
     if (target) target.focus();
   }
   fresh.addEventListener('click', function () {
@@ -103,6 +105,13 @@
         fb.addEventListener('click', function () { open({workflow: view.workflow}); });
         fl.appendChild(fb); list.appendChild(fl);
       }
+      if (i === 0 && view.routine) {  // the routine in progress: its steps left, as one workflow
+        var rl = el('li', 'routine'), rb = el('button', '', view.routine.label); rb.type = 'button'; rb.id = 'routine';
+        rb.addEventListener('click', function () {
+          open({workflow: view.routine.steps, title: view.routine.label, note: T.routine_note, item: 'li.routine'});
+        });
+        rl.appendChild(rb); list.appendChild(rl);
+      }
     });
   }
 
@@ -122,13 +131,13 @@
     opener = document.activeElement;
     choosing = choice;
     stopTimer();
-    title.textContent = choice.workflow ? T.workflow_title : choice.said;
+    title.textContent = choice.title || (choice.workflow ? T.workflow_title : choice.said);
     steps.textContent = '';
     (choice.workflow || []).forEach(function (s) { steps.appendChild(el('li', '', s.said)); });
     steps.hidden = !choice.workflow;
     sheet.dataset.phase = 'ask';
     undo.hidden = true; back.hidden = false; yes.hidden = false; why.hidden = !!choice.workflow; other.hidden = !!choice.workflow;
-    note.textContent = choice.workflow ? T.workflow_note : choice.reason;
+    note.textContent = choice.note || (choice.workflow ? T.workflow_note : choice.reason);
     if (!available(choice)) {
       sheet.dataset.phase = 'gone'; yes.hidden = true; why.hidden = true; other.hidden = true;
       note.textContent = T.gone;
@@ -176,14 +185,14 @@
       .then(function () {
         say(choice.workflow ? fill(T.chose_workflow, {steps: choice.workflow.map(function (s) { return s.said; }).join(' \u2192 ')})
                             : fill(T.chose, {task: choice.said}));
-        markChosen(body.task, !!choice.workflow);
+        markChosen(body.task, choice.workflow ? choice.item || 'li.flow' : null);
       })
       .catch(function (e) { say(fill(T.not_sent, {why: e.message})); });
     close();
   }
   function markChosen(task, flow) {
     Array.prototype.forEach.call(list.children, function (li) { li.classList.remove('chosen'); });
-    var item = flow ? list.querySelector('li.flow') : (list.querySelector('button.task[data-task="' + CSS.escape(task) + '"]') || {}).parentNode;
+    var item = flow ? list.querySelector(flow) : (list.querySelector('button.task[data-task="' + CSS.escape(task) + '"]') || {}).parentNode;
     if (item && item.classList) item.classList.add('chosen');
   }
   yes.addEventListener('click', confirm);
