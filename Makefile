@@ -37,17 +37,16 @@ lint:
 	$(VENV)/bin/ruff check python tests
 	$(VENV)/bin/mypy
 
+# Each plunit suite runs in its own swipl, one per core; a failing suite prints its output and
+# the target fails once all have run.
 test-prolog:
-	@set -e; for t in $(PLT); do \
-	  m=$${t%.plt}.pl; echo "plunit: $$t"; \
-	  swipl -q -g "load_files(['$$m'],[]),load_test_files([]),(run_tests->halt(0);halt(1))" -t 'halt(1)'; \
-	done
+	@printf '%s\n' $(PLT) | xargs -P "$$(nproc)" -n 1 sh scripts/plunit.sh
 
 # The tests marked slow (a 10,000-action NEEM imported and ranked, a wheel built) run in a second
 # invocation, in CI (where CI is set: .ci/run sets it) or when asked: make test SLOW=1.
 test-python:
-	$(PY) -m pytest -q -m "not slow"
-	@if [ -n "$(SLOW)$$CI" ]; then echo "slow tests:"; $(PY) -m pytest -q -m slow; \
+	$(PY) -m pytest -q -n auto -m "not slow"
+	@if [ -n "$(SLOW)$$CI" ]; then echo "slow tests:"; $(PY) -m pytest -q -n auto -m slow; \
 	else echo "slow tests skipped here (they run in CI; make test SLOW=1 runs them)"; fi
 
 bench:

@@ -53,7 +53,8 @@ test(after_is_the_suffix_after_a_begin, [cleanup(store_reset)]) :-
            ( load_generated_episode(300, Seed),
              situation_history(All),
              length(All, N),
-             forall(between(1, N, K),
+             % every 7th cut and the last few: the reads are the same code at every cut
+             forall(( between(1, N, K), ( K mod 7 =:= 1 ; K >= N - 3 ) ),
                     ( Cut is N - K,
                       length(Before, Cut), append(Before, Suffix, All),
                       (   Before == [] -> After = -1.0e12

@@ -185,7 +185,7 @@ def _short(value: object) -> str:
     return text if len(text) <= 40 else text[:37] + "..."
 
 
-def _moment(obj: dict, key: str, where: str) -> datetime | None:
+def _moment(obj: dict[str, Any], key: str, where: str) -> datetime | None:
     raw = obj.get(key)
     if raw is None:
         return None

@@ -55,7 +55,7 @@ class _Unused:
 class _Subcommands:
     """The sub-parsers action as command modules see it: full parsers only for ``wanted``."""
 
-    def __init__(self, action: argparse._SubParsersAction, wanted: str | None) -> None:
+    def __init__(self, action: argparse._SubParsersAction[Any], wanted: str | None) -> None:
         self.action = action
         self.wanted = wanted
 

@@ -16,7 +16,7 @@ import stat
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import IO, Any, ClassVar, TextIO, TypeVar
+from typing import IO, Any, ClassVar, TextIO, TypeVar, cast
 
 from oracle.errors import NeemOracleError
 
@@ -113,7 +113,7 @@ def cached_pickle(path: Path, key: str, make: Callable[[], _Value], valid: Calla
                 entry = pickle.load(handle)
                 if isinstance(entry, tuple) and len(entry) == 2 and entry[0] == key and valid(entry[1]):
                     used(path)
-                    return entry[1]
+                    return cast(_Value, entry[1])
     except Exception:  # noqa: BLE001 - missing or damaged (any unpickling error): made again below
         pass
     value = make()

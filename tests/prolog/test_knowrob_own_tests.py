@@ -99,7 +99,8 @@ def _mongomock(_):
     return MongoStore(mongomock_ng.MongoClient(), "kown")
 
 
-@pytest.mark.parametrize("make_store", [_sqlite, _mongomock], ids=["sqlite", "mongomock"])
+# mongomock-ng answers KnowRob's units in ~30 s (its $lookup is slow): with the slow tests
+@pytest.mark.parametrize("make_store", [_sqlite, pytest.param(_mongomock, marks=pytest.mark.slow)], ids=["sqlite", "mongomock"])
 def test_knowrob_units_on_the_python_stores(unit_files, make_store, tmp_path, monkeypatch):
     from pyswip import Atom, Prolog
 

@@ -13,6 +13,8 @@ from __future__ import annotations
 import math
 import time
 import tracemalloc
+from collections.abc import Callable, Iterable, Sequence
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -21,7 +23,7 @@ from oracle.algorithm.params import PRESETS
 from oracle.algorithm.reference import ReferenceOracle
 from oracle.algorithm.routine import RoutineOracle
 from oracle.algorithm.stacked import StackedOracle
-from oracle.algorithm.records import Option, Step
+from oracle.algorithm.records import Option, Ranking, Step
 from oracle.ontology.distance import DistanceMatrix
 from oracle.timeline import TIME_OF_DAY_NAMES
 
@@ -70,7 +72,7 @@ def taxonomy(rng: np.random.Generator, n_tasks: int = 30, n_objects: int = 60) -
 START_S, STEP_S = 1_700_000_000.0, 540.0
 
 
-def history(n: int, seed: int = 0, n_options: int = 20, n_states: int = 60):
+def history(n: int, seed: int = 0, n_options: int = 20, n_states: int = 60) -> tuple[DistanceMatrix, list[Step]]:
     rng = np.random.default_rng(seed)
     matrix, tasks, objects = taxonomy(rng)
     idle_task = tasks[0]
@@ -81,7 +83,8 @@ def history(n: int, seed: int = 0, n_options: int = 20, n_states: int = 60):
         return Option(tasks[1 + rng.integers(len(tasks) - 1)], target, reference)
     states = [tuple(dict.fromkeys(option() for _ in range(n_options))) for _ in range(n_states)]
     favourite = rng.integers(0, n_options, size=(n_states, 4))
-    steps, state = [], 0
+    steps: list[Step] = []
+    state = 0
     for i in range(n):
         options = states[state]
         tod = TIME_OF_DAY_NAMES[(i // 40) % 4]
@@ -97,7 +100,17 @@ def history(n: int, seed: int = 0, n_options: int = 20, n_states: int = 60):
     return matrix, steps
 
 
-def _times(oracle, queries, repeats: int = 1) -> list[float]:
+class _Ranker(Protocol):
+    """What the timing loops need of an oracle: the reference one has no partial_fit."""
+
+    def fit(self, history: Iterable[Step]) -> Any: ...
+
+    def rank(self, current: Step | Iterable[Option], time_of_day: str | None = None, *,
+             tree_roots: int | None = 3, present_objects: Iterable[str] | None = None,
+             at: float | None = None) -> Ranking: ...
+
+
+def _times(oracle: _Ranker, queries: Sequence[Step], repeats: int = 1) -> list[float]:
     """Milliseconds per query: the fastest of ``repeats`` runs, so that other processes on a
     shared machine do not show up as the algorithm's tail latency."""
     out = []
@@ -111,7 +124,7 @@ def _times(oracle, queries, repeats: int = 1) -> list[float]:
     return out
 
 
-def _peak_mb(make, prefix, queries) -> float:
+def _peak_mb(make: Callable[[], _Ranker], prefix: Sequence[Step], queries: Sequence[Step]) -> float:
     tracemalloc.start()
     oracle = make().fit(prefix)
     for query in queries[:3]:
@@ -121,11 +134,11 @@ def _peak_mb(make, prefix, queries) -> float:
     return peak / 2**20
 
 
-def run(quick: bool = False) -> list[dict]:
+def run(quick: bool = False) -> list[dict[str, Any]]:
     sizes = (100, 300) if quick else (100, 300, 1000, 10000)
     reference_queries = {100: 5, 300: 3} if quick else {100: 10, 300: 5, 1000: 3}
     fast_queries = 40 if quick else 200
-    rows: list[dict] = []
+    rows: list[dict[str, Any]] = []
     print(f"{'history':>8} {'settings':<14} {'impl':<10} {'median ms':>10} {'p99 ms':>9} {'peak MB':>8} {'ratio':>7}")
     for size in sizes:
         matrix, steps = history(size + fast_queries, seed=size)
@@ -165,8 +178,8 @@ def run(quick: bool = False) -> list[dict]:
     return rows
 
 
-def _routine_rows(matrix, prefix, queries, count: int, size: int, cls: type = RoutineOracle,
-                  impl: str = "routine") -> list[dict]:
+def _routine_rows(matrix: DistanceMatrix, prefix: Sequence[Step], queries: Sequence[Step], count: int, size: int, cls: type = RoutineOracle,
+                  impl: str = "routine") -> list[dict[str, Any]]:
     """The routine predictor (or ``cls``, ``impl``: the stacked one) on the same history and
     queries (its own defaults, self-tuned): rank, partial_fit and one whole fit."""
     start = time.perf_counter()

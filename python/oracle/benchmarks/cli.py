@@ -14,6 +14,8 @@ waiting for a core, so the CPU seconds (user + system of the child) are printed 
 
 from __future__ import annotations
 
+from typing import Any
+
 import json
 import os
 import sqlite3
@@ -131,9 +133,9 @@ def _sqlite_floor(store: Path, neem: str, actions: int, indexes: bool) -> tuple[
     return elapsed, cpu
 
 
-def run(quick: bool = False) -> list[dict]:
+def run(quick: bool = False) -> list[dict[str, Any]]:
     sizes = list(QUICK_SIZES if quick else SIZES)
-    rows: list[dict] = []
+    rows: list[dict[str, Any]] = []
     py = sys.executable
     with tempfile.TemporaryDirectory() as tmp_name:
         tmp = Path(tmp_name)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import time
 from pathlib import Path
 
@@ -10,7 +12,7 @@ from oracle.ontology import DistanceMatrix, build_with_report
 SHARED_SOMA = Path(__file__).resolve().parents[4] / "shared" / "soma"
 
 
-def run(quick: bool = False) -> list[dict]:
+def run(quick: bool = False) -> list[dict[str, Any]]:
     rows = []
     sources: list[tuple[str, Path | None]] = [("core TBox", None)]
     if (SHARED_SOMA / "SOMA.owl").exists() and not quick:

@@ -7,9 +7,15 @@ from __future__ import annotations
 
 import tempfile
 import time
+from collections.abc import Callable
+from functools import partial
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 from oracle.benchmarks.figures import spread, spread_text
+
+if TYPE_CHECKING:
+    import httpx
 
 #: One question per form, as the docs' worked example asks them of the demo user.
 QUESTIONS = ("when did I last open the fridge?", "how often did I open(fridge) this week?",
@@ -47,7 +53,7 @@ def _log(path: Path, days: int) -> None:
     store.close()
 
 
-def run(quick: bool = False) -> list[dict]:
+def run(quick: bool = False) -> list[dict[str, Any]]:
     from fastapi.testclient import TestClient
 
     from oracle.algorithm.params import Hyperparameters
@@ -55,7 +61,7 @@ def run(quick: bool = False) -> list[dict]:
     from oracle.service import build_context
     from oracle.service.app import create_app
 
-    rows: list[dict] = []
+    rows: list[dict[str, Any]] = []
     repeats = 5 if quick else 15
     for days in ((5,) if quick else (5, 28)):
         with tempfile.TemporaryDirectory() as folder:
@@ -67,7 +73,7 @@ def run(quick: bool = False) -> list[dict]:
                     floor = _times(lambda: client.get("/api/health"), repeats)
                     rows.append(_row(days, "floor: /api/health", floor))
                     for question in QUESTIONS:
-                        ms = _times(lambda q=question: client.get("/api/neems/bench/ask", params={"q": q}), repeats)
+                        ms = _times(partial(client.get, "/api/neems/bench/ask", params={"q": question}), repeats)
                         rows.append(_row(days, question, ms))
                     ms = _times(lambda: client.get("/api/neems/bench/summary"), repeats)
                     rows.append(_row(days, "state summary", ms))
@@ -76,7 +82,7 @@ def run(quick: bool = False) -> list[dict]:
     return rows
 
 
-def _times(call, repeats: int) -> list[float]:  # noqa: ANN001 - a zero-argument request
+def _times(call: Callable[[], httpx.Response], repeats: int) -> list[float]:
     first = call()
     if first.status_code != 200:
         raise RuntimeError(f"benchmark request failed: {first.status_code} {first.text}")
@@ -88,7 +94,7 @@ def _times(call, repeats: int) -> list[float]:  # noqa: ANN001 - a zero-argument
     return samples
 
 
-def _row(days: int, name: str, samples: list[float]) -> dict:
+def _row(days: int, name: str, samples: list[float]) -> dict[str, Any]:
     figure = spread(samples)
     print(f"  {days:>2} days  {name:<52} {spread_text(figure, digits=1)} ms (min/median/max)", flush=True)
     return {"area": "past", "name": name, "days": days, "ms": figure}

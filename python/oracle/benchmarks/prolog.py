@@ -8,12 +8,17 @@ import tempfile
 import time
 from datetime import datetime, timedelta
 from pathlib import Path
-from typing import Any
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 from oracle.benchmarks.coldstart import crossings, kept_floor, one_more_action, rank_cli, service_first
 from oracle.benchmarks.figures import growth_exponent, spread, spread_text
 from oracle.benchmarks.ontology import SHARED_SOMA
 from oracle.historycache import HistoryCache
+
+if TYPE_CHECKING:
+    from oracle.ontology.model import OdbOntology
+    from oracle.store.base import Store
 
 
 #: Goal-by-goal evaluation costs one store query per solution of the goals before; on the
@@ -21,7 +26,7 @@ from oracle.historycache import HistoryCache
 STEPWISE_ACTIONS = 1000
 
 
-def _neem(store, onto, n_actions: int, neem_id: str = "bench") -> None:
+def _neem(store: Store, onto: OdbOntology, n_actions: int, neem_id: str = "bench") -> None:
     from oracle.neem.writer import NeemLogger
 
     log = NeemLogger.create(store, onto, user="bench", neem_id=neem_id, commit_every=500)
@@ -38,7 +43,7 @@ def _neem(store, onto, n_actions: int, neem_id: str = "bench") -> None:
     log.flush()
 
 
-def _time(fn, repeat: int = 3) -> float:
+def _time(fn: Callable[[], object], repeat: int = 3) -> float:
     best = float("inf")
     for _ in range(repeat):
         start = time.perf_counter()
@@ -47,13 +52,13 @@ def _time(fn, repeat: int = 3) -> float:
     return best
 
 
-def run(quick: bool = False) -> list[dict]:
+def run(quick: bool = False) -> list[dict[str, Any]]:
     from oracle.bridge import Bridge
     from oracle.ontology import build_ontology
     from oracle.store import open_store
 
     n = 1000 if quick else 10000
-    rows: list[dict] = []
+    rows: list[dict[str, Any]] = []
     onto = build_ontology()
     with tempfile.TemporaryDirectory() as tmp:
         store = open_store(Path(tmp) / "bench.sqlite")
@@ -84,7 +89,7 @@ def run(quick: bool = False) -> list[dict]:
                 if not stepwise:
                     continue
             b = bridge if neem == "bench" else Bridge(store, neem, onto)
-            result: list = []
+            result: list[Any] = []
             t = _time(lambda: result.append(len(b.solutions(goal, ["A", "O", "B"], stepwise=stepwise))), 1)
             print(f"5-goal conjunction, {label:22s} on {size:,} actions: {t * 1000:8.1f} ms  ({result[-1]} solutions)")
             rows.append({"area": "prolog", "name": f"conjunction {label}", "ms": t * 1000,
@@ -116,7 +121,7 @@ OWL_QUERIES = (
 OWL_FLOOR = "triple(soma:'Pouring', rdfs:subClassOf, X)"
 
 
-def owl_figures(quick: bool = False, repeat: int = 7) -> list[dict]:
+def owl_figures(quick: bool = False, repeat: int = 7) -> list[dict[str, Any]]:
     """kb_call over the OWL predicates on a NEEM logged with the official SOMA/DUL TBox (10,000
     actions; 1,000 when quick), min/median/max of ``repeat`` runs of each query, beside the floor
     (a one-pattern kb_call) measured in the same run."""
@@ -128,7 +133,7 @@ def owl_figures(quick: bool = False, repeat: int = 7) -> list[dict]:
         print(f"OWL kb_call: skipped, no official SOMA/DUL at {SOMA_DIR} (set NEEM_SOMA_DIR)")
         return []
     n = 1000 if quick else 10000
-    rows: list[dict] = []
+    rows: list[dict[str, Any]] = []
     onto = build_ontology(soma_dir=SOMA_DIR)
     with tempfile.TemporaryDirectory() as tmp:
         store = open_store(Path(tmp) / "owl.sqlite")
@@ -260,7 +265,7 @@ def _sql_floor(path: Path, neem: str) -> tuple[int, int, int]:
     return actions, interval_types, imagined
 
 
-def _timed(fn, repeat: int = 3) -> tuple[dict[str, float], dict[str, float]]:
+def _timed(fn: Callable[[], object], repeat: int = 3) -> tuple[dict[str, float], dict[str, float]]:
     """Wall and CPU seconds of ``repeat`` calls (CPU: this process, Prolog included)."""
     walls, cpus = [], []
     for _ in range(repeat):
@@ -282,7 +287,7 @@ def _crossing_goal(bridge: Any) -> str:
     return f"kb_iri(dul:hasTimeInterval, P), once(store_match([t({quote_atom(_plain(subject))}, P, _)], any, [limit(1)]))"
 
 
-def history_figures(quick: bool = False) -> list[dict]:
+def history_figures(quick: bool = False) -> list[dict[str, Any]]:
     """History read (in process), its SQL floor, ``rank`` start to exit and why_not, per size;
     the growth exponents; and at 10,000 actions whether the read equals the first
     implementation's (prolog/fixtures/history_reference.pl)."""
@@ -294,7 +299,7 @@ def history_figures(quick: bool = False) -> list[dict]:
     sizes = list(HISTORY_SIZES[:2] if quick else HISTORY_SIZES)
     if quick:
         sizes = [1000, 4000]
-    rows: list[dict] = []
+    rows: list[dict[str, Any]] = []
     onto = build_ontology()
     medians: dict[str, list[float]] = {"history_cpu": [], "rank_wall": [], "rank_cpu": [], "floor": []}
     with tempfile.TemporaryDirectory() as tmp:
@@ -305,7 +310,7 @@ def history_figures(quick: bool = False) -> list[dict]:
         for n in sizes:
             neem = f"u{n}"
             bridge = Bridge(store, neem, onto)
-            history: list = []
+            history: list[Any] = []
             wall, cpu = _timed(lambda: history.append(len(bridge.history())))
             _, floor = _timed(lambda: _sql_floor(path, bridge.neem_id))  # tables are named by the id
             ratio = cpu["median"] / floor["median"]

@@ -8,6 +8,8 @@ tests/security uses the same client functions to assert the behaviour.
 
 from __future__ import annotations
 
+from typing import Any
+
 import json
 import select
 import socket
@@ -28,7 +30,7 @@ ENDLESS_QUERY = "between(1, inf, X), X < 0"
 
 @dataclass(frozen=True)
 class Service:
-    process: subprocess.Popen
+    process: subprocess.Popen[bytes]
     port: int
 
     @property
@@ -77,7 +79,7 @@ def stop(service: Service) -> None:
 
 
 def call(url: str, path: str, body: object = None, headers: dict[str, str] | None = None,
-         timeout: float = 60) -> tuple[int, dict, dict[str, str]]:
+         timeout: float = 60) -> tuple[int, dict[str, Any], dict[str, str]]:
     """One request; its status, JSON answer and headers (lower-case names)."""
     data = None if body is None else json.dumps(body).encode()
     request = urllib.request.Request(url + path, data=data, headers={"Content-Type": "application/json", **(headers or {})})
@@ -194,12 +196,12 @@ def commit_ms(folder: Path, synchronous: str, n: int) -> list[float]:
     return sorted(times)
 
 
-def run(quick: bool = False) -> list[dict]:
+def run(quick: bool = False) -> list[dict[str, Any]]:
     import tempfile
 
     from oracle.service.robot import percentile, persona_rows
 
-    rows: list[dict] = []
+    rows: list[dict[str, Any]] = []
     n = 30 if quick else 100
     with tempfile.TemporaryDirectory() as folder:
         for synchronous in ("NORMAL", "FULL"):

@@ -10,6 +10,8 @@ the engine thread doing nothing.
 
 from __future__ import annotations
 
+from typing import Any
+
 import os
 import socket
 import subprocess
@@ -32,7 +34,7 @@ def _free_port() -> int:
         return int(s.getsockname()[1])
 
 
-def _prepare(store: Path, robots: int, actions: int, steps: int) -> list[tuple[str, str, list]]:
+def _prepare(store: Path, robots: int, actions: int, steps: int) -> list[tuple[str, str, list[Any]]]:
     """One NEEM per robot holding ``actions`` logged actions; the next ``steps`` rows to post."""
     from oracle.neem.writer import NeemLogger
     from oracle.ontology import build_ontology
@@ -56,7 +58,7 @@ def _prepare(store: Path, robots: int, actions: int, steps: int) -> list[tuple[s
     return plans
 
 
-def _serve(store: Path, *extra: str) -> tuple[subprocess.Popen, str]:
+def _serve(store: Path, *extra: str) -> tuple[subprocess.Popen[bytes], str]:
     port = _free_port()
     process = subprocess.Popen([sys.executable, "-m", "oracle", "serve", "--store", str(store), "--port", str(port), *extra],
                                stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -84,7 +86,7 @@ def _floor(url: str, n: int) -> list[float]:
         client.close()
 
 
-def _row(phase: str, kind: str, values: list[float], robots: int, errors: int) -> dict:
+def _row(phase: str, kind: str, values: list[float], robots: int, errors: int) -> dict[str, Any]:
     values = sorted(values)
     row = {"area": "service", "name": f"{phase} {kind}", "robots": robots, "n": len(values), "errors": errors,
            "p50_ms": round(percentile(values, 50), 3), "p99_ms": round(percentile(values, 99), 3)}
@@ -93,7 +95,7 @@ def _row(phase: str, kind: str, values: list[float], robots: int, errors: int) -
     return row
 
 
-def _open_sessions(url: str, plans: list[tuple[str, str, list]]) -> float:
+def _open_sessions(url: str, plans: list[tuple[str, str, list[Any]]]) -> float:
     """First request per NEEM: one history read through Prolog and one fit (reported apart)."""
     from oracle.service.client import Client
 
@@ -105,9 +107,9 @@ def _open_sessions(url: str, plans: list[tuple[str, str, list]]) -> float:
     return (time.perf_counter() - started) * 1000 / len(plans)
 
 
-def run(quick: bool = False) -> list[dict]:
+def run(quick: bool = False) -> list[dict[str, Any]]:
     actions, steps, robots = (200, 30, 2) if quick else (1000, 150, 3)
-    rows: list[dict] = []
+    rows: list[dict[str, Any]] = []
     import importlib.util
 
     print(f"  load average before: {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores (other work inflates every figure);"
@@ -159,7 +161,7 @@ def run(quick: bool = False) -> list[dict]:
     return rows
 
 
-def _stop(process: subprocess.Popen) -> None:
+def _stop(process: subprocess.Popen[bytes]) -> None:
     process.terminate()
     try:
         process.wait(timeout=20)
@@ -167,7 +169,7 @@ def _stop(process: subprocess.Popen) -> None:
         process.kill()
 
 
-def _write_behind(store: Path, plan: tuple[str, str, list], steps: int) -> list[dict]:
+def _write_behind(store: Path, plan: tuple[str, str, list[Any]], steps: int) -> list[dict[str, Any]]:
     """The same robot against a service started with --write-behind (answer before the commit):
     what acknowledging only committed situations (the default) costs."""
     neem, user, todo = plan

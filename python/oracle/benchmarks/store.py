@@ -8,11 +8,18 @@ import tempfile
 import time
 from datetime import datetime, timedelta, timezone
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 from oracle.chains import TaskCall
 
+if TYPE_CHECKING:
+    from oracle.neem.writer import NeemLogger
+    from oracle.ontology.model import OdbOntology
+    from oracle.store.base import Store
+    from oracle.store.tbox import TBox
 
-def _calls(onto, rng: random.Random, n: int) -> list[TaskCall]:
+
+def _calls(onto: OdbOntology, rng: random.Random, n: int) -> list[TaskCall]:
     """Random but valid calls: each task with as many afforded objects as it takes."""
     objects = sorted(name for name, obj in onto.objects.items() if not obj.abstract)
     calls: list[TaskCall] = []
@@ -40,7 +47,7 @@ def _workload(rng: random.Random, pool: list[TaskCall], count: int) -> list[Work
     return steps
 
 
-def _log(logger, steps: list[WorkItem]) -> float:
+def _log(logger: NeemLogger, steps: list[WorkItem]) -> float:
     t0 = time.perf_counter()
     for call, begin, end, available in steps:
         logger.action(call, begin, end, available=available)
@@ -48,13 +55,13 @@ def _log(logger, steps: list[WorkItem]) -> float:
     return time.perf_counter() - t0
 
 
-def _python_share(store, onto, tbox, steps: list[WorkItem]) -> float:
+def _python_share(store: Store, onto: OdbOntology, tbox: TBox | None, steps: list[WorkItem]) -> float:
     """Microseconds of CPU per action spent outside SQLite's row insert (logger, closures,
     commits of nothing): what the logger and the shared insert path cost, whatever the disk."""
     from oracle.neem.writer import NeemLogger
 
     logger = NeemLogger.create(store, onto, user="bench-python", tbox=tbox, commit_every=100)
-    store._write_rows = lambda *args: None  # rows built, never written: this store is not used for anything else
+    store._write_rows = lambda *args: None  # type: ignore[attr-defined] # rows built, never written: this store is not used for anything else
     t0 = time.process_time()
     for call, begin, end, available in steps:
         logger.action(call, begin, end, available=available)
@@ -69,7 +76,7 @@ SETTINGS = (
 )
 
 
-def run(quick: bool = False) -> list[dict]:
+def run(quick: bool = False) -> list[dict[str, Any]]:
     from oracle.neem.writer import NeemLogger
     from oracle.ontology import build_ontology
     from oracle.store.dump import export_neem, load_dump
@@ -81,7 +88,7 @@ def run(quick: bool = False) -> list[dict]:
     rng = random.Random(7)
     pool = _calls(onto, rng, 60)
     n_actions = 1_000 if quick else 10_000
-    rows: list[dict] = []
+    rows: list[dict[str, Any]] = []
     work = Path(tempfile.mkdtemp(prefix="neem-bench-"))
     try:
         store = SQLiteStore(work / "bench.sqlite")

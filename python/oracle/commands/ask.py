@@ -9,7 +9,7 @@ import json
 from oracle.commands.common import AT, JSON, NEEM, ONTOLOGY_OPTIONS, STORE, add_options, connect, moment_from
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     ask = subparsers.add_parser(
         "ask", help="answer a question about the past from the NEEM, in English or German (docs/beyond.md)",
         description="Question forms: when did I last X; how often did I X today / this week; what do I usually "

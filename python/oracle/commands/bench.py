@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import argparse
 import importlib
 import importlib.util
@@ -12,7 +14,7 @@ from oracle.benchmarks import AREAS
 from oracle.errors import NeemOracleError
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser("bench", help="run the benchmarks and print their figures")
     parser.add_argument("--json", type=Path, metavar="FILE", help="also write {'rows': [...]} to FILE")
     parser.add_argument("--only", choices=AREAS, action="append", help="run only these areas")
@@ -21,7 +23,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    rows: list[dict] = []
+    rows: list[dict[str, Any]] = []
     for area in args.only or AREAS:
         name = f"oracle.benchmarks.{area}"
         if importlib.util.find_spec(name) is None:

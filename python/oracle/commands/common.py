@@ -8,6 +8,7 @@ parsed values into objects with the helpers below (``ontology_from``, ``connect`
 from __future__ import annotations
 
 import argparse
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NamedTuple
 
@@ -123,7 +124,7 @@ def method_from(args: argparse.Namespace) -> str:
     return predictor_spec(getattr(args, "method", None) or DEFAULT).name
 
 
-def bounded_int(low: int, high: int):  # noqa: ANN201 - an argparse type
+def bounded_int(low: int, high: int) -> Callable[[str], int]:
     """An argparse ``type`` for a whole number in [low, high]: a value outside would make a
     command run without bound (``demo --days 100000000``) or do nothing useful."""
 

@@ -17,7 +17,7 @@ CONVERTERS = {
 }
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     generate = subparsers.add_parser(
         "generate",
         help="generate the persona benchmark (chains with available sets, personas.yaml)",

@@ -24,7 +24,7 @@ from oracle.commands.common import METHOD, STORE, add_options, bounded_int, meth
 DEMO_ORIGIN = "demo"
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser("demo", help="log a simulated user, rank the next task, answer why-not")
     add_options(parser, STORE)
     parser.add_argument("--days", type=bounded_int(1, 366), default=5, help="days of history to simulate, 1-366 (default 5)")

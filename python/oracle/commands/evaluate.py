@@ -8,14 +8,19 @@ import shlex
 import sys
 import time
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 from oracle.commands.common import (
     METHOD, ONTOLOGY_OPTIONS, SETTINGS, add_options, method_from, ontology_from, settings_from,
 )
 from oracle.errors import NeemOracleError
 
+if TYPE_CHECKING:
+    from oracle.algorithm.params import Hyperparameters
+    from oracle.evaluation.tuning import TuningStep
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     evaluate = subparsers.add_parser("evaluate", help="replay chains and score the oracle against baselines")
     evaluate.add_argument("chains", type=Path, help="chains JSONL file or a folder of them")
     add_options(evaluate, *ONTOLOGY_OPTIONS, METHOD, SETTINGS)
@@ -109,7 +114,7 @@ def run_evaluate(args: argparse.Namespace) -> int:
     return 0
 
 
-def _print_table(summary: dict) -> None:
+def _print_table(summary: dict[str, Any]) -> None:
     print(f"{summary['n_predictions']} predictions, {summary['mean_candidates']:.1f} candidates each on average")
     paired = summary.get("comparisons", {}).get("methods", {})
     extra = f" {'top3 - ' + summary['comparisons']['reference'] + ' [95% CI]':>28s} {'p(Holm)':>8s}" if paired else ""
@@ -149,7 +154,7 @@ def run_tune(args: argparse.Namespace) -> int:
     users = load_users(args.chains)
     check_users(ontology, users, str(args.chains))
 
-    def show(step, candidate) -> None:
+    def show(step: TuningStep, candidate: Hyperparameters) -> None:
         mark = "kept" if step.kept else "    "
         print(f"[{step.evaluation:3d}/{args.budget}] {step.parameter:30s} = {step.value:<8.4g} "
               f"{args.metric} {step.score:.4f} {mark}", file=sys.stderr)

@@ -18,7 +18,7 @@ if TYPE_CHECKING:
     from oracle.store import Store
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser("import", help="log action chains (JSONL) as one NEEM per user")
     parser.add_argument("chains", type=Path, metavar="CHAINS.jsonl")
     add_options(parser, STORE, NUMBERS, *ONTOLOGY_OPTIONS)

@@ -14,7 +14,7 @@ if TYPE_CHECKING:  # the ontology package (rdflib, numpy) is imported where a co
     from oracle.ontology import OdbOntology
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser("ontology", help="build the odb ontology and query its distances")
     sub = parser.add_subparsers(dest="ontology_command", metavar="SUBCOMMAND", required=True)
 

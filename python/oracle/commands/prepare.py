@@ -11,7 +11,7 @@ from oracle.commands.common import AT, JSON, NEEM, ONTOLOGY_OPTIONS, STORE, add_
 PARTS = {"morning": "Morning", "midday": "Midday", "evening": "Evening", "night": "Night"}
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser(
         "prepare", help="the objects worth preparing for the user's coming routines, each with its reason",
         description="From the routines the user usually begins in the coming part of the day (--for; default: the "

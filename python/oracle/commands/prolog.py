@@ -14,7 +14,7 @@ if TYPE_CHECKING:
     from oracle.ontology import OdbOntology
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     top = subparsers.add_parser(
         "prolog", help="SWI-Prolog toplevel with the NEEM store connected (piped queries: every answer)",
         description="Interactive toplevel on a terminal. Queries piped in are answered one by one with every "

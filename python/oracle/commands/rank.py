@@ -8,7 +8,7 @@ import json
 from oracle.commands.common import AT, JSON, METHOD, NEEM, ONTOLOGY_OPTIONS, SETTINGS, STORE, add_options
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser("rank", help="rank the available tasks and predict the chain (writes the ranking back)")
     add_options(parser, STORE, NEEM)
     parser.add_argument("--available", nargs="+", metavar="CALL",

@@ -10,7 +10,7 @@ from oracle.commands.common import AT, JSON, NEEM, ONTOLOGY_OPTIONS, STORE, add_
 from oracle.errors import NeemOracleError
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser(
         "routines", help="the user's recurring chains, with their names, days seen and usual time (docs/beyond.md)",
         description="Mines the NEEM's actions into routines and names each from its steps. --save writes them into the "
@@ -63,7 +63,7 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def register_evaluation(subparsers: argparse._SubParsersAction) -> None:
+def register_evaluation(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     from oracle.commands.common import bounded_int
 
     parser = subparsers.add_parser(

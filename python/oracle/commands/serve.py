@@ -18,7 +18,7 @@ TOKEN_MIN_LENGTH = 12
 TOKEN_MIN_DISTINCT = 6
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser("serve", help="run the robot's live service and the tablet page (HTTP, loopback)")
     STORE.add(parser)
     parser.add_argument("--neem", metavar="ID", help="the page's NEEM and the default for /api/prolog (default: the newest)")

@@ -7,10 +7,11 @@ import math
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from oracle.algorithm.records import RankedTask
     from oracle.ranking import NeemRanking
 
 
-def describe(task) -> str:  # noqa: ANN001 - a RankedTask
+def describe(task: RankedTask) -> str:
     """One line of why a task stands where it does; scores are lower-is-better for every method."""
     from oracle.algorithm.records import RoutineTask, local_name
     from oracle.answers import lifts

@@ -17,7 +17,7 @@ from urllib.parse import quote
 WATCHABLE_S = 3.0
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser("simulate", help="a simulated robot (kitchen world + persona) driving a running service")
     parser.add_argument("--serve", required=True, metavar="URL", help="the service, e.g. http://127.0.0.1:8765")
     parser.add_argument("--persona", type=int, default=0, help="which persona of the world's generator (default 0)")

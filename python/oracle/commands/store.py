@@ -9,7 +9,7 @@ from pathlib import Path
 from oracle.commands.common import JSON, NUMBERS, STORE, add_options
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
+def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     export = subparsers.add_parser("export", help="write NEEMs in the mongodump layout KnowRob's remember/1 reads")
     add_options(export, STORE, NUMBERS)
     export.add_argument("--neem", metavar="ID", help="the NEEM to export (default: every NEEM, one folder each)")

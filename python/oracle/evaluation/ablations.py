@@ -6,6 +6,8 @@ differences with bootstrap intervals and Holm-corrected Wilcoxon signed-rank tes
 
 from __future__ import annotations
 
+from typing import Any
+
 from collections.abc import Callable
 
 from oracle.algorithm.params import PRESETS
@@ -20,14 +22,14 @@ def run_ablations(
     users: dict[str, list[ChainRow]],
     seed: int = 0,
     progress: Callable[[int, int, str], None] | None = None,
-) -> dict:
+) -> dict[str, Any]:
     """Per setting: accuracies, per-user accuracies, timing, the settings, and ``vs_A`` (paired, per k)."""
     letters = [k for k in PRESETS if len(k) == 1]
     methods = [OracleMethod(ontology, PRESETS[letter], name=letter) for letter in letters]
     result = replay(ontology, users, methods, seed, progress)
     summary = summarize(result)["methods"]
     paired = comparison_summary(result.outcomes, "A", [x for x in letters if x != "A"], seed)
-    table: dict[str, dict] = {}
+    table: dict[str, dict[str, Any]] = {}
     for letter in letters:
         entry = summary[letter]
         row = {f"top{k}": entry[f"top{k}"] for k in KS}

@@ -64,7 +64,7 @@ class ContextTables(CountingMethod):
 
     def reset(self) -> None:
         super().reset()
-        self.tables: list[dict[tuple, Counter[object]]] = [defaultdict(Counter) for _ in range(self.order + 1)]
+        self.tables: list[dict[tuple[object, ...], Counter[object]]] = [defaultdict(Counter) for _ in range(self.order + 1)]
 
     def observe(self, step: Step) -> None:
         tok = token(step)

@@ -108,7 +108,7 @@ def write_odb(directory: Path, objects: Mapping[str, tuple[str | None, Iterable[
         (folder / "manifest.xml").write_text("\n".join(lines) + "\n", encoding="utf-8")
 
 
-def write_mapping(path: Path, namespace: str, soma_odb_map: Mapping[str, str], actions: Mapping[str, dict],
+def write_mapping(path: Path, namespace: str, soma_odb_map: Mapping[str, str], actions: Mapping[str, dict[str, Any]],
                   comment: str) -> None:
     """The mapping YAML of thesis appendix A."""
     data = {
@@ -190,7 +190,7 @@ def convert(folder: Path | str, out: Path | str) -> ConvertReport:
 
 
 def write_sensor_home(name: str, rows: list[ChainRow], sensors: Iterable[tuple[str, str, str]], out: Path | str,
-                      namespace: str, soma_map: Mapping[str, str], actions: Mapping[str, dict],
+                      namespace: str, soma_map: Mapping[str, str], actions: Mapping[str, dict[str, Any]],
                       comment: str) -> ConvertReport:
     """``chains.jsonl``, ``odb/`` and ``mapping.yaml`` of one home's sensor firings into ``out``:
     each sensor (object, the task it observes, its odb parent) an odb object with that task."""

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import matplotlib
 
@@ -13,7 +14,7 @@ from oracle.evaluation.curves import half_window, learning_curves as curves_of  
 from oracle.evaluation.replay import KS, ReplayResult  # noqa: E402
 
 
-def _save(fig, path: Path) -> Path:
+def _save(fig: Any, path: Path) -> Path:  # a matplotlib Figure (matplotlib is untyped here)
     """The figure as a private file (0600: a plot is a person's routine)."""
     import io
 
@@ -26,7 +27,7 @@ def _save(fig, path: Path) -> Path:
     return path
 
 
-def box_plots(summary: dict, out: Path) -> Path:
+def box_plots(summary: dict[str, Any], out: Path) -> Path:
     """Per-user Top-1/3/5 of every method, one row per k, chance dashed."""
     methods = list(summary["methods"])
     fig, axes = plt.subplots(len(KS), 1, figsize=(max(8.0, 0.55 * len(methods) + 2), 3 * len(KS)), sharex=True)
@@ -78,7 +79,7 @@ def learning_curves(result: ReplayResult, out: Path, reference: str | None = Non
     return _save(fig, out / "learning_curve.png")
 
 
-def differences(summary: dict, out: Path) -> Path:
+def differences(summary: dict[str, Any], out: Path) -> Path:
     """Paired Top-k difference of every method against the reference, with 95 % bootstrap intervals."""
     paired = summary["comparisons"]
     names = list(paired["methods"])
@@ -99,7 +100,7 @@ def differences(summary: dict, out: Path) -> Path:
     return _save(fig, out / "differences.png")
 
 
-def ablation_plot(ablations: dict, out: Path) -> Path:
+def ablation_plot(ablations: dict[str, Any], out: Path) -> Path:
     """Top-1/3/5 of every Fig. 5.5 setting (bars) and its paired difference to A with 95 % intervals."""
     rows = ablations["settings"]
     letters = list(rows)

@@ -22,12 +22,12 @@ from collections import OrderedDict
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Protocol
+from typing import Any, Protocol
 
 from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.predictors import DEFAULT, THESIS, make_predictor
 from oracle.algorithm.records import Option, Step
-from oracle.chains import ChainRow, read_chains
+from oracle.chains import ChainRow, TaskCall, read_chains
 from oracle.errors import ChainSyntaxError
 from oracle.evaluation.baselines import BASELINES, chance_hit
 from oracle.ontology import OdbOntology
@@ -177,9 +177,9 @@ def replay(
     protocol: ReplayRules = ReplayRules(),
 ) -> ReplayResult:
     result = ReplayResult()
-    known: dict = {}
+    known: dict[TaskCall, Option] = {}
 
-    def convert(call):
+    def convert(call: TaskCall) -> Option:
         option = known.get(call)
         if option is None:
             option = known[call] = option_of(ontology, call)
@@ -258,13 +258,13 @@ def make_methods(ontology: OdbOntology, settings: Hyperparameters, baselines: bo
     return methods
 
 
-def summarize(result: ReplayResult) -> dict:
+def summarize(result: ReplayResult) -> dict[str, Any]:
     """The JSON summary of the issue: accuracies as fractions, per user and overall."""
     methods = result.methods()
-    out: dict = {"methods": {}, "n_predictions": len(result.outcomes)}
+    out: dict[str, Any] = {"methods": {}, "n_predictions": len(result.outcomes)}
     users = list(OrderedDict.fromkeys(o.user for o in result.outcomes))
     for name in methods:
-        entry: dict = {}
+        entry: dict[str, Any] = {}
         for k in KS:
             entry[f"top{k}"] = _rate(result.outcomes, name, k)
         entry["ms_per_prediction"] = 1000 * sum(o.seconds[name] for o in result.outcomes) / max(1, len(result.outcomes))

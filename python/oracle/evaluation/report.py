@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 
 def _pct(value: float) -> str:
     return f"{100 * value:.1f}"
@@ -11,20 +13,20 @@ def _p(value: float) -> str:
     return f"{value:.2g}" if value >= 1e-4 else "<1e-4"
 
 
-def paired_cell(entry: dict) -> str:
+def paired_cell(entry: dict[str, Any]) -> str:
     """'+1.2 [+0.4, +2.0] p 0.003': difference in points, 95 % interval, Holm-adjusted p."""
     return (f"{100 * entry['difference']:+.1f} [{100 * entry['low']:+.1f}, {100 * entry['high']:+.1f}] "
             f"p {_p(entry['p_holm'])}")
 
 
-def paired_caption(block: dict) -> str:
+def paired_caption(block: dict[str, Any]) -> str:
     return (f"Paired differences against `{block['reference']}` in percentage points (method minus "
             f"{block['reference']}), with the {100 * block['level']:.0f} % bootstrap interval over "
             f"{block['units']} resampled units ({block['unit']}; {block['resamples']} resamples, seed "
             f"{block['seed']}) and p: {block['test']}.")
 
 
-def markdown(summary: dict, command: str, title: str = "Evaluation") -> str:
+def markdown(summary: dict[str, Any], command: str, title: str = "Evaluation") -> str:
     users = len(next(iter(summary["methods"].values()))["per_user"])
     lines = [f"# {title}", "", f"Command: `{command}`", "",
              f"{summary['n_predictions']} predictions, {users} users, "

@@ -54,8 +54,8 @@ class _NgramCounts:
     def reset(self) -> None:
         self.tokens: list[object] = []
         # follow[n][ctx] counts what came after the length-n context ctx; totals[n][ctx] is their sum
-        self.follow: list[dict[tuple, Counter[object]]] = [defaultdict(Counter) for _ in range(self.order)]
-        self.totals: list[Counter[tuple]] = [Counter() for _ in range(self.order)]
+        self.follow: list[dict[tuple[object, ...], Counter[object]]] = [defaultdict(Counter) for _ in range(self.order)]
+        self.totals: list[Counter[tuple[object, ...]]] = [Counter() for _ in range(self.order)]
 
     def observe(self, step: Step) -> None:
         word = token(step)
@@ -68,10 +68,10 @@ class _NgramCounts:
             self.totals[n][context] += 1
         self.tokens.append(word)
 
-    def _new_type(self, n: int, context: tuple, word: object) -> None:
+    def _new_type(self, n: int, context: tuple[object, ...], word: object) -> None:
         """Hook: the n-gram ``context + (word,)`` was seen for the first time."""
 
-    def levels(self) -> list[tuple[int, tuple, Counter[object]]]:
+    def levels(self) -> list[tuple[int, tuple[object, ...], Counter[object]]]:
         """(length, context, followers) for the current contexts of length 1..order-1, shortest first."""
         found = []
         for n in range(1, min(self.order - 1, len(self.tokens)) + 1):
@@ -111,8 +111,8 @@ class KneserNey(_NgramCounts):
     def reset(self) -> None:
         super().reset()
         # continuation[n][ctx][w]: how many distinct tokens x preceded ctx + w; cont_totals: their sum over w
-        self.continuation: list[dict[tuple, Counter[object]]] = [defaultdict(Counter) for _ in range(self.order)]
-        self.cont_totals: list[Counter[tuple]] = [Counter() for _ in range(self.order)]
+        self.continuation: list[dict[tuple[object, ...], Counter[object]]] = [defaultdict(Counter) for _ in range(self.order)]
+        self.cont_totals: list[Counter[tuple[object, ...]]] = [Counter() for _ in range(self.order)]
         # per order: how many of the counts the order discounts hold each value 1..4 (modified discounts)
         self.count_of_counts: list[Counter[int]] = [Counter() for _ in range(self.order)]
 
@@ -128,7 +128,7 @@ class KneserNey(_NgramCounts):
             self.count_of_counts[n][old] -= 1
         self.count_of_counts[n][old + 1] += 1
 
-    def _new_type(self, n: int, context: tuple, word: object) -> None:
+    def _new_type(self, n: int, context: tuple[object, ...], word: object) -> None:
         if n >= 1:
             if n - 1 < self.order - 1:
                 self._recount(n - 1, self.continuation[n - 1][context[1:]][word])

@@ -11,6 +11,8 @@ Choices and their reasons: docs/evaluation.md, "Statistics".
 
 from __future__ import annotations
 
+from typing import Any
+
 from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -51,7 +53,7 @@ class Comparison:
     p: float
     p_holm: float
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
         return {"difference": self.difference, "low": self.low, "high": self.high, "p": self.p, "p_holm": self.p_holm}
 
 
@@ -129,10 +131,10 @@ def compare(outcomes: Sequence[Outcome], reference: str, others: Sequence[str], 
     return units, found
 
 
-def comparison_summary(outcomes: Sequence[Outcome], reference: str, others: Sequence[str], seed: int = 0) -> dict:
+def comparison_summary(outcomes: Sequence[Outcome], reference: str, others: Sequence[str], seed: int = 0) -> dict[str, Any]:
     """The JSON block of ``compare``: per method, per k, the paired difference against the reference."""
     units, found = compare(outcomes, reference, others, seed)
-    methods: dict[str, dict] = {name: {} for name in others}
+    methods: dict[str, dict[str, Any]] = {name: {} for name in others}
     for c in found:
         methods[c.method][f"top{c.k}"] = c.to_dict()
     return {"reference": reference, "unit": units.kind, "units": len(units.labels), "resamples": RESAMPLES,
@@ -140,12 +142,12 @@ def comparison_summary(outcomes: Sequence[Outcome], reference: str, others: Sequ
             "methods": methods}
 
 
-def cold_start_summary(result: ReplayResult, seed: int = 0, first: int = COLD_START) -> dict:
+def cold_start_summary(result: ReplayResult, seed: int = 0, first: int = COLD_START) -> dict[str, Any]:
     """Top-k of every method over each user's first ``first`` predictions, paired against the first method."""
     early = [o for o in result.outcomes if o.index < first]
     methods = result.methods()
     summary = summarize(ReplayResult(early))
-    out: dict = {"first_predictions": first, "n_predictions": len(early),
+    out: dict[str, Any] = {"first_predictions": first, "n_predictions": len(early),
                  "methods": {m: {f"top{k}": summary["methods"][m][f"top{k}"] for k in KS} for m in methods},
                  "chance": summary["chance"]}
     if len(methods) > 1 and early:

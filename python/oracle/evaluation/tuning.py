@@ -75,7 +75,7 @@ def tune(
 
     def score(settings: Hyperparameters) -> float:
         summary = summarize(replay(ontology, users, [OracleMethod(ontology, settings)], seed))
-        return summary["methods"]["oracle"][metric]
+        return float(summary["methods"]["oracle"][metric])
 
     best = start or Hyperparameters()
     best_score = score(best)

@@ -108,7 +108,9 @@ def count_actions(store: Store, neem_id: str) -> tuple[int, float | None, float 
     }
     begins = [row["B"] for row in store.match(neem_id, [TriplePattern(Var("I"), T.BEGIN, Var("B"))])]
     ends = [row["E"] for row in store.match(neem_id, [TriplePattern(Var("I"), T.END, Var("E"))])]
-    numbers = lambda values: [v for v in values if isinstance(v, (int, float))]  # noqa: E731
+    def numbers(values: list[object]) -> list[float]:
+        return [v for v in values if isinstance(v, (int, float))]
+
     return (
         len(actions),
         min(numbers(begins), default=None),

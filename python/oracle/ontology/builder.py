@@ -13,7 +13,7 @@ from oracle.errors import OntologyError
 from oracle.ontology.model import OdbOntology
 from oracle.ontology.provenance import OntologySource
 from oracle.ontology.cache import build_key, cached_build
-from oracle.ontology.distance import default_cache_dir
+from oracle.files import default_cache_dir
 from oracle.ontology.upper import CORE_TBOX, DATA_DIR, OFFICIAL_FILES
 
 DEFAULT_ODB = DATA_DIR / "kitchen-odb"

@@ -167,7 +167,7 @@ def _check_action_keys(spec: object, where: str, allow_parent: bool) -> None:
     check_keys(spec, allowed, where, OntologyError)
 
 
-def _resolve_actions(raw: dict, defaults: ActionMapping, prefixes: dict[str, str], path: Path) -> dict[str, ActionMapping]:
+def _resolve_actions(raw: dict[str, Any], defaults: ActionMapping, prefixes: dict[str, str], path: Path) -> dict[str, ActionMapping]:
     resolved: dict[str, ActionMapping] = {}
 
     def chain(name: str) -> list[str]:

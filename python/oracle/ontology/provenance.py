@@ -79,7 +79,10 @@ class Recorded:
         entry = meta.get(META_KEY)
         if not isinstance(entry, Mapping) or not isinstance(entry.get("fingerprint"), str):
             return None
-        text = lambda key: entry[key] if isinstance(entry.get(key), str) else None  # noqa: E731
+        def text(key: str) -> str | None:
+            value = entry.get(key)
+            return value if isinstance(value, str) else None
+
         return Recorded(OntologySource(text("odb"), text("mapping"), text("soma"), text("owl")), entry["fingerprint"])
 
 

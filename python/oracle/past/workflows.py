@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 from oracle.chains import parse_call
 from oracle.neem import terms as T
-from oracle.namespaces import RDFS_IRI
+from oracle.namespaces import DUL_IRI, RDFS_IRI, SOMA_IRI
 from oracle.past.routines import Routine, jaccard
 from oracle.store import Triple
 from oracle.store.model import RDF_TYPE
@@ -27,11 +27,11 @@ if TYPE_CHECKING:
 
 #: The named graph the workflows are written in.
 GRAPH = "routines"
-WORKFLOW = T.DUL + "Workflow"
-HAS_STEP = T.SOMA + "hasStep"
-FIRST_STEP = T.SOMA + "hasFirstStep"
-BEFORE = T.SOMA + "before"
-AFTER = T.SOMA + "after"
+WORKFLOW = DUL_IRI + "Workflow"
+HAS_STEP = SOMA_IRI + "hasStep"
+FIRST_STEP = SOMA_IRI + "hasFirstStep"
+BEFORE = SOMA_IRI + "before"
+AFTER = SOMA_IRI + "after"
 LABEL = RDFS_IRI + "label"
 #: How alike (Jaccard of the steps) a new routine and a stored one must be to keep its user-given name.
 SAME_ROUTINE = 0.5

@@ -188,7 +188,7 @@ def tbox_for(onto: OdbOntology) -> TBox:
     key = _cache_key(onto)
     if key is None:
         return _converted(onto)
-    from oracle.ontology.distance import default_cache_dir
+    from oracle.files import default_cache_dir
 
     folder = onto.cache_dir if onto.cache_dir is not None else default_cache_dir()
     return cached_pickle(folder / f"tbox-{key}.pickle", key, lambda: _converted(onto),

@@ -20,7 +20,7 @@ from oracle.chains import ChainRow, TaskCall, parse_call, write_chains
 from oracle.files import private_file
 from oracle.errors import NeemOracleError
 from oracle.timeline import first_hour
-from oracle.world.personas import MUGS, Persona, RoutineEntry, make_personas
+from oracle.world.personas import MUGS, Persona, Preferences, RoutineEntry, make_personas
 from oracle.world.rules import World
 from oracle.world.worldfile import load_world
 from oracle.world.state import State
@@ -44,7 +44,7 @@ class _Day:
     hour: float
 
     @property
-    def prefs(self):
+    def prefs(self) -> Preferences:
         return self.persona.preferences
 
     def ordered(self, key: str, first: list[ScriptStep], second: list[ScriptStep]) -> list[ScriptStep]:
@@ -307,7 +307,8 @@ class _Simulator:
             return []
         raise AssertionError(f"unknown script directive {kind}")
 
-    def _execute(self, day: _Day, steps: list[ScriptStep], state: State, clock: datetime):
+    def _execute(self, day: _Day, steps: list[ScriptStep], state: State,
+                 clock: datetime) -> Iterator[tuple[ChainRow, State, datetime]]:
         user = self.persona.file_name
         world, prefs = self.world, day.prefs
         for step in steps:

@@ -8,13 +8,17 @@ missing intermediate tasks in front of an action that is not yet feasible (thesi
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import ChainSyntaxError, NeemOracleError, WorldError
 from oracle.world.state import HAND, ObjectSpec, State, blocker, reachable
+
+# a compiled condition: test(state, first argument, second argument, reach) -> holds
+Reach = Callable[[str], bool]
+Test = Callable[[State, str, str, Reach], bool]
 
 
 
@@ -96,7 +100,7 @@ class World:
         }
         # available() checks conditions on the first argument before it binds the second, and
         # binds the second only to objects that pass the conditions that do not depend on state.
-        self._compiled: dict[str, tuple[tuple, tuple, tuple[str, ...] | None]] = {}
+        self._compiled: dict[str, tuple[tuple[Test, ...], tuple[Test, ...], tuple[str, ...] | None]] = {}
         for task, rule in self.tasks.items():
             first = frozenset(rule.params[:1])
             early = tuple(self._compile(c, rule.params) for c in rule.requires if c.params() <= first)
@@ -255,9 +259,10 @@ class World:
                     return False
         return True
 
-    def _compile(self, condition: Condition, params: tuple[str, ...]):
+    def _compile(self, condition: Condition, params: tuple[str, ...]) -> Test:
         """A test ``f(state, first, second, reach)`` equivalent to ``_holds`` for this condition."""
-        pick = [(lambda x, y: x) if a == params[0] else (lambda x, y: y) for a in condition.args]
+        pick: list[Callable[[str, str], str]] = [(lambda x, y: x) if a == params[0] else (lambda x, y: y)
+                                              for a in condition.args]
         name, args, objects = condition.name, condition.args, self.objects
         if name == "hand_free":
             return lambda s, x, y, r: s.held is None
@@ -282,7 +287,7 @@ class World:
         return self.park
 
     # --- predicates and effects -----------------------------------------------------------------
-    def _accepts(self, state: State, destination: str, obj: str, reach=None) -> bool:
+    def _accepts(self, state: State, destination: str, obj: str, reach: Reach | None = None) -> bool:
         if destination == obj or destination == HAND:
             return False
         spec = self.objects[destination]

@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import re
 from collections.abc import Mapping
 from pathlib import Path
@@ -55,7 +57,7 @@ def _names(path: Path, where: str, value: object) -> tuple[str, ...]:
     return tuple(value)
 
 
-def _object(path: Path, name: str, spec: object, tasks: Mapping) -> ObjectSpec:
+def _object(path: Path, name: str, spec: object, tasks: Mapping[str, Any]) -> ObjectSpec:
     where = f"objects.{name}"
     if not isinstance(spec, dict):
         raise WorldError(f"{path}: {where}: expected a mapping like {{at: counter_top, affords: [pick]}}")
@@ -134,7 +136,7 @@ def _task(path: Path, name: str, spec: object, tags: frozenset[str]) -> TaskRule
     return TaskRule(name, params, requires, effects)
 
 
-def _list(path: Path, where: str, value: object) -> list:
+def _list(path: Path, where: str, value: object) -> list[Any]:
     if value is None:
         return []
     if not isinstance(value, list):
