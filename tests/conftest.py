@@ -21,3 +21,19 @@ def _private_cache(tmp_path_factory: pytest.TempPathFactory) -> Iterator[None]:
         yield
     finally:
         os.environ.pop("NEEM_ORACLE_CACHE", None)
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """Three kinds of test run with the slow ones (in CI, or `make test SLOW=1`), whatever their
+    own marks say: those that drive the page in chromium, the mongomock-ng copies of tests
+    parametrized over backends (their SQLite copy runs every time), and those that wait out one
+    of the service's real deadlines."""
+    slow = pytest.mark.slow
+    for item in items:
+        params = getattr(getattr(item, "callspec", None), "params", {})
+        if (
+            "browser" in getattr(item, "fixturenames", ())
+            or "mongomock" in params.values()
+            or item.get_closest_marker("deadline") is not None
+        ):
+            item.add_marker(slow)

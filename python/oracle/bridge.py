@@ -34,7 +34,7 @@ from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass
 from datetime import datetime
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, TypedDict
+from typing import TYPE_CHECKING, Any, TypedDict, cast
 
 from oracle.errors import PrologError, StoreError
 from oracle.paths import prolog_dir
@@ -433,7 +433,7 @@ def _ensure_loaded() -> None:
     """Register the foreign predicates and load the Prolog modules, once per process."""
     if _STATE["loaded"]:
         return
-    from pyswip import Atom, Prolog
+    from pyswip import Prolog
 
     Prolog.register_foreign(py_match, arity=2, module="neem_store", nondeterministic=True)
     Prolog.register_foreign(py_insert, arity=2, module="neem_store")
@@ -452,7 +452,7 @@ def _ensure_loaded() -> None:
             raise PrologError(f"{path}: Prolog module missing")
     if not _load_compiled(folder, paths):
         for path in paths:
-            _STATE["request"] = [Atom(str(path))]
+            _STATE["request"] = [_atom(str(path))]
             _run("neem_store:py_request(R), R = [F], use_module(user:F)")
     _STATE["request"] = None
     _STATE["loaded"] = True
@@ -462,7 +462,6 @@ def _load_compiled(folder: Path, paths: list[Path]) -> bool:
     """Load the modules from the user's cache of compiled modules (oracle.modulecache), compiling
     them into it first when the entry for their content is missing; False when the cache cannot
     be used (the caller loads the sources)."""
-    from pyswip import Atom
 
     from oracle import modulecache
 
@@ -470,9 +469,9 @@ def _load_compiled(folder: Path, paths: list[Path]) -> bool:
     try:
         compiled = modulecache.compiled_path(folder, version)
         # Loaded means every module's source file is known to Prolog afterwards.
-        files = [Atom(str(path.resolve())) for path in paths]
+        files = [_atom(str(path.resolve())) for path in paths]
         if compiled.is_file():
-            _STATE["request"] = [Atom(str(compiled)), files]
+            _STATE["request"] = [_atom(str(compiled)), files]
             try:
                 if not _run("neem_store:py_request(R), R = [F, Fs], catch(load_files(user:F, []), _, fail),"
                             " forall(member(S, Fs), source_file(S))"):
@@ -484,7 +483,7 @@ def _load_compiled(folder: Path, paths: list[Path]) -> bool:
             return True
         loader = modulecache.prepare(compiled, paths, quote_atom)
         # qcompile loads the modules, as use_module would, and writes the .qlf beside the loader.
-        _STATE["request"] = [Atom(str(loader)), files]
+        _STATE["request"] = [_atom(str(loader)), files]
         if not _run("neem_store:py_request(R), R = [F, Fs], qcompile(user:F, [include(user)]),"
                     " forall(member(S, Fs), source_file(S))"):
             modulecache.discard(loader)
@@ -539,7 +538,6 @@ class Bridge:
         """Prolog loaded and reading this bridge's NEEM with its ontology's names: done on the
         first question, not when the bridge is made (a rank whose history and fit are kept asks
         none), and again when another bridge was used since."""
-        from pyswip import Atom
 
         with _LOCK:
             _attach_engine()
@@ -547,7 +545,7 @@ class Bridge:
             _STATE["bridge"] = self
             if _STATE.get("active") is self:
                 return
-            _STATE["request"] = [Atom(self.neem_id)]
+            _STATE["request"] = [_atom(self.neem_id)]
             try:
                 _run("neem_store:py_request(R), R = [N], neem_store:store_use_python(N)")
                 if self.ontology is not None:
@@ -615,30 +613,20 @@ class Bridge:
         rows = self._with_request(request, "answers:answer_json(J)")
         if not rows:
             raise PrologError(f"Prolog found no answer to {request[0]}")
-        text = rows[0]["J"]
-        return json.loads(text.decode("utf-8") if isinstance(text, bytes) else text)
+        return _json_object(_json_value(rows[0]["J"]), "answers:answer_json/1")
 
     def why_not(self, task: str, args: Sequence[str], at: float | None = None) -> dict[str, Any]:
-        from pyswip import Atom
-
         self._ready()  # an engine on this thread before any term is made
-
-        return self.answer([Atom("why_not"), Atom(task), [Atom(a) for a in args],
-                            float(at) if at is not None else Atom("none")])
+        return self.answer([_atom("why_not"), _atom(task), [_atom(a) for a in args],
+                            float(at) if at is not None else _atom("none")])
 
     def what_next(self) -> dict[str, Any]:
-        from pyswip import Atom
-
         self._ready()  # an engine on this thread before any term is made
-
-        return self.answer([Atom("what_next")])
+        return self.answer([_atom("what_next")])
 
     def something_else(self, task: str | None = None, args: Sequence[str] = ()) -> dict[str, Any]:
-        from pyswip import Atom
-
         self._ready()  # an engine on this thread before any term is made
-
-        return self.answer([Atom("something_else"), Atom(task or "none"), [Atom(a) for a in args]])
+        return self.answer([_atom("something_else"), _atom(task or "none"), [_atom(a) for a in args]])
 
     def _json(self, goal: str, first: str = "") -> Any:
         """The JSON text a Prolog goal binds to its last argument, parsed; ``first``: the
@@ -646,8 +634,7 @@ class Bridge:
         rows = self._with_request([], f"{goal}({first}J)")
         if not rows:
             raise PrologError(f"Prolog found no answer to {goal}")
-        text = rows[0]["J"]
-        return json.loads(text.decode("utf-8") if isinstance(text, bytes) else text)
+        return _json_value(rows[0]["J"])
 
     def history(self) -> list[HistoryRow]:
         """odb_history:situation_history/1 in one crossing: every executed action in begin order
@@ -667,7 +654,10 @@ class Bridge:
     def latest_situation(self) -> LatestSituation | None:
         """The latest imagined situation as ``{"begin", "available", "part"}`` (``part``: the
         part of day its interval was logged with, ``none`` if none), or None."""
-        return self._json("odb_history:latest_situation_json")
+        value = self._json("odb_history:latest_situation_json")
+        if value is None:
+            return None
+        return cast(LatestSituation, _json_object(value, "odb_history:latest_situation_json/1"))
 
     def history_view(self, after: float | None = None) -> HistoryView:
         """The history (``after``: only its rows after the row that began then, as
@@ -687,17 +677,14 @@ class Bridge:
         use): ``query`` run with ``bindings`` (strings as atoms, numbers, lists of them), its
         solutions from ``offset``, at most ``limit``, within ``seconds`` (``writes``: also the
         predicates it classes as writes). QueryValueError for a binding of another type."""
-        from pyswip import Atom
-
         self._ready()  # an engine on this thread before any term is made
         if not _STATE.get("json_query"):
-            self.ask("neem_store:py_request(R), R = [F], use_module(user:F)", [Atom(str(module))])
+            self.ask("neem_store:py_request(R), R = [F], use_module(user:F)", [_atom(str(module))])
             _STATE["json_query"] = True
-        pairs = [[Atom(name), _term_value(name, value)] for name, value in bindings.items()]
+        pairs = [[_atom(name), _term_value(name, value)] for name, value in bindings.items()]
         rows = self.ask("neem_store:py_request(R), json_query:json_query(R, J)",
-                        [query, pairs, offset, limit, float(seconds), Atom("true" if writes else "false")])
-        text = rows[0]["J"]
-        return json.loads(text.decode("utf-8") if isinstance(text, bytes) else text)
+                        [query, pairs, offset, limit, float(seconds), _atom("true" if writes else "false")])
+        return _json_object(_json_value(rows[0]["J"]), "json_query:json_query/2")
 
     def solutions(self, goal: str, variables: Sequence[str], *, stepwise: bool = False) -> list[tuple[Any, ...]]:
         """All solutions of a kb_call goal (its text) as tuples of the named variables."""
@@ -717,17 +704,30 @@ class Bridge:
 
 def _ontology_request(ontology: OdbOntology) -> list[Any]:
     """The namespace and each task's target and reference roles, as odb_names takes them."""
-    from pyswip import Atom
 
-    rows = [[Atom(task.iri), Atom(task.target_role or "none"), Atom(task.ref_role or "none")]
+    rows = [[_atom(task.iri), _atom(task.target_role or "none"), _atom(task.ref_role or "none")]
             for task in ontology.tasks.values()]
-    return [Atom(ontology.namespace), rows]
+    return [_atom(ontology.namespace), rows]
+
+
+def _json_value(text: str | bytes) -> Any:
+    """The JSON text a Prolog goal bound (pyswip hands strings back as str or bytes), parsed."""
+    return json.loads(text.decode("utf-8") if isinstance(text, bytes) else text)
+
+
+def _json_object(value: Any, what: str) -> dict[str, Any]:
+    """``value`` when it is a JSON object, else a PrologError naming ``what`` gave it."""
+    if not isinstance(value, dict):
+        raise PrologError(f"{what} gave {type(value).__name__}, not a JSON object")
+    return value
 
 
 def _atom(text: str) -> Any:
+    """A Prolog atom for pyswip (its constructor is untyped; this is the one typed door)."""
     from pyswip import Atom
 
-    return Atom(text)
+    make: Callable[[str], Any] = Atom
+    return make(text)
 
 
 def _plain_term(value: Any) -> Any:
@@ -746,14 +746,13 @@ class QueryValueError(PrologError):
 
 
 def _term_value(name: str, value: Any) -> Any:
-    from pyswip import Atom
 
     if isinstance(value, bool) or value is None:
         raise QueryValueError(f"binding {name}: expected a string (atom) or a number, got {value!r}")
     if isinstance(value, (int, float)):
         return value
     if isinstance(value, str):
-        return Atom(value)
+        return _atom(value)
     if isinstance(value, list):
         return [_term_value(name, v) for v in value]
     raise QueryValueError(f"binding {name}: expected a string (atom), a number or a list, got {type(value).__name__}")

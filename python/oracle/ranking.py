@@ -226,7 +226,7 @@ class NeemRanker:
         #: a ranking's supporting past situations are shown as).
         self.steps: list[Step] = steps_from_history(ontology, rows, clocked)
         self.begins: list[float] = [float(row["begin"]) for row in rows]
-        self.predictor = (fits or FitCache.default()).fitted(predictor, self.steps, store.location, neem, keep=keep,
+        self.predictor: Predictor = (fits or FitCache.default()).fitted(predictor, self.steps, store.location, neem, keep=keep,
                                                              kept=store)
         #: What the user did so far: the offer of an action logged without an imagined
         #: situation, and which ranked tasks were done before.

@@ -27,6 +27,9 @@ WRITING = ("import", "load", "mapping", "odb")
 MONGO_CASES = [c for c in CASES if c.entry in WRITING or (c.entry == "built" and c.name.startswith("import"))]
 SPEC = "mongodb://corpus-test-double/roslog"
 
+# fault injection and whole-corpus runs: with the slow tests (CI, or make test SLOW=1)
+pytestmark = pytest.mark.slow
+
 
 class _Shared(MongoStore):
     """A store on the one shared test server; closing it leaves the server up for the next case."""

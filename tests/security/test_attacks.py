@@ -234,6 +234,7 @@ def test_no_acknowledged_situation_is_lost_over_20_sigkills(tmp_path):
     assert lost == []
 
 
+@pytest.mark.deadline
 def test_clients_that_send_nothing_or_a_trickle_are_closed(served):
     """A socket that sends nothing, and one that sends a header line a second, are closed by the
     header deadline (10 s) rather than held for ever (slowloris)."""
@@ -268,6 +269,7 @@ def test_clients_that_send_nothing_or_a_trickle_are_closed(served):
     assert closed_after["silent"] < 30 and closed_after["trickle"] < 30, closed_after
 
 
+@pytest.mark.deadline
 def test_keep_alive_connections_are_closed_when_idle(served):
     """An idle client does not hold its socket for ever (uvicorn's timeout_keep_alive)."""
     import time

@@ -31,6 +31,9 @@ from oracle.cli import main
 sys.exit(main(sys.argv[2:]))
 """
 
+# fault injection and whole-corpus runs: with the slow tests (CI, or make test SLOW=1)
+pytestmark = pytest.mark.slow
+
 
 def oracle(*argv: str, file_limit: int | None = None, env: dict[str, str] | None = None) -> subprocess.CompletedProcess[str]:
     prefix = ["-c", _LIMITED, str(file_limit)] if file_limit is not None else ["-m", "oracle"]

@@ -6,11 +6,14 @@ and nothing written, so an answer costs its few Prolog queries (tens of millisec
 
 from __future__ import annotations
 
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 from fastapi import APIRouter, Query, Request
 
 from oracle.service import schemas as S
+
+if TYPE_CHECKING:
+    from oracle.service.app import Context
 
 router = APIRouter(tags=["answers"], responses=S.ERRORS)
 
@@ -57,7 +60,7 @@ async def ask_route(neem: str, request: Request,
                     q: str = Query(min_length=1, max_length=500, description="a question, e.g. when did I last open the fridge?"),
                     at: str | None = Query(None, description="as of this time (default: the NEEM's latest event)")) -> dict[str, Any]:
     """A question about the past, answered in its language (English or German) with the evidence."""
-    ctx = request.app.state.ctx
+    ctx: Context = request.app.state.ctx
     return await ctx.thread.run(_ask, ctx.engine, neem, q, at)
 
 
@@ -65,7 +68,7 @@ async def ask_route(neem: str, request: Request,
 async def summary_route(neem: str, request: Request,
                         at: str | None = Query(None, description="as of this time (default: the NEEM's latest event)")) -> dict[str, Any]:
     """The NEEM's state summary: recent actions, the latest and what usually follows it, the predicted chain."""
-    ctx = request.app.state.ctx
+    ctx: Context = request.app.state.ctx
     return await ctx.thread.run(_summary, ctx.engine, neem, at)
 
 
@@ -73,7 +76,7 @@ async def summary_route(neem: str, request: Request,
 async def routines_route(neem: str, request: Request,
                          at: str | None = Query(None, description="as of this time (default: the NEEM's latest action)")) -> dict[str, Any]:
     """The user's routines mined from the NEEM (names the user gave kept) and the one in progress."""
-    ctx = request.app.state.ctx
+    ctx: Context = request.app.state.ctx
     return await ctx.thread.run(_routines, ctx.engine, neem, at)
 
 
@@ -89,5 +92,5 @@ async def prepare_route(neem: str, request: Request,
                             None, alias="for", description="the part of the day (default: the part after now's)"),
                         at: str | None = Query(None, description="as of this time (default: the NEEM's latest event)")) -> dict[str, Any]:
     """The objects worth preparing now for the user's routines of the coming part of the day, with reasons."""
-    ctx = request.app.state.ctx
+    ctx: Context = request.app.state.ctx
     return await ctx.thread.run(_prepare, ctx.engine, neem, part, at)

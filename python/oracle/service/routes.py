@@ -26,6 +26,7 @@ from oracle.service.page import STATIC, render_page
 from oracle.service.tablet import decision_of as _decision, record_choice, recorded_choice
 
 if TYPE_CHECKING:
+    from oracle.service.app import Context
     from oracle.service.session import NeemSession
 
 Time = float | str | None
@@ -86,8 +87,9 @@ class DuplicateNeem(LoggingError):
     """A new NEEM named like one in the store (409)."""
 
 
-def _ctx(request: Request) -> Any:
-    return request.app.state.ctx
+def _ctx(request: Request) -> Context:
+    ctx: Context = request.app.state.ctx
+    return ctx
 
 
 @router.get("/api/health", tags=["neems"], response_model=S.Health)
@@ -151,8 +153,8 @@ async def situation(neem: str, body: SituationIn, request: Request, background: 
         started = time.perf_counter()
         session = ctx.engine.session(neem)
         found, ranking, ms = session.situation(body.available, body.at)
-        answer = session.describe(found, ranking, ms)
-        cast(dict[str, Any], answer)["routine"] = routine_now(ctx.engine, session, found.when.seconds)
+        answer = cast(dict[str, Any], session.describe(found, ranking, ms))
+        answer["routine"] = routine_now(ctx.engine, session, found.when.seconds)
         if not ctx.write_behind:  # committed in the same job: acknowledged means on disk
             session.write_situation(found, ranking)
         return session.neem, found, ranking, answer, started, time.perf_counter()
@@ -207,7 +209,7 @@ async def latest_situation(neem: str, request: Request) -> dict[str, Any]:
     """The latest ranking this service answered for the NEEM (`ranking` empty before the first)."""
     ctx = _ctx(request)
     latest = await ctx.thread.run(lambda: ctx.engine.session(neem).latest)
-    return latest or {"neem": neem, "ranking": [], "chain": []}
+    return cast(dict[str, Any], latest) if latest else {"neem": neem, "ranking": [], "chain": []}
 
 
 @router.post("/api/neems/{neem}/actions", tags=["robot"], response_model=S.ActionAnswer)
@@ -262,7 +264,7 @@ async def choice(neem: str, body: ChoiceIn, request: Request) -> dict[str, Any]:
         workflow = session.calls(body.workflow, "workflow") if body.workflow else None
         if workflow is not None and str(workflow[0]) != str(task):
             raise _refused(f"workflow: its first step {workflow[0]} is not the task {task}")
-        made = record_choice(session, workflow or [task], body.at)
+        made = record_choice(session, list(workflow or [task]), body.at)
         session.choice = made
         return session.neem, made
 
