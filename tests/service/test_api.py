@@ -552,3 +552,61 @@ def test_the_situation_answer_names_the_routine_in_progress_and_what_remains(cli
     assert [s["task"] for s in view["steps"]] == ROUTINE[2:]
     later = client.post("/api/neems/rae/situation", json={"available": AVAILABLE, "at": at(3, 3600)}).json()
     assert later["routine"] is None  # an hour idle since: no routine in progress
+
+
+def test_stopping_the_service_ends_each_neems_recording_session(tmp_path, onto):
+    """KnowRob's mem_episode_stop as the service stops: every episode of a NEEM the service wrote
+    has its actions as constituents of its top-level action and an interval with an end, the
+    last (still open) one included; a service started again on the store opens a new one."""
+    from fastapi.testclient import TestClient
+
+    from oracle.namespaces import DUL_IRI, SOMA_IRI
+    from oracle.service import build_context
+    from oracle.store import RDF_TYPE
+
+    path = str(tmp_path / "s.sqlite")
+
+    def serve(days: range) -> None:
+        context = build_context(path, onto, Hyperparameters())
+        try:
+            with TestClient(create_app(context), base_url="http://127.0.0.1") as test_client:
+                if days.start == 0:
+                    assert test_client.post("/api/neems", json={"user": "ada", "neem": "ada"}).status_code == 201
+                for day in days:
+                    drive_day(test_client, "ada", day)
+                # while it runs, the open session has no constituents yet (they are written at its end)
+                store = context.thread.call(lambda: context.engine.store)
+                neem = context.thread.call(lambda: context.engine.resolve("ada"))
+                assert len(_ended(store, neem)[1]) == days.stop - 1
+        finally:
+            context.thread.close()
+
+    serve(range(0, 2))
+    serve(range(2, 3))
+    from oracle.store import open_store
+
+    store = open_store(path)
+    neem = next(info.id for info in store.neems())
+    episodes, ended = _ended(store, neem)
+    assert len(episodes) == 3 and sorted(ended) == sorted(episodes)
+    constituents = [d["o"] for d in store.find(neem, p=DUL_IRI + "hasConstituent")]
+    actions = {d["s"] for d in store.find(neem, p=RDF_TYPE, o=DUL_IRI + "Action", exact=True)}
+    # every logged action (the idle ones too) is a constituent of exactly one top-level action
+    assert sorted(constituents) == sorted(actions) and len(actions) == 3 * len(ROUTINE) + 2
+    assert all(d["s"] in episodes for d in store.find(neem, p=RDF_TYPE, o=SOMA_IRI + "Episode", exact=True))
+
+
+def _ended(store, neem: str) -> tuple[list[str], list[str]]:
+    """The NEEM's episodes, and those whose top-level action has constituents and an ended interval."""
+    from oracle.namespaces import DUL_IRI, SOMA_IRI
+    from oracle.store import RDF_TYPE
+
+    episodes = [d["s"] for d in store.find(neem, p=RDF_TYPE, o=SOMA_IRI + "Episode", exact=True)]
+    ended = []
+    for episode in episodes:
+        top = next(store.find(neem, s=episode, p=DUL_IRI + "includesAction"))["o"]
+        interval = next(store.find(neem, s=top, p=DUL_IRI + "hasTimeInterval"))["o"]
+        if list(store.find(neem, s=top, p=DUL_IRI + "hasConstituent")) and list(
+                store.find(neem, s=interval, p=SOMA_IRI + "hasIntervalEnd")):
+            ended.append(episode)
+    return episodes, ended

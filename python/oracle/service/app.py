@@ -70,6 +70,8 @@ def create_app(ctx: Context) -> FastAPI:
     async def lifespan(app: FastAPI) -> Any:
         yield
         ctx.stopping.set()  # ends the event streams so the server can stop
+        # each NEEM's recording session ends as KnowRob's mem_episode_stop ends one
+        await ctx.thread.run(ctx.engine.close)
         if ctx.query_process is not None:
             ctx.query_process.close()
 

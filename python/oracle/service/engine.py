@@ -89,6 +89,21 @@ class Engine:
         self.sessions: dict[str, NeemSession] = {}
         self._bridge: Bridge | None = None
 
+    def close(self) -> int:
+        """End every open session's recording session (the logger's ``close``: its actions become
+        constituents of the episode's top-level action, whose interval gets its end), as the
+        service stops; returns how many were ended. A failure is logged by type and the others
+        still end; a request after this opens the NEEM anew, in a new recording session."""
+        ended = 0
+        for neem, session in list(self.sessions.items()):
+            try:
+                session.logger.close()
+                ended += 1
+            except NeemOracleError as error:
+                LOG.error("NEEM %s: its recording session did not end: %s", neem, type(error).__name__)
+        self.sessions.clear()
+        return ended
+
     # -- NEEMs --------------------------------------------------------------------------------
     def neems(self) -> list[dict[str, Any]]:
         return [{"id": info.id, "name": alias_of(info), "user": info.user, "created_at": info.created_at,
