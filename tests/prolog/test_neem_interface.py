@@ -166,6 +166,65 @@ def test_the_real_neem_interface_logs_an_episode_that_loads_back(tmp_path, onto)
         store2.close()
 
 
+def test_the_real_neem_interfaces_other_predicates_write_what_they_say(tmp_path, onto) -> None:
+    """The predicates of the real neem-interface.pl that no episode above calls: parameters and
+    regions, a grasping orientation, a comment, a perceived object's mesh shape, an event begun
+    and ended now (with the agent's role during it), a diagnosis, the current pose."""
+    real = real_neem_interface(tmp_path)
+    if real is None:
+        pytest.skip(f"neem-interface.pl not found (set NEEM_INTERFACE_PL, or mirror code-iai/neem-interface at {MIRROR})")
+    f = files(tmp_path)
+    store, bridge = new_neem(tmp_path, onto)
+    soma = "http://www.ease-crc.org/ont/SOMA.owl#"
+    try:
+        ni = NEEMInterface(InProcess(bridge), real)
+        top = ni.start_episode("soma:'PhysicalTask'", f["env_owl"], "http://example.org/env#Kitchen", f["env_urdf"], "k_",
+                               f["agent_owl"], "http://example.org/agent#Robot", f["agent_urdf"], start_time=100.0)
+        sub = ni.add_subaction_with_task(top, task_type="soma:'Grasping'", start_time=101.0, end_time=105.0)
+        q = bridge.query
+        (task,) = [r["T"] for r in q(f"kb_call(executes_task('{sub}', T), any)")]
+        assert q(f"add_parameter('{task}', soma:'GraspingOrientation', soma:'Region')")
+        params = q(f"kb_call((has_parameter('{task}', P), has_type(P, soma:'GraspingOrientation')), any)")
+        assert len(params) == 1
+        # the assignment neem-interface scopes to [0.0, 0.1]: there and only there
+        p = params[0]["P"]
+        assert q(f"kb_call(has_assignment('{p}', R) during [0.0, 0.1]), kb_call(has_type(R, soma:'Region'), any)")
+        assert not q(f"kb_call(has_assignment('{p}', _) during [5.0, 6.0])")
+        assert q(f"add_grasping_parameter('{sub}', soma:'FrontGrasp')")
+        (region,) = q(f"kb_call((has_region('{sub}', G), has_type(G, soma:'FrontGrasp')), any)")
+        assert q(f"kb_call((has_parameter('{task}', C), has_type(C, soma:'GraspingOrientation'),"
+                 f" holds(C, dul:classifies, '{region['G']}')), any)")
+        assert q(f"add_comment('{sub}', 'the cup was wet')")
+        (comment,) = q(f"kb_call(triple('{sub}', rdfs:comment, C), any)")
+        assert comment["C"] == "the cup was wet"
+        assert q(f"belief_perceived_at(soma:'Cup', 'package://kitchen/cup.dae', [0.0, 0.0, 0.0, 1.0], '{ENV}Cup2')")
+        (shape,) = q(f"kb_call((triple('{ENV}Cup2', soma:hasShape, S), triple(S, dul:hasRegion, M),"
+                     f" has_type(M, soma:'MeshShape'), triple(M, soma:hasFilePath, F)), any)")
+        assert shape["F"] == "package://kitchen/cup.dae"
+        assert q(f"kb_call(has_type('{ENV}Cup2', soma:'Cup'), any)")
+        assert q(f"belief_perceived_at(soma:'Bowl', '{ENV}Bowl1')") and q(f"kb_call(has_type('{ENV}Bowl1', soma:'Bowl'), any)")
+        # an event begun now and ended now: its interval in the clock's present, the agent's role during it
+        (event,) = [r["E"] for r in q(f"kb_call((has_subevent('{top}', E), executes_task(E, T), has_type(T, soma:'Grasping')), any)")]
+        before = float(q("get_time(T)")[0]["T"])
+        assert q(f"mem_event_begin('{event}')")
+        assert q(f"mem_event_end('{event}')")
+        after = float(q("get_time(T)")[0]["T"])
+        ends = [float(r["E"]) for r in q(f"kb_call((triple('{event}', dul:hasTimeInterval, I), triple(I, soma:hasIntervalEnd, E)), any)")]
+        assert any(before <= end <= after for end in ends)
+        assert q(f"kb_call(has_role('http://example.org/agent#Robot', R) during '{event}'), kb_call(has_type(R, soma:'AgentRole'), any)")
+        assert q(f"mem_event_add_diagnosis('{event}', '{soma}Diagnosis_1')")
+        assert q(f"kb_call(satisfies('{event}', '{soma}Diagnosis_1'), any)")
+        # the pose now (mem_tf_get/4 reads at the current scope); a pose set at 102 holds now
+        assert q(f"mem_tf_set('{ENV}Cup', map, [1.0, 2.0, 0.8], [0.0, 0.0, 0.0, 1.0], 102.0)")
+        (now,) = q(f"mem_tf_get('{ENV}Cup', map, P, R)")
+        assert now["P"] == [1.0, 2.0, 0.8] and now["R"] == [0.0, 0.0, 0.0, 1.0]
+        assert q(f"mem_tf_get('{ENV}Cup', map, [1.0, 2.0, 0.8], _, 102.0)")
+        assert not q(f"mem_tf_get('{ENV}Cup', map, _, _, 101.0)")  # not yet there
+    finally:
+        bridge.close()
+        store.close()
+
+
 def test_prolog_create_starts_a_new_neem(tmp_path) -> None:
     store = tmp_path / "s.sqlite"
     run = lambda *a: subprocess.run([sys.executable, "-m", "oracle", "prolog", "--store", str(store), *a],  # noqa: E731
