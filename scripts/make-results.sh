@@ -6,8 +6,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 PY=${PY:-.venv/bin/python}
 SHARED=${SHARED:-../shared/datasets}
-# the replay rules these figures were made under, before issue 39 (docs/evaluation.md, "Replay");
-# the honest rules' figures are experiments/issue39.sh's
+# the replay rules these figures were made under, before the honest rules (docs/evaluation.md, "Replay");
+# the honest rules' figures are experiments/honest-replay.sh's
 OLD=(--candidates vocabulary --decision start --every-step)
 $PY -m oracle generate --personas 105 --days 7 --seed 0 --out out/bench
 $PY -m oracle evaluate out/bench/test.jsonl "${OLD[@]}" --baselines --ablations \

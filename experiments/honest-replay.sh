@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
-# Issue 39's figures (docs/results.md, "Honest replay, learned baselines, chains"): the three
+# The honest replay's figures (docs/results.md, "Honest replay, learned baselines, chains"): the three
 # reported sets replayed once under the honest rules (docs/evaluation.md, "Replay") with every
 # baseline, the learned ones (logit, gbdt) and the stacked predictor; then the chain accuracy.
-# Data stays in out/; tables: python experiments/issue39-tables.py out.
+# Data stays in out/; tables: python experiments/honest-tables.py out.
 # The sets are made as scripts/make-results.sh makes them (converters' defaults; nothing here may
 # be changed to favour a method).
 set -euo pipefail

@@ -1,7 +1,7 @@
 """Print the tables of docs/results.md, "Honest replay, learned baselines, chains" from the JSON
-files of experiments/issue39.sh and experiments/issue39-normalized.sh.
+files of experiments/honest-replay.sh and experiments/normalized-distances.sh.
 
-usage: python experiments/issue39-tables.py OUT [targets|all|chains|normalized]
+usage: python experiments/honest-tables.py OUT [targets|all|chains|normalized]
 """
 
 from __future__ import annotations
