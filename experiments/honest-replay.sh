@@ -3,7 +3,7 @@
 # reported sets replayed once under the honest rules (docs/evaluation.md, "Replay") with every
 # baseline, the learned ones (logit, gbdt) and the stacked predictor; then the chain accuracy.
 # Data stays in out/; tables: python experiments/honest-tables.py out.
-# The sets are made as scripts/make-results.sh makes them (converters' defaults; nothing here may
+# The sets are made as experiments/make-results.sh makes them (converters' defaults; nothing here may
 # be changed to favour a method).
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -10,7 +10,7 @@ from oracle.evaluation.conditions import derive, write_conditions
 from oracle.evaluation.replay import LEGACY, load_users, replay
 from oracle.ontology import build_ontology
 
-SCRIPT = Path(__file__).resolve().parents[2] / "scripts" / "dev-conditions.py"
+SCRIPT = Path(__file__).resolve().parents[2] / "experiments" / "dev-conditions.py"
 ROWS = [
     {"user": "u", "time": "2026-03-02T08:00:00", "end": "2026-03-02T08:00:05", "action": "pick(red_mug)",
      "available": ["pick(red_mug)", "open(fridge)"]},

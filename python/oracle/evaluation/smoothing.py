@@ -5,7 +5,7 @@ They compute what ``nltk.lm.KneserNeyInterpolated`` and ``nltk.lm.WittenBellInte
 tests/evaluation/test_smoothing.py; Kneser-Ney differs from nltk only where nltk's weights do not
 sum to one, see ``KneserNey.probabilities``). nltk itself refits nothing incrementally and recounts the
 continuation counts of a context on every query by scanning every higher-order n-gram, which is far
-too slow for a replay of tens of thousands of steps (``scripts/nltk-speed.py``); these classes keep
+too slow for a replay of tens of thousands of steps (``experiments/nltk-speed.py``); these classes keep
 the same counts in tables updated once per observed step. Formulas: docs/evaluation.md.
 """
 

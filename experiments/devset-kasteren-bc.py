@@ -12,7 +12,7 @@ sensor (``cupboard plates`` -> ``open_cupboard(plates_cupboard)``, ``toilet flus
 The annotated activity around a firing (the last annotated interval containing it) is kept as the
 extra field ``activity``; every firing is kept, annotated or not. Kinds house A has no sensor of get
 tasks of their own: a PIR ``move_at(<place>)``, a pressure mat on a bed ``lie_on``, on a seat
-``sit_on``, a drawer ``open_drawer`` and a window ``open_window`` (as scripts/devset-mit-subject1.py),
+``sit_on``, a drawer ``open_drawer`` and a window ``open_window`` (as experiments/devset-mit-subject1.py),
 a float or flow sensor on a sink ``turn_on`` (a tap). ``--object-sensors`` keeps only the sensors on
 objects, the kinds house A has (switches on doors, cupboards, drawers, appliances, flushes and
 taps), dropping the PIRs and pressure mats.
@@ -31,7 +31,7 @@ those of source/source-code/our_project_project/data/house{B,C}.activity_names t
 stated; cite T.L.M. van Kasteren, G. Englebienne and B.J.A. Kroese, "Transferring Knowledge of
 Activity Recognition across Sensor Networks", Pervasive 2010. Never copied into the project.
 
-usage: python scripts/devset-kasteren-bc.py {B,C} RAW_FOLDER OUT_FOLDER [--object-sensors]
+usage: python experiments/devset-kasteren-bc.py {B,C} RAW_FOLDER OUT_FOLDER [--object-sensors]
 """
 
 from __future__ import annotations
@@ -197,7 +197,7 @@ def convert(house: str, folder: Path | str, out: Path | str, object_sensors: boo
     return write_sensor_home(
         name, rows, sensors.values(), out, f"urn:neem-oracle:odb:{_user(house)}#", soma_map, ACTIONS,
         f"van Kasteren house {house} (a development set, {which}): sensors as odb objects, what they observe as tasks"
-        " (scripts/devset-kasteren-bc.py).",
+        " (experiments/devset-kasteren-bc.py).",
     )
 
 

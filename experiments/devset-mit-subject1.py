@@ -20,7 +20,7 @@ RAW_FOLDER holds, byte for byte, datasets/mitlab/subject1/{sensors,Activities,ac
 of tcsvn/pyadlml @ a2a400b0e2b39f16c5b8575259e0cda796bba94e (licence not stated; cite Munguia Tapia,
 Intille and Larson, Pervasive 2004). Never copied into the project.
 
-usage: python scripts/devset-mit-subject1.py RAW_FOLDER OUT_FOLDER
+usage: python experiments/devset-mit-subject1.py RAW_FOLDER OUT_FOLDER
 """
 
 from __future__ import annotations
@@ -188,7 +188,7 @@ def convert(folder: Path | str, out: Path | str) -> ConvertReport:
         "mit-subject1", rows, ((obj, task, parent) for obj, task, parent, _kind in sensors.values()), out,
         "urn:neem-oracle:odb:mit-subject1#", soma_map, ACTIONS,
         "MIT PlaceLab subject 1 (a development set): sensors as odb objects, what they observe as tasks"
-        " (scripts/devset-mit-subject1.py).",
+        " (experiments/devset-mit-subject1.py).",
     )
 
 

@@ -17,7 +17,7 @@ fpv-iplab/rulstm @ e648c7ee40a1a71381bfaa7563f2e8a6935275ab, and EPIC_verb_class
 EPIC_noun_classes.csv of epic-kitchens/epic-kitchens-55-annotations @
 63fa7d78eba41a8d2280374061a6b1bab3e7e41d (annotations CC BY-NC 4.0). Never copied into the project.
 
-usage: python scripts/devset-ek55.py RAW_FOLDER OUT_FOLDER
+usage: python experiments/devset-ek55.py RAW_FOLDER OUT_FOLDER
 """
 
 from __future__ import annotations
@@ -131,7 +131,7 @@ def convert(folder: Path | str, out: Path | str) -> ConvertReport:
     renamed = {f"{noun}_object": noun for noun in read_classes(folder / "EPIC_noun_classes.csv").values()}
     return write_cooking_set(
         "ek55", rows, (call for _verb, _noun, call in read_actions(folder).values()), out, "urn:neem-oracle:odb:ek55#",
-        "EPIC-Kitchens-55 (a development set): nouns as odb objects, verbs as tasks (scripts/devset-ek55.py).",
+        "EPIC-Kitchens-55 (a development set): nouns as odb objects, verbs as tasks (experiments/devset-ek55.py).",
         lambda noun: renamed.get(noun, noun),  # NOUNS and the container rule see the EPIC class key
     )
 

@@ -1,6 +1,6 @@
 """What a NEEM's rows cost SQLite to insert, written the ways the logger could write them.
 
-Usage: python scripts/row-cost.py STORE.sqlite NEEM_ID [--runs 3]
+Usage: python experiments/row-cost.py STORE.sqlite NEEM_ID [--runs 3]
 The NEEM's triple and side rows go into fresh tables with the store's indexes, in their order,
 committed in ten transactions, runs interleaved; printed: CPU seconds (min/median/max) of all
 the inserts and commits, and of the INSERTs into each table alone, for

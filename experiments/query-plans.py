@@ -4,7 +4,7 @@ Logs a simulated persona's chains (``generate``, then ``import``), runs ``rank``
 ``what-next`` and ``neems`` on it with every SQL statement recorded (sqlite3's trace hook),
 and prints, per distinct query shape (numbers and strings replaced), the indexes its
 ``EXPLAIN QUERY PLAN`` uses, with a count per index and every full scan of a triple table.
-Usage: python scripts/query-plans.py [--actions 1000] [--verbose]
+Usage: python experiments/query-plans.py [--actions 1000] [--verbose]
 """
 
 from __future__ import annotations

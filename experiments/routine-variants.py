@@ -1,6 +1,6 @@
 """Replay a chains file with routine predictors of other constructor parameters, beside the n-gram.
 
-usage: python scripts/routine-variants.py CHAINS [--odb DIR --mapping YAML] [--baselines A,B|all]
+usage: python experiments/routine-variants.py CHAINS [--odb DIR --mapping YAML] [--baselines A,B|all]
        [--alternatives first|conditions] [NAME=JSON ...]
 Each NAME=JSON builds ``RoutineOracle(distances, **JSON)`` (e.g. 'fixed={"tuning": "fixed"}');
 without any, a fixed set of alternatives to the defaults is replayed (``--alternatives``: the

@@ -1,7 +1,7 @@
 """A NEEM's fits with the routine predictor: their digest (to show a faster fit is the same fit)
 and what the whole fit costs.
 
-Usage: python scripts/fit-check.py STORE NEEM [--runs 3] [--params JSON]
+Usage: python experiments/fit-check.py STORE NEEM [--runs 3] [--params JSON]
 Reads the NEEM's history as `rank` does, fits the default predictor and four other settings
 (novelty only, timed_shrink, timed and untimed variants, exclusion) on its first 40, 700 and
 3,000 steps, ranks the next 30 situations of each, and prints the SHA-256 of the variant

@@ -1,6 +1,6 @@
 """Derive the condition-matched development sets of a chains file (docs/algorithm.md, "Selection protocol").
 
-usage: python scripts/dev-conditions.py CHAINS OUT
+usage: python experiments/dev-conditions.py CHAINS OUT
 writes OUT/open/NAME and OUT/clockless/NAME (NAME: the file name of CHAINS): the same rows without
 the available sets, and without the available sets and the clock.
 """

@@ -1,6 +1,6 @@
-"""Print the markdown tables of docs/results.md from the JSON files scripts/make-results.sh wrote.
+"""Print the markdown tables of docs/results.md from the JSON files experiments/make-results.sh wrote.
 
-usage: python scripts/results-tables.py [OUT] [NAME ...]   (OUT defaults to out/; NAMEs default to all)
+usage: python experiments/results-tables.py [OUT] [NAME ...]   (OUT defaults to out/; NAMEs default to all)
 Per evaluation: accuracy of every method and its paired difference to the first method (the one
 the run scored first, named in the column header) with the 95 % bootstrap interval and the
 Holm-corrected Wilcoxon p; the cold start; with ablations the Fig. 5.5 table against A.

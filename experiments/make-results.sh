@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates every figure of docs/results.md (about 30 minutes on 2 cores). Data stays in out/.
-# Tables: python scripts/results-tables.py out. The real sets are converted with the converters'
+# Tables: python experiments/results-tables.py out. The real sets are converted with the converters'
 # defaults (docs/world.md); nothing here may be changed to favour a method.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -46,5 +46,5 @@ for m in routine-fixed routine-mixture; do
   fi
 done
 # nltk.lm against the online Kneser-Ney of the baselines (docs/evaluation.md, "Kneser-Ney and Witten-Bell")
-{ $PY scripts/nltk-speed.py out/bench/test.jsonl 200
-  if [ -d out/kasteren ]; then $PY scripts/nltk-speed.py out/kasteren/chains.jsonl 1319; fi; } | tee out/nltk-speed.txt
+{ $PY experiments/nltk-speed.py out/bench/test.jsonl 200
+  if [ -d out/kasteren ]; then $PY experiments/nltk-speed.py out/kasteren/chains.jsonl 1319; fi; } | tee out/nltk-speed.txt

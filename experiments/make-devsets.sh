@@ -2,18 +2,18 @@
 # Builds the routine predictor's fifteen development sets (docs/algorithm.md, "Development sets
 # and what helped"), replayed only to choose, never reported. Data stays outside the project.
 #
-# usage: scripts/make-devsets.sh OUT [RAW]
+# usage: experiments/make-devsets.sh OUT [RAW]
 #   OUT: where the sets go (OUT/bench/tune.jsonl, OUT/dev/{,open/,clockless/}{seed1,short}.jsonl,
 #        OUT/dev/{open,clockless}/tune.jsonl, OUT/real/NAME/{chains.jsonl,odb,mapping.yaml})
 #   RAW: the public files the real sets are made from, as each converter's docstring names them:
-#        RAW/mit-subject1 (scripts/devset-mit-subject1.py), RAW/ek55 (scripts/devset-ek55.py),
-#        RAW/kasteren-bc (scripts/devset-kasteren-bc.py); a missing folder skips that set.
-# Then each set is replayed with: python scripts/routine-variants.py CHAINS [--odb DIR --mapping YAML] ...
+#        RAW/mit-subject1 (experiments/devset-mit-subject1.py), RAW/ek55 (experiments/devset-ek55.py),
+#        RAW/kasteren-bc (experiments/devset-kasteren-bc.py); a missing folder skips that set.
+# Then each set is replayed with: python experiments/routine-variants.py CHAINS [--odb DIR --mapping YAML] ...
 # (OUT/sets.txt lists each set's name and those arguments, one line each).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 PY=${PY:-.venv/bin/python}
-OUT=${1:?usage: scripts/make-devsets.sh OUT [RAW]}
+OUT=${1:?usage: experiments/make-devsets.sh OUT [RAW]}
 RAW=${2:-}
 mkdir -p "$OUT/dev"
 # the persona tuning split (the same command makes the reported test split: never replay it)
@@ -24,7 +24,7 @@ cat "$OUT/seed1/tune.jsonl" "$OUT/seed1/test.jsonl" > "$OUT/dev/seed1.jsonl"
 $PY -m oracle generate --personas 40 --days 2 --seed 2 --out "$OUT/sparse"
 cat "$OUT/sparse/tune.jsonl" "$OUT/sparse/test.jsonl" > "$OUT/dev/short.jsonl"
 for chains in "$OUT/bench/tune.jsonl" "$OUT/dev/seed1.jsonl" "$OUT/dev/short.jsonl"; do
-  $PY scripts/dev-conditions.py "$chains" "$OUT/dev"
+  $PY experiments/dev-conditions.py "$chains" "$OUT/dev"
 done
 {
   echo "tune $OUT/bench/tune.jsonl"
@@ -37,16 +37,16 @@ real() {  # NAME: one real set, listed with its odb and mapping
   echo "$1 $OUT/real/$1/chains.jsonl --odb $OUT/real/$1/odb --mapping $OUT/real/$1/mapping.yaml" >> "$OUT/sets.txt"
 }
 if [ -n "$RAW" ] && [ -d "$RAW/mit-subject1" ]; then
-  $PY scripts/devset-mit-subject1.py "$RAW/mit-subject1" "$OUT/real/mit-subject1" && real mit-subject1
+  $PY experiments/devset-mit-subject1.py "$RAW/mit-subject1" "$OUT/real/mit-subject1" && real mit-subject1
 fi
 if [ -n "$RAW" ] && [ -d "$RAW/ek55" ]; then
-  $PY scripts/devset-ek55.py "$RAW/ek55" "$OUT/real/ek55" && real ek55
+  $PY experiments/devset-ek55.py "$RAW/ek55" "$OUT/real/ek55" && real ek55
 fi
 if [ -n "$RAW" ] && [ -d "$RAW/kasteren-bc" ]; then
   for house in B C; do
     h=$(echo "$house" | tr BC bc)
-    $PY scripts/devset-kasteren-bc.py "$house" "$RAW/kasteren-bc" "$OUT/real/kasteren-$h" && real "kasteren-$h"
-    $PY scripts/devset-kasteren-bc.py "$house" "$RAW/kasteren-bc" "$OUT/real/kasteren-$h-objects" --object-sensors \
+    $PY experiments/devset-kasteren-bc.py "$house" "$RAW/kasteren-bc" "$OUT/real/kasteren-$h" && real "kasteren-$h"
+    $PY experiments/devset-kasteren-bc.py "$house" "$RAW/kasteren-bc" "$OUT/real/kasteren-$h-objects" --object-sensors \
       && real "kasteren-$h-objects"
   done
 fi

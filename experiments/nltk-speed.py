@@ -1,6 +1,6 @@
 """Time nltk.lm's interpolated Kneser-Ney against oracle.evaluation.smoothing.KneserNey on one replay.
 
-usage: python scripts/nltk-speed.py CHAINS.jsonl [STEPS]
+usage: python experiments/nltk-speed.py CHAINS.jsonl [STEPS]
 Replays the first user's first STEPS rows (default 200): before each row both models score the
 row's candidates from the earlier actions, then the action is added (nltk: counts.update with the
 new n-grams, no refit). Idle gaps are left out here; both models see the same tokens. Prints the
