@@ -4,7 +4,7 @@ VENV ?= .venv
 PY := $(VENV)/bin/python
 PLT := $(sort $(shell find prolog -name '*.plt'))
 
-.PHONY: setup test lint test-python test-prolog bench demo up up-host down test-mongo clean help
+.PHONY: setup test lint test-python test-prolog bench demo results up up-host down test-mongo clean help
 
 help:
 	@echo "make setup      install python3-venv and SWI-Prolog (Debian) if missing, create $(VENV), install the package"
@@ -12,6 +12,7 @@ help:
 	@echo "make lint       ruff and mypy (config in pyproject.toml)"
 	@echo "make bench      benchmarks (printed figures)"
 	@echo "make demo       the main job on the embedded default store"
+	@echo "make results    regenerate docs/results.md's figures into out/ (13-30 min; SHARED=DIR: the real datasets; experiments/README.md)"
 	@echo "make up/down    docker compose dev stack with MongoDB (needs a Docker engine); make up-host: MongoDB also on 127.0.0.1"
 	@echo "make test-mongo the whole suite against the MongoDB at NEEM_MONGO_URI"
 
@@ -54,6 +55,11 @@ bench:
 
 demo:
 	$(PY) -m oracle demo
+
+# The reproduction of docs/results.md (experiments/make-results.sh --help); the other reproductions,
+# each with its command, are listed in experiments/README.md.
+results:
+	PY=$(PY) $(if $(SHARED),SHARED=$(SHARED)) bash experiments/make-results.sh
 
 COMPOSE = docker compose -f docker/docker-compose.yml
 up up-host:

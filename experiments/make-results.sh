@@ -1,13 +1,23 @@
 #!/usr/bin/env bash
-# Regenerates every figure of docs/results.md (about 30 minutes on 2 cores). Data stays in out/.
-# Tables: python experiments/results-tables.py out. The real sets are converted with the converters'
-# defaults (docs/world.md); nothing here may be changed to favour a method.
+# Regenerates every figure of docs/results.md under the replay rules before the honest ones (13 to 30
+# minutes on 2 cores); the honest rules' section is experiments/honest-replay.sh's. Data stays in
+# out/, plots in docs/results/. Tables: python experiments/results-tables.py out. The real sets are
+# converted with the converters' defaults (docs/world.md); nothing here may be changed to favour a method.
+#
+# usage: experiments/make-results.sh      (or: make results)
+#   PY=PYTHON        the interpreter (default .venv/bin/python)
+#   SHARED=DIR       the folder holding kasteren_house_a/ and egtea_gaze_plus/ (default ../shared/datasets);
+#                    a set whose folder is missing is skipped
 set -euo pipefail
+if [ "${1:-}" = "-h" ] || [ "${1:-}" = "--help" ]; then
+  sed -n '2,/^set -euo/{/^#/s/^# \{0,1\}//p}' "$0"
+  exit 0
+fi
+if [ $# -gt 0 ]; then echo "make-results.sh: takes no arguments (--help)" >&2; exit 2; fi
 cd "$(dirname "$0")/.."
 PY=${PY:-.venv/bin/python}
 SHARED=${SHARED:-../shared/datasets}
-# the replay rules these figures were made under, before the honest rules (docs/evaluation.md, "Replay");
-# the honest rules' figures are experiments/honest-replay.sh's
+# the replay rules these figures were made under, before the honest rules (docs/evaluation.md, "Replay")
 OLD=(--candidates vocabulary --decision start --every-step)
 $PY -m oracle generate --personas 105 --days 7 --seed 0 --out out/bench
 $PY -m oracle evaluate out/bench/test.jsonl "${OLD[@]}" --baselines --ablations \
