@@ -1,6 +1,9 @@
 :- begin_tests(neem_store).
 
 :- use_module(neem_store).
+:- use_module(store/graph).
+:- use_module(store/annotations).
+:- use_module(store/tf).
 
 ex(Local, IRI) :- atom_concat('http://example.org/t#', Local, IRI).
 type(IRI) :- IRI = 'http://www.w3.org/1999/02/22-rdf-syntax-ns#type'.
@@ -97,7 +100,7 @@ test(insert_memory, [cleanup(store_reset)]) :-
 
 test(facade_exports_the_store_api) :-
     module_property(neem_store, exports(Exports)),
-    length(Exports, 27),
+    length(Exports, 19),
     forall(member(N/A, Exports),
            ( functor(H, N, A),
              predicate_property(neem_store:H, imported_from(Home)),
