@@ -1,6 +1,9 @@
 :- begin_tests(neem_store).
 
 :- use_module(neem_store).
+:- use_module(store/graph).
+:- use_module(store/annotations).
+:- use_module(store/tf).
 
 ex(Local, IRI) :- atom_concat('http://example.org/t#', Local, IRI).
 type(IRI) :- IRI = 'http://www.w3.org/1999/02/22-rdf-syntax-ns#type'.
@@ -95,20 +98,25 @@ test(insert_memory, [cleanup(store_reset)]) :-
     store_match([t(s, p, X)], scope(1.0, 2.0)),
     X == o.
 
-test(compact_reply_rows_are_positions_in_its_table) :-
-    neem_store:match_reply("r(d('http://x#a', 2.5, -0.0), [[1,2],[3,[1,3]]])", Table, Rows),
-    findall(Vs, ( member(Row, Rows), neem_store:row_values(Row, Table, Vs) ), Values),
-    Values == [['http://x#a', 2.5], [-0.0, ['http://x#a', -0.0]]].
+test(facade_exports_the_store_api) :-
+    module_property(neem_store, exports(Exports)),
+    length(Exports, 19),
+    forall(member(N/A, Exports),
+           ( functor(H, N, A),
+             predicate_property(neem_store:H, imported_from(Home)),
+             sub_atom(Home, 0, _, _, store_) )).
 
-test(compact_reply_position_outside_its_table,
-     [error(neem_store_error(unexpected_reply(3)), _)]) :-
-    neem_store:match_reply("r(d(a, b), [[1,3]])", Table, [Row]),
-    neem_store:row_values(Row, Table, _).
-
-test(compact_reply_error_and_garbage) :-
-    catch(neem_store:match_reply("error('no store')", _, _), error(neem_store_error(M), _), true),
-    M == 'no store',
-    catch(neem_store:match_reply("r(d(a), [[X]])", _, _), error(neem_store_error(U), _), true),
-    U = unexpected_reply(_).
+test(reset_forgets_every_memory_fact) :-
+    store_reset,
+    store_assert(triple(s, p, o)),
+    store_insert_annotations([annotation(s, label, 'S')]),
+    store_assert_pose(s, 1.0, [map, [0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0]]),
+    store_set_graph_version(onto, '1.0', g),
+    store_reset,
+    \+ store_match([t(_, _, _)], any),
+    \+ store_annotation(_, _, _),
+    \+ store_pose(s, any, _, _),
+    \+ store_graph_version(g, _),
+    store_backend(memory).
 
 :- end_tests(neem_store).

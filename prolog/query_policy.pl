@@ -59,33 +59,50 @@ exposed(history_reference, situation_history_reference/1, hidden).
 exposed(history_reference, load_generated_episode/2, hidden).
 exposed(test_episode, load_test_episode/0, hidden).
 exposed(fixture_triples, fixture_assert/4, hidden).
-% -- the store itself (prolog/neem_store.pl): reached only through the language
-exposed(neem_store, store_backend/1, hidden).
-exposed(neem_store, store_use_memory/0, hidden).
-exposed(neem_store, store_use_python/1, hidden).
-exposed(neem_store, store_current_neem/1, hidden).
-exposed(neem_store, store_assert/1, hidden).
-exposed(neem_store, store_assert/3, hidden).
-exposed(neem_store, store_reset/0, hidden).
-exposed(neem_store, store_match/2, hidden).
-exposed(neem_store, store_match/3, hidden).
-exposed(neem_store, store_match_scoped/3, hidden).
-exposed(neem_store, store_in_graphs/2, hidden).
-exposed(neem_store, store_insert/1, hidden).
-exposed(neem_store, store_insert/2, hidden).
-exposed(neem_store, store_insert/3, hidden).
-exposed(neem_store, store_graph_version/2, hidden).
-exposed(neem_store, store_set_graph_version/3, hidden).
-exposed(neem_store, store_drop_graph/1, hidden).
-exposed(neem_store, store_retract/1, hidden).
-exposed(neem_store, store_annotation/3, hidden).
-exposed(neem_store, store_insert_annotations/1, hidden).
-exposed(neem_store, store_pose/4, hidden).
-exposed(neem_store, store_assert_pose/3, hidden).
-exposed(neem_store, store_taxonomic/1, hidden).
-exposed(neem_store, store_scope_now/1, hidden).
-exposed(neem_store, store_python_request/1, hidden).
-exposed(neem_store, store_set_request/1, hidden).
+% -- the store itself (prolog/store/, its public predicates re-exported by the facade
+%    prolog/neem_store.pl): reached only through the language
+exposed(store_neem, store_backend/1, hidden).
+exposed(store_neem, store_use_memory/0, hidden).
+exposed(store_neem, store_use_python/1, hidden).
+exposed(store_neem, store_current_neem/1, hidden).
+exposed(store_neem, store_reset/0, hidden).
+exposed(store_python, store_python_ready/0, hidden).
+exposed(store_python, store_python_call/3, hidden).
+exposed(store_python, store_python_rows/2, hidden).
+exposed(store_python, store_python_request/1, hidden).
+exposed(store_python, store_set_request/1, hidden).
+exposed(store_pattern, store_taxonomic/1, hidden).
+exposed(store_pattern, store_closure_edge/1, hidden).
+exposed(store_pattern, store_check_pattern/1, hidden).
+exposed(store_pattern, store_check_term/1, hidden).
+exposed(store_pattern, store_compare/3, hidden).
+exposed(store_scope, store_scope_now/1, hidden).
+exposed(store_scope, store_check_scope/1, hidden).
+exposed(store_scope, store_in_scope/3, hidden).
+exposed(store_scope, store_scope_intersection/4, hidden).
+exposed(store_scope, store_in_graphs/2, hidden).
+exposed(store_scope, store_query_graphs/1, hidden).
+exposed(store_memory, store_assert/1, hidden).
+exposed(store_memory, store_assert/3, hidden).
+exposed(store_memory, store_memory_insert/3, hidden).
+exposed(store_memory, store_memory_retract/1, hidden).
+exposed(store_memory, store_memory_drop_graph/1, hidden).
+exposed(store_memory, store_memory_match/3, hidden).
+exposed(store_write, store_insert/1, hidden).
+exposed(store_write, store_insert/2, hidden).
+exposed(store_write, store_insert/3, hidden).
+exposed(store_write, store_retract/1, hidden).
+exposed(store_read, store_match/2, hidden).
+exposed(store_read, store_match/3, hidden).
+exposed(store_read, store_match_scoped/3, hidden).
+exposed(store_graph, store_graph_version/2, hidden).
+exposed(store_graph, store_set_graph_version/3, hidden).
+exposed(store_graph, store_drop_graph/1, hidden).
+exposed(store_annotations, store_annotation/3, hidden).
+exposed(store_annotations, store_insert_annotations/1, hidden).
+exposed(store_tf, store_pose/4, hidden).
+exposed(store_tf, store_assert_pose/3, hidden).
+exposed(store_tf, store_poses/4, hidden).
 % -- the query language (prolog/lang/)
 exposed(kb_db, load_owl/1, hidden).             % reads a file, replaces a graph
 exposed(kb_db, load_owl/2, hidden).
@@ -443,7 +460,6 @@ exposed(kb_tf, pose_compose/3, read).
 exposed(kb_tf, tf_logger_enable/0, write).
 exposed(kb_tf, tf_logger_disable/0, write).
 exposed(kb_tf, tf_mem_clear/0, write).
-exposed(neem_store, store_poses/4, hidden).
 exposed(mng_client, mng_db_name/1, read).
 exposed(mng_client, mng_drop/2, write).
 exposed(kb_urdf, urdf_load/2, hidden).   % reads a file

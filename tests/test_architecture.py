@@ -1,6 +1,6 @@
 """The house rules of docs/architecture.md, checked on the tree: small modules (or a reason in the
-docstring), every module on that page and no stale names there, commands that do not import each
-other, and a product that never imports the evaluation."""
+docstring), Prolog modules of at most 20 exports, every module on that page and no stale names there,
+commands that do not import each other, and a product that never imports the evaluation."""
 
 from __future__ import annotations
 
@@ -14,6 +14,12 @@ ROOT = Path(__file__).resolve().parents[1]
 PACKAGE = ROOT / "python" / "oracle"
 PAGE = (ROOT / "docs" / "architecture.md").read_text(encoding="utf-8")
 LARGE = 450
+PROLOG = ROOT / "prolog"
+#: KnowRob's modules export about a dozen predicates about one concept (style.md): at most this many.
+MOST_EXPORTS = 20
+MODULE_HEAD = re.compile(r":- module\(\s*\w+\s*,\s*\[(.*?)\]\s*\)\.", re.S)
+REEXPORT = re.compile(r":- reexport\(\s*(\[.*?\]|[^,\[\]()]+?)\s*(?:,\s*\[(.*?)\])?\s*\)\.", re.S)
+INDICATOR = re.compile(r"[a-z_]\w*\s*/\s*\d+")
 
 
 def modules() -> list[Path]:
@@ -54,6 +60,38 @@ def test_no_module_is_large_without_saying_why():
         if lines > LARGE and "why this module is large" not in doc.lower():
             large.append(f"{path.relative_to(PACKAGE)} ({lines} lines)")
     assert not large, f"over {LARGE} lines without 'Why this module is large' in the docstring: {large}"
+
+
+def prolog_exports(path: Path) -> set[str]:
+    """What a Prolog module exports: its header's list and what it re-exports (a reexport/2 list, or
+    every export of the modules a reexport/1 names, paths relative to the file)."""
+    text = re.sub(r"%[^\n]*", "", path.read_text(encoding="utf-8"))
+    head = MODULE_HEAD.search(text)
+    found = {pi.replace(" ", "") for pi in INDICATOR.findall(head.group(1))} if head else set()
+    for spec, only in REEXPORT.findall(text):
+        if only:
+            found |= {pi.replace(" ", "") for pi in INDICATOR.findall(only)}
+            continue
+        for name in spec.strip("[]").split(","):
+            found |= prolog_exports((path.parent / f"{name.strip().strip(chr(39))}.pl").resolve())
+    return found
+
+
+def test_no_prolog_module_exports_more_than_twenty() -> None:
+    crowded = {}
+    for path in sorted(PROLOG.rglob("*.pl")):
+        count = len(prolog_exports(path))
+        if count > MOST_EXPORTS:
+            crowded[str(path.relative_to(PROLOG))] = count
+    assert not crowded, f"Prolog modules exporting more than {MOST_EXPORTS} predicates (split them): {crowded}"
+
+
+def test_the_export_count_sees_re_exports(tmp_path: Path) -> None:
+    (tmp_path / "part.pl").write_text(":- module(part, [a/1, b/2]).\n", encoding="utf-8")
+    (tmp_path / "facade.pl").write_text(":- module(facade, [c/0]).\n:- reexport(part).\n"
+                                        ":- reexport(store/x, [d/1, % a comment e/9\n e/2]).\n", encoding="utf-8")
+    assert prolog_exports(tmp_path / "facade.pl") == {"a/1", "b/2", "c/0", "d/1", "e/2"}
+    assert len(prolog_exports(PROLOG / "neem_store.pl")) > 0  # a facade of re-exports only
 
 
 def test_the_architecture_page_names_every_module():

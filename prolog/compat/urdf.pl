@@ -29,7 +29,7 @@ object is named as that frame), as KnowRob does for its tf memory.
 :- use_module(library(sgml)).
 :- use_module('../lang/query', [kb_call/2, kb_project/1, kb_project/3]).
 :- use_module('../lang/triple', [kb_iri/2]).
-:- use_module('../neem_store', [store_assert_pose/3]).
+:- use_module('../store/tf', [store_assert_pose/3]).
 :- use_module('../model/rdfs', [new_iri/2]).
 :- use_module('../model/tf', [object_frame_name/2]).
 :- use_module('../model/soma_workflow', []).         % has_kinematics_file/3's rule (KnowRob's model/SOMA.pl)

@@ -2,6 +2,7 @@
 
 :- use_module(urdf).
 :- use_module('../neem_store').
+:- use_module('../store/tf').
 :- use_module('../lang/query').
 :- use_module('../model/soma_workflow', [has_kinematics_file/3]).
 

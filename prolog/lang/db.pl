@@ -42,8 +42,10 @@ Pkg), as ROS's `$ROS_PACKAGE_PATH`; a package found nowhere is an error naming t
 :- use_module(library(option)).
 % The RDF parsers (~60 ms to load) are needed only when an OWL file is loaded: on first use.
 :- autoload(library(semweb/rdf_db), [rdf_load/2, rdf/4, rdf_unload_graph/1]).
-:- use_module('../neem_store', [store_insert/3, store_insert_annotations/1, store_annotation/3, store_backend/1,
-                                 store_graph_version/2, store_set_graph_version/3, store_drop_graph/1]).
+:- use_module('../neem_store', [store_insert/3, store_backend/1]).
+:- use_module('../store/graph', [store_graph_version/2, store_set_graph_version/3, store_drop_graph/1]).
+:- use_module('../store/annotations', [store_insert_annotations/1, store_annotation/3]).
+:- use_module('../store/python', [store_python_call/3]).
 :- use_module(triple, [kb_iri/2]).
 :- use_module(subgraph, [add_subgraph/2]).
 
@@ -72,9 +74,7 @@ dump_request(Action, Dir0) :-
     must_be(atomic, Dir0),
     atom_string(Dir, Dir0),
     (   store_backend(python(Neem))
-    ->  neem_store:py_dump([Action, Neem, Dir], Reply),
-        term_string(T, Reply),
-        (   T = error(Message) -> throw(error(neem_store_error(Message), _)) ; true )
+    ->  store_python_call(dump, [Action, Neem, Dir], _)
     ;   throw(error(existence_error(neem, Action), context(Action/1, 'the memory backend holds no NEEM to dump')))
     ).
 

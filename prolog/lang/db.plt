@@ -3,6 +3,7 @@
 :- use_module(db).
 :- use_module(query).
 :- use_module('../neem_store').
+:- use_module('../store/graph').
 
 fixture(Name, File) :-
     module_property(kb_db, file(Here)), file_directory_name(Here, Dir),

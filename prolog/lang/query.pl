@@ -47,8 +47,8 @@ kb_project/1 asserts statements built from the same vocabulary (see kb_project/1
 :- use_module(library(pairs)).
 :- use_module(library(yall)).
 :- use_module('../neem_store', [store_match/2, store_match/3, store_match_scoped/3, store_insert/3,
-                                 store_retract/1, store_in_graphs/2, store_annotation/3,
-                                 store_insert_annotations/1]).
+                                 store_retract/1, store_in_graphs/2]).
+:- use_module('../store/annotations', [store_annotation/3, store_insert_annotations/1]).
 :- use_module(subgraph, [graph_filter/2]).
 :- use_module(triple, [kb_iri/2, iri_term/1, triple_steps/6, unit_factor/2]).
 :- use_module(scope, [current_scope/1, scope_check/1, scope_overlaps/3, runtime_scope/3,

@@ -65,10 +65,10 @@ test(bad_scope, [error(type_error(scope, later))]) :-
 test(project_merges_overlapping_scopes, [nondet, setup(store_reset), cleanup(store_reset)]) :-
     kb_project(triple(s, p, o), scope(10, 20)),
     kb_project(triple(s, p, o), scope(5, 12)),
-    findall(S-U, neem_store:mem_triple(s, p, o, S, U, user), L), L == [5.0-20.0],
+    findall(S-U, store_memory:mem_triple(s, p, o, S, U, user), L), L == [5.0-20.0],
     kb_call(triple(s, p, o), scope(6, 19)),
     kb_project(triple(s, p, o), scope(30, 40)),
-    findall(S-U, neem_store:mem_triple(s, p, o, S, U, user), L2), msort(L2, [5.0-20.0, 30.0-40.0]).
+    findall(S-U, store_memory:mem_triple(s, p, o, S, U, user), L2), msort(L2, [5.0-20.0, 30.0-40.0]).
 
 test(until_narrows, [nondet, setup(store_reset), cleanup(store_reset)]) :-
     kb_project(triple(q, region, green)),
@@ -77,7 +77,7 @@ test(until_narrows, [nondet, setup(store_reset), cleanup(store_reset)]) :-
     kb_call(triple(q, region, red)),
     \+ kb_call(triple(q, region, green)),
     kb_call(triple(q, region, green) during [200, 250]),
-    findall(U, neem_store:mem_triple(q, region, green, _, U, user), [300.0]).
+    findall(U, store_memory:mem_triple(q, region, green, _, U, user), [300.0]).
 
 test(project_during_event, [nondet, setup(store_reset), cleanup(store_reset)]) :-
     kb_project(event_interval(act, 10.0, 20.0)),
@@ -147,7 +147,7 @@ test(project_into_graph_merges_there, [nondet, setup(store_reset), cleanup(store
     kb_project(triple(s, p, o), scope(10, 20), [graph(onto)]),
     kb_project(triple(s, p, o), scope(5, 12), [graph(onto)]),
     kb_project(triple(s, p, o), scope(5, 12)),
-    findall(G-S-U, neem_store:mem_triple(s, p, o, S, U, G), L),
+    findall(G-S-U, store_memory:mem_triple(s, p, o, S, U, G), L),
     msort(L, [onto-5.0-20.0, user-5.0-12.0]).
 
 test(project_graph_star, [error(domain_error(graph_to_write, '*'))]) :-

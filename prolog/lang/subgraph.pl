@@ -27,7 +27,8 @@ edges load_owl adds live in this process, as KnowRob's.
 
 :- use_module(library(error)).
 :- use_module(library(lists)).
-:- use_module('../neem_store', [store_in_graphs/2, store_match/3, store_graph_version/2]).
+:- use_module('../neem_store', [store_in_graphs/2, store_match/3]).
+:- use_module('../store/graph', [store_graph_version/2]).
 
 :- dynamic subgraph_of_/2.      % Sub, Sup: asserted edges (load_owl's parent_graph, ...)
 

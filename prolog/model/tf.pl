@@ -30,7 +30,7 @@ is composed until the asked frame is reached (any ancestor; no answer when it is
 */
 
 :- use_module(library(error)).
-:- use_module('../neem_store', [store_pose/4, store_assert_pose/3, store_poses/4]).
+:- use_module('../store/tf', [store_pose/4, store_assert_pose/3, store_poses/4]).
 :- use_module('../lang/scope', [scope_term/2, time_scope_data/2]).
 :- use_module('../lang/query', [kb_call/1]).
 :- use_module('../lang/triple', [kb_iri/2]).

@@ -4,6 +4,7 @@
 :- use_module('../lang/query').
 :- use_module('../lang/temporal').
 :- use_module('../neem_store').
+:- use_module('../store/tf').
 :- use_module(event).
 :- use_module('../lang/scope').
 

@@ -30,7 +30,8 @@ The sentences are made in Python (oracle.past); this module hands over the evide
 :- use_module(library(assoc)).
 :- use_module(library(ordsets)).
 :- use_module('../json_text', [json_text/2]).
-:- use_module('../neem_store', [store_match/3, store_python_request/1, store_pose/4]).
+:- use_module('../neem_store', [store_match/3, store_python_request/1]).
+:- use_module('../store/tf', [store_pose/4]).
 :- use_module('../lang/query', [kb_call/2, kb_findall/4, kb_findall/5]).
 :- use_module('../lang/triple', [kb_iri/2]).
 :- use_module('../model/rdfs', []).

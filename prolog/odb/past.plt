@@ -2,6 +2,7 @@
 
 :- use_module(past).
 :- use_module('../neem_store').
+:- use_module('../store/tf').
 :- use_module('../fixtures/test_episode').
 :- use_module('../fixtures/triples', [fixture_assert/4]).
 

@@ -1,7 +1,8 @@
 """pyswip: the one place Python and Prolog meet.
 
 The Python process owns the store; SWI-Prolog runs the rules in prolog/. The bridge
-registers three foreign predicates in module ``neem_store`` and nothing else touches them:
+registers its foreign predicates in module ``store_python`` (prolog/store/python.pl, the
+request channel) and nothing else touches them; the main ones:
 
 ``py_match(+Request, -Chunk)`` (nondeterministic)
     one conjunction of triple patterns -> ``Store.match`` (one SQL join / one aggregation
@@ -44,9 +45,12 @@ from oracle.store.chunks import MatchChunk
 if TYPE_CHECKING:
     from oracle.ontology import OdbOntology
 
-#: The Prolog modules under ``paths.prolog_dir()``, in load order (KnowRob's layout: lang/, model/; the
-#: odb extension in odb/); each is imported into ``user`` so a typed query sees its exports.
-MODULES = ("neem_store", "json_text", "lang/triple", "lang/scope", "lang/query", "lang/holds", "lang/temporal", "lang/db",
+#: The Prolog modules under ``paths.prolog_dir()``, in load order (KnowRob's layout: the store's facade
+#: neem_store over store/, then lang/, model/; the odb extension in odb/); each is imported into ``user`` so a
+#: typed query sees its exports (the facade's re-exports are the same predicates as their home's).
+MODULES = ("neem_store", "store/neem", "store/python", "store/pattern", "store/scope", "store/memory", "store/write",
+           "store/read", "store/graph", "store/annotations", "store/tf", "json_text", "lang/triple", "lang/scope",
+           "lang/query", "lang/holds", "lang/temporal", "lang/db",
            "model/rdfs", "model/event", "model/object", "model/situation", "model/action", "model/interval", "model/tf",
            "model/owl", "model/owl_description", "model/dul_object_types", "model/dul_description", "model/soma_types",
            "model/soma_object", "model/soma_workflow", "model/soma_shape", "model/qudt", "reasoning/plowl",
@@ -149,11 +153,11 @@ def _decode_request(
         graphs: tuple[str, ...] | None = None
         for kind, value in zip(enc[0::2], enc[1::2]):
             kind = _plain(kind)
-            if kind == "g":  # the graphs a kb_call graph(G) option reads (neem_store)
+            if kind == "g":  # the graphs a kb_call graph(G) option reads (store_scope)
                 graphs = tuple(str(_plain(g)) for g in value)
             elif kind == "v":
                 terms.append(Var(f"v{value}"))
-            elif kind == "cmp":  # cmp(Op, Number, Var), checked by neem_store
+            elif kind == "cmp":  # cmp(Op, Number, Var), checked by store_pattern
                 op, number, index = value
                 terms.append(Cmp(_plain(op), number, Var(f"v{index}")))
             else:
@@ -248,7 +252,7 @@ def py_match(req: Any, out: Any, handle: Any) -> Any:
     if control == PL_FIRST_CALL:
         CROSSINGS["py_match"] += 1
         try:
-            if not isinstance(req, list):  # the request as JSON text (neem_store's match/4)
+            if not isinstance(req, list):  # the request as JSON text (store_python_rows/2)
                 req = json.loads(_plain(req))
             chunks = _chunks(_connected().store, req)
             first = next(chunks, "r(d,[])")
@@ -435,16 +439,16 @@ def _ensure_loaded() -> None:
         return
     from pyswip import Prolog
 
-    Prolog.register_foreign(py_match, arity=2, module="neem_store", nondeterministic=True)
-    Prolog.register_foreign(py_insert, arity=2, module="neem_store")
-    Prolog.register_foreign(py_retract, arity=2, module="neem_store")
-    Prolog.register_foreign(py_graph, arity=2, module="neem_store")
-    Prolog.register_foreign(py_request, arity=1, module="neem_store")
-    Prolog.register_foreign(py_scopes, arity=2, module="neem_store")
-    Prolog.register_foreign(py_annotations, arity=2, module="neem_store")
-    Prolog.register_foreign(py_annotate, arity=2, module="neem_store")
-    Prolog.register_foreign(py_tf, arity=2, module="neem_store")
-    Prolog.register_foreign(py_dump, arity=2, module="neem_store")
+    Prolog.register_foreign(py_match, arity=2, module="store_python", nondeterministic=True)
+    Prolog.register_foreign(py_insert, arity=2, module="store_python")
+    Prolog.register_foreign(py_retract, arity=2, module="store_python")
+    Prolog.register_foreign(py_graph, arity=2, module="store_python")
+    Prolog.register_foreign(py_request, arity=1, module="store_python")
+    Prolog.register_foreign(py_scopes, arity=2, module="store_python")
+    Prolog.register_foreign(py_annotations, arity=2, module="store_python")
+    Prolog.register_foreign(py_annotate, arity=2, module="store_python")
+    Prolog.register_foreign(py_tf, arity=2, module="store_python")
+    Prolog.register_foreign(py_dump, arity=2, module="store_python")
     folder = prolog_dir()
     paths = [folder / f"{name}.pl" for name in MODULES]
     for path in paths:
@@ -453,7 +457,7 @@ def _ensure_loaded() -> None:
     if not _load_compiled(folder, paths):
         for path in paths:
             _STATE["request"] = [_atom(str(path))]
-            _run("neem_store:py_request(R), R = [F], use_module(user:F)")
+            _run("store_python:py_request(R), R = [F], use_module(user:F)")
     _STATE["request"] = None
     _STATE["loaded"] = True
 
@@ -473,7 +477,7 @@ def _load_compiled(folder: Path, paths: list[Path]) -> bool:
         if compiled.is_file():
             _STATE["request"] = [_atom(str(compiled)), files]
             try:
-                if not _run("neem_store:py_request(R), R = [F, Fs], catch(load_files(user:F, []), _, fail),"
+                if not _run("store_python:py_request(R), R = [F, Fs], catch(load_files(user:F, []), _, fail),"
                             " forall(member(S, Fs), source_file(S))"):
                     raise PrologError(f"{compiled}: does not load")
             except PrologError:
@@ -484,7 +488,7 @@ def _load_compiled(folder: Path, paths: list[Path]) -> bool:
         loader = modulecache.prepare(compiled, paths, quote_atom)
         # qcompile loads the modules, as use_module would, and writes the .qlf beside the loader.
         _STATE["request"] = [_atom(str(loader)), files]
-        if not _run("neem_store:py_request(R), R = [F, Fs], qcompile(user:F, [include(user)]),"
+        if not _run("store_python:py_request(R), R = [F, Fs], qcompile(user:F, [include(user)]),"
                     " forall(member(S, Fs), source_file(S))"):
             modulecache.discard(loader)
             raise PrologError(f"{loader}: does not compile")
@@ -547,10 +551,10 @@ class Bridge:
                 return
             _STATE["request"] = [_atom(self.neem_id)]
             try:
-                _run("neem_store:py_request(R), R = [N], neem_store:store_use_python(N)")
+                _run("store_python:py_request(R), R = [N], neem_store:store_use_python(N)")
                 if self.ontology is not None:
                     _STATE["request"] = _ontology_request(self.ontology)
-                    _run("neem_store:py_request(Q), Q = [NS, Rows], odb_names:odb_set_namespace(NS),"
+                    _run("store_python:py_request(Q), Q = [NS, Rows], odb_names:odb_set_namespace(NS),"
                          " forall(member([T, Ta, R], Rows), odb_names:odb_set_task_roles(T, Ta, R))")
             finally:
                 _STATE["request"] = None
@@ -587,11 +591,11 @@ class Bridge:
 
     def run_goal(self, text: str) -> int:
         """Run a goal once as ``swipl -g`` does: 0 on success, 1 on failure, 2 on an error."""
-        rows = self._with_request([text], "neem_store:py_request(R), R = [G], batch_toplevel:batch_goal(G, S)")
+        rows = self._with_request([text], "store_python:py_request(R), R = [G], batch_toplevel:batch_goal(G, S)")
         return int(rows[0]["S"])
 
     def ask(self, query: str, request: list[Any]) -> list[dict[str, Any]]:
-        """Solutions of ``query``, which reads its values with ``neem_store:py_request/1``:
+        """Solutions of ``query``, which reads its values with ``store_python:py_request/1``:
         values a client sent travel as terms and never become query text."""
         with _LOCK:
             return [{k: _python_value(v) for k, v in row.items()} for row in self._with_request(request, query)]
@@ -600,7 +604,7 @@ class Bridge:
         """Load the Prolog module file ``path`` into ``user`` unless ``loaded`` (a predicate
         indicator, ``module:name/arity``) is already defined (one question when it is)."""
         if not self.ask(f"current_predicate({loaded})", []):
-            self.ask("neem_store:py_request(R), R = [F], use_module(user:F)", [_atom(str(path))])
+            self.ask("store_python:py_request(R), R = [F], use_module(user:F)", [_atom(str(path))])
 
     def ask_plain(self, query: str, values: Sequence[Any]) -> list[dict[str, Any]]:
         """``ask`` with plain Python values: a string becomes an atom, None the atom ``none``,
@@ -679,10 +683,10 @@ class Bridge:
         predicates it classes as writes). QueryValueError for a binding of another type."""
         self._ready()  # an engine on this thread before any term is made
         if not _STATE.get("json_query"):
-            self.ask("neem_store:py_request(R), R = [F], use_module(user:F)", [_atom(str(module))])
+            self.ask("store_python:py_request(R), R = [F], use_module(user:F)", [_atom(str(module))])
             _STATE["json_query"] = True
         pairs = [[_atom(name), _term_value(name, value)] for name, value in bindings.items()]
-        rows = self.ask("neem_store:py_request(R), json_query:json_query(R, J)",
+        rows = self.ask("store_python:py_request(R), json_query:json_query(R, J)",
                         [query, pairs, offset, limit, float(seconds), _atom("true" if writes else "false")])
         return _json_object(_json_value(rows[0]["J"]), "json_query:json_query/2")
 

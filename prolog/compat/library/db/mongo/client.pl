@@ -11,7 +11,7 @@ that the directive finds this module. Only these two predicates are here (docs/p
 */
 
 :- use_module(library(error)).
-:- use_module('../../../../neem_store', [store_drop_graph/1]).
+:- use_module('../../../../store/graph', [store_drop_graph/1]).
 
 %!  mng_db_name(-DB) is det.
 %   The database KnowRob reads by default, `roslog` (a NEEM's dump folders are named after it).
