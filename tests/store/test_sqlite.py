@@ -123,11 +123,11 @@ def test_the_store_schema_is_made_whole_or_not_at_all(tmp_path, monkeypatch):
     # without the schema row, which every reader then refused as "store schema None".
     import sqlite3
 
-    import oracle.store.sqlite as module
+    import oracle.store.sqlite.opening as module
 
     path = tmp_path / "s.sqlite"
-    broken = (*module._SCHEMA_STATEMENTS[:3], "SELECT no_such_function()", *module._SCHEMA_STATEMENTS[3:])
-    monkeypatch.setattr(module, "_SCHEMA_STATEMENTS", broken)
+    broken = (*module.SCHEMA_STATEMENTS[:3], "SELECT no_such_function()", *module.SCHEMA_STATEMENTS[3:])
+    monkeypatch.setattr(module, "SCHEMA_STATEMENTS", broken)
     with pytest.raises(StoreError, match="cannot open the NEEM store"):
         SQLiteStore(path)
     with sqlite3.connect(path) as raw:

@@ -16,16 +16,12 @@ The query compiler, which needs none of it but term ids, lives in ``store.sql``.
 from __future__ import annotations
 
 import heapq
-import itertools
 import math
 import os
-import sqlite3
-import stat
 import struct
 import time
-import urllib.parse
 from collections.abc import Callable, Collection, Iterable, Iterator, Mapping, Sequence
-from contextlib import contextmanager
+from contextlib import AbstractContextManager
 from functools import partial
 from operator import itemgetter
 from datetime import datetime, timezone
@@ -42,9 +38,6 @@ from oracle.errors import StoreError
 from oracle.store.base import COLLECTION_KINDS, STAGING, Appended, AppendMark, Closed, NeemInfo, Store
 from oracle.store.model import (
     HIERARCHY,
-    RDF_TYPE,
-    SUBCLASS_OF,
-    SUBPROPERTY_OF,
     TAXONOMIC,
     Annotation,
     DocumentBuilder,
@@ -74,18 +67,20 @@ from oracle.store.sql import (
 )
 from oracle.store.chunks import MatchChunk, concatenated_chunks, raw_chunks
 from oracle.store import kept
-from oracle.store.integrity import IntegrityCheck, damaged, problems_of
+from oracle.store.sqlite.connection import Connection, inserted_id
+from oracle.store.sqlite.opening import open_read_only, open_writer
+from oracle.store.sqlite.tables import (
+    DOC_COLUMNS,
+    GROUPED_ROWS,
+    HIERARCHY_SQL,
+    INSERT_COLUMNS,
+    SIDE,
+    TRIPLE_COLUMNS,
+    indexes,
+    quote,
+    neem_table,
+)
 
-SCHEMA_VERSION = "4"
-#: Schemas this version reads: 3 is 4 without side tables (opened for writing, it becomes 4,
-#: so an older version, which would not see side tables, refuses it from then on).
-READS_SCHEMAS = ("3", SCHEMA_VERSION)
-#: Rows one INSERT statement writes into a table with one plain index (side rows, new terms):
-#: SQLite then runs a statement per 80 rows instead of one per row, a third less CPU there.
-#: Not into the triples table: with its partial indexes, grouped INSERTs measured slower
-#: (docs/store.md). 80 rows of 13 columns stay below 999 parameters, the limit of SQLite
-#: builds before 3.32.
-GROUPED_ROWS = 80
 #: Terms whose ids a writer keeps in memory (about 100 bytes each) before it starts over.
 TERM_CACHE = 50_000
 
@@ -103,10 +98,6 @@ def _blob(doc: Mapping[str, Any]) -> bytes:
     """A document's BSON: the bytes it was read with when it came from a dump."""
     raw = getattr(doc, "raw", None)
     return raw if raw is not None else bson.encode(doc, codec_options=_CODEC)
-
-
-def _quote(name: str) -> str:
-    return '"' + name.replace('"', '""') + '"'
 
 
 def _joined_in_order(patterns: Sequence[TriplePattern]) -> set[int]:
@@ -132,183 +123,11 @@ def _grouped(rows: list[Any], names: list[str], out: Callable[[Any, int], Any]) 
             yield solution
 
 
-def _table(neem_id: str, kind: str) -> str:
-    return _quote(f"{neem_id}_{kind}")
-
-
-#: Columns ``_document`` rebuilds a triple document from.
-_DOC_COLUMNS = ", ".join(f"t0.{c}" for c in ("oid", "s", "p", "o", "ok", "pstar", "ostar", "graph", "since", "until", "sk", "raw"))
 SK_DECIMAL, SK_DOUBLE = 1, 2
 _CODEC = DEFAULT_CODEC_OPTIONS.with_options(datetime_conversion=DatetimeConversion.DATETIME_AUTO)
 
-#: The taxonomic properties get fixed term ids so SQL (and partial indexes) can name them.
-_RESERVED_TERMS = ((1, RDF_TYPE), (2, SUBCLASS_OF), (3, SUBPROPERTY_OF))
-#: The store's own tables, made (or upgraded from schema 3) in one transaction when a writer opens
-#: the file: a process killed meanwhile leaves no half-made store that readers would refuse.
-_SCHEMA_STATEMENTS = (
-    "CREATE TABLE IF NOT EXISTS store_info(key TEXT PRIMARY KEY, value TEXT)",
-    "CREATE TABLE IF NOT EXISTS neems(id TEXT PRIMARY KEY, meta BLOB NOT NULL)",
-    "CREATE TABLE IF NOT EXISTS closure(cid INTEGER PRIMARY KEY, key BLOB UNIQUE NOT NULL)",
-    "CREATE TABLE IF NOT EXISTS closure_member(cid INTEGER NOT NULL, pos INTEGER NOT NULL, value, PRIMARY KEY(cid, pos)) WITHOUT ROWID",
-    "CREATE INDEX IF NOT EXISTS closure_member_value ON closure_member(value, cid)",
-    "CREATE TABLE IF NOT EXISTS terms(id INTEGER PRIMARY KEY, value TEXT NOT NULL UNIQUE)",
-    "CREATE TABLE IF NOT EXISTS side_tables(neem TEXT PRIMARY KEY, p INTEGER NOT NULL, closures TEXT NOT NULL)",
-    # A NEEM's update and delete count (Store.append_mark), kept by triggers on its tables.
-    "CREATE TABLE IF NOT EXISTS revisions(neem TEXT PRIMARY KEY, token TEXT NOT NULL UNIQUE, changes INTEGER NOT NULL)",
-    "INSERT OR IGNORE INTO store_info VALUES ('schema', '4')",
-    "UPDATE store_info SET value='4' WHERE key='schema' AND value='3'",
-)
-_HIERARCHY_SQL = "(2, 3)"
-# Partial indexes: the o* index only holds taxonomic rows and the p* index only the others,
-# so each row updates three indexes; queries repeat the WHERE term so SQLite may use them.
-_TRIPLE_INDEXES = (
-    ("sp", "s, p", ""),
-    ("op", "o, p", ""),
-    ("postar", "p, ostar", " WHERE ostar > 0"),
-    ("pstaro", "pstar, o", f" WHERE {non_taxonomic('p')}"),
-)
-
-
 #: Term ids looked up one at a time before ``_tval`` reads the whole terms table instead.
 TERM_SCAN_AFTER = 2000
-
-
-#: The side table of a NEEM (``Side``): the triples of its side property, same columns as
-#: the triples table, indexed by subject only (the reads: an imagining's plans, or all of them).
-SIDE = "side"
-_TRIPLE_COLUMNS = (
-    "(id INTEGER PRIMARY KEY, oid BLOB NOT NULL, s, p, o, ok INTEGER,"
-    " pstar INTEGER, ostar INTEGER, graph, since REAL, until REAL, sk INTEGER, raw BLOB)"
-)
-_INSERT_COLUMNS = "id, oid, s, p, o, ok, pstar, ostar, graph, since, until, sk"
-
-
-#: How long a writer opening the store keeps asking for WAL mode while others open it too.
-WAL_SWITCH_WAIT_S = 10.0
-
-
-def _use_wal(conn: sqlite3.Connection) -> None:
-    """Put the file in WAL mode. SQLite refuses the switch at once ("database is locked", no busy
-    wait) while another process opening the same new file switches it: ask again, briefly."""
-    deadline = time.monotonic() + WAL_SWITCH_WAIT_S
-    while True:
-        try:
-            conn.execute("PRAGMA journal_mode=WAL")
-            return
-        except sqlite3.OperationalError as error:
-            if "locked" not in str(error) and "busy" not in str(error) or time.monotonic() > deadline:
-                raise
-            time.sleep(0.005 + 0.02 * int.from_bytes(os.urandom(1), "big") / 255)
-
-
-def _indexes(neem_id: str, taken: Collection[str] = (), side: bool = False) -> list[tuple[str, str]]:
-    """(name, CREATE INDEX statement) of every index of a NEEM's tables, each name made
-    unique against ``taken`` (the store's index names: a renamed NEEM keeps its old ones)."""
-    t = partial(_table, neem_id)
-    made = [(f"{neem_id}_triples_{name}", f"ON {t('triples')}({cols}){where}") for name, cols, where in _TRIPLE_INDEXES]
-    made += [(f"{neem_id}_annotations_sp", f"ON {t('annotations')}(s, p)"), (f"{neem_id}_tf_cs", f"ON {t('tf')}(child, stamp)")]
-    if side:
-        made.append((f"{neem_id}_side_s", f"ON {t(SIDE)}(s)"))
-    unique = [(name if name not in taken else f"{name}_{os.urandom(4).hex()}", target) for name, target in made]
-    return [(name, f"CREATE INDEX {_quote(name)} {target}") for name, target in unique]
-
-
-def _rowid(cursor: _Cursor | sqlite3.Cursor) -> int:
-    """The id of the row an INSERT just made (sqlite3 types it Optional for other statements)."""
-    if cursor.lastrowid is None:
-        raise StoreError("SQLite reported no id for an inserted row")
-    return cursor.lastrowid
-def _reason(error: sqlite3.Error) -> str:
-    text = str(error)
-    if isinstance(error, sqlite3.DatabaseError) and "malformed" in text:
-        return f"{text}: the store file is corrupt (restore it from a backup or an export)"
-    return text
-
-
-class _Cursor:
-    """A cursor whose rows, fetched lazily, also turn sqlite3 errors (a corrupt page met while
-    reading) into StoreError."""
-
-    def __init__(self, cursor: sqlite3.Cursor, location: str) -> None:
-        self.cursor = cursor
-        self.location = location
-
-    def fetchone(self) -> Any:
-        try:
-            return self.cursor.fetchone()
-        except sqlite3.Error as error:
-            raise StoreError(f"{self.location}: {_reason(error)}") from None
-
-    def fetchall(self) -> list[Any]:
-        try:
-            return self.cursor.fetchall()
-        except sqlite3.Error as error:
-            raise StoreError(f"{self.location}: {_reason(error)}") from None
-
-    def __iter__(self) -> Iterator[Any]:
-        # Not ``yield from``: a generator abandoned mid-way (an export that failed on a full
-        # disk) would then close the cursor when collected, after the store closed, and print
-        # a traceback ("Cannot operate on a closed database") instead of staying quiet.
-        try:
-            for row in self.cursor:  # noqa: UP028 - see above
-                yield row
-        except sqlite3.Error as error:
-            raise StoreError(f"{self.location}: {_reason(error)}") from None
-
-    @property
-    def lastrowid(self) -> int | None:
-        return self.cursor.lastrowid
-
-    @property
-    def rowcount(self) -> int:
-        return self.cursor.rowcount
-
-
-#: Statements that never change the file (a deferred BEGIN starts a read snapshot; the
-#: automatic_index pragma is a setting of the connection).
-_READS = ("SELECT", "EXPLAIN", "COMMIT", "ROLLBACK", "END", "PRAGMA AUTOMATIC_INDEX")
-
-
-def _writes(sql: str) -> bool:
-    """Whether a statement may change the file (the pragmas a writer sets are before any check)."""
-    head = " ".join(sql[:40].split()).upper()
-    return not (head.startswith(_READS) or head == "BEGIN" or head.startswith("BEGIN DEFERRED"))
-
-
-class _Connection:
-    """sqlite3 errors (a NEEM dropped by another process, a locked or full disk) as StoreError.
-    With ``check`` (oracle.store.integrity), the first statement that may write waits for the
-    whole-file check and is refused, as every later one, when the file is damaged."""
-
-    def __init__(self, conn: sqlite3.Connection, location: str, check: IntegrityCheck | None = None) -> None:
-        self.conn = conn
-        self.location = location
-        self.check = check
-
-    def _before_write(self) -> None:
-        if self.check is not None:
-            self.check.wait()   # StoreError when damaged: the check stays, so every write is refused
-            self.check = None
-
-    def execute(self, sql: str, params: Sequence[Any] | Mapping[str, Any] = ()) -> _Cursor:
-        if self.check is not None and _writes(sql):
-            self._before_write()
-        try:
-            return _Cursor(self.conn.execute(sql, params), self.location)
-        except sqlite3.Error as error:
-            raise StoreError(f"{self.location}: {_reason(error)}") from None
-
-    def executemany(self, sql: str, rows: Any) -> sqlite3.Cursor:
-        self._before_write()
-        try:
-            return self.conn.executemany(sql, rows)
-        except sqlite3.Error as error:
-            raise StoreError(f"{self.location}: {error}") from None
-
-    def close(self) -> None:
-        if self.check is not None:
-            self.check.cancel()
-        self.conn.close()
 
 
 class SQLiteStore(Store):
@@ -333,9 +152,13 @@ class SQLiteStore(Store):
         #: False for a schema 3 file opened read-only (no side tables there).
         self._has_sides = True
         # the whole-file check a writer's first write waits for (None: done at open, or nothing to check)
-        conn, check = (self._connect_read_only(), None) if read_only else self._connect(check_while_reading)
-        self._conn = _Connection(conn, self.location, check)
-        self._depth = 0
+        if read_only:
+            conn, self._has_sides = open_read_only(self.path)
+            check = None
+        else:
+            conn, check = open_writer(self.path, check_while_reading)
+        self._conn = Connection(conn, self.location, check)
+        self._conn.forget.append(self._forget)
         self._cids: dict[Any, int] = {}
         self._members: dict[int, tuple[Any, ...]] = {}
         self._time_cache: dict[bytes, float] = {}
@@ -352,152 +175,18 @@ class SQLiteStore(Store):
         self._random = os.urandom(5)
         self._counter = int.from_bytes(os.urandom(3), "big")
 
-    # -- connection -------------------------------------------------------------------------
-    def _connect_read_only(self) -> sqlite3.Connection:
-        """A connection that writes nothing on open (no pragma that changes the file, no schema),
-        so ``neems`` or ``why-not`` never wait for, nor block, an ``import`` or ``load``."""
-        try:
-            uri = "file:" + urllib.parse.quote(str(self.path.resolve())) + "?mode=ro"
-            try:
-                conn, row = self._open_read_only(uri)
-            except sqlite3.OperationalError:
-                if os.access(self.path.parent, os.W_OK):
-                    raise
-                # A store on read-only media (a mounted backup): SQLite cannot make the WAL's
-                # shared-memory file there, and nobody can change the file, so it is read as is.
-                conn, row = self._open_read_only(uri + "&immutable=1")
-        except sqlite3.DatabaseError as error:
-            reason = "not a NEEM store" if "no such table" in str(error) or "not a database" in str(error) else str(error)
-            raise StoreError(f"{self.path}: cannot open the NEEM store ({reason})") from None
-        version = None if row is None else row[0]
-        if row is None:  # tables without the schema row: an older version was stopped making the file
-            raise StoreError(f"{self.path}: the store was never completed (its maker was stopped); a writing command"
-                             " such as import completes it")  # fmt: skip
-        if version not in READS_SCHEMAS:
-            raise StoreError(f"{self.path}: store schema {version}, this version reads {SCHEMA_VERSION}")
-        self._has_sides = version == SCHEMA_VERSION
-        return conn
-
-    @staticmethod
-    def _open_read_only(uri: str) -> tuple[sqlite3.Connection, Any]:
-        conn = sqlite3.connect(uri, uri=True, isolation_level=None, check_same_thread=False)
-        try:
-            conn.execute("PRAGMA busy_timeout=10000")
-            conn.execute("PRAGMA query_only=1")
-            conn.execute("PRAGMA cache_size=-65536")
-            return conn, conn.execute("SELECT value FROM store_info WHERE key='schema'").fetchone()
-        except BaseException:
-            conn.close()
-            raise
-
-    def _connect(self, check_while_reading: bool) -> tuple[sqlite3.Connection, IntegrityCheck | None]:
-        checked = True  # nothing to check until a connection is open
-        try:
-            self.path.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
-            existed = self.path.exists()
-            if existed and not stat.S_ISREG(self.path.stat().st_mode):
-                raise StoreError(f"{self.path}: not a regular file (a NEEM store is one SQLite file)")
-            # Create the file 0600 before SQLite does; its -wal and -shm files copy the mode.
-            fd = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o600)
-            try:
-                if existed and stat.S_IMODE(os.fstat(fd).st_mode) & 0o077:
-                    os.fchmod(fd, 0o600)  # a store copied in as 0644 is private from now on
-            finally:
-                os.close(fd)
-            conn = sqlite3.connect(self.path, isolation_level=None, check_same_thread=False)
-            # The whole-file check runs before anything is written. With check_while_reading,
-            # when opening writes nothing (a complete store of this schema, in WAL mode), it runs
-            # beside the reads that follow and the first write waits for it (store/integrity.py).
-            checked = not (existed and self.path.stat().st_size > 0)
-            if not checked and not check_while_reading:
-                self._check_integrity(conn)
-                checked = True
-            conn.execute("PRAGMA busy_timeout=10000")  # concurrent writers wait instead of failing
-            if not checked and str(conn.execute("PRAGMA journal_mode").fetchone()[0]).lower() != "wal":
-                self._check_integrity(conn)   # switching to WAL writes the header
-                checked = True
-            _use_wal(conn)
-            # FULL: a commit returns once its WAL frames are on disk, so a committed action
-            # survives a power loss too (NORMAL survives a killed process only; docs/security.md)
-            conn.execute("PRAGMA synchronous=FULL")
-            # temp_store stays FILE: with MEMORY, dropping a NEEM (import --replace) kept its
-            # statement journal in memory, +270 MiB at 50,000 actions; sorts are as fast.
-            # A dropped or wiped NEEM's pages are overwritten, not just freed: its documents
-            # cannot be read back from the file (most builds default to it; this one need not).
-            conn.execute("PRAGMA secure_delete=ON")
-            # Fewer, larger checkpoints: each one fsyncs, commits themselves do not.
-            conn.execute("PRAGMA wal_autocheckpoint=8192")
-            conn.execute("PRAGMA cache_size=-65536")
-            version, check = self._make_schema(conn, checked)
-        except sqlite3.DatabaseError as error:
-            if not checked:
-                self._check_integrity(conn)   # a damaged file: say so, not what failed first
-            raise StoreError(f"{self.path}: cannot open the NEEM store ({error})") from None
-        except (OSError, sqlite3.Error) as error:
-            raise StoreError(f"{self.path}: cannot open the NEEM store ({error})") from None
-        if version != SCHEMA_VERSION:
-            raise StoreError(f"{self.path}: store schema {version}, this version reads {SCHEMA_VERSION}")
-        return conn, check
-
-    def _make_schema(self, conn: sqlite3.Connection, checked: bool) -> tuple[str, IntegrityCheck | None]:
-        """Make or upgrade the store's own tables (``_SCHEMA_STATEMENTS``) in one transaction:
-        each statement would otherwise commit on its own, and a kill in between left tables
-        without the schema row (every reader then refused the file). On a file not checked yet,
-        a transaction that would change something is rolled back and made again after the
-        check; one that changes nothing leaves the check to run beside the reads. Returns the
-        schema version and that check (None when the file was checked)."""
-        while True:
-            conn.execute("BEGIN IMMEDIATE")
-            try:
-                before = (conn.total_changes, conn.execute("PRAGMA schema_version").fetchone()[0])
-                for statement in _SCHEMA_STATEMENTS:
-                    conn.execute(statement)
-                conn.executemany("INSERT OR IGNORE INTO terms VALUES (?, ?)", _RESERVED_TERMS)
-                version = str(conn.execute("SELECT value FROM store_info WHERE key='schema'").fetchone()[0])
-                after = (conn.total_changes, conn.execute("PRAGMA schema_version").fetchone()[0])
-                changes = after != before
-                conn.execute("ROLLBACK" if changes and not checked else "COMMIT")
-            except BaseException:
-                if conn.in_transaction:
-                    conn.execute("ROLLBACK")
-                raise
-            if changes and not checked:
-                self._check_integrity(conn)   # closes conn and raises when damaged
-                checked = True
-                continue
-            return version, None if checked else IntegrityCheck(self.path)
-
-    def _check_integrity(self, conn: sqlite3.Connection) -> None:
-        """Refuse to write into a damaged file: writing would spread the damage, and a later
-        reader would answer from it. ``quick_check`` reads every page once (no index cross-check)."""
-        problems = problems_of(conn)
-        if problems:
-            conn.close()
-            raise damaged(self.path, problems)
+    def _forget(self) -> None:
+        self._cids.clear()
+        self._members.clear()
+        self._tids.clear()
+        self._tvals.clear()
+        self._all_terms = False
 
     def close(self) -> None:
         self._conn.close()
 
-    @contextmanager
-    def transaction(self) -> Iterator[None]:
-        if self._depth == 0:
-            self._conn.execute("BEGIN IMMEDIATE")
-        self._depth += 1
-        try:
-            yield
-        except BaseException:
-            self._depth -= 1
-            if self._depth == 0 and self._conn.conn.in_transaction:
-                self._conn.execute("ROLLBACK")
-                self._cids.clear()
-                self._members.clear()
-                self._tids.clear()
-                self._tvals.clear()
-                self._all_terms = False
-            raise
-        self._depth -= 1
-        if self._depth == 0:
-            self._conn.execute("COMMIT")
+    def transaction(self) -> AbstractContextManager[None]:
+        return self._conn.transaction()
 
     # -- registry ---------------------------------------------------------------------------
     def _registry(self) -> list[NeemInfo]:
@@ -540,12 +229,12 @@ class SQLiteStore(Store):
         kept apart with one index, every query and dump sees the same documents."""
         if side_property is not None and (not isinstance(side_property, str) or side_property in TAXONOMIC):
             raise StoreError(f"a side property must be a non-taxonomic property IRI, got {side_property!r}")
-        t = partial(_table, neem_id)
+        t = partial(neem_table, neem_id)
         with self.transaction():
             self._conn.execute("INSERT INTO neems VALUES (?, ?)", (neem_id, bson.encode(record)))
-            self._conn.execute(f"CREATE TABLE {t('triples')}{_TRIPLE_COLUMNS}")
+            self._conn.execute(f"CREATE TABLE {t('triples')}{TRIPLE_COLUMNS}")
             if side_property is not None:
-                self._conn.execute(f"CREATE TABLE {t(SIDE)}{_TRIPLE_COLUMNS}")
+                self._conn.execute(f"CREATE TABLE {t(SIDE)}{TRIPLE_COLUMNS}")
                 self._conn.execute("INSERT INTO side_tables VALUES (?, ?, '')", (neem_id, self._tid(side_property)))
             self._conn.execute(f"CREATE TABLE {t('annotations')}(id INTEGER PRIMARY KEY, s, p, doc BLOB NOT NULL)")
             self._conn.execute(
@@ -553,14 +242,14 @@ class SQLiteStore(Store):
             )
             self._conn.execute(f"CREATE TABLE {t('inferred')}(id INTEGER PRIMARY KEY, doc BLOB NOT NULL)")
             taken = {name for (name,) in self._conn.execute("SELECT name FROM sqlite_master WHERE type='index'")}
-            for _, sql in _indexes(neem_id, taken, side=side_property is not None):
+            for _, sql in indexes(neem_id, taken, side=side_property is not None):
                 self._conn.execute(sql)
             self._track(neem_id)
 
     def _drop_neem(self, neem_id: str) -> None:
         with self.transaction():
             for kind in (*COLLECTION_KINDS, SIDE):
-                self._conn.execute(f"DROP TABLE IF EXISTS {_table(neem_id, kind)}")
+                self._conn.execute(f"DROP TABLE IF EXISTS {neem_table(neem_id, kind)}")
             self._conn.execute("DELETE FROM neems WHERE id=?", (neem_id,))
             self._conn.execute("DELETE FROM side_tables WHERE neem=?", (neem_id,))
             self._conn.execute("DELETE FROM revisions WHERE neem=?", (neem_id,))
@@ -571,9 +260,9 @@ class SQLiteStore(Store):
     def _rename_neem(self, neem_id: str, new_id: str, info: NeemInfo) -> None:
         with self.transaction():
             for kind in COLLECTION_KINDS:
-                self._conn.execute(f"ALTER TABLE {_table(neem_id, kind)} RENAME TO {_table(new_id, kind)}")
+                self._conn.execute(f"ALTER TABLE {neem_table(neem_id, kind)} RENAME TO {neem_table(new_id, kind)}")
             if self._side_row(neem_id) is not None:
-                self._conn.execute(f"ALTER TABLE {_table(neem_id, SIDE)} RENAME TO {_table(new_id, SIDE)}")
+                self._conn.execute(f"ALTER TABLE {neem_table(neem_id, SIDE)} RENAME TO {neem_table(new_id, SIDE)}")
                 self._conn.execute("UPDATE side_tables SET neem=? WHERE neem=?", (new_id, neem_id))
             # The indexes go with their tables under their old names (SQLite cannot rename an
             # index, and rebuilding them cost minutes and ~200 MiB at 50,000 actions): a NEEM
@@ -590,11 +279,11 @@ class SQLiteStore(Store):
         when the NEEM is renamed and goes when they are dropped."""
         token = os.urandom(8).hex()
         self._conn.execute("INSERT INTO revisions VALUES (?, ?, 0)", (neem_id, token))
-        for table, kind in ((_table(neem_id, "triples"), "t"), (_table(neem_id, SIDE), "s")):
+        for table, kind in ((neem_table(neem_id, "triples"), "t"), (neem_table(neem_id, SIDE), "s")):
             if kind == "s" and self._side_row(neem_id) is None:
                 continue
             for event in ("UPDATE", "DELETE"):
-                name = _quote(f"changes_{token}_{kind}_{event.lower()}")
+                name = quote(f"changes_{token}_{kind}_{event.lower()}")
                 self._conn.execute(f"CREATE TRIGGER {name} AFTER {event} ON {table} BEGIN"
                                    f" UPDATE revisions SET changes = changes + 1 WHERE token = '{token}'; END")
 
@@ -612,7 +301,7 @@ class SQLiteStore(Store):
         self._require(neem_id)
         query = "SELECT token, changes FROM revisions WHERE neem=?"
         try:
-            with self._reading():
+            with self._conn.reading():
                 row = self._conn.execute(query, (neem_id,)).fetchone()
                 last = self._next_id(neem_id) - 1
         except StoreError:
@@ -626,22 +315,8 @@ class SQLiteStore(Store):
                 last = self._next_id(neem_id) - 1
         return None if row is None else AppendMark(str(row[0]), int(row[1]), last)
 
-    @contextmanager
-    def _reading(self) -> Iterator[None]:
-        """One read transaction (one snapshot of the file) that takes no write lock; inside a
-        transaction already, that one."""
-        if self._depth > 0 or self._conn.conn.in_transaction:
-            yield
-            return
-        self._conn.execute("BEGIN")
-        try:
-            yield
-        finally:
-            if self._conn.conn.in_transaction:
-                self._conn.execute("COMMIT")
-
     def read_kept(self, neem_id: str, kind: str) -> bytes | None:
-        with self._reading():
+        with self._conn.reading():
             return kept.read(self._conn, neem_id, kind)
 
     def write_kept(self, neem_id: str, kind: str, data: bytes) -> bool:
@@ -654,8 +329,8 @@ class SQLiteStore(Store):
     def appended(self, neem_id: str, last: int) -> Appended | None:
         self._require(neem_id)
         tables = self._tables_of(neem_id)
-        with self._reading():
-            cursors = [self._conn.execute(f"SELECT t0.id, {_DOC_COLUMNS} FROM {t} AS t0 WHERE id > ? ORDER BY id", (last,))
+        with self._conn.reading():
+            cursors = [self._conn.execute(f"SELECT t0.id, {DOC_COLUMNS} FROM {t} AS t0 WHERE id > ? ORDER BY id", (last,))
                        for t in tables]
             docs = [self._document(row[1:]) for row in heapq.merge(*cursors, key=itemgetter(0))]
             new = " UNION ".join(f"SELECT s FROM {t} WHERE id > :last" for t in tables)
@@ -689,7 +364,7 @@ class SQLiteStore(Store):
         if tid is None:
             cursor = self._conn.execute("INSERT OR IGNORE INTO terms(value) VALUES (?)", (value,))
             if cursor.rowcount == 1:
-                tid = _rowid(cursor)
+                tid = inserted_id(cursor)
             else:
                 tid = self._conn.execute("SELECT id FROM terms WHERE value=?", (value,)).fetchone()[0]
             if len(self._tids) >= TERM_CACHE:
@@ -721,7 +396,7 @@ class SQLiteStore(Store):
         if new:
             first = int(self._conn.execute("SELECT coalesce(max(id), 0) + 1 FROM terms").fetchone()[0])
             numbered = list(enumerate(new, start=first))
-            self._insert_many("terms", "id, value", numbered, GROUPED_ROWS)
+            self._conn.insert_many("terms", "id, value", numbered, GROUPED_ROWS)
             found.update((value, key) for key, value in numbered)
         if found:
             if len(tids) + len(found) > TERM_CACHE:
@@ -791,7 +466,7 @@ class SQLiteStore(Store):
         blob = key if isinstance(key, bytes) else bson.encode({"c": list(closure)})
         row = self._conn.execute("SELECT cid FROM closure WHERE key=?", (blob,)).fetchone()
         if row is None:
-            cid = _rowid(self._conn.execute("INSERT INTO closure(key) VALUES (?)", (blob,)))
+            cid = inserted_id(self._conn.execute("INSERT INTO closure(key) VALUES (?)", (blob,)))
             self._conn.executemany(
                 "INSERT INTO closure_member VALUES (?, ?, ?)",
                 [(cid, pos, self._tid(v) if type(v) is str else None) for pos, v in enumerate(closure)],
@@ -821,7 +496,7 @@ class SQLiteStore(Store):
         row = self._side_row(neem_id)
         if row is None:
             return None
-        main = _table(neem_id, "triples")
+        main = neem_table(neem_id, "triples")
 
         def main_has(term: int) -> bool:
             # The (pstar, o) index answers this with a probe per closure holding the term.
@@ -830,7 +505,7 @@ class SQLiteStore(Store):
             return self._conn.execute(probe, (term,)).fetchone() is not None
 
         closures = tuple(self._closure(int(cid)) for cid in row[1].split(",") if cid)
-        return Side(_table(neem_id, SIDE), row[0], closures, main_has)
+        return Side(neem_table(neem_id, SIDE), row[0], closures, main_has)
 
     def _note_side_closures(self, neem_id: str, known: str, closures: Collection[int | None]) -> None:
         """Record the closures side rows now hold (their p*, and an o* that is not just [o]): the
@@ -844,10 +519,10 @@ class SQLiteStore(Store):
     def _next_id(self, neem_id: str) -> int:
         """The id the next triple of a NEEM gets: with a side table, ids run across both tables,
         so a dump reads them back in insertion order."""
-        main = _table(neem_id, "triples")
+        main = neem_table(neem_id, "triples")
         if self._side_row(neem_id) is None:
             return int(self._conn.execute(f"SELECT coalesce(max(id), 0) + 1 FROM {main}").fetchone()[0])
-        side = _table(neem_id, SIDE)
+        side = neem_table(neem_id, SIDE)
         row = self._conn.execute(
             f"SELECT max((SELECT coalesce(max(id), 0) FROM {main}), (SELECT coalesce(max(id), 0) FROM {side}))"
         ).fetchone()
@@ -872,24 +547,12 @@ class SQLiteStore(Store):
         are recorded (``_note_side_closures``)."""
         self._ensure_tracked(neem_id)  # a NEEM made before the revisions table: from its first write on
         if main_rows:
-            self._insert_many(_table(neem_id, "triples"), columns, main_rows, 1)
+            self._conn.insert_many(neem_table(neem_id, "triples"), columns, main_rows, 1)
         if side is not None and side_rows:
-            self._insert_many(_table(neem_id, SIDE), columns, side_rows, GROUPED_ROWS)
+            self._conn.insert_many(neem_table(neem_id, SIDE), columns, side_rows, GROUPED_ROWS)
             if side_closures is None:
                 side_closures = {cid for row in side_rows for cid in row[6:8]}
             self._note_side_closures(neem_id, side[1], side_closures)
-
-    def _insert_many(self, table: str, columns: str, rows: list[tuple[Any, ...]], per_statement: int) -> None:
-        """``rows`` into ``table`` in this order, ``per_statement`` rows to one INSERT."""
-        width = columns.count(",") + 1
-        one = f"({', '.join('?' * width)})"
-        whole = len(rows) - len(rows) % per_statement if per_statement > 1 else 0
-        if whole:
-            chain = itertools.chain.from_iterable
-            grouped = f"INSERT INTO {table}({columns}) VALUES {', '.join([one] * per_statement)}"
-            self._conn.executemany(grouped, (list(chain(rows[i : i + per_statement])) for i in range(0, whole, per_statement)))
-        if whole < len(rows):
-            self._conn.executemany(f"INSERT INTO {table}({columns}) VALUES {one}", rows[whole:])
 
     # -- writing ----------------------------------------------------------------------------
     def _seconds(self, value: Any) -> float | None:
@@ -982,7 +645,7 @@ class SQLiteStore(Store):
                     pstar_cid, ostar_cid, graph, since, until, scope_kind))  # fmt: skip
         self._counter = (offset + first + len(batch) - 1) & 0xFFFFFF
         side_closures = {prop[1] for prop in props.values() if prop[0] == side_p}
-        self._write_rows(neem_id, side, _INSERT_COLUMNS, main_rows, side_rows,
+        self._write_rows(neem_id, side, INSERT_COLUMNS, main_rows, side_rows,
                          side_closures)  # fmt: skip
 
     def _triple_row(self, doc: Mapping[str, Any]) -> tuple[Any, ...]:
@@ -1032,7 +695,7 @@ class SQLiteStore(Store):
 
     def _insert_documents(self, neem_id: str, kind: str, docs: list[dict[str, Any]]) -> None:
         self._require(neem_id)
-        table = _table(neem_id, kind)
+        table = neem_table(neem_id, kind)
         try:
             if kind == "triples":
                 rows = [self._triple_row(doc) for doc in docs]
@@ -1061,7 +724,7 @@ class SQLiteStore(Store):
 
     def _propagate(self, neem_id: str, subject: str, gained: tuple[Any, ...]) -> None:
         side = self._side_row(neem_id)
-        for table in (_table(neem_id, "triples"), *(() if side is None else (_table(neem_id, SIDE),))):
+        for table in (neem_table(neem_id, "triples"), *(() if side is None else (neem_table(neem_id, SIDE),))):
             self._propagate_in(table, subject, gained)
         if side is not None:
             held = [self._closure(int(cid)) for cid in side[1].split(",") if cid]
@@ -1094,7 +757,7 @@ class SQLiteStore(Store):
         self, neem_id: str, s: Any, p: Any, o: Any, scope: Scope | None, graph: str | None = None
     ) -> list[tuple[Any, float, float]]:
         self._require(neem_id)
-        query = SqlCompiler(self, _table(neem_id, "triples"), scope, self._side(neem_id))
+        query = SqlCompiler(self, neem_table(neem_id, "triples"), scope, self._side(neem_id))
         query.add(TriplePattern(s, p, o, graph), exact=True)
         sql = f"SELECT t0.id, t0.since, t0.until FROM {query.from_clause()} WHERE {query.where()} ORDER BY t0.id"
         return [(rowid, 0.0 if since is None else since, math.inf if until is None else until)
@@ -1102,8 +765,8 @@ class SQLiteStore(Store):
 
     def _tables_of(self, neem_id: str) -> tuple[str, ...]:
         """The NEEM's triple tables (ids run across both: a row's id names it in either)."""
-        side = () if self._side_row(neem_id) is None else (_table(neem_id, SIDE),)
-        return (_table(neem_id, "triples"), *side)
+        side = () if self._side_row(neem_id) is None else (neem_table(neem_id, SIDE),)
+        return (neem_table(neem_id, "triples"), *side)
 
     def _rescope(self, neem_id: str, key: Any, since: float, until: float) -> None:
         for table in self._tables_of(neem_id):
@@ -1126,11 +789,11 @@ class SQLiteStore(Store):
             self._conn.executemany(f"DELETE FROM {table} WHERE id=?", [(key,) for key in keys])
 
     def _hierarchy_source(self, neem_id: str) -> tuple[list[tuple[str, tuple[Any, ...]]], set[Any]]:
-        table = _table(neem_id, "triples")
+        table = neem_table(neem_id, "triples")
         edges = [
             (self._tval(s), self._closure(cid))
             for s, cid in self._conn.execute(
-                f"SELECT s, ostar FROM {table} WHERE p IN {_HIERARCHY_SQL} AND ostar > 0 AND s IS NOT NULL ORDER BY id"
+                f"SELECT s, ostar FROM {table} WHERE p IN {HIERARCHY_SQL} AND ostar > 0 AND s IS NOT NULL ORDER BY id"
             ).fetchall()
         ]
         used = {
@@ -1151,23 +814,23 @@ class SQLiteStore(Store):
             raise StoreError(f"unknown collection kind {kind!r}")
         self._require(neem_id)
         if kind == "triples":
-            tables = [_table(neem_id, kind)]
+            tables = [neem_table(neem_id, kind)]
             if self._side_row(neem_id) is not None:
-                tables.append(_table(neem_id, SIDE))
+                tables.append(neem_table(neem_id, SIDE))
             # Each table in id order, merged: the documents in the order they were inserted.
-            cursors = [self._conn.execute(f"SELECT t0.id, {_DOC_COLUMNS} FROM {t} AS t0 ORDER BY id") for t in tables]
+            cursors = [self._conn.execute(f"SELECT t0.id, {DOC_COLUMNS} FROM {t} AS t0 ORDER BY id") for t in tables]
             for row in heapq.merge(*cursors, key=itemgetter(0)):
                 yield self._document(row[1:])
             return
-        cursor = self._conn.execute(f"SELECT doc FROM {_table(neem_id, kind)} ORDER BY id")
+        cursor = self._conn.execute(f"SELECT doc FROM {neem_table(neem_id, kind)} ORDER BY id")
         for (blob,) in cursor:
             yield bson.decode(blob, codec_options=_CODEC)
 
     def _count(self, neem_id: str, kind: str) -> int:
         self._require(neem_id)
-        count = int(self._conn.execute(f"SELECT count(*) FROM {_table(neem_id, kind)}").fetchone()[0])
+        count = int(self._conn.execute(f"SELECT count(*) FROM {neem_table(neem_id, kind)}").fetchone()[0])
         if kind == "triples" and self._side_row(neem_id) is not None:
-            count += int(self._conn.execute(f"SELECT count(*) FROM {_table(neem_id, SIDE)}").fetchone()[0])
+            count += int(self._conn.execute(f"SELECT count(*) FROM {neem_table(neem_id, SIDE)}").fetchone()[0])
         return count
 
     def write_mark(self, neem_id: str) -> int:
@@ -1181,9 +844,9 @@ class SQLiteStore(Store):
         self, neem_id: str, pattern: TriplePattern, scope: Scope | None, limit: int | None, exact: bool
     ) -> Iterator[dict[str, Any]]:
         self._require(neem_id)
-        query = SqlCompiler(self, _table(neem_id, "triples"), scope, self._side(neem_id))
+        query = SqlCompiler(self, neem_table(neem_id, "triples"), scope, self._side(neem_id))
         query.add(pattern, exact=exact)
-        sql = f"SELECT {_DOC_COLUMNS} FROM {query.from_clause()} WHERE {query.where()} ORDER BY t0.id"
+        sql = f"SELECT {DOC_COLUMNS} FROM {query.from_clause()} WHERE {query.where()} ORDER BY t0.id"
         if limit is not None:
             sql += f" LIMIT {int(limit)}"
         for row in self._conn.execute(sql, query.params).fetchall():
@@ -1355,7 +1018,7 @@ class SQLiteStore(Store):
         """The SQL of one join: the kept variables (``group`` last), the column expressions (a
         value and a kind per variable), the text after the select list and the parameters."""
         self._require(neem_id)
-        query = SqlCompiler(self, _table(neem_id, "triples"), scope, self._side(neem_id))
+        query = SqlCompiler(self, neem_table(neem_id, "triples"), scope, self._side(neem_id))
         query.semi_joins = True
         query.knowrob_extent = True
         if written_order:  # with an order too: joined as written, then sorted (a top-N sort)
@@ -1400,7 +1063,7 @@ class SQLiteStore(Store):
         if p is not None:
             conds.append("p=?")
             params.append(p)
-        sql = f"SELECT doc FROM {_table(neem_id, 'annotations')} WHERE {' AND '.join(conds)} ORDER BY id"
+        sql = f"SELECT doc FROM {neem_table(neem_id, 'annotations')} WHERE {' AND '.join(conds)} ORDER BY id"
         for (blob,) in self._conn.execute(sql, params):
             doc = bson.decode(blob)
             yield Annotation(doc["s"], doc["p"], doc.get("v"))
