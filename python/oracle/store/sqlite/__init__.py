@@ -51,65 +51,32 @@ from oracle.store.model import (
     extend_closure,
     unix_seconds,
 )
-from oracle.store.sql import (
-    K_BOOL,
-    K_DATE,
-    K_DECIMAL,
-    K_DOUBLE,
-    K_LONG,
-    K_STR,
-    TAXONOMIC_SQL,
-    Side,
-    SqlCompiler,
-    join_order,
-    non_taxonomic,
-    sql_value,
-)
 from oracle.store.chunks import MatchChunk, concatenated_chunks, raw_chunks
 from oracle.store import kept
-from oracle.store.sqlite.connection import Connection, inserted_id
+from oracle.store.sqlite.closures import Closures
+from oracle.store.sqlite.compiler import SqlCompiler, match_sql
+from oracle.store.sqlite.sides import Side, held, note_closures, side_of
+from oracle.store.sqlite.terms import K_DATE, K_DECIMAL, K_DOUBLE, K_LONG, K_STR, Terms
+from oracle.store.sqlite.connection import Connection
 from oracle.store.sqlite.opening import open_read_only, open_writer
 from oracle.store.sqlite.tables import (
     DOC_COLUMNS,
     GROUPED_ROWS,
     HIERARCHY_SQL,
+    TAXONOMIC_SQL,
     INSERT_COLUMNS,
     SIDE,
     TRIPLE_COLUMNS,
     indexes,
     quote,
     neem_table,
+    non_taxonomic,
 )
-
-#: Terms whose ids a writer keeps in memory (about 100 bytes each) before it starts over.
-TERM_CACHE = 50_000
-
-def _python_value(value: Any, kind: int) -> Any:
-    if kind == K_BOOL:
-        return bool(value)
-    if kind == K_DATE and value is not None:
-        return datetime.fromtimestamp(value, timezone.utc)
-    if kind in (K_DOUBLE, K_DECIMAL) and value is not None:
-        return float(value)
-    return value
-
 
 def _blob(doc: Mapping[str, Any]) -> bytes:
     """A document's BSON: the bytes it was read with when it came from a dump."""
     raw = getattr(doc, "raw", None)
     return raw if raw is not None else bson.encode(doc, codec_options=_CODEC)
-
-
-def _joined_in_order(patterns: Sequence[TriplePattern]) -> set[int]:
-    """The patterns sharing a variable with one before them (joined to it, in written order)."""
-    seen: set[str] = set()
-    joined = set()
-    for i, pattern in enumerate(patterns):
-        names = set(pattern.variables())
-        if names & seen:
-            joined.add(i)
-        seen |= names
-    return joined
 
 
 def _grouped(rows: list[Any], names: list[str], out: Callable[[Any, int], Any]) -> Iterator[dict[str, Any]]:
@@ -125,10 +92,6 @@ def _grouped(rows: list[Any], names: list[str], out: Callable[[Any, int], Any]) 
 
 SK_DECIMAL, SK_DOUBLE = 1, 2
 _CODEC = DEFAULT_CODEC_OPTIONS.with_options(datetime_conversion=DatetimeConversion.DATETIME_AUTO)
-
-#: Term ids looked up one at a time before ``_tval`` reads the whole terms table instead.
-TERM_SCAN_AFTER = 2000
-
 
 class SQLiteStore(Store):
     """A NEEM store in one SQLite file (WAL, synchronous=FULL: an action committed survives a
@@ -158,9 +121,9 @@ class SQLiteStore(Store):
         else:
             conn, check = open_writer(self.path, check_while_reading)
         self._conn = Connection(conn, self.location, check)
-        self._conn.forget.append(self._forget)
-        self._cids: dict[Any, int] = {}
-        self._members: dict[int, tuple[Any, ...]] = {}
+        self._terms = Terms(self._conn)
+        self._closures = Closures(self._conn, self._terms)
+        self._conn.forget += [self._terms.forget, self._closures.forget]
         self._time_cache: dict[bytes, float] = {}
         self._scopes: dict[tuple[Any, ...], dict[str, Any]] = {}
         #: NEEM ids seen to exist; forgotten on drop/rename (another process may drop one too,
@@ -168,19 +131,19 @@ class SQLiteStore(Store):
         self._present: set[str] = set()
         #: NEEM ids whose updates and deletions are counted (revisions, append_mark).
         self._tracked: set[str] = set()
-        self._tids: dict[str, int] = {}
-        self._tvals: dict[int, str] = {}
-        self._all_terms = False
-        self._term_misses = 0
         self._random = os.urandom(5)
         self._counter = int.from_bytes(os.urandom(3), "big")
 
-    def _forget(self) -> None:
-        self._cids.clear()
-        self._members.clear()
-        self._tids.clear()
-        self._tvals.clear()
-        self._all_terms = False
+    def known_term_id(self, value: str) -> int:
+        """The id of a term for a query; -1 (matching nothing) when the store never saw it."""
+        return self._terms.known_id(value)
+
+    def closures_containing(self, term_id: int) -> list[int]:
+        """Ids of the closures holding a term (what ``SqlCompiler`` inlines into ordered queries)."""
+        return self._closures.containing(term_id)
+
+    def _side(self, neem_id: str) -> Side | None:
+        return side_of(self._conn, self._closures, neem_id, self._side_row(neem_id))
 
     def close(self) -> None:
         self._conn.close()
@@ -235,7 +198,7 @@ class SQLiteStore(Store):
             self._conn.execute(f"CREATE TABLE {t('triples')}{TRIPLE_COLUMNS}")
             if side_property is not None:
                 self._conn.execute(f"CREATE TABLE {t(SIDE)}{TRIPLE_COLUMNS}")
-                self._conn.execute("INSERT INTO side_tables VALUES (?, ?, '')", (neem_id, self._tid(side_property)))
+                self._conn.execute("INSERT INTO side_tables VALUES (?, ?, '')", (neem_id, self._terms.tid(side_property)))
             self._conn.execute(f"CREATE TABLE {t('annotations')}(id INTEGER PRIMARY KEY, s, p, doc BLOB NOT NULL)")
             self._conn.execute(
                 f"CREATE TABLE {t('tf')}(id INTEGER PRIMARY KEY, child, stamp REAL, doc BLOB NOT NULL)"
@@ -357,132 +320,6 @@ class SQLiteStore(Store):
             self._conn.execute("UPDATE neems SET meta=? WHERE id=?", (bson.encode(meta), neem_id))
         return NeemInfo.from_meta(neem_id, meta)
 
-    # -- terms ------------------------------------------------------------------------------
-    def _tid(self, value: str) -> int:
-        """The id of an IRI or string, interned on first use."""
-        tid = self._tids.get(value)
-        if tid is None:
-            cursor = self._conn.execute("INSERT OR IGNORE INTO terms(value) VALUES (?)", (value,))
-            if cursor.rowcount == 1:
-                tid = inserted_id(cursor)
-            else:
-                tid = self._conn.execute("SELECT id FROM terms WHERE value=?", (value,)).fetchone()[0]
-            if len(self._tids) >= TERM_CACHE:
-                # Every event is a new term: an import of a million rows would otherwise keep
-                # millions of them in memory. The cache starts over (ids are in the table).
-                self._tids.clear()
-                self._tvals.clear()
-                self._all_terms = False
-            self._tids[value] = tid
-            self._tvals[tid] = value
-        return tid
-
-    def _term_ids(self, values: Collection[str]) -> dict[str, int]:
-        """The ids of many terms at once (a logged action brings ~8 new event IRIs), as a dict
-        of exactly these: the cached ones from memory, the stored ones read in chunks, the new
-        ones numbered after the last and inserted in one statement, where ``_tid`` would run
-        two statements per term. The dict stays valid when the cache starts over meanwhile
-        (``_tid`` of a closure's member). New terms are numbered in the order given. Only
-        inside a write transaction (BEGIN IMMEDIATE: no other writer numbers terms meanwhile)."""
-        tids = self._tids
-        ids = {value: tids[value] for value in values if value in tids}
-        missing = [value for value in values if value not in ids]
-        found: dict[str, int] = {}
-        for i in range(0, len(missing), 500):
-            chunk = missing[i : i + 500]
-            marks = ", ".join("?" * len(chunk))
-            found.update(self._conn.execute(f"SELECT value, id FROM terms WHERE value IN ({marks})", chunk).fetchall())
-        new = [value for value in missing if value not in found]
-        if new:
-            first = int(self._conn.execute("SELECT coalesce(max(id), 0) + 1 FROM terms").fetchone()[0])
-            numbered = list(enumerate(new, start=first))
-            self._conn.insert_many("terms", "id, value", numbered, GROUPED_ROWS)
-            found.update((value, key) for key, value in numbered)
-        if found:
-            if len(tids) + len(found) > TERM_CACHE:
-                tids.clear()  # as in _tid: memory stays bounded over a long import
-                self._tvals.clear()
-                self._all_terms = False
-            tids.update(found)
-            self._tvals.update((key, value) for value, key in found.items())
-            ids.update(found)
-        return ids
-
-    def known_term_id(self, value: str) -> int:
-        """The id of a term for a query; -1 (matching nothing) when the store never saw it."""
-        tid = self._tids.get(value)
-        if tid is None:
-            row = self._conn.execute("SELECT id FROM terms WHERE value=?", (value,)).fetchone()
-            if row is None:
-                return -1
-            tid = self._tids[value] = row[0]
-            self._tvals[tid] = value
-        return tid
-
-    def closures_containing(self, term_id: int) -> list[int]:
-        """Ids of the closures holding a term (what ``SqlCompiler`` inlines into ordered queries)."""
-        rows = self._conn.execute("SELECT DISTINCT cid FROM closure_member WHERE value=?", (term_id,))
-        return [cid for (cid,) in rows]
-
-    def _tval(self, tid: int) -> str:
-        value = self._tvals.get(tid)
-        if value is None:
-            self._term_misses += 1
-            if not self._all_terms and self._term_misses > TERM_SCAN_AFTER:
-                # Reading a NEEM touches most of its terms: one scan beats many lookups. A
-                # question touches a few hundred of a table of every NEEM's terms: it looks
-                # them up one by one (the scan cost 0.2-0.3 s at 50,000 actions).
-                for key, text in self._conn.execute("SELECT id, value FROM terms"):
-                    self._tvals[key] = text
-                    self._tids[text] = key
-                self._all_terms = True
-                value = self._tvals.get(tid)
-            if value is None:
-                value = self._conn.execute("SELECT value FROM terms WHERE id=?", (tid,)).fetchone()[0]
-                self._tvals[tid] = value
-        return value
-
-    def _sql_term(self, value: Any) -> tuple[Any, int]:
-        """A BSON value as (column value, kind) with strings interned."""
-        if type(value) is str:
-            return self._tid(value), K_STR
-        return sql_value(value)
-
-    def _out(self, value: Any, kind: int) -> Any:
-        return self._tval(value) if kind == K_STR and value is not None else _python_value(value, kind)
-
-    # -- closures ---------------------------------------------------------------------------
-    def _cid(self, closure: Sequence[Any]) -> int:
-        """Id of a closure list, created on first use (content-addressed, shared by all NEEMs)."""
-        cid = self._cids.get(closure) if type(closure) is tuple else None
-        if cid is not None:
-            return cid
-        key: Any = tuple(closure)
-        if not all(type(item) is str for item in key):
-            key = bson.encode({"c": list(closure)})
-        cid = self._cids.get(key)
-        if cid is not None:
-            return cid
-        blob = key if isinstance(key, bytes) else bson.encode({"c": list(closure)})
-        row = self._conn.execute("SELECT cid FROM closure WHERE key=?", (blob,)).fetchone()
-        if row is None:
-            cid = inserted_id(self._conn.execute("INSERT INTO closure(key) VALUES (?)", (blob,)))
-            self._conn.executemany(
-                "INSERT INTO closure_member VALUES (?, ?, ?)",
-                [(cid, pos, self._tid(v) if type(v) is str else None) for pos, v in enumerate(closure)],
-            )
-        else:
-            cid = row[0]
-        self._cids[key] = cid
-        return cid
-
-    def _closure(self, cid: int) -> tuple[Any, ...]:
-        members = self._members.get(cid)
-        if members is None:
-            row = self._conn.execute("SELECT key FROM closure WHERE cid=?", (cid,)).fetchone()
-            members = self._members[cid] = tuple(bson.decode(row[0])["c"])
-        return members
-
     # -- the side table ---------------------------------------------------------------------
     def _side_row(self, neem_id: str) -> tuple[int, str] | None:
         """(term id of the side property, the closure ids its rows hold) of a NEEM with a side table."""
@@ -490,31 +327,6 @@ class SQLiteStore(Store):
             return None
         row = self._conn.execute("SELECT p, closures FROM side_tables WHERE neem=?", (neem_id,)).fetchone()
         return None if row is None else (int(row[0]), str(row[1]))
-
-    def _side(self, neem_id: str) -> Side | None:
-        """What the query compiler needs to know of a NEEM's side table (None: it has none)."""
-        row = self._side_row(neem_id)
-        if row is None:
-            return None
-        main = neem_table(neem_id, "triples")
-
-        def main_has(term: int) -> bool:
-            # The (pstar, o) index answers this with a probe per closure holding the term.
-            probe = (f"SELECT 1 FROM {main} WHERE pstar IN (SELECT cid FROM closure_member WHERE value=?)"
-                     f" AND p NOT IN {TAXONOMIC_SQL} AND {non_taxonomic('p')} LIMIT 1")  # fmt: skip
-            return self._conn.execute(probe, (term,)).fetchone() is not None
-
-        closures = tuple(self._closure(int(cid)) for cid in row[1].split(",") if cid)
-        return Side(neem_table(neem_id, SIDE), row[0], closures, main_has)
-
-    def _note_side_closures(self, neem_id: str, known: str, closures: Collection[int | None]) -> None:
-        """Record the closures side rows now hold (their p*, and an o* that is not just [o]): the
-        compiler asks which terms they contain, the taxonomy which terms are used."""
-        have = {int(cid) for cid in known.split(",") if cid}
-        cids = {cid for cid in closures if cid}  # 0: the trivial [o]; None: a document without one
-        if not cids <= have:
-            text = ",".join(str(cid) for cid in sorted(have | cids))
-            self._conn.execute("UPDATE side_tables SET closures=? WHERE neem=?", (text, neem_id))
 
     def _next_id(self, neem_id: str) -> int:
         """The id the next triple of a NEEM gets: with a side table, ids run across both tables,
@@ -544,7 +356,7 @@ class SQLiteStore(Store):
                     side_closures: Collection[int | None] | None = None) -> None:  # fmt: skip
         """Rows (id first, then the rest of ``columns``) into the triples table and the side
         table; the closures the side rows hold (``side_closures`` when the caller knows them)
-        are recorded (``_note_side_closures``)."""
+        are recorded (``sides.note_closures``)."""
         self._ensure_tracked(neem_id)  # a NEEM made before the revisions table: from its first write on
         if main_rows:
             self._conn.insert_many(neem_table(neem_id, "triples"), columns, main_rows, 1)
@@ -552,7 +364,7 @@ class SQLiteStore(Store):
             self._conn.insert_many(neem_table(neem_id, SIDE), columns, side_rows, GROUPED_ROWS)
             if side_closures is None:
                 side_closures = {cid for row in side_rows for cid in row[6:8]}
-            self._note_side_closures(neem_id, side[1], side_closures)
+            note_closures(self._conn, neem_id, side, side_closures)
 
     # -- writing ----------------------------------------------------------------------------
     def _seconds(self, value: Any) -> float | None:
@@ -600,8 +412,8 @@ class SQLiteStore(Store):
         # the logger mints them, and their index entries land near the end of the indexes.
         strings = set(map(itemgetter(0), batch))
         strings.update(o for o in set(map(itemgetter(2), batch)) if type(o) is str)
-        ids = self._term_ids(sorted(strings))
-        cid = self._cid
+        ids = self._terms.tids(sorted(strings))
+        cid = self._closures.cid
         side = self._side_row(neem_id)
         side_p = -1 if side is None else side[0]
         main_rows: list[tuple[Any, ...]] = []
@@ -623,7 +435,7 @@ class SQLiteStore(Store):
                 raise ValueError(f"scope of {triple} ends before it starts")
             prop = props.get(p)
             if prop is None:
-                p_id = self._tid(p)
+                p_id = self._terms.tid(p)
                 taxonomic = p in TAXONOMIC
                 prop = props[p] = (p_id, cid((p,) if taxonomic else pstar_of(p)), taxonomic,
                                    side_rows.append if p_id == side_p else main_rows.append)  # fmt: skip
@@ -637,7 +449,7 @@ class SQLiteStore(Store):
                 if type(o) is float:
                     sql_o, kind = o, float_kind
                 else:
-                    sql_o, kind = self._sql_term(encode_value(o, builder.number_format))
+                    sql_o, kind = self._terms.sql(encode_value(o, builder.number_format))
                 if taxonomic:
                     key = (type(o), o)
                     ostar_cid = values.get(key, 0) or values.setdefault(key, cid(ostar_of(o)))
@@ -656,22 +468,22 @@ class SQLiteStore(Store):
             raw = None
         p = doc.get("p")
         o = doc.get("o")
-        sql_o, kind = self._sql_term(o)
+        sql_o, kind = self._terms.sql(o)
         s = doc.get("s")
         pstar = doc.get("p*")
         ostar = doc.get("o*")
-        pstar_cid = None if pstar is None else self._cid(pstar)
+        pstar_cid = None if pstar is None else self._closures.cid(pstar)
         if ostar is None:
             ostar_cid = None
         elif p not in TAXONOMIC and len(ostar) == 1 and type(ostar[0]) is type(o) and ostar[0] == o:
             ostar_cid = 0  # the trivial [o] of a non-taxonomic triple needs no closure row
         else:
-            ostar_cid = self._cid(ostar)
+            ostar_cid = self._closures.cid(ostar)
         time_ = (doc.get("scope") or {}).get("time") or {}
         since = self._seconds(time_.get("since"))
         until = self._seconds(time_.get("until"))
         oid = doc["_id"].binary if isinstance(doc["_id"], ObjectId) else b""
-        row = (oid, self._tid(s) if type(s) is str else None, self._tid(p) if type(p) is str else None, sql_o, kind,
+        row = (oid, self._terms.tid(s) if type(s) is str else None, self._terms.tid(p) if type(p) is str else None, sql_o, kind,
                pstar_cid, ostar_cid, doc.get("graph"), since, until, None, raw or bson.encode(doc, codec_options=_CODEC))  # fmt: skip
         return self._without_raw(row)
 
@@ -727,15 +539,15 @@ class SQLiteStore(Store):
         for table in (neem_table(neem_id, "triples"), *(() if side is None else (neem_table(neem_id, SIDE),))):
             self._propagate_in(table, subject, gained)
         if side is not None:
-            held = [self._closure(int(cid)) for cid in side[1].split(",") if cid]
-            grown = {self._cid(extend_closure(members, gained)) for members in held if subject in members}
-            self._note_side_closures(neem_id, side[1], grown)
+            lists = [self._closures.members(cid) for cid in held(side)]
+            grown = {self._closures.cid(extend_closure(members, gained)) for members in lists if subject in members}
+            note_closures(self._conn, neem_id, side, grown)
 
     def _propagate_in(self, table: str, subject: str, gained: tuple[Any, ...]) -> None:
         subject_id = self.known_term_id(subject)
         cids = [row[0] for row in self._conn.execute("SELECT DISTINCT cid FROM closure_member WHERE value=?", (subject_id,))]
         for cid in cids:
-            new_cid = self._cid(extend_closure(self._closure(cid), gained))
+            new_cid = self._closures.cid(extend_closure(self._closures.members(cid), gained))
             for column, field, taxonomic in (("ostar", "o*", True), ("pstar", "p*", False)):
                 which = f"p IN {TAXONOMIC_SQL}" if taxonomic else f"p NOT IN {TAXONOMIC_SQL} AND {non_taxonomic('p')}"
                 self._conn.execute(
@@ -791,13 +603,13 @@ class SQLiteStore(Store):
     def _hierarchy_source(self, neem_id: str) -> tuple[list[tuple[str, tuple[Any, ...]]], set[Any]]:
         table = neem_table(neem_id, "triples")
         edges = [
-            (self._tval(s), self._closure(cid))
+            (self._terms.value(s), self._closures.members(cid))
             for s, cid in self._conn.execute(
                 f"SELECT s, ostar FROM {table} WHERE p IN {HIERARCHY_SQL} AND ostar > 0 AND s IS NOT NULL ORDER BY id"
             ).fetchall()
         ]
         used = {
-            self._tval(value)
+            self._terms.value(value)
             for (value,) in self._conn.execute(
                 f"SELECT DISTINCT value FROM closure_member WHERE value IS NOT NULL AND cid IN"
                 f" (SELECT ostar FROM {table} UNION SELECT pstar FROM {table})"
@@ -805,7 +617,7 @@ class SQLiteStore(Store):
         }
         side = self._side_row(neem_id)
         if side is not None:  # the closures its rows hold are recorded: no scan of the side table
-            used.update(v for cid in side[1].split(",") if cid for v in self._closure(int(cid)) if type(v) is str)
+            used.update(v for cid in held(side) for v in self._closures.members(cid) if type(v) is str)
         return edges, used
 
     # -- reading ----------------------------------------------------------------------------
@@ -876,14 +688,14 @@ class SQLiteStore(Store):
         elif ok == K_DATE:
             value = datetime.fromtimestamp(o, timezone.utc).replace(tzinfo=None)  # as pymongo decodes Dates
         else:
-            value = self._out(o, ok)
+            value = self._terms.out(o, ok)
         return {
             "_id": ObjectId(oid),
-            "s": self._tval(s),
-            "p": self._tval(p),
+            "s": self._terms.value(s),
+            "p": self._terms.value(p),
             "o": value,
-            "p*": list(self._closure(pstar)),
-            "o*": [value] if ostar == 0 else list(self._closure(ostar)),
+            "p*": list(self._closures.members(pstar)),
+            "o*": [value] if ostar == 0 else list(self._closures.members(ostar)),
             "graph": graph,
             "scope": self._scope_doc(since, until, sk),
         }
@@ -900,7 +712,7 @@ class SQLiteStore(Store):
         written_order: bool = False,
     ) -> Iterator[dict[str, Any]]:
         names, rows = self._match_rows(neem_id, patterns, scope, limit, order, select, group, written_order)
-        out = self._out
+        out = self._terms.out
         if group is not None:
             yield from _grouped(rows, names, out)
             return
@@ -927,7 +739,7 @@ class SQLiteStore(Store):
                 return grouped
         names, rows = self._match_rows(neem_id, patterns, scope, limit, order, kept, group, written_order)
         where = [names.index(name) for name in kept]
-        return raw_chunks(rows, where, group is not None, size, self._out, self._convert)
+        return raw_chunks(rows, where, group is not None, size, self._terms.out, self._terms.convert)
 
     def _grouped_in_sql(self, neem_id: str, patterns: Sequence[TriplePattern], scope: Scope | None,
                         order: Sequence[tuple[str, bool]], kept: list[str], group: str,
@@ -955,26 +767,7 @@ class SQLiteStore(Store):
         if any(any(row[width + 2:]) for row in rows):
             return None
         where = [names.index(name) for name in kept]
-        return concatenated_chunks(rows, width, where[:-1], size, self._out, self._convert)
-
-    def _convert(self, kind: int, values: list[Any]) -> list[Any]:
-        """Raw values of one kind as plain values; term ids looked up at once, in id order (a
-        chunk brings up to ~20,000 new ones: one query instead of one each, or a scan of every
-        NEEM's terms)."""
-        import json
-
-        if kind in (K_DOUBLE, K_DECIMAL):
-            return [None if value is None else float(value) for value in values]
-        if kind != K_STR:
-            return [self._out(value, kind) for value in values]
-        tvals = self._tvals
-        missing = sorted(v for v in values if type(v) is int and v not in tvals)
-        for start in range(0, len(missing), 5000):
-            batch = json.dumps(missing[start:start + 5000])
-            for key, text in self._conn.execute("SELECT id, value FROM terms WHERE id IN (SELECT value FROM json_each(?))",
-                                                (batch,)):
-                tvals[key] = text
-        return [tvals[value] if value in tvals else self._out(value, kind) for value in values]
+        return concatenated_chunks(rows, width, where[:-1], size, self._terms.out, self._terms.convert)
 
     def _match_rows(
         self,
@@ -1015,44 +808,9 @@ class SQLiteStore(Store):
         group: str | None,
         written_order: bool,
     ) -> tuple[list[str], list[str], str, Any]:
-        """The SQL of one join: the kept variables (``group`` last), the column expressions (a
-        value and a kind per variable), the text after the select list and the parameters."""
         self._require(neem_id)
         query = SqlCompiler(self, neem_table(neem_id, "triples"), scope, self._side(neem_id))
-        query.semi_joins = True
-        query.knowrob_extent = True
-        if written_order:  # with an order too: joined as written, then sorted (a top-N sort)
-            plan, joined = list(range(len(patterns))), _joined_in_order(patterns)
-        elif order:
-            plan, joined = join_order(patterns, order[0][0])
-        else:
-            plan, joined = [], set()
-        first = plan[0] if plan else -1
-        for i, pattern in enumerate(patterns):
-            query.inline_closures = i == first
-            query.joined = i in joined
-            query.add(pattern)
-        names = [name for name in query.bound if (select is None or name in select) and name != group]
-        if group is not None:
-            names.append(group)
-        columns = [expr for n in names for expr in (query.bound[n][0], str(query.bound[n][1] or K_STR))]
-        keys = [f"{query.bound[name][0]} {'DESC' if descending else 'ASC'}" for name, descending in order]
-        # In the written order the rows are sorted after the join ("+": SQLite would otherwise
-        # scan the first table in id order to skip the sort, instead of using its index).
-        mark = "+" if written_order else ""
-        # Rows equal in every key come in insertion order, but not in a top-N scan by the key
-        # (an order and a limit, joined by the store's plan): SQLite 3.40 then sorts the ties
-        # of every key value before it stops, which walks the whole index (0.4 s at 50,000
-        # actions for the latest of two decisions). Groups come in no fixed order (Store.match).
-        if group is None and (limit is None or not order or written_order):
-            keys += [f"{mark}{query.aliases[i]}.id" for i in query.joined_patterns()]
-        source = query.ordered_from_clause(plan) if plan else query.from_clause()
-        rest = f"FROM {source} WHERE {query.where()}"
-        if keys:
-            rest += f" ORDER BY {', '.join(keys)}"
-        if limit is not None:
-            rest += f" LIMIT {int(limit)}"
-        return names, columns, rest, query.params
+        return match_sql(query, patterns, limit, order, select, group, written_order)
 
     def annotations(self, neem_id: str, s: str | None = None, p: str | None = None) -> Iterator[Annotation]:
         self._require(neem_id)
