@@ -57,7 +57,7 @@ def test_fresh_only_when_every_added_subject_is_new(tmp_path):
 def test_a_neem_from_before_is_counted_from_its_first_write(tmp_path):
     store = _store(tmp_path)
     store._conn.execute("DELETE FROM revisions")  # as a store made before the revisions table
-    store._tracked.clear()
+    store._registry.tracked.clear()
     read_only = SQLiteStore(tmp_path / "s.sqlite", read_only=True)
     assert read_only.append_mark("n") is None
     store.insert("n", [Triple(EX + "M3", RDF_TYPE, EX + "Event")])

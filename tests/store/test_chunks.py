@@ -99,7 +99,7 @@ def test_groups_of_iris_by_one_key_are_those_of_match(store):
     assert got == expected and sorted(expected) == sorted(repr(typed(X + t)) for t in ("even", "odd"))
     assert sum(len(v) for v in expected.values()) == 13
     if type(store).__name__ == "SQLiteStore":  # and SQL grouped them
-        assert store._grouped_in_sql("n1", patterns, None, [], ["T", "S"], "S", 5000) is not None
+        assert store._matches.grouped_in_sql("n1", patterns, None, [], ["T", "S"], "S", 5000) is not None
 
 
 def test_groups_keyed_by_signed_zeros_stay_apart(store):

@@ -98,15 +98,15 @@ def test_closing_without_a_write_cancels_the_check_and_writes_nothing(store_file
 
 
 def test_what_counts_as_a_write():
-    from oracle.store.sqlite import _writes
+    from oracle.store.sqlite.connection import may_write
 
     for sql in ("SELECT 1", "  select s FROM t", "BEGIN", "COMMIT", "ROLLBACK", "PRAGMA automatic_index = OFF",
                 "EXPLAIN QUERY PLAN SELECT 1", "BEGIN DEFERRED"):
-        assert not _writes(sql), sql
+        assert not may_write(sql), sql
     for sql in ("BEGIN IMMEDIATE", "INSERT INTO t VALUES (1)", "UPDATE t SET a=1", "DELETE FROM t",
                 "CREATE TABLE x(a)", "DROP TABLE x", "ALTER TABLE x RENAME TO y", "PRAGMA journal_mode=WAL",
                 "CREATE TRIGGER x AFTER UPDATE ON t BEGIN SELECT 1; END"):
-        assert _writes(sql), sql
+        assert may_write(sql), sql
 
 
 def test_a_check_that_cannot_run_refuses_the_writes(store_file, monkeypatch):

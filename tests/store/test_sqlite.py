@@ -10,7 +10,7 @@ import pytest
 
 from oracle.errors import StoreError
 from oracle.store import RDF_TYPE, SUBCLASS_OF, Triple, TriplePattern, Var, open_store
-from oracle.store.sql import SqlCompiler
+from oracle.store.sqlite.compiler import SqlCompiler
 from oracle.store.sqlite import SQLiteStore
 
 X = "http://example.org/x#"
@@ -65,7 +65,7 @@ def test_an_inlined_class_test_seeks_by_its_closure_ids_not_every_type_triple(tm
     plan = " ".join(row[-1] for row in store._conn.execute("EXPLAIN QUERY PLAN " + sql, query.params))
     assert "ostar>? AND ostar<?" in plan, plan  # a bounded seek, not the whole "ostar > 0" range
     expected = {"Cup": [X + "c"], "Item": [X + "c", X + "p"]}[cls]
-    assert [store._tval(s) for (s,) in store._conn.execute(sql, query.params)] == expected
+    assert [store._terms.value(s) for (s,) in store._conn.execute(sql, query.params)] == expected
 
 def _index_columns(store, table):
     rows = store._conn.execute("SELECT sql FROM sqlite_master WHERE type='index' AND tbl_name=? AND sql IS NOT NULL",
@@ -123,11 +123,11 @@ def test_the_store_schema_is_made_whole_or_not_at_all(tmp_path, monkeypatch):
     # without the schema row, which every reader then refused as "store schema None".
     import sqlite3
 
-    import oracle.store.sqlite as module
+    import oracle.store.sqlite.opening as module
 
     path = tmp_path / "s.sqlite"
-    broken = (*module._SCHEMA_STATEMENTS[:3], "SELECT no_such_function()", *module._SCHEMA_STATEMENTS[3:])
-    monkeypatch.setattr(module, "_SCHEMA_STATEMENTS", broken)
+    broken = (*module.SCHEMA_STATEMENTS[:3], "SELECT no_such_function()", *module.SCHEMA_STATEMENTS[3:])
+    monkeypatch.setattr(module, "SCHEMA_STATEMENTS", broken)
     with pytest.raises(StoreError, match="cannot open the NEEM store"):
         SQLiteStore(path)
     with sqlite3.connect(path) as raw:

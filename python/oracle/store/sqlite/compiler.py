@@ -1,56 +1,22 @@
 """The SQLite backend's query compiler: triple patterns -> one SQL join with KnowRob's p*/o*
-semantics (the SQL counterpart of ``mongo.compile_pipeline``), and the value kinds it compares."""
+semantics (the SQL counterpart of ``mongo.compile_pipeline``), and the whole statement of a
+match (join order, kept columns, sort keys)."""
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
-from dataclasses import dataclass
-from datetime import datetime
+from collections.abc import Sequence
 from typing import Any, Protocol
 
-from bson.decimal128 import Decimal128
-from bson.int64 import Int64
-
 from oracle.errors import StoreError
-from oracle.store.model import TAXONOMIC, Cmp, Scope, Term, TriplePattern, Var, unix_seconds
+from oracle.store.model import TAXONOMIC, Cmp, Scope, Term, TriplePattern, Var
+from oracle.store.sqlite.sides import Side
+from oracle.store.sqlite.tables import TAXONOMIC_SQL, non_taxonomic
+from oracle.store.sqlite.terms import K_DATE, K_DECIMAL, K_DOUBLE, K_INT, K_LONG, K_OTHER, K_STR, sql_value
 
-# Kinds of the ``o`` column, so a value reads back with its BSON type.
-K_STR, K_DOUBLE, K_DECIMAL, K_INT, K_LONG, K_BOOL, K_DATE, K_OTHER = range(8)
 _NUMERIC_KINDS = (K_DOUBLE, K_DECIMAL, K_INT, K_LONG)
 #: Kinds a comparison (``Cmp``) sees as numbers: Prolog receives Dates as unix seconds too.
 _COMPARABLE_SQL = f"({K_DOUBLE}, {K_DECIMAL}, {K_INT}, {K_LONG}, {K_DATE})"
 _SQL_OPS = {"<": "<", "=<": "<=", ">": ">", ">=": ">="}
-
-
-def sql_value(value: Any) -> tuple[Any, int]:
-    """A BSON value as (SQLite value, kind)."""
-    if isinstance(value, str):
-        return value, K_STR
-    if isinstance(value, bool):
-        return int(value), K_BOOL
-    if isinstance(value, Int64):
-        return int(value), K_LONG
-    if isinstance(value, int):
-        return value, K_INT
-    if isinstance(value, float):
-        return value, K_DOUBLE
-    if isinstance(value, Decimal128):
-        return float(value.to_decimal()), K_DECIMAL
-    if isinstance(value, datetime):
-        return unix_seconds(value), K_DATE
-    return None, K_OTHER
-
-#: Term ids of rdf:type, rdfs:subClassOf and rdfs:subPropertyOf (fixed by the SQLite schema).
-TAXONOMIC_SQL = "(1, 2, 3)"
-
-
-def non_taxonomic(p: str) -> str:
-    """``p`` is no taxonomic property, as schema 4's (pstar, o) index states it: three ``<>``
-    rather than ``NOT IN``, which SQLite evaluates by building the list anew for every row it
-    inserts (a quarter of the index's insert cost), and not ``p > 3``, a range on p that makes
-    SQLite prefer the (o, p) index and reorder joins (why-not's role query at 10,000 actions:
-    190 ms -> 113 s). Queries state it beside ``NOT IN``, which schema-3 indexes need."""
-    return " AND ".join(f"{p} <> {term}" for term in (1, 2, 3))
 
 
 class TermIds(Protocol):
@@ -83,32 +49,16 @@ def join_order(patterns: Sequence[TriplePattern], first: str) -> tuple[list[int]
     return chosen, joined
 
 
-@dataclass(frozen=True)
-class Side:
-    """A NEEM's side table: every triple whose asserted ``p`` is ``p`` (a term id) lives there
-    instead of in the main table, with the same columns and one index (on ``s``).
-
-    ``closures`` are the members of every ``p*`` its rows hold; ``main_has(term)`` says whether
-    a main-table row has ``term`` in its ``p*`` (one index probe)."""
-
-    table: str
-    p: int
-    closures: tuple[tuple[Any, ...], ...]
-    main_has: Callable[[int], bool]
-
-    def sources(self, main: str, pattern: TriplePattern, exact: bool, term_id: Callable[[Any], int]) -> str:
-        """The table (or union of both) the rows a pattern can match are in."""
-        p = pattern.p
-        both = f"(SELECT * FROM {main} UNION ALL SELECT * FROM {self.table})"
-        if p is None or isinstance(p, Var):
-            return both
-        if exact:
-            return self.table if term_id(p) == self.p else main
-        if not isinstance(p, str) or p in TAXONOMIC:
-            return main
-        if not any(p in members for members in self.closures):
-            return main
-        return both if self.main_has(term_id(p)) else self.table
+def joined_in_order(patterns: Sequence[TriplePattern]) -> set[int]:
+    """The patterns sharing a variable with one before them (joined to it, in written order)."""
+    seen: set[str] = set()
+    joined = set()
+    for i, pattern in enumerate(patterns):
+        names = set(pattern.variables())
+        if names & seen:
+            joined.add(i)
+        seen |= names
+    return joined
 
 
 class SqlCompiler:
@@ -319,3 +269,51 @@ class SqlCompiler:
             self.conds.append(f"{kind_column}={K_STR}")
         elif kind_column is not None and kind is not None:
             self.conds.append(f"({kind_column}={K_STR})=({kind}={K_STR})")
+
+
+def match_sql(
+    query: SqlCompiler,
+    patterns: Sequence[TriplePattern],
+    limit: int | None,
+    order: Sequence[tuple[str, bool]],
+    select: Sequence[str] | None,
+    group: str | None,
+    written_order: bool,
+) -> tuple[list[str], list[str], str, list[Any]]:
+    """The SQL of one join (``Store.match``): the kept variables (``group`` last), the column
+    expressions (a value and a kind per variable), the text after the select list and the
+    parameters."""
+    query.semi_joins = True
+    query.knowrob_extent = True
+    if written_order:  # with an order too: joined as written, then sorted (a top-N sort)
+        plan, joined = list(range(len(patterns))), joined_in_order(patterns)
+    elif order:
+        plan, joined = join_order(patterns, order[0][0])
+    else:
+        plan, joined = [], set()
+    first = plan[0] if plan else -1
+    for i, pattern in enumerate(patterns):
+        query.inline_closures = i == first
+        query.joined = i in joined
+        query.add(pattern)
+    names = [name for name in query.bound if (select is None or name in select) and name != group]
+    if group is not None:
+        names.append(group)
+    columns = [expr for n in names for expr in (query.bound[n][0], str(query.bound[n][1] or K_STR))]
+    keys = [f"{query.bound[name][0]} {'DESC' if descending else 'ASC'}" for name, descending in order]
+    # In the written order the rows are sorted after the join ("+": SQLite would otherwise
+    # scan the first table in id order to skip the sort, instead of using its index).
+    mark = "+" if written_order else ""
+    # Rows equal in every key come in insertion order, but not in a top-N scan by the key
+    # (an order and a limit, joined by the store's plan): SQLite 3.40 then sorts the ties
+    # of every key value before it stops, which walks the whole index (0.4 s at 50,000
+    # actions for the latest of two decisions). Groups come in no fixed order (Store.match).
+    if group is None and (limit is None or not order or written_order):
+        keys += [f"{mark}{query.aliases[i]}.id" for i in query.joined_patterns()]
+    source = query.ordered_from_clause(plan) if plan else query.from_clause()
+    rest = f"FROM {source} WHERE {query.where()}"
+    if keys:
+        rest += f" ORDER BY {', '.join(keys)}"
+    if limit is not None:
+        rest += f" LIMIT {int(limit)}"
+    return names, columns, rest, query.params
