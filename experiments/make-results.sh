@@ -25,24 +25,19 @@ $PY -m oracle evaluate out/bench/test.jsonl "${OLD[@]}" --baselines --ablations 
 $PY -m oracle tune out/bench/tune.jsonl --metric top1 --budget 80 --out out/tuned-top1.yaml
 $PY -m oracle evaluate out/bench/test.jsonl "${OLD[@]}" --settings out/tuned-top1.yaml --baselines \
     --json out/persona-tuned.json --report out/persona-tuned.md --plots docs/results/persona-tuned
-if [ -d "$SHARED/kasteren_house_a" ]; then
-  $PY -m oracle convert kasteren "$SHARED/kasteren_house_a" --out out/kasteren
+# one real dataset: converted, then evaluated with the recommended and the tuned settings
+real_set() {  # NAME (convert's name and out/NAME) FOLDER (under $SHARED)
+  [ -d "$SHARED/$2" ] || return 0
+  $PY -m oracle convert "$1" "$SHARED/$2" --out "out/$1"
   for s in recommended out/tuned-top1.yaml; do
     tag=$(basename "$s" .yaml)
-    $PY -m oracle evaluate out/kasteren/chains.jsonl --odb out/kasteren/odb --mapping out/kasteren/mapping.yaml \
-        "${OLD[@]}" --settings "$s" --baselines --json "out/kasteren-$tag.json" --report "out/kasteren-$tag.md" \
-        --plots "docs/results/kasteren-$tag"
+    $PY -m oracle evaluate "out/$1/chains.jsonl" --odb "out/$1/odb" --mapping "out/$1/mapping.yaml" \
+        "${OLD[@]}" --settings "$s" --baselines --json "out/$1-$tag.json" --report "out/$1-$tag.md" \
+        --plots "docs/results/$1-$tag"
   done
-fi
-if [ -d "$SHARED/egtea_gaze_plus" ]; then
-  $PY -m oracle convert egtea "$SHARED/egtea_gaze_plus" --out out/egtea
-  for s in recommended out/tuned-top1.yaml; do
-    tag=$(basename "$s" .yaml)
-    $PY -m oracle evaluate out/egtea/chains.jsonl --odb out/egtea/odb --mapping out/egtea/mapping.yaml \
-        "${OLD[@]}" --settings "$s" --baselines --json "out/egtea-$tag.json" --report "out/egtea-$tag.md" \
-        --plots "docs/results/egtea-$tag"
-  done
-fi
+}
+real_set kasteren kasteren_house_a
+real_set egtea egtea_gaze_plus
 # self-tuning ablations of the routine predictor: its first variant alone, and the likelihood mixture
 for m in routine-fixed routine-mixture; do
   $PY -m oracle evaluate out/bench/test.jsonl "${OLD[@]}" --method "$m" --json "out/persona-$m.json"

@@ -440,15 +440,9 @@ def _ensure_loaded() -> None:
     from pyswip import Prolog
 
     Prolog.register_foreign(py_match, arity=2, module="store_python", nondeterministic=True)
-    Prolog.register_foreign(py_insert, arity=2, module="store_python")
-    Prolog.register_foreign(py_retract, arity=2, module="store_python")
-    Prolog.register_foreign(py_graph, arity=2, module="store_python")
+    for binary in (py_insert, py_retract, py_graph, py_scopes, py_annotations, py_annotate, py_tf, py_dump):
+        Prolog.register_foreign(binary, arity=2, module="store_python")
     Prolog.register_foreign(py_request, arity=1, module="store_python")
-    Prolog.register_foreign(py_scopes, arity=2, module="store_python")
-    Prolog.register_foreign(py_annotations, arity=2, module="store_python")
-    Prolog.register_foreign(py_annotate, arity=2, module="store_python")
-    Prolog.register_foreign(py_tf, arity=2, module="store_python")
-    Prolog.register_foreign(py_dump, arity=2, module="store_python")
     folder = prolog_dir()
     paths = [folder / f"{name}.pl" for name in MODULES]
     for path in paths:
@@ -466,7 +460,6 @@ def _load_compiled(folder: Path, paths: list[Path]) -> bool:
     """Load the modules from the user's cache of compiled modules (oracle.modulecache), compiling
     them into it first when the entry for their content is missing; False when the cache cannot
     be used (the caller loads the sources)."""
-
     from oracle import modulecache
 
     version = str(_run("current_prolog_flag(version, V)")[0]["V"])
@@ -542,7 +535,6 @@ class Bridge:
         """Prolog loaded and reading this bridge's NEEM with its ontology's names: done on the
         first question, not when the bridge is made (a rank whose history and fit are kept asks
         none), and again when another bridge was used since."""
-
         with _LOCK:
             _attach_engine()
             _ensure_loaded()
@@ -708,7 +700,6 @@ class Bridge:
 
 def _ontology_request(ontology: OdbOntology) -> list[Any]:
     """The namespace and each task's target and reference roles, as odb_names takes them."""
-
     rows = [[_atom(task.iri), _atom(task.target_role or "none"), _atom(task.ref_role or "none")]
             for task in ontology.tasks.values()]
     return [_atom(ontology.namespace), rows]
@@ -750,7 +741,6 @@ class QueryValueError(PrologError):
 
 
 def _term_value(name: str, value: Any) -> Any:
-
     if isinstance(value, bool) or value is None:
         raise QueryValueError(f"binding {name}: expected a string (atom) or a number, got {value!r}")
     if isinstance(value, (int, float)):
