@@ -263,6 +263,7 @@ exposed(odb_past, object_place/3, read).
 exposed(odb_past, last_before/2, read).
 exposed(odb_past, latest_before/3, read).
 exposed(odb_past, performers/2, read).
+exposed(odb_past, performed_between/3, read).
 exposed(odb_past, past_answer_json/1, hidden).   % answers the bridge's pending request
 % -- model_owl_description
 exposed(model_owl_description, is_owl_term/1, read).

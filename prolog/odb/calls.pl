@@ -50,11 +50,13 @@ task_role_rows(T, C, R, RC, OC,
                ( triple(T, rdf:type, C), task_role(T, R), has_role(O, R),
                  triple(R, rdf:type, RC), triple(O, rdf:type, OC) )).
 
+%   Rows of roles classifying no odb object (the agent roles of an action performed together)
+%   are no argument: a task with only those has the call of a task without roles.
 rows_call(T, Rows0, Call) :-
-    (   Rows0 == []
+    include(odb_row, Rows0, Rows),
+    (   Rows == []
     ->  once(task_class(T, C)), Args = []
-    ;   include(odb_row, Rows0, Rows),
-        Rows = [C-_-_-_|_],
+    ;   Rows = [C-_-_-_|_],
         findall(R-RC-OC, member(C-R-RC-OC, Rows), RoleRows),
         role_args(C, RoleRows, Args)
     ),
@@ -162,7 +164,7 @@ ordered_groups(Pairs, Assoc) :-
 task_call_from(TypesOf, RolesOf, T, Call) :-
     types_of(TypesOf, T, TTs),
     (   get_assoc(T, RolesOf, ROs0) -> true ; ROs0 = [] ),
-    include(typed_pair(TypesOf), ROs0, ROs),
+    include(odb_pair(TypesOf), ROs0, ROs),
     (   ( TTs == [] ; ROs == [] )
     ->  rows_call(T, [], Call)
     ;   first_odb(TTs, C),
@@ -178,9 +180,11 @@ task_call_from(TypesOf, RolesOf, T, Call) :-
 types_of(TypesOf, X, Types) :-
     (   get_assoc(X, TypesOf, Types0) -> Types = Types0 ; Types = [] ).
 
-typed_pair(TypesOf, R-O) :-
+%   A typed role classifying an object of an odb type (not an agent's role).
+odb_pair(TypesOf, R-O) :-
     get_assoc(R, TypesOf, _),
-    get_assoc(O, TypesOf, _).
+    get_assoc(O, TypesOf, OTs),
+    once(( member(OC, OTs), odb_iri(_, OC) )).
 
 first_odb(Types, C) :-
     member(C, Types), odb_iri(_, C), !.

@@ -34,8 +34,19 @@ odd_tasks :-
                     q(t1, dul:isTaskOf, r2), q(r2, dul:classifies, o2), q(r2, rdf:type, soma:'PouredObject'),
                     q(t2, rdf:type, odb:pick), q(t2, dul:isTaskOf, r3), q(r3, rdf:type, soma:'MovedObject'),
                     q(t3, rdf:type, odb:pick),
-                    q(t4, dul:isTaskOf, r4), q(r4, dul:classifies, o1), q(r4, rdf:type, soma:'MovedObject') ]),
+                    q(t4, dul:isTaskOf, r4), q(r4, dul:classifies, o1), q(r4, rdf:type, soma:'MovedObject'),
+                    % actions performed together: agent roles beside the object's, or alone
+                    q(t5, rdf:type, odb:open_fridge), q(t5, dul:isTaskOf, r5), q(r5, dul:classifies, ag1),
+                    q(r5, rdf:type, soma:'AgentRole'), q(ag1, rdf:type, dul:'PhysicalAgent'),
+                    q(t6, rdf:type, odb:pick), q(t6, dul:isTaskOf, r6), q(r6, dul:classifies, o3),
+                    q(r6, rdf:type, soma:'MovedObject'), q(o3, rdf:type, odb:apple),
+                    q(t6, dul:isTaskOf, r7), q(r7, dul:classifies, ag1), q(r7, rdf:type, soma:'AgentRole') ]),
            fixture_assert('http://example.org/neem#', S, P, O)).
+
+test(agent_roles_are_no_arguments, [nondet, cleanup(store_reset)]) :-
+    load_test_episode, odd_tasks,
+    n(t5, T5), task_call(T5, C5), C5 == open_fridge,
+    n(t6, T6), task_call(T6, C6), C6 == pick(apple).
 
 test(task_calls_equals_task_call, [cleanup(store_reset)]) :-
     forall(member(Load, [load_generated_episode(200, 5), ( load_test_episode, odd_tasks )]),

@@ -9,6 +9,7 @@
       suggestion/3,               % +Call, +Before, -Suggestion
       object_place/3,             % +ObjectName, +At, -Place
       performers/2,               % +Call, -Modes
+      performed_between/3,        % +From, +To, -Performed
       past_answer_json/1          % -JSONString
     ]).
 /** <module> Questions about the past: the evidence of the NEEM (RACCOON's state summaries)
@@ -55,22 +56,41 @@ latest_time(T) :-
 %   `done(Begin, End, Call)`: one store query from the begins the store finds by value,
 %   then each distinct odb task's call once (task_calls/2).
 done_between(From, To, Done) :-
+    done_rows(From, To, Rows, CallOf),
+    findall(done(B, E, C), ( member(B-E-_-T, Rows), get_assoc(T, CallOf, C) ), Done0),
+    sort(Done0, Done).
+
+%!  performed_between(+From, +To, -Performed) is det.
+%   The actions of done_between/3 with who performed each, by begin, as
+%   `performed(Begin, Call, Mode)`, Mode as performers/2 gives it (`user`, `robot`,
+%   `together` or `unknown`): the store query of done_between/3 and one more, for the
+%   actions' performers and their types.
+performed_between(From, To, Performed) :-
+    done_rows(From, To, Rows, CallOf),
+    findall(A, member(_-_-A-_, Rows), As0),
+    sort(As0, As),
+    action_modes(As, ModeOf),
+    findall(performed(B, C, M), ( member(B-_-A-T, Rows), get_assoc(T, CallOf, C), get_assoc(A, ModeOf, M) ),
+            Performed0),
+    msort(Performed0, Performed).
+
+%   The odb-typed, non-idle actions begun in [From, To] as sorted Begin-End-Action-Task rows,
+%   and their tasks' calls (an assoc Task -> Call).
+done_rows(From, To, Rows, CallOf) :-
     bound_or_none(From), bound_or_none(To),
     (   From == none
     ->  BSpec = B
     ;   BSpec = (>=(From) -> B)
     ),
-    kb_findall(B-E-T-C, ( triple(I, soma:hasIntervalBegin, BSpec), has_time_interval(A, I),
-                          has_interval_end(I, E), executes_task(A, T), triple(T, rdf:type, C) ), any, Rows0),
+    kb_findall(B-E-A-T-C, ( triple(I, soma:hasIntervalBegin, BSpec), has_time_interval(A, I),
+                            has_interval_end(I, E), executes_task(A, T), triple(T, rdf:type, C) ), any, Rows0),
     odb_iri('IdleTask', Idle),
     % the odb-typed, non-idle actions only: the mental actions' tasks need no call
-    findall(B-E-T, ( member(B-E-T-C, Rows0), C \== Idle, odb_iri(_, C), begins_by(To, B) ), Rows1),
+    findall(B-E-A-T, ( member(B-E-A-T-C, Rows0), C \== Idle, odb_iri(_, C), begins_by(To, B) ), Rows1),
     sort(Rows1, Rows),
-    findall(T, member(_-_-T, Rows), Ts),
+    findall(T, member(_-_-_-T, Rows), Ts),
     task_calls(Ts, Pairs),
-    list_to_assoc(Pairs, CallOf),
-    findall(done(B1, E1, C1), ( member(B1-E1-T1, Rows), get_assoc(T1, CallOf, C1) ), Done0),
-    sort(Done0, Done).
+    list_to_assoc(Pairs, CallOf).
 
 begins_by(none, _) :- !.
 begins_by(To, B) :- B =< To.
@@ -218,10 +238,11 @@ object_place(Name, At, place(Pose, Used)) :-
     ).
 
 %!  performers(+Call, -Modes) is det.
-%   Who performed each action of Call, by begin: `Begin-Mode`, Mode `user` when the
-%   performer (soma:isPerformedBy) is a dul:NaturalPerson, `robot` when another
-%   dul:PhysicalAgent, `unknown` without a performer of either type. One store query over
-%   the actions of Call's task class with their performers' types, kept for Call's tasks.
+%   Who performed each action of Call, by begin: `Begin-Mode`, Mode `user` when a performer
+%   (soma:isPerformedBy) is a dul:NaturalPerson and no other is, `robot` when the performers
+%   are other dul:PhysicalAgents, `together` when there are both (the user and the robot),
+%   `unknown` without a performer of either type. One store query over the actions of Call's
+%   task class, kept for Call's tasks, and one for their performers' types.
 performers(Call, Modes) :-
     check_call(Call),
     call_classes(Call, TC, _),
@@ -230,16 +251,42 @@ performers(Call, Modes) :-
     kb_findall(A-B-T, ( triple(T, rdf:type, TC), executes_task(A, T), has_time_interval(A, I),
                         has_interval_begin(I, B) ), any, Actions0),
     findall(A-B, ( member(A-B-T, Actions0), ord_memberchk(T, Tasks) ), Actions),
-    kb_findall(A-C, ( triple(T, rdf:type, TC), executes_task(A, T), is_performed_by(A, Ag),
-                      triple(Ag, rdf:type, C) ), any, Typed0),
-    sort(Typed0, Typed),
-    kb_iri(dul:'NaturalPerson', Person), kb_iri(dul:'PhysicalAgent', Agent),
-    findall(B-Mode, ( member(A-B, Actions), performer_mode(A, Typed, Person, Agent, Mode) ), Modes0),
+    findall(A, member(A-_, Actions), As0),
+    sort(As0, As),
+    action_modes(As, ModeOf),
+    findall(B-Mode, ( member(A-B, Actions), get_assoc(A, ModeOf, Mode) ), Modes0),
     msort(Modes0, Modes).
 
-performer_mode(A, Typed, Person, Agent, Mode) :-
-    (   ord_memberchk(A-Person, Typed) -> Mode = user
-    ;   ord_memberchk(A-Agent, Typed) -> Mode = robot
+%   action_modes(+Actions, -ModeOf): who performed each of the (sorted) Actions, an assoc
+%   Action -> Mode. A person counts as the user (a dul:NaturalPerson is also a
+%   dul:PhysicalAgent), any other physical agent as the robot.
+action_modes(As, ModeOf) :-
+    kb_findall(A-Ag, is_performed_by(A, Ag), any, Pairs0),
+    sort(Pairs0, Pairs),
+    group_pairs_by_key(Pairs, Groups),
+    list_to_assoc(Groups, AgentsOf),
+    findall(Ag, member(_-Ag, Pairs), Ags0),
+    sort(Ags0, Ags),
+    kb_iri(dul:'NaturalPerson', Person), kb_iri(dul:'PhysicalAgent', Agent),
+    findall(Ag-Who, ( member(Ag, Ags), agent_kind(Ag, Person, Agent, Who) ), Kinds),
+    list_to_assoc(Kinds, KindOf),
+    findall(A-Mode, ( member(A, As), action_mode(A, AgentsOf, KindOf, Mode) ), ModePairs),
+    list_to_assoc(ModePairs, ModeOf).
+
+agent_kind(Ag, Person, Agent, Who) :-
+    kb_findall(C, triple(Ag, rdf:type, C), any, Types),
+    (   memberchk(Person, Types) -> Who = user
+    ;   memberchk(Agent, Types) -> Who = robot
+    ;   Who = unknown
+    ).
+
+action_mode(A, AgentsOf, KindOf, Mode) :-
+    (   get_assoc(A, AgentsOf, Agents) -> true ; Agents = [] ),
+    findall(Who, ( member(Ag, Agents), get_assoc(Ag, KindOf, Who), Who \== unknown ), Whos0),
+    sort(Whos0, Whos),
+    (   Whos == [user] -> Mode = user
+    ;   Whos == [robot] -> Mode = robot
+    ;   Whos == [robot, user] -> Mode = together
     ;   Mode = unknown
     ).
 
@@ -281,6 +328,9 @@ past_answer([who, Name, Args], _{task: Text, modes: Ds}) :-
     call_of(Name, Args, Call, Text),
     performers(Call, Modes),
     findall(_{time: B, mode: M}, member(B-M, Modes), Ds).
+past_answer([modes, From, To], _{actions: Ds}) :-
+    performed_between(From, To, Performed),
+    findall(_{time: B, task: T, mode: M}, ( member(performed(B, C, M), Performed), call_text(C, T) ), Ds).
 past_answer([predicted, Time], _{predicted: Ds}) :-
     (   preference_at(Time, _, Ranked) -> true ; Ranked = [] ),
     findall(_{task: T, rank: R, score: S}, ( member(ranked(C, R, S), Ranked), call_text(C, T) ), Ds).

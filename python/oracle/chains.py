@@ -1,7 +1,8 @@
 """Action chains in text: ``task(obj1[, obj2])`` (thesis 5.2) and their JSONL files.
 
 A JSONL row is ``{"user", "time", "end" | "duration", "action", "available"}``; only ``user`` and
-``action`` are required. Optional: ``id``, ``performed_by``, ``state`` (one of EXECUTION_STATES,
+``action`` are required. Optional: ``id``, ``performed_by`` (one of MODES: who did it, the robot by
+default), ``state`` (one of EXECUTION_STATES,
 what the robot reports) and ``session`` (the recording session, one soma:Episode each; default
 the UTC day). ``end`` matters for idle detection: a gap of 20 s or more between one
 action's end (its start when no end is given) and the next start is an odb:IdleTask.
@@ -34,6 +35,14 @@ MAX_NAME = 200
 #: What a robot may report of an action it did (optional ``state`` of a row): KnowRob's
 #: execution states (``soma:ExecutionState_Succeeded`` ..., action_succeeded/1 and kin).
 EXECUTION_STATES = ("succeeded", "failed", "cancelled", "active", "paused", "pending")
+#: Who performs an action (``performed_by`` of a row; thesis 6.3, the autonomy mode): the robot
+#: alone, the user by hand, or the two together (the robot doing the part the user cannot).
+MODES = ("robot", "user", "together")
+
+
+def modes_error(value: object) -> str:
+    """The one line a value that names no mode gets (the chains reader, the logger, the service)."""
+    return f"performed_by must be one of {', '.join(MODES)}, got {_short(value)}"
 
 _NAME = r"[A-Za-z_][A-Za-z0-9_\-]*"
 _CALL = re.compile(rf"^\s*({_NAME})\s*(?:\(\s*(.*?)\s*\))?\s*$")
@@ -136,6 +145,8 @@ def parse_row(obj: object, where: str = "<row>") -> ChainRow:
             raise ChainSyntaxError(f"{where}: 'id' must be a string of 1-{MAX_NAME} printable characters or an integer")
     if "state" in obj and obj["state"] not in EXECUTION_STATES:
         raise ChainSyntaxError(f"{where}: 'state' must be one of {', '.join(EXECUTION_STATES)}, got {_short(obj['state'])}")
+    if "performed_by" in obj and obj["performed_by"] not in MODES:
+        raise ChainSyntaxError(f"{where}: {modes_error(obj['performed_by'])}")
     if "session" in obj and not (isinstance(obj["session"], str) and _printable_name(obj["session"])):
         raise ChainSyntaxError(f"{where}: 'session' must be a string of 1-{MAX_NAME} printable characters")
     if "action" not in obj:

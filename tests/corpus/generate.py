@@ -156,11 +156,11 @@ for name, changes, expected in [
     ("id-object", {"id": {"$where": "1"}}, "'id'"), ("id-list", {"id": [1]}, "'id'"), ("id-empty", {"id": ""}, "'id'"),
     ("id-null-byte", {"id": "a\u0000"}, "'id'"), ("id-bool", {"id": True}, "'id'"), ("id-float-nan", {"id": float("nan")}, "'id'"),
     ("id-too-long", {"id": "x" * 300}, "'id'"),
-    ("performed-by-alien", {"performed_by": "alien"}, "performed_by must be 'robot' or 'user'"),
-    ("performed-by-number", {"performed_by": 5}, "performed_by must be 'robot' or 'user'"),
-    ("performed-by-null", {"performed_by": None}, "performed_by must be 'robot' or 'user'"),
-    ("performed-by-list", {"performed_by": ["robot"]}, "performed_by must be 'robot' or 'user'"),
-    ("performed-by-upper", {"performed_by": "ROBOT"}, "performed_by must be 'robot' or 'user'"),
+    ("performed-by-alien", {"performed_by": "alien"}, "performed_by must be one of robot, user, together"),
+    ("performed-by-number", {"performed_by": 5}, "performed_by must be one of robot, user, together"),
+    ("performed-by-null", {"performed_by": None}, "performed_by must be one of robot, user, together"),
+    ("performed-by-list", {"performed_by": ["robot"]}, "performed_by must be one of robot, user, together"),
+    ("performed-by-upper", {"performed_by": "ROBOT"}, "performed_by must be one of robot, user, together"),
 ]:
     imp(f"field-{name}", row(**changes), expected)
 

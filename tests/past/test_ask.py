@@ -81,7 +81,7 @@ def test_why_did_you_suggest(bridge, onto):
 
 def test_who_usually_does(bridge, onto):
     answer = ask(bridge, onto, "who usually does eat the apple?")
-    assert answer.evidence["counts"] == {"user": 1, "robot": 0, "unknown": 0}
+    assert answer.evidence["counts"] == {"user": 1, "robot": 0, "together": 0, "unknown": 0}
     assert answer.text == "You usually do eat(apple) yourself (1 of 1 time)."
     german = ask(bridge, onto, "Wer macht meistens open(fridge)?")
     assert german.text == "Der Roboter macht open(fridge) meistens für dich (3 von 3 Malen)."

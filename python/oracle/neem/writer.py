@@ -26,7 +26,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 from datetime import datetime, timezone
 
-from oracle.chains import TaskCall, parse_call
+from oracle.chains import MODES, TaskCall, modes_error, parse_call
 from oracle.errors import ChainSyntaxError, LoggingError, OntologyError, StoreError
 from oracle.neem import terms as T
 from oracle.neem.lifecycle import wipe_temporary_neems
@@ -123,14 +123,14 @@ def person_iri(ns: str, user: str) -> str:
     return f"{ns}Agent_{slug}" if slug != "robot" else f"{ns}Agent_user-robot"
 
 
-#: Who may perform an action: the robot, or the user it assists.
-PERFORMERS = ("robot", "user")
+#: Who may perform an action: the robot, the user it assists, or both together (chains.MODES).
+PERFORMERS = MODES
 
 
 def check_performer(who: object) -> str:
     """``who`` if it names a performer (PERFORMERS), else LoggingError."""
     if who not in PERFORMERS:
-        raise LoggingError(f"performed_by must be 'robot' or 'user', got {who!r}")
+        raise LoggingError(modes_error(who))
     return str(who)
 
 
@@ -361,8 +361,25 @@ class NeemLogger:
     def _agent(self, who: str, out: _Out) -> str:
         if who == "robot":
             return self._individual(f"{self.ns}Agent_robot", T.ROBOT_CLASS, out)
-        check_performer(who)
+        if who != "user":
+            raise LoggingError(modes_error(who))
         return self._individual(person_iri(self.ns, self.user), T.PERSON_CLASS, out)
+
+    def _performers(self, action: str, task: str, who: str, begin: Instant, end: Instant, out: _Out) -> None:
+        """``action`` performed by the robot, the user, or both (``together``). Together, each
+        agent also plays a soma:AgentRole of the action's task during it, as neem-interface adds
+        a participant with its role (``has_role(Agent, Role) during Action``, ``task_role``)."""
+        check_performer(who)
+        if who != "together":
+            out.add(action, T.PERFORMED_BY, self._agent(who, out))
+            return
+        for agent in (self._agent("robot", out), self._agent("user", out)):
+            out.add(action, T.PERFORMED_BY, agent)
+            role = self._event("Role")
+            out.add(role, RDF_TYPE, T.AGENT_ROLE)
+            out.add(role, RDF_TYPE, T.NAMED_INDIVIDUAL)
+            out.add(task, T.IS_TASK_OF, role)
+            out.add(role, T.CLASSIFIES, agent, *fact_extent(begin.seconds, end.seconds))
 
     def _resolve(self, call: TaskCall | str) -> TaskCall:
         resolved = self._resolved.get(call)
@@ -580,6 +597,7 @@ class NeemLogger:
         ``begin`` (one session per time-less log)."""
         call = self._resolve(call)
         check_state(state)
+        check_performer(performed_by)
         if session is not None and (not isinstance(session, str) or not session.strip()):
             raise LoggingError(f"session must be a non-empty string, got {session!r}")
         start = _instant(begin)
@@ -612,7 +630,7 @@ class NeemLogger:
         out.add(iri, RDF_TYPE, T.ACTION)
         out.add(iri, RDF_TYPE, T.NAMED_INDIVIDUAL)
         out.add(iri, T.EXECUTES, task)
-        out.add(iri, T.PERFORMED_BY, self._agent(performed_by, out))
+        self._performers(iri, task, performed_by, start, stop, out)
         out.add(iri, T.HAS_INTERVAL, self._interval(start, stop, out))
         if state is not None:
             self._state(iri, state, out)

@@ -137,6 +137,7 @@ def usual_after(bridge: Bridge, call: str, done: list[Done] | None = None) -> di
 def _who(bridge: Bridge, q: Question, now: float | None) -> dict[str, Any]:
     """Who performed the call's actions (odb_past:performers/2) and who usually does it in the
     part of the day of now (oracle.past.autonomy, from the call's own actions)."""
+    from oracle.chains import MODES
     from oracle.past.autonomy import ModeCounts, Performed
     from oracle.timeline import part_of_day_at
 
@@ -147,5 +148,5 @@ def _who(bridge: Bridge, q: Question, now: float | None) -> dict[str, Any]:
             model.add(Performed(reply["task"], part_of_day_at(row["time"]), row["mode"]))
     part = part_of_day_at(now) if now is not None else "Midday"
     usual, source = model.predict(reply["task"], part)
-    counts = {mode: sum(1 for r in reply["modes"] if r["mode"] == mode) for mode in ("user", "robot", "unknown")}
+    counts = {mode: sum(1 for r in reply["modes"] if r["mode"] == mode) for mode in (*MODES, "unknown")}
     return {**reply, "usual": usual if source != "none" else None, "part": part, "counts": counts}

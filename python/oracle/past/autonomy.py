@@ -1,22 +1,33 @@
-"""Who usually performs an action (thesis 6.3, autonomy mode): the user by hand or the robot.
+"""Who usually performs an action (thesis 6.3, autonomy mode): the user by hand, the robot, or the
+two together.
 
 The mode of an action is predicted from the user's own past: the modes counted for the same call
 (task and objects) in the same part of the day, for the call at any time, for the task in that
-part of the day and for the task, the more specific counting more. Ties go to the user (the robot
-leaves what the user still can do to the user).
+part of the day and for the task, the more specific counting more. Ties go to the mode that leaves
+the user the most to do (the user, then together, then the robot: the robot leaves what the user
+still can do to the user). ``ranked_modes`` gives a ranking's tasks and its predicted chain their
+usual modes (``rank``, the service, the tablet page).
 """
 
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
-from oracle.chains import parse_call
+from oracle.chains import MODES, parse_call
 
-USER, ROBOT = "user", "robot"
+if TYPE_CHECKING:
+    from oracle.bridge import Bridge
+
+USER, ROBOT, TOGETHER = "user", "robot", "together"
+#: Who wins a tie: the mode that leaves the user more to do comes first.
+TIE_ORDER = (USER, TOGETHER, ROBOT)
 #: How much a count weighs in the contexts call and part, call, task and part, task.
 WEIGHTS = (1.0, 0.5, 0.25, 0.1)
+#: The part of the day of an action in a NEEM without a clock (its begins are positions).
+NO_PART = "none"
 
 
 @dataclass(frozen=True)
@@ -26,6 +37,20 @@ class Performed:
     call: str
     part: str
     mode: str
+
+
+@dataclass(frozen=True)
+class UsualMode:
+    """The usual mode of a call (None: no action of its task is known), the most specific context
+    with counts (``call and part``, ``call``, ``task and part``, ``task`` or ``none``) and the
+    modes counted there: what the prediction rests on."""
+
+    mode: str | None
+    context: str
+    counts: dict[str, int]
+
+    def to_json(self) -> dict[str, Any]:
+        return {"mode": self.mode, "context": self.context, "counts": dict(self.counts)}
 
 
 @dataclass
@@ -49,7 +74,7 @@ class ModeCounts:
         """The usual mode of ``call`` in ``part``, and the most specific context it was read
         from (``call and part``, ``call``, ``task and part``, ``task`` or ``none``): the modes'
         counts in the four contexts summed, each weighted by WEIGHTS (the more specific, the more)."""
-        votes = {USER: 0.0, ROBOT: 0.0}
+        votes = {mode: 0.0 for mode in TIE_ORDER}
         source = "none"
         for (name, key), weight in zip(self.contexts(call, part), WEIGHTS):
             counts = self.counts.get(key)
@@ -58,12 +83,26 @@ class ModeCounts:
                     votes[mode] = votes.get(mode, 0.0) + weight * n
                 if source == "none":
                     source = name
-        return (ROBOT if votes[ROBOT] > votes[USER] else USER), source
+        return _most(votes), source
+
+    def usual(self, call: str, part: str) -> UsualMode:
+        """``predict`` with what it rests on: the counts of its most specific context."""
+        mode, source = self.predict(call, part)
+        if source == "none":
+            return UsualMode(None, source, {m: 0 for m in MODES})
+        key = dict(self.contexts(call, part))[source]
+        counts = self.counts[key]
+        return UsualMode(mode, source, {m: counts.get(m, 0) for m in MODES})
+
+
+def _most(votes: dict[str, float]) -> str:
+    """The mode with the most votes; a tie to the first of TIE_ORDER."""
+    return max(TIE_ORDER, key=lambda mode: (votes.get(mode, 0.0), -TIE_ORDER.index(mode)))
 
 
 def majority(counts: Counter[str]) -> str:
-    """The mode with more votes; the user on a tie."""
-    return ROBOT if counts[ROBOT] > counts[USER] else USER
+    """The mode with more votes; on a tie the one of TIE_ORDER first (the user)."""
+    return _most({mode: float(counts[mode]) for mode in TIE_ORDER})
 
 
 def fit(actions: Iterable[Performed]) -> ModeCounts:
@@ -71,3 +110,27 @@ def fit(actions: Iterable[Performed]) -> ModeCounts:
     for action in actions:
         counts.add(action)
     return counts
+
+
+def read_modes(bridge: Bridge, clocked: bool, before: float | None = None) -> ModeCounts:
+    """The modes of the NEEM's actions (begun at or before ``before``; None: all), counted in
+    their contexts: one request to odb_past (performed_between/3). An action whose performer is
+    neither the user nor another agent is not counted."""
+    from oracle.past.evidence import request
+    from oracle.timeline import part_of_day_at
+
+    reply = request(bridge, ["modes", None, before])
+    counts = ModeCounts()
+    for row in reply["actions"]:
+        if row["mode"] in MODES:
+            part = part_of_day_at(float(row["time"])) if clocked else NO_PART
+            counts.add(Performed(str(row["task"]), part, str(row["mode"])))
+    return counts
+
+
+def ranked_modes(counts: ModeCounts, calls: Sequence[str], chain: Sequence[str], part: str | None,
+                 ) -> tuple[list[UsualMode], list[str | None]]:
+    """The usual mode of each ranked call and of each step of the predicted chain, in ``part``
+    of the day (None: a NEEM without a clock)."""
+    at = part or NO_PART
+    return [counts.usual(call, at) for call in calls], [counts.usual(call, at).mode for call in chain]

@@ -137,7 +137,7 @@ def _suggested(e: dict[str, Any], now: float | None) -> tuple[str, str]:
 
 def _who(e: dict[str, Any], now: float | None) -> tuple[str, str]:
     task, usual, counts = e["task"], e["usual"], e["counts"]
-    known = counts["user"] + counts["robot"]
+    known = counts["user"] + counts["robot"] + counts.get("together", 0)
     if usual is None:
         return (f"I have no record of who did {task}.", f"Ich weiß nicht, wer {task} gemacht hat.")
     mine = counts[usual]
@@ -145,6 +145,9 @@ def _who(e: dict[str, Any], now: float | None) -> tuple[str, str]:
     if usual == "user":
         return (f"You usually do {task} yourself ({mine} of {known} {times}).",
                 f"Du machst {task} meistens selbst ({mine} von {known} Malen).")
+    if usual == "together":
+        return (f"You usually do {task} together with the robot ({mine} of {known} {times}).",
+                f"Du machst {task} meistens zusammen mit dem Roboter ({mine} von {known} Malen).")
     return (f"The robot usually does {task} for you ({mine} of {known} {times}).",
             f"Der Roboter macht {task} meistens für dich ({mine} von {known} Malen).")
 

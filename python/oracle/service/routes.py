@@ -30,6 +30,8 @@ if TYPE_CHECKING:
     from oracle.service.session import NeemSession
 
 Time = float | str | None
+#: Who performs an action (chains.MODES, held equal by a test: a Literal is what /openapi.json lists).
+Mode = Literal["robot", "user", "together"]
 router = APIRouter(responses=S.ERRORS)
 
 
@@ -62,7 +64,7 @@ class ActionIn(BaseModel):
     begin: Time = Field(None, description="phase done: when it began (default: now)")
     end: Time = Field(None, description="phase done: when it ended (default: its begin)")
     id: str | None = Field(None, max_length=100, description="the action's key, to end it later")
-    performed_by: Literal["robot", "user"] = "robot"
+    performed_by: Mode = Field("robot", description="who did it: the robot, the user by hand, or the two together")
     state: Literal["succeeded", "failed", "cancelled"] | None = Field(
         None, description="phase done: how it went, as the robot reports it (soma:hasExecutionState)")
 

@@ -22,7 +22,8 @@ BY_HAND = {"pick": 0.7, "place": 0.7, "open": 0.8, "close": 0.8, "pour": 0.5, "c
            "turn_on": 0.85, "turn_off": 0.85, "eat": 0.95, "eat_with": 0.95, "drink_from": 0.95}
 #: Objects heavy to handle: pouring or carrying them is left to the robot more often.
 HEAVY = frozenset({"thermos", "milk_carton", "water_bottle", "juice", "beer_bottle", "cereal_box", "plate"})
-#: The two modes an action is logged with (the logger's ``performed_by``).
+#: The two modes the generator draws (of chains.MODES; ``together`` is not simulated: a profile
+#: says how likely the user does an action by hand, not which part of it).
 MODES = ("user", "robot")
 
 
