@@ -191,3 +191,30 @@ def test_the_terminal_names_the_objects_in_hand_only_where_no_context_backs_a_ta
     assert describe(never) == "p 0.125 (no past context: by similarity; uses RedMug in hand)"
     followed = RoutineTask(1, 1.0, never.option, 4, 0.0, (), 0.5, 1, ("pick(RedMug)",), (3,), (mug,))
     assert describe(followed) == "p 0.500 (followed [pick(RedMug)] 4x)"
+
+
+def test_rank_says_who_usually_does_each_task_and_each_step(tmp_path, capsys):
+    """The user pours, the robot does the rest (``performed_by`` of the chains): rank's JSON
+    carries each task's usual mode with its support and a mode per step of the chain, and the
+    text says it in the tablet's words."""
+    available = sorted(set(CHAIN + ["pick(banana)"]))
+    rows = [{"user": "ada", "time": f"2026-03-0{2 + day}T08:00:{8 * i:02d}", "duration": 5, "action": action,
+             "available": available, **({"performed_by": "user"} if action.startswith("pour") else {})}
+            for day in range(3) for i, action in enumerate(CHAIN)]
+    chains = tmp_path / "c.jsonl"
+    chains.write_text("".join(json.dumps(r) + "\n" for r in rows))
+    path = tmp_path / "s.sqlite"
+    assert main(["import", str(chains), "--store", str(path)]) == 0
+    capsys.readouterr()
+    assert main(["rank", "--store", str(path), "--json", "--no-write", "--at", "2026-03-05T08:00:00"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    by_call = {r["call"]: r for r in out["ranking"]}
+    assert by_call["pour(thermos, red_mug)"]["mode"] == "user"
+    assert by_call["pour(thermos, red_mug)"]["mode_support"] == {"context": "call and part",
+                                                                 "counts": {"robot": 0, "user": 3, "together": 0}}
+    assert by_call["pick(red_mug)"]["mode"] == "robot"
+    assert out["chain_modes"] == ["user" if step.startswith("pour") else "robot" for step in out["chain"]]
+    assert main(["rank", "--store", str(path), "--no-write", "--at", "2026-03-05T08:00:00"]) == 0
+    text = capsys.readouterr().out
+    pour = next(line for line in text.splitlines() if line.split()[1:3] == ["pour(thermos,", "red_mug)"])
+    assert pour.endswith("You usually do this yourself (3 of 3 times).")

@@ -62,6 +62,12 @@ def ranking_digest_text(tmp: Path) -> str:
     ranked["neem"] = name
     for key in ("ms", "written"):
         ranked.pop(key)
+    # who usually does each task (docs/beyond.md, "Autonomy mode") is beside the ranking, not part
+    # of it: the pin holds the ranking unchanged by it (every row of this NEEM is the robot's)
+    assert ranked.pop("chain_modes") == ["robot"] * len(ranked["chain"])
+    for entry in ranked["ranking"]:
+        assert entry.pop("mode") in ("robot", None)
+        entry.pop("mode_support")
     goal = "odb_decisions:latest_preference(_, B, R), format('~q~n', [B-R])"
     back = _oracle("prolog", "--store", str(store), "--neem", "u", "-g", goal, env=env)
     return json.dumps(ranked, sort_keys=True) + "\n" + back

@@ -29,6 +29,9 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     generate.add_argument("--seed", type=int, default=0, metavar="K", help="random seed (default 0)")
     generate.add_argument("--world", type=Path, metavar="FILE", help="world file (default ontology/kitchen-world.yaml)")
     generate.add_argument("--out", type=Path, required=True, metavar="DIR", help="output folder")
+    generate.add_argument("--modes", action="store_true",
+                          help="say who performed each action (performed_by: the user or the robot, from the persona's "
+                               "autonomy profile; docs/beyond.md, \"Autonomy mode\")")
     generate.set_defaults(handler=run_generate)
 
     convert = subparsers.add_parser(
@@ -53,7 +56,8 @@ def run_generate(args: argparse.Namespace) -> int:
     from oracle.world.worldfile import load_world
 
     world = load_world(args.world)
-    summary = generate(args.out, personas=args.personas, days=args.days, seed=args.seed, world=world, progress=_progress)
+    summary = generate(args.out, personas=args.personas, days=args.days, seed=args.seed, world=world, progress=_progress,
+                       modes=args.modes)
     print(f"wrote {args.out}/personas.yaml, tune.jsonl ({summary.tune_actions} actions), test.jsonl ({summary.test_actions} actions)")
     print(f"personas {summary.personas}, days {summary.days}, actions {summary.actions}, "
           f"per persona {summary.mean_actions_per_persona:.1f}, available per step {summary.mean_available:.1f}, "

@@ -23,6 +23,7 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 def run(args: argparse.Namespace) -> int:
     from oracle.commands.common import connect, method_from, moment_from, settings_from
     from oracle.commands.shown import print_ranking
+    from oracle.past.autonomy import ranked_modes, read_modes
     from oracle.ranking import finite, rank_neem, support_fields
 
     settings = settings_from(args.settings)
@@ -30,15 +31,20 @@ def run(args: argparse.Namespace) -> int:
     at = moment_from(args.at)  # before the store is opened: a bad --at touches nothing
     bridge, onto = connect(args, write=not args.no_write)
     result = rank_neem(bridge, onto, settings, args.available, at, write=not args.no_write, method=method)
+    # who usually does each ranked task and each step of the chain, from the user's past (thesis 6.3)
+    modes = read_modes(bridge, result.time_of_day is not None, before=result.at)
+    usual, chain_modes = ranked_modes(modes, [str(c) for c in result.calls], [str(c) for c in result.chain],
+                                      result.time_of_day)
     if args.json:
         print(json.dumps({
             "neem": result.neem, "method": result.method, "at": result.at, "time_of_day": result.time_of_day,
             "history": result.history, "ms": result.milliseconds,
             "ranking": [{"rank": t.rank, "call": str(c), "score": finite(t.score), "similar": t.n_similar,
-                         **support_fields(t)}
-                        for t, c in zip(result.ranking, result.calls)],
-            "chain": [str(c) for c in result.chain], "written": result.written, "note": result.note,
+                         **support_fields(t), "mode": u.mode, "mode_support": {"context": u.context, "counts": u.counts}}
+                        for t, c, u in zip(result.ranking, result.calls, usual)],
+            "chain": [str(c) for c in result.chain], "chain_modes": chain_modes,
+            "written": result.written, "note": result.note,
         }, indent=1))
         return 0
-    print_ranking(result)
+    print_ranking(result, modes=(usual, chain_modes))
     return 0

@@ -7,7 +7,10 @@ import math
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     from oracle.algorithm.records import RankedTask
+    from oracle.past.autonomy import UsualMode
     from oracle.ranking import NeemRanking
 
 
@@ -30,18 +33,25 @@ def describe(task: RankedTask) -> str:
     return "no similar history" if math.isinf(task.score) else f"score {task.score:.4f} from {task.n_similar} similar"
 
 
-def print_ranking(result: NeemRanking, limit: int | None = None) -> None:
+def print_ranking(result: NeemRanking, limit: int | None = None,
+                  modes: tuple[Sequence[UsualMode], Sequence[str | None]] | None = None) -> None:
+    """The ranking, best first; with ``modes`` (oracle.past.autonomy.ranked_modes) who usually
+    does each task, in the tablet's English words, and each step of the chain."""
+    from oracle.service.words import mode_sentence
     from oracle.timeline import format_clock
 
     when = f"{format_clock(result.at)} ({result.time_of_day})" if result.time_of_day else f"position {result.at:g} (no clock)"
     print(f"NEEM {result.neem}: {result.history} past actions, decision at {when}; "
           f"{result.method} ranked {len(result.calls)} options in {result.milliseconds:.2f} ms")
     shown = list(zip(result.ranking, result.calls))[:limit]
-    for t, call in shown:
-        print(f"  {t.rank:2d}. {str(call):32s} {describe(t)}")
+    usual, chain_modes = modes if modes is not None else ([], [])
+    for index, (t, call) in enumerate(shown):
+        said = mode_sentence("en", usual[index].mode, usual[index].counts) if index < len(usual) else ""
+        print(f"  {t.rank:2d}. {str(call):32s} {describe(t)}" + (f" {said}" if said else ""))
     if limit is not None and len(result.calls) > limit:
         print(f"  ... and {len(result.calls) - limit} more")
-    print("predicted chain: " + " -> ".join(str(c) for c in result.chain))
+    steps = [f"{c} [{chain_modes[i] or '?'}]" if i < len(chain_modes) else str(c) for i, c in enumerate(result.chain)]
+    print("predicted chain: " + " -> ".join(steps))
     if result.written is not None:
         print(f"ranking written back as {result.written}")
     if result.note is not None:

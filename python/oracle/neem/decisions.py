@@ -7,6 +7,9 @@ whose soma:OrderedElements soma:encapsulate the chosen plans, step 1 first (one 
 task, one per step for a workflow): the layout of the robot's preference order, so the same
 plans (one per call, shared with imaginings and preferences) name what was chosen. What the
 robot then executes is logged apart, as its action: the two are never confused.
+
+Who does each chosen step (thesis 6.3: "I bring the cup, you pour") is kept on its element as
+``odb:stepMode`` (robot, user or together; chains.MODES), as the routines keep their usual hour.
 """
 
 from __future__ import annotations
@@ -15,7 +18,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from oracle.chains import TaskCall
+from oracle.chains import MODES, TaskCall, modes_error
+from oracle.errors import LoggingError
 from oracle.neem import terms as T
 from oracle.neem.writer import NeemLogger, _instant, _Out
 from oracle.namespaces import DUL_IRI, SOMA_IRI
@@ -23,6 +27,8 @@ from oracle.store import RDF_TYPE, Store
 from oracle.store.model import decode_value
 
 MENTAL_TASK = SOMA_IRI + "MentalTask"
+#: The local name (in the odb namespace) of who does a chosen step.
+STEP_MODE = "stepMode"
 DESCRIBED_BY = DUL_IRI + "isDescribedBy"
 
 
@@ -33,6 +39,8 @@ class Decision:
     iri: str
     at: float
     calls: tuple[str, ...]
+    #: Who does each step (one per call; empty: a decision recorded without them).
+    modes: tuple[str, ...] = ()
 
     @property
     def task(self) -> str:
@@ -43,10 +51,18 @@ class Decision:
         return list(self.calls) if len(self.calls) > 1 else None
 
 
-def record_decision(logger: NeemLogger, calls: Sequence[TaskCall], at: float) -> Decision:
+def record_decision(logger: NeemLogger, calls: Sequence[TaskCall], at: float,
+                    modes: Sequence[str] | None = None) -> Decision:
     """Buffer the user's decision for ``calls`` made at ``at`` (unix seconds) in the logger's
-    transaction (the caller flushes). The calls are checked against the ontology first."""
+    transaction (the caller flushes), with who does each step (``modes``, one per call; None:
+    not said). The calls and modes are checked first."""
     resolved = [logger._resolve(call) for call in calls]
+    if modes is not None:
+        if len(modes) != len(resolved):
+            raise LoggingError(f"modes: {len(modes)} given for {len(resolved)} steps; give one per step")
+        for mode in modes:
+            if mode not in MODES:
+                raise LoggingError(modes_error(mode))
     when = _instant(at)
     out = _Out()
     action = logger._mental(MENTAL_TASK, when, out, who="user")
@@ -59,8 +75,10 @@ def record_decision(logger: NeemLogger, calls: Sequence[TaskCall], at: float) ->
         out.add(order, T.ORDERS, element)
         out.add(element, T.ENCAPSULATES, logger._plan(call, out, when.seconds))
         out.add(element, logger.vocab.has_rank, step)
+        if modes is not None:
+            out.add(element, logger.ns + STEP_MODE, modes[step - 1])
     logger._write(out)
-    return Decision(action, when.seconds, tuple(str(c) for c in resolved))
+    return Decision(action, when.seconds, tuple(str(c) for c in resolved), tuple(modes or ()))
 
 
 def latest_decision(store: Store, neem: str, ns: str, has_rank: str) -> Decision | None:
@@ -75,14 +93,17 @@ def latest_decision(store: Store, neem: str, ns: str, has_rank: str) -> Decision
         begin = _one(store, neem, str(interval), T.BEGIN) if interval is not None else None
         if begin is None or (best is not None and float(begin) < best.at):
             continue
-        steps: list[tuple[int, str]] = []
+        steps: list[tuple[int, str, str | None]] = []
         for element in store.find(neem, s=order, p=T.ORDERS, exact=True):
             rank = _one(store, neem, str(element["o"]), has_rank)
             plan = _one(store, neem, str(element["o"]), T.ENCAPSULATES)
+            mode = _one(store, neem, str(element["o"]), ns + STEP_MODE)
             if rank is not None and plan is not None:
-                steps.append((int(rank), _call_of_plan(str(plan), ns)))
+                steps.append((int(rank), _call_of_plan(str(plan), ns), None if mode is None else str(mode)))
         if steps:
-            best = Decision(action, float(begin), tuple(call for _, call in sorted(steps)))
+            steps.sort(key=lambda s: s[0])
+            modes = tuple(str(m) for _, _, m in steps) if all(m is not None for _, _, m in steps) else ()
+            best = Decision(action, float(begin), tuple(call for _, call, _ in steps), modes)
     return best
 
 

@@ -24,6 +24,7 @@ from oracle.errors import NeemOracleError, StoreError
 from oracle.neem.writer import NeemLogger
 from oracle.timeline import Instant
 from oracle.ontology import OdbOntology
+from oracle.past.autonomy import read_modes
 from oracle.ranking import latest_instant, make_predictor
 from oracle.service.guard import Limits
 from oracle.service.queries import PrologQueryError, PrologRefused, ask
@@ -151,8 +152,9 @@ class Engine:
             self._room_for_a_session()
             view = HistoryCache.default().view(self.bridge(neem))
             logger = NeemLogger(self.store, self.ontology, neem, commit_every=NEVER)
+            modes = read_modes(self.bridge(neem), logger.clocked)
             session = NeemSession(neem, logger, self.ontology, make_predictor(self.ontology, self.settings, self.method),
-                                  view.rows)
+                                  view.rows, modes)
             self.sessions[neem] = session
             self._show_latest(session, view.latest)
         return session

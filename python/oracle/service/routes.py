@@ -72,6 +72,9 @@ class ActionIn(BaseModel):
 class ChoiceIn(BaseModel):
     task: str = Field(description="the task the user chose")
     workflow: list[str] | None = Field(None, description="the whole predicted chain, when chosen as one workflow")
+    modes: list[Mode] | None = Field(None, max_length=1000, description=(
+        "who does each step of the workflow (or the task: one), e.g. [\"user\", \"robot\"] for \"I bring the cup, "
+        "you pour\" (default: who usually does each step, from the user's past; else the robot)"))
     at: Time = Field(None, description="when the user confirmed it (default: now)")
 
 
@@ -211,7 +214,7 @@ async def latest_situation(neem: str, request: Request) -> dict[str, Any]:
     """The latest ranking this service answered for the NEEM (`ranking` empty before the first)."""
     ctx = _ctx(request)
     latest = await ctx.thread.run(lambda: ctx.engine.session(neem).latest)
-    return cast(dict[str, Any], latest) if latest else {"neem": neem, "ranking": [], "chain": []}
+    return cast(dict[str, Any], latest) if latest else {"neem": neem, "ranking": [], "chain": [], "chain_modes": []}
 
 
 @router.post("/api/neems/{neem}/actions", tags=["robot"], response_model=S.ActionAnswer)
@@ -256,7 +259,8 @@ def _missing(field: str) -> Exception:
 @router.post("/api/neems/{neem}/choice", tags=["tablet"], response_model=S.ChoiceAnswer)
 async def choice(neem: str, body: ChoiceIn, request: Request) -> dict[str, Any]:
     """The user's confirmed decision on the tablet: recorded in the NEEM as the user's own
-    decision (oracle.neem.decisions) and handed to the robot (event `choice`, and GET
+    decision (oracle.neem.decisions), with who does each step (`modes`: a workflow in mixed
+    mode, "I bring the cup, you pour"), and handed to the robot (event `choice`, and GET
     .../choice). What the robot then does is logged apart, as its action."""
     ctx = _ctx(request)
 
@@ -266,7 +270,7 @@ async def choice(neem: str, body: ChoiceIn, request: Request) -> dict[str, Any]:
         workflow = session.calls(body.workflow, "workflow") if body.workflow else None
         if workflow is not None and str(workflow[0]) != str(task):
             raise _refused(f"workflow: its first step {workflow[0]} is not the task {task}")
-        made = record_choice(session, list(workflow or [task]), body.at)
+        made = record_choice(session, list(workflow or [task]), body.at, None if body.modes is None else list(body.modes))
         session.choice = made
         return session.neem, made
 
@@ -285,7 +289,7 @@ async def latest_choice(neem: str, request: Request) -> dict[str, Any]:
         return session.neem, recorded_choice(session)
 
     neem, made = await ctx.thread.run(job)
-    return {"neem": neem, "task": None, "workflow": None, **(made or {})}
+    return {"neem": neem, "task": None, "workflow": None, "modes": None, **(made or {})}
 
 
 def _refused(message: str) -> Exception:

@@ -42,6 +42,13 @@ class PerceptionAnswer(Answer):
     logged: list[str]
 
 
+class ModeSupport(BaseModel):
+    """What a usual mode rests on: the most specific context with counts (``call and part``,
+    ``call``, ``task and part``, ``task``, ``none``) and the modes counted there."""
+    context: str | None = None
+    counts: dict[str, int] = {}
+
+
 class RankedEntry(Answer):
     rank: int
     task: str = Field(description="the task call, e.g. pick(red_mug)")
@@ -52,6 +59,9 @@ class RankedEntry(Answer):
     context: list[str] = []
     situations: list[float] = []
     reason: str = ""
+    mode: str | None = Field(None, description="who usually does it, from the user's own past: robot, user or together "
+                                               "(null: no action of the task known; oracle.past.autonomy)")
+    mode_support: ModeSupport | None = Field(None, description="what the mode rests on")
 
 
 class RoutineNow(BaseModel):
@@ -69,6 +79,7 @@ class SituationAnswer(Answer):
     neem: str
     ranking: list[RankedEntry]
     chain: list[str]
+    chain_modes: list[str | None] = Field([], description="who usually does each step of the chain (as `mode`)")
     routine: RoutineNow | None = Field(None, description="the routine in progress and what remains (null: none)")
     at: float | None = None
     time_of_day: str | None = None
@@ -92,6 +103,7 @@ class ChoiceAnswer(Answer):
     neem: str
     task: str | None = Field(description="the task the user chose (the workflow's first step)")
     workflow: list[str] | None = None
+    modes: list[str] | None = Field(None, description="who does each step (the task: one): robot, user or together")
     at: float | None = Field(None, description="when the user confirmed it (unix seconds)")
     decision: str | None = Field(None, description="the decision's IRI in the NEEM")
 
@@ -113,11 +125,15 @@ class TabletTask(BaseModel):
     rank: int
     said: str = Field(description="the task as a person says it")
     reason: str = Field(description="why it stands here, one short sentence")
+    mode: str | None = Field(None, description="who usually does it (robot, user, together; null: not known)")
+    mode_said: str = Field("", description="the same in the person's words, with how often")
 
 
 class TabletStep(BaseModel):
     task: str
     said: str
+    mode: str = Field("robot", description="who does the step unless the person changes it: the usual mode, else the robot")
+    who: str = Field("", description="the same as the sheet's toggle says it")
 
 
 class TabletRoutine(BaseModel):

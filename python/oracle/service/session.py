@@ -19,6 +19,7 @@ from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError
 from oracle.neem.tf import Pose
 from oracle.neem.writer import LoggedAction, NeemLogger, check_performer
+from oracle.past.autonomy import NO_PART, ModeCounts, Performed, ranked_modes
 from oracle.timeline import Instant, TimeValueError, parse_iso
 from oracle.ontology import OdbOntology
 from oracle.bridge import HistoryRow
@@ -57,11 +58,14 @@ class RankedEntry(TypedDict):
     since: float | None
     situations: list[float]
     reason: str
+    mode: str | None
+    mode_support: dict[str, Any]
 
 
 class SituationAnswer(TypedDict):
     """The service's answer to a situation: the NEEM, when (seconds, part of day), how many steps
-    the predictor was fitted on, the ranking, the predicted chain and how long ranking took (ms)."""
+    the predictor was fitted on, the ranking, the predicted chain with the usual mode of each of
+    its steps and how long ranking took (ms)."""
 
     neem: str
     at: float
@@ -69,6 +73,7 @@ class SituationAnswer(TypedDict):
     history: int
     ranking: list[RankedEntry]
     chain: list[str]
+    chain_modes: list[str | None]
     ms: float
 
 
@@ -131,7 +136,7 @@ class NeemSession:
     leaves both the NEEM and this object as they were."""
 
     def __init__(self, neem: str, logger: NeemLogger, ontology: OdbOntology, predictor: Predictor,
-                 history: Sequence[HistoryRow]) -> None:
+                 history: Sequence[HistoryRow], modes: ModeCounts | None = None) -> None:
         self.neem = neem
         self.logger = logger
         self.ontology = ontology
@@ -146,6 +151,9 @@ class NeemSession:
         self.open: dict[str, OpenAction] = {}
         self.poses: dict[str, list[float]] = {}
         self.choice: dict[str, Any] | None = None
+        #: Who performed the NEEM's actions, counted (oracle.past.autonomy; read when the session
+        #: opens, extended by each action logged): the usual mode of every ranked task.
+        self.modes = modes if modes is not None else ModeCounts()
         self._keys = 0
 
     @property
@@ -210,14 +218,26 @@ class NeemSession:
 
     def describe(self, situation: Situation, ranking: Ranking, ms: float) -> SituationAnswer:
         calls = [str(call_of(self.ontology, t.option)) for t in ranking]
+        chain = [str(call_of(self.ontology, o)) for o in ranking.chain()]
+        usual, chain_modes = ranked_modes(self.modes, calls, chain, situation.when.part_of_day)
+        ranked = []
+        for t, call, mode in zip(ranking, calls, usual, strict=True):
+            entry = self._entry(t, call)
+            entry["mode"], entry["mode_support"] = mode.mode, {"context": mode.context, "counts": mode.counts}
+            ranked.append(entry)
         self.latest = SituationAnswer(
             neem=self.neem, at=situation.when.seconds, time_of_day=situation.when.part_of_day,
-            history=self.predictor.n_steps_,
-            ranking=[self._entry(t, call) for t, call in zip(ranking, calls, strict=True)],
-            chain=[str(call_of(self.ontology, o)) for o in ranking.chain()],
+            history=self.predictor.n_steps_, ranking=ranked, chain=chain, chain_modes=chain_modes,
             ms=round(ms, 3),
         )
         return self.latest
+
+    def usual_mode(self, call: TaskCall, at: float | None) -> str | None:
+        """Who usually does ``call`` (None: no action of its task is known), at ``at`` (None: the
+        latest ranking's part of the day)."""
+        latest = self.latest
+        part = (latest["time_of_day"] if latest is not None else None) if at is None else Instant.of(at).part_of_day
+        return self.modes.usual(str(call), part if part is not None and self.logger.clocked else NO_PART).mode
 
     def _entry(self, task: RankedTask, call: str) -> RankedEntry:
         """One ranked task as the API answers it: ``support`` is how many past situations back
@@ -233,7 +253,8 @@ class NeemSession:
                             probability=fields.get("probability"), context_order=fields.get("context_order"),
                             context=fields.get("context", []), focus=fields.get("focus", []),
                             new=fields.get("new", False), resumed=fields.get("resumed", False), since=fields.get("since"),
-                            situations=[begins[p] for p in fields.get("situations", []) if p < len(begins)], reason="")
+                            situations=[begins[p] for p in fields.get("situations", []) if p < len(begins)], reason="",
+                            mode=None, mode_support={})
         entry["reason"] = support_sentence({**entry, "done": task.option in self.ranker.done_before.done})
         return entry
 
@@ -277,5 +298,6 @@ class NeemSession:
         logged = self.logger.action(call, start, stop, performed_by=performed_by, state=state)
         self.logger.flush()
         self.ranker.acted(call, logged.begin, logged.end, logged.part_of_day, after_idle=logged.idle is not None)
+        self.modes.add(Performed(str(call), logged.part_of_day or NO_PART, performed_by))
         self.pending = None
         return logged

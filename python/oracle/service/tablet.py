@@ -5,7 +5,7 @@ the robot always see the same ranking; and the person's choice, kept in the NEEM
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from oracle.neem.decisions import Decision
@@ -17,20 +17,34 @@ if TYPE_CHECKING:
 
 def tablet_view(neem: str, user: str | None, latest: Mapping[str, Any] | None, words: Words) -> dict[str, Any]:
     """The page's view of the latest ranking: each task's call (kept for the robot's syntax),
-    rank, plain words and one-sentence reason; the workflow's steps; the routine in progress
-    (None: none) with the steps that remain; the time on the person's clock."""
+    rank, plain words, one-sentence reason and who usually does it; the workflow's steps, each
+    with who does it unless the person changes it (the usual mode, else the robot); the routine
+    in progress (None: none) with the steps that remain; the time on the person's clock."""
     ranking = (latest or {}).get("ranking") or []
     chain = (latest or {}).get("chain") or []
+    chain_modes = list((latest or {}).get("chain_modes") or [])
+    chain_modes += [None] * (len(chain) - len(chain_modes))
     at = (latest or {}).get("at")
     part = words.part_of_day((latest or {}).get("time_of_day"))
     clock = ", ".join(x for x in (part, words.clock(at)) if x) if ranking else ""
     return {
         "neem": neem, "user": user, "lang": words.lang, "at": at, "clock": clock,
-        "tasks": [{"task": t["task"], "rank": t["rank"], "said": words.said(t["task"]), "reason": words.reason(t)}
+        "tasks": [{"task": t["task"], "rank": t["rank"], "said": words.said(t["task"]), "reason": words.reason(t),
+                   "mode": t.get("mode"), "mode_said": words.mode(t.get("mode"), (t.get("mode_support") or {}).get("counts") or {})}
                   for t in ranking],
-        "workflow": [{"task": c, "said": words.said(c)} for c in chain] if len(chain) >= 2 else [],
+        "workflow": [_step(c, m, words) for c, m in zip(chain, chain_modes)] if len(chain) >= 2 else [],
         "routine": _routine_view((latest or {}).get("routine"), words),
     }
+
+
+def _step(call: str, mode: str | None, words: Words) -> dict[str, Any]:
+    """A workflow step as the sheet shows it: who does it unless the person changes it."""
+    who = mode or DEFAULT_MODE
+    return {"task": call, "said": words.said(call), "mode": who, "who": words.who(who)}
+
+
+#: Who does a chosen step no one's past says anything about: the robot, which was asked to.
+DEFAULT_MODE = "robot"
 
 
 def _routine_view(routine: Mapping[str, Any] | None, words: Words) -> dict[str, Any] | None:
@@ -91,16 +105,30 @@ def something_else_said(answer: Mapping[str, Any], words: Words) -> str:
     return t["instead_of"].format(task=words.said(current), other=other) if current else t["next"].format(task=other)
 
 
-def record_choice(session: NeemSession, calls: list[Any], at: Any) -> dict[str, Any]:
-    """Write the user's decision into the NEEM (one transaction); the choice as answered."""
+def record_choice(session: NeemSession, calls: list[Any], at: Any, modes: Sequence[str] | None = None) -> dict[str, Any]:
+    """Write the user's decision into the NEEM (one transaction), with who does each step
+    (``modes``; None: who usually does each, else the robot); the choice as answered."""
+    from oracle.errors import LoggingError
     from oracle.neem.decisions import record_decision
     from oracle.service.session import moment_of
     from oracle.timeline import Instant
 
     when = Instant.of(moment_of(at, "at")).seconds
-    made = record_decision(session.logger, calls, when)
+    if modes is not None and len(modes) != len(calls):
+        raise LoggingError(f"modes: {len(modes)} given for {len(calls)} step{'s' if len(calls) != 1 else ''};"
+                           " give one per step (robot, user or together)")
+    if modes is None:
+        modes = [session.usual_mode(call, when) or DEFAULT_MODE for call in calls]
+    else:
+        modes = list(modes)
+    made = record_decision(session.logger, calls, when, modes)
     session.logger.flush()
-    return {"task": made.task, "workflow": made.workflow, "at": made.at, "decision": made.iri}
+    return _choice(made)
+
+
+def _choice(made: Decision) -> dict[str, Any]:
+    return {"task": made.task, "workflow": made.workflow, "modes": list(made.modes) or None, "at": made.at,
+            "decision": made.iri}
 
 
 def recorded_choice(session: NeemSession) -> dict[str, Any] | None:
@@ -119,8 +147,9 @@ def decision_of(session: NeemSession) -> Decision | None:
         logger = session.logger
         found = latest_decision(logger.store, logger.neem_id, logger.ns, logger.vocab.has_rank)
         if found is not None:
-            session.choice = {"task": found.task, "workflow": found.workflow, "at": found.at, "decision": found.iri}
+            session.choice = _choice(found)
         return found
     if made.get("decision") is None:
         return None
-    return Decision(str(made["decision"]), float(made["at"]), tuple(made.get("workflow") or [made["task"]]))
+    return Decision(str(made["decision"]), float(made["at"]), tuple(made.get("workflow") or [made["task"]]),
+                    tuple(made.get("modes") or ()))

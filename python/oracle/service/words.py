@@ -184,6 +184,30 @@ class Words:
     def part_of_day(self, part: str | None) -> str:
         return self.text.get(f"part_{part}", part or "")
 
+    # -- who does it (thesis 6.3, the autonomy mode) ---------------------------------------------
+    def mode(self, mode: str | None, counts: Mapping[str, int]) -> str:
+        """Who usually does a task, with how often: "You usually do this yourself (5 of 6 times)."
+        ("" when no action of it is known)."""
+        return mode_sentence(self.lang, mode, counts)
+
+    def who(self, mode: str) -> str:
+        """Who does a step, as the workflow sheet's toggle says it: "You", "The robot", "Together"."""
+        return self.text[f"who_{mode}"]
+
+
+def mode_sentence(lang: str, mode: str | None, counts: Mapping[str, int]) -> str:
+    """The usual mode of a task with its support, in ``lang`` (``rank`` prints the English one):
+    how often it was done so in the most specific context known (oracle.past.autonomy). Where the
+    wider contexts outvoted that one, the figure would contradict the words: none is given."""
+    if mode is None:
+        return ""
+    t = TEXT[lang]
+    total = sum(counts.values())
+    n = counts.get(mode, 0)
+    if not total or n < max(counts.values()):
+        return t[f"mode_{mode}"].format(of="").replace(" ()", "")
+    return t[f"mode_{mode}"].format(of=(t["of_one"] if total == 1 else t["of_n"]).format(n=n, total=total))
+
 
 def _parsed(call: TaskCall | str) -> TaskCall | None:
     if isinstance(call, TaskCall):
@@ -233,6 +257,11 @@ TEXT: dict[str, dict[str, str]] = {
         "then": "Then: {task}.", "chosen_pending": "You chose \u201c{task}\u201d; the robot has not done it yet.",
         "instead_of": "Instead of \u201c{task}\u201d I would suggest: {other}.", "no_other": "I know of nothing else to suggest.",
         "part_Morning": "Morning", "part_Midday": "Midday", "part_Evening": "Evening", "part_Night": "Night",
+        "mode_user": "You usually do this yourself ({of}).", "mode_robot": "The robot usually does this for you ({of}).",
+        "mode_together": "You usually do this together with the robot ({of}).",
+        "of_n": "{n} of {total} times", "of_one": "{n} of 1 time",
+        "who_user": "You", "who_robot": "The robot", "who_together": "Together",
+        "who_is": "Who does it: {who}", "who_hint": "Tap a step\u2019s button to change who does it.",
     },
     "de": {
         "title": "Was möchten Sie jetzt?", "list": "Was der Roboter jetzt tun kann, das Beste zuerst",
@@ -272,5 +301,10 @@ TEXT: dict[str, dict[str, str]] = {
         "then": "Danach: {task}.", "chosen_pending": "Sie haben \u201e{task}\u201c gewählt; der Roboter hat es noch nicht gemacht.",
         "instead_of": "Statt \u201e{task}\u201c würde ich vorschlagen: {other}.", "no_other": "Ich weiß nichts anderes vorzuschlagen.",
         "part_Morning": "Morgen", "part_Midday": "Mittag", "part_Evening": "Abend", "part_Night": "Nacht",
+        "mode_user": "Das machen Sie meist selbst ({of}).", "mode_robot": "Das macht meist der Roboter f\u00fcr Sie ({of}).",
+        "mode_together": "Das machen Sie meist zusammen mit dem Roboter ({of}).",
+        "of_n": "{n} von {total} Malen", "of_one": "{n} von 1 Mal",
+        "who_user": "Sie", "who_robot": "Der Roboter", "who_together": "Gemeinsam",
+        "who_is": "Wer es macht: {who}", "who_hint": "Tippen Sie auf den Knopf eines Schritts, um zu \u00e4ndern, wer ihn macht.",
     },
 }

@@ -347,8 +347,10 @@ def simulate_entries(persona: Persona, world: World, days: int, seed: int) -> tu
 
 
 def generate(out: Path | str, personas: int = 105, days: int = 7, seed: int = 0, world: World | None = None,
-             progress: Callable[[int, int], None] | None = None) -> Summary:
-    """Write ``personas.yaml``, ``tune.jsonl`` and ``test.jsonl`` into ``out``; return the figures."""
+             progress: Callable[[int, int], None] | None = None, modes: bool = False) -> Summary:
+    """Write ``personas.yaml``, ``tune.jsonl`` and ``test.jsonl`` into ``out``; return the figures.
+    With ``modes`` each row says who performed it (``performed_by``: the user or the robot, drawn
+    from the persona's autonomy profile, oracle.world.autonomy); the rows are otherwise the same."""
     if personas < 1 or days < 1:
         raise NeemOracleError(f"need at least one persona and one day, got --personas {personas} --days {days}")
     world = load_world() if world is None else world
@@ -366,6 +368,13 @@ def generate(out: Path | str, personas: int = 105, days: int = 7, seed: int = 0,
     skipped = 0
     for number, persona in enumerate(people, start=1):
         rows, missed = simulate(persona, world, days, seed)
+        if modes:
+            from dataclasses import replace
+
+            from oracle.world.autonomy import modes_of
+
+            rows = [replace(row, extra={**row.extra, "performed_by": mode})
+                    for row, mode in zip(rows, modes_of(persona, rows, seed))]
         splits[persona.split].extend(rows)
         per_persona.append(len(rows))
         available_total += sum(len(row.available or ()) for row in rows)
