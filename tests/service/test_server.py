@@ -231,8 +231,9 @@ def test_page_shows_a_workflows_steps_before_it_starts_and_speaks_german(server,
     assert page.locator("h1").text_content().startswith("Was möchten Sie jetzt?")
     assert page.locator("#tasks .name").first.text_content() == "Die kleine Schublade öffnen"
     page.locator("#workflow").click()
-    steps = page.locator("#sheet-steps li").all_text_contents()
+    steps = page.locator("#sheet-steps li .step").all_text_contents()
     assert len(steps) == len(first["chain"]) and steps[0] == "Die kleine Schublade öffnen"
+    assert page.locator("#sheet-steps button.who").all_text_contents() == ["Der Roboter"] * len(steps)
     page.locator("#confirm").click()
     page.wait_for_function("document.getElementById('answer').textContent.startsWith('Sie haben gewählt')")
     assert call(server, "/api/neems/dora/choice")[1]["workflow"] == first["chain"]
@@ -558,4 +559,46 @@ def test_page_offers_to_finish_the_routine_in_progress(server, browser, axe_sour
     page.wait_for_function("document.querySelector('#tasks li.routine').classList.contains('chosen')")
     assert call(server, f"/api/neems/{name}/choice")[1]["workflow"] == left
     assert page.locator("button.task[data-task]").count() == n  # the task buttons are as they were
+    page.close()
+
+
+def test_the_workflow_sheet_lets_the_person_say_who_does_each_step(server, browser, axe_source):
+    """"I bring the cup, you pour" (thesis 6.3): each step of the workflow sheet says who does it
+    (who usually does it, from the person's past), a tap names the next of the person, the robot
+    and the two together, in place, the focus staying on it; the choice sent carries them."""
+    name = "gus"
+    assert call(server, "/api/neems", {"user": "Gus", "neem": name})[0] == 201
+    for day in range(2):
+        for i, action in enumerate(ROUTINE):
+            call(server, f"/api/neems/{name}/situation", {"available": AVAILABLE, "at": at(day, 10 * i)})
+            call(server, f"/api/neems/{name}/actions", {"call": action, "begin": at(day, 10 * i), "end": at(day, 10 * i + 5),
+                                                       "performed_by": "user" if action == "pick(red_mug)" else "robot"})
+    first = call(server, f"/api/neems/{name}/situation", {"available": AVAILABLE, "at": at(2, 0)})[1]
+    assert first["chain"][:2] == ROUTINE[:2] and first["chain_modes"][:2] == ["robot", "user"]
+    page = open_page(browser, server, f"neem={name}&lang=en&undo=1", 800, 1280)
+    mug = page.locator("#tasks button.task[data-task='pick(red_mug)'] .reason").text_content()
+    assert mug.endswith("You usually do this yourself (2 of 2 times).")
+    page.locator("#workflow").click()
+    toggles = page.locator("#sheet-steps button.who")
+    assert toggles.all_text_contents()[:2] == ["The robot", "You"]
+    assert serious(page, axe_source) == []
+    box = toggles.nth(0).bounding_box()
+    assert box["height"] >= 88 and box["width"] >= 110  # a target as large as the page's others
+    toggles.nth(0).focus()
+    page.keyboard.press("Enter")  # the robot -> the person
+    page.keyboard.press("Enter")  # the person -> together
+    assert page.evaluate("document.activeElement.dataset.step") == "0"  # the focus stayed on the step
+    assert toggles.nth(0).text_content() == "Together"
+    assert toggles.nth(0).get_attribute("aria-label") == "Open the small drawer: Who does it: Together"
+    toggles.nth(1).click()  # the person -> together
+    toggles.nth(1).click()  # together -> the robot
+    assert toggles.all_text_contents()[:2] == ["Together", "The robot"]
+    page.keyboard.press("ArrowDown")  # the switch's scan passes through the steps' buttons
+    assert page.evaluate("document.activeElement.dataset.step") == "2"
+    page.locator("#confirm").click()
+    page.wait_for_function("document.getElementById('answer').textContent.startsWith('You chose')")
+    assert "Open the small drawer (Together)" in page.locator("#answer").text_content()
+    chosen = call(server, f"/api/neems/{name}/choice")[1]
+    assert chosen["workflow"] == first["chain"]
+    assert chosen["modes"] == ["together", "robot", *first["chain_modes"][2:]]
     page.close()

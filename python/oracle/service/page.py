@@ -73,7 +73,7 @@ def _items(view: Mapping[str, Any], text: Mapping[str, str]) -> str:
         out.append(
             f"<li class='{'top' if index == 0 else ''}'><button type='button' class='task' data-task='{escape(task['task'])}'>"
             f"<span class='rank'>{task['rank']}</span><span class='words'><span class='name'>{escape(task['said'])}</span>"
-            f"<span class='reason'>{escape(task['reason'])}</span></span></button></li>")
+            f"<span class='reason'>{escape(_why(task))}</span></span></button></li>")
         flow = view.get("workflow") or []
         if index == 0 and len(flow) >= 2:
             steps = escape(" \u2192 ".join(s["said"] for s in flow))
@@ -82,6 +82,12 @@ def _items(view: Mapping[str, Any], text: Mapping[str, str]) -> str:
         if index == 0 and view.get("routine"):
             out.append(f"<li class='routine'><button id='routine' type='button'>{escape(view['routine']['label'])}</button></li>")
     return "".join(out)
+
+
+def _why(task: Mapping[str, Any]) -> str:
+    """A task's line under its name: why it stands here, and who usually does it (as page.js says it)."""
+    mode = task.get("mode_said") or ""
+    return f"{task['reason']} {mode}" if mode else str(task["reason"])
 
 
 def render_token_page(lang: str, text: Mapping[str, str], neem: str | None) -> str:

@@ -55,6 +55,7 @@
     return Date.now() - lastTouch < prefs.hold * 1000 || sheet.open ||
       (list.contains(focused) && focused.matches(':focus-visible'));
   }
+  function said(t) { return t.mode_said ? t.reason + ' ' + t.mode_said : t.reason; }  // why here, and who usually does it
   function calls(view) { return (view && view.tasks || []).map(function (t) { return t.task; }); }
   function same(a, b) { return JSON.stringify(a) === JSON.stringify(b); }
   function incoming(view) {
@@ -94,15 +95,18 @@
       b.appendChild(el('span', 'rank', String(t.rank)));
       var words = el('span', 'words');
       words.appendChild(el('span', 'name', t.said));
-      words.appendChild(el('span', 'reason', t.reason));
+      words.appendChild(el('span', 'reason', said(t)));
       b.appendChild(words);
-      b.addEventListener('click', function () { open({task: t.task, said: t.said, reason: t.reason, rank: t.rank}); });
+      b.addEventListener('click', function () { open({task: t.task, said: t.said, reason: said(t), rank: t.rank}); });
       li.appendChild(b); list.appendChild(li);
       if (i === 0 && view.workflow && view.workflow.length >= 2) {
         var fl = el('li', 'flow'), fb = el('button'); fb.type = 'button'; fb.id = 'workflow';
         fb.appendChild(el('span', 'label', T.workflow));
         fb.appendChild(el('span', 'steps', view.workflow.map(function (s) { return s.said; }).join(' \u2192 ')));
-        fb.addEventListener('click', function () { open({workflow: view.workflow}); });
+        // the sheet's copy: who does each step is the person's to change, not the view's
+        fb.addEventListener('click', function () {
+          open({workflow: view.workflow.map(function (s) { return Object.assign({}, s); }), modes: true});
+        });
         fl.appendChild(fb); list.appendChild(fl);
       }
       if (i === 0 && view.routine) {  // the routine in progress: its steps left, as one workflow
@@ -133,11 +137,11 @@
     stopTimer();
     title.textContent = choice.title || (choice.workflow ? T.workflow_title : choice.said);
     steps.textContent = '';
-    (choice.workflow || []).forEach(function (s) { steps.appendChild(el('li', '', s.said)); });
+    (choice.workflow || []).forEach(function (s, i) { steps.appendChild(step(s, i, choice.modes)); });
     steps.hidden = !choice.workflow;
     sheet.dataset.phase = 'ask';
     undo.hidden = true; back.hidden = false; yes.hidden = false; why.hidden = !!choice.workflow; other.hidden = !!choice.workflow;
-    note.textContent = choice.note || (choice.workflow ? T.workflow_note : choice.reason);
+    note.textContent = choice.note || (choice.workflow ? T.workflow_note + ' ' + T.who_hint : choice.reason);
     if (!available(choice)) {
       sheet.dataset.phase = 'gone'; yes.hidden = true; why.hidden = true; other.hidden = true;
       note.textContent = T.gone;
@@ -145,6 +149,28 @@
     sheet.showModal();
     (yes.hidden ? back : yes).focus();
     if (!yes.hidden && prefs.confirm === 'dwell') countdown(prefs.dwell, T.dwell, confirm);
+  }
+  // -- who does each step of a workflow (thesis 6.3): the person, the robot, or the two together.
+  // Each step's button keeps its place and the focus; a tap names the next one, nothing else moves.
+  var MODES = ['robot', 'user', 'together'];  // chains.MODES: a tap names the next
+  function step(s, i, toggles) {
+    var li = el('li'), words = el('span', 'step', s.said);
+    li.appendChild(words);
+    if (!toggles) return li;
+    var b = el('button', 'who'); b.type = 'button'; b.dataset.step = String(i);
+    function show() {
+      b.dataset.mode = s.mode; b.textContent = T['who_' + s.mode];
+      b.setAttribute('aria-label', s.said + ': ' + fill(T.who_is, {who: T['who_' + s.mode]}));
+    }
+    b.addEventListener('click', function () {
+      s.mode = MODES[(MODES.indexOf(s.mode) + 1) % MODES.length];
+      show();
+      if (timer && sheet.dataset.phase === 'ask') {  // a dwell starts again: the person is still choosing
+        stopTimer(); countdown(prefs.dwell, T.dwell, confirm);
+      }
+    });
+    show(); li.appendChild(b);
+    return li;
   }
   function countdown(seconds, text, then) {
     var left = Math.max(1, Math.round(seconds));
@@ -171,6 +197,7 @@
     if (!choosing || !available(choosing)) { sheet.dataset.phase = 'gone'; note.textContent = T.gone; yes.hidden = true; back.focus(); return; }
     sheet.dataset.phase = 'undo';
     yes.hidden = true; why.hidden = true; other.hidden = true; back.hidden = true; undo.hidden = false;
+    Array.prototype.forEach.call(steps.querySelectorAll('button.who'), function (b) { b.disabled = true; });
     note.textContent = fill(T.sending, {task: choosing.workflow ? choosing.workflow[0].said : choosing.said});
     undo.focus();
     countdown(prefs.undo, T.undo_in, send);
@@ -179,11 +206,13 @@
     var choice = choosing;
     var body = choice.workflow ? {task: choice.workflow[0].task, workflow: choice.workflow.map(function (s) { return s.task; })}
                                : {task: choice.task};
+    if (choice.modes) body.modes = choice.workflow.map(function (s) { return s.mode; });
     var headers = Object.assign({'Content-Type': 'application/json'}, auth);
     fetch(api('/choice'), {method: 'POST', headers: headers, body: JSON.stringify(body)})
       .then(function (r) { return r.json().then(function (j) { if (!r.ok) throw new Error(j.error || r.status); return j; }); })
       .then(function () {
-        say(choice.workflow ? fill(T.chose_workflow, {steps: choice.workflow.map(function (s) { return s.said; }).join(' \u2192 ')})
+        say(choice.workflow ? fill(T.chose_workflow, {steps: choice.workflow.map(function (s) {
+              return choice.modes ? s.said + ' (' + T['who_' + s.mode] + ')' : s.said; }).join(' \u2192 ')})
                             : fill(T.chose, {task: choice.said}));
         markChosen(body.task, choice.workflow ? choice.item || 'li.flow' : null);
       })
