@@ -61,22 +61,34 @@ done_between(From, To, Done) :-
     sort(Done0, Done).
 
 %!  performed_between(+From, +To, -Performed) is det.
-%   The actions of done_between/3 with who performed each, by begin, as
-%   `performed(Begin, Call, Mode)`, Mode as performers/2 gives it (`user`, `robot`,
-%   `together` or `unknown`): the store query of done_between/3 and one more, for the
-%   actions' performers and their types.
+%   Who performed each odb-typed, non-idle action begun in [From, To] (`none`: no bound), by
+%   begin, as `performed(Begin, Task, Mode)`: Task the odb task's name (`pick`), Mode as
+%   performers/2 gives it (`user`, `robot`, `together` or `unknown`). Two store queries (the
+%   actions with their tasks' types, the performers with theirs) and no call: a caller that
+%   holds the history (its begins and calls) joins them on begin and task.
 performed_between(From, To, Performed) :-
-    done_rows(From, To, Rows, CallOf),
-    findall(A, member(_-_-A-_, Rows), As0),
+    action_rows(From, To, Rows0),
+    findall(B-A-Name, ( member(B-_-A-_-C, Rows0), odb_iri(Name, C) ), Rows1),
+    sort(Rows1, Rows),
+    findall(A, member(_-A-_, Rows), As0),
     sort(As0, As),
     action_modes(As, ModeOf),
-    findall(performed(B, C, M), ( member(B-_-A-T, Rows), get_assoc(T, CallOf, C), get_assoc(A, ModeOf, M) ),
-            Performed0),
+    findall(performed(B, Name, M), ( member(B-A-Name, Rows), get_assoc(A, ModeOf, M) ), Performed0),
     msort(Performed0, Performed).
 
 %   The odb-typed, non-idle actions begun in [From, To] as sorted Begin-End-Action-Task rows,
 %   and their tasks' calls (an assoc Task -> Call).
 done_rows(From, To, Rows, CallOf) :-
+    action_rows(From, To, Rows0),
+    findall(B-E-A-T, member(B-E-A-T-_, Rows0), Rows1),
+    sort(Rows1, Rows),
+    findall(T, member(_-_-_-T, Rows), Ts),
+    task_calls(Ts, Pairs),
+    list_to_assoc(Pairs, CallOf).
+
+%   The odb-typed, non-idle actions begun in [From, To] as Begin-End-Action-Task-Class rows
+%   (one store query, from the begins the store finds by value).
+action_rows(From, To, Rows) :-
     bound_or_none(From), bound_or_none(To),
     (   From == none
     ->  BSpec = B
@@ -86,11 +98,7 @@ done_rows(From, To, Rows, CallOf) :-
                             has_interval_end(I, E), executes_task(A, T), triple(T, rdf:type, C) ), any, Rows0),
     odb_iri('IdleTask', Idle),
     % the odb-typed, non-idle actions only: the mental actions' tasks need no call
-    findall(B-E-A-T, ( member(B-E-A-T-C, Rows0), C \== Idle, odb_iri(_, C), begins_by(To, B) ), Rows1),
-    sort(Rows1, Rows),
-    findall(T, member(_-_-_-T, Rows), Ts),
-    task_calls(Ts, Pairs),
-    list_to_assoc(Pairs, CallOf).
+    findall(B-E-A-T-C, ( member(B-E-A-T-C, Rows0), C \== Idle, odb_iri(_, C), begins_by(To, B) ), Rows).
 
 begins_by(none, _) :- !.
 begins_by(To, B) :- B =< To.
@@ -330,7 +338,7 @@ past_answer([who, Name, Args], _{task: Text, modes: Ds}) :-
     findall(_{time: B, mode: M}, member(B-M, Modes), Ds).
 past_answer([modes, From, To], _{actions: Ds}) :-
     performed_between(From, To, Performed),
-    findall(_{time: B, task: T, mode: M}, ( member(performed(B, C, M), Performed), call_text(C, T) ), Ds).
+    findall(_{time: B, task: T, mode: M}, member(performed(B, T, M), Performed), Ds).
 past_answer([predicted, Time], _{predicted: Ds}) :-
     (   preference_at(Time, _, Ranked) -> true ; Ranked = [] ),
     findall(_{task: T, rank: R, score: S}, ( member(ranked(C, R, S), Ranked), call_text(C, T) ), Ds).

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any
 from oracle.chains import MODES, parse_call
 
 if TYPE_CHECKING:
-    from oracle.bridge import Bridge
+    from oracle.bridge import Bridge, HistoryRow
 
 USER, ROBOT, TOGETHER = "user", "robot", "together"
 #: Who wins a tie: the mode that leaves the user more to do comes first.
@@ -112,19 +112,31 @@ def fit(actions: Iterable[Performed]) -> ModeCounts:
     return counts
 
 
-def read_modes(bridge: Bridge, clocked: bool, before: float | None = None) -> ModeCounts:
+def read_modes(bridge: Bridge, clocked: bool, before: float | None = None,
+               rows: Sequence[HistoryRow] | None = None) -> ModeCounts:
     """The modes of the NEEM's actions (begun at or before ``before``; None: all), counted in
-    their contexts: one request to odb_past (performed_between/3). An action whose performer is
-    neither the user nor another agent is not counted."""
+    their contexts. Who performed each action is one request to odb_past
+    (performed_between/3: begin, task name, mode, no call); its call is that of the history row
+    of the same begin and task (``rows``, default: the kept history, oracle.historycache), so no
+    call is read twice. An action whose performer is neither the user nor another agent is not
+    counted."""
     from oracle.past.evidence import request
     from oracle.timeline import part_of_day_at
 
-    reply = request(bridge, ["modes", None, before])
+    if rows is None:
+        from oracle.historycache import HistoryCache
+
+        rows = HistoryCache.default().view(bridge).rows
+    calls: dict[tuple[float, str], list[str]] = {}
+    for row in rows:
+        if row["call"] != "idle":
+            calls.setdefault((float(row["begin"]), parse_call(row["call"]).task), []).append(row["call"])
     counts = ModeCounts()
-    for row in reply["actions"]:
-        if row["mode"] in MODES:
-            part = part_of_day_at(float(row["time"])) if clocked else NO_PART
-            counts.add(Performed(str(row["task"]), part, str(row["mode"])))
+    for action in request(bridge, ["modes", None, before])["actions"]:
+        same = calls.get((float(action["time"]), str(action["task"])))
+        if action["mode"] in MODES and same:
+            part = part_of_day_at(float(action["time"])) if clocked else NO_PART
+            counts.add(Performed(str(parse_call(same.pop(0))), part, str(action["mode"])))
     return counts
 
 

@@ -152,7 +152,7 @@ class Engine:
             self._room_for_a_session()
             view = HistoryCache.default().view(self.bridge(neem))
             logger = NeemLogger(self.store, self.ontology, neem, commit_every=NEVER)
-            modes = read_modes(self.bridge(neem), logger.clocked)
+            modes = read_modes(self.bridge(neem), logger.clocked, rows=view.rows)
             session = NeemSession(neem, logger, self.ontology, make_predictor(self.ontology, self.settings, self.method),
                                   view.rows, modes)
             self.sessions[neem] = session
