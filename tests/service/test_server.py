@@ -566,8 +566,8 @@ def test_the_workflow_sheet_lets_the_person_say_who_does_each_step(server, brows
     """"I bring the cup, you pour" (thesis 6.3): each step of the workflow sheet says who does it
     (who usually does it, from the person's past), a tap names the next of the person, the robot
     and the two together, in place, the focus staying on it; the choice sent carries them."""
-    name = "gus"
-    assert call(server, "/api/neems", {"user": "Gus", "neem": name})[0] == 201
+    name = "ida"
+    assert call(server, "/api/neems", {"user": "Ida", "neem": name})[0] == 201
     for day in range(2):
         for i, action in enumerate(ROUTINE):
             call(server, f"/api/neems/{name}/situation", {"available": AVAILABLE, "at": at(day, 10 * i)})
