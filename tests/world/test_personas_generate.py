@@ -121,3 +121,16 @@ def test_cli_generate(tmp_path):
     assert result.returncode == 0, result.stderr
     assert "available per step" in result.stdout
     assert (tmp_path / "test.jsonl").exists() and (tmp_path / "personas.yaml").exists()
+
+
+def test_modes_say_who_did_each_row_and_change_nothing_else(tmp_path, world):
+    import json
+
+    generate(tmp_path / "plain", personas=2, days=2, seed=5, world=world)
+    generate(tmp_path / "modes", personas=2, days=2, seed=5, world=world, modes=True)
+    for name in ("tune.jsonl", "test.jsonl"):
+        plain = [json.loads(line) for line in (tmp_path / "plain" / name).read_text().splitlines()]
+        modes = [json.loads(line) for line in (tmp_path / "modes" / name).read_text().splitlines()]
+        assert [{k: v for k, v in row.items() if k != "performed_by"} for row in modes] == plain
+        assert {row["performed_by"] for row in modes} <= {"user", "robot"}
+    assert (tmp_path / "plain" / "personas.yaml").read_bytes() == (tmp_path / "modes" / "personas.yaml").read_bytes()
