@@ -194,12 +194,14 @@ def test_the_terminal_names_the_objects_in_hand_only_where_no_context_backs_a_ta
 
 
 def test_rank_says_who_usually_does_each_task_and_each_step(tmp_path, capsys):
-    """The user pours, the robot does the rest (``performed_by`` of the chains): rank's JSON
+    """The user pours, picks the thermos together with the robot, and the robot does the rest
+    (``performed_by`` of the chains): rank's JSON
     carries each task's usual mode with its support and a mode per step of the chain, and the
     text says it in the tablet's words."""
     available = sorted(set(CHAIN + ["pick(banana)"]))
     rows = [{"user": "ada", "time": f"2026-03-0{2 + day}T08:00:{8 * i:02d}", "duration": 5, "action": action,
-             "available": available, **({"performed_by": "user"} if action.startswith("pour") else {})}
+             "available": available, **({"performed_by": "user"} if action.startswith("pour") else
+                                        {"performed_by": "together"} if action == "pick(thermos)" else {})}
             for day in range(3) for i, action in enumerate(CHAIN)]
     chains = tmp_path / "c.jsonl"
     chains.write_text("".join(json.dumps(r) + "\n" for r in rows))
@@ -213,7 +215,9 @@ def test_rank_says_who_usually_does_each_task_and_each_step(tmp_path, capsys):
     assert by_call["pour(thermos, red_mug)"]["mode_support"] == {"context": "call and part",
                                                                  "counts": {"robot": 0, "user": 3, "together": 0}}
     assert by_call["pick(red_mug)"]["mode"] == "robot"
-    assert out["chain_modes"] == ["user" if step.startswith("pour") else "robot" for step in out["chain"]]
+    assert by_call["pick(thermos)"]["mode"] == "together"  # the chains' third mode, imported and read back
+    assert out["chain_modes"] == ["user" if step.startswith("pour") else "together" if step == "pick(thermos)" else "robot"
+                                  for step in out["chain"]]
     assert main(["rank", "--store", str(path), "--no-write", "--at", "2026-03-05T08:00:00"]) == 0
     text = capsys.readouterr().out
     pour = next(line for line in text.splitlines() if line.split()[1:3] == ["pour(thermos,", "red_mug)"])
