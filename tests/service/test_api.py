@@ -550,6 +550,8 @@ def test_the_situation_answer_names_the_routine_in_progress_and_what_remains(cli
     view = client.get("/api/neems/rae/tablet", params={"lang": "en"}).json()["routine"]
     assert view["label"] == f"Finish \u201c{body['routine']['name']}\u201d (5 steps left)"
     assert [s["task"] for s in view["steps"]] == ROUTINE[2:]
+    # who usually does each step that remains: the robot, which did all of them
+    assert body["routine"]["remaining_modes"] == ["robot"] * 5 and {s["mode"] for s in view["steps"]} == {"robot"}
     later = client.post("/api/neems/rae/situation", json={"available": AVAILABLE, "at": at(3, 3600)}).json()
     assert later["routine"] is None  # an hour idle since: no routine in progress
 

@@ -555,9 +555,13 @@ def test_page_offers_to_finish_the_routine_in_progress(server, browser, axe_sour
     said = page.locator("#sheet-steps li").all_text_contents()
     assert len(said) == len(left) and page.locator("#sheet-title").text_content() == words[lang]
     assert serious(page, axe_source) == []
+    toggles = page.locator("#sheet-steps button.who")  # who does each step left, as in the workflow's sheet
+    assert toggles.count() == len(left)
+    toggles.nth(0).click()  # the robot -> the person: "I put the mug down myself"
     page.locator("#confirm").click()
     page.wait_for_function("document.querySelector('#tasks li.routine').classList.contains('chosen')")
     assert call(server, f"/api/neems/{name}/choice")[1]["workflow"] == left
+    assert call(server, f"/api/neems/{name}/choice")[1]["modes"] == ["user"] + ["robot"] * (len(left) - 1)
     assert page.locator("button.task[data-task]").count() == n  # the task buttons are as they were
     page.close()
 

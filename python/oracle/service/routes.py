@@ -185,8 +185,9 @@ async def situation(neem: str, body: SituationIn, request: Request, background: 
 
 def routine_now(engine: Any, session: NeemSession, at: float) -> dict[str, Any] | None:
     """The routine the user is in at ``at`` (oracle.past.mine's recognition), from the steps
-    the session's predictor already holds: only the user's names are read from the NEEM (one
-    Prolog query); None on a NEEM without a clock (its begins are positions, not times of day)."""
+    the session's predictor already holds, with who usually does each step that remains: only
+    the user's names are read from the NEEM (one Prolog query); None on a NEEM without a clock
+    (its begins are positions, not times of day)."""
     from oracle.past.mine import neem_routines
     from oracle.past.routines import done_from_steps
 
@@ -197,7 +198,8 @@ def routine_now(engine: Any, session: NeemSession, at: float) -> dict[str, Any] 
     current = neem_routines(engine.bridge(session.neem), at, done=done).current
     if current is None:
         return None
-    return {**current.to_json(), "steps_left": len(current.remaining)}
+    return {**current.to_json(), "steps_left": len(current.remaining),
+            "remaining_modes": [session.usual_mode(call, at) for call in current.remaining]}
 
 
 def _after(sent: threading.Event, write: Any) -> None:

@@ -71,6 +71,7 @@ class RoutineNow(BaseModel):
     name: str
     done: int
     remaining: list[str]
+    remaining_modes: list[str | None] = Field([], description="who usually does each step that remains (as `mode`)")
     steps_left: int
     score: float
 

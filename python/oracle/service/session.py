@@ -232,12 +232,13 @@ class NeemSession:
         )
         return self.latest
 
-    def usual_mode(self, call: TaskCall, at: float | None) -> str | None:
+    def usual_mode(self, call: TaskCall | str, at: float | None) -> str | None:
         """Who usually does ``call`` (None: no action of its task is known), at ``at`` (None: the
         latest ranking's part of the day)."""
         latest = self.latest
         part = (latest["time_of_day"] if latest is not None else None) if at is None else Instant.of(at).part_of_day
-        return self.modes.usual(str(call), part if part is not None and self.logger.clocked else NO_PART).mode
+        text = str(call if isinstance(call, TaskCall) else parse_call(call))  # one spelling: pour(a, b)
+        return self.modes.usual(text, part if part is not None and self.logger.clocked else NO_PART).mode
 
     def _entry(self, task: RankedTask, call: str) -> RankedEntry:
         """One ranked task as the API answers it: ``support`` is how many past situations back

@@ -48,13 +48,16 @@ DEFAULT_MODE = "robot"
 
 
 def _routine_view(routine: Mapping[str, Any] | None, words: Words) -> dict[str, Any] | None:
-    """The routine in progress as the page offers it: its label and the steps that remain."""
+    """The routine in progress as the page offers it: its label and the steps that remain, each
+    with who does it unless the person changes it."""
     if not routine or not routine.get("remaining"):
         return None
     remaining = list(routine["remaining"])
+    modes = list(routine.get("remaining_modes") or [])
+    modes += [None] * (len(remaining) - len(modes))
     return {"key": routine["key"], "name": routine["name"], "steps_left": len(remaining),
             "label": words.routine(str(routine["name"]), len(remaining)),
-            "steps": [{"task": c, "said": words.said(c)} for c in remaining]}
+            "steps": [_step(c, m, words) for c, m in zip(remaining, modes)]}
 
 
 def why_not_said(task: str, latest: Mapping[str, Any] | None, answer: Mapping[str, Any], decision: Decision | None,

@@ -112,7 +112,8 @@
       if (i === 0 && view.routine) {  // the routine in progress: its steps left, as one workflow
         var rl = el('li', 'routine'), rb = el('button', '', view.routine.label); rb.type = 'button'; rb.id = 'routine';
         rb.addEventListener('click', function () {
-          open({workflow: view.routine.steps, title: view.routine.label, note: T.routine_note, item: 'li.routine'});
+          open({workflow: view.routine.steps.map(function (s) { return Object.assign({}, s); }), modes: true,
+                title: view.routine.label, note: T.routine_note + ' ' + T.who_hint, item: 'li.routine'});
         });
         rl.appendChild(rb); list.appendChild(rl);
       }
