@@ -1,4 +1,4 @@
-"""Issue 16's promises: atomic replacement, readers that never wait, nothing leaked."""
+"""The durability promises: atomic replacement, readers that never wait, nothing leaked."""
 
 from __future__ import annotations
 
