@@ -22,7 +22,8 @@ from oracle.neem.lifecycle import wipe_temporary_neems
 from oracle.neem.writer import NeemLogger, check_call, check_performer
 from oracle.ontology.model import OdbOntology
 from oracle.store import Store
-from oracle.store.tbox import TBox, tbox_for
+from oracle.store.ontology_tbox import tbox_for
+from oracle.store.tbox import TBox
 from oracle.timeline import CLOCK_KEY, IDLE_THRESHOLD_S, SEQUENCE_CLOCK, Instant, TimeValueError, seconds_of, sequence_instant
 
 #: Registry key of a NEEM whose import has not reached its user's last row: set when the

@@ -280,7 +280,8 @@ class NeemLogger:
                                        side_property=onto.vocab.imagines_situation)  # fmt: skip
         staging: str | None = created
         try:
-            from oracle.store.tbox import load_tbox, tbox_for
+            from oracle.store.ontology_tbox import tbox_for
+            from oracle.store.tbox import load_tbox
 
             load_tbox(store, created, tbox if tbox is not None else tbox_for(onto))
             if not hidden and not (replace and store.has_neem(neem_id)):
