@@ -45,7 +45,7 @@ from pathlib import Path
 from typing import Any, ClassVar
 
 from oracle.bridge import Bridge, HistoryRow, HistoryView, history_rows
-from oracle.files import CacheFolder, write_private_bytes, written_by_user_alone
+from oracle.files import CacheFolder, written_by_user_alone
 from oracle.neem.terms import BEGIN, EXECUTES, HAS_INTERVAL, IMAGINING
 from oracle.store.base import Appended, AppendMark
 from oracle.store.model import RDF_TYPE, decode_value
@@ -109,13 +109,6 @@ class HistoryCache(CacheFolder):
                 return _parse(handle.read(), key)
         except OSError:
             return None
-
-    def _store(self, path: Path, data: bytes) -> None:
-        try:
-            write_private_bytes(path, data)
-            self._prune()
-        except OSError:
-            return  # read-only or full: the next call reads the whole history
 
 
 def _extended(bridge: Bridge, entry: _Entry, mark: AppendMark) -> HistoryView | None:
