@@ -23,12 +23,12 @@ terms such as `pick(banana)`; an odb:IdleTask action is never an answer.
 The sentences are made in Python (oracle.past); this module hands over the evidence only.
 */
 
-:- use_module(library(error)).
-:- use_module(library(lists)).
-:- use_module(library(apply)).
-:- use_module(library(pairs)).
-:- use_module(library(assoc)).
-:- use_module(library(ordsets)).
+:- use_module(library(error), [must_be/2]).
+:- use_module(library(lists), [append/2, append/3, clumped/2, max_member/2, member/2, reverse/2]).
+:- use_module(library(apply), [include/3]).
+:- use_module(library(pairs), [pairs_values/2]).
+:- use_module(library(assoc), [get_assoc/3, list_to_assoc/2]).
+:- use_module(library(ordsets), [ord_memberchk/2]).
 :- use_module('../json_text', [json_text/2]).
 :- use_module('../neem_store', [store_match/3, store_python_request/1]).
 :- use_module('../store/tf', [store_pose/4]).
