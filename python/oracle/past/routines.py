@@ -284,6 +284,11 @@ def done_from_history(rows: Sequence[HistoryRow]) -> list[Done]:
     return [Done(float(r["begin"]), float(r["end"]), str(parse_call(r["call"]))) for r in rows if r["call"] != "idle"]
 
 
+def begun_by(done: list[Done], at: float | None) -> list[Done]:
+    """The actions begun by ``at`` (all of them for None; then the list itself)."""
+    return done if at is None else [d for d in done if d.begin <= at]
+
+
 def done_from_steps(steps: Sequence[Step], begins: Sequence[float], last_end: float | None) -> list[Done]:
     """The non-idle actions of the predictor's steps (``NeemRanker.steps`` and ``.begins``), with
     no read of the NEEM: an action followed by an idle step ends where the idle step begins (the
