@@ -1,7 +1,12 @@
 """Benchmark of the questions about the past (docs/beyond.md): each question form asked of the
 live service (the real ASGI app, in process) over a simulated user's NEEM of 5 and 28 days,
 median of repeated asks after the first; the floor is /api/health in the same run (a round
-trip through the engine thread doing nothing). Target: every form under 100 ms."""
+trip through the engine thread doing nothing). Target: every form under 100 ms.
+
+The repeated asks find the NEEM unchanged, so they read what the engine kept of it
+(oracle.past.kept); the rows "after a new action" time the first ask after the robot logged
+one more action through the service (the action itself not timed), which reads the history's
+new action and mines the routines again."""
 
 from __future__ import annotations
 
@@ -77,9 +82,37 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
                         rows.append(_row(days, question, ms))
                     ms = _times(lambda: client.get("/api/neems/bench/summary"), repeats)
                     rows.append(_row(days, "state summary", ms))
+                    for name, ask in AFTER_ACTION:
+                        ms = _after_actions(client, partial(ask, client), repeats)
+                        rows.append(_row(days, f"{name}, after a new action", ms))
             finally:
                 ctx.thread.close()
     return rows
+
+
+#: The answers that read the whole history (the kept actions, the routines), timed after an action.
+AFTER_ACTION: tuple[tuple[str, Callable[[httpx.Client], httpx.Response]], ...] = (
+    (QUESTIONS[5], lambda client: client.get("/api/neems/bench/ask", params={"q": QUESTIONS[5]})),
+    ("state summary", lambda client: client.get("/api/neems/bench/summary")),
+)
+
+
+def _after_actions(client: httpx.Client, call: Callable[[], httpx.Response], repeats: int) -> list[float]:
+    """``call`` timed right after each of ``repeats`` + 1 actions logged through the service
+    a minute apart after the NEEM's latest event (the first, which opens the session, dropped)."""
+    samples = []
+    for index in range(repeats + 1):
+        now = client.get("/api/neems/bench/summary").json()["now"]
+        logged = client.post("/api/neems/bench/actions", json={"call": "open(fridge)", "begin": now + 60, "end": now + 65})
+        if logged.status_code != 200:
+            raise RuntimeError(f"benchmark action failed: {logged.status_code} {logged.text}")
+        started = time.perf_counter()
+        answer = call()
+        if answer.status_code != 200:
+            raise RuntimeError(f"benchmark request failed: {answer.status_code} {answer.text}")
+        if index:
+            samples.append((time.perf_counter() - started) * 1000)
+    return samples
 
 
 def _times(call: Callable[[], httpx.Response], repeats: int) -> list[float]:
