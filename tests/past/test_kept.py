@@ -13,6 +13,7 @@ from oracle.past.ask import ask
 from oracle.past.kept import KeptPast
 from oracle.past.mine import neem_preparation, neem_routines
 from oracle.past.summary import state_summary
+from oracle.timeline import seconds_of
 from tests.past.conftest import t
 
 #: One question of every form, and a suggestion the NEEM has.
@@ -119,3 +120,22 @@ def test_a_store_without_an_append_mark_keeps_nothing(grown, onto, monkeypatch):
     logger.action("open(fridge)", t(1, 8, 2), t(1, 8, 2, 10))
     logger.flush()
     assert ask(bridge, onto, question, kept=kept).evidence["occurrences"] == 4
+
+
+def test_only_the_answers_that_need_the_actions_read_them_again(grown, onto, monkeypatch):
+    from oracle.past import kept as kept_module
+
+    bridge, logger = grown
+    reads = []
+    history = kept_module._history
+    monkeypatch.setattr(kept_module, "_history", lambda b: reads.append(1) or history(b))
+    kept = KeptPast()
+    ask(bridge, onto, "what do I usually do after open(fridge)?", kept=kept)
+    ask(bridge, onto, "what do I usually do after open(fridge)?", kept=kept)
+    assert len(reads) == 1
+    logger.action("open(fridge)", t(1, 8, 2), t(1, 8, 2, 10))
+    logger.flush()
+    last = ask(bridge, onto, "when did I last open the fridge?", kept=kept).evidence["begin"]
+    assert last == pytest.approx(seconds_of(t(1, 8, 2))) and len(reads) == 1  # asked of Prolog alone
+    assert ask(bridge, onto, "what do I usually do after open(fridge)?", kept=kept).evidence["occurrences"] == 4
+    assert len(reads) == 2

@@ -31,6 +31,10 @@ NEEMS = 8
 #: How many minings of one NEEM's actions are kept (one per distinct "as of" time asked).
 MININGS = 8
 
+#: Routines mined, by how many actions had begun by the time asked (the actions begun by one
+#: time include those begun by any earlier one, so their count names them) and the settings.
+Minings = OrderedDict[tuple[int, MiningSettings | None], list[Routine]]
+
 
 @dataclass
 class _Entry:
@@ -38,9 +42,10 @@ class _Entry:
     done: list[Done] | None = None
     now: tuple[float | None] | None = None  # (now,) once read: None is a NEEM without events
     stored: list[dict[str, Any]] | None = None
-    # keyed by how many actions had begun by the time asked (those actions are a threshold's,
-    # so the count names them) and the settings
-    mined: OrderedDict[tuple[int, MiningSettings | None], list[Routine]] = field(default_factory=OrderedDict)
+    mined: Minings = field(default_factory=OrderedDict)
+    # the actions and minings read at an earlier mark, until this mark's actions are read: the
+    # minings are kept when the actions are the same (only rankings or workflows written since)
+    earlier: tuple[list[Done], Minings] | None = None
 
 
 class KeptPast:
@@ -60,10 +65,8 @@ class KeptPast:
         if mark is None:
             self._entries.pop(neem, None)
             return fresh  # nothing to check a kept read against: this answer's own
-        if entry is not None and entry.done is not None:
-            fresh.done = done_from_history(_history(bridge))
-            if fresh.done == entry.done:  # only rankings or workflows written since
-                fresh.done, fresh.mined = entry.done, entry.mined
+        if entry is not None:
+            fresh.earlier = entry.earlier if entry.done is None else (entry.done, entry.mined)
         self._entries[neem] = fresh
         self._entries.move_to_end(neem)
         while len(self._entries) > NEEMS:
@@ -108,7 +111,10 @@ class KeptPast:
 
 def _done(entry: _Entry, bridge: Bridge) -> list[Done]:
     if entry.done is None:
-        entry.done = done_from_history(_history(bridge))
+        done = done_from_history(_history(bridge))
+        if entry.earlier is not None and entry.earlier[0] == done:
+            done, entry.mined = entry.earlier
+        entry.done, entry.earlier = done, None
     return entry.done
 
 
