@@ -100,12 +100,14 @@ def test_the_routines_are_mined_again_only_when_the_actions_changed(routine_stor
         grown = neem_routines(bridge, kept=kept)
         assert grown == neem_routines(bridge) and grown.current is not None and grown.current.done == 4
         assert len(minings) == 4  # the kept one and the fresh one
+        assert neem_routines(bridge, first.now, kept=kept) == first == neem_routines(bridge, first.now)
+        assert len(minings) == 5  # as of before the action: the kept mining (and the fresh one)
 
         key = grown.routines[0].key
         named = tuple(replace(r, name="My breakfast") if r.key == key else r for r in grown.routines)
         save_routines(store, onto, "weekly", named, (key,))
         renamed = neem_routines(bridge, kept=kept)
-        assert renamed == neem_routines(bridge) and renamed.routines[0].name == "My breakfast" and len(minings) == 5
+        assert renamed == neem_routines(bridge) and renamed.routines[0].name == "My breakfast" and len(minings) == 6
     finally:
         bridge.close()
         store.close()
@@ -123,12 +125,14 @@ def test_a_store_without_an_append_mark_keeps_nothing(grown, onto, monkeypatch):
 
 
 def test_only_the_answers_that_need_the_actions_read_them_again(grown, onto, monkeypatch):
+    """... and read only what was added, where the history cache's rule allows."""
     from oracle.past import kept as kept_module
 
     bridge, logger = grown
-    reads = []
-    history = kept_module._history
-    monkeypatch.setattr(kept_module, "_history", lambda b: reads.append(1) or history(b))
+    reads, whole = [], []
+    read, history = kept_module._read, kept_module._history
+    monkeypatch.setattr(kept_module, "_read", lambda e, b: reads.append(1) or read(e, b))
+    monkeypatch.setattr(kept_module, "_history", lambda b: whole.append(1) or history(b))
     kept = KeptPast()
     ask(bridge, onto, "what do I usually do after open(fridge)?", kept=kept)
     ask(bridge, onto, "what do I usually do after open(fridge)?", kept=kept)
@@ -138,4 +142,4 @@ def test_only_the_answers_that_need_the_actions_read_them_again(grown, onto, mon
     last = ask(bridge, onto, "when did I last open the fridge?", kept=kept).evidence["begin"]
     assert last == pytest.approx(seconds_of(t(1, 8, 2))) and len(reads) == 1  # asked of Prolog alone
     assert ask(bridge, onto, "what do I usually do after open(fridge)?", kept=kept).evidence["occurrences"] == 4
-    assert len(reads) == 2
+    assert len(reads) == 2 and len(whole) == 1  # the new action read alone

@@ -6,9 +6,12 @@ Each NEEM's entry holds the store's AppendMark it was read at. Every use asks th
 mark again (one small query) and reads nothing else while it is the same: the mark names the
 NEEM's tables, counts every update and deletion of one of its triples and moves with every
 triple added (oracle.store.base.AppendMark), so an equal mark is the same triples and the same
-answers. When it moved (an action, a ranking, a saved workflow), the actions are read again
-(the history cache reads only what was added); the mined routines are kept only when the actions
-are equal to those they were mined from. A store without a mark (MongoDB) keeps nothing.
+answers. When it moved (an action, a ranking, a saved workflow), the first answer that needs
+the actions has the history cache's rule say how the kept rows stand (oracle.historycache's
+``growth``): the same (only rankings written since), extended by the rows after the last
+(``Bridge.history_after``: a new action), or to be read whole (through the history cache).
+The mined routines are kept (each for the actions begun by a time, which added actions, all
+begun later, leave as they were). A store without a mark (MongoDB) keeps nothing.
 
 The service keeps one per engine (oracle.service.engine); a command-line answer, made once,
 keeps a fresh one for its own question: one code path, with or without what was kept.
@@ -23,7 +26,7 @@ from typing import TYPE_CHECKING, Any
 from oracle.past.routines import Done, MiningSettings, Routine, begun_by, done_from_history, mine_routines
 
 if TYPE_CHECKING:
-    from oracle.bridge import Bridge
+    from oracle.bridge import Bridge, HistoryRow
     from oracle.store.base import AppendMark
 
 #: How many NEEMs an engine keeps the history of (the least recently asked is dropped).
@@ -39,13 +42,13 @@ Minings = OrderedDict[tuple[int, MiningSettings | None], list[Routine]]
 @dataclass
 class _Entry:
     mark: AppendMark | None
+    rows: list[HistoryRow] | None = None  # the history rows, and their non-idle actions
     done: list[Done] | None = None
     now: tuple[float | None] | None = None  # (now,) once read: None is a NEEM without events
     stored: list[dict[str, Any]] | None = None
     mined: Minings = field(default_factory=OrderedDict)
-    # the actions and minings read at an earlier mark, until this mark's actions are read: the
-    # minings are kept when the actions are the same (only rankings or workflows written since)
-    earlier: tuple[list[Done], Minings] | None = None
+    # the latest entry of an earlier mark whose rows were read, until this one's are
+    earlier: _Entry | None = None
 
 
 class KeptPast:
@@ -66,7 +69,7 @@ class KeptPast:
             self._entries.pop(neem, None)
             return fresh  # nothing to check a kept read against: this answer's own
         if entry is not None:
-            fresh.earlier = entry.earlier if entry.done is None else (entry.done, entry.mined)
+            fresh.earlier = entry.earlier if entry.rows is None else entry
         self._entries[neem] = fresh
         self._entries.move_to_end(neem)
         while len(self._entries) > NEEMS:
@@ -111,11 +114,32 @@ class KeptPast:
 
 def _done(entry: _Entry, bridge: Bridge) -> list[Done]:
     if entry.done is None:
-        done = done_from_history(_history(bridge))
-        if entry.earlier is not None and entry.earlier[0] == done:
-            done, entry.mined = entry.earlier
-        entry.done, entry.earlier = done, None
+        _read(entry, bridge)
+    assert entry.done is not None
     return entry.done
+
+
+def _read(entry: _Entry, bridge: Bridge) -> None:
+    """The entry's rows and actions: the earlier entry's, extended where the history cache's
+    rule allows (its minings carried over), else read whole."""
+    from oracle.historycache import growth
+
+    earlier, entry.earlier = entry.earlier, None
+    if (earlier is not None and earlier.mark is not None and earlier.rows is not None and earlier.done is not None
+            and entry.mark is not None):
+        how = growth(bridge, earlier.mark, earlier.rows, entry.mark)
+        if how != "whole":
+            added = bridge.history_after(earlier.rows[-1]["begin"]) if how == "after" else []
+            new = done_from_history(added)
+            entry.rows, entry.done = earlier.rows + added, (earlier.done + new if new else earlier.done)
+            # the added actions began after every kept one: the actions begun by any time are
+            # the same as before or more than before, so each kept mining still names its own
+            entry.mined = earlier.mined
+            return
+    entry.rows = _history(bridge)
+    entry.done = done_from_history(entry.rows)
+    if earlier is not None and earlier.done == entry.done:  # the same actions (a workflow saved again)
+        entry.done, entry.mined = earlier.done, earlier.mined
 
 
 def _history(bridge: Bridge) -> list[Any]:
