@@ -41,7 +41,7 @@ The sentences are made in Python (oracle.past); this module hands over the evide
 :- use_module('../model/tf', [object_frame_name/2]).
 :- use_module(names, [odb_iri/2, call_classes/3]).
 :- use_module(calls, [task_calls/2, call_tasks/2, call_task_times/3, call_time/5]).
-:- use_module(decisions, [decision/3, imagined_preference/2, preference_at/3]).
+:- use_module(decisions, [latest_first/4, imagined_preference/2, preference_at/3]).
 :- use_module('../answers', [call_text/2]).
 
 %!  latest_time(-Time) is semidet.
@@ -184,9 +184,7 @@ counted(Items, Counts) :-
 suggestion(Call, Before, suggested(T, Rank, Score, Top)) :-
     check_call(Call),
     bound_or_none(Before),
-    findall(B-M, ( decision(preference, M, B), began_by(Before, B-M) ), Pairs),
-    sort(0, @>=, Pairs, Latest),
-    member(T-M, Latest),
+    latest_first(preference, Before, T, M),
     imagined_preference(M, Ranked),
     memberchk(ranked(Call, Rank, Score), Ranked), !,
     Ranked = [Top|_].

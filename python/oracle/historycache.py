@@ -114,17 +114,32 @@ class HistoryCache(CacheFolder):
 def _extended(bridge: Bridge, entry: _Entry, mark: AppendMark) -> HistoryView | None:
     """The kept view with what was added since its mark, when that only adds (module
     docstring); None when the whole view must be read."""
-    added = bridge.store.appended(bridge.neem_id, entry.mark.last)
-    if added is None:
-        return None
-    namespace = None if bridge.ontology is None else bridge.ontology.namespace
-    if extends(added, None, namespace):
-        return entry.view  # only rankings written since
     rows = entry.view.rows
-    if not rows or not extends(added, rows[-1]["begin"], namespace):
+    how = growth(bridge, entry.mark, rows, mark)
+    if how == "same":
+        return entry.view  # only rankings written since
+    if how == "whole":
         return None
     after = bridge.history_view(rows[-1]["begin"])
     return HistoryView(rows + after.rows, after.latest)
+
+
+def growth(bridge: Bridge, kept: AppendMark, rows: Sequence[HistoryRow], now: AppendMark) -> str:
+    """How the history ``rows`` read at mark ``kept`` stand at mark ``now`` (module docstring):
+    ``same`` (only rankings written since: neither the rows nor the latest situation changed),
+    ``after`` (the rows after the last one's begin are to be added: ``Bridge.history_after``)
+    or ``whole`` (the history is to be read whole)."""
+    if not same_tables(kept, now) or now.last - kept.last > MAX_APPENDED:
+        return "whole"
+    added = bridge.store.appended(bridge.neem_id, kept.last)
+    if added is None:
+        return "whole"
+    namespace = None if bridge.ontology is None else bridge.ontology.namespace
+    if extends(added, None, namespace):
+        return "same"
+    if not rows or not extends(added, rows[-1]["begin"], namespace):
+        return "whole"
+    return "after"
 
 
 def _dumps(key: str, mark: AppendMark, view: HistoryView) -> bytes:
