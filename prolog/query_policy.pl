@@ -229,6 +229,7 @@ exposed(odb_calls, chain_before/3, read).
 exposed(odb_decisions, decision/3, read).
 exposed(odb_decisions, decision_at/3, read).
 exposed(odb_decisions, latest_decision/4, read).
+exposed(odb_decisions, latest_first/4, read).
 exposed(odb_decisions, imagined_available/2, read).
 exposed(odb_decisions, available_tasks_at/2, read).
 exposed(odb_decisions, imagined_preference/2, read).

@@ -7,7 +7,7 @@ import shutil
 
 from oracle.files import MAX_CACHE_ENTRIES, prune_cache, used
 from oracle.ontology import build_with_report
-from oracle.ontology.builder import DEFAULT_MAPPING, DEFAULT_ODB
+from oracle.ontology.inputs import DEFAULT_MAPPING, DEFAULT_ODB
 
 
 def test_prune_keeps_the_most_recently_used_entries_files_and_folders(tmp_path):

@@ -1,4 +1,4 @@
-"""Static checks of the docker-compose dev stack (issue 7); no Docker engine needed.
+"""Static checks of the docker-compose dev stack; no Docker engine needed.
 
 What can run here does run here: the compose file and Dockerfile are parsed and cross-checked with
 the docs and .env.example, the image's smoke commands and the Mongo init script run natively, and
@@ -359,7 +359,7 @@ def test_commands_the_services_run_exist_in_the_cli(compose):
     needed = {compose["services"]["oracle"]["command"][0], "import"}  # load-samples.py runs `import`
     missing = needed - set(choices)
     if missing:
-        pytest.skip(f"sub-command(s) {sorted(missing)} not registered yet (issue 3)")
+        pytest.skip(f"sub-command(s) {sorted(missing)} not registered yet")
     assert needed <= set(choices)
 
 

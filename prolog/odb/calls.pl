@@ -17,12 +17,12 @@ A task individual is typed with its odb task class; its roles classify objects t
 odb object classes. Its call is the chain term `pick(banana)` (odb_names).
 */
 
-:- use_module(library(error)).
-:- use_module(library(lists)).
-:- use_module(library(apply)).
-:- use_module(library(pairs)).
-:- use_module(library(assoc)).
-:- use_module(library(ordsets)).
+:- use_module(library(error), [must_be/2]).
+:- use_module(library(lists), [append/2, last/2, member/2, reverse/2]).
+:- use_module(library(apply), [exclude/3, include/3]).
+:- use_module(library(pairs), [group_pairs_by_key/2, pairs_keys/2, pairs_values/2]).
+:- use_module(library(assoc), [assoc_to_keys/2, get_assoc/3, list_to_assoc/2]).
+:- use_module(library(ordsets), [list_to_ord_set/2, ord_memberchk/2]).
 :- use_module('../lang/query', [kb_call/2, kb_findall/4, kb_findall/5]).
 :- use_module('../model/rdfs', []).
 :- use_module('../model/event', []).

@@ -2,6 +2,7 @@
     [ decision/3,                 % ?Kind, ?MentalAction, ?Begin
       decision_at/3,              % +Kind, +Time, -MentalAction
       latest_decision/4,          % +Kind, +Test, -MentalAction, -Begin
+      latest_first/4,             % +Kind, +Before, -Begin, -MentalAction
       imagined_available/2,       % +Imagining, -Calls
       available_tasks_at/2,       % +Time, -Calls
       imagined_preference/2,      % +Reasoning, -Ranked
@@ -74,6 +75,55 @@ latest_decision(Kind, Test, M, B) :-
         decisions_from(Kind, From, B1, 4, M),
         B = B1
     ).
+
+%!  latest_first(+Kind, +Before, -Begin, -MentalAction) is nondet.
+%   The decisions of Kind that began at or before Before (`none`: any), latest first and
+%   those that began together greatest first: the order of sort(0, @>=) on their
+%   Begin-MentalAction pairs. A NEEM with few decisions of Kind has them all read
+%   (few_decisions/2); otherwise the store sends the latest a page at a time, ordered by
+%   begin, so a caller that stops at one of the first does not have them all read.
+latest_first(Kind, Before, B, M) :-
+    (   Before == none -> Test = any ; must_be(number, Before), Test = =<(Before) ),
+    (   few_decisions(Kind, Few)
+    ->  include(begin_passes(Test), Few, Passing),
+        sort(0, @>=, Passing, Sorted),
+        member(B-M, Sorted)
+    ;   latest_pages(Kind, Test, 16, [], B, M)
+    ).
+
+%   latest_pages(+Kind, +Test, +N, +Seen, -B, -M): the N latest decisions of Kind from Test's
+%   bound down, in the store's order of begins. Those that began above the page's last begin
+%   are all in it (a hair above: a begin read back from a store may differ from its stored
+%   number in the last bit), so they come in order, but for those in Seen (the ordered set
+%   of the earlier pages'); then the next page, 4 times larger, unless this one was the last.
+latest_pages(Kind, Test, N, Seen, B, M) :-
+    (   Test = =<(Time)
+    ->  Bound is Time + max(1.0e-9, abs(Time) * 1.0e-15), BO = cmp(=<, Bound, B0)
+    ;   BO = B0
+    ),
+    decision_patterns(Kind, M0, BO, Ps),
+    findall(B0-M0, store_match(Ps, any, [order([desc(B0)]), limit(N)]), Rows),
+    length(Rows, Got),
+    (   Got < N
+    ->  Whole = Rows, More = false
+    ;   last(Rows, BL-_),
+        Above is BL + max(1.0e-9, abs(BL) * 1.0e-15),
+        include(began_above(Above), Rows, Whole), More = true
+    ),
+    include(begin_passes(Test), Whole, Passing),
+    exclude(seen_decision(Seen), Passing, New),
+    sort(0, @>=, New, Sorted),
+    (   member(B-M, Sorted)
+    ;   More == true,
+        findall(Mx, member(_-Mx, Passing), Ms0),
+        list_to_ord_set(Ms0, Seen1),
+        N1 is N*4,
+        latest_pages(Kind, Test, N1, Seen1, B, M)
+    ).
+
+began_above(Above, B-_) :- B > Above.
+
+seen_decision(Seen, _-M) :- ord_memberchk(M, Seen).
 
 %   few_decisions(+Kind, -Decisions): Begin-Decision for every decision of Kind, when there
 %   are fewer than 64 (fails otherwise): the class's tasks, their actions, each one's

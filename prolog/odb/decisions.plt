@@ -17,6 +17,13 @@ test(preference_at, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
 test(latest_preference, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
     latest_preference(_, B, R), B =:= 200, R == [ranked(pick(apple), 1, 0.1)].
 
+test(latest_first, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
+    findall(B-M, latest_first(preference, none, B, M), All),
+    findall(B-M, decision(preference, M, B), Pairs), sort(0, @>=, Pairs, All), All = [B1-_, _],
+    B1 =:= 200,
+    findall(B-M, latest_first(preference, 199.5, B, M), Before), Before = [B2-_], B2 =:= 100,
+    \+ latest_first(preference, 99.5, _, _).
+
 test(times_available, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
     times_available(pick(apple), Bs), Bs == [100, 200].
 

@@ -15,12 +15,13 @@ before it, read in a fixed number of compiled store queries; and the latest imag
 situation, the one the next ranking is for.
 */
 
-:- use_module(library(error)).
-:- use_module(library(lists)).
-:- use_module(library(apply)).
-:- use_module(library(pairs)).
-:- use_module(library(assoc)).
-:- use_module(library(ordsets)).
+:- use_module(library(error), [must_be/2]).
+:- use_module(library(lists), [append/3, member/2, nth0/3]).
+:- use_module(library(apply), [foldl/5, include/3, maplist/3]).
+:- use_module(library(pairs), [group_pairs_by_key/2, transpose_pairs/2]).
+:- use_module(library(assoc), [assoc_to_list/2, assoc_to_values/2, empty_assoc/1, get_assoc/3,
+                               list_to_assoc/2, put_assoc/4]).
+:- use_module(library(ordsets), [ord_memberchk/2]).
 :- use_module('../json_text', [json_text/2]).
 :- use_module('../lang/query', [kb_call/2, kb_findall/4, kb_group/5]).
 :- use_module('../lang/triple', [kb_iri/2]).

@@ -24,12 +24,12 @@ terms such as `pick(banana)`; an odb:IdleTask action is never an answer.
 The sentences are made in Python (oracle.past); this module hands over the evidence only.
 */
 
-:- use_module(library(error)).
-:- use_module(library(lists)).
-:- use_module(library(apply)).
-:- use_module(library(pairs)).
-:- use_module(library(assoc)).
-:- use_module(library(ordsets)).
+:- use_module(library(error), [must_be/2]).
+:- use_module(library(lists), [append/2, append/3, clumped/2, max_member/2, member/2, reverse/2]).
+:- use_module(library(apply), [include/3]).
+:- use_module(library(pairs), [pairs_values/2]).
+:- use_module(library(assoc), [get_assoc/3, list_to_assoc/2]).
+:- use_module(library(ordsets), [ord_memberchk/2]).
 :- use_module('../json_text', [json_text/2]).
 :- use_module('../neem_store', [store_match/3, store_python_request/1]).
 :- use_module('../store/tf', [store_pose/4]).
@@ -42,7 +42,7 @@ The sentences are made in Python (oracle.past); this module hands over the evide
 :- use_module('../model/tf', [object_frame_name/2]).
 :- use_module(names, [odb_iri/2, call_classes/3]).
 :- use_module(calls, [task_calls/2, call_tasks/2, call_task_times/3, call_time/5]).
-:- use_module(decisions, [decision/3, imagined_preference/2, preference_at/3]).
+:- use_module(decisions, [latest_first/4, imagined_preference/2, preference_at/3]).
 :- use_module('../answers', [call_text/2]).
 
 %!  latest_time(-Time) is semidet.
@@ -212,9 +212,7 @@ counted(Items, Counts) :-
 suggestion(Call, Before, suggested(T, Rank, Score, Top)) :-
     check_call(Call),
     bound_or_none(Before),
-    findall(B-M, ( decision(preference, M, B), began_by(Before, B-M) ), Pairs),
-    sort(0, @>=, Pairs, Latest),
-    member(T-M, Latest),
+    latest_first(preference, Before, T, M),
     imagined_preference(M, Ranked),
     memberchk(ranked(Call, Rank, Score), Ranked), !,
     Ranked = [Top|_].

@@ -153,3 +153,12 @@ class CacheFolder:
 
     def _prune(self) -> None:
         prune_cache(self.root, f"*{self.SUFFIX}", self.MAX_ENTRIES)
+
+    def _store(self, path: Path, data: bytes) -> None:
+        """Keep ``data`` at ``path`` (private) and prune; a folder that is read-only or full only
+        means the next call makes the entry afresh."""
+        try:
+            write_private_bytes(path, data)
+            self._prune()
+        except OSError:
+            return

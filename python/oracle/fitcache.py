@@ -34,7 +34,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import numpy as np
 
 from oracle.algorithm.records import Step
-from oracle.files import CacheFolder, write_private_bytes, written_by_user_alone
+from oracle.files import CacheFolder, written_by_user_alone
 
 if TYPE_CHECKING:
     from oracle.store.base import Store
@@ -96,13 +96,6 @@ class FitCache(CacheFolder):
             return pickle.dumps((_FORMAT, key, len(steps), _steps_digest(steps), body.getvalue()), protocol=5)
         except pickle.PicklingError:
             return None
-
-    def _store(self, path: Path, data: bytes) -> None:
-        try:
-            write_private_bytes(path, data)
-            self._prune()
-        except OSError:
-            return  # read-only or full: the next call fits afresh
 
 
 def _parse(data: bytes, key: str, model: Any, steps: Sequence[Step], *, trusted: bool) -> Any | None:

@@ -45,7 +45,7 @@ from pathlib import Path
 from typing import Any, ClassVar
 
 from oracle.bridge import Bridge, HistoryRow, HistoryView, history_rows
-from oracle.files import CacheFolder, write_private_bytes, written_by_user_alone
+from oracle.files import CacheFolder, written_by_user_alone
 from oracle.neem.terms import BEGIN, EXECUTES, HAS_INTERVAL, IMAGINING
 from oracle.store.base import Appended, AppendMark
 from oracle.store.model import RDF_TYPE, decode_value
@@ -110,28 +110,36 @@ class HistoryCache(CacheFolder):
         except OSError:
             return None
 
-    def _store(self, path: Path, data: bytes) -> None:
-        try:
-            write_private_bytes(path, data)
-            self._prune()
-        except OSError:
-            return  # read-only or full: the next call reads the whole history
-
 
 def _extended(bridge: Bridge, entry: _Entry, mark: AppendMark) -> HistoryView | None:
     """The kept view with what was added since its mark, when that only adds (module
     docstring); None when the whole view must be read."""
-    added = bridge.store.appended(bridge.neem_id, entry.mark.last)
-    if added is None:
-        return None
-    namespace = None if bridge.ontology is None else bridge.ontology.namespace
-    if extends(added, None, namespace):
-        return entry.view  # only rankings written since
     rows = entry.view.rows
-    if not rows or not extends(added, rows[-1]["begin"], namespace):
+    how = growth(bridge, entry.mark, rows, mark)
+    if how == "same":
+        return entry.view  # only rankings written since
+    if how == "whole":
         return None
     after = bridge.history_view(rows[-1]["begin"])
     return HistoryView(rows + after.rows, after.latest)
+
+
+def growth(bridge: Bridge, kept: AppendMark, rows: Sequence[HistoryRow], now: AppendMark) -> str:
+    """How the history ``rows`` read at mark ``kept`` stand at mark ``now`` (module docstring):
+    ``same`` (only rankings written since: neither the rows nor the latest situation changed),
+    ``after`` (the rows after the last one's begin are to be added: ``Bridge.history_after``)
+    or ``whole`` (the history is to be read whole)."""
+    if not same_tables(kept, now) or now.last - kept.last > MAX_APPENDED:
+        return "whole"
+    added = bridge.store.appended(bridge.neem_id, kept.last)
+    if added is None:
+        return "whole"
+    namespace = None if bridge.ontology is None else bridge.ontology.namespace
+    if extends(added, None, namespace):
+        return "same"
+    if not rows or not extends(added, rows[-1]["begin"], namespace):
+        return "whole"
+    return "after"
 
 
 def _dumps(key: str, mark: AppendMark, view: HistoryView) -> bytes:

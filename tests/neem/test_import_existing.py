@@ -1,4 +1,4 @@
-"""Importing users who already have a NEEM (issue 35): refused by default, replaced or added
+"""Importing users who already have a NEEM: refused by default, replaced or added
 when asked, and a NEEM cut by a stopped import is named incomplete and replaced next time."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""A killed import loses at most the rows since the last commit of the user in flight (issue 16).
+"""A killed import loses at most the rows since the last commit of the user in flight.
 
 An import of four users' rows (grouped by user, as files are) runs in a subprocess and is
 SIGKILLed at random moments of its run, 20 times. After each kill every visible NEEM must hold

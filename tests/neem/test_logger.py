@@ -484,3 +484,18 @@ def test_an_available_set_met_again_is_logged_as_a_new_equal_list_is(tmp_path, o
     plans = {d["o"] for d in store.find(logger.neem_id, p=logger.vocab.imagines_situation)}
     assert len(plans) == 3
     assert all(objects_of(store, logger.neem_id, plan, RDF_TYPE) for plan in plans)  # written again, typed
+
+
+def test_a_replacement_is_known_by_the_replaced_neems_id_while_it_is_written(store, onto, tbox_for):
+    old = NeemLogger.create(store, onto, user="alice", neem_id="alice", tbox=tbox_for)
+    old.action("pick(green_mug)", T0)
+    old.close()
+    new = NeemLogger.create(store, onto, user="alice", neem_id="alice", replace=True, tbox=tbox_for)
+    assert new.replacing and new.neem_id == old.neem_id  # not the hidden staging NEEM's id
+    new.action("open(fridge)", T0)
+    with pytest.raises(LoggingError, match=f"in NEEM '{old.neem_id}'"):
+        new.action("close(fridge)", T0 - timedelta(seconds=1))
+    assert [v.task_class.rsplit("#", 1)[1] for v in executed_actions(store, old.neem_id)] == ["pick"]  # untouched
+    new.close()
+    assert not new.replacing and new.neem_id == old.neem_id
+    assert [v.task_class.rsplit("#", 1)[1] for v in executed_actions(store, new.neem_id)] == ["open"]

@@ -6,7 +6,7 @@ from rdflib.namespace import OWL, RDF, RDFS
 from oracle.errors import OntologyError
 from oracle.namespaces import DUL, SOMA
 from oracle.ontology import build_with_report, load_ontology, write_ontology
-from oracle.ontology.builder import DEFAULT_MAPPING
+from oracle.ontology.inputs import DEFAULT_MAPPING
 
 from .conftest import manifest, write_manifest
 

@@ -7,7 +7,7 @@ import shutil
 import stat
 
 from oracle.ontology import build_with_report
-from oracle.ontology.builder import DEFAULT_MAPPING, DEFAULT_ODB
+from oracle.ontology.inputs import DEFAULT_MAPPING, DEFAULT_ODB
 
 
 def _entries(cache):

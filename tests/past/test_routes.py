@@ -61,3 +61,23 @@ def test_prepare_route(client):
     body = client.get("/api/neems/small/prepare", params={"for": "Morning"}).json()
     assert body["for"] == "Morning" and body["prepare"] == []  # no routine yet
     assert client.get("/api/neems/small/prepare", params={"for": "teatime"}).status_code == 422
+
+
+def test_answers_after_an_action_is_logged_are_not_stale(client):
+    """The engine keeps what the answers read of the NEEM (oracle.past.kept): an action logged
+    through the service is in the next answer and the next summary."""
+    from oracle.timeline import seconds_of
+    from tests.past.conftest import t
+
+    def after_fridge():
+        return client.get("/api/neems/small/ask", params={"q": "what do I usually do after open(fridge)?"}).json()
+
+    assert after_fridge()["evidence"]["occurrences"] == 3
+    assert client.get("/api/neems/small/summary").json()["latest"]["task"] == "place(green_mug, kitchen_table)"
+    begin = seconds_of(t(1, 8, 2))
+    for offset, call in ((0, "open(fridge)"), (15, "pick(apple)")):
+        logged = client.post("/api/neems/small/actions", json={"call": call, "begin": begin + offset, "end": begin + offset + 10})
+        assert logged.status_code == 200
+    evidence = after_fridge()["evidence"]
+    assert evidence["occurrences"] == 4 and {"task": "pick(apple)", "count": 2} in evidence["next"]
+    assert client.get("/api/neems/small/summary").json()["latest"]["task"] == "pick(apple)"

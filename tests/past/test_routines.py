@@ -108,3 +108,64 @@ def test_a_persona_s_daily_routine_is_recovered():
     score = score_persona(make_persona(0, 21), 7, 0, 5, MiningSettings())
     assert (score.mined, score.truth, score.matched) == (3, 3, 3)
     assert score.runs[2] == score.tried > 0
+
+
+def _reference_mining(done, settings):
+    """mine_routines as first written (each mean over a generator, each similarity from the
+    calls): the faster one must find the very same routines."""
+    import statistics
+
+    from oracle.past.routines import MiningSettings, Routine, _distinct_names, _hours_apart, jaccard
+    from oracle.timeline import time_of_day
+
+    settings = settings or MiningSettings()
+    episodes = episodes_of(done)
+    clusters, hours = [], []
+    for episode in episodes:
+        best, best_score = None, settings.min_similarity
+        for index, cluster in enumerate(clusters):
+            if _hours_apart(episode.hour, hours[index] / len(cluster)) > settings.max_hours:
+                continue
+            score = statistics.fmean(jaccard(episode.calls, other.calls) for other in cluster)
+            if score >= best_score:
+                best, best_score = index, score
+        if best is None:
+            clusters.append([episode])
+            hours.append(episode.hour)
+        else:
+            clusters[best].append(episode)
+            hours[best] += episode.hour
+    observed = len({e.day for e in episodes})
+    kept = [c for c in clusters if len({e.day for e in c}) >= max(settings.min_days, settings.min_share * observed)]
+    kept.sort(key=lambda c: statistics.median(e.hour for e in c))
+    routines = []
+    for i, cluster in enumerate(kept, start=1):
+        medoid = max(cluster, key=lambda e: (statistics.fmean(jaccard(e.calls, o.calls) for o in cluster), -e.begin))
+        hour = statistics.median(e.hour for e in cluster)
+        routines.append(Routine(f"r{i}", name_of(medoid.calls), medoid.calls, len({e.day for e in cluster}), hour,
+                                time_of_day(hour), tuple(e.begin for e in cluster), tuple(e.calls for e in cluster)))
+    return _distinct_names(routines)
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_mining_equals_the_reference_reading(seed):
+    import random
+
+    from oracle.past.routines import MiningSettings
+
+    rng = random.Random(seed)
+    calls = BREAKFAST + COFFEE + ("pick(apple)", "eat(apple)", "open(fridge)", "close(fridge)")
+    done: list[Done] = []
+    mined: list[int] = []
+    usual = [(7, BREAKFAST), (15, COFFEE), (rng.randint(9, 21), tuple(rng.choice(calls) for _ in range(5)))]
+    for n in range(rng.randint(3, 12)):  # the usual chains, most days, a step or two changed; and one of chance
+        episodes = [(hour + rng.choice((-1, 0, 1)), tuple(c if rng.random() > 0.2 else rng.choice(calls) for c in steps))
+                    for hour, steps in usual if rng.random() < 0.8]
+        episodes.append((rng.randint(6, 22), tuple(rng.choice(calls) for _ in range(rng.randint(1, 8)))))
+        for hour, steps in sorted(episodes):
+            done += day(n, hour, steps, minute=rng.randint(0, 40))
+    for settings in (None, MiningSettings(min_similarity=0.3, min_days=2), MiningSettings(max_hours=4.0)):
+        found = mine_routines(done, settings)
+        assert found == _reference_mining(done, settings)
+        mined.append(len(found))
+    assert any(mined)

@@ -1,4 +1,4 @@
-"""Issue 35's attacks against a real ``serve`` process on loopback (subprocess, real uvicorn).
+"""The attacks against a real ``serve`` process on loopback (subprocess, real uvicorn).
 
 What a web page in the user's browser (DNS rebinding, framing), a flood and a crash can do:
 nothing written or read through /api/prolog, foreign Host names refused before any handler,

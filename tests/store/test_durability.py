@@ -1,4 +1,4 @@
-"""Issue 16's promises: atomic replacement, readers that never wait, nothing leaked."""
+"""The durability promises: atomic replacement, readers that never wait, nothing leaked."""
 
 from __future__ import annotations
 
@@ -338,8 +338,8 @@ def test_a_builder_killed_inside_the_swap_leaves_the_old_neem_or_the_new_one(sto
     for i in range(7):
         logger.action("open(fridge)", 1_740_988_800 + 60 * i)
     logger.flush()
-    store.update_meta(logger.neem_id, **{STAGED_BY: dead, READY: True})
-    new = content(store, logger.neem_id)
+    store.update_meta(logger.writes_to, **{STAGED_BY: dead, READY: True})
+    new = content(store, logger.writes_to)
     store.drop_neem(alice)  # killed right after dropping the old NEEM
     drop_abandoned(store)
     assert [info.id for info in store.neems()] == [alice] and content(store, alice) == new
@@ -359,7 +359,7 @@ def test_a_builder_killed_between_two_collection_renames_loses_nothing(tmp_path,
     for i in range(7):
         logger.action("open(fridge)", 1_740_988_800 + 60 * i)
     logger.flush()
-    staging = logger.neem_id
+    staging = logger.writes_to
     new = content(store, staging)
     dead = {"host": __import__("socket").gethostname(), "pid": _dead_pid()}
     store.update_meta(staging, **{STAGED_BY: dead, READY: True})

@@ -10,8 +10,8 @@ from dataclasses import replace
 from pathlib import Path
 
 from oracle.ontology import build_ontology
-from oracle.store import tbox as tbox_module
-from oracle.store.tbox import tbox_for
+from oracle.store import ontology_tbox as tbox_module
+from oracle.store.ontology_tbox import tbox_for
 
 
 def _entries(cache: Path) -> list[Path]:
@@ -39,7 +39,7 @@ def test_a_cached_tbox_needs_no_rdflib(tmp_path):
     probe = (
         "import sys, pathlib\n"
         "from oracle.ontology import build_ontology\n"
-        "from oracle.store.tbox import tbox_for\n"
+        "from oracle.store.ontology_tbox import tbox_for\n"
         f"tbox = tbox_for(build_ontology(cache_dir=pathlib.Path({str(cache)!r})))\n"
         "print(len(tbox.triples) > 0, 'rdflib' in sys.modules)\n"
     )

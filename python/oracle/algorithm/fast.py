@@ -264,12 +264,7 @@ class PreferenceOracle(OracleParams):
     def rank(self, current: Step | Iterable[Option], time_of_day: str | None = None, *,
              tree_roots: int | None = 3, present_objects: Iterable[str] | None = None,
              at: float | None = None) -> Ranking:
-        """Rank the available options of ``current`` (a Step, or options plus ``time_of_day``).
-        ``at`` (the decision's unix seconds) is accepted as every predictor's is, and not used:
-        the thesis knows the part of the day only.
-
-        The forward tree is built for the best ``tree_roots`` options (None: all).
-        """
+        """What ``ReferenceOracle.rank`` answers for the same arguments, from the kept tables."""
         p = self._check_params()
         offered, now = offered_options(current, time_of_day)
         count, length = self._option_count, self.n_steps_

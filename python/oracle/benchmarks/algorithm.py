@@ -1,5 +1,5 @@
 """Benchmark of the predictors: time per prediction of the thesis oracle's ``fast`` and ``reference``
-(issue 5) and of the routine predictor, the default (issue 10: median <= 1 ms at 300, <= 20 ms at 10,000).
+and of the routine predictor, the default (median <= 1 ms at 300, <= 20 ms at 10,000).
 
 Synthetic histories of 100 to 10,000 steps with ~20 available options per situation, over a
 random 90-class taxonomy whose distances follow thesis eq. 4.5; a routine-like Markov chain over

@@ -1,4 +1,4 @@
-"""CLI figures a user meets (issue 15): the fixed cost of a call, ``neems`` / ``why-not`` /
+"""CLI figures a user meets: the fixed cost of a call, ``neems`` / ``why-not`` /
 ``what-next`` from start to exit, and logging throughput through ``import`` with peak memory,
 at 1,000-50,000 actions, each beside a floor measured in the same run. Each ``import`` run logs a
 new NEEM into a store that holds the smaller ones (the NEEM of the run before dropped first,

@@ -1,4 +1,4 @@
-"""How fast ``rank`` and the service start (issue 41): ``rank`` from start to exit with nothing
+"""How fast ``rank`` and the service start: ``rank`` from start to exit with nothing
 kept in the user's cache (the store as the import left it) and with nothing kept anywhere, the
 service's first answer for a NEEM, and the crossings between Python and Prolog a rank makes."""
 

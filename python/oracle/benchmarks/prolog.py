@@ -108,7 +108,7 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
     return rows
 
 
-# -- OWL reasoning with the full SOMA loaded (issue 37) ----------------------------------------
+# -- OWL reasoning with the full SOMA loaded ----------------------------------------
 #: The official SOMA/DUL files: the ontology bench's folder, or ``$NEEM_SOMA_DIR``.
 SOMA_DIR = Path(os.environ.get("NEEM_SOMA_DIR") or SHARED_SOMA)
 #: kb_call goals over the OWL predicates, each compiled into one store query, and what they ask.
@@ -168,7 +168,7 @@ def owl_figures(quick: bool = False, repeat: int = 7) -> list[dict[str, Any]]:
     return rows
 
 
-# -- the history read and rank at NEEM sizes a user meets (issue 15) ---------------------------
+# -- the history read and rank at NEEM sizes a user meets ---------------------------
 #: NEEM sizes (executed actions) of the history figures; quick runs stop at the first two.
 HISTORY_SIZES = (1000, 10000, 50000)
 

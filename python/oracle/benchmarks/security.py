@@ -1,4 +1,4 @@
-"""The service under attack (issue 35, docs/security.md): a real ``serve`` process on a free
+"""The service under attack (docs/security.md): a real ``serve`` process on a free
 loopback port, sent what a flood would send. Printed: how fast and how small the answer to a
 50 MB body is, the server's peak resident memory through four such bodies at once, and the
 robot's situation round trip alone (before and after) and while Prolog queries that run to their

@@ -16,7 +16,6 @@ from oracle.errors import NeemOracleError, SettingsError
 
 if TYPE_CHECKING:  # imported lazily at run time, so that --help stays fast
     from oracle.algorithm.params import Hyperparameters
-    from oracle.bridge import Bridge
     from oracle.ontology import OdbOntology
     from oracle.timeline import Instant
 
@@ -79,17 +78,6 @@ def ontology_from(args: argparse.Namespace) -> OdbOntology:
             raise NeemOracleError("give either --ontology or --odb/--mapping, not both")
         return load_ontology(args.ontology)
     return build_ontology(getattr(args, "odb", None), getattr(args, "mapping", None), getattr(args, "soma", None))
-
-
-def connect(args: argparse.Namespace, *, write: bool = False) -> tuple[Bridge, OdbOntology]:
-    """The Prolog bridge over the NEEM ``--store``/``--neem`` name, with the NEEM's ontology
-    (``commands.target``: the store is never created, several NEEMs need ``--neem``; it is
-    opened read-only unless ``write``)."""
-    from oracle.bridge import Bridge
-    from oracle.commands.target import open_target
-
-    target = open_target(args, write=write)
-    return Bridge(target.store, target.neem_id, target.onto), target.onto
 
 
 def settings_from(text: str) -> Hyperparameters:

@@ -37,10 +37,10 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     evaluate.add_argument("--candidates", choices=("history", "vocabulary"), default="history",
                           help="a row without available options is offered the user's actions before it "
                                "(history, default) or every action of the user in the file (vocabulary: "
-                               "future ones too, the rule before issue 39)")
+                               "future ones too, the rule of the first published results)")
     evaluate.add_argument("--decision", choices=("previous-end", "start"), default="previous-end",
                           help="rank each decision at the previous action's end, or when an idle gap became one "
-                               "(default), or at the true start (the rule before issue 39)")
+                               "(default), or at the true start (the rule of the first published results)")
     evaluate.add_argument("--every-step", action="store_true",
                           help="keep predictors by partial_fit (self-tuning on every step) instead of as rank "
                                "serves them (fit on the history: the latest tuning window)")

@@ -100,7 +100,7 @@ def _first_ctrl_c_between_rows() -> Iterator[Callable[[], bool]]:
 
 def _print(report: dict[str, int], store: Store) -> None:
     """Each NEEM's id, name and committed actions (a NEEM still hidden has its name in staging)."""
-    from oracle.store.base import STAGING
+    from oracle.store.staging import STAGING
     from oracle.store.ids import ALIAS_KEY, alias_of
 
     names = {info.id: alias_of(info) for info in store.neems()}

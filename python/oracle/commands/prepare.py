@@ -6,7 +6,9 @@ from __future__ import annotations
 import argparse
 import json
 
-from oracle.commands.common import AT, JSON, NEEM, ONTOLOGY_OPTIONS, STORE, add_options, connect, moment_from
+from oracle.commands.common import AT, JSON, NEEM, ONTOLOGY_OPTIONS, STORE, add_options, moment_from
+
+from oracle.commands.target import connect
 
 PARTS = {"morning": "Morning", "midday": "Midday", "evening": "Evening", "night": "Night"}
 

@@ -7,7 +7,9 @@ import json
 import sys
 from typing import TYPE_CHECKING
 
-from oracle.commands.common import AT, JSON, NEEM, ONTOLOGY_OPTIONS, STORE, add_options, connect, moment_from
+from oracle.commands.common import AT, JSON, NEEM, ONTOLOGY_OPTIONS, STORE, add_options, moment_from
+
+from oracle.commands.target import connect
 from oracle.errors import NeemOracleError
 
 if TYPE_CHECKING:

@@ -8,6 +8,7 @@ import json
 from oracle.commands.common import AT, JSON, METHOD, NEEM, ONTOLOGY_OPTIONS, SETTINGS, STORE, add_options
 
 
+
 def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
     parser = subparsers.add_parser("rank", help="rank the available tasks and predict the chain (writes the ranking back)")
     add_options(parser, STORE, NEEM)
@@ -21,7 +22,8 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 
 
 def run(args: argparse.Namespace) -> int:
-    from oracle.commands.common import connect, method_from, moment_from, settings_from
+    from oracle.commands.common import method_from, moment_from, settings_from
+    from oracle.commands.target import connect
     from oracle.commands.shown import print_ranking
     from oracle.past.autonomy import ranked_modes, read_modes
     from oracle.ranking import finite, rank_neem, support_fields

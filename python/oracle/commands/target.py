@@ -1,4 +1,4 @@
-"""The NEEM a reading command works on: its store (never created), its id, its ontology."""
+"""The NEEM a command works on: its store (never created), its id, its ontology, its bridge."""
 
 from __future__ import annotations
 
@@ -10,6 +10,7 @@ from oracle.commands.common import ontology_from
 from oracle.errors import StoreError
 
 if TYPE_CHECKING:
+    from oracle.bridge import Bridge
     from oracle.ontology import OdbOntology
     from oracle.store import Store
 
@@ -28,7 +29,7 @@ def open_target(args: argparse.Namespace, *, write: bool = False) -> Target:
     """Open ``--store`` (read-only unless ``write``: a reader never waits for a writer; a writer's
     whole-file check runs beside its reads), pick
     ``--neem`` and the ontology the NEEM was logged with."""
-    from oracle.ontology.provenance import ontology_for
+    from oracle.ontology.reopen import ontology_for
     from oracle.store import open_store
     from oracle.store.ids import alias_of, resolve_neem
 
@@ -59,3 +60,13 @@ def default_neem(store: Store) -> str:
         shown = ", ".join(names[:6]) + (", ..." if len(names) > 6 else "")
         raise StoreError(f"{store.location} holds {len(ids)} NEEMs ({shown}); choose one with --neem")
     return ids[0]
+
+
+def connect(args: argparse.Namespace, *, write: bool = False) -> tuple[Bridge, OdbOntology]:
+    """The Prolog bridge over the NEEM ``--store``/``--neem`` name, with the NEEM's ontology
+    (``open_target``: the store is never created, several NEEMs need ``--neem``; it is
+    opened read-only unless ``write``)."""
+    from oracle.bridge import Bridge
+
+    target = open_target(args, write=write)
+    return Bridge(target.store, target.neem_id, target.onto), target.onto

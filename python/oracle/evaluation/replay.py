@@ -59,7 +59,7 @@ class ReplayRules:
             raise ValueError(f"decision must be one of {', '.join(DECISION_RULES)}, got {self.decision!r}")
 
 
-#: The protocol of the results before issue 39: future actions offered, decisions at the true start.
+#: The protocol of the first published results: future actions offered, decisions at the true start.
 LEGACY = ReplayRules("vocabulary", "start", False)
 
 

@@ -22,7 +22,8 @@ from oracle.neem.lifecycle import wipe_temporary_neems
 from oracle.neem.writer import NeemLogger, check_call, check_performer
 from oracle.ontology.model import OdbOntology
 from oracle.store import Store
-from oracle.store.tbox import TBox, tbox_for
+from oracle.store.ontology_tbox import tbox_for
+from oracle.store.tbox import TBox
 from oracle.timeline import CLOCK_KEY, IDLE_THRESHOLD_S, SEQUENCE_CLOCK, Instant, TimeValueError, seconds_of, sequence_instant
 
 #: Registry key of a NEEM whose import has not reached its user's last row: set when the
@@ -215,7 +216,7 @@ def import_chains(
                                            temporary=session, idle_threshold=idle_threshold, commit_every=commit_every,
                                            hidden=session, meta=meta or None)  # fmt: skip
                 loggers[row.user] = logger
-                report[logger._replaces or logger.neem_id] = 0
+                report[logger.neem_id] = 0
             action_id = row.extra.get("id")
             begin: datetime | Instant | None = row.time
             end: datetime | Instant | None = row.end
@@ -232,7 +233,7 @@ def import_chains(
                 state=None if row.extra.get("state") is None else str(row.extra["state"]),
                 session=None if row.extra.get("session") is None else str(row.extra["session"]),
             )
-            name = logger._replaces or logger.neem_id
+            name = logger.neem_id
             if row.line == plans[row.user].last_line:
                 logger.close()  # the user's rows end here: commit (and swap in a replacement) now
                 if not session:
@@ -246,10 +247,10 @@ def import_chains(
         raise LoggingError(f"{where}: {error}") from None
     finally:
         for logger in loggers.values():
-            if logger._replaces is None:
+            if not logger.replacing:
                 report[logger.neem_id] = logger.flush()
             elif not done:
-                name = logger._replaces
+                name = logger.neem_id
                 logger.abandon()  # the old NEEM stays as it was
                 report.pop(name, None)
     return report

@@ -193,7 +193,8 @@ class NeemLogger:
         self._tf_seq = 0
         self._buffered_calls = 0
         self.onto = onto
-        self.neem_id = neem_id
+        #: The NEEM the writes go to: a hidden staging NEEM until ``close()`` when it replaces one.
+        self._writing = neem_id
         self.idle_threshold = idle_threshold
         self.ns: str = onto.namespace
         self.vocab = onto.vocab
@@ -280,7 +281,8 @@ class NeemLogger:
                                        side_property=onto.vocab.imagines_situation)  # fmt: skip
         staging: str | None = created
         try:
-            from oracle.store.tbox import load_tbox, tbox_for
+            from oracle.store.ontology_tbox import tbox_for
+            from oracle.store.tbox import load_tbox
 
             load_tbox(store, created, tbox if tbox is not None else tbox_for(onto))
             if not hidden and not (replace and store.has_neem(neem_id)):
@@ -322,7 +324,7 @@ class NeemLogger:
     def _exists(self, iri: str) -> bool:
         if iri in self._known:
             return True
-        if next(self.store.find(self.neem_id, s=iri, limit=1, exact=True), None) is not None:
+        if next(self.store.find(self._writing, s=iri, limit=1, exact=True), None) is not None:
             self._known.add(iri)
             return True
         return False
@@ -505,18 +507,18 @@ class NeemLogger:
         if self._last_begin is not None and at.seconds < self._last_begin.seconds:
             raise LoggingError(
                 f"time goes backwards: {what} at {at.seconds:.3f} is before the start of the last action"
-                f" ({self._last_begin.seconds:.3f}) in NEEM {self.neem_id!r}"
+                f" ({self._last_begin.seconds:.3f}) in NEEM {self._public_id}"
             )
 
     def _resume_clock(self) -> tuple[Instant | None, Instant | None]:
         """When logging continues into an existing NEEM: the latest begin and end of its actions."""
-        executed = {doc["s"] for doc in self.store.find(self.neem_id, p=RDF_TYPE, o=T.ACTION, exact=True)}
+        executed = {doc["s"] for doc in self.store.find(self._writing, p=RDF_TYPE, o=T.ACTION, exact=True)}
         if not executed:
             return None, None
         begins: list[float] = []
         ends: list[float] = []
         for row in self.store.match(
-            self.neem_id,
+            self._writing,
             [TriplePattern(Var("A"), T.HAS_INTERVAL, Var("I")), TriplePattern(Var("I"), T.BEGIN, Var("B")),
              TriplePattern(Var("I"), T.END, Var("E"))],
         ):  # fmt: skip
@@ -762,11 +764,11 @@ class NeemLogger:
             try:
                 summary = summary_after(self._summary, buffer)
                 with self.store.transaction():
-                    self.store.insert(self.neem_id, buffer)
+                    self.store.insert(self._writing, buffer)
                     if tf:
-                        self.store.write_documents(self.neem_id, "tf", tf)
-                    mark = self.store.write_mark(self.neem_id)
-                    self.store.update_meta(self.neem_id, **{SUMMARY_KEY: {**summary, "mark": mark}})
+                        self.store.write_documents(self._writing, "tf", tf)
+                    mark = self.store.write_mark(self._writing)
+                    self.store.update_meta(self._writing, **{SUMMARY_KEY: {**summary, "mark": mark}})
                 self._summary = summary
             except BaseException as error:
                 # The in-memory view may now name individuals that were never stored.
@@ -775,14 +777,30 @@ class NeemLogger:
                 self._plans.clear()
                 self._sets.clear()
                 if isinstance(error, StoreError):
-                    raise LoggingError(f"NEEM {self.neem_id!r}: {error}") from None
+                    raise LoggingError(f"NEEM {self._public_id}: {error}") from None
                 raise
         self.committed += calls
         return self.committed
 
     @property
+    def neem_id(self) -> str:
+        """The NEEM's id as everyone else knows it: the one it replaces (kept by the replacement)
+        while it is still being written hidden, its own otherwise."""
+        return self._replaces or self._writing
+
+    @property
+    def writes_to(self) -> str:
+        """The NEEM the writes go to now: the hidden staging NEEM while ``replacing``."""
+        return self._writing
+
+    @property
+    def replacing(self) -> bool:
+        """Whether the NEEM is written hidden, to replace ``neem_id`` at ``close()``."""
+        return self._replaces is not None
+
+    @property
     def _public_id(self) -> str:
-        return repr(self._replaces or self.neem_id)
+        return repr(self.neem_id)
 
     def close(self) -> None:
         """End the recording session, commit what is buffered; a replacement NEEM then takes the
@@ -793,8 +811,8 @@ class NeemLogger:
             self._buffer.extend(out)  # part of the last call's commit, not a call of its own
         self.flush()
         if self._replaces is not None:
-            self.store.swap_in(self.neem_id, self._replaces, replace=self._may_replace)
-            self.neem_id, self._replaces = self._replaces, None
+            self.store.swap_in(self._writing, self._replaces, replace=self._may_replace)
+            self._writing, self._replaces = self._replaces, None
 
     def abandon(self) -> None:
         """Give up a replacement before ``close()``: it is dropped and the old NEEM stays as it
@@ -803,8 +821,8 @@ class NeemLogger:
             self.flush()
             return
         self._buffer, self._tf, self._buffered_calls = [], [], 0
-        self.store.drop_neem(self.neem_id)
-        self.neem_id, self._replaces = self._replaces, None
+        self.store.drop_neem(self._writing)
+        self._writing, self._replaces = self._replaces, None
 
     def __enter__(self) -> NeemLogger:
         return self

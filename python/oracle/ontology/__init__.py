@@ -5,7 +5,8 @@ only a build, an OWL file read or written, or a NEEM's TBox needs it (oracle.ont
 oracle.store.tbox).
 """
 
-from oracle.ontology.builder import BuildReport, build_ontology, build_with_report, write_ontology
+from oracle.ontology.builder import build_ontology, build_with_report, write_ontology
+from oracle.ontology.inputs import BuildReport
 from oracle.ontology.distance import DistanceMatrix, owl_distance
 from oracle.ontology.model import ObjectClass, OdbOntology, TaskClass, load_ontology
 from oracle.ontology.taxonomy import Taxonomy

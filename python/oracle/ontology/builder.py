@@ -6,7 +6,6 @@ that is not there makes the graph (oracle.ontology.generate, with rdflib).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
 
 from oracle.errors import OntologyError
@@ -14,23 +13,8 @@ from oracle.ontology.model import OdbOntology
 from oracle.ontology.provenance import OntologySource
 from oracle.ontology.cache import build_key, cached_build
 from oracle.files import default_cache_dir
-from oracle.ontology.upper import CORE_TBOX, DATA_DIR, OFFICIAL_FILES
-
-DEFAULT_ODB = DATA_DIR / "kitchen-odb"
-DEFAULT_MAPPING = DATA_DIR / "mapping.yaml"
-
-
-@dataclass(frozen=True)
-class BuildReport:
-    """What a build did, for the CLI summary and for tests."""
-
-    n_objects: int
-    n_abstract: int
-    n_tasks: int
-    unmapped: tuple[str, ...]
-    mapped_absent: tuple[str, ...]
-    default_tasks: tuple[str, ...]
-    n_triples: int
+from oracle.ontology.inputs import DEFAULT_MAPPING, DEFAULT_ODB, BuildReport
+from oracle.ontology.upper import CORE_TBOX, OFFICIAL_FILES
 
 
 def build_ontology(

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING
 from oracle.files import cached_pickle
 
 if TYPE_CHECKING:
-    from oracle.ontology.builder import BuildReport
+    from oracle.ontology.inputs import BuildReport
     from oracle.ontology.model import OdbOntology
 
 #: Bumped when the layout of an entry changes.

@@ -17,7 +17,7 @@ from rdflib.namespace import OWL, RDF, RDFS, XSD
 
 from oracle.errors import OntologyError
 from oracle.namespaces import DUL, SOMA
-from oracle.ontology.builder import DEFAULT_MAPPING, DEFAULT_ODB, BuildReport
+from oracle.ontology.inputs import DEFAULT_MAPPING, DEFAULT_ODB, BuildReport
 from oracle.ontology.mapping import ActionMapping, Mapping, load_mapping
 from oracle.ontology.model import GENERATED_MARK, VANN_NAMESPACE
 from oracle.ontology.odb import OdbObject, read_odb

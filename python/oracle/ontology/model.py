@@ -73,7 +73,7 @@ class OdbOntology:
     #: Where it came from (an ``OntologySource``), recorded by the NEEMs logged with it.
     source: OntologySource | None = field(default=None, repr=False)
     #: The key of the cached build it came from (oracle.ontology.cache), None for any other:
-    #: what the TBox a NEEM stores is cached by (oracle.store.tbox.tbox_for).
+    #: what the TBox a NEEM stores is cached by (oracle.store.ontology_tbox.tbox_for).
     cache_key: str | None = field(default=None, repr=False)
 
     def __getstate__(self) -> dict[str, Any]:

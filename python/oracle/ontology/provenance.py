@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import hashlib
 import json
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -48,18 +48,6 @@ class OntologySource:
         parts = [f"--{name} {value}" for name, value in (("odb", self.odb), ("mapping", self.mapping),
                                                           ("soma", self.soma)) if value is not None]
         return " ".join(parts) if parts else "the sample kitchen ontology"
-
-    def open(self) -> OdbOntology:
-        """Rebuild or reload the ontology; a recorded file that is gone is an error naming it."""
-        from oracle.ontology.builder import build_ontology
-        from oracle.ontology.model import load_ontology
-
-        for value in (self.owl, self.odb, self.mapping, self.soma):
-            if value is not None and not Path(value).exists():
-                raise OntologyError(f"{value} is gone; give the ontology again (--ontology or --odb/--mapping)")
-        if self.owl is not None:
-            return load_ontology(self.owl)
-        return build_ontology(self.odb, self.mapping, self.soma)
 
 
 @dataclass(frozen=True)
@@ -105,36 +93,6 @@ def record_of(onto: OdbOntology) -> Recorded | None:
     """What a new NEEM records about ``onto`` (None for an ontology made in memory)."""
     source = getattr(onto, "source", None)
     return None if source is None else Recorded(source, fingerprint(onto))
-
-
-def ontology_for(neem_id: str, meta: Mapping[str, Any], given: OdbOntology | None,
-                 fallback: Callable[[], OdbOntology]) -> OdbOntology:
-    """The ontology to read NEEM ``neem_id`` with.
-
-    ``given`` is what the user named (None: nothing); ``fallback()`` builds the default for a
-    NEEM without a record. A given ontology must match the record; without one the recorded
-    ontology is rebuilt and must still match (its files may have changed since).
-    """
-    recorded = Recorded.from_meta(meta)
-    if recorded is None:
-        return given if given is not None else fallback()
-    if given is not None:
-        if fingerprint(given) != recorded.fingerprint:
-            raise OntologyError(
-                f"NEEM {neem_id!r} was logged with {recorded.source.describe()}, not with the ontology given; "
-                "leave the ontology options out to use the NEEM's own"
-            )
-        return given
-    try:
-        onto = recorded.source.open()
-    except OntologyError as error:
-        raise OntologyError(f"NEEM {neem_id!r} was logged with {recorded.source.describe()}: {error}") from None
-    if fingerprint(onto) != recorded.fingerprint:
-        raise OntologyError(
-            f"NEEM {neem_id!r} was logged with {recorded.source.describe()}, which has changed since; "
-            "give the ontology it was logged with (--ontology or --odb/--mapping)"
-        )
-    return onto
 
 
 def _absolute(path: Path | str | None) -> str | None:

@@ -11,9 +11,10 @@ from __future__ import annotations
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
-from oracle.past.evidence import call_words, now_of, request, window
+from oracle.past.evidence import call_words, request, window
 from oracle.past.forms import Question, QuestionError, read_question
-from oracle.past.routines import Done, done_from_history, follows
+from oracle.past.kept import KeptPast
+from oracle.past.routines import Done, follows
 from oracle.past.sentences import sentences
 
 if TYPE_CHECKING:
@@ -42,14 +43,17 @@ class Answer:
                 "english": self.english, "german": self.german, "evidence": self.evidence}
 
 
-def ask(bridge: Bridge, onto: OdbOntology, text: str, at: float | None = None, clocked: bool = True) -> Answer:
+def ask(bridge: Bridge, onto: OdbOntology, text: str, at: float | None = None, clocked: bool = True,
+        kept: KeptPast | None = None) -> Answer:
     """Answer ``text`` (one of oracle.past.forms.FORMS) about the NEEM the bridge reads, as of
-    ``at`` (default: the NEEM's latest event). QuestionError for a question of no known form."""
+    ``at`` (default: the NEEM's latest event). QuestionError for a question of no known form.
+    ``kept``: what earlier answers read of the NEEM (oracle.past.kept; default: nothing)."""
+    kept = KeptPast() if kept is None else kept
     question = _done_reading(bridge, read_question(text, onto))
-    now = at if at is not None else now_of(bridge)
+    now = at if at is not None else kept.now(bridge)
     if question.period is not None and not clocked:
         raise QuestionError("this NEEM was logged without a clock (a time-less log): it has no today or morning")
-    evidence = {"now": now, **_evidence(bridge, question, now)}
+    evidence = {"now": now, **_evidence(bridge, question, now, kept)}
     english, german = sentences(question.form, evidence)
     return Answer(text.strip(), question.form, question.language, english, german, evidence)
 
@@ -65,7 +69,7 @@ def _done_reading(bridge: Bridge, q: Question) -> Question:
     return q
 
 
-def _evidence(bridge: Bridge, q: Question, now: float | None) -> dict[str, Any]:
+def _evidence(bridge: Bridge, q: Question, now: float | None, kept: KeptPast) -> dict[str, Any]:
     if q.form == "where":
         return request(bridge, ["where", q.obj, now])
     if q.form == "done":
@@ -77,7 +81,7 @@ def _evidence(bridge: Bridge, q: Question, now: float | None) -> dict[str, Any]:
     if q.form == "last":
         return request(bridge, ["last", *call_words(q.call), now])
     if q.form == "after":
-        return usual_after(bridge, str(q.call))
+        return usual_after(str(q.call), kept.done(bridge))
     if q.form == "who":
         return _who(bridge, q, now)
     if q.form == "count":
@@ -85,10 +89,10 @@ def _evidence(bridge: Bridge, q: Question, now: float | None) -> dict[str, Any]:
         start, end = window(q.period, now) if now is not None else (0.0, 0.0)
         return {**request(bridge, ["count", *call_words(q.call), start, end]), "period": q.period,
                 "from": start, "to": end}
-    return _suggested(bridge, q, now)
+    return _suggested(bridge, q, now, kept)
 
 
-def _suggested(bridge: Bridge, q: Question, now: float | None) -> dict[str, Any]:
+def _suggested(bridge: Bridge, q: Question, now: float | None, kept: KeptPast) -> dict[str, Any]:
     """The latest preference that ranked the call, and what preceded it: the last action before
     it and how often the call followed that action."""
     assert q.call is not None
@@ -96,41 +100,32 @@ def _suggested(bridge: Bridge, q: Question, now: float | None) -> dict[str, Any]
     if reply["time"] is None:
         return reply
     at = float(reply["time"])
-    done = kept_done(bridge)
-    reply = {**reply, "routine": _routine_step(bridge, done, at, reply["task"])}
+    reply = {**reply, "routine": _routine_step(bridge, kept, at, reply["task"])}
     found = request(bridge, ["before", at, 1])["actions"]
     if not found:
         return {**reply, "before": None}
     last = found[-1]
     previous = last["task"]
-    after = usual_after(bridge, previous, done)
+    after = usual_after(previous, kept.done(bridge))
     followed = next((n["count"] for n in after["next"] if n["task"] == reply["task"]), 0)
     return {**reply, "before": {"task": previous, "time": last["begin"], "occurrences": after["occurrences"],
                                 "followed": followed}}
 
 
-def _routine_step(bridge: Bridge, done: list[Done], at: float, task: str) -> dict[str, Any] | None:
+def _routine_step(bridge: Bridge, kept: KeptPast, at: float, task: str) -> dict[str, Any] | None:
     """The routine in progress at ``at`` when ``task`` is its next step (oracle.past.mine)."""
     from oracle.past.mine import neem_routines
 
-    current = neem_routines(bridge, at, done=done).current
+    current = neem_routines(bridge, at, kept=kept).current
     if current is None or current.remaining[:1] != (task,):
         return None
     return {"key": current.routine.key, "name": current.routine.name, "left": len(current.remaining)}
 
 
-def kept_done(bridge: Bridge) -> list[Done]:
-    """The NEEM's actions as the predictor keeps its history (oracle.historycache: read through
-    Prolog, extended by the actions since)."""
-    from oracle.historycache import HistoryCache
-
-    return done_from_history(HistoryCache.default().history(bridge))
-
-
-def usual_after(bridge: Bridge, call: str, done: list[Done] | None = None) -> dict[str, Any]:
-    """What followed ``call`` (oracle.past.routines.follows) in the kept history (``done``
-    when the caller has read it), in the shape of odb_past's `after` answer."""
-    n, counts = follows(kept_done(bridge) if done is None else done, call)
+def usual_after(call: str, done: list[Done]) -> dict[str, Any]:
+    """What followed ``call`` (oracle.past.routines.follows) in the NEEM's actions ``done``
+    (oracle.past.kept: its kept history), in the shape of odb_past's `after` answer."""
+    n, counts = follows(done, call)
     return {"task": call, "occurrences": n, "next": [{"task": t, "count": k} for t, k in counts]}
 
 

@@ -6,8 +6,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from oracle.past.routines import Done, InProgress, MiningSettings, Routine, done_from_history, in_progress, mine_routines
-from oracle.past.workflows import keep_user_names, stored_routines
+from oracle.past.kept import KeptPast
+from oracle.past.routines import Done, InProgress, MiningSettings, Routine, begun_by, in_progress, mine_routines
+from oracle.past.workflows import keep_user_names
 
 if TYPE_CHECKING:
     from oracle.bridge import Bridge
@@ -29,39 +30,39 @@ class NeemRoutines:
 
 
 def neem_routines(bridge: Bridge, at: float | None = None, settings: MiningSettings | None = None,
-                  done: list[Done] | None = None) -> NeemRoutines:
+                  done: list[Done] | None = None, kept: KeptPast | None = None) -> NeemRoutines:
     """Mine the NEEM's history (the actions begun by ``at``, default all) into routines; the
-    history comes from the user's kept copy when the NEEM only grew since (oracle.historycache)."""
-    from oracle.historycache import HistoryCache
-
+    history comes from the user's kept copy when the NEEM only grew since (oracle.historycache),
+    or is ``done`` when the caller has it. ``kept``: what an earlier answer read of the NEEM
+    (oracle.past.kept; default: nothing)."""
+    kept = KeptPast() if kept is None else kept
     if done is None:
-        done = done_from_history(HistoryCache.default().history(bridge))
-    if at is not None:
-        done = [d for d in done if d.begin <= at]
-    routines, named = keep_user_names(mine_routines(done, settings), stored_routines(bridge))
+        done, mined = kept.mined(bridge, at, settings)
+    else:
+        done = begun_by(done, at)
+        mined = mine_routines(done, settings)
+    routines, named = keep_user_names(mined, kept.stored(bridge))
     now = at if at is not None else (max(d.end for d in done) if done else None)
     current = in_progress(routines, done, now) if now is not None else None
     return NeemRoutines(tuple(routines), tuple(named), current, now)
 
 
-def neem_preparation(bridge: Bridge, part: str | None = None, at: float | None = None) -> dict[str, Any]:
+def neem_preparation(bridge: Bridge, part: str | None = None, at: float | None = None,
+                     kept: KeptPast | None = None) -> dict[str, Any]:
     """What to prepare now for ``part`` of the day (default: the part after now's): the objects
     the routines of that part need (oracle.past.prepare), each with its reason and where the NEEM
     last had it (odb_past:object_place/3)."""
-    from oracle.past.evidence import now_of, request
+    from oracle.past.evidence import request
     from oracle.past.prepare import next_part, to_prepare
-    from oracle.historycache import HistoryCache
 
-    done = done_from_history(HistoryCache.default().history(bridge))
-    now = at if at is not None else now_of(bridge)
-    if at is not None:
-        done = [d for d in done if d.begin <= at]
+    kept = KeptPast() if kept is None else kept
+    now = at if at is not None else kept.now(bridge)
     if now is None:
         return {"now": None, "for": part, "prepare": []}
     target = part or next_part(now)
-    routines = neem_routines(bridge, at, done=done).routines
+    found = neem_routines(bridge, at, kept=kept)
     items = []
-    for prep in to_prepare(routines, done, target):
+    for prep in to_prepare(found.routines, begun_by(kept.done(bridge), at), target):
         place = request(bridge, ["where", prep.obj, now])
         items.append({**prep.to_json(), "pose": place["pose"], "last_used": place["used"]})
     return {"now": now, "for": target, "prepare": items}

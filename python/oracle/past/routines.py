@@ -106,7 +106,11 @@ def episodes_of(done: Sequence[Done]) -> list[Episode]:
 
 
 def jaccard(a: Sequence[str], b: Sequence[str]) -> float:
-    sa, sb = set(a), set(b)
+    return _similarity(frozenset(a), frozenset(b))
+
+
+def _similarity(sa: frozenset[str], sb: frozenset[str]) -> float:
+    """The Jaccard similarity of two sets of calls (1 for two empty ones)."""
     return len(sa & sb) / len(sa | sb) if sa or sb else 1.0
 
 
@@ -128,7 +132,8 @@ def mine_routines(done: Sequence[Done], settings: MiningSettings | None = None) 
         for index, cluster in enumerate(clusters):
             if _hours_apart(episode.hour, hours[index] / len(cluster)) > settings.max_hours:
                 continue
-            score = statistics.fmean(len(mine & other) / len(mine | other) for other in sets[index])
+            # (fmean of a list, not of a generator: the same sum, without counting it item by item)
+            score = statistics.fmean([_similarity(mine, other) for other in sets[index]])
             if score >= best_score:
                 best, best_score = index, score
         if best is None:
@@ -141,14 +146,16 @@ def mine_routines(done: Sequence[Done], settings: MiningSettings | None = None) 
             hours[best] += episode.hour
     observed = len({e.day for e in episodes})
     needed = max(settings.min_days, settings.min_share * observed)
-    kept = [c for c in clusters if len({e.day for e in c}) >= needed]
-    kept.sort(key=lambda c: statistics.median(e.hour for e in c))
-    routines = [_routine(f"r{i}", cluster) for i, cluster in enumerate(kept, start=1)]
+    kept = [i for i, c in enumerate(clusters) if len({e.day for e in c}) >= needed]
+    kept.sort(key=lambda i: statistics.median(e.hour for e in clusters[i]))
+    routines = [_routine(f"r{n}", clusters[i], sets[i]) for n, i in enumerate(kept, start=1)]
     return _distinct_names(routines)
 
 
-def _routine(key: str, cluster: list[Episode]) -> Routine:
-    medoid = max(cluster, key=lambda e: (statistics.fmean(jaccard(e.calls, o.calls) for o in cluster), -e.begin))
+def _routine(key: str, cluster: list[Episode], sets: list[frozenset[str]]) -> Routine:
+    """The routine of a cluster whose members' sets of calls are ``sets``: its medoid's steps."""
+    typical = [statistics.fmean([_similarity(mine, other) for other in sets]) for mine in sets]
+    medoid = max(zip(typical, cluster), key=lambda pair: (pair[0], -pair[1].begin))[1]
     hour = statistics.median(e.hour for e in cluster)
     return Routine(key, name_of(medoid.calls), medoid.calls, len({e.day for e in cluster}), hour, time_of_day(hour),
                    tuple(e.begin for e in cluster), tuple(e.calls for e in cluster))
@@ -282,6 +289,11 @@ def recognise(routines: Sequence[Routine], prefix: Sequence[str], hour: float, *
 def done_from_history(rows: Sequence[HistoryRow]) -> list[Done]:
     """The non-idle actions of ``Bridge.history()`` rows."""
     return [Done(float(r["begin"]), float(r["end"]), str(parse_call(r["call"]))) for r in rows if r["call"] != "idle"]
+
+
+def begun_by(done: list[Done], at: float | None) -> list[Done]:
+    """The actions begun by ``at`` (all of them for None; then the list itself)."""
+    return done if at is None else [d for d in done if d.begin <= at]
 
 
 def done_from_steps(steps: Sequence[Step], begins: Sequence[float], last_end: float | None) -> list[Done]:

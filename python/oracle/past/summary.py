@@ -6,13 +6,13 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from oracle.past.ask import kept_done, usual_after
-from oracle.past.evidence import now_of, request, window
+from oracle.past.ask import usual_after
+from oracle.past.evidence import request, window
+from oracle.past.kept import KeptPast
 from oracle.timeline import format_clock, part_of_day_at
 
 if TYPE_CHECKING:
     from oracle.bridge import Bridge
-    from oracle.past.routines import Done
 
 #: How many of the latest actions the summary lists.
 RECENT = 10
@@ -20,11 +20,14 @@ RECENT = 10
 FORMAT = 1
 
 
-def state_summary(bridge: Bridge, at: float | None = None, clocked: bool = True) -> dict[str, Any]:
+def state_summary(bridge: Bridge, at: float | None = None, clocked: bool = True,
+                  kept: KeptPast | None = None) -> dict[str, Any]:
     """The summary as of ``at`` (default: the NEEM's latest event): the latest actions (today's,
     or the last ``RECENT`` of the NEEM when today has none), the latest action and what usually
-    follows it, the routine in progress, the robot's latest ranking by then."""
-    now = at if at is not None else now_of(bridge)
+    follows it, the routine in progress, the robot's latest ranking by then. ``kept``: what
+    earlier answers read of the NEEM (oracle.past.kept; default: nothing)."""
+    kept = KeptPast() if kept is None else kept
+    now = at if at is not None else kept.now(bridge)
     summary: dict[str, Any] = {"format": FORMAT, "neem": bridge.neem_id, "now": now, "clock": None,
                                "part_of_day": None, "recent": [], "latest": None, "usual_next": [],
                                "routine": None, "predicted": []}
@@ -40,19 +43,18 @@ def state_summary(bridge: Bridge, at: float | None = None, clocked: bool = True)
     recent = today or request(bridge, ["before", now, RECENT])["actions"]
     summary["recent"] = recent[-RECENT:]
     summary["today"] = len(today)
-    done = kept_done(bridge)
     if recent:
         latest = recent[-1]
         summary["latest"] = latest
-        summary["usual_next"] = usual_after(bridge, latest["task"], done)["next"]
-    summary["routine"] = _routine(bridge, now, done)
+        summary["usual_next"] = usual_after(latest["task"], kept.done(bridge))["next"]
+    summary["routine"] = _routine(bridge, now, kept)
     summary["predicted"] = request(bridge, ["predicted", now])["predicted"]
     return summary
 
 
-def _routine(bridge: Bridge, now: float, done: list[Done]) -> dict[str, Any] | None:
+def _routine(bridge: Bridge, now: float, kept: KeptPast) -> dict[str, Any] | None:
     """The routine in progress at ``now`` (oracle.past.mine), with what remains of it."""
     from oracle.past.mine import neem_routines
 
-    current = neem_routines(bridge, now, done=done).current
+    current = neem_routines(bridge, now, kept=kept).current
     return current.to_json() if current is not None else None

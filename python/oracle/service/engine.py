@@ -25,6 +25,7 @@ from oracle.neem.writer import NeemLogger
 from oracle.timeline import Instant
 from oracle.ontology import OdbOntology
 from oracle.past.autonomy import read_modes
+from oracle.past.kept import KeptPast
 from oracle.ranking import latest_instant, make_predictor
 from oracle.service.guard import Limits
 from oracle.service.queries import PrologQueryError, PrologRefused, ask
@@ -88,6 +89,8 @@ class Engine:
         #: The predictor every session fits (``serve --method``; default: the routine predictor).
         self.method = method
         self.sessions: dict[str, NeemSession] = {}
+        #: What the answers about the past read of each NEEM, kept while the NEEM is unchanged.
+        self.past = KeptPast()
         self._bridge: Bridge | None = None
 
     def close(self) -> int:

@@ -1,7 +1,9 @@
 """The HTTP routes of the questions about the past, the state summary and the routines (docs/beyond.md).
 
 Each reads the NEEM through the engine's one bridge, on the engine thread; nothing is fitted
-and nothing written, so an answer costs its few Prolog queries (tens of milliseconds).
+and nothing written, so an answer costs its few Prolog queries (tens of milliseconds). What
+they read of the NEEM's whole history (its actions, its routines) the engine keeps while the
+NEEM is unchanged (oracle.past.kept).
 """
 
 from __future__ import annotations
@@ -37,7 +39,7 @@ def _ask(engine: Any, neem: str, question: str, at: str | None) -> dict[str, Any
 
     bridge = engine.bridge(engine.resolve(neem))
     clocked = has_clock(engine.store.neem(bridge.neem_id).meta)
-    answer: dict[str, Any] = ask(bridge, engine.ontology, question, _seconds(at), clocked).to_json()
+    answer: dict[str, Any] = ask(bridge, engine.ontology, question, _seconds(at), clocked, engine.past).to_json()
     return answer
 
 
@@ -46,13 +48,13 @@ def _summary(engine: Any, neem: str, at: str | None) -> dict[str, Any]:
     from oracle.timeline import has_clock
 
     bridge = engine.bridge(engine.resolve(neem))
-    return state_summary(bridge, _seconds(at), has_clock(engine.store.neem(bridge.neem_id).meta))
+    return state_summary(bridge, _seconds(at), has_clock(engine.store.neem(bridge.neem_id).meta), engine.past)
 
 
 def _routines(engine: Any, neem: str, at: str | None) -> dict[str, Any]:
     from oracle.past.mine import neem_routines
 
-    return neem_routines(engine.bridge(engine.resolve(neem)), _seconds(at)).to_json()
+    return neem_routines(engine.bridge(engine.resolve(neem)), _seconds(at), kept=engine.past).to_json()
 
 
 @router.get("/api/neems/{neem}/ask", response_model=S.PastAnswer)
@@ -83,7 +85,7 @@ async def routines_route(neem: str, request: Request,
 def _prepare(engine: Any, neem: str, part: str | None, at: str | None) -> dict[str, Any]:
     from oracle.past.mine import neem_preparation
 
-    return neem_preparation(engine.bridge(engine.resolve(neem)), part, _seconds(at))
+    return neem_preparation(engine.bridge(engine.resolve(neem)), part, _seconds(at), engine.past)
 
 
 @router.get("/api/neems/{neem}/prepare", response_model=S.PrepareAnswer)

@@ -25,6 +25,7 @@ from oracle.errors import StoreError
 from oracle.store.chunks import MatchChunk, chunks_from_solutions
 from oracle.store.ids import check_alias_free
 from oracle.store.meta import new_meta
+from oracle.store.staging import READY, STAGED_BY, STAGING, builder, drop_abandoned
 from oracle.store.validate import check_document, validate_group, validate_order, validate_select
 from oracle.store.model import (
     HIERARCHY,
@@ -47,9 +48,6 @@ COLLECTION_KINDS: tuple[str, ...] = ("triples", "annotations", "tf", "inferred")
 
 #: A triple with its ``p*`` and ``o*``, ready to store.
 Closed = tuple[TripleRow, tuple[Any, ...], tuple[Any, ...]]
-
-#: Registry field marking a NEEM under construction (value: the NEEM it will replace).
-STAGING = "staging_for"
 
 _NEEM_ID = re.compile(r"^[A-Za-z0-9][A-Za-z0-9\-]{0,63}$")
 
@@ -200,7 +198,6 @@ class Store(ABC):
                        side_property: str | None = None) -> str:  # fmt: skip
         """A new, hidden NEEM to build ``target`` (or its replacement) in, which ``swap_in`` makes
         ``target``; a process killed meanwhile leaves ``target`` as it was (see store.staging)."""
-        from oracle.store.staging import STAGED_BY, builder, drop_abandoned
         check_neem_id(target)
         drop_abandoned(self)
         staging = f"staging-{os.urandom(6).hex()}"  # the prefix is how backends find them (staging_neems)
@@ -217,7 +214,6 @@ class Store(ABC):
         """Make the complete NEEM ``staging`` visible as ``target``, replacing an existing one only
         if ``replace`` (else StoreError: another process took the id meanwhile). One transaction
         on SQLite; on MongoDB a rename per collection (KnowRob has no transactions)."""
-        from oracle.store.staging import READY, STAGED_BY
         with self.transaction():
             check_alias_free(self, staging, target)  # two builders may have picked one name
             if self.has_neem(target):

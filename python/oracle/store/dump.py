@@ -22,7 +22,8 @@ from bson import json_util
 from bson.codec_options import DEFAULT_CODEC_OPTIONS, DatetimeConversion
 
 from oracle.errors import StoreError
-from oracle.store.base import COLLECTION_KINDS, STAGING, SUMMARY_KEY, Store, check_neem_id
+from oracle.store.base import COLLECTION_KINDS, SUMMARY_KEY, Store, check_neem_id
+from oracle.store.staging import STAGING
 from oracle.store.ids import ALIAS_KEY, alias_of, check_alias, find_neem, is_object_id, new_neem_id
 from oracle.store.meta import hub_document, hub_text_index, loaded_meta
 from oracle.store.staging import READY, STAGED_BY

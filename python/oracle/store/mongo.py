@@ -17,7 +17,8 @@ from bson.decimal128 import Decimal128
 from bson.objectid import ObjectId
 
 from oracle.errors import StoreError
-from oracle.store.base import COLLECTION_KINDS, STAGING, NeemInfo, Store
+from oracle.store.base import COLLECTION_KINDS, NeemInfo, Store
+from oracle.store.staging import STAGING
 from oracle.store.meta import HUB_TEXT_FIELDS, HUB_TEXT_INDEX
 from oracle.store.model import (
     HIERARCHY,

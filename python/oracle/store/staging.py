@@ -13,9 +13,15 @@ from __future__ import annotations
 import os
 import socket
 from datetime import datetime, timezone
+from typing import TYPE_CHECKING
 
-from oracle.store.base import STAGING, Store
 from oracle.timeline import TimeValueError, parse_iso
+
+if TYPE_CHECKING:
+    from oracle.store.base import Store
+
+#: Registry field marking a NEEM under construction (value: the NEEM it will replace).
+STAGING = "staging_for"
 
 #: Registry field of a staging NEEM: the process building it ({"host": ..., "pid": ...}).
 STAGED_BY = "staged_by"

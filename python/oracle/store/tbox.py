@@ -2,19 +2,16 @@
 
 A NEEM carries the SOMA/DUL/odb axioms it was recorded with, so closures and type queries work
 on the NEEM alone. Literals are typed as load_owl types them (knowrob-2x-facts §4) and
-annotation values go to the ``annotations`` collection, English or untagged only. The converted
-TBox of a cached ontology build is kept in the user's cache beside it (``tbox_for``).
+annotation values go to the ``annotations`` collection, English or untagged only. Which TBox a
+NEEM logged with an ontology stores, and its cache, is ``store.ontology_tbox``.
 """
 
 from __future__ import annotations
 
 import hashlib
-import sys
 from dataclasses import dataclass
-from pathlib import Path
 from typing import TYPE_CHECKING
 
-from oracle.files import cached_pickle
 from oracle.namespaces import DUL_IRI, OWL_IRI, RDFS_IRI, SOMA_IRI, XSD_IRI
 from oracle.store.base import Store
 from oracle.store.model import HIERARCHY, VERSION_PREDICATE, Annotation, Triple, Value, version_document
@@ -22,10 +19,8 @@ from oracle.store.model import HIERARCHY, VERSION_PREDICATE, Annotation, Triple,
 if TYPE_CHECKING:
     from rdflib import Graph, Literal
 
-    from oracle.ontology.model import OdbOntology
-
 # rdflib is imported where a graph is converted: an import or a session whose ontology's TBox is
-# in the cache (``tbox_for``) never loads it (~45 ms of every such call).
+# in the cache (``store.ontology_tbox.tbox_for``) never loads it (~45 ms of every such call).
 _ANNOTATION_PROPERTIES = frozenset((RDFS_IRI + "comment", RDFS_IRI + "label", RDFS_IRI + "seeAlso", OWL_IRI + "versionInfo"))
 _INTEGER_TYPES = frozenset(
     XSD_IRI + name
@@ -171,56 +166,3 @@ def load_tbox(store: Store, neem_id: str, tbox: TBox) -> int:
             neem_id, "triples", [version_document(iri, version, graph) for iri, graph, version in tbox.markers]
         )
     return count
-
-
-#: Bumped when the layout of a cached TBox changes.
-_CACHE_FORMAT = "1"
-#: The code a TBox is made with: an edit to any of these makes a new cache entry.
-_CODE = ("store/tbox.py", "store/owlfile.py", "store/model.py", "namespaces.py")
-
-
-def tbox_for(onto: OdbOntology) -> TBox:
-    """What a NEEM logged with ``onto`` stores (``_converted``), from the user's cache when the
-    ontology came from a cached build: keyed by that build's key (a hash of every file the build
-    reads and of its code) and by the code that converts, so an entry is never stale. An entry
-    that is missing, damaged or not the user's own is made again; a cache that cannot be written
-    only makes every call convert."""
-    key = _cache_key(onto)
-    if key is None:
-        return _converted(onto)
-    from oracle.files import default_cache_dir
-
-    folder = onto.cache_dir if onto.cache_dir is not None else default_cache_dir()
-    return cached_pickle(folder / f"tbox-{key}.pickle", key, lambda: _converted(onto),
-                         lambda value: isinstance(value, TBox), "tbox-*.pickle")
-
-
-def _cache_key(onto: OdbOntology) -> str | None:
-    """The key of ``onto``'s TBox, or None for an ontology that came from no cached build (an
-    OWL file, or a build whose inputs could not all be read)."""
-    if onto.cache_key is None:
-        return None
-    package = Path(__file__).resolve().parents[1]
-    digest = hashlib.sha256(f"neem-oracle tbox {_CACHE_FORMAT} {sys.version} {onto.cache_key}\0".encode())
-    try:
-        for name in _CODE:
-            digest.update(hashlib.sha256((package / name).read_bytes()).digest())
-    except OSError:
-        return None
-    return digest.hexdigest()[:32]
-
-
-def _converted(onto: OdbOntology) -> TBox:
-    """Built with ``--soma DIR``: the official files as KnowRob's load_owl loads each (its own
-    graph, every axiom and annotation, the version marker KnowRob compares; store/owlfile.py)
-    and the odb's own axioms in graph ``odb``. Else the ontology's graph (the core extract and
-    the odb), as before."""
-    source = onto.source
-    if source is None or source.soma is None or source.owl is not None:
-        return tbox_from_graph(onto.graph)
-    from oracle.ontology.generate import generated_graph
-    from oracle.ontology.upper import official_files
-    from oracle.store.owlfile import tbox_from_file
-
-    own = tbox_from_graph(generated_graph(source.odb, source.mapping), one_graph=True)
-    return TBox.combined([*(tbox_from_file(path) for path in official_files(source.soma)), own])

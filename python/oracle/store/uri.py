@@ -1,4 +1,4 @@
-"""Store URIs in messages: credentials are masked wherever a URI is echoed (issue 16)."""
+"""Store URIs in messages: credentials are masked wherever a URI is echoed."""
 
 from __future__ import annotations
 

@@ -1,5 +1,5 @@
 """The door check: documents and registry entries from outside (dumps, callers) that a reader
-could not read are refused before they are stored (issue 16: a store never holds a row a reader
+could not read are refused before they are stored (a store never holds a row a reader
 cannot read). A message names the document and the field. The same door for a query: its
 selected, ordered and grouped variables must be the patterns' own."""
 

@@ -13,7 +13,8 @@ import bson
 
 from oracle.errors import StoreError
 from oracle.store import kept
-from oracle.store.base import COLLECTION_KINDS, STAGING, AppendMark, NeemInfo
+from oracle.store.base import COLLECTION_KINDS, AppendMark, NeemInfo
+from oracle.store.staging import STAGING
 from oracle.store.model import TAXONOMIC
 from oracle.store.sqlite.connection import Connection
 from oracle.store.sqlite.sides import SideRow
