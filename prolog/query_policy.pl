@@ -249,6 +249,7 @@ exposed(odb_history, latest_situation/2, read).
 exposed(odb_history, latest_situation/3, read).
 exposed(odb_history, history_view_json/2, read).
 exposed(odb_history, latest_situation_json/1, read).
+exposed(odb_history, action_modes/2, read).
 exposed(odb_names, odb_iri/2, read).
 exposed(odb_names, odb_set_namespace/1, write).
 exposed(odb_names, odb_set_task_roles/3, write).
@@ -264,7 +265,6 @@ exposed(odb_past, object_place/3, read).
 exposed(odb_past, last_before/2, read).
 exposed(odb_past, latest_before/3, read).
 exposed(odb_past, performers/2, read).
-exposed(odb_past, performed_between/3, read).
 exposed(odb_past, past_answer_json/1, hidden).   % answers the bridge's pending request
 % -- model_owl_description
 exposed(model_owl_description, is_owl_term/1, read).

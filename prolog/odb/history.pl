@@ -6,7 +6,8 @@
       latest_situation/2,         % -Begin, -Calls
       latest_situation/3,         % -Begin, -Calls, -Part
       latest_situation_json/1,    % -JSONString
-      history_view_json/2         % +After, -JSONString
+      history_view_json/2,        % +After, -JSONString
+      action_modes/2              % +After, -ModeOf
     ]).
 /** <module> odb history: the oracle's view of a NEEM (thesis 4.2)
 
@@ -58,6 +59,11 @@ situation_history_after(After, Situations) :-
 %   situation_history(+After, -Situations, -Calls): also the AVL tree of task individual ->
 %   call the rows were made from (every call in Situations but `idle` is one of its values).
 situation_history(After, Situations, Calls) :-
+    situation_history(After, Situations, Calls, _).
+
+%   situation_history(+After, -Situations, -Calls, -Actions): also the rows' actions, in the
+%   order of Situations.
+situation_history(After, Situations, Calls, Acts) :-
     odb_iri('IdleTask', Idle),
     % Each action with its task's types, grouped by the store (a logged task has two).
     typed_actions(After, Typed),
@@ -87,7 +93,8 @@ situation_history(After, Situations, Calls) :-
     imagined_calls(ImaginedPlans, TasksOf, Calls, Memo, ByBegin),
     first_values(Parts, PartOf),
     (   After == none -> Prev = inf ; Prev = After ),
-    history_rows(Actions, Prev, Idle, PartOf, ByBegin, none, Calls, Situations).
+    history_rows(Actions, Prev, Idle, PartOf, ByBegin, none, Calls, Situations),
+    findall(A, member(_-A-_-_-_, Actions), Acts).
 
 %   Every action (After `none`), or every action that began after After, with its begin,
 %   task, end and the task's types. The restricted reads start from the interval begins the
@@ -180,11 +187,12 @@ advance(Groups, _, Latest, Groups, Latest).
 
 %!  situation_history_json(-JSON) is det.
 %   situation_history/1 as JSON, one crossing for the Python side: `{"calls": [Text, ...],
-%   "sets": [[CallIndex, ...], ...], "rows": [Begin, End, CallIndex, Part, SetIndex, ...]}`,
-%   each distinct call written once in the chain syntax `pour(thermos,green_mug)`, each
-%   distinct available set once (10,000 situations of a persona hold ~760 of them) as the
-%   indexes of its calls, and the situations as one flat list of five values each (SetIndex
-%   -1: none available). Flat rows write 10x faster than one JSON object per situation.
+%   "sets": [[CallIndex, ...], ...], "rows": [Begin, End, CallIndex, Part, SetIndex, Mode,
+%   ...]}`, each distinct call written once in the chain syntax `pour(thermos,green_mug)`,
+%   each distinct available set once (10,000 situations of a persona hold ~760 of them) as
+%   the indexes of its calls, and the situations as one flat list of six values each
+%   (SetIndex -1: none available; Mode who performed the action, action_modes/2). Flat rows
+%   write 10x faster than one JSON object per situation.
 situation_history_json(JSON) :-
     situation_history_json(none, JSON).
 
@@ -192,14 +200,16 @@ situation_history_json(JSON) :-
 %   situation_history_after/2 as JSON, in the shape of situation_history_json/1.
 situation_history_json(After, JSON) :-
     after_bound(After),
-    situation_history(After, Situations, Calls),
+    situation_history(After, Situations, Calls, Actions),
+    action_modes(After, ModeOf),
+    maplist(action_mode(ModeOf), Actions, Modes),
     assoc_to_values(Calls, CallList),
     sort([idle|CallList], Distinct),
     findall(C-I, nth0(I, Distinct, C), Numbered),
     list_to_assoc(Numbered, Index),
     findall(X, ( member(C, Distinct), format(string(X), '~w', [C]) ), Texts),
     empty_assoc(Sets0),
-    foldl(situation_row(Index), Situations, Rows, Sets0-0, Sets-_),
+    foldl(situation_row(Index), Situations, Modes, Rows, Sets0-0, Sets-_),
     assoc_to_list(Sets, Indexed),
     transpose_pairs(Indexed, ByIndex),      % index-set pairs, by index
     findall(Set, ( member(_-Avail, ByIndex), maplist(call_index(Index), Avail, Is), format(string(Set), '~w', [Is]) ),
@@ -215,9 +225,9 @@ situation_history_json(After, JSON) :-
                      format(']}')
                    )).
 
-%   One situation as the text `Begin,End,CallIndex,"Part",SetIndex`, each distinct set
-%   numbered on first use.
-situation_row(Index, situation(B, E, Call, Part, Avail), Row, Sets0-N0, Sets-N) :-
+%   One situation with who performed its action as the text
+%   `Begin,End,CallIndex,"Part",SetIndex,"Mode"`, each distinct set numbered on first use.
+situation_row(Index, situation(B, E, Call, Part, Avail), Mode, Row, Sets0-N0, Sets-N) :-
     get_assoc(Call, Index, CI),
     (   Avail == none
     ->  AI = -1, Sets-N = Sets0-N0
@@ -226,7 +236,7 @@ situation_row(Index, situation(B, E, Call, Part, Avail), Row, Sets0-N0, Sets-N) 
     ;   AI = N0, N is N0+1,
         put_assoc(Avail, Sets0, N0, Sets)
     ),
-    format(string(Row), '~w,~w,~d,"~w",~d', [B, E, CI, Part, AI]).
+    format(string(Row), '~w,~w,~d,"~w",~d,"~w"', [B, E, CI, Part, AI, Mode]).
 
 call_index(Index, Call, I) :-
     get_assoc(Call, Index, I).
@@ -278,3 +288,48 @@ history_view_json(After, JSON) :-
     sub_string(History, 0, _, 1, Open),    % without its closing brace
     string_concat(Open, ",\"latest\":", Head),
     atomics_to_string([Head, Latest, "}"], JSON).
+
+%!  action_modes(+After, -ModeOf) is det.
+%   Who performed each action whose interval began after After (`none`: every action), as an
+%   AVL tree Action -> Mode: `user` when its performers (soma:isPerformedBy) are a
+%   dul:NaturalPerson alone, `robot` when they are other dul:PhysicalAgents, `together` when
+%   there are both. An action with neither kind of performer is not in the tree (its mode is
+%   `unknown`, action_mode/3). Three store queries however long the NEEM: the actions'
+%   performers, and the two kinds of agent (a handful of individuals).
+action_modes(After, ModeOf) :-
+    after_bound(After),
+    performed_pairs(After, Pairs0),
+    sort(Pairs0, Pairs),
+    group_pairs_by_key(Pairs, Groups),
+    kb_findall(P, triple(P, rdf:type, dul:'NaturalPerson'), any, Persons0),
+    sort(Persons0, Persons),
+    kb_findall(R, triple(R, rdf:type, dul:'PhysicalAgent'), any, Agents0),
+    sort(Agents0, Agents),
+    findall(A-Mode, ( member(A-Ags, Groups), agents_mode(Ags, Persons, Agents, Mode) ), ModePairs),
+    list_to_assoc(ModePairs, ModeOf).
+
+performed_pairs(none, Pairs) :- !,
+    kb_findall(A-Ag, is_performed_by(A, Ag), any, Pairs).
+performed_pairs(After, Pairs) :-
+    kb_findall(A-Ag, ( triple(I, soma:hasIntervalBegin, >(After)), has_time_interval(A, I),
+                       is_performed_by(A, Ag) ), any, Pairs).
+
+%   The mode of an action performed by Ags: a person counts as the user (a dul:NaturalPerson
+%   is also a dul:PhysicalAgent), any other physical agent as the robot.
+agents_mode(Ags, Persons, Agents, Mode) :-
+    findall(Who, ( member(Ag, Ags), agent_kind(Ag, Persons, Agents, Who) ), Whos0),
+    sort(Whos0, Whos),
+    (   Whos == [user] -> Mode = user
+    ;   Whos == [robot] -> Mode = robot
+    ;   Whos == [robot, user] -> Mode = together
+    ).
+
+agent_kind(Ag, Persons, _, user) :-
+    ord_memberchk(Ag, Persons), !.
+agent_kind(Ag, _, Agents, robot) :-
+    ord_memberchk(Ag, Agents).
+
+%   action_mode(+ModeOf, +Action, -Mode): Action's mode in ModeOf (action_modes/2),
+%   `unknown` when it has none.
+action_mode(ModeOf, A, Mode) :-
+    (   get_assoc(A, ModeOf, Mode0) -> Mode = Mode0 ; Mode = unknown ).

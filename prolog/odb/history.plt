@@ -2,6 +2,8 @@
 
 :- use_module(history).
 :- use_module(library(http/json)).
+:- use_module(library(assoc), [assoc_to_list/2]).
+:- use_module('../fixtures/triples', [fixture_assert/4]).
 :- use_module('../neem_store').
 :- use_module('../fixtures/test_episode').
 :- use_module('../fixtures/history_reference').
@@ -19,9 +21,23 @@ test(situation_history, [nondet, setup(load_test_episode), cleanup(store_reset)]
 test(situation_history_json, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
     situation_history_json(J),
     atom_json_dict(J, D, []),
-    D.rows = [101, 110, C1, "Morning", 0, _, _, C2, _, -1, _, _, C3, "Midday", 1],
+    D.rows = [101, 110, C1, "Morning", 0, "unknown", _, _, C2, _, -1, _, _, _, C3, "Midday", 1, "unknown"],
     nth0(C1, D.calls, "pour(thermos,green_mug)"), nth0(C2, D.calls, "idle"), nth0(C3, D.calls, "pick(apple)"),
     D.sets = [Set0, [C3]], maplist([I, T]>>nth0(I, D.calls, T), Set0, ["pick(apple)", "pour(thermos,green_mug)"]).
+
+test(action_modes_name_who_performed_each_action, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
+    action_modes(none, Untyped), assoc_to_list(Untyped, []),    % edan performs a1-a3, of no agent type
+    fixture_assert('http://example.org/neem#', ada, rdf:type, dul:'NaturalPerson'),
+    fixture_assert('http://example.org/neem#', a1, soma:isPerformedBy, ada),
+    fixture_assert('http://example.org/neem#', edan, rdf:type, dul:'PhysicalAgent'),
+    n(a1, A1), n(a2, A2), n(a3, A3),
+    action_modes(none, All), assoc_to_list(All, [A1-together, A2-robot, A3-robot]),
+    action_modes(150, Later), assoc_to_list(Later, [A3-robot]),
+    situation_history_json(J), atom_json_dict(J, D, []),
+    D.rows = [_, _, _, _, _, "together", _, _, _, _, _, "robot", _, _, _, _, _, "robot"].
+
+test(action_modes_needs_a_number_or_none, [error(type_error(number, soon))]) :-
+    action_modes(soon, _).
 
 test(latest_situation, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
     latest_situation(B, C), B =:= 200, C == [pick(apple)],

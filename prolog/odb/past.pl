@@ -9,7 +9,6 @@
       suggestion/3,               % +Call, +Before, -Suggestion
       object_place/3,             % +ObjectName, +At, -Place
       performers/2,               % +Call, -Modes
-      performed_between/3,        % +From, +To, -Performed
       past_answer_json/1          % -JSONString
     ]).
 /** <module> Questions about the past: the evidence of the NEEM (RACCOON's state summaries)
@@ -41,6 +40,7 @@ The sentences are made in Python (oracle.past); this module hands over the evide
 :- use_module('../model/situation', []).
 :- use_module('../model/tf', [object_frame_name/2]).
 :- use_module(names, [odb_iri/2, call_classes/3]).
+:- use_module(history, [action_modes/2]).
 :- use_module(calls, [task_calls/2, call_tasks/2, call_task_times/3, call_time/5]).
 :- use_module(decisions, [latest_first/4, imagined_preference/2, preference_at/3]).
 :- use_module('../answers', [call_text/2]).
@@ -56,49 +56,22 @@ latest_time(T) :-
 %   `done(Begin, End, Call)`: one store query from the begins the store finds by value,
 %   then each distinct odb task's call once (task_calls/2).
 done_between(From, To, Done) :-
-    done_rows(From, To, Rows, CallOf),
-    findall(done(B, E, C), ( member(B-E-_-T, Rows), get_assoc(T, CallOf, C) ), Done0),
-    sort(Done0, Done).
-
-%!  performed_between(+From, +To, -Performed) is det.
-%   Who performed each odb-typed, non-idle action begun in [From, To] (`none`: no bound), by
-%   begin, as `performed(Begin, Task, Mode)`: Task the odb task's name (`pick`), Mode as
-%   performers/2 gives it (`user`, `robot`, `together` or `unknown`). Two store queries (the
-%   actions with their tasks' types, the performers with theirs) and no call: a caller that
-%   holds the history (its begins and calls) joins them on begin and task.
-performed_between(From, To, Performed) :-
-    action_rows(From, To, Rows0),
-    findall(B-A-Name, ( member(B-_-A-_-C, Rows0), odb_iri(Name, C) ), Rows1),
-    sort(Rows1, Rows),
-    findall(A, member(_-A-_, Rows), As0),
-    sort(As0, As),
-    action_modes(As, ModeOf),
-    findall(performed(B, Name, M), ( member(B-A-Name, Rows), get_assoc(A, ModeOf, M) ), Performed0),
-    msort(Performed0, Performed).
-
-%   The odb-typed, non-idle actions begun in [From, To] as sorted Begin-End-Action-Task rows,
-%   and their tasks' calls (an assoc Task -> Call).
-done_rows(From, To, Rows, CallOf) :-
-    action_rows(From, To, Rows0),
-    findall(B-E-A-T, member(B-E-A-T-_, Rows0), Rows1),
-    sort(Rows1, Rows),
-    findall(T, member(_-_-_-T, Rows), Ts),
-    task_calls(Ts, Pairs),
-    list_to_assoc(Pairs, CallOf).
-
-%   The odb-typed, non-idle actions begun in [From, To] as Begin-End-Action-Task-Class rows
-%   (one store query, from the begins the store finds by value).
-action_rows(From, To, Rows) :-
     bound_or_none(From), bound_or_none(To),
     (   From == none
     ->  BSpec = B
     ;   BSpec = (>=(From) -> B)
     ),
-    kb_findall(B-E-A-T-C, ( triple(I, soma:hasIntervalBegin, BSpec), has_time_interval(A, I),
-                            has_interval_end(I, E), executes_task(A, T), triple(T, rdf:type, C) ), any, Rows0),
+    kb_findall(B-E-T-C, ( triple(I, soma:hasIntervalBegin, BSpec), has_time_interval(A, I),
+                          has_interval_end(I, E), executes_task(A, T), triple(T, rdf:type, C) ), any, Rows0),
     odb_iri('IdleTask', Idle),
     % the odb-typed, non-idle actions only: the mental actions' tasks need no call
-    findall(B-E-A-T-C, ( member(B-E-A-T-C, Rows0), C \== Idle, odb_iri(_, C), begins_by(To, B) ), Rows).
+    findall(B-E-T, ( member(B-E-T-C, Rows0), C \== Idle, odb_iri(_, C), begins_by(To, B) ), Rows1),
+    sort(Rows1, Rows),
+    findall(T, member(_-_-T, Rows), Ts),
+    task_calls(Ts, Pairs),
+    list_to_assoc(Pairs, CallOf),
+    findall(done(B1, E1, C1), ( member(B1-E1-T1, Rows), get_assoc(T1, CallOf, C1) ), Done0),
+    sort(Done0, Done).
 
 begins_by(none, _) :- !.
 begins_by(To, B) :- B =< To.
@@ -247,8 +220,8 @@ object_place(Name, At, place(Pose, Used)) :-
 %   Who performed each action of Call, by begin: `Begin-Mode`, Mode `user` when a performer
 %   (soma:isPerformedBy) is a dul:NaturalPerson and no other is, `robot` when the performers
 %   are other dul:PhysicalAgents, `together` when there are both (the user and the robot),
-%   `unknown` without a performer of either type. One store query over the actions of Call's
-%   task class, kept for Call's tasks, and one for their performers' types.
+%   `unknown` without a performer of either type (odb_history:action_modes/2). One store
+%   query over the actions of Call's task class, kept for Call's tasks, and the NEEM's modes.
 performers(Call, Modes) :-
     check_call(Call),
     call_classes(Call, TC, _),
@@ -257,44 +230,9 @@ performers(Call, Modes) :-
     kb_findall(A-B-T, ( triple(T, rdf:type, TC), executes_task(A, T), has_time_interval(A, I),
                         has_interval_begin(I, B) ), any, Actions0),
     findall(A-B, ( member(A-B-T, Actions0), ord_memberchk(T, Tasks) ), Actions),
-    findall(A, member(A-_, Actions), As0),
-    sort(As0, As),
-    action_modes(As, ModeOf),
-    findall(B-Mode, ( member(A-B, Actions), get_assoc(A, ModeOf, Mode) ), Modes0),
+    action_modes(none, ModeOf),
+    findall(B-Mode, ( member(A-B, Actions), ( get_assoc(A, ModeOf, Mode) -> true ; Mode = unknown ) ), Modes0),
     msort(Modes0, Modes).
-
-%   action_modes(+Actions, -ModeOf): who performed each of the (sorted) Actions, an assoc
-%   Action -> Mode. A person counts as the user (a dul:NaturalPerson is also a
-%   dul:PhysicalAgent), any other physical agent as the robot.
-action_modes(As, ModeOf) :-
-    kb_findall(A-Ag, is_performed_by(A, Ag), any, Pairs0),
-    sort(Pairs0, Pairs),
-    group_pairs_by_key(Pairs, Groups),
-    list_to_assoc(Groups, AgentsOf),
-    findall(Ag, member(_-Ag, Pairs), Ags0),
-    sort(Ags0, Ags),
-    kb_iri(dul:'NaturalPerson', Person), kb_iri(dul:'PhysicalAgent', Agent),
-    findall(Ag-Who, ( member(Ag, Ags), agent_kind(Ag, Person, Agent, Who) ), Kinds),
-    list_to_assoc(Kinds, KindOf),
-    findall(A-Mode, ( member(A, As), action_mode(A, AgentsOf, KindOf, Mode) ), ModePairs),
-    list_to_assoc(ModePairs, ModeOf).
-
-agent_kind(Ag, Person, Agent, Who) :-
-    kb_findall(C, triple(Ag, rdf:type, C), any, Types),
-    (   memberchk(Person, Types) -> Who = user
-    ;   memberchk(Agent, Types) -> Who = robot
-    ;   Who = unknown
-    ).
-
-action_mode(A, AgentsOf, KindOf, Mode) :-
-    (   get_assoc(A, AgentsOf, Agents) -> true ; Agents = [] ),
-    findall(Who, ( member(Ag, Agents), get_assoc(Ag, KindOf, Who), Who \== unknown ), Whos0),
-    sort(Whos0, Whos),
-    (   Whos == [user] -> Mode = user
-    ;   Whos == [robot] -> Mode = robot
-    ;   Whos == [robot, user] -> Mode = together
-    ;   Mode = unknown
-    ).
 
 began_by(none, _) :- !.
 began_by(At, B-_) :- B =< At.
@@ -334,9 +272,6 @@ past_answer([who, Name, Args], _{task: Text, modes: Ds}) :-
     call_of(Name, Args, Call, Text),
     performers(Call, Modes),
     findall(_{time: B, mode: M}, member(B-M, Modes), Ds).
-past_answer([modes, From, To], _{actions: Ds}) :-
-    performed_between(From, To, Performed),
-    findall(_{time: B, task: T, mode: M}, member(performed(B, T, M), Performed), Ds).
 past_answer([predicted, Time], _{predicted: Ds}) :-
     (   preference_at(Time, _, Ranked) -> true ; Ranked = [] ),
     findall(_{task: T, rank: R, score: S}, ( member(ranked(C, R, S), Ranked), call_text(C, T) ), Ds).

@@ -69,17 +69,6 @@ test(performers_together_when_a_person_and_another_agent, [nondet, setup(load_te
     performers(pick(apple), [_-together]),
     performers(pour(thermos, green_mug), [_-robot]).
 
-test(performed_between_names_each_action_mode, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
-    performed_between(none, none, Unknown),
-    Unknown = [performed(B1, pour, unknown), performed(B3, pick, unknown)],
-    B1 =:= 101, B3 =:= 201,
-    fixture_assert('http://example.org/neem#', ada, rdf:type, dul:'NaturalPerson'),
-    fixture_assert('http://example.org/neem#', a1, soma:isPerformedBy, ada),
-    fixture_assert('http://example.org/neem#', edan, rdf:type, dul:'PhysicalAgent'),
-    performed_between(none, none, [performed(_, _, together), performed(_, _, robot)]),
-    performed_between(150, none, [performed(_, pick, robot)]),
-    performed_between(none, 150, [performed(_, pour, together)]).
-
 test(bad_call_is_an_error, [nondet, setup(load_test_episode), cleanup(store_reset),
                             error(type_error(callable, 3))]) :-
     last_done(3, none, _).

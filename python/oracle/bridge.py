@@ -634,7 +634,7 @@ class Bridge:
 
     def history(self) -> list[HistoryRow]:
         """odb_history:situation_history/1 in one crossing: every executed action in begin order
-        as ``{"begin", "end", "call", "part", "available"}`` (calls in the chain syntax). The
+        as ``{"begin", "end", "call", "part", "available", "mode"}`` (calls in the chain syntax). The
         situations that found the same set available share one list (Prolog writes each set once)."""
         return history_rows(self._json("odb_history:situation_history_json"))
 
@@ -756,13 +756,15 @@ class HistoryRow(TypedDict):
     """One executed action of the oracle's history (odb_history:situation_history/1), in begin
     order: its interval (unix seconds, or positions on a NEEM's sequence clock), its call in the
     chain syntax (``idle`` for an odb:IdleTask action), the part of the day it was logged with
-    (``none`` if not) and the calls of the imagined situation it was chosen in (None: none)."""
+    (``none`` if not), the calls of the imagined situation it was chosen in (None: none) and who
+    performed it (odb_history:action_modes/2: ``user``, ``robot``, ``together`` or ``unknown``)."""
 
     begin: float
     end: float
     call: str
     part: str
     available: list[str] | None
+    mode: str
 
 
 class LatestSituation(TypedDict):
@@ -783,14 +785,19 @@ class HistoryView:
     latest: LatestSituation | None
 
 
+#: Values per row in odb_history:situation_history_json's flat ``rows``: begin, end, call
+#: index, part of day, available set index and mode.
+ROW_WIDTH = 6
+
+
 def history_rows(reply: dict[str, Any]) -> list[HistoryRow]:
     """odb_history:situation_history_json's reply as rows (Bridge.history)."""
     calls: list[str] = reply["calls"]
     sets = [[calls[i] for i in indexes] for indexes in reply["sets"]]
     flat = reply["rows"]
     return [HistoryRow(begin=flat[i], end=flat[i + 1], call=calls[flat[i + 2]], part=flat[i + 3],
-                       available=sets[flat[i + 4]] if flat[i + 4] >= 0 else None)
-            for i in range(0, len(flat), 5)]
+                       available=sets[flat[i + 4]] if flat[i + 4] >= 0 else None, mode=flat[i + 5])
+            for i in range(0, len(flat), ROW_WIDTH)]
 
 
 def _python_value(value: Any) -> Any:
@@ -813,5 +820,5 @@ def connect(store: Store, neem_id: str, ontology: OdbOntology | None = None) -> 
         raise
 
 
-__all__ = ["Bridge", "CROSSINGS", "HistoryRow", "HistoryView", "LatestSituation", "QueryValueError", "connect", "crossings",
+__all__ = ["Bridge", "CROSSINGS", "HistoryRow", "HistoryView", "LatestSituation", "QueryValueError", "ROW_WIDTH", "connect", "crossings",
            "quote_atom", "term_text"]

@@ -44,7 +44,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, ClassVar
 
-from oracle.bridge import Bridge, HistoryRow, HistoryView, history_rows
+from oracle.bridge import ROW_WIDTH, Bridge, HistoryRow, HistoryView, history_rows
 from oracle.files import CacheFolder, written_by_user_alone
 from oracle.neem.terms import BEGIN, EXECUTES, HAS_INTERVAL, IMAGINING
 from oracle.store.base import Appended, AppendMark
@@ -53,7 +53,7 @@ from oracle.store.model import RDF_TYPE, decode_value
 #: More triples added than this (~500 logged actions) and the whole history is read instead:
 #: checking and reading that many added triples costs about as much.
 MAX_APPENDED = 20_000
-_FORMAT = "neem-oracle history 2"
+_FORMAT = "neem-oracle history 3"
 
 
 #: The kind of entry the store keeps (oracle.store.kept).
@@ -177,16 +177,17 @@ def _well_formed_latest(latest: Any) -> bool:
 
 def _well_formed(history: Any) -> bool:
     """``compact``'s shape: call texts, sets of call indexes, and rows of a finite begin and
-    end, a call index, a part of day and a set index (-1: none). Each column is checked by the
+    end, a call index, a part of day, a set index (-1: none) and a mode. Each column is checked by the
     types it holds and its least and greatest value (a kept view of 50,000 rows is read at
     every cold start)."""
     calls, sets, flat = history["calls"], history["sets"], history["rows"]
-    if not (isinstance(calls, list) and isinstance(sets, list) and isinstance(flat, list) and len(flat) % 5 == 0):
+    if not (isinstance(calls, list) and isinstance(sets, list) and isinstance(flat, list) and len(flat) % ROW_WIDTH == 0):
         return False
     members = [i for s in sets if isinstance(s, list) for i in s]
     return (all(isinstance(s, list) for s in sets) and {type(c) for c in calls} <= {str}
-            and _numbers(flat[0::5]) and _numbers(flat[1::5]) and _indexes(flat[2::5], 0, len(calls))
-            and {type(p) for p in flat[3::5]} <= {str} and _indexes(flat[4::5], -1, len(sets))
+            and _numbers(flat[0::ROW_WIDTH]) and _numbers(flat[1::ROW_WIDTH])
+            and _indexes(flat[2::ROW_WIDTH], 0, len(calls)) and {type(p) for p in flat[3::ROW_WIDTH]} <= {str}
+            and _indexes(flat[4::ROW_WIDTH], -1, len(sets)) and {type(m) for m in flat[5::ROW_WIDTH]} <= {str}
             and _indexes(members, 0, len(calls)))
 
 
@@ -290,7 +291,7 @@ def compact(rows: Sequence[HistoryRow]) -> dict[str, Any]:
                 key = tuple(calls.setdefault(c, len(calls)) for c in available)
                 index = sets.setdefault(key, len(sets))
                 numbered[id(available)] = (available, index)
-        flat += [row["begin"], row["end"], call, row["part"], index]
+        flat += [row["begin"], row["end"], call, row["part"], index, row["mode"]]
     return {"calls": list(calls), "sets": [list(key) for key in sets], "rows": flat}
 
 

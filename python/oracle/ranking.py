@@ -30,6 +30,7 @@ from oracle.historycache import HistoryCache
 from oracle.calls import DoneBefore, call_of, check_call, idle_step, opening_tasks, option_of, steps_from_history
 from oracle.neem.writer import NeemLogger
 from oracle.ontology import OdbOntology
+from oracle.past.autonomy import NO_PART, ModeCounts, Performed, UsualMode, modes_from_rows, ranked_modes
 from oracle.timeline import IDLE_THRESHOLD_S, Instant, clock, has_clock, is_idle_gap, now, part_of_day_at
 
 if TYPE_CHECKING:
@@ -53,6 +54,9 @@ class NeemRanking:
     written: str | None
     note: str | None
     method: str = DEFAULT
+    #: Who usually does each ranked task, and each step of the chain (oracle.past.autonomy).
+    usual: tuple[UsualMode, ...] = ()
+    chain_modes: tuple[str | None, ...] = ()
 
 
 def make_predictor(ontology: OdbOntology, settings: Hyperparameters | None = None, method: str = DEFAULT) -> Predictor:
@@ -121,9 +125,12 @@ def rank_neem(
             note = f"ranking not written: {error}"
     if offered is not None:
         note = offered if note is None else f"{offered}; {note}"
-    return NeemRanking(bridge.neem_id, instant.seconds, instant.part_of_day, len(ranker.steps), ranking,
-                       tuple(call_of(ontology, t.option) for t in ranking),
-                       tuple(call_of(ontology, o) for o in ranking.chain()), decision.ms, written, note, method)
+    ranked = tuple(call_of(ontology, t.option) for t in ranking)
+    chain = tuple(call_of(ontology, o) for o in ranking.chain())
+    usual, chain_modes = ranked_modes(ranker.modes, [str(c) for c in ranked], [str(c) for c in chain],
+                                      instant.part_of_day)
+    return NeemRanking(bridge.neem_id, instant.seconds, instant.part_of_day, len(ranker.steps), ranking, ranked,
+                       chain, decision.ms, written, note, method, tuple(usual), tuple(chain_modes))
 
 
 def keep_neem(store: Store, ontology: OdbOntology, neem: str, settings: Hyperparameters | None = None,
@@ -243,6 +250,9 @@ class NeemRanker:
         #: action is logged (the logger writes it only with the next action).
         self.idle_fitted = False
         self.imagined: Imagined | None = None
+        #: Who performed the actions so far, counted (oracle.past.autonomy): who usually does
+        #: each ranked task.
+        self.modes: ModeCounts = modes_from_rows(rows)
 
     def options(self, calls: Sequence[TaskCall]) -> list[Option]:
         return [option_of(self.ontology, call) for call in calls]
@@ -261,9 +271,11 @@ class NeemRanker:
         """The robot imagined ``calls`` available at ``seconds`` (the next action's offer if it counts)."""
         self.imagined = Imagined(tuple(calls), seconds)
 
-    def acted(self, call: TaskCall, begin: float, end: float, part_of_day: str | None, *, after_idle: bool) -> None:
+    def acted(self, call: TaskCall, begin: float, end: float, part_of_day: str | None, *, after_idle: bool,
+              performed_by: str | None = None) -> None:
         """The step an action logged from ``begin`` to ``end`` adds (``after_idle``: the logger
-        wrote an idle action before it), as the NEEM's history will show it."""
+        wrote an idle action before it), as the NEEM's history will show it; ``performed_by``
+        (chains.MODES) is counted among the user's modes."""
         if after_idle and self.last_end is not None:
             if not self.idle_fitted:
                 self._fit(idle_step(self.ontology, clock(self.last_end)), self.last_end)
@@ -286,6 +298,8 @@ class NeemRanker:
         self.last_end = end
         self.prev_begin = begin
         self.imagined = None
+        if performed_by is not None:
+            self.modes.add(Performed(str(call), part_of_day or NO_PART, performed_by))
 
     def _fit(self, step: Step, begin: float) -> None:
         self.predictor.partial_fit(step)

@@ -31,7 +31,18 @@ def test_modes_are_a_pure_function_of_seed_and_persona():
     persona = make_persona(0, 4)
     rows, _ = simulate(persona, load_world(), 2, 0)
     assert modes_of(persona, rows, 0) == modes_of(persona, rows, 0)
-    assert set(modes_of(persona, rows, 0)) == {"user", "robot"}
+    assert set(modes_of(persona, rows, 0)) == {"user", "robot", "together"}
+
+
+def test_together_is_likeliest_where_the_grip_is_the_obstacle():
+    weak = next(p for p in (make_persona(0, i) for i in range(60)) if "weak grip" in p.persona)
+    profile = autonomy_profile(weak, 0)
+    pour = profile.odds("pour", ("thermos", "red_mug"), 9.0)
+    assert abs(sum(pour.values()) - 1.0) < 1e-9 and pour["together"] > 0
+    eat = profile.odds("eat", ("apple",), 9.0)
+    # shared less where neither a grip nor a heavy object is the obstacle
+    assert eat["together"] / (1 - eat["user"]) < pour["together"] / (1 - pour["user"])
+    assert profile.likeliest("eat", ("apple",), 9.0) == "user"
 
 
 def test_three_modes_and_the_tie_leaves_the_user_the_most_to_do():
@@ -55,7 +66,7 @@ def test_together_is_written_with_both_performers_and_read_back(tmp_path):
     """An action performed together: both agents are its performers, each with an agent role
     of its task during it (neem-interface's participant with a role); the call reads back as
     it was logged (agent roles are no arguments, with objects or without) and ``ask`` and the
-    modes read (odb_past:performed_between/3) name the mode."""
+    history rows (odb_history:action_modes/2) name the mode."""
     import shutil
     from datetime import datetime
 
@@ -68,7 +79,7 @@ def test_together_is_written_with_both_performers_and_read_back(tmp_path):
     from oracle.neem.writer import NeemLogger
     from oracle.ontology import build_ontology
     from oracle.past.ask import ask
-    from oracle.past.autonomy import read_modes
+    from oracle.past.autonomy import modes_from_rows
     from oracle.store import open_store
     from oracle.timeline import seconds_of
 
@@ -91,10 +102,13 @@ def test_together_is_written_with_both_performers_and_read_back(tmp_path):
         answer = ask(bridge, onto, "who usually does pour(thermos, red_mug)?")
         assert answer.evidence["counts"] == {"user": 1, "robot": 0, "together": 2, "unknown": 0}
         assert answer.english == "You usually do pour(thermos, red_mug) together with the robot (2 of 3 times)."
-        modes = read_modes(bridge, clocked=True)
+        rows = bridge.history()
+        assert [row["mode"] for row in rows if row["call"] != "idle"] == ["together", "together", "together", "user",
+                                                                          "robot"]
+        modes = modes_from_rows(rows)
         assert modes.predict("open_fridge", "Morning") == ("together", "call and part")
         assert modes.predict("pick(apple)", "Morning") == ("robot", "call and part")
-        assert read_modes(bridge, clocked=True, before=seconds_of(at(3))).usual(
+        assert modes_from_rows([row for row in rows if row["begin"] <= seconds_of(at(3))]).usual(
             "pour(thermos, red_mug)", "Morning").counts == {"robot": 0, "user": 0, "together": 1}
     finally:
         bridge.close()

@@ -25,7 +25,6 @@ def run(args: argparse.Namespace) -> int:
     from oracle.commands.common import method_from, moment_from, settings_from
     from oracle.commands.target import connect
     from oracle.commands.shown import print_ranking
-    from oracle.past.autonomy import ranked_modes, read_modes
     from oracle.ranking import finite, rank_neem, support_fields
 
     settings = settings_from(args.settings)
@@ -34,9 +33,7 @@ def run(args: argparse.Namespace) -> int:
     bridge, onto = connect(args, write=not args.no_write)
     result = rank_neem(bridge, onto, settings, args.available, at, write=not args.no_write, method=method)
     # who usually does each ranked task and each step of the chain, from the user's past (thesis 6.3)
-    modes = read_modes(bridge, result.time_of_day is not None, before=result.at)
-    usual, chain_modes = ranked_modes(modes, [str(c) for c in result.calls], [str(c) for c in result.chain],
-                                      result.time_of_day)
+    usual, chain_modes = list(result.usual), list(result.chain_modes)
     if args.json:
         print(json.dumps({
             "neem": result.neem, "method": result.method, "at": result.at, "time_of_day": result.time_of_day,

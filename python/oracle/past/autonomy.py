@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any
 from oracle.chains import MODES, parse_call
 
 if TYPE_CHECKING:
-    from oracle.bridge import Bridge, HistoryRow
+    from oracle.bridge import HistoryRow
 
 USER, ROBOT, TOGETHER = "user", "robot", "together"
 #: Who wins a tie: the mode that leaves the user more to do comes first.
@@ -58,11 +58,14 @@ class ModeCounts:
     """Counts of the modes in each context of the actions seen (``add``)."""
 
     counts: dict[tuple[str, ...], Counter[str]] = field(default_factory=dict)
+    #: Each call's task, parsed once (a history repeats a few hundred calls).
+    tasks: dict[str, str] = field(default_factory=dict, repr=False, compare=False)
 
-    @staticmethod
-    def contexts(call: str, part: str) -> tuple[tuple[str, tuple[str, ...]], ...]:
+    def contexts(self, call: str, part: str) -> tuple[tuple[str, tuple[str, ...]], ...]:
         """The four contexts of a call, the most specific first, with their names."""
-        task = parse_call(call).task
+        task = self.tasks.get(call)
+        if task is None:
+            task = self.tasks[call] = parse_call(call).task
         return (("call and part", ("cp", call, part)), ("call", ("c", call)), ("task and part", ("tp", task, part)),
                 ("task", ("t", task)))
 
@@ -112,31 +115,21 @@ def fit(actions: Iterable[Performed]) -> ModeCounts:
     return counts
 
 
-def read_modes(bridge: Bridge, clocked: bool, before: float | None = None,
-               rows: Sequence[HistoryRow] | None = None) -> ModeCounts:
-    """The modes of the NEEM's actions (begun at or before ``before``; None: all), counted in
-    their contexts. Who performed each action is one request to odb_past
-    (performed_between/3: begin, task name, mode, no call); its call is that of the history row
-    of the same begin and task (``rows``, default: the kept history, oracle.historycache), so no
-    call is read twice. An action whose performer is neither the user nor another agent is not
-    counted."""
-    from oracle.past.evidence import request
-    from oracle.timeline import part_of_day_at
-
-    if rows is None:
-        from oracle.historycache import HistoryCache
-
-        rows = HistoryCache.default().view(bridge).rows
-    calls: dict[tuple[float, str], list[str]] = {}
-    for row in rows:
-        if row["call"] != "idle":
-            calls.setdefault((float(row["begin"]), parse_call(row["call"]).task), []).append(row["call"])
+def modes_from_rows(rows: Iterable[HistoryRow]) -> ModeCounts:
+    """The modes of the history rows' actions (``HistoryRow.mode``, read with the history and
+    kept with it, oracle.historycache) counted in their contexts, each in the part of the day it
+    was logged with (``none`` without a clock). Idle steps and actions whose performer is
+    neither the user nor another agent are not counted."""
     counts = ModeCounts()
-    for action in request(bridge, ["modes", None, before])["actions"]:
-        same = calls.get((float(action["time"]), str(action["task"])))
-        if action["mode"] in MODES and same:
-            part = part_of_day_at(float(action["time"])) if clocked else NO_PART
-            counts.add(Performed(str(parse_call(same.pop(0))), part, str(action["mode"])))
+    spelled: dict[str, str] = {}  # each distinct call parsed once: a history repeats a few hundred
+    for row in rows:
+        call, mode = row["call"], row["mode"]
+        if call == "idle" or mode not in MODES:
+            continue
+        text = spelled.get(call)
+        if text is None:
+            text = spelled[call] = str(parse_call(call))
+        counts.add(Performed(text, row["part"] or NO_PART, mode))
     return counts
 
 

@@ -24,7 +24,6 @@ from oracle.errors import NeemOracleError, StoreError
 from oracle.neem.writer import NeemLogger
 from oracle.timeline import Instant
 from oracle.ontology import OdbOntology
-from oracle.past.autonomy import read_modes
 from oracle.past.kept import KeptPast
 from oracle.ranking import latest_instant, make_predictor
 from oracle.service.guard import Limits
@@ -155,9 +154,8 @@ class Engine:
             self._room_for_a_session()
             view = HistoryCache.default().view(self.bridge(neem))
             logger = NeemLogger(self.store, self.ontology, neem, commit_every=NEVER)
-            modes = read_modes(self.bridge(neem), logger.clocked, rows=view.rows)
             session = NeemSession(neem, logger, self.ontology, make_predictor(self.ontology, self.settings, self.method),
-                                  view.rows, modes)
+                                  view.rows)
             self.sessions[neem] = session
             self._show_latest(session, view.latest)
         return session

@@ -19,7 +19,7 @@ from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError
 from oracle.neem.tf import Pose
 from oracle.neem.writer import LoggedAction, NeemLogger, check_performer
-from oracle.past.autonomy import NO_PART, ModeCounts, Performed, ranked_modes
+from oracle.past.autonomy import NO_PART, ranked_modes
 from oracle.timeline import Instant, TimeValueError, parse_iso
 from oracle.ontology import OdbOntology
 from oracle.bridge import HistoryRow
@@ -136,7 +136,7 @@ class NeemSession:
     leaves both the NEEM and this object as they were."""
 
     def __init__(self, neem: str, logger: NeemLogger, ontology: OdbOntology, predictor: Predictor,
-                 history: Sequence[HistoryRow], modes: ModeCounts | None = None) -> None:
+                 history: Sequence[HistoryRow]) -> None:
         self.neem = neem
         self.logger = logger
         self.ontology = ontology
@@ -151,9 +151,6 @@ class NeemSession:
         self.open: dict[str, OpenAction] = {}
         self.poses: dict[str, list[float]] = {}
         self.choice: dict[str, Any] | None = None
-        #: Who performed the NEEM's actions, counted (oracle.past.autonomy; read when the session
-        #: opens, extended by each action logged): the usual mode of every ranked task.
-        self.modes = modes if modes is not None else ModeCounts()
         self._keys = 0
 
     @property
@@ -219,7 +216,7 @@ class NeemSession:
     def describe(self, situation: Situation, ranking: Ranking, ms: float) -> SituationAnswer:
         calls = [str(call_of(self.ontology, t.option)) for t in ranking]
         chain = [str(call_of(self.ontology, o)) for o in ranking.chain()]
-        usual, chain_modes = ranked_modes(self.modes, calls, chain, situation.when.part_of_day)
+        usual, chain_modes = ranked_modes(self.ranker.modes, calls, chain, situation.when.part_of_day)
         ranked = []
         for t, call, mode in zip(ranking, calls, usual, strict=True):
             entry = self._entry(t, call)
@@ -238,7 +235,7 @@ class NeemSession:
         latest = self.latest
         part = (latest["time_of_day"] if latest is not None else None) if at is None else Instant.of(at).part_of_day
         text = str(call if isinstance(call, TaskCall) else parse_call(call))  # one spelling: pour(a, b)
-        return self.modes.usual(text, part if part is not None and self.logger.clocked else NO_PART).mode
+        return self.ranker.modes.usual(text, part if part is not None and self.logger.clocked else NO_PART).mode
 
     def _entry(self, task: RankedTask, call: str) -> RankedEntry:
         """One ranked task as the API answers it: ``support`` is how many past situations back
@@ -298,7 +295,7 @@ class NeemSession:
         self._check_time(Instant.of(start), f"action {call}")
         logged = self.logger.action(call, start, stop, performed_by=performed_by, state=state)
         self.logger.flush()
-        self.ranker.acted(call, logged.begin, logged.end, logged.part_of_day, after_idle=logged.idle is not None)
-        self.modes.add(Performed(str(call), logged.part_of_day or NO_PART, performed_by))
+        self.ranker.acted(call, logged.begin, logged.end, logged.part_of_day, after_idle=logged.idle is not None,
+                          performed_by=performed_by)
         self.pending = None
         return logged
