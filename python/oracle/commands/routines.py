@@ -105,7 +105,9 @@ def run_evaluation(args: argparse.Namespace) -> int:
     print(f"  prepare (the evening before, for the morning; {prepared.nights} nights): used next morning "
           f"{prepared.routines:.1%} of {prepared.suggested} suggested, most-used-objects baseline "
           f"{prepared.baseline:.1%} of {prepared.baseline_suggested}")
-    print(f"  autonomy mode ({modes.actions} actions, {modes.robot_share:.1%} by the robot): predicted right "
+    print(f"  autonomy mode ({modes.actions} actions, {modes.robot_share:.1%} by the robot, "
+          f"{modes.together_share:.1%} together): predicted right "
           f"{modes.context:.1%}, per-task majority {modes.task_majority:.1%}, the generator's own odds {modes.ceiling:.1%}; "
-          f"right only by the predictor {modes.context_only}, only by the baseline {modes.baseline_only}")
+          f"right only by the predictor {modes.context_only}, only by the baseline {modes.baseline_only}; "
+          f"together said for {modes.together_recall:.1%} of the actions done together")
     return 0

@@ -166,9 +166,11 @@ class AutonomyScores:
     context: float
     task_majority: float
     robot_share: float
-    ceiling: float  # the generator's own more likely mode, which no predictor beats on average
+    ceiling: float  # the generator's own likeliest mode, which no predictor beats on average
     context_only: int  # actions the context predictor got right and the baseline wrong
     baseline_only: int  # and the other way round (the discordant pairs of a McNemar test)
+    together_share: float = 0.0
+    together_recall: float = 0.0  # of the actions done together, the share the context predictor said
 
 
 def score_autonomy(personas: int = 105, days: int = 7, seed: int = 0, split: str = "test") -> AutonomyScores:
@@ -176,9 +178,9 @@ def score_autonomy(personas: int = 105, days: int = 7, seed: int = 0, split: str
 
     from oracle.past.autonomy import ModeCounts, Performed, majority
     from oracle.timeline import part_of_day_at
-    from oracle.world.autonomy import autonomy_profile, modes_of
+    from oracle.world.autonomy import autonomy_profile, modes_of, row_hour
 
-    right = base_right = total = robot = count = best = only = base_only = 0
+    right = base_right = total = robot = count = best = only = base_only = together = together_right = 0
     for persona in make_personas(personas, seed):
         if persona.split != split:
             continue
@@ -193,15 +195,17 @@ def score_autonomy(personas: int = 105, days: int = 7, seed: int = 0, split: str
             guess, _ = model.predict(call, part)
             task_counts = by_task.get(row.action.task)
             base = majority(task_counts) if task_counts else "user"
-            hour = row.time.hour + row.time.minute / 60.0 if row.time else 12.0
-            best += ("user" if profile.by_hand(row.action.task, row.action.args, hour) >= 0.5 else "robot") == mode
+            best += profile.likeliest(row.action.task, row.action.args, row_hour(row)) == mode
             right += guess == mode
             base_right += base == mode
             only += guess == mode != base
             base_only += base == mode != guess
             total += 1
             robot += mode == "robot"
+            together += mode == "together"
+            together_right += mode == "together" == guess
             model.add(Performed(call, part, mode))
             by_task.setdefault(row.action.task, Counter())[mode] += 1
     return AutonomyScores(count, total, right / total if total else 0.0, base_right / total if total else 0.0,
-                          robot / total if total else 0.0, best / total if total else 0.0, only, base_only)
+                          robot / total if total else 0.0, best / total if total else 0.0, only, base_only,
+                          together / total if total else 0.0, together_right / together if together else 0.0)
