@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 import json
+from typing import Any
 
 from oracle.commands.common import AT, JSON, NEEM, ONTOLOGY_OPTIONS, STORE, add_options, moment_from
 
@@ -17,11 +18,26 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     parser = subparsers.add_parser(
         "prepare", help="the objects worth preparing for the user's coming routines, each with its reason",
         description="From the routines the user usually begins in the coming part of the day (--for; default: the "
-        "part after now's), the objects they need, most needed first, with where the NEEM last had them.")
+        "part after now's), the objects they need, most needed first, with where the NEEM last had them and their state "
+        "(used and not washed since, in the dishwasher, washed).")
     parser.add_argument("--for", dest="part", choices=sorted(PARTS), help="the part of the day to prepare for")
     AT.add(parser)
     add_options(parser, STORE, NEEM, JSON, *ONTOLOGY_OPTIONS)
     parser.set_defaults(handler=run)
+
+
+def state_said(state: dict[str, Any]) -> str:
+    """The object's state as the end of its line (nothing when unknown)."""
+    from oracle.past.prepare import IN_WASHER, USED, WASHED
+    from oracle.timeline import clock
+
+    if state["since"] is None:
+        return ""
+    when = f"{clock(state['since']):%Y-%m-%d %H:%M}"
+    said = {USED: f"used in {state['action']} on {when} and not washed since: worth washing now",
+            IN_WASHER: f"in the dishwasher since {when}, not yet washed: worth running it",
+            WASHED: f"washed (the dishwasher ran on {when})"}
+    return f"; {said[state['state']]}" if state["state"] in said else ""
 
 
 def run(args: argparse.Namespace) -> int:
@@ -41,5 +57,5 @@ def run(args: argparse.Namespace) -> int:
     for item in found["prepare"]:
         used = item["last_used"]
         where = f"; last used in {used['task']} on {clock(used['time']):%Y-%m-%d %H:%M}" if used else ""
-        print(f"  {item['object']}: {item['reason']}{where}")
+        print(f"  {item['object']}: {item['reason']}{where}{state_said(item['state'])}")
     return 0

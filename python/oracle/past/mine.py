@@ -50,10 +50,10 @@ def neem_routines(bridge: Bridge, at: float | None = None, settings: MiningSetti
 def neem_preparation(bridge: Bridge, part: str | None = None, at: float | None = None,
                      kept: KeptPast | None = None) -> dict[str, Any]:
     """What to prepare now for ``part`` of the day (default: the part after now's): the objects
-    the routines of that part need (oracle.past.prepare), each with its reason and where the NEEM
-    last had it (odb_past:object_place/3)."""
+    the routines of that part need (oracle.past.prepare), each with its reason, where the NEEM
+    last had it (odb_past:object_place/3) and its state (used, in the dishwasher, washed)."""
     from oracle.past.evidence import request
-    from oracle.past.prepare import next_part, to_prepare
+    from oracle.past.prepare import next_part, object_state, to_prepare
 
     kept = KeptPast() if kept is None else kept
     now = at if at is not None else kept.now(bridge)
@@ -62,7 +62,9 @@ def neem_preparation(bridge: Bridge, part: str | None = None, at: float | None =
     target = part or next_part(now)
     found = neem_routines(bridge, at, kept=kept)
     items = []
-    for prep in to_prepare(found.routines, begun_by(kept.done(bridge), at), target):
+    done = begun_by(kept.done(bridge), at)
+    for prep in to_prepare(found.routines, done, target):
         place = request(bridge, ["where", prep.obj, now])
-        items.append({**prep.to_json(), "pose": place["pose"], "last_used": place["used"]})
+        items.append({**prep.to_json(), "pose": place["pose"], "last_used": place["used"],
+                      "state": object_state(prep.obj, done).to_json()})
     return {"now": now, "for": target, "prepare": items}

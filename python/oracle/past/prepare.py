@@ -4,6 +4,11 @@ the day need, most needed first, each with its reason.
 An object counts when the user moves it (it is picked in some action): a fridge or a table is not
 prepared. A routine's weight is the share of the observed days it was seen on; an object's, the
 sum over the routines of the part of the day that use it.
+
+Each object's state is read from the actions so far (``object_state``): used (an action soiled it:
+poured into, drunk from, a tool that stirred, cut or ate) and not washed since, in the dishwasher
+but not washed, or washed (the dishwasher ran with it inside); the thesis's "clean the cup the
+night before" is the first.
 """
 
 from __future__ import annotations
@@ -17,6 +22,44 @@ from oracle.timeline import PARTS_OF_DAY, clock, part_of_day_at
 
 #: How many objects a preparation names.
 LIMIT = 3
+#: The kitchen world's tasks that leave an object used, by the positions of such objects among
+#: the call's arguments: the recipient poured into, what is drunk from, the tool that stirs
+#: (and what it stirs in), cuts or eats with.
+SOILS = {"pour": (1,), "drink_from": (0,), "stir": (0, 1), "cut": (0,), "eat_with": (0,)}
+#: Where the kitchen world washes dishes.
+WASHER = "dish_washer"
+USED, IN_WASHER, WASHED, UNKNOWN = "used", "in the dishwasher", "washed", "unknown"
+
+
+@dataclass(frozen=True)
+class ObjectState:
+    """An object's state after the actions so far, since when and the action that left it so
+    (``unknown``: no action soiled or washed it)."""
+
+    state: str
+    since: float | None = None
+    call: str | None = None
+
+    def to_json(self) -> dict[str, object]:
+        return {"state": self.state, "since": self.since, "action": self.call}
+
+
+def object_state(obj: str, done: Sequence[Done]) -> ObjectState:
+    """``obj``'s state after ``done`` (in begin order): used by an action of SOILS, in the
+    dishwasher once placed there, washed when the dishwasher is turned on with it inside (taken
+    out again, it stays washed until used; taken out unwashed, it is as it was before)."""
+    state, before, inside = ObjectState(UNKNOWN), ObjectState(UNKNOWN), False
+    for d in sorted(done, key=lambda d: d.begin):
+        call = parse_call(d.call)
+        if call.task == "place" and call.args == (obj, WASHER):
+            before, state, inside = state, ObjectState(IN_WASHER, d.begin, d.call), True
+        elif call.task == "turn_on" and call.args == (WASHER,) and inside:
+            state = ObjectState(WASHED, d.begin, d.call)
+        elif call.task == "pick" and call.args == (obj,) and inside:
+            state, inside = (before if state.state == IN_WASHER else state), False
+        elif any(i < len(call.args) and call.args[i] == obj for i in SOILS.get(call.task, ())):
+            state = ObjectState(USED, d.begin, d.call)
+    return state
 
 
 @dataclass(frozen=True)
