@@ -69,9 +69,9 @@ class ModeCounts:
         return (("call and part", ("cp", call, part)), ("call", ("c", call)), ("task and part", ("tp", task, part)),
                 ("task", ("t", task)))
 
-    def add(self, action: Performed) -> None:
+    def add(self, action: Performed, times: int = 1) -> None:
         for _, key in self.contexts(action.call, action.part):
-            self.counts.setdefault(key, Counter())[action.mode] += 1
+            self.counts.setdefault(key, Counter())[action.mode] += times
 
     def predict(self, call: str, part: str) -> tuple[str, str]:
         """The usual mode of ``call`` in ``part``, and the most specific context it was read
@@ -120,16 +120,11 @@ def modes_from_rows(rows: Iterable[HistoryRow]) -> ModeCounts:
     kept with it, oracle.historycache) counted in their contexts, each in the part of the day it
     was logged with (``none`` without a clock). Idle steps and actions whose performer is
     neither the user nor another agent are not counted."""
+    seen = Counter((row["call"], row["part"], row["mode"]) for row in rows)  # a history repeats a few hundred
     counts = ModeCounts()
-    spelled: dict[str, str] = {}  # each distinct call parsed once: a history repeats a few hundred
-    for row in rows:
-        call, mode = row["call"], row["mode"]
-        if call == "idle" or mode not in MODES:
-            continue
-        text = spelled.get(call)
-        if text is None:
-            text = spelled[call] = str(parse_call(call))
-        counts.add(Performed(text, row["part"] or NO_PART, mode))
+    for (call, part, mode), times in seen.items():
+        if call != "idle" and mode in MODES:
+            counts.add(Performed(str(parse_call(call)), part or NO_PART, mode), times)
     return counts
 
 
