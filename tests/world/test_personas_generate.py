@@ -132,5 +132,5 @@ def test_modes_say_who_did_each_row_and_change_nothing_else(tmp_path, world):
         plain = [json.loads(line) for line in (tmp_path / "plain" / name).read_text().splitlines()]
         modes = [json.loads(line) for line in (tmp_path / "modes" / name).read_text().splitlines()]
         assert [{k: v for k, v in row.items() if k != "performed_by"} for row in modes] == plain
-        assert {row["performed_by"] for row in modes} <= {"user", "robot"}
+        assert {row["performed_by"] for row in modes} <= {"user", "robot", "together"}
     assert (tmp_path / "plain" / "personas.yaml").read_bytes() == (tmp_path / "modes" / "personas.yaml").read_bytes()
