@@ -30,7 +30,7 @@ def targets(out: Path) -> None:
         ref = s["method"]
         paired = s["comparisons"]["methods"]
         cold = s["cold_start"]["methods"]
-        shown = [ref, "stacked", "logit", "gbdt", "oracle"]
+        shown = [ref, "stacked", "online", "logit", "gbdt", "oracle"]
         best = max((n for n in s["methods"] if n not in shown), key=lambda n: s["methods"][n]["top3"])
         for name in [*shown, best]:
             if name not in s["methods"]:
@@ -42,7 +42,7 @@ def targets(out: Path) -> None:
             tag = f"`{name}`" + (" (best other baseline on Top-3)" if name == best else "")
             print(f"| {label} | {tag} | {m['top1']:.3f} | {m['top3']:.3f} | {m['top5']:.3f} | {diff} | "
                   f"{c['top1']:.3f} / {c['top3']:.3f} / {c['top5']:.3f} |")
-        others = [n for n in s["methods"] if n not in (ref, "stacked")]
+        others = [n for n in s["methods"] if n not in (ref, "stacked", "online")]
         strongest = []
         for k in KS:
             top = max(others, key=lambda n: s["methods"][n][f"top{k}"])
