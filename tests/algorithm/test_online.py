@@ -94,7 +94,8 @@ def test_it_keeps_the_routine_explanation_of_each_option():
 
 
 @pytest.mark.parametrize("setting, value", [("online_rate", -0.1), ("online_rate", float("nan")),
-                                            ("online_l2", "1e-4"), ("online_window", 2.5), ("online_window", True)])
+                                            ("online_l2", "1e-4"), ("online_damping", -1.0),
+                                            ("online_window", 2.5), ("online_window", True)])
 def test_a_bad_setting_is_one_line_naming_it(setting, value):
     with pytest.raises(SettingsError, match=setting) as raised:
         OnlineOracle(random_matrix(0), **{setting: value}).fit([])

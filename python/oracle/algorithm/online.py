@@ -1,14 +1,16 @@
 """The online predictor: the routine predictor's ranking re-weighed by a per-user conditional logit
 over its own evidence (``evidence.features``), learnt online, one AdaGrad step after each decision.
 
-``u(c) = log P(c) + sum_f w_f x_f(c) / s_f``, ``P'(c | offered) = softmax(u)`` over the offer:
-``P`` is the routine predictor's own served probability (its self-tuned variant, the clock's odds
-where its gate is open), ``x`` the evidence and ``s_f`` the spread of column ``f`` over every row
-learnt so far. ``w`` starts at 0 (the routine predictor exactly) and after each decision takes one
-AdaGrad step on that decision's log-likelihood, ``-log P'(done)`` plus ``online_l2 / 2 |w|^2``
-(the pull back to the routine predictor), at rate ``online_rate``. Every ranked option keeps the
-routine predictor's explanation (its context, support, successors); only its rank, probability
-and score are the combination's. docs/algorithm.md, "Online predictor".
+``u(c) = log P(c) + sum_f w_f x_f(c) / s_f``, ``P'(c | offered) = softmax(u)`` over the offer: ``P``
+is the routine predictor's own served probability (its self-tuned variant, the clock's odds where
+its gate is open), ``x`` the evidence and ``s_f`` the spread of column ``f`` over every row learnt
+so far (with ``SPREAD_PRIOR`` rows of unit variance). ``w`` starts at 0 (the routine predictor
+exactly) and after each decision takes one AdaGrad step on that decision's log-likelihood, ``-log
+P'(done)`` plus ``online_l2 / 2 |w|^2`` (the pull back to the routine predictor): ``w -= online_rate
+g / sqrt(online_damping + sum g^2)`` (a larger damping makes the first steps follow the gradient's
+size, not only its sign). Every ranked option keeps the routine predictor's explanation (its
+context, support, successors); only its rank, probability and score are the combination's.
+docs/algorithm.md, "Online predictor".
 """
 
 from __future__ import annotations
@@ -28,26 +30,29 @@ from oracle.algorithm.routine import TUNING_WINDOW, RoutineOracle
 from oracle.algorithm.selftune import FLOOR, mixed_distribution
 from oracle.errors import SettingsError
 
-#: AdaGrad's first squared-gradient sum (keeps the first step finite)
-G2_START = 1e-8
-
+#: pseudo-rows of unit variance in each column's spread: the few rows of a user's first decisions
+#: do not blow a column up (a column that barely varied yet would weigh as if it decided)
+SPREAD_PRIOR = 20.0
 
 class OnlineOracle(RoutineOracle):
     """The routine predictor with an online-learnt combination of its evidence (module docstring):
-    rate ``online_rate``, penalty ``online_l2``; ``fit`` learns from the latest ``online_window``
-    decisions of the history it is given, ``extend`` and ``partial_fit`` from every later one."""
+    rate ``online_rate``, penalty ``online_l2``, damping ``online_damping``; ``fit`` learns from the
+    latest ``online_window`` decisions of the history it is given, ``extend`` and ``partial_fit``
+    from every later one."""
 
-    _param_names = RoutineOracle._param_names + ("online_rate", "online_l2", "online_window")
+    _param_names = RoutineOracle._param_names + ("online_rate", "online_l2", "online_damping",
+                                                 "online_window")
 
     def __init__(self, distances: Any = None, *, online_rate: float = 0.1, online_l2: float = 1e-4,
-                 online_window: int = TUNING_WINDOW, **routine: Any) -> None:
+                 online_damping: float = 1.0, online_window: int = TUNING_WINDOW, **routine: Any) -> None:
         super().__init__(distances, **routine)
         self.online_rate = online_rate
         self.online_l2 = online_l2
+        self.online_damping = online_damping
         self.online_window = online_window
 
     def fit(self, history: Iterable[Step]) -> OnlineOracle:
-        for name in ("online_rate", "online_l2"):
+        for name in ("online_rate", "online_l2", "online_damping"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0 <= value < math.inf:
                 raise SettingsError(f"{type(self).__name__}: {name} must be a number >= 0, got {value!r}")
@@ -81,7 +86,7 @@ class OnlineOracle(RoutineOracle):
             raise TypeError(f"history entries must be Step records, got {type(step).__name__}")
         if self.n_steps_ >= self._learn_from and not step.idle and len(step.options) > 1:
             offered, _ = offered_options(step, None)
-            if step.option in offered:
+            if len(offered) > 1 and step.option in offered:
                 when, part = self._clock.decided(step)
                 x = features(self, offered, part, when)
                 self._learn(x, self._served(x, self._offer_ids(offered), when), offered.index(step.option))
@@ -115,10 +120,10 @@ class OnlineOracle(RoutineOracle):
         return cast(np.ndarray, np.log(np.maximum(mixed, FLOOR)))
 
     def _spread(self) -> np.ndarray:
+        """Each column's spread over the rows learnt so far, with ``SPREAD_PRIOR`` rows of unit variance."""
         assert self.moments_ is not None
         n, total, squares = self.moments_
-        spread = np.sqrt(np.maximum(squares / n - (total / n) ** 2, 0.0))
-        spread[spread < 1e-9] = 1.0
+        spread = np.sqrt((np.maximum(squares - total * total / n, 0.0) + SPREAD_PRIOR) / (n + SPREAD_PRIOR))
         return cast(np.ndarray, spread)
 
     def _learn(self, x: np.ndarray, offset: np.ndarray, truth: int) -> None:
@@ -126,7 +131,8 @@ class OnlineOracle(RoutineOracle):
         moments = np.stack([np.full(x.shape[1], float(len(x))), x.sum(axis=0), (x * x).sum(axis=0)])
         if self.moments_ is None or self.coef_ is None or self.squared_ is None:
             self.moments_ = moments
-            self.coef_, self.squared_ = np.zeros(x.shape[1]), np.full(x.shape[1], G2_START)
+            self.coef_, self.squared_ = np.zeros(x.shape[1]), np.full(x.shape[1],
+                                                                           max(float(self.online_damping), 1e-8))
         else:
             self.moments_ = self.moments_ + moments
         z = x / self._spread()
@@ -144,10 +150,12 @@ class OnlineOracle(RoutineOracle):
         ranking = super().rank(current, time_of_day, tree_roots=tree_roots, present_objects=present_objects, at=at)
         if self.coef_ is None or not np.any(self.coef_) or len(ranking.tasks) < 2:
             return ranking  # w = 0: the routine predictor's own ranking
-        _, now = offered_options(current, time_of_day)
+        offered, now = offered_options(current, time_of_day)
         when = at if at is not None else current.time if isinstance(current, Step) else None
         tasks = cast(tuple[RoutineTask, ...], ranking.tasks)
-        x = features(self, [t.option for t in tasks], now, when)
+        # the evidence in the order offered (as the decision is learnt: computed once), then as ranked
+        row = {option: i for i, option in enumerate(offered)}
+        x = features(self, offered, now, when)[[row[t.option] for t in tasks]]
         u = np.log(np.maximum([t.probability for t in tasks], FLOOR)) + (x / self._spread()) @ self.coef_
         p = np.exp(u - u.max())
         p /= p.sum()
