@@ -30,7 +30,7 @@ def test_with_no_learning_it_is_the_routine_predictor_exactly():
     for step in steps[120:]:
         assert still.rank(step) == routine.rank(step)
     # before its first decision the default serves the routine predictor's ranking too
-    assert OnlineOracle(matrix).fit(steps[:1]).rank(steps[1]) == RoutineOracle(matrix).fit(steps[:1]).rank(steps[1])
+    assert OnlineOracle(matrix).fit([]).rank(steps[0]) == RoutineOracle(matrix).fit([]).rank(steps[0])
 
 
 def test_one_update_raises_the_probability_of_the_option_done():

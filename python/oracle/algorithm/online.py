@@ -28,6 +28,7 @@ from oracle.algorithm.records import Option, Ranking, RoutineTask, Step
 from oracle.algorithm.reference import offered_options
 from oracle.algorithm.routine import TUNING_WINDOW, RoutineOracle
 from oracle.algorithm.selftune import FLOOR, mixed_distribution
+from oracle.algorithm.stacked import hit_score
 from oracle.errors import SettingsError
 
 #: pseudo-rows of unit variance in each column's spread: the few rows of a user's first decisions
@@ -41,14 +42,17 @@ class OnlineOracle(RoutineOracle):
     from every later one."""
 
     _param_names = RoutineOracle._param_names + ("online_rate", "online_l2", "online_damping",
-                                                 "online_window")
+                                                 "online_average", "online_gate", "online_window")
 
     def __init__(self, distances: Any = None, *, online_rate: float = 0.1, online_l2: float = 1e-4,
-                 online_damping: float = 1.0, online_window: int = TUNING_WINDOW, **routine: Any) -> None:
+                 online_damping: float = 1.0, online_average: bool = False, online_gate: float | None = None,
+                 online_window: int = TUNING_WINDOW, **routine: Any) -> None:
         super().__init__(distances, **routine)
         self.online_rate = online_rate
         self.online_l2 = online_l2
         self.online_damping = online_damping
+        self.online_average = online_average
+        self.online_gate = online_gate
         self.online_window = online_window
 
     def fit(self, history: Iterable[Step]) -> OnlineOracle:
@@ -56,6 +60,11 @@ class OnlineOracle(RoutineOracle):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0 <= value < math.inf:
                 raise SettingsError(f"{type(self).__name__}: {name} must be a number >= 0, got {value!r}")
+        if not isinstance(self.online_average, bool):
+            raise SettingsError(f"{type(self).__name__}: online_average must be True or False, got {self.online_average!r}")
+        gate = self.online_gate
+        if gate is not None and (isinstance(gate, bool) or not isinstance(gate, (int, float)) or not 0 <= gate < math.inf):
+            raise SettingsError(f"{type(self).__name__}: online_gate must be a number >= 0 or None, got {gate!r}")
         window = self.online_window
         if isinstance(window, bool) or not isinstance(window, int) or window < 0:
             raise SettingsError(f"{type(self).__name__}: online_window must be a whole number >= 0, got {window!r}")
@@ -63,6 +72,9 @@ class OnlineOracle(RoutineOracle):
         self.squared_: np.ndarray | None = None  # AdaGrad's sum of squared gradients
         self.moments_: np.ndarray | None = None  # per column: rows, sum, sum of squares
         self.learnt_ = 0                         # decisions learnt from
+        self.summed_: np.ndarray | None = None   # the sum of w after each step (online_average)
+        self.lead_ = 0.0                         # hit score of the combination minus routine's, summed
+        self.spread_ = 0.0                       # the sum of its squares
         self._learn_from = 0
         self._clock = DecisionClock()
         self._shared: tuple[tuple[Any, ...], Any] | None = None
@@ -136,27 +148,49 @@ class OnlineOracle(RoutineOracle):
         else:
             self.moments_ = self.moments_ + moments
         z = x / self._spread()
+        served = self.weights()
+        if served is not None:  # the gate's evidence: the combination as served, before it learns this
+            d = hit_score(offset + z @ served, truth) - hit_score(offset, truth)
+            self.lead_ += d
+            self.spread_ += d * d
         u = offset + z @ self.coef_
         p = np.exp(u - u.max())
         p /= p.sum()
         grad = p @ z - z[truth] + self.online_l2 * self.coef_
         self.squared_ = self.squared_ + grad * grad
         self.coef_ = self.coef_ - self.online_rate * grad / np.sqrt(self.squared_)
+        self.summed_ = self.coef_.copy() if self.summed_ is None else self.summed_ + self.coef_
         self.learnt_ += 1
+
+    def weights(self) -> np.ndarray | None:
+        """The combination's ``w`` as ``rank`` uses it (the average of every step's with
+        ``online_average``), whatever the gate says; None before the first decision learnt."""
+        if self.coef_ is None or self.summed_ is None:
+            return None
+        return self.summed_ / self.learnt_ if self.online_average else self.coef_
+
+    def serves(self) -> bool:
+        """Whether ``rank`` re-weighs (w != 0 and, with ``online_gate`` z, the combination's hit
+        score leads the routine predictor's on the decisions learnt by more than z standard errors)."""
+        w = self.weights()
+        if w is None or not np.any(w):
+            return False
+        return self.online_gate is None or self.lead_ > self.online_gate * math.sqrt(self.spread_)
 
     def rank(self, current: Step | Iterable[Option], time_of_day: str | None = None, *,
              tree_roots: int | None = 3, present_objects: Iterable[str] | None = None,
              at: float | None = None) -> Ranking:
         ranking = super().rank(current, time_of_day, tree_roots=tree_roots, present_objects=present_objects, at=at)
-        if self.coef_ is None or not np.any(self.coef_) or len(ranking.tasks) < 2:
-            return ranking  # w = 0: the routine predictor's own ranking
+        w = self.weights()
+        if w is None or not self.serves() or len(ranking.tasks) < 2:
+            return ranking  # w = 0 (or the gate shut): the routine predictor's own ranking
         offered, now = offered_options(current, time_of_day)
         when = at if at is not None else current.time if isinstance(current, Step) else None
         tasks = cast(tuple[RoutineTask, ...], ranking.tasks)
         # the evidence in the order offered (as the decision is learnt: computed once), then as ranked
         row = {option: i for i, option in enumerate(offered)}
         x = features(self, offered, now, when)[[row[t.option] for t in tasks]]
-        u = np.log(np.maximum([t.probability for t in tasks], FLOOR)) + (x / self._spread()) @ self.coef_
+        u = np.log(np.maximum([t.probability for t in tasks], FLOOR)) + (x / self._spread()) @ w
         p = np.exp(u - u.max())
         p /= p.sum()
         order = sorted(range(len(tasks)), key=lambda i: (-p[i], i))  # ties: the routine predictor's order
