@@ -89,13 +89,17 @@ class DecisionClock:
         self.last: float | None = None   # the last action's start
         self.paused = False              # an idle step since
 
+    def moment(self) -> float | None:
+        """When the next decision is taken, as the history will show it (None: no clock yet)."""
+        if self.last is None:
+            return None
+        return self.last + IDLE_THRESHOLD_S if self.paused else self.last
+
     def decided(self, step: Step) -> tuple[float | None, str | None]:
         if step.time is None:
             return None, step.time_of_day
-        if self.last is None:
-            return None, None
-        when = self.last + IDLE_THRESHOLD_S if self.paused else self.last
-        return when, part_of_day_at(when)
+        when = self.moment()
+        return (when, part_of_day_at(when)) if when is not None else (None, None)
 
     def passed(self, step: Step) -> None:
         if step.idle:

@@ -187,9 +187,12 @@ class OnlineOracle(RoutineOracle):
         offered, now = offered_options(current, time_of_day)
         when = at if at is not None else current.time if isinstance(current, Step) else None
         tasks = cast(tuple[RoutineTask, ...], ranking.tasks)
-        # the evidence in the order offered (as the decision is learnt: computed once), then as ranked
+        # the evidence as the decision will be learnt: at the moment its history will show (the
+        # previous action's start, not the end a replay ranks at), in the order offered (computed
+        # once for both), then in the ranking's order
         row = {option: i for i, option in enumerate(offered)}
-        x = features(self, offered, now, when)[[row[t.option] for t in tasks]]
+        moment = self._clock.moment() if when is not None else None
+        x = features(self, offered, now, moment)[[row[t.option] for t in tasks]]
         u = np.log(np.maximum([t.probability for t in tasks], FLOOR)) + (x / self._spread()) @ w
         p = np.exp(u - u.max())
         p /= p.sum()
