@@ -34,6 +34,9 @@ from oracle.errors import SettingsError
 #: pseudo-rows of unit variance in each column's spread: the few rows of a user's first decisions
 #: do not blow a column up (a column that barely varied yet would weigh as if it decided)
 SPREAD_PRIOR = 20.0
+#: the options that compete with the one done under ``online_loss="top"``
+TOP_K = 5
+LOSSES = ("likelihood", "above", "top")
 
 class OnlineOracle(RoutineOracle):
     """The routine predictor with an online-learnt combination of its evidence (module docstring):
@@ -42,17 +45,18 @@ class OnlineOracle(RoutineOracle):
     from every later one."""
 
     _param_names = RoutineOracle._param_names + ("online_rate", "online_l2", "online_damping",
-                                                 "online_average", "online_gate", "online_window")
+                                                 "online_average", "online_gate", "online_loss", "online_window")
 
     def __init__(self, distances: Any = None, *, online_rate: float = 0.1, online_l2: float = 1e-4,
                  online_damping: float = 1.0, online_average: bool = False, online_gate: float | None = None,
-                 online_window: int = TUNING_WINDOW, **routine: Any) -> None:
+                 online_loss: str = "likelihood", online_window: int = TUNING_WINDOW, **routine: Any) -> None:
         super().__init__(distances, **routine)
         self.online_rate = online_rate
         self.online_l2 = online_l2
         self.online_damping = online_damping
         self.online_average = online_average
         self.online_gate = online_gate
+        self.online_loss = online_loss
         self.online_window = online_window
 
     def fit(self, history: Iterable[Step]) -> OnlineOracle:
@@ -65,6 +69,9 @@ class OnlineOracle(RoutineOracle):
         gate = self.online_gate
         if gate is not None and (isinstance(gate, bool) or not isinstance(gate, (int, float)) or not 0 <= gate < math.inf):
             raise SettingsError(f"{type(self).__name__}: online_gate must be a number >= 0 or None, got {gate!r}")
+        if self.online_loss not in LOSSES:
+            raise SettingsError(f"{type(self).__name__}: online_loss must be one of {', '.join(LOSSES)}, "
+                                f"got {self.online_loss!r}")
         window = self.online_window
         if isinstance(window, bool) or not isinstance(window, int) or window < 0:
             raise SettingsError(f"{type(self).__name__}: online_window must be a whole number >= 0, got {window!r}")
@@ -154,6 +161,10 @@ class OnlineOracle(RoutineOracle):
             self.lead_ += d
             self.spread_ += d * d
         u = offset + z @ self.coef_
+        if self.online_loss == "above":  # only the options ranked at or above the one done compete
+            u = np.where(u >= u[truth], u, -np.inf)
+        elif self.online_loss == "top":  # only the top TOP_K and the one done compete
+            u = np.where((u >= np.sort(u)[-min(TOP_K, len(u))]) | (np.arange(len(u)) == truth), u, -np.inf)
         p = np.exp(u - u.max())
         p /= p.sum()
         grad = p @ z - z[truth] + self.online_l2 * self.coef_
