@@ -65,14 +65,30 @@ def test_it_learns_a_column_the_routine_predictor_does_not_weigh():
     assert int(np.argmax(model.coef_)) == 5
 
 
+def test_the_gate_opens_only_once_the_combination_leads_on_the_decisions_learnt():
+    matrix = random_matrix(2)
+    routine = RoutineOracle(matrix).fit(synthetic_history(40, 2))
+    model = OnlineOracle(matrix, online_gate=2.0).fit(synthetic_history(40, 2))
+    query = synthetic_history(41, 2)[-1]
+    assert not model.serves() and model.rank(query) == routine.rank(query)
+    rng = np.random.default_rng(0)
+    width = model.coef_.size
+    for _ in range(60):  # a column the offset (flat) knows nothing of decides every time
+        x = rng.normal(size=(6, width))
+        model._learn(x, np.zeros(6), int(np.argmax(x[:, 5])))
+    assert model.lead_ > 2.0 * np.sqrt(model.spread_) and model.serves()
+    assert model.rank(query) != routine.rank(query)
+    assert not OnlineOracle(matrix, online_gate=1e9).fit(synthetic_history(40, 2)).serves()
+
+
 def test_fit_is_deterministic_and_extends_step_by_step_as_a_fresh_fit():
     matrix = random_matrix(3)
     steps = synthetic_history(160, 3)
-    fresh = OnlineOracle(matrix).fit(steps)
-    again = pickle.loads(pickle.dumps(OnlineOracle(matrix).fit(steps)))
+    fresh = OnlineOracle(matrix, online_gate=None).fit(steps)
+    again = pickle.loads(pickle.dumps(OnlineOracle(matrix, online_gate=None).fit(steps)))
     assert np.array_equal(fresh.coef_, again.coef_) and np.any(fresh.coef_)
     assert _served(fresh, steps[-5:]) == _served(again, steps[-5:])
-    stepwise = OnlineOracle(matrix).fit(steps[:100])
+    stepwise = OnlineOracle(matrix, online_gate=None).fit(steps[:100])
     for n in range(101, len(steps) + 1):
         stepwise.extend(steps[:n])
     assert np.array_equal(fresh.coef_, stepwise.coef_)
@@ -82,9 +98,10 @@ def test_fit_is_deterministic_and_extends_step_by_step_as_a_fresh_fit():
 def test_it_keeps_the_routine_explanation_of_each_option():
     matrix = random_matrix(4)
     steps = synthetic_history(200, 4)
-    online = make_predictor("online", matrix).fit(steps)
+    assert isinstance(make_predictor("online", matrix), OnlineOracle)
+    online = OnlineOracle(matrix, online_gate=None).fit(steps)
     routine = RoutineOracle(matrix).fit(steps)
-    assert isinstance(online, OnlineOracle) and np.any(online.coef_)
+    assert online.serves()
     explained = {t.option: (t.context, t.situations, t.order, t.n_similar) for t in routine.rank(steps[-1])}
     ranked = online.rank(steps[-1])
     assert all(isinstance(t, RoutineTask) for t in ranked)
@@ -95,6 +112,7 @@ def test_it_keeps_the_routine_explanation_of_each_option():
 
 @pytest.mark.parametrize("setting, value", [("online_rate", -0.1), ("online_rate", float("nan")),
                                             ("online_l2", "1e-4"), ("online_damping", -1.0),
+                                            ("online_gate", -1.0), ("online_average", 1),
                                             ("online_window", 2.5), ("online_window", True)])
 def test_a_bad_setting_is_one_line_naming_it(setting, value):
     with pytest.raises(SettingsError, match=setting) as raised:

@@ -8,9 +8,12 @@ so far (with ``SPREAD_PRIOR`` rows of unit variance). ``w`` starts at 0 (the rou
 exactly) and after each decision takes one AdaGrad step on that decision's log-likelihood, ``-log
 P'(done)`` plus ``online_l2 / 2 |w|^2`` (the pull back to the routine predictor): ``w -= online_rate
 g / sqrt(online_damping + sum g^2)`` (a larger damping makes the first steps follow the gradient's
-size, not only its sign). Every ranked option keeps the routine predictor's explanation (its
-context, support, successors); only its rank, probability and score are the combination's.
-docs/algorithm.md, "Online predictor".
+size, not only its sign). The gate: before each step, the combination as served and the routine
+predictor alone rank the decision; the combination re-weighs ``rank`` only once its summed hit score
+(``([r <= 1] + [r <= 3] + [r <= 5]) / 3``) leads by more than ``online_gate`` standard errors of the
+paired differences (the self-tuning's switch rule; None: always). Every ranked option keeps the
+routine predictor's explanation (its context, support, successors); only its rank, probability and
+score are the combination's. docs/algorithm.md, "Online predictor".
 """
 
 from __future__ import annotations
@@ -34,29 +37,26 @@ from oracle.errors import SettingsError
 #: pseudo-rows of unit variance in each column's spread: the few rows of a user's first decisions
 #: do not blow a column up (a column that barely varied yet would weigh as if it decided)
 SPREAD_PRIOR = 20.0
-#: the options that compete with the one done under ``online_loss="top"``
-TOP_K = 5
-LOSSES = ("likelihood", "above", "top")
 
 class OnlineOracle(RoutineOracle):
     """The routine predictor with an online-learnt combination of its evidence (module docstring):
-    rate ``online_rate``, penalty ``online_l2``, damping ``online_damping``; ``fit`` learns from the
-    latest ``online_window`` decisions of the history it is given, ``extend`` and ``partial_fit``
-    from every later one."""
+    rate ``online_rate``, penalty ``online_l2``, damping ``online_damping``, ``online_average``: serve
+    the mean of every step's ``w``, gate margin ``online_gate``; ``fit`` learns from the latest
+    ``online_window`` decisions of the history it is given, ``extend`` and ``partial_fit`` from
+    every later one."""
 
     _param_names = RoutineOracle._param_names + ("online_rate", "online_l2", "online_damping",
-                                                 "online_average", "online_gate", "online_loss", "online_window")
+                                                 "online_average", "online_gate", "online_window")
 
     def __init__(self, distances: Any = None, *, online_rate: float = 0.1, online_l2: float = 1e-4,
-                 online_damping: float = 1.0, online_average: bool = False, online_gate: float | None = None,
-                 online_loss: str = "likelihood", online_window: int = TUNING_WINDOW, **routine: Any) -> None:
+                 online_damping: float = 1.0, online_average: bool = False, online_gate: float | None = 1.0,
+                 online_window: int = TUNING_WINDOW, **routine: Any) -> None:
         super().__init__(distances, **routine)
         self.online_rate = online_rate
         self.online_l2 = online_l2
         self.online_damping = online_damping
         self.online_average = online_average
         self.online_gate = online_gate
-        self.online_loss = online_loss
         self.online_window = online_window
 
     def fit(self, history: Iterable[Step]) -> OnlineOracle:
@@ -69,9 +69,6 @@ class OnlineOracle(RoutineOracle):
         gate = self.online_gate
         if gate is not None and (isinstance(gate, bool) or not isinstance(gate, (int, float)) or not 0 <= gate < math.inf):
             raise SettingsError(f"{type(self).__name__}: online_gate must be a number >= 0 or None, got {gate!r}")
-        if self.online_loss not in LOSSES:
-            raise SettingsError(f"{type(self).__name__}: online_loss must be one of {', '.join(LOSSES)}, "
-                                f"got {self.online_loss!r}")
         window = self.online_window
         if isinstance(window, bool) or not isinstance(window, int) or window < 0:
             raise SettingsError(f"{type(self).__name__}: online_window must be a whole number >= 0, got {window!r}")
@@ -161,10 +158,6 @@ class OnlineOracle(RoutineOracle):
             self.lead_ += d
             self.spread_ += d * d
         u = offset + z @ self.coef_
-        if self.online_loss == "above":  # only the options ranked at or above the one done compete
-            u = np.where(u >= u[truth], u, -np.inf)
-        elif self.online_loss == "top":  # only the top TOP_K and the one done compete
-            u = np.where((u >= np.sort(u)[-min(TOP_K, len(u))]) | (np.arange(len(u)) == truth), u, -np.inf)
         p = np.exp(u - u.max())
         p /= p.sum()
         grad = p @ z - z[truth] + self.online_l2 * self.coef_
