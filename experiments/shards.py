@@ -6,7 +6,7 @@ run, and so are the summary, the paired intervals and the cold start.
 
 usage: python experiments/shards.py run CHAINS [--odb DIR --mapping YAML] --users A:B --out SHARD.pkl
            [--also stacked[,NAME]] [--without NAME[,NAME]]
-       python experiments/shards.py merge SHARD.pkl ... --json OUT
+       python experiments/shards.py merge SHARD.pkl ... --json OUT [--against NAME]
 (``--also``: the registry's predictors replayed beside the default, ``stacked`` unless given; ``--without``:
 baselines left out, e.g. ``gbdt`` where its figures of an earlier run are cited instead.)
 """
@@ -51,6 +51,8 @@ def merge(args: argparse.Namespace) -> None:
     summary["cold_start"] = cold_start_summary(result, 0)
     summary["protocol"] = {"candidates": "history", "decision": "previous-end", "served": True}
     summary["shards"] = [str(p) for p in args.shards]
+    if args.against:  # one more method's paired differences against every other one (e.g. online)
+        summary["against"] = comparison_summary(outcomes, args.against, [n for n in names if n != args.against], 0)
     Path(args.json).write_text(json.dumps(summary, indent=1) + "\n", encoding="utf-8")
 
 
@@ -68,6 +70,7 @@ def main() -> int:
     many = sub.add_parser("merge")
     many.add_argument("shards", nargs="+")
     many.add_argument("--json", required=True)
+    many.add_argument("--against", default="", help="also pair this method against every other one")
     args = parser.parse_args()
     run(args) if args.command == "run" else merge(args)
     return 0
