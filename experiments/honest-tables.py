@@ -1,7 +1,7 @@
 """Print the tables of docs/results.md, "Honest replay, learned baselines, chains" from the JSON
 files of experiments/honest-replay.sh and experiments/normalized-distances.sh.
 
-usage: python experiments/honest-tables.py OUT [targets|all|chains|normalized]
+usage: python experiments/honest-tables.py OUT [targets|all|chains|normalized|online]
 """
 
 from __future__ import annotations
@@ -30,7 +30,7 @@ def targets(out: Path) -> None:
         ref = s["method"]
         paired = s["comparisons"]["methods"]
         cold = s["cold_start"]["methods"]
-        shown = [ref, "stacked", "logit", "gbdt", "oracle"]
+        shown = [ref, "stacked", "online", "logit", "gbdt", "oracle"]
         best = max((n for n in s["methods"] if n not in shown), key=lambda n: s["methods"][n]["top3"])
         for name in [*shown, best]:
             if name not in s["methods"]:
@@ -42,7 +42,7 @@ def targets(out: Path) -> None:
             tag = f"`{name}`" + (" (best other baseline on Top-3)" if name == best else "")
             print(f"| {label} | {tag} | {m['top1']:.3f} | {m['top3']:.3f} | {m['top5']:.3f} | {diff} | "
                   f"{c['top1']:.3f} / {c['top3']:.3f} / {c['top5']:.3f} |")
-        others = [n for n in s["methods"] if n not in (ref, "stacked")]
+        others = [n for n in s["methods"] if n not in (ref, "stacked", "online")]
         strongest = []
         for k in KS:
             top = max(others, key=lambda n: s["methods"][n][f"top{k}"])
@@ -89,10 +89,25 @@ def normalized(out: Path) -> None:
               f"{100 * d['difference']:+.1f} [{100 * d['low']:+.1f}, {100 * d['high']:+.1f}] |")
 
 
+def online(out: Path) -> None:
+    """The online predictor paired against the default and the learned baselines (``shards.py merge
+    --against online``)."""
+    print("| set | `online` minus | Top-1 [95 % CI] | Top-3 [95 % CI] | Top-5 [95 % CI] |")
+    print("| --- | --- | --- | --- | --- |")
+    for label, s in each(out, "i39"):
+        paired = s.get("against", {}).get("methods", {})
+        for name in ("routine", "logit", "gbdt"):
+            if name in paired:
+                # the block pairs each method against online: its sign turned, online minus the method
+                cells = [f"{-100 * d['difference']:+.1f} [{-100 * d['high']:+.1f}, {-100 * d['low']:+.1f}]"
+                         for d in (paired[name][f"top{k}"] for k in KS)]
+                print(f"| {label} | `{name}` | {' | '.join(cells)} |")
+
+
 def main() -> int:
     out = Path(sys.argv[1] if len(sys.argv) > 1 else "out")
     which = sys.argv[2] if len(sys.argv) > 2 else "targets"
-    {"targets": targets, "all": everything, "chains": chains, "normalized": normalized}[which](out)
+    {"targets": targets, "all": everything, "chains": chains, "normalized": normalized, "online": online}[which](out)
     return 0
 
 

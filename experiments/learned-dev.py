@@ -1,10 +1,10 @@
-"""Replay chains with the stacked predictor, the routine predictor, the learned baselines and a
+"""Replay chains with the stacked or online predictor, the routine predictor, the learned baselines and a
 few token baselines under the honest replay rules; print Top-1/3/5 and the paired Top-3
 difference of the first method against each other one (95 % bootstrap interval).
 
 usage: python experiments/learned-dev.py CHAINS [--odb DIR --mapping YAML] [--users N]
-       [--methods stacked,routine,logit,gbdt,kn3,ngram] [--stacked JSON]
-Development use only (docs/algorithm.md, "Stacked predictor": the selection protocol).
+       [--methods stacked,routine,logit,gbdt,kn3,ngram] [--stacked NAME=JSON] [--online NAME=JSON]
+Development use only (docs/algorithm.md, "Stacked predictor" and "Online predictor": the selection protocol).
 """
 
 from __future__ import annotations
@@ -17,6 +17,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
 from oracle.algorithm.params import Hyperparameters  # noqa: E402
+from oracle.algorithm.online import OnlineOracle  # noqa: E402
 from oracle.algorithm.stacked import StackedOracle  # noqa: E402
 from oracle.calls import opening_tasks  # noqa: E402
 from oracle.ontology import build_ontology  # noqa: E402
@@ -27,14 +28,15 @@ from oracle.evaluation.statistics import comparison_summary  # noqa: E402
 
 
 class Configured(OracleMethod):
-    """The stacked predictor with settings given as JSON."""
+    """The stacked (or online) predictor with settings given as JSON."""
 
-    def __init__(self, ontology, name: str, settings: dict) -> None:
+    def __init__(self, ontology, name: str, settings: dict, cls: type = StackedOracle) -> None:
         self.extra = settings
+        self.cls = cls
         super().__init__(ontology, Hyperparameters(), name=name, method="stacked", served=True)
 
     def reset(self) -> None:
-        self.model = StackedOracle(self.distances, opening_tasks=self.opening, **self.extra).fit([])
+        self.model = self.cls(self.distances, opening_tasks=self.opening, **self.extra).fit([])
         self.history = []
 
 
@@ -46,6 +48,7 @@ def main() -> int:
     parser.add_argument("--users", type=int, default=0)
     parser.add_argument("--methods", default="stacked,routine,logit,gbdt,kn3,ngram")
     parser.add_argument("--stacked", action="append", default=[], help="NAME=JSON settings of another stacked row")
+    parser.add_argument("--online", action="append", default=[], help="NAME=JSON settings of another online row")
     args = parser.parse_args()
     ontology = build_ontology(args.odb, args.mapping)
     users = load_users(args.chains)
@@ -54,7 +57,7 @@ def main() -> int:
     evidence = Evidence(ontology.distances(), opening_tasks(ontology))
     methods = []
     for name in args.methods.split(","):
-        if name in ("stacked", "routine", "routine-fixed", "thesis"):
+        if name in ("stacked", "online", "routine", "routine-fixed", "thesis"):
             methods.append(OracleMethod(ontology, Hyperparameters(), method=name, served=True))
         elif name == "logit":
             methods.append(OnlineLogit(evidence))
@@ -65,6 +68,9 @@ def main() -> int:
     for spec in args.stacked:
         label, _, text = spec.partition("=")
         methods.append(Configured(ontology, label, json.loads(text)))
+    for spec in args.online:
+        label, _, text = spec.partition("=")
+        methods.append(Configured(ontology, label, json.loads(text), OnlineOracle))
     result = replay(ontology, users, methods, 0, None, ReplayRules())
     summary = summarize(result)
     names = result.methods()

@@ -5,7 +5,10 @@ shuffled by user and position, so the merged outcomes, in the set's user order, 
 run, and so are the summary, the paired intervals and the cold start.
 
 usage: python experiments/shards.py run CHAINS [--odb DIR --mapping YAML] --users A:B --out SHARD.pkl
-       python experiments/shards.py merge SHARD.pkl ... --json OUT
+           [--also stacked[,NAME]] [--without NAME[,NAME]]
+       python experiments/shards.py merge SHARD.pkl ... --json OUT [--against NAME]
+(``--also``: the registry's predictors replayed beside the default, ``stacked`` unless given; ``--without``:
+baselines left out, e.g. ``gbdt`` where its figures of an earlier run are cited instead.)
 """
 
 from __future__ import annotations
@@ -30,8 +33,10 @@ def run(args: argparse.Namespace) -> None:
     users = load_users(args.chains)
     first, _, last = args.users.partition(":")
     chosen = OrderedDict(list(users.items())[int(first):int(last) if last else None])
-    methods = make_methods(ontology, Hyperparameters(), True)
-    methods.insert(1, OracleMethod(ontology, Hyperparameters(), method="stacked", served=True))
+    left_out = {name for name in args.without.split(",") if name}
+    methods = [m for m in make_methods(ontology, Hyperparameters(), True) if m.name not in left_out]
+    for at, name in enumerate((n for n in args.also.split(",") if n), start=1):
+        methods.insert(at, OracleMethod(ontology, Hyperparameters(), method=name, served=True))
     result = replay(ontology, chosen, methods, 0, None, ReplayRules())
     Path(args.out).write_bytes(pickle.dumps(result.outcomes))
 
@@ -46,6 +51,8 @@ def merge(args: argparse.Namespace) -> None:
     summary["cold_start"] = cold_start_summary(result, 0)
     summary["protocol"] = {"candidates": "history", "decision": "previous-end", "served": True}
     summary["shards"] = [str(p) for p in args.shards]
+    if args.against:  # one more method's paired differences against every other one (e.g. online)
+        summary["against"] = comparison_summary(outcomes, args.against, [n for n in names if n != args.against], 0)
     Path(args.json).write_text(json.dumps(summary, indent=1) + "\n", encoding="utf-8")
 
 
@@ -58,9 +65,12 @@ def main() -> int:
     one.add_argument("--mapping")
     one.add_argument("--users", required=True)
     one.add_argument("--out", required=True)
+    one.add_argument("--also", default="stacked")
+    one.add_argument("--without", default="")
     many = sub.add_parser("merge")
     many.add_argument("shards", nargs="+")
     many.add_argument("--json", required=True)
+    many.add_argument("--against", default="", help="also pair this method against every other one")
     args = parser.parse_args()
     run(args) if args.command == "run" else merge(args)
     return 0

@@ -15,9 +15,9 @@ from typing import Any
 
 import numpy as np
 
-from oracle.algorithm.records import Option
+from oracle.algorithm.records import Option, Step
 from oracle.algorithm.selftune import FLOOR
-from oracle.timeline import TIME_OF_DAY_NAMES
+from oracle.timeline import IDLE_THRESHOLD_S, TIME_OF_DAY_NAMES, part_of_day_at
 
 _TOD = {name: code for code, name in enumerate(TIME_OF_DAY_NAMES)}
 #: exact-context orders whose follower counts are columns
@@ -77,3 +77,32 @@ def features(model: Any, offered: Sequence[Option], time_of_day: str | None, at:
     columns.extend(buckets.T)
     columns.append(np.full(size, 1.0 if at is None else 0.0))
     return np.column_stack(columns)
+
+
+class DecisionClock:
+    """When each past decision was taken, as its history shows it (the replay's rule, never the
+    action's own start): the previous action's start, 20 s later after an idle gap; and that
+    moment's part of day. Without a clock: the step's own part of day, as recorded. Feed it every
+    step, idle ones included, after reading the step's moment (``decided``, then ``passed``)."""
+
+    def __init__(self) -> None:
+        self.last: float | None = None   # the last action's start
+        self.paused = False              # an idle step since
+
+    def moment(self) -> float | None:
+        """When the next decision is taken, as the history will show it (None: no clock yet)."""
+        if self.last is None:
+            return None
+        return self.last + IDLE_THRESHOLD_S if self.paused else self.last
+
+    def decided(self, step: Step) -> tuple[float | None, str | None]:
+        if step.time is None:
+            return None, step.time_of_day
+        when = self.moment()
+        return (when, part_of_day_at(when)) if when is not None else (None, None)
+
+    def passed(self, step: Step) -> None:
+        if step.idle:
+            self.paused = True
+        else:
+            self.last, self.paused = step.time, False

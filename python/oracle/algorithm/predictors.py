@@ -17,6 +17,7 @@ from typing import Any, Protocol
 from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.normalized import normalized_oracle
+from oracle.algorithm.online import OnlineOracle
 from oracle.algorithm.routine import RoutineOracle
 from oracle.algorithm.stacked import StackedOracle
 from oracle.algorithm.records import Option, Ranking, Step
@@ -60,6 +61,10 @@ def _stacked(distances: Any, opening: frozenset[str], settings: Hyperparameters)
     return StackedOracle(distances, opening_tasks=opening)
 
 
+def _online(distances: Any, opening: frozenset[str], settings: Hyperparameters) -> Predictor:
+    return OnlineOracle(distances, opening_tasks=opening)
+
+
 def _thesis_normalized(distances: Any, opening: frozenset[str], settings: Hyperparameters) -> Predictor:
     return normalized_oracle(distances, settings, opening)
 
@@ -78,6 +83,8 @@ PREDICTORS: dict[str, PredictorSpec] = {
                                      _routine_tuned("mixture")),
     "stacked": PredictorSpec("stacked", "the routine predictor's evidence combined by a per-user conditional logit "
                              "(docs/algorithm.md, 'Stacked predictor')", _stacked),
+    "online": PredictorSpec("online", "the routine predictor re-weighed by a per-user conditional logit over its "
+                            "evidence, learnt after every decision (docs/algorithm.md, 'Online predictor')", _online),
     "thesis": PredictorSpec("thesis", "the thesis PreferenceOracle (chapter 4) with the given settings", _thesis),
     "thesis-normalized": PredictorSpec("thesis-normalized", "the thesis oracle over the normalised distances of "
                                        "thesis 6.4 (docs/algorithm.md)", _thesis_normalized),

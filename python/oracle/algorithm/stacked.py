@@ -20,12 +20,11 @@ from typing import Any, cast
 
 import numpy as np
 
-from oracle.algorithm.evidence import features
+from oracle.algorithm.evidence import DecisionClock, features
 from oracle.algorithm.records import Option, Ranking, RoutineTask, Step
 from oracle.algorithm.reference import offered_options
 from oracle.algorithm.routine import RoutineOracle
 from oracle.errors import SettingsError
-from oracle.timeline import IDLE_THRESHOLD_S, part_of_day_at
 
 
 def fit_logit(rows: Sequence[tuple[np.ndarray, int]], shrink: float, offset: int | None = 0,
@@ -163,13 +162,9 @@ class StackedOracle(RoutineOracle):
         """When a past decision was taken, as its history shows it (the replay's rule, never the
         action's own start): the previous action's start, 20 s later after an idle gap; its part of day.
         Without a clock: the step's own part of day, as recorded."""
-        last, paused = self._previous
-        if step.time is None:
-            return None, step.time_of_day
-        if last is None:
-            return None, None
-        when = last + IDLE_THRESHOLD_S if paused else last
-        return when, part_of_day_at(when)
+        clock = DecisionClock()  # the rule's one home
+        clock.last, clock.paused = self._previous
+        return clock.decided(step)
 
     def _refit(self) -> None:
         due = (self.n_steps_ // self.combine_every) * self.combine_every

@@ -22,6 +22,7 @@ from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import PRESETS
 from oracle.algorithm.reference import ReferenceOracle
 from oracle.algorithm.routine import RoutineOracle
+from oracle.algorithm.online import OnlineOracle
 from oracle.algorithm.stacked import StackedOracle
 from oracle.algorithm.records import Option, Ranking, Step
 from oracle.ontology.distance import DistanceMatrix
@@ -175,12 +176,13 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
                   flush=True)
         rows.extend(_routine_rows(matrix, prefix, queries, fast_queries, size))
         rows.extend(_routine_rows(matrix, prefix, queries, fast_queries, size, StackedOracle, "stacked"))
+        rows.extend(_routine_rows(matrix, prefix, queries, fast_queries, size, OnlineOracle, "online"))
     return rows
 
 
 def _routine_rows(matrix: DistanceMatrix, prefix: Sequence[Step], queries: Sequence[Step], count: int, size: int, cls: type = RoutineOracle,
                   impl: str = "routine") -> list[dict[str, Any]]:
-    """The routine predictor (or ``cls``, ``impl``: the stacked one) on the same history and
+    """The routine predictor (or ``cls``, ``impl``: the stacked or online one) on the same history and
     queries (its own defaults, self-tuned): rank, partial_fit and one whole fit."""
     start = time.perf_counter()
     model = cls(matrix).fit(prefix)
