@@ -2,6 +2,7 @@
 
 import json
 import shutil
+from pathlib import Path
 
 import pytest
 
@@ -53,16 +54,22 @@ def test_rank_given_options_without_write(store, capsys):
     assert out["ranking"][0]["call"] == "open(small_drawer)" and out["written"] is None
 
 
-def test_a_neem_that_imagined_nothing_ranks_the_actions_done_so_far(tmp_path, capsys):
-    """An import of chains without available sets (a sensor home's log) has no imagined
-    situation: rank offers what the user did, and what-next reads the ranking it wrote."""
-    rows = [{"user": "ada", "time": f"2026-03-0{2 + day}T08:00:{8 * i:02d}", "duration": 5, "action": action}
-            for day in range(3) for i, action in enumerate(CHAIN)]
+def imported(rows: list[dict[str, object]], tmp_path, capsys) -> Path:
+    """``rows`` written as a chains file and imported into a new store (its path; output swallowed)."""
     chains = tmp_path / "c.jsonl"
     chains.write_text("".join(json.dumps(r) + "\n" for r in rows))
     path = tmp_path / "s.sqlite"
     assert main(["import", str(chains), "--store", str(path)]) == 0
     capsys.readouterr()
+    return path
+
+
+def test_a_neem_that_imagined_nothing_ranks_the_actions_done_so_far(tmp_path, capsys):
+    """An import of chains without available sets (a sensor home's log) has no imagined
+    situation: rank offers what the user did, and what-next reads the ranking it wrote."""
+    rows = [{"user": "ada", "time": f"2026-03-0{2 + day}T08:00:{8 * i:02d}", "duration": 5, "action": action}
+            for day in range(3) for i, action in enumerate(CHAIN)]
+    path = imported(rows, tmp_path, capsys)
     assert main(["rank", "--store", str(path), "--at", "2026-03-05T08:00:00", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert sorted(r["call"] for r in out["ranking"]) == sorted(CHAIN)
@@ -203,11 +210,7 @@ def test_rank_says_who_usually_does_each_task_and_each_step(tmp_path, capsys):
              "available": available, **({"performed_by": "user"} if action.startswith("pour") else
                                         {"performed_by": "together"} if action == "pick(thermos)" else {})}
             for day in range(3) for i, action in enumerate(CHAIN)]
-    chains = tmp_path / "c.jsonl"
-    chains.write_text("".join(json.dumps(r) + "\n" for r in rows))
-    path = tmp_path / "s.sqlite"
-    assert main(["import", str(chains), "--store", str(path)]) == 0
-    capsys.readouterr()
+    path = imported(rows, tmp_path, capsys)
     assert main(["rank", "--store", str(path), "--json", "--no-write", "--at", "2026-03-05T08:00:00"]) == 0
     out = json.loads(capsys.readouterr().out)
     by_call = {r["call"]: r for r in out["ranking"]}
