@@ -294,25 +294,37 @@ history_view_json(After, JSON) :-
 %   AVL tree Action -> Mode: `user` when its performers (soma:isPerformedBy) are a
 %   dul:NaturalPerson alone, `robot` when they are other dul:PhysicalAgents, `together` when
 %   there are both. An action with neither kind of performer is not in the tree (its mode is
-%   `unknown`, action_mode/3). Three store queries however long the NEEM: the actions'
-%   performers, and the two kinds of agent (a handful of individuals).
+%   `unknown`, action_mode/3). At most three store queries however long the NEEM
+%   (performers_typed/4).
 action_modes(After, ModeOf) :-
     after_bound(After),
-    performed_pairs(After, Pairs0),
-    sort(Pairs0, Pairs),
+    performers_typed(After, Pairs, Persons, Agents),
     group_pairs_by_key(Pairs, Groups),
-    kb_findall(P, triple(P, rdf:type, dul:'NaturalPerson'), any, Persons0),
-    sort(Persons0, Persons),
-    kb_findall(R, triple(R, rdf:type, dul:'PhysicalAgent'), any, Agents0),
-    sort(Agents0, Agents),
     findall(A-Mode, ( member(A-Ags, Groups), agents_mode(Ags, Persons, Agents, Mode) ), ModePairs),
     list_to_assoc(ModePairs, ModeOf).
 
-performed_pairs(none, Pairs) :- !,
-    kb_findall(A-Ag, is_performed_by(A, Ag), any, Pairs).
-performed_pairs(After, Pairs) :-
-    kb_findall(A-Ag, ( triple(I, soma:hasIntervalBegin, >(After)), has_time_interval(A, I),
-                       is_performed_by(A, Ag) ), any, Pairs).
+%   performers_typed(+After, -Pairs, -Persons, -Agents): the sorted Action-Agent pairs of the
+%   actions begun after After, and the sorted agents typed dul:NaturalPerson and
+%   dul:PhysicalAgent among them. The whole NEEM: the pairs, then the few agents of each type
+%   (three queries; the pairs joined with the agents' types would be several rows an action).
+%   After a time: one query of the few new actions' pairs with their agents' types.
+performers_typed(none, Pairs, Persons, Agents) :- !,
+    kb_findall(A-Ag, is_performed_by(A, Ag), any, Pairs0),
+    sort(Pairs0, Pairs),
+    kb_findall(P, triple(P, rdf:type, dul:'NaturalPerson'), any, Persons0),
+    sort(Persons0, Persons),
+    kb_findall(R, triple(R, rdf:type, dul:'PhysicalAgent'), any, Agents0),
+    sort(Agents0, Agents).
+performers_typed(After, Pairs, Persons, Agents) :-
+    kb_findall(A-Ag-C, ( triple(I, soma:hasIntervalBegin, >(After)), has_time_interval(A, I),
+                         is_performed_by(A, Ag), triple(Ag, rdf:type, C) ), any, Rows),
+    kb_iri(dul:'NaturalPerson', Person), kb_iri(dul:'PhysicalAgent', Agent),
+    findall(A-Ag, member(A-Ag-_, Rows), Pairs0),
+    sort(Pairs0, Pairs),
+    findall(Ag, member(_-Ag-Person, Rows), Persons0),
+    sort(Persons0, Persons),
+    findall(Ag, member(_-Ag-Agent, Rows), Agents0),
+    sort(Agents0, Agents).
 
 %   The mode of an action performed by Ags: a person counts as the user (a dul:NaturalPerson
 %   is also a dul:PhysicalAgent), any other physical agent as the robot.
