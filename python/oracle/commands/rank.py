@@ -32,18 +32,16 @@ def run(args: argparse.Namespace) -> int:
     at = moment_from(args.at)  # before the store is opened: a bad --at touches nothing
     bridge, onto = connect(args, write=not args.no_write)
     result = rank_neem(bridge, onto, settings, args.available, at, write=not args.no_write, method=method)
-    # who usually does each ranked task and each step of the chain, from the user's past (thesis 6.3)
-    usual, chain_modes = list(result.usual), list(result.chain_modes)
     if args.json:
         print(json.dumps({
             "neem": result.neem, "method": result.method, "at": result.at, "time_of_day": result.time_of_day,
             "history": result.history, "ms": result.milliseconds,
             "ranking": [{"rank": t.rank, "call": str(c), "score": finite(t.score), "similar": t.n_similar,
                          **support_fields(t), "mode": u.mode, "mode_support": {"context": u.context, "counts": u.counts}}
-                        for t, c, u in zip(result.ranking, result.calls, usual)],
-            "chain": [str(c) for c in result.chain], "chain_modes": chain_modes,
+                        for t, c, u in zip(result.ranking, result.calls, result.usual)],
+            "chain": [str(c) for c in result.chain], "chain_modes": list(result.chain_modes),
             "written": result.written, "note": result.note,
         }, indent=1))
         return 0
-    print_ranking(result, modes=(usual, chain_modes))
+    print_ranking(result, modes=True)  # who usually does each task and step (thesis 6.3)
     return 0

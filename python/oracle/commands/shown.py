@@ -7,10 +7,7 @@ import math
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from collections.abc import Sequence
-
     from oracle.algorithm.records import RankedTask
-    from oracle.past.autonomy import UsualMode
     from oracle.ranking import NeemRanking
 
 
@@ -33,10 +30,9 @@ def describe(task: RankedTask) -> str:
     return "no similar history" if math.isinf(task.score) else f"score {task.score:.4f} from {task.n_similar} similar"
 
 
-def print_ranking(result: NeemRanking, limit: int | None = None,
-                  modes: tuple[Sequence[UsualMode], Sequence[str | None]] | None = None) -> None:
-    """The ranking, best first; with ``modes`` (oracle.past.autonomy.ranked_modes) who usually
-    does each task, in the tablet's English words, and each step of the chain."""
+def print_ranking(result: NeemRanking, limit: int | None = None, modes: bool = False) -> None:
+    """The ranking, best first; with ``modes`` who usually does each task (the result's
+    ``usual``), in the tablet's English words, and each step of the chain."""
     from oracle.service.words import mode_sentence
     from oracle.timeline import format_clock
 
@@ -44,7 +40,7 @@ def print_ranking(result: NeemRanking, limit: int | None = None,
     print(f"NEEM {result.neem}: {result.history} past actions, decision at {when}; "
           f"{result.method} ranked {len(result.calls)} options in {result.milliseconds:.2f} ms")
     shown = list(zip(result.ranking, result.calls))[:limit]
-    usual, chain_modes = modes if modes is not None else ([], [])
+    usual, chain_modes = (result.usual, result.chain_modes) if modes else ((), ())
     for index, (t, call) in enumerate(shown):
         said = mode_sentence("en", usual[index].mode, usual[index].counts) if index < len(usual) else ""
         print(f"  {t.rank:2d}. {str(call):32s} {describe(t)}" + (f" {said}" if said else ""))
