@@ -307,7 +307,9 @@ action_modes(After, ModeOf) :-
 %   actions begun after After, and the sorted agents typed dul:NaturalPerson and
 %   dul:PhysicalAgent among them. The whole NEEM: the pairs, then the few agents of each type
 %   (three queries; the pairs joined with the agents' types would be several rows an action).
-%   After a time: one query of the few new actions' pairs with their agents' types.
+%   After a time: one query of the few new actions' pairs with their agents' types, joined as
+%   written from the interval begins found by value (SQLite's own plan drives from every
+%   performer triple instead: 250 ms against 3 ms at 50,000 actions).
 performers_typed(none, Pairs, Persons, Agents) :- !,
     kb_findall(A-Ag, is_performed_by(A, Ag), any, Pairs0),
     sort(Pairs0, Pairs),
@@ -317,7 +319,7 @@ performers_typed(none, Pairs, Persons, Agents) :- !,
     sort(Agents0, Agents).
 performers_typed(After, Pairs, Persons, Agents) :-
     kb_findall(A-Ag-C, ( triple(I, soma:hasIntervalBegin, >(After)), has_time_interval(A, I),
-                         is_performed_by(A, Ag), triple(Ag, rdf:type, C) ), any, Rows),
+                         is_performed_by(A, Ag), triple(Ag, rdf:type, C) ), any, [plan(written)], Rows),
     kb_iri(dul:'NaturalPerson', Person), kb_iri(dul:'PhysicalAgent', Agent),
     findall(A-Ag, member(A-Ag-_, Rows), Pairs0),
     sort(Pairs0, Pairs),

@@ -110,7 +110,8 @@ class Reads:
                                                           (last,)) for t in tables]))  # fmt: skip
             new = " UNION ".join(f"SELECT s FROM {t} WHERE id > :last" for t in tables)
             # Each subject looked up by the (s, p) and (o, p) indexes of the main table and the
-            # (s) index of the side table; the side table's objects (plans) in one scan.
+            # (s) index of the side table; the side table's objects (plans) by its (o) index (a
+            # scan in a file from before it).
             known = " OR ".join(
                 [f"EXISTS (SELECT 1 FROM {t} WHERE s = n.s AND id <= :last)" for t in tables]
                 + [f"EXISTS (SELECT 1 FROM {tables[0]} WHERE o = n.s AND ok = {K_STR} AND id <= :last)"]

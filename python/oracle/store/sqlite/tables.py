@@ -80,6 +80,8 @@ def indexes(neem_id: str, taken: Collection[str] = (), side: bool = False) -> li
     made = [(f"{neem_id}_triples_{name}", f"ON {t('triples')}({cols}){where}") for name, cols, where in TRIPLE_INDEXES]
     made += [(f"{neem_id}_annotations_sp", f"ON {t('annotations')}(s, p)"), (f"{neem_id}_tf_cs", f"ON {t('tf')}(child, stamp)")]
     if side:
-        made.append((f"{neem_id}_side_s", f"ON {t(SIDE)}(s)"))
+        # (o): whether a NEEM only grew (Reads.appended) asks if an old side row names a new
+        # subject; without it SQLite scans the side table (0.17 s at 50,000 actions).
+        made += [(f"{neem_id}_side_s", f"ON {t(SIDE)}(s)"), (f"{neem_id}_side_o", f"ON {t(SIDE)}(o)")]
     unique = [(name if name not in taken else f"{name}_{os.urandom(4).hex()}", target) for name, target in made]
     return [(name, f"CREATE INDEX {quote(name)} {target}") for name, target in unique]
