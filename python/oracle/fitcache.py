@@ -63,9 +63,9 @@ class FitCache(CacheFolder):
             return model.fit(steps)
         key = _entry_key(model, neem)
         path = self.root / f"{_file_name(key, store)}{self.SUFFIX}"
-        found = [entry for entry in (self._kept(kept, neem, key, model, steps), self._load(path, key, model, steps))
-                 if entry is not None]
-        cached = max(found, key=lambda m: m.fitted_steps_, default=None)
+        entries = [(raw, trusted) for raw, trusted in ((None if kept is None else kept.read_kept(neem, KIND), False),
+                                                       (self._load(path), True)) if raw is not None]
+        cached = _best(entries, key, model, steps)
         if cached is not None and cached.fitted_steps_ == len(steps):
             return cached
         fitted = cached.extend(steps) if cached is not None else model.fit(steps)
@@ -74,20 +74,15 @@ class FitCache(CacheFolder):
             self._store(path, data)
         return fitted
 
-    def _kept(self, kept: Store | None, neem: str, key: str, model: Any, steps: Sequence[Step]) -> Any | None:
-        raw = None if kept is None else kept.read_kept(neem, KIND)
-        return None if raw is None else _parse(raw, key, model, steps, trusted=False)
-
-    def _load(self, path: Path, key: str, model: Any, steps: Sequence[Step]) -> Any | None:
+    def _load(self, path: Path) -> bytes | None:
         try:
             with path.open("rb") as handle:
                 info = os.fstat(handle.fileno())
                 if not written_by_user_alone(info):
                     return None  # never unpickled
-                data = handle.read()
+                return handle.read()
         except OSError:
             return None
-        return _parse(data, key, model, steps, trusted=True)
 
     def _dumps(self, key: str, model: Any, steps: Sequence[Step]) -> bytes | None:
         try:
@@ -98,13 +93,35 @@ class FitCache(CacheFolder):
             return None
 
 
-def _parse(data: bytes, key: str, model: Any, steps: Sequence[Step], *, trusted: bool) -> Any | None:
-    """The model of an entry written by ``_dumps`` for ``key`` whose steps are the first of
-    ``steps``; None otherwise (a damaged or foreign entry is fitted afresh and replaced)."""
+def _best(entries: Sequence[tuple[bytes, bool]], key: str, model: Any, steps: Sequence[Step]) -> Any | None:
+    """The model of the kept entry (raw bytes, whether trusted: the store's is not) that fitted
+    the most of ``steps``. Each entry's head (its key, its number of steps and their digest) is
+    read first; only the chosen one's model is unpickled (4 MB at 50,000 actions), and a damaged
+    one gives way to the next."""
+    digests: dict[int, str] = {}
+    heads = []
+    for raw, trusted in entries:
+        try:
+            head, entry_key, count, digest, body = _Unpickler(io.BytesIO(raw), None, trusted).load()
+            if head != _FORMAT or entry_key != key or type(count) is not int or not 0 <= count <= len(steps):
+                continue
+            if count not in digests:
+                digests[count] = _steps_digest(steps[:count])
+            if digest == digests[count] and isinstance(body, bytes):
+                heads.append((count, body, trusted))
+        except Exception:
+            continue
+    for count, body, trusted in sorted(heads, key=lambda h: h[0], reverse=True):
+        cached = _parse(body, count, model, trusted=trusted)
+        if cached is not None:
+            return cached
+    return None
+
+
+def _parse(body: bytes, count: int, model: Any, *, trusted: bool) -> Any | None:
+    """The model pickled in an entry's ``body``, fitted on ``count`` steps; None when it is not
+    one (a damaged or foreign entry is fitted afresh and replaced)."""
     try:
-        head, entry_key, count, digest, body = _Unpickler(io.BytesIO(data), None, trusted).load()
-        if head != _FORMAT or entry_key != key or count > len(steps) or digest != _steps_digest(steps[:count]):
-            return None
         cached = _Unpickler(io.BytesIO(body), model.distances, trusted).load()
     except Exception:
         return None

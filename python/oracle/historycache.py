@@ -39,6 +39,7 @@ import hashlib
 import json
 import math
 import os
+import re
 from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -88,12 +89,10 @@ class HistoryCache(CacheFolder):
             return bridge.history_view()
         key = _entry_key(bridge)
         path = self.root / f"{_file_name(key, store.location)}{self.SUFFIX}"
-        kept = [entry for entry in (_parse(store.read_kept(neem, KIND), key), self._load(path, key)) if entry is not None]
-        for entry in kept:
-            if entry.mark == mark:
-                return entry.view
-        usable = [entry for entry in kept if same_tables(entry.mark, mark) and mark.last - entry.mark.last <= MAX_APPENDED]
-        view = _extended(bridge, max(usable, key=lambda e: e.mark.last), mark) if usable else None
+        entry = _best(mark, key, [raw for raw in (store.read_kept(neem, KIND), self._load(path)) if raw is not None])
+        if entry is not None and entry.mark == mark:
+            return entry.view
+        view = _extended(bridge, entry, mark) if entry is not None else None
         if view is None:
             view = bridge.history_view()
         data = _dumps(key, mark, view)
@@ -101,14 +100,43 @@ class HistoryCache(CacheFolder):
             self._store(path, data)
         return view
 
-    def _load(self, path: Path, key: str) -> _Entry | None:
+    def _load(self, path: Path) -> bytes | None:
         try:
             with path.open("rb") as handle:
                 if not written_by_user_alone(os.fstat(handle.fileno())):
                     return None
-                return _parse(handle.read(), key)
+                return handle.read()
         except OSError:
             return None
+
+
+def _best(mark: AppendMark, key: str, raws: Sequence[bytes]) -> _Entry | None:
+    """Of the kept entries ``raws`` (the store's, the user's file), the one to start from at
+    ``mark``: one taken at ``mark`` itself, else the one the fewest triples behind it that
+    may be extended (``same_tables``, at most MAX_APPENDED behind). Only that one is parsed
+    whole (a view of 50,000 rows takes 0.2 s); the others are judged by their mark
+    (``_header``), and a damaged one gives way to the next."""
+    marks = [(found, raw) for raw in raws if (found := _header(raw, key)) is not None]
+    usable = [(found, raw) for found, raw in marks
+              if found == mark or (same_tables(found, mark) and mark.last - found.last <= MAX_APPENDED)]
+    for found, raw in sorted(usable, key=lambda pair: (pair[0] == mark, pair[0].last), reverse=True):
+        entry = _parse(raw, key)
+        if entry is not None and entry.mark == found:
+            return entry
+    return None
+
+
+#: The start of an entry as ``_dumps`` writes it (compact JSON, its keys in that order).
+_HEAD = re.compile(rb'\{"format":"([^"\\]*)","key":"([0-9a-f]*)","mark":\["([^"\\]*)",(\d+),(\d+)\]')
+
+
+def _header(raw: bytes, key: str) -> AppendMark | None:
+    """The mark of an entry written by ``_dumps`` for ``key``, read from its first bytes; None
+    for another's entry or anything else (``_parse`` then checks the whole entry)."""
+    found = _HEAD.match(raw[:256])
+    if found is None or found[1].decode() != _FORMAT or found[2].decode() != key:
+        return None
+    return AppendMark(found[3].decode(), int(found[4]), int(found[5]))
 
 
 def _extended(bridge: Bridge, entry: _Entry, mark: AppendMark) -> HistoryView | None:

@@ -242,3 +242,23 @@ def test_an_entry_from_a_store_makes_nothing_but_the_predictors_own_classes(tmp_
     model = FitCache(tmp_path / "fits").fitted(RoutineOracle(matrix), steps, "s", "n", kept=store)
     assert not planted.exists() and store.kept[("n", fitcache.KIND)] != entry  # refitted, replaced
     _same(RoutineOracle(matrix).fit(steps), model, steps[-3:])
+
+
+def test_a_damaged_further_entry_gives_way_to_the_other(tmp_path, monkeypatch):
+    # the user's file is read first by its head; a model that will not load makes the cache
+    # extend the store's shorter fit, not fit afresh
+    import oracle.fitcache as fitcache
+
+    store, matrix, steps = _KeptStore(), random_matrix(6), synthetic_history(90, 6)
+    cache = FitCache(tmp_path / "fits")
+    cache.fitted(RoutineOracle(matrix), steps[:70], "s", "n", kept=store)
+    key = fitcache._entry_key(RoutineOracle(matrix), "n")
+    (tmp_path / "fits").mkdir(mode=0o700)
+    damaged = pickle.dumps((fitcache._FORMAT, key, 80, fitcache._steps_digest(steps[:80]), b"not a model"))
+    path = tmp_path / "fits" / f"{fitcache._file_name(key, 's')}{FitCache.SUFFIX}"
+    path.write_bytes(damaged)
+    os.chmod(path, 0o600)
+    monkeypatch.setattr(RoutineOracle, "fit", lambda self, history: pytest.fail("fitted afresh"))
+    grown = cache.fitted(RoutineOracle(matrix), steps, "s", "n", kept=store)  # the store's 70, extended
+    monkeypatch.undo()
+    _same(RoutineOracle(matrix).fit(steps), grown, steps[-4:])

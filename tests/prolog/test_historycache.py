@@ -321,3 +321,27 @@ def test_an_imagining_at_the_last_begin_reads_everything(neem, tmp_path):
     late.available(["pick(banana)"], datetime.fromtimestamp(last))
     late.flush()
     assert cache.history(counting) == bridge.history() and counting.full == 2
+
+
+def test_a_damaged_later_entry_gives_way_to_the_earlier_one(neem, tmp_path):
+    # entries are judged by their mark first; the chosen one, damaged past its mark, gives way
+    import json
+
+    from oracle.historycache import _entry_key, _file_name
+
+    store, log, bridge, rng, t = neem
+    cache = HistoryCache(tmp_path / "histories")
+    cache.history(bridge)  # kept in the store at this mark
+    _log_some(log, rng, t, 3)
+    latest = bridge.history_view()
+    mark = store.append_mark(bridge.neem_id)
+    data = {"format": "neem-oracle history 3", "key": _entry_key(bridge), "mark": [mark.token, mark.changes, mark.last],
+            "history": {"calls": [], "sets": [], "rows": ["soon"]}, "latest": None}
+    (tmp_path / "histories").mkdir(mode=0o700)
+    path = tmp_path / "histories" / f"{_file_name(_entry_key(bridge), store.location)}.json"
+    path.write_text(json.dumps(data, separators=(",", ":")))
+    os.chmod(path, 0o600)
+    counting = Counting(bridge)
+    view = cache.view(counting)
+    assert (counting.full, counting.after) == (0, 1)  # the store's entry, extended
+    assert view.rows == latest.rows and view.latest == latest.latest
