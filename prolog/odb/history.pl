@@ -24,7 +24,7 @@ situation, the one the next ranking is for.
                                list_to_assoc/2, put_assoc/4]).
 :- use_module(library(ordsets), [ord_memberchk/2]).
 :- use_module('../json_text', [json_text/2]).
-:- use_module('../lang/query', [kb_call/2, kb_findall/4, kb_group/5]).
+:- use_module('../lang/query', [kb_call/2, kb_findall/4, kb_findall/5, kb_group/5]).
 :- use_module('../lang/triple', [kb_iri/2]).
 :- use_module('../model/rdfs', []).
 :- use_module('../model/event', []).
