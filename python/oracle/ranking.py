@@ -30,7 +30,8 @@ from oracle.historycache import HistoryCache
 from oracle.calls import DoneBefore, call_of, check_call, idle_step, opening_tasks, option_of, steps_from_history
 from oracle.neem.writer import NeemLogger
 from oracle.ontology import OdbOntology
-from oracle.past.autonomy import NO_PART, ModeCounts, Performed, UsualMode, modes_from_rows, ranked_modes
+from oracle.past.autonomy import NO_PART, ModeCounts, Performed, UsualMode, modes_from_rows
+from oracle.past.modelogit import ranked_modes
 from oracle.timeline import IDLE_THRESHOLD_S, Instant, clock, has_clock, is_idle_gap, now, part_of_day_at
 
 if TYPE_CHECKING:

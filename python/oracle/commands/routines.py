@@ -106,8 +106,9 @@ def run_evaluation(args: argparse.Namespace) -> int:
           f"{prepared.routines:.1%} of {prepared.suggested} suggested, most-used-objects baseline "
           f"{prepared.baseline:.1%} of {prepared.baseline_suggested}")
     print(f"  autonomy mode ({modes.actions} actions, {modes.robot_share:.1%} by the robot, "
-          f"{modes.together_share:.1%} together): predicted right "
-          f"{modes.context:.1%}, per-task majority {modes.task_majority:.1%}, the generator's own odds {modes.ceiling:.1%}; "
-          f"right only by the predictor {modes.context_only}, only by the baseline {modes.baseline_only}; "
-          f"together said for {modes.together_recall:.1%} of the actions done together")
+          f"{modes.together_share:.1%} together): predicted right {modes.learned:.1%} (learned), "
+          f"{modes.context:.1%} (contexts), per-task majority {modes.task_majority:.1%}, "
+          f"the generator's own odds {modes.ceiling:.1%}; right only by the learned predictor {modes.learned_only}, "
+          f"only by the baseline {modes.baseline_only}; together said for {modes.together_recall:.1%} of the "
+          f"actions done together")
     return 0

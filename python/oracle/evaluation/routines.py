@@ -159,28 +159,30 @@ def score_preparation(personas: int = 105, days: int = 7, seed: int = 0, first_n
 @dataclass(frozen=True)
 class AutonomyScores:
     """Share of actions whose mode was predicted right, replayed progressively (each from the
-    earlier actions only), for the context predictor and the per-task majority baseline."""
+    earlier actions only, as ``rank`` and the service serve it): the learned predictor (the one
+    served, oracle.past.modelogit), the weighted contexts it is fitted to (oracle.past.autonomy)
+    and the per-task majority baseline."""
 
     personas: int
     actions: int
+    learned: float
     context: float
     task_majority: float
     robot_share: float
     ceiling: float  # the generator's own likeliest mode, which no predictor beats on average
-    context_only: int  # actions the context predictor got right and the baseline wrong
+    learned_only: int  # actions the learned predictor got right and the baseline wrong
     baseline_only: int  # and the other way round (the discordant pairs of a McNemar test)
-    together_share: float = 0.0
-    together_recall: float = 0.0  # of the actions done together, the share the context predictor said
+    together_share: float
+    together_recall: float  # of the actions done together, the share the learned predictor said
 
 
 def score_autonomy(personas: int = 105, days: int = 7, seed: int = 0, split: str = "test") -> AutonomyScores:
-    from collections import Counter
-
     from oracle.past.autonomy import ModeCounts, Performed, majority
+    from oracle.past.modelogit import ranked_modes
     from oracle.timeline import part_of_day_at
     from oracle.world.autonomy import autonomy_profile, modes_of, row_hour
 
-    right = base_right = total = robot = count = best = only = base_only = together = together_right = 0
+    right = context = base_right = total = robot = count = best = only = base_only = together = together_right = 0
     for persona in make_personas(personas, seed):
         if persona.split != split:
             continue
@@ -192,11 +194,13 @@ def score_autonomy(personas: int = 105, days: int = 7, seed: int = 0, split: str
         by_task: dict[str, Counter[str]] = {}
         for row, mode in zip(rows, modes):
             call, part = str(row.action), part_of_day_at(seconds_of(row.time)) if row.time else "Midday"
-            guess, _ = model.predict(call, part)
+            (usual,), _ = ranked_modes(model, [call], [], part)
+            guess = usual.mode or "user"  # nothing of its task known: the user, as a tie goes
             task_counts = by_task.get(row.action.task)
             base = majority(task_counts) if task_counts else "user"
             best += profile.likeliest(row.action.task, row.action.args, row_hour(row)) == mode
             right += guess == mode
+            context += model.predict(call, part)[0] == mode
             base_right += base == mode
             only += guess == mode != base
             base_only += base == mode != guess
@@ -206,6 +210,6 @@ def score_autonomy(personas: int = 105, days: int = 7, seed: int = 0, split: str
             together_right += mode == "together" == guess
             model.add(Performed(call, part, mode))
             by_task.setdefault(row.action.task, Counter())[mode] += 1
-    return AutonomyScores(count, total, right / total if total else 0.0, base_right / total if total else 0.0,
-                          robot / total if total else 0.0, best / total if total else 0.0, only, base_only,
-                          together / total if total else 0.0, together_right / together if together else 0.0)
+    share = (lambda n: n / total) if total else (lambda n: 0.0)
+    return AutonomyScores(count, total, share(right), share(context), share(base_right), share(robot), share(best),
+                          only, base_only, share(together), together_right / together if together else 0.0)

@@ -5,14 +5,14 @@ The mode of an action is predicted from the user's own past: the modes counted f
 (task and objects) in the same part of the day, for the call at any time, for the task in that
 part of the day and for the task, the more specific counting more. Ties go to the mode that leaves
 the user the most to do (the user, then together, then the robot: the robot leaves what the user
-still can do to the user). ``ranked_modes`` gives a ranking's tasks and its predicted chain their
-usual modes (``rank``, the service, the tablet page).
+still can do to the user). The counts are also what the learned predictor
+(``oracle.past.modelogit``, the one the ranking uses) is fitted to, and what its answers cite.
 """
 
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -61,11 +61,15 @@ class ModeCounts:
     #: Each call's task, parsed once (a history repeats a few hundred calls).
     tasks: dict[str, str] = field(default_factory=dict, repr=False, compare=False)
 
-    def contexts(self, call: str, part: str) -> tuple[tuple[str, tuple[str, ...]], ...]:
-        """The four contexts of a call, the most specific first, with their names."""
+    def task_of(self, call: str) -> str:
         task = self.tasks.get(call)
         if task is None:
             task = self.tasks[call] = parse_call(call).task
+        return task
+
+    def contexts(self, call: str, part: str) -> tuple[tuple[str, tuple[str, ...]], ...]:
+        """The four contexts of a call, the most specific first, with their names."""
+        task = self.task_of(call)
         return (("call and part", ("cp", call, part)), ("call", ("c", call)), ("task and part", ("tp", task, part)),
                 ("task", ("t", task)))
 
@@ -126,11 +130,3 @@ def modes_from_rows(rows: Iterable[HistoryRow]) -> ModeCounts:
         if call != "idle" and mode in MODES:
             counts.add(Performed(str(parse_call(call)), part or NO_PART, mode), times)
     return counts
-
-
-def ranked_modes(counts: ModeCounts, calls: Sequence[str], chain: Sequence[str], part: str | None,
-                 ) -> tuple[list[UsualMode], list[str | None]]:
-    """The usual mode of each ranked call and of each step of the predicted chain, in ``part``
-    of the day (None: a NEEM without a clock)."""
-    at = part or NO_PART
-    return [counts.usual(call, at) for call in calls], [counts.usual(call, at).mode for call in chain]

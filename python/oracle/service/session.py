@@ -19,7 +19,8 @@ from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError
 from oracle.neem.tf import Pose
 from oracle.neem.writer import LoggedAction, NeemLogger, check_performer
-from oracle.past.autonomy import NO_PART, ranked_modes
+from oracle.past.autonomy import NO_PART
+from oracle.past.modelogit import ranked_modes
 from oracle.timeline import Instant, TimeValueError, parse_iso
 from oracle.ontology import OdbOntology
 from oracle.bridge import HistoryRow
