@@ -81,3 +81,18 @@ def test_the_fit_is_the_penalised_likelihoods_minimum_whatever_the_order(actions
 
     best = minimize(loss, np.zeros(len(rows) * 3), method="BFGS", options={"gtol": 1e-8})
     assert loss(forward.weights.ravel()) == pytest.approx(best.fun, rel=1e-6, abs=1e-6)
+
+
+def test_a_call_done_the_same_way_three_times_keeps_its_mode():
+    # the robot does most things; the user poured twice, then three times, by hand
+    robot = [Performed(call, "Morning", "robot") for call in CALLS if "pour" not in call for _ in range(5)]
+    twice = fit(robot + [Performed("pour(thermos, red_mug)", "Morning", "user")] * 2)
+    thrice = fit(robot + [Performed("pour(thermos, red_mug)", "Morning", "user")] * 3)
+    (two,), _ = ranked_modes(twice, ["pour(thermos, red_mug)"], [], "Morning")
+    (three,), _ = ranked_modes(thrice, ["pour(thermos, red_mug)"], [], "Morning")
+    assert two.mode == "robot"  # two of its own weigh less than what everything else shares
+    assert three.mode == "user" and three.counts == {"robot": 0, "user": 3, "together": 0}
+    mixed = fit(robot + [Performed("pour(thermos, red_mug)", "Morning", "user")] * 3
+                + [Performed("pour(thermos, red_mug)", "Morning", "together")])
+    (four,), _ = ranked_modes(mixed, ["pour(thermos, red_mug)"], [], "Morning")
+    assert four.mode == fit_modes(mixed).predict("pour(thermos, red_mug)", "Morning")  # not unanimous: the logit

@@ -54,8 +54,11 @@ def test_the_language_is_asked_else_the_browsers_else_english():
      "Das macht meist der Roboter für Sie (1 von 1 Mal)."),
     ("together", {"robot": 2, "user": 0, "together": 2}, "You usually do this together with the robot (2 of 4 times).",
      "Das machen Sie meist zusammen mit dem Roboter (2 von 4 Malen)."),
-    # outvoted there by the wider contexts (the call at other times): no figure that says otherwise
-    ("user", {"robot": 4, "user": 3, "together": 0}, "You usually do this yourself.", "Das machen Sie meist selbst."),
+    # the predictor says other than these counts' most frequent: likely, not usual, and no figure
+    ("user", {"robot": 4, "user": 3, "together": 0}, "You would likely do this yourself.",
+     "Das würden Sie wohl selbst machen."),
+    ("robot", {"robot": 0, "user": 2, "together": 0}, "The robot would likely do this for you.",
+     "Das würde wohl der Roboter für Sie machen."),
     (None, {"robot": 0, "user": 0, "together": 0}, "", ""),
 ])
 def test_who_usually_does_it_in_both_languages(mode, counts, en, de):

@@ -31,6 +31,10 @@ from oracle.past.autonomy import NO_PART, TIE_ORDER, ModeCounts, UsualMode
 SHRINK = 10.0
 #: Iterations of the solver at most, and the gradient norm (per count) it stops at.
 ITERATIONS, TOLERANCE = 200, 1e-6
+#: A call done the same way this many times or more keeps that mode (chosen on the tune split).
+OWN = 3
+#: Scores closer than this are a tie (far below any difference the counts can make).
+TIE = 1e-4
 
 Loss = Callable[[np.ndarray], tuple[float, np.ndarray]]
 
@@ -53,9 +57,10 @@ class ModeLogit:
         return total
 
     def predict(self, call: str, part: str) -> str:
-        """The likeliest mode; a tie to the first of TIE_ORDER (the user)."""
+        """The likeliest mode; a tie (scores within TIE of the best: the solver's precision) to the
+        first of TIE_ORDER (the user)."""
         scores = self.scores(call, part)
-        return TIE_ORDER[int(np.argmax(scores))]  # argmax takes the first of equal scores
+        return TIE_ORDER[int(np.argmax(scores >= scores.max() - TIE))]  # the first of the best
 
 
 def ranked_modes(counts: ModeCounts, calls: Sequence[str], chain: Sequence[str], part: str | None,
@@ -63,15 +68,24 @@ def ranked_modes(counts: ModeCounts, calls: Sequence[str], chain: Sequence[str],
     """The usual mode of each ranked call and of each step of the predicted chain, in ``part``
     of the day (None: a NEEM without a clock): the logit's, with the counts of the most specific
     context that has any as its support (ModeCounts.usual). A call none of whose task's actions
-    is known has no usual mode (None)."""
+    is known has no usual mode (None); one done the same way every time, at least OWN times (in
+    this part of the day, or else at all), keeps that mode."""
     at = part or NO_PART
     model = fit_modes(counts)
 
     def usual(call: str) -> UsualMode:
         counted = counts.usual(call, at)
-        return counted if counted.mode is None else UsualMode(model.predict(call, at), counted.context, counted.counts)
+        if counted.mode is None or _kept(counted):
+            return counted
+        return UsualMode(model.predict(call, at), counted.context, counted.counts)
 
     return [usual(call) for call in calls], [usual(call).mode for call in chain]
+
+
+def _kept(counted: UsualMode) -> bool:
+    """The call's own counts are unanimous over OWN actions or more."""
+    total = sum(counted.counts.values())
+    return counted.context in ("call and part", "call") and total >= OWN and max(counted.counts.values()) == total
 
 
 def _features(call: str, task: str, part: str) -> tuple[str, ...]:

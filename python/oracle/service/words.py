@@ -198,14 +198,15 @@ class Words:
 def mode_sentence(lang: str, mode: str | None, counts: Mapping[str, int]) -> str:
     """The usual mode of a task with its support, in ``lang`` (``rank`` prints the English one):
     how often it was done so in the most specific context known (oracle.past.autonomy). Where the
-    wider contexts outvoted that one, the figure would contradict the words: none is given."""
+    predictor (oracle.past.modelogit) says another mode than those counts' most frequent, the
+    sentence says what is likely, not what is usual, and gives no figure that would contradict it."""
     if mode is None:
         return ""
     t = TEXT[lang]
     total = sum(counts.values())
     n = counts.get(mode, 0)
     if not total or n < max(counts.values()):
-        return t[f"mode_{mode}"].format(of="").replace(" ()", "")
+        return t[f"guess_{mode}"]
     return t[f"mode_{mode}"].format(of=(t["of_one"] if total == 1 else t["of_n"]).format(n=n, total=total))
 
 
@@ -259,6 +260,8 @@ TEXT: dict[str, dict[str, str]] = {
         "part_Morning": "Morning", "part_Midday": "Midday", "part_Evening": "Evening", "part_Night": "Night",
         "mode_user": "You usually do this yourself ({of}).", "mode_robot": "The robot usually does this for you ({of}).",
         "mode_together": "You usually do this together with the robot ({of}).",
+        "guess_user": "You would likely do this yourself.", "guess_robot": "The robot would likely do this for you.",
+        "guess_together": "You would likely do this together with the robot.",
         "of_n": "{n} of {total} times", "of_one": "{n} of 1 time",
         "who_user": "You", "who_robot": "The robot", "who_together": "Together",
         "who_is": "Who does it: {who}", "who_hint": "Tap a step\u2019s button to change who does it.",
@@ -303,6 +306,8 @@ TEXT: dict[str, dict[str, str]] = {
         "part_Morning": "Morgen", "part_Midday": "Mittag", "part_Evening": "Abend", "part_Night": "Nacht",
         "mode_user": "Das machen Sie meist selbst ({of}).", "mode_robot": "Das macht meist der Roboter f\u00fcr Sie ({of}).",
         "mode_together": "Das machen Sie meist zusammen mit dem Roboter ({of}).",
+        "guess_user": "Das w\u00fcrden Sie wohl selbst machen.", "guess_robot": "Das w\u00fcrde wohl der Roboter f\u00fcr Sie machen.",
+        "guess_together": "Das w\u00fcrden Sie wohl zusammen mit dem Roboter machen.",
         "of_n": "{n} von {total} Malen", "of_one": "{n} von 1 Mal",
         "who_user": "Sie", "who_robot": "Der Roboter", "who_together": "Gemeinsam",
         "who_is": "Wer es macht: {who}", "who_hint": "Tippen Sie auf den Knopf eines Schritts, um zu \u00e4ndern, wer ihn macht.",
