@@ -250,6 +250,7 @@ exposed(odb_history, latest_situation/3, read).
 exposed(odb_history, history_view_json/2, read).
 exposed(odb_history, latest_situation_json/1, read).
 exposed(odb_history, action_modes/2, read).
+exposed(odb_history, typed_modes/2, read).
 exposed(odb_names, odb_iri/2, read).
 exposed(odb_names, odb_set_namespace/1, write).
 exposed(odb_names, odb_set_task_roles/3, write).

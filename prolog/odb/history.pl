@@ -7,7 +7,8 @@
       latest_situation/3,         % -Begin, -Calls, -Part
       latest_situation_json/1,    % -JSONString
       history_view_json/2,        % +After, -JSONString
-      action_modes/2              % +After, -ModeOf
+      action_modes/2,             % +After, -ModeOf
+      typed_modes/2               % +Rows, -ModeOf
     ]).
 /** <module> odb history: the oracle's view of a NEEM (thesis 4.2)
 
@@ -299,6 +300,18 @@ history_view_json(After, JSON) :-
 action_modes(After, ModeOf) :-
     after_bound(After),
     performers_typed(After, Pairs, Persons, Agents),
+    pairs_modes(Pairs, Persons, Agents, ModeOf).
+
+%!  typed_modes(+Rows, -ModeOf) is det.
+%   ModeOf as action_modes/2 gives it, from rows `Action-Agent-Type`: an action, one of its
+%   performers (soma:isPerformedBy) and one of that performer's rdf:types, as one query over a
+%   few actions reads them (odb_past:performers/2).
+typed_modes(Rows, ModeOf) :-
+    must_be(list, Rows),
+    typed_pairs(Rows, Pairs, Persons, Agents),
+    pairs_modes(Pairs, Persons, Agents, ModeOf).
+
+pairs_modes(Pairs, Persons, Agents, ModeOf) :-
     group_pairs_by_key(Pairs, Groups),
     findall(A-Mode, ( member(A-Ags, Groups), agents_mode(Ags, Persons, Agents, Mode) ), ModePairs),
     list_to_assoc(ModePairs, ModeOf).
@@ -320,6 +333,9 @@ performers_typed(none, Pairs, Persons, Agents) :- !,
 performers_typed(After, Pairs, Persons, Agents) :-
     kb_findall(A-Ag-C, ( triple(I, soma:hasIntervalBegin, >(After)), has_time_interval(A, I),
                          is_performed_by(A, Ag), triple(Ag, rdf:type, C) ), any, [plan(written)], Rows),
+    typed_pairs(Rows, Pairs, Persons, Agents).
+
+typed_pairs(Rows, Pairs, Persons, Agents) :-
     kb_iri(dul:'NaturalPerson', Person), kb_iri(dul:'PhysicalAgent', Agent),
     findall(A-Ag, member(A-Ag-_, Rows), Pairs0),
     sort(Pairs0, Pairs),

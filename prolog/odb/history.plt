@@ -5,6 +5,7 @@
 :- use_module(library(assoc), [assoc_to_list/2]).
 :- use_module('../fixtures/triples', [fixture_assert/4]).
 :- use_module('../neem_store').
+:- use_module('../lang/triple', [kb_iri/2]).
 :- use_module('../fixtures/test_episode').
 :- use_module('../fixtures/history_reference').
 
@@ -35,6 +36,14 @@ test(action_modes_name_who_performed_each_action, [nondet, setup(load_test_episo
     action_modes(150, Later), assoc_to_list(Later, [A3-robot]),
     situation_history_json(J), atom_json_dict(J, D, []),
     D.rows = [_, _, _, _, _, "together", _, _, _, _, _, "robot", _, _, _, _, _, "robot"].
+
+test(typed_modes_read_the_rows_of_a_few_actions) :-
+    kb_iri(dul:'NaturalPerson', P), kb_iri(dul:'PhysicalAgent', G),
+    typed_modes([a1-ada-P, a1-ada-G, a1-edan-G, a2-edan-G, a3-ada-P, a4-nobody-other], ModeOf),
+    assoc_to_list(ModeOf, [a1-together, a2-robot, a3-user]).
+
+test(typed_modes_need_a_list, [error(type_error(list, rows))]) :-
+    typed_modes(rows, _).
 
 test(action_modes_needs_a_number_or_none, [error(type_error(number, soon))]) :-
     action_modes(soon, _).

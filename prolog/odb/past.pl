@@ -40,7 +40,7 @@ The sentences are made in Python (oracle.past); this module hands over the evide
 :- use_module('../model/situation', []).
 :- use_module('../model/tf', [object_frame_name/2]).
 :- use_module(names, [odb_iri/2, call_classes/3]).
-:- use_module(history, [action_modes/2]).
+:- use_module(history, [typed_modes/2]).
 :- use_module(calls, [task_calls/2, call_tasks/2, call_task_times/3, call_time/5]).
 :- use_module(decisions, [latest_first/4, imagined_preference/2, preference_at/3]).
 :- use_module('../answers', [call_text/2]).
@@ -220,8 +220,9 @@ object_place(Name, At, place(Pose, Used)) :-
 %   Who performed each action of Call, by begin: `Begin-Mode`, Mode `user` when a performer
 %   (soma:isPerformedBy) is a dul:NaturalPerson and no other is, `robot` when the performers
 %   are other dul:PhysicalAgents, `together` when there are both (the user and the robot),
-%   `unknown` without a performer of either type (odb_history:action_modes/2). One store
-%   query over the actions of Call's task class, kept for Call's tasks, and the NEEM's modes.
+%   `unknown` without a performer of either type (odb_history:typed_modes/2). Two store
+%   queries over the actions of Call's task class (their begins; their performers with their
+%   types), kept for Call's tasks.
 performers(Call, Modes) :-
     check_call(Call),
     call_classes(Call, TC, _),
@@ -230,7 +231,9 @@ performers(Call, Modes) :-
     kb_findall(A-B-T, ( triple(T, rdf:type, TC), executes_task(A, T), has_time_interval(A, I),
                         has_interval_begin(I, B) ), any, Actions0),
     findall(A-B, ( member(A-B-T, Actions0), ord_memberchk(T, Tasks) ), Actions),
-    action_modes(none, ModeOf),
+    kb_findall(A-Ag-C, ( triple(T, rdf:type, TC), executes_task(A, T), is_performed_by(A, Ag),
+                         triple(Ag, rdf:type, C) ), any, Typed),
+    typed_modes(Typed, ModeOf),
     findall(B-Mode, ( member(A-B, Actions), ( get_assoc(A, ModeOf, Mode) -> true ; Mode = unknown ) ), Modes0),
     msort(Modes0, Modes).
 
