@@ -173,6 +173,10 @@ class OnlineOracle(RoutineOracle):
             return None
         return self.summed_ / self.learnt_ if self.online_average else self.coef_
 
+    def _combined(self, log_p: np.ndarray, x: np.ndarray, w: np.ndarray) -> np.ndarray:
+        """The served scores of options with the routine predictor's ``log P`` and evidence ``x``."""
+        return cast(np.ndarray, log_p + (x / self._spread()) @ w)
+
     def serves(self) -> bool:
         """Whether ``rank`` re-weighs (w != 0 and, with ``online_gate`` z, the combination's hit
         score leads the routine predictor's on the decisions learnt by more than z standard errors)."""
@@ -197,7 +201,7 @@ class OnlineOracle(RoutineOracle):
         row = {option: i for i, option in enumerate(offered)}
         moment = self._clock.moment() if when is not None else None
         x = features(self, offered, now, moment)[[row[t.option] for t in tasks]]
-        u = np.log(np.maximum([t.probability for t in tasks], FLOOR)) + (x / self._spread()) @ w
+        u = self._combined(np.log(np.maximum([t.probability for t in tasks], FLOOR)), x, w)
         p = np.exp(u - u.max())
         p /= p.sum()
         order = sorted(range(len(tasks)), key=lambda i: (-p[i], i))  # ties: the routine predictor's order

@@ -18,6 +18,7 @@ from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.normalized import normalized_oracle
 from oracle.algorithm.online import OnlineOracle
+from oracle.algorithm.pooled import PooledOracle
 from oracle.algorithm.routine import RoutineOracle
 from oracle.algorithm.stacked import StackedOracle
 from oracle.algorithm.records import Option, Ranking, Step
@@ -65,6 +66,10 @@ def _online(distances: Any, opening: frozenset[str], settings: Hyperparameters) 
     return OnlineOracle(distances, opening_tasks=opening)
 
 
+def _pooled(distances: Any, opening: frozenset[str], settings: Hyperparameters) -> Predictor:
+    return PooledOracle(distances, opening_tasks=opening)
+
+
 def _thesis_normalized(distances: Any, opening: frozenset[str], settings: Hyperparameters) -> Predictor:
     return normalized_oracle(distances, settings, opening)
 
@@ -85,6 +90,8 @@ PREDICTORS: dict[str, PredictorSpec] = {
                              "(docs/algorithm.md, 'Stacked predictor')", _stacked),
     "online": PredictorSpec("online", "the routine predictor re-weighed by a per-user conditional logit over its "
                             "evidence, learnt after every decision (docs/algorithm.md, 'Online predictor')", _online),
+    "pooled": PredictorSpec("pooled", "the routine predictor and a per-user conditional logit over its evidence, "
+                            "pooled log-linearly (docs/algorithm.md, 'Pooled predictor')", _pooled),
     "thesis": PredictorSpec("thesis", "the thesis PreferenceOracle (chapter 4) with the given settings", _thesis),
     "thesis-normalized": PredictorSpec("thesis-normalized", "the thesis oracle over the normalised distances of "
                                        "thesis 6.4 (docs/algorithm.md)", _thesis_normalized),

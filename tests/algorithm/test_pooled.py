@@ -1,0 +1,104 @@
+"""The pooled predictor: the routine predictor and a per-user conditional logit, pooled log-linearly."""
+
+from __future__ import annotations
+
+import pickle
+
+import numpy as np
+import pytest
+
+from algoworld import random_matrix, synthetic_history
+from oracle.algorithm.evidence import features
+from oracle.algorithm.pooled import PooledOracle
+from oracle.algorithm.predictors import make_predictor
+from oracle.algorithm.records import RoutineTask
+from oracle.algorithm.routine import RoutineOracle
+from oracle.errors import SettingsError
+from oracle.evaluation.learned import Evidence, OnlineLogit
+
+
+def _served(model, steps):
+    return [[(t.option, t.probability) for t in model.rank(step)] for step in steps]
+
+
+def test_all_weight_on_the_routine_predictor_is_the_routine_predictor():
+    matrix = random_matrix(0)
+    steps = synthetic_history(150, 0)
+    pooled = PooledOracle(matrix, pool_weight=1.0).fit(steps[:120])
+    routine = RoutineOracle(matrix).fit(steps[:120])
+    assert pooled.learnt_ > 0 and np.any(pooled.coef_) and not pooled.serves()
+    for step in steps[120:]:
+        assert pooled.rank(step) == routine.rank(step)
+    # before its first decision the default serves the routine predictor's ranking
+    assert PooledOracle(matrix).fit([]).rank(steps[0]) == RoutineOracle(matrix).fit([]).rank(steps[0])
+
+
+def test_its_logit_learns_as_the_logit_baseline_does():
+    # the same decisions, the same rows: the same weights as the replay's `logit`
+    matrix = random_matrix(1)
+    steps = synthetic_history(60, 1)
+    pooled = PooledOracle(matrix).fit(steps[:40])
+    baseline = OnlineLogit(Evidence(matrix, frozenset()))
+    rng = np.random.default_rng(0)
+    width = pooled.coef_.size
+    start = pooled.coef_.copy()
+    baseline.w, baseline.g2 = start.copy(), pooled.squared_.copy()
+    for _ in range(30):
+        x = rng.normal(size=(5, width))
+        truth = int(np.argmax(x[:, 3]))
+        pooled._learn(x, np.zeros(5), truth)
+        baseline.learn(x, truth)
+    np.testing.assert_allclose(pooled.coef_, baseline.w)
+    assert not np.allclose(pooled.coef_, start)
+
+
+def test_the_pool_is_between_its_two_rankers():
+    matrix = random_matrix(2)
+    steps = synthetic_history(200, 2)
+    model = PooledOracle(matrix, pool_weight=0.5).fit(steps[:180])
+    step = steps[180]
+    offered = list(step.options)
+    routine = {t.option: t.probability for t in RoutineOracle(matrix).fit(steps[:180]).rank(step)}
+    x = features(model, offered, step.time_of_day, model._clock.moment())
+    q = np.exp(x @ model.coef_ - (x @ model.coef_).max())
+    q /= q.sum()
+    expected = np.sqrt(np.array([routine[o] for o in offered]) * q)
+    expected /= expected.sum()
+    served = {t.option: t.probability for t in model.rank(step)}
+    np.testing.assert_allclose([served[o] for o in offered], expected, rtol=1e-6)
+
+
+def test_fit_is_deterministic_and_extends_step_by_step_as_a_fresh_fit():
+    matrix = random_matrix(3)
+    steps = synthetic_history(160, 3)
+    fresh = PooledOracle(matrix).fit(steps)
+    again = pickle.loads(pickle.dumps(PooledOracle(matrix).fit(steps)))
+    assert np.array_equal(fresh.coef_, again.coef_) and np.any(fresh.coef_)
+    assert _served(fresh, steps[-5:]) == _served(again, steps[-5:])
+    stepwise = PooledOracle(matrix).fit(steps[:100])
+    for n in range(101, len(steps) + 1):
+        stepwise.extend(steps[:n])
+    assert np.array_equal(fresh.coef_, stepwise.coef_)
+    assert _served(fresh, steps[-5:]) == _served(stepwise, steps[-5:])
+
+
+def test_it_keeps_the_routine_explanation_of_each_option():
+    matrix = random_matrix(4)
+    steps = synthetic_history(200, 4)
+    assert isinstance(make_predictor("pooled", matrix), PooledOracle)
+    pooled = PooledOracle(matrix).fit(steps)
+    routine = RoutineOracle(matrix).fit(steps)
+    assert pooled.serves()
+    explained = {t.option: (t.context, t.situations, t.order, t.n_similar) for t in routine.rank(steps[-1])}
+    ranked = pooled.rank(steps[-1])
+    assert all(isinstance(t, RoutineTask) for t in ranked)
+    assert [t.rank for t in ranked] == list(range(1, len(ranked) + 1))
+    assert sum(t.probability for t in ranked) == pytest.approx(1.0)
+    assert {t.option: (t.context, t.situations, t.order, t.n_similar) for t in ranked} == explained
+
+
+@pytest.mark.parametrize("value", [-0.1, 1.5, "0.3", True, float("nan")])
+def test_a_bad_pool_weight_is_one_line_naming_it(value):
+    with pytest.raises(SettingsError, match="pool_weight") as raised:
+        PooledOracle(random_matrix(0), pool_weight=value).fit([])
+    assert "\n" not in str(raised.value)
