@@ -4,6 +4,7 @@ difference of the first method against each other one (95 % bootstrap interval).
 
 usage: python experiments/learned-dev.py CHAINS [--odb DIR --mapping YAML] [--users N]
        [--methods stacked,routine,logit,gbdt,kn3,ngram] [--stacked NAME=JSON] [--online NAME=JSON]
+       [--pooled NAME=JSON]
 Development use only (docs/algorithm.md, "Stacked predictor" and "Online predictor": the selection protocol).
 """
 
@@ -18,6 +19,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
 from oracle.algorithm.params import Hyperparameters  # noqa: E402
 from oracle.algorithm.online import OnlineOracle  # noqa: E402
+from oracle.algorithm.pooled import PooledOracle  # noqa: E402
 from oracle.algorithm.stacked import StackedOracle  # noqa: E402
 from oracle.calls import opening_tasks  # noqa: E402
 from oracle.ontology import build_ontology  # noqa: E402
@@ -49,6 +51,7 @@ def main() -> int:
     parser.add_argument("--methods", default="stacked,routine,logit,gbdt,kn3,ngram")
     parser.add_argument("--stacked", action="append", default=[], help="NAME=JSON settings of another stacked row")
     parser.add_argument("--online", action="append", default=[], help="NAME=JSON settings of another online row")
+    parser.add_argument("--pooled", action="append", default=[], help="NAME=JSON settings of another pooled row")
     args = parser.parse_args()
     ontology = build_ontology(args.odb, args.mapping)
     users = load_users(args.chains)
@@ -57,7 +60,7 @@ def main() -> int:
     evidence = Evidence(ontology.distances(), opening_tasks(ontology))
     methods = []
     for name in args.methods.split(","):
-        if name in ("stacked", "online", "routine", "routine-fixed", "thesis"):
+        if name in ("stacked", "online", "pooled", "routine", "routine-fixed", "thesis"):
             methods.append(OracleMethod(ontology, Hyperparameters(), method=name, served=True))
         elif name == "logit":
             methods.append(OnlineLogit(evidence))
@@ -71,6 +74,9 @@ def main() -> int:
     for spec in args.online:
         label, _, text = spec.partition("=")
         methods.append(Configured(ontology, label, json.loads(text), OnlineOracle))
+    for spec in args.pooled:
+        label, _, text = spec.partition("=")
+        methods.append(Configured(ontology, label, json.loads(text), PooledOracle))
     result = replay(ontology, users, methods, 0, None, ReplayRules())
     summary = summarize(result)
     names = result.methods()
