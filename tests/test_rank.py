@@ -130,7 +130,7 @@ def test_rank_method_thesis_writes_the_thesis_ranking_and_names_the_method(store
     assert best["call"] == "place(thermos, counter_top)" and best["context_order"] == 3 and best["similar"] == 2
     assert [r["score"] for r in routine["ranking"]] == sorted(r["score"] for r in routine["ranking"])
     assert main(["rank", "--store", str(store), "--method", "bayes"]) == 1
-    assert ("unknown method 'bayes' (known: routine, routine-fixed, routine-mixture, stacked, online, thesis, "
+    assert ("unknown method 'bayes' (known: routine, routine-fixed, routine-mixture, stacked, online, pooled, thesis, "
             "thesis-normalized)") in capsys.readouterr().err
 
 

@@ -59,7 +59,8 @@ METHOD = Option(("--method",), {
     "help": "predictor (oracle.algorithm.predictors): routine (the default: exact contexts backed off to ontology "
             "similarity, self-tuned), routine-fixed, routine-mixture, stacked (routine re-weighed by a per-user logit "
             "where that leads), online (routine re-weighed by a per-user logit learnt after every decision, where "
-            "that leads), thesis (the thesis oracle with --settings) or thesis-normalized (its distances divided by "
+            "that leads), pooled (routine and a per-user logit over its evidence, pooled log-linearly), thesis (the thesis "
+            "oracle with --settings) or thesis-normalized (its distances divided by "
             "their mean, thesis 6.4)",
 })
 #: The options naming the ontology a command works with (see ``ontology_from``).
