@@ -157,6 +157,11 @@ class OnlineOracle(RoutineOracle):
             d = hit_score(offset + z @ served, truth) - hit_score(offset, truth)
             self.lead_ += d
             self.spread_ += d * d
+        self._step(z, offset, truth)
+
+    def _step(self, z: np.ndarray, offset: np.ndarray | float, truth: int) -> None:
+        """One AdaGrad step on ``-log softmax(offset + z w)[truth] + online_l2 / 2 |w|^2``."""
+        assert self.coef_ is not None and self.squared_ is not None
         u = offset + z @ self.coef_
         p = np.exp(u - u.max())
         p /= p.sum()

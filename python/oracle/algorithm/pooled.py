@@ -57,14 +57,7 @@ class PooledOracle(OnlineOracle):
         if self.coef_ is None or self.squared_ is None:
             self.coef_ = np.zeros(x.shape[1])
             self.squared_ = np.full(x.shape[1], max(float(self.online_damping), 1e-12))
-        u = x @ self.coef_
-        p = np.exp(u - u.max())
-        p /= p.sum()
-        grad = p @ x - x[truth] + self.online_l2 * self.coef_
-        self.squared_ = self.squared_ + grad * grad
-        self.coef_ = self.coef_ - self.online_rate * grad / np.sqrt(self.squared_)
-        self.summed_ = self.coef_.copy() if self.summed_ is None else self.summed_ + self.coef_
-        self.learnt_ += 1
+        self._step(x, 0.0, truth)
 
     def serves(self) -> bool:
         """Whether ``rank`` pools: once the logit has learnt from a decision, and the routine

@@ -20,7 +20,7 @@ path).
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -46,11 +46,14 @@ class ModeLogit:
 
     weights: np.ndarray
     rows: dict[str, int]
+    #: The calls' tasks as the counts parsed them (ModeCounts.tasks), shared, not copied.
+    tasks: dict[str, str] = field(default_factory=dict, repr=False, compare=False)
 
     def scores(self, call: str, part: str) -> np.ndarray:
         """The mode's scores for ``call`` in ``part`` (features never seen add nothing)."""
         total = np.zeros(len(TIE_ORDER))
-        for name in _features(call, parse_call(call).task, part):
+        task = self.tasks.get(call) or parse_call(call).task
+        for name in _features(call, task, part):
             row = self.rows.get(name)
             if row is not None:
                 total += self.weights[row]
@@ -79,7 +82,8 @@ def ranked_modes(counts: ModeCounts, calls: Sequence[str], chain: Sequence[str],
             return counted
         return UsualMode(model.predict(call, at), counted.context, counted.counts)
 
-    return [usual(call) for call in calls], [usual(call).mode for call in chain]
+    known = {call: usual(call) for call in {*calls, *chain}}  # the chain's steps are mostly ranked calls
+    return [known[call] for call in calls], [known[call].mode for call in chain]
 
 
 def _kept(counted: UsualMode) -> bool:
@@ -105,7 +109,7 @@ def fit_modes(counts: ModeCounts, shrink: float = SHRINK) -> ModeLogit:
         seen[i] = [counted.get(mode, 0) for mode in TIE_ORDER]
     width = (len(rows), len(TIE_ORDER))
     if not cells:
-        return ModeLogit(np.zeros(width), rows)
+        return ModeLogit(np.zeros(width), rows, counts.tasks)
     totals = seen.sum(axis=1, keepdims=True)
 
     def loss(flat: np.ndarray) -> tuple[float, np.ndarray]:
@@ -121,7 +125,7 @@ def fit_modes(counts: ModeCounts, shrink: float = SHRINK) -> ModeLogit:
         return value, grad.ravel()
 
     flat = _minimise(loss, np.zeros(width[0] * width[1]), TOLERANCE * float(totals.sum()))
-    return ModeLogit(flat.reshape(width), rows)
+    return ModeLogit(flat.reshape(width), rows, counts.tasks)
 
 
 def _minimise(loss: Loss, start: np.ndarray, tolerance: float, memory: int = 8) -> np.ndarray:
