@@ -218,7 +218,8 @@ def test_the_registry_names_the_default_and_the_exact_thesis_oracle():
         direct = PreferenceOracle.from_settings(matrix, PRESETS[name], frozenset({TASKS[3]})).fit(steps[:50])
         assert thesis.rank(steps[55]) == direct.rank(steps[55])
     assert predictor_spec(" Thesis ").name == "thesis"
-    with pytest.raises(SettingsError, match="known: routine, routine-fixed, routine-mixture, stacked, online, pooled, thesis, thesis-normalized"):
+    with pytest.raises(SettingsError, match="known: routine, routine-fixed, routine-mixture, stacked, online, pooled, "
+                                            "thesis, thesis-normalized"):
         make_predictor("bayes", matrix)
 
 
