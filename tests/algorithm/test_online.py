@@ -1,5 +1,6 @@
 """Claims about the online predictor (docs/algorithm.md, "Online predictor"): the routine
-predictor's ranking re-weighed by a conditional logit learnt after every decision."""
+predictor's ranking re-weighed by a conditional logit learnt after every decision; the claims it
+shares with the pooled predictor are run for both."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ import pytest
 from algoworld import random_matrix, synthetic_history
 from oracle.algorithm.evidence import DecisionClock, features
 from oracle.algorithm.online import OnlineOracle
+from oracle.algorithm.pooled import PooledOracle
 from oracle.algorithm.predictors import make_predictor
 from oracle.algorithm.records import RoutineTask, Step
 from oracle.algorithm.routine import RoutineOracle
@@ -81,29 +83,32 @@ def test_the_gate_opens_only_once_the_combination_leads_on_the_decisions_learnt(
     assert not OnlineOracle(matrix, online_gate=1e9).fit(synthetic_history(40, 2)).serves()
 
 
-def test_fit_is_deterministic_and_extends_step_by_step_as_a_fresh_fit():
+@pytest.mark.parametrize("make", [lambda m: OnlineOracle(m, online_gate=None), PooledOracle], ids=["online", "pooled"])
+def test_fit_is_deterministic_and_extends_step_by_step_as_a_fresh_fit(make):
     matrix = random_matrix(3)
     steps = synthetic_history(160, 3)
-    fresh = OnlineOracle(matrix, online_gate=None).fit(steps)
-    again = pickle.loads(pickle.dumps(OnlineOracle(matrix, online_gate=None).fit(steps)))
+    fresh = make(matrix).fit(steps)
+    again = pickle.loads(pickle.dumps(make(matrix).fit(steps)))
     assert np.array_equal(fresh.coef_, again.coef_) and np.any(fresh.coef_)
     assert _served(fresh, steps[-5:]) == _served(again, steps[-5:])
-    stepwise = OnlineOracle(matrix, online_gate=None).fit(steps[:100])
+    stepwise = make(matrix).fit(steps[:100])
     for n in range(101, len(steps) + 1):
         stepwise.extend(steps[:n])
     assert np.array_equal(fresh.coef_, stepwise.coef_)
     assert _served(fresh, steps[-5:]) == _served(stepwise, steps[-5:])
 
 
-def test_it_keeps_the_routine_explanation_of_each_option():
+@pytest.mark.parametrize("name, cls, make", [("online", OnlineOracle, lambda m: OnlineOracle(m, online_gate=None)),
+                                             ("pooled", PooledOracle, PooledOracle)], ids=["online", "pooled"])
+def test_it_keeps_the_routine_explanation_of_each_option(name, cls, make):
     matrix = random_matrix(4)
     steps = synthetic_history(200, 4)
-    assert isinstance(make_predictor("online", matrix), OnlineOracle)
-    online = OnlineOracle(matrix, online_gate=None).fit(steps)
+    assert isinstance(make_predictor(name, matrix), cls)
+    combined = make(matrix).fit(steps)
     routine = RoutineOracle(matrix).fit(steps)
-    assert online.serves()
+    assert combined.serves()
     explained = {t.option: (t.context, t.situations, t.order, t.n_similar) for t in routine.rank(steps[-1])}
-    ranked = online.rank(steps[-1])
+    ranked = combined.rank(steps[-1])
     assert all(isinstance(t, RoutineTask) for t in ranked)
     assert [t.rank for t in ranked] == list(range(1, len(ranked) + 1))
     assert sum(t.probability for t in ranked) == pytest.approx(1.0)

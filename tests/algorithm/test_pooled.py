@@ -2,16 +2,12 @@
 
 from __future__ import annotations
 
-import pickle
-
 import numpy as np
 import pytest
 
 from algoworld import random_matrix, synthetic_history
 from oracle.algorithm.evidence import features
 from oracle.algorithm.pooled import PooledOracle
-from oracle.algorithm.predictors import make_predictor
-from oracle.algorithm.records import RoutineTask
 from oracle.algorithm.routine import RoutineOracle
 from oracle.errors import SettingsError
 from oracle.evaluation.learned import Evidence, OnlineLogit
@@ -68,33 +64,8 @@ def test_the_pool_is_between_its_two_rankers():
     np.testing.assert_allclose([served[o] for o in offered], expected, rtol=1e-6)
 
 
-def test_fit_is_deterministic_and_extends_step_by_step_as_a_fresh_fit():
-    matrix = random_matrix(3)
-    steps = synthetic_history(160, 3)
-    fresh = PooledOracle(matrix).fit(steps)
-    again = pickle.loads(pickle.dumps(PooledOracle(matrix).fit(steps)))
-    assert np.array_equal(fresh.coef_, again.coef_) and np.any(fresh.coef_)
-    assert _served(fresh, steps[-5:]) == _served(again, steps[-5:])
-    stepwise = PooledOracle(matrix).fit(steps[:100])
-    for n in range(101, len(steps) + 1):
-        stepwise.extend(steps[:n])
-    assert np.array_equal(fresh.coef_, stepwise.coef_)
-    assert _served(fresh, steps[-5:]) == _served(stepwise, steps[-5:])
-
-
-def test_it_keeps_the_routine_explanation_of_each_option():
-    matrix = random_matrix(4)
-    steps = synthetic_history(200, 4)
-    assert isinstance(make_predictor("pooled", matrix), PooledOracle)
-    pooled = PooledOracle(matrix).fit(steps)
-    routine = RoutineOracle(matrix).fit(steps)
-    assert pooled.serves()
-    explained = {t.option: (t.context, t.situations, t.order, t.n_similar) for t in routine.rank(steps[-1])}
-    ranked = pooled.rank(steps[-1])
-    assert all(isinstance(t, RoutineTask) for t in ranked)
-    assert [t.rank for t in ranked] == list(range(1, len(ranked) + 1))
-    assert sum(t.probability for t in ranked) == pytest.approx(1.0)
-    assert {t.option: (t.context, t.situations, t.order, t.n_similar) for t in ranked} == explained
+# fit against extend, and the routine predictor's explanation kept: tests/algorithm/test_online.py (both
+# combinations).
 
 
 @pytest.mark.parametrize("value", [-0.1, 1.5, "0.3", True, float("nan")])
