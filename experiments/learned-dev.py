@@ -1,6 +1,7 @@
 """Replay chains with the stacked or online predictor, the routine predictor, the learned baselines and a
 few token baselines under the honest replay rules; print Top-1/3/5 and the paired Top-3
-difference of the first method against each other one (95 % bootstrap interval).
+difference of the first method against each other one (95 % bootstrap interval), then each
+method's Top-1/3/5 over each user's first 30 predictions (the cold start).
 
 usage: python experiments/learned-dev.py CHAINS [--odb DIR --mapping YAML] [--users N]
        [--methods stacked,routine,logit,gbdt,kn3,ngram] [--stacked NAME=JSON] [--online NAME=JSON]
@@ -26,7 +27,7 @@ from oracle.ontology import build_ontology  # noqa: E402
 from oracle.evaluation.baselines import BASELINES  # noqa: E402
 from oracle.evaluation.learned import Evidence, Gbdt, OnlineLogit  # noqa: E402
 from oracle.evaluation.replay import OracleMethod, ReplayRules, load_users, replay, summarize  # noqa: E402
-from oracle.evaluation.statistics import comparison_summary  # noqa: E402
+from oracle.evaluation.statistics import cold_start_summary, comparison_summary  # noqa: E402
 
 
 class Configured(OracleMethod):
@@ -89,6 +90,11 @@ def main() -> int:
             d = paired[name]["top3"]
             line += f"  top3 {names[0]} - this: {-100 * d['difference']:+.2f} [{-100 * d['high']:+.2f}, {-100 * d['low']:+.2f}]"
         print(line)
+    cold = cold_start_summary(result)
+    print(f"cold start (each user's first {cold['first_predictions']} predictions, {cold['n_predictions']} in all):")
+    for name in names:
+        c = cold["methods"][name]
+        print(f"  {name:22s} {c['top1']:.3f} {c['top3']:.3f} {c['top5']:.3f}")
     return 0
 
 

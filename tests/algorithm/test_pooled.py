@@ -73,3 +73,36 @@ def test_a_bad_pool_weight_is_one_line_naming_it(value):
     with pytest.raises(SettingsError, match="pool_weight") as raised:
         PooledOracle(random_matrix(0), pool_weight=value).fit([])
     assert "\n" not in str(raised.value)
+
+
+def test_a_gate_no_candidate_passes_serves_the_routine_predictor():
+    matrix = random_matrix(3)
+    steps = synthetic_history(150, 3)
+    gated = PooledOracle(matrix, pool_weight="auto", online_gate=1e9).fit(steps[:120])
+    routine = RoutineOracle(matrix).fit(steps[:120])
+    assert gated.learnt_ > 0 and gated.leads_.shape == (4,) and np.any(gated.spreads_)
+    assert gated.served_weight() is None and not gated.serves()
+    for step in steps[120:130]:
+        assert gated.rank(step) == routine.rank(step)
+
+
+def test_the_gate_serves_the_candidate_with_the_largest_lead_over_the_routine_predictor():
+    model = PooledOracle(random_matrix(4), pool_weight="auto", online_gate=1.0).fit(synthetic_history(80, 4))
+    model.leads_[:] = [1.0, 9.0, 12.0, 3.0]
+    model.spreads_[:] = [4.0, 16.0, 400.0, 4.0]  # 0.4 leads by 12, but by less than one standard error (20)
+    assert model.served_weight() == 0.6
+    model.leads_[:] = [-1.0, 0.0, 2.0, 1.0]
+    model.spreads_[:] = [1.0, 1.0, 9.0, 4.0]
+    assert model.served_weight() is None
+
+
+def test_the_gates_evidence_is_each_weights_hit_score_minus_the_routine_predictors():
+    model = PooledOracle(random_matrix(5), pool_weight=0.5, online_gate=0.0).fit(synthetic_history(40, 5))
+    model.coef_ = np.eye(model.coef_.size)[0]
+    model.leads_[:] = 0.0
+    model.spreads_[:] = 0.0
+    x = np.zeros((6, model.coef_.size))
+    x[1, 0] = 3.0
+    routine = np.log(np.array([0.3, 0.02, 0.2, 0.18, 0.16, 0.14]))  # the truth (1) last: hit score 0
+    model._learn(x, routine, 1)  # pooled at 0.5 it ranks first: hit score 1
+    assert model.leads_.tolist() == [1.0] and model.spreads_.tolist() == [1.0]

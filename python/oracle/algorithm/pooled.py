@@ -15,7 +15,13 @@ Everything else is ``online``'s: ``fit`` learns from the latest ``online_window`
 ``extend`` and ``partial_fit`` from every later one, the rows of a decision are taken at the moment
 its history shows (``evidence.DecisionClock``), and every ranked option keeps the routine
 predictor's explanation, with the pool's rank, probability (``softmax(u)``) and score.
-docs/algorithm.md, "Pooled predictor".
+
+The gate (``online_gate``, None by default: always pool): before each decision is learnt, each
+candidate weight (``pool_weight``, or with ``pool_weight="auto"`` each of ``AUTO_WEIGHTS``) and the
+routine predictor alone rank it; a candidate is served only once its summed hit score leads the
+routine predictor's by more than ``online_gate`` standard errors of the paired differences, and of
+those the one with the largest lead (the self-tuning's switch rule, the routine predictor the
+incumbent). docs/algorithm.md, "Pooled predictor".
 """
 
 from __future__ import annotations
@@ -28,10 +34,14 @@ import numpy as np
 
 from oracle.algorithm.online import OnlineOracle
 from oracle.algorithm.records import Step
+from oracle.algorithm.stacked import hit_score
 from oracle.errors import SettingsError
 
 #: The routine predictor's weight in the pool (chosen on the development sets, docs/algorithm.md).
 POOL_WEIGHT = 0.3
+
+#: the weights ``pool_weight="auto"`` chooses from, each user by their own decisions (the gate's rule)
+AUTO_WEIGHTS = (0.8, 0.6, 0.4, 0.2)
 
 
 class PooledOracle(OnlineOracle):
@@ -39,15 +49,19 @@ class PooledOracle(OnlineOracle):
 
     _param_names = OnlineOracle._param_names + ("pool_weight",)
 
-    def __init__(self, distances: Any = None, *, pool_weight: float = POOL_WEIGHT, online_damping: float = 1e-8,
+    def __init__(self, distances: Any = None, *, pool_weight: float | str = POOL_WEIGHT, online_damping: float = 1e-8,
                  online_gate: float | None = None, **online: Any) -> None:
         super().__init__(distances, online_damping=online_damping, online_gate=online_gate, **online)
         self.pool_weight = pool_weight
 
     def fit(self, history: Iterable[Step]) -> PooledOracle:
         weight = self.pool_weight
-        if isinstance(weight, bool) or not isinstance(weight, (int, float)) or not 0.0 <= weight <= 1.0:
-            raise SettingsError(f"{type(self).__name__}: pool_weight must be a number from 0 to 1, got {weight!r}")
+        if weight != "auto" and (isinstance(weight, bool) or not isinstance(weight, (int, float)) or not 0.0 <= weight <= 1.0):
+            raise SettingsError(f"{type(self).__name__}: pool_weight must be a number from 0 to 1 or 'auto', got {weight!r}")
+        candidates = AUTO_WEIGHTS if weight == "auto" else (float(cast(float, weight)),)
+        self.candidates_ = np.array(candidates, dtype=float)
+        self.leads_ = np.zeros(len(candidates))    # each candidate's hit score minus routine's, summed
+        self.spreads_ = np.zeros(len(candidates))  # the sums of their squares
         super().fit(history)
         return self
 
@@ -57,17 +71,40 @@ class PooledOracle(OnlineOracle):
         if self.coef_ is None or self.squared_ is None:
             self.coef_ = np.zeros(x.shape[1])
             self.squared_ = np.full(x.shape[1], max(float(self.online_damping), 1e-12))
+        else:  # the gate's evidence: each candidate weight's pool before it learns this decision
+            log_q = _log_softmax(x @ self.coef_)
+            alone = hit_score(offset, truth)
+            for i, a in enumerate(self.candidates_):
+                d = hit_score(a * offset + (1.0 - a) * log_q, truth) - alone
+                self.leads_[i] += d
+                self.spreads_[i] += d * d
         self._step(x, 0.0, truth)
 
+    def served_weight(self) -> float | None:
+        """The routine predictor's weight in the pool ``rank`` serves: the fixed ``pool_weight``, or
+        with a gate the candidate leading by more than ``online_gate`` standard errors (the largest
+        lead); None when the routine predictor ranks alone."""
+        if self.weights() is None:
+            return None
+        gate = self.online_gate
+        if gate is None and len(self.candidates_) == 1:
+            chosen: float | None = float(self.candidates_[0])
+        else:
+            passed = self.leads_ > (gate or 0.0) * np.sqrt(self.spreads_)
+            chosen = float(self.candidates_[int(np.argmax(np.where(passed, self.leads_, -np.inf)))]) if passed.any() else None
+        return chosen if chosen is not None and chosen < 1.0 else None
+
     def serves(self) -> bool:
-        """Whether ``rank`` pools: once the logit has learnt from a decision, and the routine
-        predictor does not take the whole weight."""
-        return self.weights() is not None and self.pool_weight < 1.0
+        """Whether ``rank`` pools (``served_weight``)."""
+        return self.served_weight() is not None
 
     def _combined(self, log_p: np.ndarray, x: np.ndarray, w: np.ndarray) -> np.ndarray:
         """``a log P + (1 - a) log Q``: the routine predictor's and the logit's log-probabilities."""
-        logit = x @ w
-        logit = logit - logit.max()
-        logit = logit - math.log(float(np.exp(logit).sum()))
-        a = float(self.pool_weight)
-        return cast(np.ndarray, a * log_p + (1.0 - a) * logit)
+        a = self.served_weight()
+        assert a is not None
+        return cast(np.ndarray, a * log_p + (1.0 - a) * _log_softmax(x @ w))
+
+
+def _log_softmax(u: np.ndarray) -> np.ndarray:
+    u = u - u.max()
+    return cast(np.ndarray, u - math.log(float(np.exp(u).sum())))
