@@ -704,3 +704,21 @@ def test_the_similarity_mass_by_kinds_equals_it_per_action_bit_for_bit(actions, 
     grouped = similarity_mass(cand, executed, context_distance(table, now, before[order], 1.5, 0.5), differs[order],
                               tau, 2.0, kind_of)
     assert alone.tobytes() == grouped.tobytes()
+
+
+def test_the_variants_scores_count_ties_as_rank_orders_them():
+    # every variant scored at once equals each scored alone: ties go to the option offered first
+    rng = np.random.default_rng(7)
+    for _ in range(200):
+        size = int(rng.integers(1, 9))
+        probabilities = [rng.integers(0, 4, size) / 4.0 for _ in range(5)]
+        truth = int(rng.integers(0, size))
+        weights = VariantWeights(5)
+        weights.update(probabilities, truth)
+        hits = []
+        for p in probabilities:
+            better = sum(1 for i, q in enumerate(p) if q > p[truth] or (q == p[truth] and i < truth))
+            hits.append(((better < 1) + (better < 3) + (better < 5)) / 3.0)
+        assert weights.hits.tolist() == hits
+        assert weights.spread.tolist() == [(h - hits[0]) ** 2 for h in hits]
+        assert weights.scores.tolist() == [math.log(max(float(p[truth]), 1e-12)) for p in probabilities]

@@ -39,15 +39,15 @@ class VariantWeights:
         """Score every variant's distribution over the offered options on the option done
         (``position``: the step's place in the history, for ``keep_from``)."""
         terms = np.zeros((3, self.scores.size))
-        first = 0.0
-        for v, p in enumerate(probabilities):
-            terms[0, v] = math.log(max(float(p[truth]), FLOOR))
-            # rank as ``rank`` orders: by probability, ties by the order offered
-            better = int(np.count_nonzero(p > p[truth])) + int(np.count_nonzero(p[:truth] == p[truth]))
-            hit = ((better < 1) + (better < 3) + (better < 5)) / 3.0
-            first = hit if v == 0 else first
-            terms[1, v] = hit
-            terms[2, v] = (hit - first) ** 2
+        stacked = np.asarray(probabilities)
+        chosen = stacked[:, truth]
+        n = len(chosen)
+        terms[0, :n] = [math.log(max(p, FLOOR)) for p in chosen.tolist()]
+        # rank as ``rank`` orders: by probability, ties by the order offered
+        better = np.count_nonzero(stacked > chosen[:, None], axis=1) + np.count_nonzero(
+            stacked[:, :truth] == chosen[:, None], axis=1)
+        terms[1, :n] = ((better < 1).astype(float) + (better < 3) + (better < 5)) / 3.0
+        terms[2, :n] = (terms[1, :n] - terms[1, 0]) ** 2
         self._add(terms)
         if self.kept is not None:
             self.kept.append((position, terms))
