@@ -5,7 +5,7 @@ method's Top-1/3/5 over each user's first 30 predictions (the cold start).
 
 usage: python experiments/learned-dev.py CHAINS [--odb DIR --mapping YAML] [--users N]
        [--methods stacked,routine,logit,gbdt,kn3,ngram] [--stacked NAME=JSON] [--online NAME=JSON]
-       [--pooled NAME=JSON]
+       [--pooled NAME=JSON] [--batch NAME=JSON]
 Development use only (docs/algorithm.md, "Stacked predictor" and "Online predictor": the selection protocol).
 """
 
@@ -16,6 +16,9 @@ import json
 import sys
 from collections import OrderedDict
 from pathlib import Path
+
+import numpy as np
+from scipy.optimize import minimize
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
 from oracle.algorithm.params import Hyperparameters  # noqa: E402
@@ -43,6 +46,53 @@ class Configured(OracleMethod):
         self.history = []
 
 
+class BatchLogit(OnlineLogit):
+    """A conditional logit refitted to all the user's decisions (or the latest ``window``) with
+    L2 strength ``l2`` by L-BFGS, at the 16th decision and every ``every``-th after it, warm
+    started; the online ``logit`` ranks until its first fit. A development trial only: whether
+    a fully fitted logit on the same evidence ranks better than the online one."""
+
+    def __init__(self, evidence: Evidence, name: str, l2: float = 1.0, every: int = 32, window: int = 0) -> None:
+        self.name, self.l2_batch, self.every, self.window = name, l2, every, window
+        super().__init__(evidence)
+
+    def reset(self) -> None:
+        super().reset()
+        self.decisions: list[tuple[np.ndarray, int]] = []
+        self.fitted: np.ndarray | None = None
+
+    def scores(self, x: np.ndarray) -> np.ndarray:
+        return x @ self.fitted if self.fitted is not None else super().scores(x)
+
+    def learn(self, x: np.ndarray, truth: int) -> None:
+        super().learn(x, truth)
+        self.decisions.append((x, truth))
+        n = len(self.decisions)
+        if n == 16 or (n > 16 and n % self.every == 0):
+            self.refit()
+
+    def refit(self) -> None:
+        decisions = self.decisions[-self.window:] if self.window else self.decisions
+        x = np.concatenate([rows for rows, _ in decisions])
+        sizes = np.array([len(rows) for rows, _ in decisions])
+        starts = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+        segment = np.repeat(np.arange(len(decisions)), sizes)
+        done = x[starts + np.array([truth for _, truth in decisions])].sum(axis=0)
+        l2 = self.l2_batch
+
+        def loss(w: np.ndarray) -> tuple[float, np.ndarray]:
+            u = x @ w
+            top = np.maximum.reduceat(u, starts)
+            e = np.exp(u - top[segment])
+            total = np.add.reduceat(e, starts)
+            p = e / total[segment]
+            return (float(-(done @ w - (top + np.log(total)).sum()) + 0.5 * l2 * w @ w),
+                    p @ x - done + l2 * w)
+
+        start = self.fitted if self.fitted is not None else (self.w if self.w is not None else np.zeros(x.shape[1]))
+        self.fitted = minimize(loss, start, jac=True, method="L-BFGS-B", options={"maxiter": 200}).x
+
+
 def main() -> int:
     parser = argparse.ArgumentParser()
     parser.add_argument("chains")
@@ -53,6 +103,8 @@ def main() -> int:
     parser.add_argument("--stacked", action="append", default=[], help="NAME=JSON settings of another stacked row")
     parser.add_argument("--online", action="append", default=[], help="NAME=JSON settings of another online row")
     parser.add_argument("--pooled", action="append", default=[], help="NAME=JSON settings of another pooled row")
+    parser.add_argument("--batch", action="append", default=[], help="NAME=JSON settings (l2, every, window) of a "
+                        "batch-refitted logit row")
     args = parser.parse_args()
     ontology = build_ontology(args.odb, args.mapping)
     users = load_users(args.chains)
@@ -78,6 +130,9 @@ def main() -> int:
     for spec in args.pooled:
         label, _, text = spec.partition("=")
         methods.append(Configured(ontology, label, json.loads(text), PooledOracle))
+    for spec in args.batch:
+        label, _, text = spec.partition("=")
+        methods.append(BatchLogit(evidence, label, **json.loads(text)))
     result = replay(ontology, users, methods, 0, None, ReplayRules())
     summary = summarize(result)
     names = result.methods()
