@@ -99,7 +99,8 @@ def test_fit_is_deterministic_and_extends_step_by_step_as_a_fresh_fit(make):
 
 
 @pytest.mark.parametrize("name, cls, make", [("online", OnlineOracle, lambda m: OnlineOracle(m, online_gate=None)),
-                                             ("pooled", PooledOracle, PooledOracle)], ids=["online", "pooled"])
+                                             ("pooled", PooledOracle, lambda m: PooledOracle(m, online_gate=None))],
+                         ids=["online", "pooled"])
 def test_it_keeps_the_routine_explanation_of_each_option(name, cls, make):
     matrix = random_matrix(4)
     steps = synthetic_history(200, 4)

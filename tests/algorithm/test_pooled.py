@@ -20,7 +20,7 @@ def _served(model, steps):
 def test_all_weight_on_the_routine_predictor_is_the_routine_predictor():
     matrix = random_matrix(0)
     steps = synthetic_history(150, 0)
-    pooled = PooledOracle(matrix, pool_weight=1.0).fit(steps[:120])
+    pooled = PooledOracle(matrix, pool_weight=1.0, online_gate=None).fit(steps[:120])
     routine = RoutineOracle(matrix).fit(steps[:120])
     assert pooled.learnt_ > 0 and np.any(pooled.coef_) and not pooled.serves()
     for step in steps[120:]:
@@ -51,7 +51,7 @@ def test_its_logit_learns_as_the_logit_baseline_does():
 def test_the_pool_is_between_its_two_rankers():
     matrix = random_matrix(2)
     steps = synthetic_history(200, 2)
-    model = PooledOracle(matrix, pool_weight=0.5).fit(steps[:180])
+    model = PooledOracle(matrix, pool_weight=0.5, online_gate=None).fit(steps[:180])
     step = steps[180]
     offered = list(step.options)
     routine = {t.option: t.probability for t in RoutineOracle(matrix).fit(steps[:180]).rank(step)}

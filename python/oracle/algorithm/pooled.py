@@ -16,7 +16,7 @@ Everything else is ``online``'s: ``fit`` learns from the latest ``online_window`
 its history shows (``evidence.DecisionClock``), and every ranked option keeps the routine
 predictor's explanation, with the pool's rank, probability (``softmax(u)``) and score.
 
-The gate (``online_gate``, None by default: always pool): before each decision is learnt, each
+The gate (``online_gate``, ``POOL_GATE`` by default; None: always pool): before each decision is learnt, each
 candidate weight (``pool_weight``, or with ``pool_weight="auto"`` each of ``AUTO_WEIGHTS``) and the
 routine predictor alone rank it; a candidate is served only once its summed hit score leads the
 routine predictor's by more than ``online_gate`` standard errors of the paired differences, and of
@@ -37,8 +37,11 @@ from oracle.algorithm.records import Step
 from oracle.algorithm.stacked import hit_score
 from oracle.errors import SettingsError
 
-#: The routine predictor's weight in the pool (chosen on the development sets, docs/algorithm.md).
-POOL_WEIGHT = 0.3
+#: The routine predictor's weight in the pool: each user's own, chosen from ``AUTO_WEIGHTS`` behind
+#: a gate of ``POOL_GATE`` standard errors (the one setting that passed every development set,
+#: docs/algorithm.md, "Pooled predictor").
+POOL_WEIGHT = "auto"
+POOL_GATE = 2.0
 
 #: the weights ``pool_weight="auto"`` chooses from, each user by their own decisions (the gate's rule)
 AUTO_WEIGHTS = (0.8, 0.6, 0.4, 0.2)
@@ -50,7 +53,7 @@ class PooledOracle(OnlineOracle):
     _param_names = OnlineOracle._param_names + ("pool_weight",)
 
     def __init__(self, distances: Any = None, *, pool_weight: float | str = POOL_WEIGHT, online_damping: float = 1e-8,
-                 online_gate: float | None = None, **online: Any) -> None:
+                 online_gate: float | None = POOL_GATE, **online: Any) -> None:
         super().__init__(distances, online_damping=online_damping, online_gate=online_gate, **online)
         self.pool_weight = pool_weight
 
