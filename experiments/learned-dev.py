@@ -5,7 +5,7 @@ method's Top-1/3/5 over each user's first 30 predictions (the cold start).
 
 usage: python experiments/learned-dev.py CHAINS [--odb DIR --mapping YAML] [--users N]
        [--methods stacked,routine,logit,gbdt,kn3,ngram] [--stacked NAME=JSON] [--online NAME=JSON]
-       [--pooled NAME=JSON] [--batch NAME=JSON]
+       [--pooled NAME=JSON] [--batch NAME=JSON] [--digits 3]
 Development use only (docs/algorithm.md, "Stacked predictor" and "Online predictor": the selection protocol).
 """
 
@@ -103,6 +103,7 @@ def main() -> int:
     parser.add_argument("--stacked", action="append", default=[], help="NAME=JSON settings of another stacked row")
     parser.add_argument("--online", action="append", default=[], help="NAME=JSON settings of another online row")
     parser.add_argument("--pooled", action="append", default=[], help="NAME=JSON settings of another pooled row")
+    parser.add_argument("--digits", type=int, default=3, help="decimals of each Top-k figure")
     parser.add_argument("--batch", action="append", default=[], help="NAME=JSON settings (l2, every, window) of a "
                         "batch-refitted logit row")
     args = parser.parse_args()
@@ -140,7 +141,8 @@ def main() -> int:
     print(f"{args.chains}: {summary['n_predictions']} predictions, {len(users)} users")
     for name in names:
         m = summary["methods"][name]
-        line = f"{name:24s} {m['top1']:.3f} {m['top3']:.3f} {m['top5']:.3f} {m['ms_per_prediction']:6.2f} ms"
+        tops = " ".join(f"{m[f'top{k}']:.{args.digits}f}" for k in (1, 3, 5))
+        line = f"{name:24s} {tops} {m['ms_per_prediction']:6.2f} ms"
         if name in paired:
             d = paired[name]["top3"]
             line += f"  top3 {names[0]} - this: {-100 * d['difference']:+.2f} [{-100 * d['high']:+.2f}, {-100 * d['low']:+.2f}]"

@@ -34,6 +34,7 @@ import numpy as np
 
 from oracle.algorithm.online import OnlineOracle
 from oracle.algorithm.records import Step
+from oracle.algorithm.selftune import switch_to
 from oracle.algorithm.stacked import hit_score
 from oracle.errors import SettingsError
 
@@ -74,7 +75,8 @@ class PooledOracle(OnlineOracle):
         if self.coef_ is None or self.squared_ is None:
             self.coef_ = np.zeros(x.shape[1])
             self.squared_ = np.full(x.shape[1], max(float(self.online_damping), 1e-12))
-        else:  # the gate's evidence: each candidate weight's pool before it learns this decision
+        elif self.online_gate is not None or len(self.candidates_) > 1:
+            # the gate's evidence: each candidate weight's pool before it learns this decision
             log_q = _log_softmax(x @ self.coef_)
             alone = hit_score(offset, truth)
             for i, a in enumerate(self.candidates_):
@@ -93,8 +95,8 @@ class PooledOracle(OnlineOracle):
         if gate is None and len(self.candidates_) == 1:
             chosen: float | None = float(self.candidates_[0])
         else:
-            passed = self.leads_ > (gate or 0.0) * np.sqrt(self.spreads_)
-            chosen = float(self.candidates_[int(np.argmax(np.where(passed, self.leads_, -np.inf)))]) if passed.any() else None
+            at = switch_to(self.leads_, self.spreads_, gate or 0.0)
+            chosen = None if at is None else float(self.candidates_[at])
         return chosen if chosen is not None and chosen < 1.0 else None
 
     def serves(self) -> bool:

@@ -84,10 +84,8 @@ class VariantWeights:
         if tuning == "fixed" or self.steps == 0:
             out[0] = 1.0
         elif tuning == "leader":
-            lead = self.hits - self.hits[0]
-            eligible = lead > margin * np.sqrt(self.spread)
-            eligible[0] = True
-            out[int(np.argmax(np.where(eligible, self.hits, -np.inf)))] = 1.0  # ties: the earlier variant
+            chosen = switch_to(self.hits[1:] - self.hits[0], self.spread[1:], margin)
+            out[0 if chosen is None else chosen + 1] = 1.0
         else:
             shifted = self.scores - self.scores.max()
             out = np.exp(shifted)
@@ -97,6 +95,14 @@ class VariantWeights:
     def describe(self) -> list[float]:
         """Mean log2-likelihood per step of each variant (for reports)."""
         return [s / math.log(2) / max(1, self.steps) for s in self.scores.tolist()]
+
+
+def switch_to(leads: np.ndarray, spreads: np.ndarray, margin: float) -> int | None:
+    """The switch rule: of the challengers whose summed lead over the incumbent (``leads``, with
+    ``spreads`` the sums of the squared per-step differences) is more than ``margin`` >= 0
+    standard errors, the index of the largest lead (ties: the earlier); None: keep the incumbent."""
+    passed = leads > margin * np.sqrt(spreads)
+    return int(np.argmax(np.where(passed, leads, -np.inf))) if passed.any() else None
 
 
 def mixed_distribution(weights: np.ndarray, probabilities: Sequence[np.ndarray]) -> np.ndarray:
