@@ -61,8 +61,8 @@ class NeemRanking:
 
 
 def make_predictor(ontology: OdbOntology, settings: Hyperparameters | None = None, method: str = DEFAULT) -> Predictor:
-    """The predictor ``method`` names (oracle.algorithm.predictors: ``routine``, the default, or
-    ``thesis``) for ``ontology``'s tasks and distances, unfitted; ``settings`` (default: the
+    """The predictor ``method`` names (oracle.algorithm.predictors: ``pooled``, the default,
+    ``routine`` or ``thesis``) for ``ontology``'s tasks and distances, unfitted; ``settings`` (default: the
     thesis's Table 4.2) apply to ``thesis``. What ``rank``, the service and the import fit."""
     return make_named(method, ontology.distances(), opening_tasks(ontology), settings or Hyperparameters())
 

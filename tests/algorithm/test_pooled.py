@@ -106,3 +106,26 @@ def test_the_gates_evidence_is_each_weights_hit_score_minus_the_routine_predicto
     routine = np.log(np.array([0.3, 0.02, 0.2, 0.18, 0.16, 0.14]))  # the truth (1) last: hit score 0
     model._learn(x, routine, 1)  # pooled at 0.5 it ranks first: hit score 1
     assert model.leads_.tolist() == [1.0] and model.spreads_.tolist() == [1.0]
+
+
+def test_with_likelihood_evidence_the_gate_sums_log_probability_differences():
+    model = PooledOracle(random_matrix(5), pool_weight=0.5, online_gate=0.0,
+                         pool_evidence="likelihood").fit(synthetic_history(40, 5))
+    model.coef_ = np.eye(model.coef_.size)[0]
+    model.leads_[:] = 0.0
+    model.spreads_[:] = 0.0
+    x = np.zeros((6, model.coef_.size))
+    x[1, 0] = 3.0
+    routine = np.log(np.array([0.3, 0.02, 0.2, 0.18, 0.16, 0.14]))
+    model._learn(x, routine, 1)
+    q = np.exp(x[:, 0]) / np.exp(x[:, 0]).sum()
+    u = 0.5 * routine + 0.5 * np.log(q)
+    expected = u[1] - np.log(np.exp(u).sum()) - np.log(0.02)
+    assert model.leads_[0] == pytest.approx(expected) and expected > 0
+    assert model.spreads_[0] == pytest.approx(expected * expected)
+
+
+def test_a_bad_gate_evidence_is_one_line_naming_it():
+    with pytest.raises(SettingsError, match="pool_evidence") as raised:
+        PooledOracle(random_matrix(0), pool_evidence="accuracy").fit([])
+    assert "\n" not in str(raised.value)

@@ -16,6 +16,7 @@ from oracle.algorithm.predictors import DEFAULT, PREDICTORS, make_predictor, pre
 from oracle.algorithm.reference import overall_distance
 from oracle.algorithm.contexts import ContextCounts
 from oracle.algorithm.records import RoutineTask
+from oracle.algorithm.pooled import PooledOracle
 from oracle.algorithm.routine import RoutineOracle
 from oracle.algorithm.selftune import VariantWeights
 from oracle.algorithm.similarity import class_rows, option_distances
@@ -208,7 +209,8 @@ def test_parameters_follow_the_estimator_contract():
 
 
 def test_the_registry_names_the_default_and_the_exact_thesis_oracle():
-    assert DEFAULT == "routine" and set(PREDICTORS) >= {"routine", "thesis"}
+    assert DEFAULT == "pooled" and set(PREDICTORS) >= {"pooled", "routine", "thesis"}
+    assert isinstance(make_predictor(DEFAULT, kitchen()), PooledOracle)
     assert isinstance(make_predictor("routine", kitchen()), RoutineOracle)
     assert make_predictor("routine-fixed", kitchen()).tuning == "fixed"
     steps = synthetic_history(60, seed=3)

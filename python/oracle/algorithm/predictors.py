@@ -1,6 +1,7 @@
 """Predictors by name: the CLI's ``--method``, the replay and the Python API all choose here.
 
-``routine`` (the default, ``routine.RoutineOracle``; ``routine-fixed`` and ``routine-mixture`` are its
+``pooled`` (the default, ``pooled.PooledOracle``: the routine predictor pooled with a per-user logit
+where that leads), ``routine`` (``routine.RoutineOracle``; ``routine-fixed`` and ``routine-mixture`` are its
 self-tuning ablations) and ``thesis`` (``fast.PreferenceOracle`` with
 the given Table 4.2 settings, exactly as the thesis defines it). Every predictor has the same
 estimator interface: ``fit(history) -> self``, ``partial_fit(step) -> self`` and
@@ -96,7 +97,7 @@ PREDICTORS: dict[str, PredictorSpec] = {
     "thesis-normalized": PredictorSpec("thesis-normalized", "the thesis oracle over the normalised distances of "
                                        "thesis 6.4 (docs/algorithm.md)", _thesis_normalized),
 }
-DEFAULT = "routine"
+DEFAULT = "pooled"
 THESIS = "thesis"
 
 

@@ -1,5 +1,6 @@
 """Benchmark of the predictors: time per prediction of the thesis oracle's ``fast`` and ``reference``
-and of the routine predictor, the default (median <= 1 ms at 300, <= 20 ms at 10,000).
+and of the pooled predictor, the default, and the routine predictor it pools (median <= 1 ms at 300,
+<= 20 ms at 10,000).
 
 Synthetic histories of 100 to 10,000 steps with ~20 available options per situation, over a
 random 90-class taxonomy whose distances follow thesis eq. 4.5; a routine-like Markov chain over
@@ -23,10 +24,11 @@ from oracle.algorithm.params import PRESETS
 from oracle.algorithm.reference import ReferenceOracle
 from oracle.algorithm.routine import RoutineOracle
 from oracle.algorithm.online import OnlineOracle
+from oracle.algorithm.pooled import PooledOracle
 from oracle.algorithm.stacked import StackedOracle
 from oracle.algorithm.records import Option, Ranking, Step
 from oracle.ontology.distance import DistanceMatrix
-from oracle.timeline import TIME_OF_DAY_NAMES
+from oracle.timeline import part_of_day_at
 
 NS = "https://example.org/bench#"
 SETTINGS = ("recommended", "no_situations")
@@ -88,8 +90,8 @@ def history(n: int, seed: int = 0, n_options: int = 20, n_states: int = 60) -> t
     state = 0
     for i in range(n):
         options = states[state]
-        tod = TIME_OF_DAY_NAMES[(i // 40) % 4]
-        begin = START_S + i * STEP_S  # a clock as the parts of day turn: 40 steps of 9 min each
+        begin = START_S + i * STEP_S  # a clock, a step every 9 min
+        tod = part_of_day_at(begin)  # its part of day as the logger records it (the clock's UTC wall clock)
         if rng.random() < 0.05:
             steps.append(Step(idle_task, None, None, options, tod, True, "idle", begin))
             state = int(rng.integers(n_states))
@@ -174,6 +176,7 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
                          "p99_ms": round(float(np.percentile(adds, 99)), 4), "peak_mb": None})
             print(f"{size:>8} {name:<14} {'fast add':<10} {np.median(adds):>10.3f} {np.percentile(adds, 99):>9.3f}",
                   flush=True)
+        rows.extend(_routine_rows(matrix, prefix, queries, fast_queries, size, PooledOracle, "pooled"))
         rows.extend(_routine_rows(matrix, prefix, queries, fast_queries, size))
         rows.extend(_routine_rows(matrix, prefix, queries, fast_queries, size, StackedOracle, "stacked"))
         rows.extend(_routine_rows(matrix, prefix, queries, fast_queries, size, OnlineOracle, "online"))
@@ -182,7 +185,7 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
 
 def _routine_rows(matrix: DistanceMatrix, prefix: Sequence[Step], queries: Sequence[Step], count: int, size: int, cls: type = RoutineOracle,
                   impl: str = "routine") -> list[dict[str, Any]]:
-    """The routine predictor (or ``cls``, ``impl``: the stacked or online one) on the same history and
+    """The routine predictor (or ``cls``, ``impl``: the pooled, stacked or online one) on the same history and
     queries (its own defaults, self-tuned): rank, partial_fit and one whole fit."""
     start = time.perf_counter()
     model = cls(matrix).fit(prefix)

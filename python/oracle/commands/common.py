@@ -56,10 +56,11 @@ SOMA = Option(("--soma",), {"type": Path, "help": "folder with the official SOMA
 ONTOLOGY = Option(("--ontology",), {"type": Path, "help": "OWL file written by 'ontology build' (instead of --odb/--mapping)"})
 METHOD = Option(("--method",), {
     "metavar": "NAME",
-    "help": "predictor (oracle.algorithm.predictors): routine (the default: exact contexts backed off to ontology "
+    "help": "predictor (oracle.algorithm.predictors): pooled (the default: routine and a per-user logit over its "
+            "evidence, pooled log-linearly where that leads), routine (exact contexts backed off to ontology "
             "similarity, self-tuned), routine-fixed, routine-mixture, stacked (routine re-weighed by a per-user logit "
             "where that leads), online (routine re-weighed by a per-user logit learnt after every decision, where "
-            "that leads), pooled (routine and a per-user logit over its evidence, pooled log-linearly), thesis (the thesis "
+            "that leads), thesis (the thesis "
             "oracle with --settings) or thesis-normalized (its distances divided by "
             "their mean, thesis 6.4)",
 })

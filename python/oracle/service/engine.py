@@ -85,7 +85,7 @@ class Engine:
         self.created = 0
         self.ontology = ontology
         self.settings = settings
-        #: The predictor every session fits (``serve --method``; default: the routine predictor).
+        #: The predictor every session fits (``serve --method``; default: the pooled predictor).
         self.method = method
         self.sessions: dict[str, NeemSession] = {}
         #: What the answers about the past read of each NEEM, kept while the NEEM is unchanged.
