@@ -1,7 +1,10 @@
 """Print the tables of docs/results.md, "Honest replay, learned baselines, chains" from the JSON
 files of experiments/honest-replay.sh and experiments/normalized-distances.sh.
 
-usage: python experiments/honest-tables.py OUT [targets|all|chains|normalized|online]
+usage: python experiments/honest-tables.py OUT [targets [DEFAULT]|all|chains|normalized|online|pooled]
+(``targets pooled``: the table with ``pooled`` as the default, from ``shards.py merge --against pooled``)
+(``online``, ``pooled``: that predictor paired against the default and the learned baselines, from
+``shards.py merge --against NAME``)
 """
 
 from __future__ import annotations
@@ -13,6 +16,8 @@ from pathlib import Path
 
 SETS = (("persona", "Persona test split"), ("kasteren", "van Kasteren house A"), ("egtea", "EGTEA Gaze+"))
 KS = (1, 3, 5)
+#: predictors replayed beside the default that are candidates, not baselines
+EXTRA = ("routine", "stacked", "online", "pooled")
 
 
 def each(out: Path, prefix: str) -> Iterator[tuple[str, dict]]:
@@ -23,14 +28,16 @@ def each(out: Path, prefix: str) -> Iterator[tuple[str, dict]]:
             yield label, json.loads(path.read_text(encoding="utf-8"))
 
 
-def targets(out: Path) -> None:
-    print("| set | method | Top-1 | Top-3 | Top-5 | Top-3 minus `routine` [95 % CI] | cold start Top-1/3/5 |")
+def targets(out: Path, default: str = "") -> None:
+    """The default predictor (``default``: a method the JSON's ``against`` block pairs against
+    every other one; none: the replay's first method) against every baseline."""
+    print("| set | method | Top-1 | Top-3 | Top-5 | Top-3 minus the default [95 % CI] | cold start Top-1/3/5 |")
     print("| --- | --- | ---: | ---: | ---: | --- | --- |")
     for label, s in each(out, "i39"):
-        ref = s["method"]
-        paired = s["comparisons"]["methods"]
+        ref = default or s["method"]
+        paired = s["comparisons"]["methods"] if ref == s["method"] else s["against"]["methods"]
         cold = s["cold_start"]["methods"]
-        shown = [ref, "stacked", "online", "logit", "gbdt", "oracle"]
+        shown = list(dict.fromkeys([ref, *EXTRA, "logit", "gbdt", "oracle"]))
         best = max((n for n in s["methods"] if n not in shown), key=lambda n: s["methods"][n]["top3"])
         for name in [*shown, best]:
             if name not in s["methods"]:
@@ -42,7 +49,7 @@ def targets(out: Path) -> None:
             tag = f"`{name}`" + (" (best other baseline on Top-3)" if name == best else "")
             print(f"| {label} | {tag} | {m['top1']:.3f} | {m['top3']:.3f} | {m['top5']:.3f} | {diff} | "
                   f"{c['top1']:.3f} / {c['top3']:.3f} / {c['top5']:.3f} |")
-        others = [n for n in s["methods"] if n not in (ref, "stacked", "online")]
+        others = [n for n in s["methods"] if n not in (ref, *EXTRA)]
         strongest = []
         for k in KS:
             top = max(others, key=lambda n: s["methods"][n][f"top{k}"])
@@ -89,25 +96,31 @@ def normalized(out: Path) -> None:
               f"{100 * d['difference']:+.1f} [{100 * d['low']:+.1f}, {100 * d['high']:+.1f}] |")
 
 
-def online(out: Path) -> None:
-    """The online predictor paired against the default and the learned baselines (``shards.py merge
-    --against online``)."""
-    print("| set | `online` minus | Top-1 [95 % CI] | Top-3 [95 % CI] | Top-5 [95 % CI] |")
+def against(out: Path, name: str) -> None:
+    """Predictor ``name`` paired against the default and the learned baselines (``shards.py merge
+    --against NAME``)."""
+    print(f"| set | `{name}` minus | Top-1 [95 % CI] | Top-3 [95 % CI] | Top-5 [95 % CI] |")
     print("| --- | --- | --- | --- | --- |")
     for label, s in each(out, "i39"):
         paired = s.get("against", {}).get("methods", {})
-        for name in ("routine", "logit", "gbdt"):
-            if name in paired:
-                # the block pairs each method against online: its sign turned, online minus the method
+        for other in ("routine", "logit", "gbdt"):
+            if other in paired:
+                # the block pairs each method against NAME: its sign turned, NAME minus the method
                 cells = [f"{-100 * d['difference']:+.1f} [{-100 * d['high']:+.1f}, {-100 * d['low']:+.1f}]"
-                         for d in (paired[name][f"top{k}"] for k in KS)]
-                print(f"| {label} | `{name}` | {' | '.join(cells)} |")
+                         for d in (paired[other][f"top{k}"] for k in KS)]
+                print(f"| {label} | `{other}` | {' | '.join(cells)} |")
 
 
 def main() -> int:
     out = Path(sys.argv[1] if len(sys.argv) > 1 else "out")
     which = sys.argv[2] if len(sys.argv) > 2 else "targets"
-    {"targets": targets, "all": everything, "chains": chains, "normalized": normalized, "online": online}[which](out)
+    if which in ("online", "pooled"):
+        against(out, which)
+        return 0
+    if which == "targets":
+        targets(out, sys.argv[3] if len(sys.argv) > 3 else "")
+        return 0
+    {"all": everything, "chains": chains, "normalized": normalized}[which](out)
     return 0
 
 
