@@ -35,6 +35,9 @@ ACTIONS = 10_000
 #: its gate stays shut, and with ``since`` dropped the code gives the digest before it, 6e082cec...
 #: ``python tests/test_rank_pin.py`` prints it.
 EXPECTED = "2d72e8977a1032e54fcb6b163160dfe1c5fbc698a1234b96d7a808b0109b8ad0"
+#: the same for the default, ``pooled``, ranked right after on the same NEEM: the routine
+#: predictor's text but for ``"method": "pooled"`` (on this NEEM the pool's gate stays shut)
+EXPECTED_DEFAULT = "008ea5d21dd856768d2fb8a015b8c68cfad17db5a2a8a92aa43536d19edb8263"
 
 
 def _oracle(*argv: str, env: dict[str, str]) -> str:
@@ -42,9 +45,10 @@ def _oracle(*argv: str, env: dict[str, str]) -> str:
     return done.stdout
 
 
-def ranking_digest_text(tmp: Path) -> str:
-    """What the pin hashes: rank's JSON without its timing and the written individual's random
-    id, then the ranking as Prolog reads it back from the store (call, rank, score)."""
+def ranking_digest_texts(tmp: Path) -> tuple[str, str]:
+    """What the pins hash, for the routine predictor and then the default on the same imported
+    NEEM: rank's JSON without its timing and the written individual's random id, then the ranking
+    as Prolog reads it back from the store (call, rank, score)."""
     env = {**os.environ, "NEEM_ORACLE_CACHE": str(tmp / "cache")}
     gen = tmp / "gen"
     _oracle("generate", "--personas", "1", "--days", str(ACTIONS // 35 + 30), "--seed", "3", "--out", str(gen), env=env)
@@ -55,7 +59,11 @@ def ranking_digest_text(tmp: Path) -> str:
     store = tmp / "s.sqlite"
     imported = _oracle("import", str(chains), "--store", str(store), "--commit-every", "1000", env=env)
     neem_id, name, _ = imported.strip().split("\t")
-    ranked = json.loads(_oracle("rank", "--store", str(store), "--neem", "u", "--json", env=env))
+    return tuple(_ranked(store, neem_id, name, method, env) for method in (["--method", "routine"], []))  # type: ignore[return-value]
+
+
+def _ranked(store: Path, neem_id: str, name: str, method: list[str], env: dict[str, str]) -> str:
+    ranked = json.loads(_oracle("rank", "--store", str(store), "--neem", "u", "--json", *method, env=env))
     assert ranked["written"] and ranked["note"] is None
     # the NEEM's id is a fresh ObjectId: the pin keeps its name, as before ids were ObjectIds
     assert name == "u" and ranked["neem"] == neem_id
@@ -74,14 +82,16 @@ def ranking_digest_text(tmp: Path) -> str:
 
 
 def test_the_ranking_written_back_at_10k_actions_is_the_one_before_the_speed_work(tmp_path):
-    text = ranking_digest_text(tmp_path)
-    assert hashlib.sha256(text.encode()).hexdigest() == EXPECTED, text[:2000]
+    routine, default = ranking_digest_texts(tmp_path)
+    assert hashlib.sha256(routine.encode()).hexdigest() == EXPECTED, routine[:2000]
+    assert hashlib.sha256(default.encode()).hexdigest() == EXPECTED_DEFAULT, default[:2000]
 
 
 if __name__ == "__main__":  # print the digest of the implementation on sys.path
     import tempfile
 
     with tempfile.TemporaryDirectory() as tmp_name:
-        text = ranking_digest_text(Path(tmp_name))
-    print(text)
-    print(hashlib.sha256(text.encode()).hexdigest())
+        texts = ranking_digest_texts(Path(tmp_name))
+    for text in texts:
+        print(text)
+        print(hashlib.sha256(text.encode()).hexdigest())
