@@ -114,13 +114,12 @@ def against(out: Path, name: str) -> None:
 def main() -> int:
     out = Path(sys.argv[1] if len(sys.argv) > 1 else "out")
     which = sys.argv[2] if len(sys.argv) > 2 else "targets"
-    if which in ("online", "pooled"):
-        against(out, which)
-        return 0
     if which == "targets":
         targets(out, sys.argv[3] if len(sys.argv) > 3 else "")
-        return 0
-    {"all": everything, "chains": chains, "normalized": normalized}[which](out)
+    elif which in ("online", "pooled"):
+        against(out, which)
+    else:
+        {"all": everything, "chains": chains, "normalized": normalized}[which](out)
     return 0
 
 

@@ -5,8 +5,7 @@ method's Top-1/3/5 over each user's first 30 predictions (the cold start).
 
 usage: python experiments/learned-dev.py CHAINS [--odb DIR --mapping YAML] [--users N]
        [--methods stacked,routine,logit,gbdt,kn3,ngram] [--stacked NAME=JSON] [--online NAME=JSON]
-       [--pooled NAME=JSON] [--batch NAME=JSON] [--digits 3] [--auto-weights 0.8,0.6,0.4,0.2]
-(``--auto-weights``: the weights ``pool_weight="auto"`` chooses from in this run, a development trial)
+       [--pooled NAME=JSON] [--batch NAME=JSON] [--digits 3]
 Development use only (docs/algorithm.md, "Stacked predictor" and "Online predictor": the selection protocol).
 """
 
@@ -24,7 +23,6 @@ from scipy.optimize import minimize
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
 from oracle.algorithm.params import Hyperparameters  # noqa: E402
 from oracle.algorithm.online import OnlineOracle  # noqa: E402
-from oracle.algorithm import pooled  # noqa: E402
 from oracle.algorithm.pooled import PooledOracle  # noqa: E402
 from oracle.algorithm.stacked import StackedOracle  # noqa: E402
 from oracle.calls import opening_tasks  # noqa: E402
@@ -108,10 +106,7 @@ def main() -> int:
     parser.add_argument("--digits", type=int, default=3, help="decimals of each Top-k figure")
     parser.add_argument("--batch", action="append", default=[], help="NAME=JSON settings (l2, every, window) of a "
                         "batch-refitted logit row")
-    parser.add_argument("--auto-weights", default="", help="comma-separated weights pool_weight='auto' chooses from")
     args = parser.parse_args()
-    if args.auto_weights:
-        pooled.AUTO_WEIGHTS = tuple(float(w) for w in args.auto_weights.split(","))
     ontology = build_ontology(args.odb, args.mapping)
     users = load_users(args.chains)
     if args.users:

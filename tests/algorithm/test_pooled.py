@@ -68,7 +68,7 @@ def test_the_pool_is_between_its_two_rankers():
 # combinations).
 
 
-@pytest.mark.parametrize("value", [-0.1, 1.5, "0.3", True, float("nan")])
+@pytest.mark.parametrize("value", [-0.1, 1.5, "0.3", True, float("nan"), [], [0.5, 2.0]])
 def test_a_bad_pool_weight_is_one_line_naming_it(value):
     with pytest.raises(SettingsError, match="pool_weight") as raised:
         PooledOracle(random_matrix(0), pool_weight=value).fit([])
@@ -129,3 +129,10 @@ def test_a_bad_gate_evidence_is_one_line_naming_it():
     with pytest.raises(SettingsError, match="pool_evidence") as raised:
         PooledOracle(random_matrix(0), pool_evidence="accuracy").fit([])
     assert "\n" not in str(raised.value)
+
+
+def test_a_list_of_weights_is_what_the_gate_chooses_from():
+    model = PooledOracle(random_matrix(4), pool_weight=[0.8, 0.0], online_gate=1.0).fit(synthetic_history(80, 4))
+    assert model.candidates_.tolist() == [0.8, 0.0] and model.leads_.shape == (2,)
+    auto = PooledOracle(random_matrix(4)).fit(synthetic_history(80, 4))
+    assert auto.candidates_.tolist() == [0.8, 0.6, 0.4, 0.2]

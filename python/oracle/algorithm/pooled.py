@@ -17,7 +17,7 @@ its history shows (``evidence.DecisionClock``), and every ranked option keeps th
 predictor's explanation, with the pool's rank, probability (``softmax(u)``) and score.
 
 The gate (``online_gate``, ``POOL_GATE`` by default; None: always pool): before each decision is learnt, each
-candidate weight (``pool_weight``, or with ``pool_weight="auto"`` each of ``AUTO_WEIGHTS``) and the
+candidate weight (``pool_weight``: one weight, a list of them, or ``"auto"``: each of ``AUTO_WEIGHTS``) and the
 routine predictor alone rank it; a candidate is served only once its summed hit score leads the
 routine predictor's by more than ``online_gate`` standard errors of the paired differences, and of
 those the one with the largest lead (the self-tuning's switch rule, the routine predictor the
@@ -29,7 +29,7 @@ default predictor (``predictors.DEFAULT``). docs/algorithm.md, "Pooled predictor
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 from typing import Any, cast
 
 import numpy as np
@@ -55,7 +55,7 @@ class PooledOracle(OnlineOracle):
 
     _param_names = OnlineOracle._param_names + ("pool_weight", "pool_evidence")
 
-    def __init__(self, distances: Any = None, *, pool_weight: float | str = POOL_WEIGHT, online_damping: float = 1e-8,
+    def __init__(self, distances: Any = None, *, pool_weight: float | str | Sequence[float] = POOL_WEIGHT, online_damping: float = 1e-8,
                  online_gate: float | None = POOL_GATE, pool_evidence: str = "hits", **online: Any) -> None:
         super().__init__(distances, online_damping=online_damping, online_gate=online_gate, **online)
         self.pool_weight = pool_weight
@@ -63,15 +63,16 @@ class PooledOracle(OnlineOracle):
 
     def fit(self, history: Iterable[Step]) -> PooledOracle:
         weight = self.pool_weight
-        if weight != "auto" and (isinstance(weight, bool) or not isinstance(weight, (int, float)) or not 0.0 <= weight <= 1.0):
-            raise SettingsError(f"{type(self).__name__}: pool_weight must be a number from 0 to 1 or 'auto', got {weight!r}")
+        given = AUTO_WEIGHTS if weight == "auto" else tuple(weight) if isinstance(weight, (list, tuple)) else (weight,)
+        if not given or any(isinstance(w, bool) or not isinstance(w, (int, float)) or not 0.0 <= w <= 1.0 for w in given):
+            raise SettingsError(f"{type(self).__name__}: pool_weight must be a number from 0 to 1, a list of them "
+                                f"or 'auto', got {weight!r}")
         if self.pool_evidence not in POOL_EVIDENCE:
             raise SettingsError(f"{type(self).__name__}: pool_evidence must be one of {', '.join(POOL_EVIDENCE)}, "
                                 f"got {self.pool_evidence!r}")
-        candidates = AUTO_WEIGHTS if weight == "auto" else (float(cast(float, weight)),)
-        self.candidates_ = np.array(candidates, dtype=float)
-        self.leads_ = np.zeros(len(candidates))    # each candidate's hit score minus routine's, summed
-        self.spreads_ = np.zeros(len(candidates))  # the sums of their squares
+        self.candidates_ = np.array(given, dtype=float)
+        self.leads_ = np.zeros(len(given))    # each candidate's hit score minus routine's, summed
+        self.spreads_ = np.zeros(len(given))  # the sums of their squares
         super().fit(history)
         return self
 
