@@ -19,9 +19,11 @@ IDLE = -1      # the odb:IdleTask token
 UNKNOWN = -3   # a candidate the history never saw (never counted)
 
 
-@dataclass(frozen=True)
+@dataclass(slots=True)
 class Blend:
-    """The blended distribution and, per candidate, its longest exact context with a count."""
+    """The blended distribution and, per candidate, its longest exact context with a count (not
+    frozen: a ranking builds some fifty of them, and a frozen one costs four times as much to make;
+    nothing changes one once made)."""
 
     probabilities: np.ndarray
     order: np.ndarray      # longest n >= 1 whose context was followed by the candidate; 0: only done before; -1: never
@@ -139,12 +141,12 @@ class ContextCounts:
         """Count ``token`` after every current context; ``part`` is its part of day (-1 unknown)."""
         history = self.tokens
         size = len(history)
-        timed_from = self.timed_from if part >= 0 else -1
+        timed_from = self.timed_from if part >= 0 else size + 1  # past every order: no timed count
         levels, timed = self.levels, self.timed
         for n in range(0 if token != IDLE else 1, min(self.max_order, size) + 1):  # idle: no order-0 count
             context = tuple(history[size - n:]) if n else ()
             levels[n].count(context, token)
-            if 0 <= timed_from <= n:
+            if n >= timed_from >= 0:
                 timed[n].count((part, *context), token)
         history.append(token)
 
@@ -218,7 +220,9 @@ class ContextCounts:
             return [self.lane_blends(candidates, [lane], max_orders, part, discount, gate, exclusion, memo,
                                      discount_from, discount_evidence, timed_discount_from, timed_shrink, timed_to)[0]
                     for lane in lanes]
-        states = [_Lane.start(self, candidates, base, min_order, novelty) for base, min_order, novelty in lanes]
+        done = self._done_mask(candidates) if any(novelty for _, _, novelty in lanes) else None
+        states = [_Lane.start(self, len(candidates), base, min_order, done if novelty else None)
+                  for base, min_order, novelty in lanes]
         stack: _Stack | None = None
         for n in range(min(lane.min_order for lane in states), min(max(max_orders), self.max_order) + 1):
             for lane in states:
@@ -270,16 +274,19 @@ class ContextCounts:
             lane.reached(math.inf, max_orders)  # the order-0 level never reached leaves the novelty split as it is
         return [lane.done for lane in states]
 
-    def _novelty(self, candidates: Sequence[int], base: np.ndarray) -> tuple[np.ndarray, np.ndarray, float] | None:
-        """``base`` restricted to the done candidates, ``q * base`` restricted to the never-done ones,
-        and ``1 - q``; None unless both kinds are offered."""
+    def _done_mask(self, candidates: Sequence[int]) -> np.ndarray | None:
+        """Per candidate: was it ever done? None unless both kinds are offered (no novelty split)."""
         done = self.levels[0].tables.get(())
         if not done:
             return None
         mask = np.array([c in done for c in candidates], dtype=bool)
-        if mask.all() or not mask.any():
-            return None
-        q = len(done) / (self.levels[0].totals[()] + len(done))
+        return None if mask.all() or not mask.any() else mask
+
+    def _novelty(self, base: np.ndarray, mask: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+        """``base`` restricted to the done candidates (``mask``, ``_done_mask``), ``q * base``
+        restricted to the never-done ones, and ``1 - q``."""
+        kinds = len(self.levels[0].tables[()])
+        q = kinds / (self.levels[0].totals[()] + kinds)
         return _within(base, mask), q * _within(base, ~mask), 1.0 - q
 
 
@@ -308,17 +315,17 @@ class _Lane:
     done: dict[int, Blend] = field(default_factory=dict)
 
     @classmethod
-    def start(cls, counts: ContextCounts, candidates: Sequence[int], base: np.ndarray, min_order: int,
-              novelty: bool) -> _Lane:
-        lane = cls(base.astype(np.float64, copy=True), np.full(len(candidates), -1, dtype=np.int64),
-                   np.zeros(len(candidates), dtype=np.int64), min_order)
-        if novelty:
-            split = counts._novelty(candidates, lane.probs)
-            if split is not None:
-                lane.probs, lane.novel_part, lane.done_share = split
-                if min_order > 0:
-                    lane.probs = lane.done_share * lane.probs + lane.novel_part
-                    lane.novel_part = None
+    def start(cls, counts: ContextCounts, size: int, base: np.ndarray, min_order: int,
+              done: np.ndarray | None) -> _Lane:
+        """A lane over ``size`` candidates from ``base``; ``done``: which were ever done, for the
+        novelty split (None: no split)."""
+        lane = cls(base.astype(np.float64, copy=True), np.full(size, -1, dtype=np.int64),
+                   np.zeros(size, dtype=np.int64), min_order)
+        if done is not None:
+            lane.probs, lane.novel_part, lane.done_share = counts._novelty(lane.probs, done)
+            if min_order > 0:
+                lane.probs = lane.done_share * lane.probs + lane.novel_part
+                lane.novel_part = None
         return lane
 
     def reached(self, below: float, max_orders: Sequence[int]) -> None:

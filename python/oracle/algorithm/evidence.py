@@ -43,7 +43,7 @@ def features(model: Any, offered: Sequence[Option], time_of_day: str | None, at:
     distance to a past action, and the bucket of the time since it was last done (``at``; a
     column "no clock" when there is none)."""
     ids = model._offer_ids(offered)
-    inside = model._in_focus(offered) if model.focus else None
+    inside = model._in_focus(offered, ids=ids) if model.focus else None
     new, resumed = model._offer_flags(ids)
     probabilities, _, cand = model._variant_probabilities(offered, ids, time_of_day, None, inside, new, resumed)
     size = len(offered)

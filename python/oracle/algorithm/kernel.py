@@ -15,6 +15,7 @@ from collections.abc import Sequence
 import numpy as np
 
 START = -2   # before the first step: the chain has no predecessor there
+_SPECIAL = 2  # the tokens below 0 a chain holds: START and IDLE (contexts.IDLE, -1)
 
 
 class Rows:
@@ -74,26 +75,32 @@ def context_distance(table: np.ndarray, now: tuple[int, ...], then: np.ndarray, 
     otherwise (a chain that started, or went idle, where the other did not).
     """
     total = np.zeros(then.shape[0])
+    # one look-up per predecessor: the row of ``delta`` for every token, the two special tokens
+    # (START, IDLE) first, then the options, indexed by the token + 2
+    shifted = then + _SPECIAL
+    lookup = np.empty(table.shape[1] + _SPECIAL)
     for n, token in enumerate(now):
-        theirs = then[:, n]
+        lookup[:_SPECIAL] = penalty
         if token >= 0:
-            delta = np.where(theirs >= 0, table[token][np.maximum(theirs, 0)], penalty)
+            lookup[_SPECIAL:] = table[token]
         else:
-            delta = np.where(theirs == token, 0.0, penalty)
-        total += decay ** n * delta
+            lookup[_SPECIAL:] = penalty
+            lookup[token + _SPECIAL] = 0.0
+        total += decay ** n * lookup[shifted[:, n]]
     return total
 
 
 def similarity_mass(candidate_distances: np.ndarray, executed: np.ndarray, context: np.ndarray,
                     tod_differs: np.ndarray, tau: float, tod_penalty: float,
-                    kinds: np.ndarray | None = None) -> np.ndarray:
+                    kinds: np.ndarray | None = None, decayed: np.ndarray | None = None) -> np.ndarray:
     """``S(c) = sum_j exp(-(d(c, a_j) + D_j) / tau) * rho^-[tod_j differs]`` for every candidate.
 
     ``candidate_distances`` is (candidates x options) Algorithm 2; ``executed`` the option id of
     every past action, ``context`` its ``D_j`` and ``tod_differs`` its part-of-day test; or, with
     ``kinds`` (each past action's kind), both given per kind: each kind's weight is worked out
     once and handed to its actions, the same number each would get alone, summed in the same
-    order. Grouping the past actions by option first keeps it O(history + candidates x options).
+    order. ``decayed``, when given, is ``exp(-candidate_distances / tau)`` already worked out.
+    Grouping the past actions by option first keeps it O(history + candidates x options).
     """
     n_options = candidate_distances.shape[1]
     if executed.size == 0 or n_options == 0:
@@ -102,7 +109,7 @@ def similarity_mass(candidate_distances: np.ndarray, executed: np.ndarray, conte
     shift = log_weight.max()  # the common factor exp(shift) cancels when S is normalised
     weights = np.exp(log_weight - shift)
     per_option = np.bincount(executed, weights=weights if kinds is None else weights[kinds], minlength=n_options)
-    return np.exp(-candidate_distances / tau) @ per_option
+    return (np.exp(-candidate_distances / tau) if decayed is None else decayed) @ per_option
 
 
 def normalised(mass: np.ndarray) -> np.ndarray:

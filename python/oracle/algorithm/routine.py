@@ -222,8 +222,8 @@ class RoutineOracle(EstimatorParams):
         if scored:
             offered, _ = offered_options(step, None)
             if step.option in offered:
-                inside = self._in_focus(offered) if self.focus else None
                 ids = self._offer_ids(offered)
+                inside = self._in_focus(offered, ids=ids) if self.focus else None
                 new, resumed = self._offer_flags(ids)
                 probabilities = self._variant_probabilities(offered, ids, step.time_of_day, inside=inside, new=new,
                                                             resumed=resumed)[0]
@@ -264,9 +264,14 @@ class RoutineOracle(EstimatorParams):
 
     # -- ranking --------------------------------------------------------------------------
 
-    def _in_focus(self, offered: Sequence[Option], held: frozenset[str] | None = None) -> np.ndarray:
-        """Per offered option: does it use an object of the latest ``focus`` actions (``held``)?"""
-        return in_focus(self._held() if held is None else held, (option.objects() for option in offered))
+    def _in_focus(self, offered: Sequence[Option], held: frozenset[str] | None = None,
+                  ids: Sequence[int] | None = None) -> np.ndarray:
+        """Per offered option: does it use an object of the latest ``focus`` actions (``held``)?
+        ``ids``: their interned ids (``_offer_ids``), whose objects are kept."""
+        objects = self._known.objects
+        used = ((option.objects() for option in offered) if ids is None else
+                (objects[i] if i >= 0 else option.objects() for i, option in zip(ids, offered)))
+        return in_focus(self._held() if held is None else held, used)
 
     def _observe(self, offered: list[int], truth: int, now: float | None) -> None:
         """Count a decision (interned ids offered, the index of the option done, its time) for the lifts."""
@@ -294,9 +299,15 @@ class RoutineOracle(EstimatorParams):
                 self.resume_.which(ids, self._paused()) if self.resume else None)
 
     def _held(self) -> frozenset[str]:
-        """The objects of the latest ``focus`` actions (idle gaps skipped)."""
+        """The objects of the latest ``focus`` actions (idle gaps skipped), worked out once per
+        state of the history."""
+        kept: tuple[int, frozenset[str]] | None = self.__dict__.get("_held_at")
+        if kept is not None and kept[0] == self._executed.size:
+            return kept[1]
         recent = self._executed.view[-self.focus:, 0].tolist() if self.focus and self._executed.size else []
-        return held_objects(self._known.objects[t] for t in recent)
+        held = held_objects(self._known.objects[t] for t in recent)
+        self._held_at = (self._executed.size, held)
+        return held
 
     def _variant_probabilities(self, offered: Sequence[Option], ids: list[int], now: str | None,
                                which: Sequence[int] | None = None, inside: np.ndarray | None = None,
@@ -309,10 +320,11 @@ class RoutineOracle(EstimatorParams):
         at the previous decision, None without ``fresh``; ``resumed``: after a gap, which once
         followed the last action, None otherwise)."""
         count = len(self.options_)
-        if UNKNOWN in ids:
-            cand = self._known.distances(class_rows(self.distances, offered), self._known.classes[:count])
-        else:
+        known = UNKNOWN not in ids
+        if known:
             cand = self._known.table[ids, :count]
+        else:
+            cand = self._known.distances(class_rows(self.distances, offered), self._known.classes[:count])
         executed = self._executed.view[:, 0]
         now_code = _TOD.get(now, -1) if now is not None else -1
         table = self._known.table[:count, :count]
@@ -346,7 +358,8 @@ class RoutineOracle(EstimatorParams):
                 for tau in taus:
                     if (stream, tau) not in base:
                         mass = similarity_mass(cand, executed, context[stream], differs[stream], tau,
-                                               self.time_of_day_penalty, self._streams[stream].past.kind_of.view[:, 0])
+                                               self.time_of_day_penalty, self._streams[stream].past.kind_of.view[:, 0],
+                                               self._known.decayed(tau)[ids] if known else None)
                         if focus is not None and self.focus_level == "base":
                             mass = normalised(mass) * focus
                         base[stream, tau] = normalised(mass)
@@ -397,8 +410,8 @@ class RoutineOracle(EstimatorParams):
         weights = self.weights_.weights(self.tuning, self.switch_margin)
         used = np.flatnonzero(weights > 0).tolist()  # the leader alone, unless mixing
         held = self._held()
-        inside = self._in_focus(offered, held) if self.focus else None
         ids = self._offer_ids(offered)
+        inside = self._in_focus(offered, held, ids) if self.focus else None
         new, resumed = self._offer_flags(ids)
         lifted, goes_on = tells_apart(new), tells_apart(resumed)
         probabilities, blends, cand = self._variant_probabilities(offered, ids, now, used, inside, new, resumed)

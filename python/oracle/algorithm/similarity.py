@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -74,6 +75,31 @@ class OptionTable:
 
     def __post_init__(self) -> None:
         self.values = np.asarray(self.matrix.values, dtype=np.float64)
+        self._decayed: dict[float, tuple[np.ndarray, int]] = {}
+
+    def __getstate__(self) -> dict[str, Any]:
+        state = dict(self.__dict__)
+        state.pop("_decayed", None)  # rebuilt on demand: a pickled model stays the table's size
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__dict__.update(state)
+        self._decayed = {}
+
+    def decayed(self, tau: float) -> np.ndarray:
+        """``exp(-table / tau)`` over the interned options (each entry computed once, when its
+        option is interned, by the same element-wise operations as on the whole table)."""
+        count = len(self.options)
+        kept, filled = self._decayed.get(tau, (np.empty((0, 0)), 0))
+        if kept.shape[0] != self.table.shape[0]:
+            grown = np.empty(self.table.shape)
+            grown[:filled, :filled] = kept[:filled, :filled]
+            kept = grown
+        if filled < count:
+            kept[filled:count, :count] = np.exp(-self.table[filled:count, :count] / tau)
+            kept[:filled, filled:count] = np.exp(-self.table[:filled, filled:count] / tau)
+        self._decayed[tau] = (kept, count)
+        return kept[:count, :count]
 
     def distances(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
         """Algorithm 2 between class rows (``option_distances`` with this table's factors)."""
