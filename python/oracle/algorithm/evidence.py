@@ -42,10 +42,9 @@ def features(model: Any, offered: Sequence[Option], time_of_day: str | None, at:
     its share of the uses at this part of day, the three lifts' flags, its nearest Algorithm 2
     distance to a past action, and the bucket of the time since it was last done (``at``; a
     column "no clock" when there is none)."""
-    ids = model._offer_ids(offered)
-    inside = model._in_focus(offered, ids=ids) if model.focus else None
-    new, resumed = model._offer_flags(ids)
-    probabilities, _, cand = model._variant_probabilities(offered, ids, time_of_day, None, inside, new, resumed)
+    seen = model._evidence(offered, time_of_day)
+    ids, inside, new, resumed, probabilities, cand = (seen.ids, seen.inside, seen.new, seen.resumed, seen.probabilities,
+                                                      seen.distances)
     size = len(offered)
     columns: list[np.ndarray] = [np.log(np.maximum(p, FLOOR)) for p in probabilities]
     counts = model._streams[model.streams[0]].counts

@@ -81,7 +81,6 @@ class OnlineOracle(RoutineOracle):
         self.spread_ = 0.0                       # the sum of its squares
         self._learn_from = 0
         self._clock = DecisionClock()
-        self._shared: tuple[tuple[Any, ...], Any] | None = None
         super().fit(history)
         return self
 
@@ -105,23 +104,9 @@ class OnlineOracle(RoutineOracle):
             if len(offered) > 1 and step.option in offered:
                 when, part = self._clock.decided(step)
                 x = features(self, offered, part, when)
-                self._learn(x, self._served(x, self._offer_ids(offered), when), offered.index(step.option))
+                self._learn(x, self._served(x, self._evidence(offered, part).ids, when), offered.index(step.option))
         super()._add(step, score, offers)
         self._clock.passed(step)
-
-    def _variant_probabilities(self, offered: Sequence[Option], ids: list[int], now: str | None,
-                               which: Sequence[int] | None = None, inside: np.ndarray | None = None,
-                               new: np.ndarray | None = None, resumed: np.ndarray | None = None
-                               ) -> tuple[list[np.ndarray], list[Any], np.ndarray]:
-        # every variant over one offer, at one part of day, in one state of the model: the evidence
-        # of a ranked offer, of the same decision when it is learnt and the self-tuning's score of
-        # it ask for the same distributions; computed once (the lifts' flags follow from the state)
-        if which is not None:
-            return super()._variant_probabilities(offered, ids, now, which, inside, new, resumed)
-        key = (tuple(offered), now, self.n_steps_)
-        if self._shared is None or self._shared[0] != key:
-            self._shared = (key, super()._variant_probabilities(offered, ids, now, None, inside, new, resumed))
-        return cast(tuple[list[np.ndarray], list[Any], np.ndarray], self._shared[1])
 
     def _served(self, x: np.ndarray, ids: list[int], when: float | None) -> np.ndarray:
         """log P: the routine predictor's probability of each option of an evidence block, as its

@@ -8,14 +8,20 @@ a break, by what followed the last action), and whose result is reweighted by th
 taking a newly offered option; the predictor ranks with the variant
 that predicted the user's past steps best (``selftune``). docs/algorithm.md, "Routine predictor",
 gives every formula and the reasons.
+
+Why this module is large: it is one estimator whose fit, scoring of the user's past steps and
+ranking read and write the same private state (the streams' counts, the interned options, the
+self-tuning's scores, the latest evidence); split across modules, each half would reach into the
+other's attributes. The formulas themselves live in the modules it imports.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
 from itertools import product
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -52,6 +58,20 @@ class _Stream:
     def recent(self) -> tuple[int, ...]:
         tokens = self.counts.tokens
         return tuple(tokens[-n] if len(tokens) >= n else START for n in range(1, self.depth + 1))
+
+
+@dataclass
+class Evidence:
+    """What every variant says about one offer (``RoutineOracle._evidence``): the options' interned
+    ids, the lifts' flags (None where a lift is off or does not apply), each variant's distribution
+    and the candidates' Algorithm 2 distances to every interned option."""
+
+    ids: list[int]
+    inside: np.ndarray | None
+    new: np.ndarray | None
+    resumed: np.ndarray | None
+    probabilities: list[np.ndarray]
+    distances: np.ndarray
 
 
 class RoutineOracle(EstimatorParams):
@@ -171,6 +191,7 @@ class RoutineOracle(EstimatorParams):
         self.gate_ = ClockGate(kept=[])
         self.n_steps_ = 0
         self.fitted_steps_: int | None = 0  # the length of the history fit() saw; None once partial_fit
+        self._evidence_at: tuple[tuple[Any, ...], Evidence] | None = None  # _evidence's latest answer
         self._grow(list(history))
         return self
 
@@ -222,11 +243,8 @@ class RoutineOracle(EstimatorParams):
         if scored:
             offered, _ = offered_options(step, None)
             if step.option in offered:
-                ids = self._offer_ids(offered)
-                inside = self._in_focus(offered, ids=ids) if self.focus else None
-                new, resumed = self._offer_flags(ids)
-                probabilities = self._variant_probabilities(offered, ids, step.time_of_day, inside=inside, new=new,
-                                                            resumed=resumed)[0]
+                seen = self._evidence(offered, step.time_of_day)
+                ids, probabilities = seen.ids, seen.probabilities
                 truth = offered.index(step.option)
                 clock = self.clock_.weights(self.clock_.buckets(ids, step.time))
                 if clock is not None:  # the clock's gate: Top-1 with its odds against without
@@ -263,6 +281,24 @@ class RoutineOracle(EstimatorParams):
         self.n_steps_ = position + 1
 
     # -- ranking --------------------------------------------------------------------------
+
+    def _evidence(self, offered: Sequence[Option], now: str | None) -> Evidence:
+        """Every variant's distribution over ``offered`` at part of day ``now`` in the model's
+        present state, with what it rests on; the latest answer is kept, since scoring a step and
+        the learned rankers' evidence of the same decision (``evidence.features``) ask for it in
+        the same state (the number of steps counted is part of the key: nothing else changes the
+        counts, and ``fit`` starts afresh)."""
+        key = (tuple(offered), now, self.n_steps_)
+        kept = self.__dict__.get("_evidence_at")
+        if kept is not None and kept[0] == key:
+            return cast(Evidence, kept[1])
+        ids = self._offer_ids(offered)
+        inside = self._in_focus(offered, ids=ids) if self.focus else None
+        new, resumed = self._offer_flags(ids)
+        probabilities, _, cand = self._variant_probabilities(offered, ids, now, None, inside, new, resumed)
+        seen = Evidence(ids, inside, new, resumed, probabilities, cand)
+        self._evidence_at = (key, seen)
+        return seen
 
     def _in_focus(self, offered: Sequence[Option], held: frozenset[str] | None = None,
                   ids: Sequence[int] | None = None) -> np.ndarray:
