@@ -42,9 +42,8 @@ def features(model: Any, offered: Sequence[Option], time_of_day: str | None, at:
     its share of the uses at this part of day, the three lifts' flags, its nearest Algorithm 2
     distance to a past action, and the bucket of the time since it was last done (``at``; a
     column "no clock" when there is none)."""
-    seen = model._evidence(offered, time_of_day)
-    ids, inside, new, resumed, probabilities, cand = (seen.ids, seen.inside, seen.new, seen.resumed, seen.probabilities,
-                                                      seen.distances)
+    found = model._evidence(offered, time_of_day)
+    ids, probabilities = found.ids, found.probabilities
     size = len(offered)
     columns: list[np.ndarray] = [np.log(np.maximum(p, FLOOR)) for p in probabilities]
     counts = model._streams[model.streams[0]].counts
@@ -62,8 +61,9 @@ def features(model: Any, offered: Sequence[Option], time_of_day: str | None, at:
     timed = counts.timed[0].tables.get((part,)) if part >= 0 else None
     columns.append(np.array([timed.get(i, 0) for i in ids], dtype=np.float64) / counts.timed[0].totals[(part,)]
                    if timed else np.zeros(size))
-    for flags in (inside, new, resumed):
+    for flags in (found.inside, found.new, found.resumed):
         columns.append(np.asarray(flags, dtype=np.float64) if flags is not None else np.zeros(size))
+    cand = found.distances
     nearest = cand.min(axis=1) if cand.shape[1] else np.full(size, math.inf)
     columns.append(np.minimum(nearest, 2 * model.penalty + model.task_factor))
     edges = tuple(model.recency)
