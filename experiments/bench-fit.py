@@ -7,8 +7,10 @@ The digest: `routine`, `pooled`, `online` and `stacked`, each fitted on the firs
 offers (with their forward trees), learn the next 20 with `partial_fit` and rank 10 more; the
 SHA-256 runs over every ranked option's rank, score and option (and its tree and evidence at
 first). The timing: `routine` and `pooled` fitted on 10,000 steps (seed 0), `--runs` times each,
-alternating, wall seconds (min and median). To time code from another commit, put its `python`
-folder first on PYTHONPATH; the script uses only what both sides export.
+alternating, wall seconds (min and median), beside the fits' floor measured in the same rounds
+(an order-3 count pass over the same steps, ``oracle.benchmarks.algorithm.fit_floor_ms``). To
+time code from another commit, put its `python` folder first on PYTHONPATH; the script uses only
+what both sides export (``fit_floor_ms`` exists from the commit that added it on).
 """
 
 from __future__ import annotations
@@ -24,7 +26,7 @@ from oracle.algorithm.online import OnlineOracle
 from oracle.algorithm.pooled import PooledOracle
 from oracle.algorithm.routine import RoutineOracle
 from oracle.algorithm.stacked import StackedOracle
-from oracle.benchmarks.algorithm import history
+from oracle.benchmarks.algorithm import fit_floor_ms, history
 
 PREDICTORS: tuple[type[Any], ...] = (RoutineOracle, PooledOracle, OnlineOracle, StackedOracle)
 
@@ -48,14 +50,16 @@ def digest() -> str:
 
 
 def fit_seconds(runs: int) -> dict[str, list[float]]:
-    """Wall seconds of whole fits at 10,000 steps, ``runs`` of each predictor, alternating."""
+    """Wall seconds of whole fits at 10,000 steps, ``runs`` of each predictor, alternating, and
+    of the fits' floor (``oracle.benchmarks.algorithm.fit_floor_ms``) after each round."""
     matrix, steps = history(10050, seed=0)
-    times: dict[str, list[float]] = {"routine": [], "pooled": []}
+    times: dict[str, list[float]] = {"routine": [], "pooled": [], "floor": []}
     for _ in range(runs):
         for name, cls in (("routine", RoutineOracle), ("pooled", PooledOracle)):
             start = time.perf_counter()
             cls(matrix).fit(steps[:10000])
             times[name].append(time.perf_counter() - start)
+        times["floor"].append(fit_floor_ms(steps[:10000], runs=1) / 1000.0)
     return times
 
 
@@ -69,9 +73,12 @@ def main() -> None:
     print(f"digest {digest()}", flush=True)
     if args.digest_only:
         return
-    for name, seconds in fit_seconds(args.runs).items():
+    times = fit_seconds(args.runs)
+    floor = float(np.median(times["floor"]))
+    for name, seconds in times.items():
+        ratio = f", {float(np.median(seconds)) / floor:.0f}x the floor" if name != "floor" else ""
         print(f"{name:8} fit at 10,000 steps: min {min(seconds):.3f} s, median {float(np.median(seconds)):.3f} s"
-              f" ({', '.join(f'{s:.3f}' for s in seconds)})", flush=True)
+              f" ({', '.join(f'{s:.3f}' for s in seconds)}){ratio}", flush=True)
 
 
 if __name__ == "__main__":

@@ -1,4 +1,4 @@
-"""The bench's SQL floor of the history read reads every row that read needs, wherever the store
+"""The bench's floors. The SQL floor of the history read reads every row that read needs, wherever the store
 keeps it: an imagining's plans are in the NEEM's side table (docs/store.md), and a floor that
 looked for them in the triples table read none of them and made the history read look 4.2x its
 floor at 10,000 actions instead of 2.3x."""
@@ -7,6 +7,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from oracle.algorithm.records import Option
+from oracle.algorithm.routine import RoutineOracle
+from oracle.benchmarks.algorithm import fit_floor_ms, floor_counts, history
 from oracle.benchmarks.prolog import _neem, _sql_floor
 from oracle.ontology import build_ontology
 from oracle.store import open_store
@@ -22,3 +25,23 @@ def test_the_floor_reads_every_imagined_task(tmp_path: Path) -> None:
     actions, interval_types, imagined = _sql_floor(path, neem_id)
     assert imagined == 3 * 3
     assert actions > 0 and interval_types > 0
+
+
+def test_the_fit_floor_counts_what_the_routine_predictor_counts_at_order_3() -> None:
+    """The fits' floor does real work: its order-3 counts are the routine predictor's, token for
+    token (the two intern actions in different orders, so both are compared as actions)."""
+    matrix, steps = history(400, seed=5)
+    ids, counts = floor_counts(steps)
+    model = RoutineOracle(matrix).fit(steps)
+    level = model._streams["idle"].counts.levels[3].tables
+
+    def named(token: int, options: list[Option]) -> Option | None:
+        return None if token < 0 else options[token]
+
+    floor_options = list(ids)
+    ours = {tuple(named(t, floor_options) for t in context): {named(t, floor_options): n for t, n in followers.items()}
+            for context, followers in counts.items() if len(context) == 3}
+    theirs = {tuple(named(t, model.options_) for t in context): {named(t, model.options_): n for t, n in followers.items()}
+              for context, followers in level.items()}
+    assert ours == theirs and sum(map(len, ours.values())) > 100
+    assert fit_floor_ms(steps, runs=1) > 0

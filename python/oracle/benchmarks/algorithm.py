@@ -127,6 +127,33 @@ def _times(oracle: _Ranker, queries: Sequence[Step], repeats: int = 1) -> list[f
     return out
 
 
+def floor_counts(steps: Sequence[Step]) -> tuple[dict[Option, int], dict[tuple[int, ...], dict[int, int]]]:
+    """The work of the fits' floor (``fit_floor_ms``): each action interned (idle: -1) and counted
+    after its context of up to 3 earlier tokens; the interned ids and the counts."""
+    ids: dict[Option, int] = {}
+    counts: dict[tuple[int, ...], dict[int, int]] = {}
+    recent: tuple[int, ...] = ()
+    for step in steps:
+        token = -1 if step.idle else ids.setdefault(step.option, len(ids))
+        followers = counts.setdefault(recent, {})
+        followers[token] = followers.get(token, 0) + 1
+        recent = (*recent[-2:], token)
+    return ids, counts
+
+
+def fit_floor_ms(steps: Sequence[Step], runs: int = 3) -> float:
+    """The fits' floor, measured in the same run: milliseconds (the fastest of ``runs``) of one
+    plain-Python pass over ``steps`` that does the least a per-user counting fit does
+    (``floor_counts``: an order-3 n-gram's fit). A fit's figure over its floor says how much of
+    it is the machine and how much the predictor."""
+    best = math.inf
+    for _ in range(runs):
+        start = time.perf_counter()
+        floor_counts(steps)
+        best = min(best, time.perf_counter() - start)
+    return best * 1000.0
+
+
 def _peak_mb(make: Callable[[], _Ranker], prefix: Sequence[Step], queries: Sequence[Step]) -> float:
     tracemalloc.start()
     oracle = make().fit(prefix)
@@ -190,11 +217,13 @@ def _routine_rows(matrix: DistanceMatrix, prefix: Sequence[Step], queries: Seque
     start = time.perf_counter()
     model = cls(matrix).fit(prefix)
     fit_ms = (time.perf_counter() - start) * 1000.0
+    floor_ms = fit_floor_ms(prefix)
     model.rank(queries[0], tree_roots=1)
     times = _times(model, queries[:count], 3)
     median, p99 = float(np.median(times)), float(np.percentile(times, 99))
     peak = _peak_mb(lambda: cls(matrix), prefix, queries)
-    print(f"{size:>8} {'default':<14} {impl:<10} {median:>10.3f} {p99:>9.3f} {peak:>8.1f}   fit {fit_ms:.0f} ms",
+    print(f"{size:>8} {'default':<14} {impl:<10} {median:>10.3f} {p99:>9.3f} {peak:>8.1f}   fit {fit_ms:.0f} ms"
+          f" (floor {floor_ms:.1f} ms, {fit_ms / floor_ms:.0f}x)",
           flush=True)
     adds = []
     model = cls(matrix).fit(prefix[:-20])
@@ -210,7 +239,8 @@ def _routine_rows(matrix: DistanceMatrix, prefix: Sequence[Step], queries: Seque
              "median_ms": round(float(np.median(adds)), 4), "p99_ms": round(float(np.percentile(adds, 99)), 4),
              "peak_mb": None},
             {"area": "algorithm", "name": "fit", "history": size, "impl": impl, "settings": "default",
-             "median_ms": round(fit_ms, 1), "p99_ms": None, "peak_mb": None}]
+             "median_ms": round(fit_ms, 1), "p99_ms": None, "peak_mb": None, "floor_ms": round(floor_ms, 2),
+             "floor_ratio": round(fit_ms / floor_ms, 1)}]
 
 
 if __name__ == "__main__":
