@@ -43,39 +43,45 @@ def features(model: Any, offered: Sequence[Option], time_of_day: str | None, at:
     distance to a past action, and the bucket of the time since it was last done (``at``; a
     column "no clock" when there is none)."""
     found = model._evidence(offered, time_of_day)
-    ids, probabilities = found.ids, found.probabilities
+    ids = found.ids
     size = len(offered)
-    columns: list[np.ndarray] = [np.log(np.maximum(p, FLOOR)) for p in probabilities]
+    edges = tuple(model.recency)
+    n_variants = len(found.probabilities)
+    out = np.zeros((size, n_variants + 2 * len(CONTEXT_ORDERS) + 7 + len(edges) + 3))
+    out[:, :n_variants] = np.log(np.maximum(np.asarray(found.probabilities), FLOOR)).T
+    at_column = n_variants
     counts = model._streams[model.streams[0]].counts
     for n in CONTEXT_ORDERS:
         context = counts.context(n) if n <= counts.max_order else None
         followers = counts.levels[n].tables.get(context) if context is not None else None
-        seen = np.array([followers.get(i, 0) for i in ids], dtype=np.float64) if followers else np.zeros(size)
-        columns.append(seen / counts.levels[n].totals[context] if followers else seen)
-        columns.append(np.log1p(seen))
+        if followers:  # share and log count of the followings (columns of zeros otherwise)
+            seen = np.array([followers.get(i, 0) for i in ids], dtype=np.float64)
+            out[:, at_column] = seen / counts.levels[n].totals[context]
+            out[:, at_column + 1] = np.log1p(seen)
+        at_column += 2
     done = counts.levels[0].tables.get(()) or {}
     uses = np.array([done.get(i, 0) for i in ids], dtype=np.float64)
-    columns.append(np.log1p(uses))
-    columns.append((uses == 0).astype(np.float64))
+    out[:, at_column] = np.log1p(uses)
+    out[:, at_column + 1] = uses == 0
     part = _TOD.get(time_of_day or "", -1)
     timed = counts.timed[0].tables.get((part,)) if part >= 0 else None
-    columns.append(np.array([timed.get(i, 0) for i in ids], dtype=np.float64) / counts.timed[0].totals[(part,)]
-                   if timed else np.zeros(size))
-    for flags in (found.inside, found.new, found.resumed):
-        columns.append(np.asarray(flags, dtype=np.float64) if flags is not None else np.zeros(size))
+    if timed:
+        out[:, at_column + 2] = np.array([timed.get(i, 0) for i in ids], dtype=np.float64) / counts.timed[0].totals[(part,)]
+    for column, flags in enumerate((found.inside, found.new, found.resumed), start=at_column + 3):
+        if flags is not None:
+            out[:, column] = flags
     cand = found.distances
     nearest = cand.min(axis=1) if cand.shape[1] else np.full(size, math.inf)
-    columns.append(np.minimum(nearest, 2 * model.penalty + model.task_factor))
-    edges = tuple(model.recency)
-    buckets = np.zeros((size, len(edges) + 2))
+    out[:, at_column + 6] = np.minimum(nearest, 2 * model.penalty + model.task_factor)
+    at_column += 7
     last = model.clock_.last
     if at is not None:
         for row, i in enumerate(ids):
             t = last.get(i)
-            buckets[row, len(edges) + 1 if t is None else bisect_right(edges, at - t)] = 1.0
-    columns.extend(buckets.T)
-    columns.append(np.full(size, 1.0 if at is None else 0.0))
-    return np.column_stack(columns)
+            out[row, at_column + (len(edges) + 1 if t is None else bisect_right(edges, at - t))] = 1.0
+    else:
+        out[:, -1] = 1.0
+    return out
 
 
 class DecisionClock:
