@@ -10,14 +10,21 @@ the next step is ranked:
 - feasible: over what was available after the same action before (the offer of the decision that
   followed the user's latest execution of that option; the offer now when it was never done:
   the task inference of a log without a world model), kept to the options the user did before when
-  the data has no available sets (the replay's candidate rule).
+  the data has no available sets (the replay's candidate rule);
+- rules (with ``--world``, for data the kitchen world made): over what the world's task inference
+  makes available once the predicted step is done (``World.apply``, then ``World.available``), from
+  the world's state at the decision. That state is tracked by applying every action done, and
+  taken afresh from the world's initial state (the kitchen tidied overnight) where the tracked
+  state's available tasks are not the row's offer; a decision where neither matches has no rules
+  chain (counted as ``rules_untracked``; its rules ranks count as misses).
 Step 3 repeats this from the predicted step 2. Step k is scored at t only where actions t .. t+k-1
 exist with no idle gap between (the chain is one activity); a hit at Top-j means the action t+k-1 is
 among the first j options of the step's ranking. Intervals: the paired bootstrap of
 ``oracle.evaluation.statistics`` over users (blocks of one user's predictions on sets with few users).
 
-usage: python experiments/chains.py CHAINS [--odb DIR --mapping YAML] [--users N] [--method routine]
-       [--json OUT]
+usage: python experiments/chains.py CHAINS [--odb DIR --mapping YAML] [--users N] [--method NAME]
+       [--world [FILE]] [--json OUT]
+(``--method``: a predictor of the registry, by default the default predictor)
 """
 
 from __future__ import annotations
@@ -32,14 +39,28 @@ from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
 from oracle.algorithm.params import Hyperparameters  # noqa: E402
+from oracle.algorithm.predictors import DEFAULT  # noqa: E402
 from oracle.algorithm.records import Option, Step  # noqa: E402
 from oracle.evaluation.replay import KS, OracleMethod, Outcome, ReplayRules, load_users, replay  # noqa: E402
 from oracle.evaluation.statistics import comparison_summary  # noqa: E402
+from oracle.calls import option_of  # noqa: E402
+from oracle.chains import TaskCall, parse_call  # noqa: E402
+from oracle.errors import NeemOracleError  # noqa: E402
 from oracle.ontology import build_ontology  # noqa: E402
+from oracle.world.rules import World  # noqa: E402
+from oracle.world.state import State  # noqa: E402
+from oracle.world.worldfile import load_world  # noqa: E402
 
 
 class Chaining(OracleMethod):
-    """The predictor, recording at each decision its plain and feasible 2nd and 3rd steps."""
+    """The predictor, recording at each decision its plain and feasible 2nd and 3rd steps (and,
+    with ``world``, the chain the world's rules allow)."""
+
+    def __init__(self, ontology: Any, settings: Hyperparameters, method: str, world: World | None = None) -> None:
+        self.world = world
+        self.ontology = ontology
+        self.untracked = 0
+        super().__init__(ontology, settings, method=method, served=True)
 
     def reset(self) -> None:
         super().reset()
@@ -47,16 +68,38 @@ class Chaining(OracleMethod):
         self.after: dict[Option, tuple[Option, ...]] = {}   # option -> the offer of the decision after it
         self.done: dict[Option, None] = {}
         self.previous: Option | None = None
+        self.state: State | None = None if self.world is None else self.world.initial_state()
+
+    def _calls(self, state: State) -> dict[Option, TaskCall]:
+        """What the world makes available in ``state``, as options with their calls."""
+        assert self.world is not None
+        return {option_of(self.ontology, call): call for call in self.world.available(state)}
+
+    def _tracked(self, offer: set[Option]) -> State | None:
+        """The world's state at this decision: the tracked one, or the initial one, whichever makes
+        the row's offer available; None when neither does."""
+        assert self.world is not None
+        for state in (self.state, self.world.initial_state()):
+            if state is not None and set(self._calls(state)) == offer:
+                self.state = state
+                return state
+        self.state = None
+        return None
 
     def rank(self, candidates: Any, time_of_day: str | None = None, at: float | None = None) -> list[Option]:
         ranking = self.model.rank(list(candidates), time_of_day, tree_roots=1, at=at)
         order = list(ranking.options())
         record: dict[str, list[list[Option]]] = {"plain": [], "feasible": [], "tree": []}
+        state = self._tracked(set(candidates)) if self.world is not None else None
+        if self.world is not None:
+            record["rules"] = [[], []]
+            self.untracked += state is None
         # the forward tree of the first option (thesis Fig. 4.6): what followed its past situations
         children = ranking.tasks[0].successors if ranking.tasks else ()
         record["tree"] = [[n.option for n in children], [n.option for n in children[0].children] if children else []]
-        for kind in ("plain", "feasible"):
+        for kind in ("plain", "feasible") if state is None else ("plain", "feasible", "rules"):
             model, offer, first = self.model, list(candidates), order[0] if order else None
+            record[kind] = []
             for _ in range(2):
                 if first is None:
                     record[kind].append([])
@@ -66,6 +109,10 @@ class Chaining(OracleMethod):
                                        str(first), at))
                 if kind == "feasible":
                     offer = list(self.after.get(first, offer))
+                elif kind == "rules":
+                    assert self.world is not None and state is not None
+                    state = self.world.apply(state, self._calls(state)[first])
+                    offer = list(self._calls(state))
                 nxt = list(model.rank(offer, time_of_day, tree_roots=0, at=at).options()) if offer else []
                 record[kind].append(nxt)
                 first = nxt[0] if nxt else None
@@ -79,6 +126,11 @@ class Chaining(OracleMethod):
                 self.after[self.previous] = step.options
             self.previous = option
             self.done[option] = None
+            if self.world is not None and self.state is not None:
+                try:
+                    self.state = self.world.apply(self.state, parse_call(step.label))
+                except NeemOracleError:  # not feasible in the tracked state: tracked afresh at the next decision
+                    self.state = None
         else:
             self.previous = None  # an idle gap: what follows is not "after" the action before it
         super().observe(step)
@@ -90,14 +142,18 @@ def main() -> int:
     parser.add_argument("--odb")
     parser.add_argument("--mapping")
     parser.add_argument("--users", type=int, default=0)
-    parser.add_argument("--method", default="routine")
+    parser.add_argument("--method", default=DEFAULT, help=f"predictor (default {DEFAULT})")
+    parser.add_argument("--world", nargs="?", const="", default=None, metavar="FILE",
+                        help="also chain by the kitchen world's rules (FILE: a world file; none: the shipped one)")
     parser.add_argument("--json", type=Path)
     args = parser.parse_args()
+    world = None if args.world is None else load_world(args.world or None)
     ontology = build_ontology(args.odb, args.mapping)
     users = load_users(args.chains)
     if args.users:
         users = OrderedDict(list(users.items())[:args.users])
-    method = Chaining(ontology, Hyperparameters(), method=args.method, served=True)
+    method = Chaining(ontology, Hyperparameters(), args.method, world)
+    kinds = ("plain", "feasible", "tree") + (("rules",) if world is not None else ())
     result = replay(ontology, users, [method], 0, None, ReplayRules())
     # which decisions were ranked (a decision with no candidates is not), in replay order
     ranked = iter(method.chains)
@@ -116,28 +172,35 @@ def main() -> int:
                 later = j + depth - 1
                 if later >= len(positions) or _gap(rows_of, j, later):
                     continue
-                truth = ontology_option(ontology, rows_of[later].action)
+                truth = option_of(ontology, rows_of[later].action)
                 ranks: dict[str, int | None] = {}
-                for kind in ("plain", "feasible", "tree"):
-                    listed = record[kind][depth - 2]
+                for kind in kinds:
+                    listed = record.get(kind, [[], []])[depth - 2]  # no rules chain: a miss
                     ranks[kind] = listed.index(truth) + 1 if truth in listed else None
                 outcomes.append(Outcome(f"{user}", depth * 1_000_000 + j, 0, True, ranks, dict.fromkeys(ranks, 0.0)))
     report: dict[str, Any] = {"set": args.chains, "method": args.method, "users": len(users)}
+    if world is not None:
+        report["rules_untracked"] = method.untracked
+        report["decisions"] = len(method.chains)
     for depth in (2, 3):
         chosen = [o for o in outcomes if o.index // 1_000_000 == depth]
         entry: dict[str, Any] = {"n": len(chosen)}
-        for kind in ("plain", "feasible", "tree"):
+        for kind in kinds:
             entry[kind] = {f"top{k}": sum(1 for o in chosen if (r := o.ranks[kind]) is not None and r <= k)
                            / max(1, len(chosen)) for k in KS}
-        paired = comparison_summary(chosen, "plain", ["feasible", "tree"], 0)["methods"]
+        paired = comparison_summary(chosen, "plain", [kind for kind in kinds if kind != "plain"], 0)["methods"]
         entry["feasible_minus_plain"], entry["tree_minus_plain"] = paired["feasible"], paired["tree"]
+        if "rules" in paired:
+            entry["rules_minus_plain"] = paired["rules"]
+            entry["rules_minus_feasible"] = comparison_summary(chosen, "feasible", ["rules"], 0)["methods"]["rules"]
         report[f"step{depth}"] = entry
         print(f"step {depth} ({len(chosen)} predictions): " + "; ".join(
             f"top{k} plain {entry['plain'][f'top{k}']:.3f} feasible {entry['feasible'][f'top{k}']:.3f} "
             f"tree {entry['tree'][f'top{k}']:.3f} "
             f"diff {100 * entry['feasible_minus_plain'][f'top{k}']['difference']:+.2f} "
             f"[{100 * entry['feasible_minus_plain'][f'top{k}']['low']:+.2f}, "
-            f"{100 * entry['feasible_minus_plain'][f'top{k}']['high']:+.2f}]" for k in KS))
+            f"{100 * entry['feasible_minus_plain'][f'top{k}']['high']:+.2f}]"
+            + (f" rules {entry['rules'][f'top{k}']:.3f}" if "rules" in entry else "") for k in KS))
     if args.json is not None:
         args.json.write_text(json.dumps(report, indent=1) + "\n", encoding="utf-8")
     return 0
@@ -152,12 +215,6 @@ def _gap(rows: list[Any], first: int, last: int) -> bool:
                 seconds_of(a.end if a.end is not None else a.time), seconds_of(b.time)):
             return True
     return False
-
-
-def ontology_option(ontology: Any, call: Any) -> Option:
-    from oracle.calls import option_of
-
-    return option_of(ontology, call)
 
 
 if __name__ == "__main__":

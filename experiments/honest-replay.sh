@@ -29,5 +29,5 @@ $PY experiments/shards.py merge out/i39-persona-0.pkl out/i39-persona-30.pkl out
     --json out/i39-persona.json
 $PY experiments/chains.py "${KA[@]}" --json out/i39-chains-kasteren.json
 $PY experiments/chains.py "${EG[@]}" --json out/i39-chains-egtea.json
-# chains copy the model twice per step and way: the persona test split's first 8 users
-$PY experiments/chains.py out/bench/test.jsonl --users 8 --json out/i39-chains-persona.json
+# the persona set was made by the kitchen world: its rules chain too (--world)
+$PY experiments/chains.py out/bench/test.jsonl --world --json out/i39-chains-persona.json

@@ -72,17 +72,24 @@ def everything(out: Path) -> None:
 
 
 def chains(out: Path) -> None:
+    """Plain, forward-tree and feasible chains per set and step; the world's rules where the set
+    was replayed with them (``chains.py --world``; "-" elsewhere)."""
     print("| set | step | n | plain Top-1/3/5 | forward tree Top-1/3/5 | feasible Top-1/3/5 | "
-          "feasible minus plain, Top-3 [95 % CI] | feasible minus tree, Top-3 |")
-    print("| --- | ---: | ---: | --- | --- | --- | --- | ---: |")
+          "feasible minus plain, Top-3 [95 % CI] | feasible minus tree, Top-3 | world's rules Top-1/3/5 | "
+          "rules minus plain, Top-3 [95 % CI] | rules minus feasible, Top-3 [95 % CI] |")
+    print("| --- | ---: | ---: | --- | --- | --- | --- | ---: | --- | --- | --- |")
     for label, c in each(out, "i39-chains"):
         for depth in (2, 3):
             e = c[f"step{depth}"]
-            cells = [" / ".join(f"{e[kind][f'top{k}']:.3f}" for k in KS) for kind in ("plain", "tree", "feasible")]
+            cells = [" / ".join(f"{e[kind][f'top{k}']:.3f}" for k in KS) if kind in e else "-"
+                     for kind in ("plain", "tree", "feasible", "rules")]
             d = e["feasible_minus_plain"]["top3"]
             tree = 100 * (e["feasible"]["top3"] - e["tree"]["top3"])
+            rules = [f"{100 * r['difference']:+.1f} [{100 * r['low']:+.1f}, {100 * r['high']:+.1f}]" if r else "-"
+                     for r in (e.get(f"rules_minus_{other}", {}).get("top3") for other in ("plain", "feasible"))]
             print(f"| {label} | {depth} | {e['n']:,} | {cells[0]} | {cells[1]} | {cells[2]} | "
-                  f"{100 * d['difference']:+.1f} [{100 * d['low']:+.1f}, {100 * d['high']:+.1f}] | {tree:+.1f} |")
+                  f"{100 * d['difference']:+.1f} [{100 * d['low']:+.1f}, {100 * d['high']:+.1f}] | {tree:+.1f} | "
+                  f"{cells[3]} | {rules[0]} | {rules[1]} |")
 
 
 def normalized(out: Path) -> None:
