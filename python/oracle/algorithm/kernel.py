@@ -29,7 +29,10 @@ class Rows:
     def append(self, row: float | Sequence[float] | np.ndarray) -> None:
         if self.size == self._data.shape[0]:
             self._data = np.concatenate([self._data, np.empty_like(self._data)])
-        self._data[self.size, : self.width] = row
+        if self.width == 1 and isinstance(row, int):  # one cell: a scalar store, not a slice's
+            self._data[self.size, 0] = row
+        else:
+            self._data[self.size, : self.width] = row
         self.size += 1
 
     @property

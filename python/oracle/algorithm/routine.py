@@ -253,15 +253,17 @@ class RoutineOracle(EstimatorParams):
                 self.weights_.update(probabilities, truth, self.n_steps_)
         position = self.n_steps_
         ids, offer = self._known.offer(step.options, offers)
-        if not step.idle and ids:
-            counted = decision(ids, self._known.ids.get(step.option), offer)
+        option = None if step.idle else step.option  # made once: a Step makes a new Option each time
+        found = None if option is None else self._known.ids.get(option)
+        if option is not None and ids:
+            counted = decision(ids, found, offer)
             if counted is not None:
                 self._observe(*counted, step.time)
             self.fresh_.offer = offer
-        if step.idle:
+        if option is None:
             token = IDLE
         else:
-            token = self._known.intern(step.option)
+            token = self._known.intern(option) if found is None else found
             if position > 0 and self._step_ids.view[position - 1, 0] != IDLE:
                 self._next.view[position - 1, 0] = position
             code = _TOD.get(step.time_of_day or "", -1)
