@@ -71,7 +71,8 @@ class Chaining(OracleMethod):
         self.state: State | None = None if self.world is None else self.world.initial_state()
 
     def _calls(self, state: State) -> dict[Option, TaskCall]:
-        """What the world makes available in ``state``, as options with their calls."""
+        """What the world makes available in ``state``, as options with their calls (two calls of
+        one option, objects of one class: the one listed last)."""
         assert self.world is not None
         return {option_of(self.ontology, call): call for call in self.world.available(state)}
 
