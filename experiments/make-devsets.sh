@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Builds the routine predictor's fifteen development sets (docs/algorithm.md, "Development sets
-# and what helped"), replayed only to choose, never reported. Data stays outside the project.
+# Builds the routine predictor's development sets (docs/algorithm.md, "Development sets and what
+# helped"; fifteen, and since 2026-12-06 a sixteenth of long histories, "Tuning window"), replayed
+# only to choose, never reported. Data stays outside the project.
 #
 # usage: experiments/make-devsets.sh OUT [RAW]
 #   OUT: where the sets go (OUT/bench/tune.jsonl, OUT/dev/{,open/,clockless/}{seed1,short}.jsonl,
@@ -23,12 +24,15 @@ $PY -m oracle generate --personas 40 --days 7 --seed 1 --out "$OUT/seed1"
 cat "$OUT/seed1/tune.jsonl" "$OUT/seed1/test.jsonl" > "$OUT/dev/seed1.jsonl"
 $PY -m oracle generate --personas 40 --days 2 --seed 2 --out "$OUT/sparse"
 cat "$OUT/sparse/tune.jsonl" "$OUT/sparse/test.jsonl" > "$OUT/dev/short.jsonl"
+# long histories (6 personas, 60 days: 1,667-2,912 actions each), where the tuning window binds
+$PY -m oracle generate --personas 6 --days 60 --seed 7 --out "$OUT/long"
+cat "$OUT/long/tune.jsonl" "$OUT/long/test.jsonl" > "$OUT/dev/long.jsonl"
 for chains in "$OUT/bench/tune.jsonl" "$OUT/dev/seed1.jsonl" "$OUT/dev/short.jsonl"; do
   $PY experiments/dev-conditions.py "$chains" "$OUT/dev"
 done
 {
   echo "tune $OUT/bench/tune.jsonl"
-  for name in seed1 short; do echo "$name $OUT/dev/$name.jsonl"; done
+  for name in seed1 short long; do echo "$name $OUT/dev/$name.jsonl"; done
   for condition in open clockless; do
     for name in tune seed1 short; do echo "$name-$condition $OUT/dev/$condition/$name.jsonl"; done
   done

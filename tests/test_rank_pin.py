@@ -33,11 +33,13 @@ ACTIONS = 10_000
 #: the lift after a break gives the newly offered options' one, 8193c57e... The clock (how long
 #: ago each option was last done, behind its Top-1 gate) adds the field ``since``; on this NEEM
 #: its gate stays shut, and with ``since`` dropped the code gives the digest before it, 6e082cec...
+#: The tuning window of 500 steps (1,000 before; docs/algorithm.md, "Tuning window") renewed it:
+#: with ``tuning_window=1000`` and ``online_window=1000`` the code gives the one before, 2d72e897...
 #: ``python tests/test_rank_pin.py`` prints it.
-EXPECTED = "2d72e8977a1032e54fcb6b163160dfe1c5fbc698a1234b96d7a808b0109b8ad0"
+EXPECTED = "7c8c3cd9002d3b48e1ad210169fc7194ccc0119358c54613bdb812f34f31b4d8"
 #: the same for the default, ``pooled``, ranked right after on the same NEEM: the routine
 #: predictor's text but for ``"method": "pooled"`` (on this NEEM the pool's gate stays shut)
-EXPECTED_DEFAULT = "008ea5d21dd856768d2fb8a015b8c68cfad17db5a2a8a92aa43536d19edb8263"
+EXPECTED_DEFAULT = "521a6a274396236641115e5eefd168993cd754893615770e778e6178a7c62927"
 
 
 def _oracle(*argv: str, env: dict[str, str]) -> str:
