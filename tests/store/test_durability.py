@@ -103,8 +103,8 @@ def _inside_a_document(data: bytes, near: int) -> int:
     at = 0
     while at < len(data):
         end = at + int.from_bytes(data[at:at + 4], "little")
-        if end > near:
-            return max(near, at + 1) if max(near, at + 1) < end else at + 1
+        if end > near:  # the document [at, end) holds the cut point; a BSON document has 5 bytes or more
+            return near if near > at else at + 1
         at = end
     raise AssertionError("no document ends after the cut point")
 

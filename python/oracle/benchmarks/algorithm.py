@@ -203,21 +203,21 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
                          "p99_ms": round(float(np.percentile(adds, 99)), 4), "peak_mb": None})
             print(f"{size:>8} {name:<14} {'fast add':<10} {np.median(adds):>10.3f} {np.percentile(adds, 99):>9.3f}",
                   flush=True)
-        rows.extend(_routine_rows(matrix, prefix, queries, fast_queries, size, PooledOracle, "pooled"))
-        rows.extend(_routine_rows(matrix, prefix, queries, fast_queries, size))
-        rows.extend(_routine_rows(matrix, prefix, queries, fast_queries, size, StackedOracle, "stacked"))
-        rows.extend(_routine_rows(matrix, prefix, queries, fast_queries, size, OnlineOracle, "online"))
+        floor_ms = fit_floor_ms(prefix)  # one floor per history, beside each predictor's fit on it
+        for cls, impl in ((PooledOracle, "pooled"), (RoutineOracle, "routine"), (StackedOracle, "stacked"),
+                          (OnlineOracle, "online")):
+            rows.extend(_routine_rows(matrix, prefix, queries, fast_queries, size, floor_ms, cls, impl))
     return rows
 
 
-def _routine_rows(matrix: DistanceMatrix, prefix: Sequence[Step], queries: Sequence[Step], count: int, size: int, cls: type = RoutineOracle,
-                  impl: str = "routine") -> list[dict[str, Any]]:
+def _routine_rows(matrix: DistanceMatrix, prefix: Sequence[Step], queries: Sequence[Step], count: int, size: int,
+                  floor_ms: float, cls: type = RoutineOracle, impl: str = "routine") -> list[dict[str, Any]]:
     """The routine predictor (or ``cls``, ``impl``: the pooled, stacked or online one) on the same history and
-    queries (its own defaults, self-tuned): rank, partial_fit and one whole fit."""
+    queries (its own defaults, self-tuned): rank, partial_fit and one whole fit, beside the fits'
+    floor on that history (``floor_ms``)."""
     start = time.perf_counter()
     model = cls(matrix).fit(prefix)
     fit_ms = (time.perf_counter() - start) * 1000.0
-    floor_ms = fit_floor_ms(prefix)
     model.rank(queries[0], tree_roots=1)
     times = _times(model, queries[:count], 3)
     median, p99 = float(np.median(times)), float(np.percentile(times, 99))
