@@ -204,9 +204,9 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
             print(f"{size:>8} {name:<14} {'fast add':<10} {np.median(adds):>10.3f} {np.percentile(adds, 99):>9.3f}",
                   flush=True)
         floor_ms = fit_floor_ms(prefix)  # one floor per history, beside each predictor's fit on it
-        for cls, impl in ((PooledOracle, "pooled"), (RoutineOracle, "routine"), (StackedOracle, "stacked"),
-                          (OnlineOracle, "online")):
-            rows.extend(_routine_rows(matrix, prefix, queries, fast_queries, size, floor_ms, cls, impl))
+        for learned, impl in ((PooledOracle, "pooled"), (RoutineOracle, "routine"), (StackedOracle, "stacked"),
+                              (OnlineOracle, "online")):
+            rows.extend(_routine_rows(matrix, prefix, queries, fast_queries, size, floor_ms, learned, impl))
     return rows
 
 
