@@ -18,9 +18,9 @@ from oracle.paths import project_home
 pytestmark = pytest.mark.skipif(shutil.which("swipl") is None, reason="SWI-Prolog (swipl) is not installed")
 
 #: Whether the loaded odb_history module holds the probe/1 fact an edit adds (and its exports).
-PROBE = ("from oracle import bridge; bridge._ensure_loaded();"
-         " assert bridge._run('current_predicate(odb_history:situation_history/1)');"
-         " print(bridge._run('catch(odb_history:probe(_), _, fail)') != [])")
+PROBE = ("from oracle.bridge import engine; engine.ensure_loaded();"
+         " assert engine.run('current_predicate(odb_history:situation_history/1)');"
+         " print(engine.run('catch(odb_history:probe(_), _, fail)') != [])")
 
 
 def _home_copy(tmp_path: Path) -> Path:

@@ -7,7 +7,7 @@
     ]).
 /** <module> The Python request channel: the only module that touches the Python store
 
-The Python bridge (python/oracle/bridge.py) registers its foreign predicates in this module
+The Python bridge (python/oracle/bridge/, its foreign.py) registers its foreign predicates in this module
 (py_match/2, py_insert/2, py_retract/2, py_graph/2, py_scopes/2, py_annotations/2,
 py_annotate/2, py_tf/2, py_dump/2, py_request/1); nothing else calls them. A request goes
 to Python as a list of atoms, numbers and lists (a match request as its JSON text); a reply

@@ -227,7 +227,7 @@ sort_rows(I, Keys, Rows0, Rows) :-
     sort_rows(I1, Keys, Rows1, Rows).
 
 %   Scope ends as numbers; -1, -1 for no time filter. The bridge turns them into the
-%   store's Scope (see python/oracle/bridge.py).
+%   store's Scope (see python/oracle/bridge/foreign.py).
 encode_scope(any, -1, -1).
 encode_scope(scope(S, U), S, U).
 

@@ -2,7 +2,7 @@
 per user, keyed by the content of every Prolog source under ``prolog/``, where they are, and the
 SWI-Prolog version. An edited module changes the key, so a stale compilation is never loaded; the
 entries used least recently beyond ``KEPT`` are removed when a new one is published.
-The bridge compiles and loads (oracle.bridge._ensure_loaded).
+The bridge compiles and loads (oracle.bridge.engine.ensure_loaded).
 """
 
 from __future__ import annotations

@@ -161,7 +161,7 @@ def test_why_not_times_of_a_call_done_often(tmp_path, onto):
 
 
 def test_grouped_reply_writes_each_distinct_group_once():
-    from oracle.bridge import _compact
+    from oracle.bridge.foreign import _compact
     from oracle.store.chunks import MatchChunk
 
     chunk = MatchChunk(["a", "b", "c"], [(0, [1, 2]), (2, [2, 1]), (1, [1])])

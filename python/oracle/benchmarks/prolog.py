@@ -281,10 +281,10 @@ def _crossing_goal(bridge: Any) -> str:
     interval of one event (its subject known, so the (s, p) index finds the row). An unbound
     subject with ``limit(1)`` is no floor: SQLite, without statistics, reads every interval
     triple through the p* index and sorts them by id for the first (56 ms at 50,000 actions)."""
-    from oracle.bridge import _plain, quote_atom
+    from oracle.bridge.values import plain, quote_atom
 
     subject = bridge.query("kb_iri(dul:hasTimeInterval, P), once(store_match([t(S, P, _)], any, [limit(1)]))")[0]["S"]
-    return f"kb_iri(dul:hasTimeInterval, P), once(store_match([t({quote_atom(_plain(subject))}, P, _)], any, [limit(1)]))"
+    return f"kb_iri(dul:hasTimeInterval, P), once(store_match([t({quote_atom(plain(subject))}, P, _)], any, [limit(1)]))"
 
 
 def history_figures(quick: bool = False) -> list[dict[str, Any]]:

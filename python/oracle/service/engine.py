@@ -42,7 +42,7 @@ class EngineThread:
     """The Prolog thread; ``await run(f, ...)`` runs f there and returns its result.
 
     There is one per process and it lives as long as the process: the Prolog engine the bridge
-    attaches to it (``bridge._attach_engine``) is attached once and never left behind."""
+    attaches to it (``oracle.bridge.engine.attach_engine``) is attached once and never left behind."""
 
     _shared: ThreadPoolExecutor | None = None
 
