@@ -21,7 +21,8 @@ from typing import Any
 from oracle.chains import MODES, TaskCall, modes_error
 from oracle.errors import LoggingError
 from oracle.neem import terms as T
-from oracle.neem.writer import NeemLogger, _instant, _Out
+from oracle.neem.records import checked_instant, TripleBuffer
+from oracle.neem.writer import NeemLogger
 from oracle.namespaces import DUL_IRI, SOMA_IRI
 from oracle.store import RDF_TYPE, Store
 from oracle.store.model import decode_value
@@ -56,24 +57,24 @@ def record_decision(logger: NeemLogger, calls: Sequence[TaskCall], at: float,
     """Buffer the user's decision for ``calls`` made at ``at`` (unix seconds) in the logger's
     transaction (the caller flushes), with who does each step (``modes``, one per call; None:
     not said). The calls and modes are checked first."""
-    resolved = [logger._resolve(call) for call in calls]
+    resolved = [logger.individuals.resolve(call) for call in calls]
     if modes is not None:
         if len(modes) != len(resolved):
             raise LoggingError(f"modes: {len(modes)} given for {len(resolved)} steps; give one per step")
         for mode in modes:
             if mode not in MODES:
                 raise LoggingError(modes_error(mode))
-    when = _instant(at)
-    out = _Out()
-    action = logger._mental(MENTAL_TASK, when, out, who="user")
-    order = logger._event("Order")
+    when = checked_instant(at)
+    out = TripleBuffer()
+    action = logger.individuals.mental(MENTAL_TASK, when, out, who="user")
+    order = logger.individuals.event("Order")
     out.add(action, DESCRIBED_BY, order)
     out.add(order, RDF_TYPE, T.ORDER)
     for step, call in enumerate(resolved, start=1):
         element = f"{order}_{step}"
         out.add(element, RDF_TYPE, T.ORDERED_ELEMENT)
         out.add(order, T.ORDERS, element)
-        out.add(element, T.ENCAPSULATES, logger._plan(call, out, when.seconds))
+        out.add(element, T.ENCAPSULATES, logger.individuals.plan(call, out, when.seconds))
         out.add(element, logger.vocab.has_rank, step)
         if modes is not None:
             out.add(element, logger.ns + STEP_MODE, modes[step - 1])
