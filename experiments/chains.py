@@ -5,12 +5,15 @@ At every decision t of the honest replay (``ReplayRules()``), the predictor rank
 first option is taken as done (a copy of the model, ``partial_fit`` of that hypothetical step) and
 the next step is ranked:
 - tree: the forward tree of the first option (thesis Fig. 4.6, ``successors``): the options that
-  followed its past situations, and for step 3 those under the tree's best child;
-- plain: over the same offer (what the robot can offer now; the page's chain);
+  followed its past situations, and for step 3 those under the tree's best child (the thesis
+  oracle's chain, and the routine predictors' until 2026-12-06);
+- plain: over the same offer (what the robot can offer now);
 - feasible: over what was available after the same action before (the offer of the decision that
-  followed the user's latest execution of that option; the offer now when it was never done:
-  the task inference of a log without a world model), kept to the options the user did before when
-  the data has no available sets (the replay's candidate rule);
+  followed the user's latest execution of that option: the task inference of a log without a world
+  model; none, so the chain ends and its later steps count as misses, where no decision ever
+  followed that option without a break), kept to the options the user did before when the data
+  has no available sets (the replay's candidate rule): the routine predictors' chain in ``rank``,
+  the service and the page, computed by the same code (``oracle.algorithm.chaining``);
 - rules (with ``--world``, for data the kitchen world made): over what the world's task inference
   makes available once the predicted step is done (``World.apply``, then ``World.available``), from
   the world's state at the decision. That state is tracked by applying every action done, and
@@ -38,6 +41,7 @@ from pathlib import Path
 from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
+from oracle.algorithm.chaining import Afterwards, rankings_ahead  # noqa: E402
 from oracle.algorithm.params import Hyperparameters  # noqa: E402
 from oracle.algorithm.predictors import DEFAULT  # noqa: E402
 from oracle.algorithm.records import Option, Step  # noqa: E402
@@ -65,9 +69,7 @@ class Chaining(OracleMethod):
     def reset(self) -> None:
         super().reset()
         self.chains: list[dict[str, list[list[Option]]]] = getattr(self, "chains", [])
-        self.after: dict[Option, tuple[Option, ...]] = {}   # option -> the offer of the decision after it
-        self.done: dict[Option, None] = {}
-        self.previous: Option | None = None
+        self.afterwards = Afterwards()   # option -> the offer of the decision after it (the product's rule)
         self.state: State | None = None if self.world is None else self.world.initial_state()
 
     def _calls(self, state: State) -> dict[Option, TaskCall]:
@@ -98,7 +100,11 @@ class Chaining(OracleMethod):
         # the forward tree of the first option (thesis Fig. 4.6): what followed its past situations
         children = ranking.tasks[0].successors if ranking.tasks else ()
         record["tree"] = [[n.option for n in children], [n.option for n in children[0].children] if children else []]
-        for kind in ("plain", "feasible") if state is None else ("plain", "feasible", "rules"):
+        # feasible: the product's predicted chain (oracle.algorithm.chaining), its rankings at steps 2 and 3
+        record["feasible"] = [list(r.options()) for r in rankings_ahead(
+            self.model, ranking, list(candidates), self.afterwards, time_of_day, at, 3)]
+        record["feasible"] += [[]] * (2 - len(record["feasible"]))
+        for kind in ("plain",) if state is None else ("plain", "rules"):
             model, offer, first = self.model, list(candidates), order[0] if order else None
             record[kind] = []
             for _ in range(2):
@@ -108,9 +114,7 @@ class Chaining(OracleMethod):
                 model = pickle.loads(pickle.dumps(model))
                 model.partial_fit(Step(first.task, first.target, first.reference, tuple(offer), time_of_day, False,
                                        str(first), at))
-                if kind == "feasible":
-                    offer = list(self.after.get(first, offer))
-                elif kind == "rules":
+                if kind == "rules":
                     assert self.world is not None and state is not None
                     state = self.world.apply(state, self._calls(state)[first])
                     offer = list(self._calls(state))
@@ -121,19 +125,12 @@ class Chaining(OracleMethod):
         return order
 
     def observe(self, step: Step) -> None:
-        if not step.idle:
-            option = step.option
-            if self.previous is not None and step.options:
-                self.after[self.previous] = step.options
-            self.previous = option
-            self.done[option] = None
-            if self.world is not None and self.state is not None:
-                try:
-                    self.state = self.world.apply(self.state, parse_call(step.label))
-                except NeemOracleError:  # not feasible in the tracked state: tracked afresh at the next decision
-                    self.state = None
-        else:
-            self.previous = None  # an idle gap: what follows is not "after" the action before it
+        self.afterwards.add(step)
+        if not step.idle and self.world is not None and self.state is not None:
+            try:
+                self.state = self.world.apply(self.state, parse_call(step.label))
+            except NeemOracleError:  # not feasible in the tracked state: tracked afresh at the next decision
+                self.state = None
         super().observe(step)
 
 

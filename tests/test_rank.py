@@ -117,6 +117,27 @@ def test_rank_and_why_not_with_an_ontology_file(store, tmp_path, capsys):
     assert "either --ontology or --odb/--mapping" in capsys.readouterr().err
 
 
+def test_the_predicted_chain_goes_on_with_what_is_feasible_after_each_step(tmp_path, capsys):
+    # after open(small_drawer) the user picked the red mug three mornings, then the mug was no longer
+    # offered after it and the user picked the banana twice; each morning ended with the drawer closed
+    rows = []
+    for day in range(5):
+        picked = "pick(red_mug)" if day < 3 else "pick(banana)"
+        steps = (("open(small_drawer)", ["open(small_drawer)", "open(fridge)"]), (picked, [picked, "close(small_drawer)"]),
+                 ("close(small_drawer)", ["close(small_drawer)", "open(fridge)"]))
+        for i, (action, available) in enumerate(steps):
+            rows.append({"user": "ada", "time": f"2026-03-0{2 + day}T08:00:{10 * i:02d}", "duration": 5,
+                         "action": action, "available": available})
+    store = imported(rows, tmp_path, capsys)
+    ask = ["rank", "--store", str(store), "--available", "open(small_drawer)", "open(fridge)",
+           "--at", "2026-03-07T08:00:00", "--no-write", "--json"]
+    assert main(ask) == 0
+    # what was offered after the drawer lately, and no step after the one that ended each morning
+    assert json.loads(capsys.readouterr().out)["chain"] == ["open(small_drawer)", "pick(banana)", "close(small_drawer)"]
+    assert main([*ask, "--method", "thesis"]) == 0  # the thesis oracle's forward tree counts every morning alike
+    assert json.loads(capsys.readouterr().out)["chain"] == ["open(small_drawer)", "pick(red_mug)", "close(small_drawer)"]
+
+
 def test_rank_method_thesis_writes_the_thesis_ranking_and_names_the_method(store, capsys):
     capsys.readouterr()
     assert main(["rank", "--store", str(store), "--json", "--no-write", "--method", "thesis"]) == 0

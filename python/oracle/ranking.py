@@ -13,12 +13,14 @@ probability (docs/algorithm.md).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from oracle.algorithm.chaining import Afterwards, chain_ahead, reranks
 from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.predictors import DEFAULT, Predictor
 from oracle.algorithm.predictors import make_predictor as make_named
@@ -242,6 +244,8 @@ class NeemRanker:
         for step in self.steps:
             if not step.idle:
                 self.done_before.add(Option(step.task, step.target, step.reference))
+        #: What was offered after each option done: what the predicted chain may continue with.
+        self.afterwards = Afterwards(self.steps)
         ends = [float(row["end"] if row.get("end") is not None else row["begin"]) for row in rows]
         #: The end of the last action: nothing may be logged before it.
         self.last_end: float | None = max(ends) if ends else None
@@ -266,7 +270,12 @@ class NeemRanker:
         at = when.seconds if self.clocked else None
         ranking = (self.predictor.rank(options, when.part_of_day, at=at) if tree_roots is None
                    else self.predictor.rank(options, when.part_of_day, tree_roots=tree_roots, at=at))
-        return Decision(ranking, when, (time.perf_counter() - started) * 1000)
+        ms = (time.perf_counter() - started) * 1000
+        if reranks(self.predictor):  # the routine predictors' chain: re-ranked after each step taken as done
+            length = 1 + int(self.predictor.event_horizon_forward)
+            chain = chain_ahead(self.predictor, ranking, options, self.afterwards, when.part_of_day, at, length)
+            ranking = dataclasses.replace(ranking, ahead=chain)
+        return Decision(ranking, when, ms)
 
     def imagine(self, calls: Sequence[TaskCall], seconds: float) -> None:
         """The robot imagined ``calls`` available at ``seconds`` (the next action's offer if it counts)."""
@@ -287,6 +296,7 @@ class NeemRanker:
             self.steps.pop()
             self.begins.pop()
             self.predictor = self.predictor.fit(self.steps)
+            self.afterwards = Afterwards(self.steps)
         self.idle_fitted = False
         imagined = self.imagined
         counts = (imagined is not None and imagined.seconds <= begin
@@ -306,6 +316,7 @@ class NeemRanker:
         self.predictor.partial_fit(step)
         self.steps.append(step)
         self.begins.append(begin)
+        self.afterwards.add(step)
         if not step.idle:
             self.done_before.add(Option(step.task, step.target, step.reference))
 

@@ -169,9 +169,12 @@ class RoutineTask(RankedTask):
 
 @dataclass(frozen=True)
 class Ranking:
-    """The ranked options, best first, each with its forward tree (possibly empty)."""
+    """The ranked options, best first, each with its forward tree (possibly empty); ``ahead``:
+    the predicted chain when it was worked out beside the ranking (oracle.algorithm.chaining),
+    None: the forward tree's."""
 
     tasks: tuple[RankedTask, ...]
+    ahead: tuple[Option, ...] | None = None
 
     def __iter__(self) -> Iterator[RankedTask]:
         return iter(self.tasks)
@@ -186,7 +189,10 @@ class Ranking:
         return tuple(task.option for task in self.tasks)
 
     def chain(self) -> tuple[Option, ...]:
-        """The predicted chain: the best option, then the best successor at each depth."""
+        """The predicted chain: ``ahead`` if set, else the best option, then the best successor
+        at each depth of its forward tree (thesis Fig. 4.6)."""
+        if self.ahead is not None:
+            return self.ahead
         if not self.tasks:
             return ()
         chain = [self.tasks[0].option]

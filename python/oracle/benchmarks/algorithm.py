@@ -12,6 +12,7 @@ rows time adding one step.
 from __future__ import annotations
 
 import math
+import pickle
 import time
 import tracemalloc
 from collections.abc import Callable, Iterable, Sequence
@@ -19,6 +20,7 @@ from typing import Any, Protocol
 
 import numpy as np
 
+from oracle.algorithm.chaining import Afterwards, chain_ahead
 from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import PRESETS
 from oracle.algorithm.reference import ReferenceOracle
@@ -233,7 +235,8 @@ def _routine_rows(matrix: DistanceMatrix, prefix: Sequence[Step], queries: Seque
         adds.append((time.perf_counter() - start) * 1000.0)
     print(f"{size:>8} {'default':<14} {impl[:5] + ' add':<10} {np.median(adds):>10.3f} "
           f"{np.percentile(adds, 99):>9.3f}", flush=True)
-    return [{"area": "algorithm", "name": "rank", "history": size, "impl": impl, "settings": "default",
+    chain = _chain_rows(model, prefix, queries, size, impl, median) if cls is PooledOracle else []
+    return chain + [{"area": "algorithm", "name": "rank", "history": size, "impl": impl, "settings": "default",
              "median_ms": round(median, 4), "p99_ms": round(p99, 4), "peak_mb": round(peak, 2)},
             {"area": "algorithm", "name": "partial_fit", "history": size, "impl": impl, "settings": "default",
              "median_ms": round(float(np.median(adds)), 4), "p99_ms": round(float(np.percentile(adds, 99)), 4),
@@ -241,6 +244,34 @@ def _routine_rows(matrix: DistanceMatrix, prefix: Sequence[Step], queries: Seque
             {"area": "algorithm", "name": "fit", "history": size, "impl": impl, "settings": "default",
              "median_ms": round(fit_ms, 1), "p99_ms": None, "peak_mb": None, "floor_ms": round(floor_ms, 2),
              "floor_ratio": round(fit_ms / floor_ms, 1)}]
+
+
+
+def _chain_rows(model: Any, prefix: Sequence[Step], queries: Sequence[Step], size: int, impl: str,
+                rank_ms: float) -> list[dict[str, Any]]:
+    """The predicted chain beside the ranking (oracle.algorithm.chaining): its median time per
+    decision over 20 queries, and its floor, one copy of the fitted model (what the chain must
+    pay before its first re-ranking) plus the ranking's own median per step."""
+    afterwards = Afterwards(prefix)
+    length = 1 + int(model.event_horizon_forward)
+    times, copies, steps = [], [], []
+    for query in queries[:20]:
+        ranking = model.rank(query, tree_roots=0)
+        start = time.perf_counter()
+        chain = chain_ahead(model, ranking, query.options, afterwards, query.time_of_day, None, length)
+        times.append((time.perf_counter() - start) * 1000.0)
+        steps.append(len(chain))
+        start = time.perf_counter()
+        pickle.loads(pickle.dumps(model, protocol=pickle.HIGHEST_PROTOCOL))
+        copies.append((time.perf_counter() - start) * 1000.0)
+    median, copy = float(np.median(times)), float(np.median(copies))
+    floor = copy + rank_ms * (float(np.mean(steps)) - 1)
+    print(f"{size:>8} {'default':<14} {impl[:5] + ' chain':<10} {median:>10.3f} {np.percentile(times, 99):>9.3f}"
+          f"   {np.mean(steps):.1f} steps; floor {floor:.1f} ms (copy of the model {copy:.1f} ms + rank per step)",
+          flush=True)
+    return [{"area": "algorithm", "name": "chain", "history": size, "impl": impl, "settings": "default",
+             "median_ms": round(median, 4), "p99_ms": round(float(np.percentile(times, 99)), 4), "peak_mb": None,
+             "steps": round(float(np.mean(steps)), 2), "floor_ms": round(floor, 3), "copy_ms": round(copy, 3)}]
 
 
 if __name__ == "__main__":

@@ -1,0 +1,104 @@
+"""The predicted chain by re-ranking (oracle.algorithm.chaining): what is feasible after an option,
+a model left as it was, each step among what followed its predecessor before, and who chains how."""
+
+from __future__ import annotations
+
+import pickle
+
+from algoworld import IDLE, OBJECTS, TASKS, random_matrix, synthetic_history
+from oracle.algorithm.chaining import Afterwards, chain_ahead, rankings_ahead, reranks
+from oracle.algorithm.fast import PreferenceOracle
+from oracle.algorithm.pooled import PooledOracle
+from oracle.algorithm.records import Option, Step
+from oracle.algorithm.routine import RoutineOracle
+
+A, B, C, D = (Option(TASKS[i], OBJECTS[i], None) for i in range(4))
+
+
+def _step(option: Option, offer: tuple[Option, ...], idle: bool = False) -> Step:
+    if idle:
+        return Step(IDLE, None, None, offer, "Morning", True, "idle")
+    return Step(option.task, option.target, option.reference, offer, "Morning", False, str(option))
+
+
+def test_what_followed_an_option_is_the_offer_of_the_next_decision_and_a_break_ends_it():
+    after = Afterwards([_step(A, (A, C)), _step(B, (B, D)), _step(C, (C,)), _step(A, (A,), idle=True), _step(D, (D, A))])
+    assert after.feasible(A) == (B, D)      # the decision after A offered B and D
+    assert after.feasible(B) == (C,)
+    assert after.feasible(C) == ()          # a break followed C: nothing is known to follow it
+    assert after.feasible(D) == ()          # nothing followed D yet
+    # the latest execution counts
+    after.add(_step(A, (A,)))
+    after.add(_step(C, (C, D)))
+    assert after.feasible(A) == (C, D)
+
+
+def test_the_chain_leaves_the_model_as_it_was():
+    matrix = random_matrix(3)
+    steps = synthetic_history(300, 3)
+    model = PooledOracle(matrix).fit(steps[:250])
+    step = steps[250]
+    ranking = model.rank(step)
+    before = pickle.dumps(model)  # after the ranking: ranking keeps what it worked out per state
+    chain = chain_ahead(model, ranking, step.options, Afterwards(steps[:250]), step.time_of_day, None, 4)
+    assert len(chain) == 4 and chain[0] == ranking.tasks[0].option
+    assert model.n_steps_ == 250 and pickle.dumps(model) == before
+    assert model.rank(step) == ranking
+
+
+def test_each_step_is_among_what_followed_the_step_before_it():
+    matrix = random_matrix(4)
+    steps = synthetic_history(400, 4)
+    model = RoutineOracle(matrix).fit(steps[:300])
+    after = Afterwards(steps[:300])
+    checked = 0
+    for step in steps[300:340]:
+        if step.idle:
+            continue
+        ranking = model.rank(step)
+        later = rankings_ahead(model, ranking, step.options, after, step.time_of_day, None, 3)
+        previous = ranking.tasks[0].option
+        for following in later:
+            assert set(following.options()) == set(after.feasible(previous))
+            previous = following.tasks[0].option
+            checked += 1
+        assert len(later) == 2 or not after.feasible(previous)  # it ends only where nothing is known to follow
+    assert checked > 40
+
+
+def test_a_step_not_offered_now_but_always_after_the_first_leads_the_chain_on():
+    # A was always followed by B, which is never offered together with A
+    history = [_step(x, offer) for _ in range(6) for x, offer in ((A, (A, C)), (B, (B, D)), (D, (D, C)))]
+    model = RoutineOracle(random_matrix(5)).fit(history)
+    ranking = model.rank([A, C], "Morning")
+    assert ranking.tasks[0].option == A
+    chain = chain_ahead(model, ranking, (A, C), Afterwards(history), "Morning", None, 3)
+    assert chain == (A, B, D)
+
+
+def test_the_chain_ends_where_each_activity_ended_before():
+    # B always ended the activity (a break after it): the chain says no more than A, B
+    history = []
+    for _ in range(5):
+        history += [_step(A, (A, C)), _step(B, (B, D)), _step(A, (A,), idle=True)]
+    model = RoutineOracle(random_matrix(8)).fit(history)
+    ranking = model.rank([A, C], "Morning")
+    assert chain_ahead(model, ranking, (A, C), Afterwards(history), "Morning", None, 4) == (A, B)
+
+
+def test_the_chain_stops_where_nothing_more_is_asked_or_ranked():
+    matrix = random_matrix(6)
+    steps = synthetic_history(120, 6)
+    model = RoutineOracle(matrix).fit(steps[:100])
+    ranking = model.rank(steps[100])
+    after = Afterwards(steps[:100])
+    assert chain_ahead(model, ranking, steps[100].options, after, None, None, 1) == (ranking.tasks[0].option,)
+    assert rankings_ahead(model, ranking, steps[100].options, after, None, None, 1) == []
+    empty = model.rank([], None)
+    assert chain_ahead(model, empty, (), after, None, None, 4) == ()
+
+
+def test_the_routine_predictors_chain_by_re_ranking_the_thesis_oracle_by_its_tree():
+    matrix = random_matrix(7)
+    assert reranks(RoutineOracle(matrix)) and reranks(PooledOracle(matrix))
+    assert not reranks(PreferenceOracle(matrix))
