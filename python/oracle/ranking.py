@@ -263,9 +263,13 @@ class NeemRanker:
         return [option_of(self.ontology, call) for call in calls]
 
     def rank(self, calls: Sequence[TaskCall], when: Instant, *, tree_roots: int | None = None) -> Decision:
-        """Rank ``calls`` at ``when`` (never written; the predictor sees the break before it)."""
+        """Rank ``calls`` at ``when`` (never written; the predictor sees the break before it);
+        ``tree_roots``: the forward trees built, of a predictor that chains by its tree (the
+        thesis oracle; the routine predictors build none, their chain is re-ranked)."""
         self._fit_break(when.seconds)
         options = self.options(calls)
+        if reranks(self.predictor):
+            tree_roots = 0  # its chain is re-ranked: no forward tree is read
         started = time.perf_counter()
         at = when.seconds if self.clocked else None
         ranking = (self.predictor.rank(options, when.part_of_day, at=at) if tree_roots is None
