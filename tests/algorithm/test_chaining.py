@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import pickle
 
+import numpy as np
+
 from algoworld import IDLE, OBJECTS, TASKS, random_matrix, synthetic_history
 from oracle.algorithm.chaining import Afterwards, chain_ahead, rankings_ahead, reranks
 from oracle.algorithm.fast import PreferenceOracle
@@ -102,3 +104,47 @@ def test_the_routine_predictors_chain_by_re_ranking_the_thesis_oracle_by_its_tre
     matrix = random_matrix(7)
     assert reranks(RoutineOracle(matrix)) and reranks(PooledOracle(matrix))
     assert not reranks(PreferenceOracle(matrix))
+
+
+def _unseen(model: RoutineOracle) -> tuple[Option, ...]:
+    """Six options the model has not interned."""
+    every = (Option(task, target, reference) for task in TASKS for target in OBJECTS for reference in (None, *OBJECTS))
+    options = tuple(option for option in every if option not in model.options_)[:6]
+    assert len(options) == 6
+    return options
+
+
+def test_a_hypothetical_copy_learns_as_a_pickled_copy_and_the_model_stays_as_it_was():
+    matrix = random_matrix(5)
+    steps = synthetic_history(300, 5)
+    model = PooledOracle(matrix).fit(steps[:260])
+    for step in steps[260:263]:
+        model.rank(step)  # the kept exponentials filled, as a served model has them
+    before = pickle.dumps(model)
+    table, kept = model._known.table.copy(), {tau: k.copy() for tau, (k, _) in model._known._decayed.items()}
+    twin, plain = model.hypothetical(), pickle.loads(before)
+    unseen = _unseen(model)
+    for step in steps[263:270]:  # the twin learns new options, then ranks them
+        offer = step.options + unseen
+        chosen = unseen[len(step.options) % len(unseen)]
+        learnt = Step(chosen.task, chosen.target, chosen.reference, offer, step.time_of_day, False, str(chosen))
+        twin.partial_fit(learnt)
+        plain.partial_fit(learnt)
+        assert twin.rank(list(offer), step.time_of_day) == plain.rank(list(offer), step.time_of_day)
+    assert pickle.dumps(model) == before
+    assert np.array_equal(model._known.table, table)
+    assert all(np.array_equal(model._known._decayed[tau][0], k) for tau, k in kept.items())
+    assert model.rank(steps[270]) == pickle.loads(before).rank(steps[270])
+
+
+def test_a_fork_of_the_option_table_copies_only_what_it_changes():
+    matrix = random_matrix(6)
+    model = RoutineOracle(matrix).fit(synthetic_history(120, 6))
+    known = model._known
+    known.decayed(0.5)
+    fork = known.fork()
+    assert fork.table is known.table and fork.decayed(0.5) is not None and fork._decayed[0.5][0] is known._decayed[0.5][0]
+    fork.intern(_unseen(model)[0])
+    fork.decayed(0.5)
+    assert fork.table is not known.table and fork._decayed[0.5][0] is not known._decayed[0.5][0]
+    assert len(fork.options) == len(known.options) + 1 and fork.options is not known.options

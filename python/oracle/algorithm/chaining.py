@@ -7,7 +7,8 @@ of the decision that followed the user's latest execution of that option (``Afte
 chain ends at an option that no decision ever followed without a break (never done, or the end of
 an activity each time): there is no evidence of what would come next. The step
 taken as done is learnt by a copy of the fitted model (``partial_fit``), so the model itself is
-never changed; the copy is made once per chain. The thesis oracle keeps its own chain, the
+never changed; the copy is made once per chain, and shares the model's option tables until it
+interns an option of its own (``RoutineOracle.hypothetical``). The thesis oracle keeps its own chain, the
 forward tree of Fig. 4.6 (``Ranking.chain``); the routine predictors chain by re-ranking
 (``reranks``). docs/algorithm.md, "The predicted chain", has the evidence and the cost.
 """
@@ -69,7 +70,7 @@ def rankings_ahead(model: Any, ranking: Ranking, offer: Sequence[Option], afterw
         if not feasible:
             break
         if ahead is None:
-            ahead = pickle.loads(pickle.dumps(model, protocol=pickle.HIGHEST_PROTOCOL))  # the model stays as it is
+            ahead = model.hypothetical() if reranks(model) else pickle.loads(pickle.dumps(model, protocol=pickle.HIGHEST_PROTOCOL))
         ahead.partial_fit(Step(step.task, step.target, step.reference, offer, time_of_day, False, str(step), at))
         offer = feasible
         following: Ranking = ahead.rank(list(offer), time_of_day, tree_roots=0, at=at)

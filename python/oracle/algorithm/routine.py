@@ -18,6 +18,7 @@ other's attributes. The formulas themselves live in the modules it imports.
 from __future__ import annotations
 
 import math
+import pickle
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from itertools import product
@@ -229,6 +230,21 @@ class RoutineOracle(EstimatorParams):
         self.gate_.kept = None
         self._add(step, score=True)
         return self
+
+    def hypothetical(self) -> RoutineOracle:
+        """A copy of the fitted model to learn steps that were not done (the predicted chain,
+        oracle.algorithm.chaining): what it learns never reaches this model, and it ranks as a
+        pickled copy would. The interned options' tables, most of a model's bytes, are shared
+        rather than copied (``OptionTable.fork``)."""
+        if not hasattr(self, "variants_"):
+            return cast(RoutineOracle, pickle.loads(pickle.dumps(self, protocol=pickle.HIGHEST_PROTOCOL)))
+        known = self._known
+        state = {name: value for name, value in self.__dict__.items() if name not in ("_known", "options_")}
+        twin = object.__new__(type(self))
+        twin.__dict__.update(pickle.loads(pickle.dumps(state, protocol=pickle.HIGHEST_PROTOCOL)))
+        twin._known = known.fork()
+        twin.options_ = twin._known.options
+        return twin
 
     def _check(self) -> None:
         if not hasattr(self, "variants_"):

@@ -76,15 +76,31 @@ class OptionTable:
     def __post_init__(self) -> None:
         self.values = np.asarray(self.matrix.values, dtype=np.float64)
         self._decayed: dict[float, tuple[np.ndarray, int]] = {}
+        #: the arrays shared with the table this one was forked from: "table" (with ``classes``)
+        #: and the temperatures of the kept exponentials; each is copied before it is changed
+        self._borrowed: set[float | str] = set()
 
     def __getstate__(self) -> dict[str, Any]:
         state = dict(self.__dict__)
         state.pop("_decayed", None)  # rebuilt on demand: a pickled model stays the table's size
+        state.pop("_borrowed", None)  # an unpickled table owns its arrays
         return state
 
     def __setstate__(self, state: dict[str, Any]) -> None:
         self.__dict__.update(state)
         self._decayed = {}
+        self._borrowed = set()
+
+    def fork(self) -> OptionTable:
+        """A copy that shares this table's arrays until it would change one (copy on write):
+        what it interns never reaches this table, and nothing is copied for a copy that
+        interns nothing."""
+        twin = OptionTable(self.matrix, self.task_factor, self.object_factor, self.penalty, list(self.options),
+                           dict(self.ids), list(self.objects), self.classes, self.table)
+        twin.values = self.values
+        twin._decayed = dict(self._decayed)
+        twin._borrowed = {"table", *twin._decayed}
+        return twin
 
     def decayed(self, tau: float) -> np.ndarray:
         """``exp(-table / tau)`` over the interned options (each entry computed once, when its
@@ -95,6 +111,10 @@ class OptionTable:
             grown = np.empty(self.table.shape)
             grown[:filled, :filled] = kept[:filled, :filled]
             kept = grown
+            self._borrowed.discard(tau)
+        elif filled < count and tau in self._borrowed:
+            kept = kept.copy()
+            self._borrowed.discard(tau)
         if filled < count:
             kept[filled:count, :count] = np.exp(-self.table[filled:count, :count] / tau)
             kept[:filled, filled:count] = np.exp(-self.table[:filled, filled:count] / tau)
@@ -120,6 +140,10 @@ class OptionTable:
             classes = np.empty((size, 3), dtype=np.int64)
             classes[:old] = self.classes[:old]
             self.classes = classes
+            self._borrowed.discard("table")
+        elif "table" in self._borrowed:
+            self.table, self.classes = self.table.copy(), self.classes.copy()
+            self._borrowed.discard("table")
         self.classes[old] = row[0]
         distances = self.distances(row, self.classes[: old + 1])[0]
         self.table[old, : old + 1] = distances

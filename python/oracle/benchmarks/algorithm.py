@@ -12,7 +12,6 @@ rows time adding one step.
 from __future__ import annotations
 
 import math
-import pickle
 import time
 import tracemalloc
 from collections.abc import Callable, Iterable, Sequence
@@ -250,8 +249,9 @@ def _routine_rows(matrix: DistanceMatrix, prefix: Sequence[Step], queries: Seque
 def _chain_rows(model: Any, prefix: Sequence[Step], queries: Sequence[Step], size: int, impl: str,
                 rank_ms: float) -> list[dict[str, Any]]:
     """The predicted chain beside the ranking (oracle.algorithm.chaining): its median time per
-    decision over 20 queries, and its floor, one copy of the fitted model (what the chain must
-    pay before its first re-ranking) plus the ranking's own median per step."""
+    decision over 20 queries, and its floor, one hypothetical copy of the fitted model (what the
+    chain must pay before its first re-ranking; its option tables shared until written) plus the
+    ranking's own median per step."""
     afterwards = Afterwards(prefix)
     length = 1 + int(model.event_horizon_forward)
     times, copies, steps = [], [], []
@@ -262,7 +262,7 @@ def _chain_rows(model: Any, prefix: Sequence[Step], queries: Sequence[Step], siz
         times.append((time.perf_counter() - start) * 1000.0)
         steps.append(len(chain))
         start = time.perf_counter()
-        pickle.loads(pickle.dumps(model, protocol=pickle.HIGHEST_PROTOCOL))
+        model.hypothetical()
         copies.append((time.perf_counter() - start) * 1000.0)
     median, copy = float(np.median(times)), float(np.median(copies))
     floor = copy + rank_ms * (float(np.mean(steps)) - 1)
