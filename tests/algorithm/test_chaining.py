@@ -135,6 +135,20 @@ def test_a_hypothetical_copy_learns_as_a_pickled_copy_and_the_model_stays_as_it_
     assert np.array_equal(model._known.table, table)
     assert all(np.array_equal(model._known._decayed[tau][0], k) for tau, k in kept.items())
     assert model.rank(steps[270]) == pickle.loads(before).rank(steps[270])
+    # the model learns on while the copy lives: neither sees the other's steps
+    after = twin.rank(list(steps[280].options), steps[280].time_of_day)
+    original = pickle.loads(before)
+    for step in steps[270:280]:
+        model.partial_fit(step)
+        original.partial_fit(step)
+        assert model.rank(steps[280]) == original.rank(steps[280])
+    assert twin.rank(list(steps[280].options), steps[280].time_of_day) == after
+    for one, other in ((model, original), (twin, plain)):
+        for name, stream in one._streams.items():
+            mine, theirs = stream.counts, other._streams[name].counts
+            assert mine.tokens == theirs.tokens
+            assert [(level.tables, level.totals, level.once, level.twice) for level in mine.levels + mine.timed] == \
+                [(level.tables, level.totals, level.once, level.twice) for level in theirs.levels + theirs.timed]
 
 
 def test_a_fork_of_the_option_table_copies_only_what_it_changes():

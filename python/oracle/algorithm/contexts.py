@@ -43,12 +43,29 @@ class _Level:
     totals: dict[tuple[int, ...], int] = field(default_factory=dict)
     once: int = 0    # (context, follower) pairs seen exactly once
     twice: int = 0   # ... exactly twice
+    #: the contexts whose follower table this level may change in place; None: all of them (no
+    #: fork shares them, ``fork``)
+    owned: set[tuple[int, ...]] | None = None
+
+    def __getstate__(self) -> dict[str, object]:
+        return {**self.__dict__, "owned": None}  # an unpickled level shares nothing
+
+    def fork(self) -> _Level:
+        """A copy that shares this level's follower tables: whichever of the two counts in a
+        shared table next copies it first (copy on write), so neither sees the other's counts."""
+        self.owned = set()
+        return _Level(dict(self.tables), dict(self.totals), self.once, self.twice, set())
 
     def count(self, context: tuple[int, ...], token: int) -> None:
         followers = self.tables.get(context)
         if followers is None:
             followers = self.tables[context] = {}
             self.totals[context] = 0
+            if self.owned is not None:
+                self.owned.add(context)
+        elif self.owned is not None and context not in self.owned:
+            followers = self.tables[context] = dict(followers)  # shared with a fork: copied first
+            self.owned.add(context)
         seen = followers.get(token, 0)
         followers[token] = seen + 1
         self.totals[context] += 1
@@ -136,6 +153,14 @@ class ContextCounts:
         self.tokens: list[int] = []
         self.levels = [_Level() for _ in range(max_order + 1)]
         self.timed = [_Level() for _ in range(max_order + 1)]
+
+    def fork(self) -> ContextCounts:
+        """A copy that counts on its own while sharing what neither changes (``_Level.fork``)."""
+        twin = ContextCounts(0, self.timed_from)
+        twin.max_order, twin.tokens = self.max_order, list(self.tokens)
+        twin.levels = [level.fork() for level in self.levels]
+        twin.timed = [level.fork() for level in self.timed]
+        return twin
 
     def add(self, token: int, part: int = -1) -> None:
         """Count ``token`` after every current context; ``part`` is its part of day (-1 unknown)."""

@@ -58,6 +58,12 @@ class _Stream:
         self.depth = depth
         self.past = PastSituations(depth)  # per past action: its predecessors and their kind
 
+    def forked(self, past: PastSituations) -> _Stream:
+        """A stream with forked counts (``ContextCounts.fork``) and the given copy of ``past``."""
+        twin = object.__new__(_Stream)
+        twin.counts, twin.depth, twin.past = self.counts.fork(), self.depth, past
+        return twin
+
     def recent(self) -> tuple[int, ...]:
         tokens = self.counts.tokens
         return tuple(tokens[-n] if len(tokens) >= n else START for n in range(1, self.depth + 1))
@@ -234,16 +240,19 @@ class RoutineOracle(EstimatorParams):
     def hypothetical(self) -> RoutineOracle:
         """A copy of the fitted model to learn steps that were not done (the predicted chain,
         oracle.algorithm.chaining): what it learns never reaches this model, and it ranks as a
-        pickled copy would. The interned options' tables, most of a model's bytes, are shared
-        rather than copied (``OptionTable.fork``)."""
+        pickled copy would. The interned options' tables and the context counts, most of a
+        model's bytes, are shared until one of the two would change them (``OptionTable.fork``,
+        ``ContextCounts.fork``)."""
         if not hasattr(self, "variants_"):
             return cast(RoutineOracle, pickle.loads(pickle.dumps(self, protocol=pickle.HIGHEST_PROTOCOL)))
-        known = self._known
-        state = {name: value for name, value in self.__dict__.items() if name not in ("_known", "options_")}
+        state = {name: value for name, value in self.__dict__.items() if name not in ("_known", "options_", "_streams")}
+        pasts = {name: stream.past for name, stream in self._streams.items()}
+        state, pasts = pickle.loads(pickle.dumps((state, pasts), protocol=pickle.HIGHEST_PROTOCOL))
         twin = object.__new__(type(self))
-        twin.__dict__.update(pickle.loads(pickle.dumps(state, protocol=pickle.HIGHEST_PROTOCOL)))
-        twin._known = known.fork()
+        twin.__dict__.update(state)
+        twin._known = self._known.fork()
         twin.options_ = twin._known.options
+        twin._streams = {name: stream.forked(pasts[name]) for name, stream in self._streams.items()}
         return twin
 
     def _check(self) -> None:
