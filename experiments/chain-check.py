@@ -1,0 +1,48 @@
+"""The default predictor's predicted chains on the benchmark's synthetic histories: a digest of
+what they are (to show a cheaper copy of the model gives the same chains) and their median time.
+
+Usage: python experiments/chain-check.py [SIZE ...]   (default 300 1000 10000)
+For each size N: `pooled` fitted on the first N steps of a history of `oracle.benchmarks.algorithm`
+(seed N) ranks each of the next 30 steps' offers and chains ahead of it
+(`oracle.algorithm.chaining.chain_ahead`, the offers that followed each option before); printed:
+N, the median ms of a chain, and the first 12 hex digits of the SHA-256 of the chains' texts. To
+run the code of another commit, put its `python` folder first on PYTHONPATH.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import sys
+import time
+
+import numpy as np
+
+from oracle.algorithm.chaining import Afterwards, chain_ahead
+from oracle.algorithm.pooled import PooledOracle
+from oracle.benchmarks.algorithm import history
+
+
+def check(size: int) -> tuple[float, str]:
+    """The median ms of a chain and the digest of 30 chains after ``size`` steps."""
+    matrix, steps = history(size + 200, seed=size)
+    prefix, queries = steps[:size], steps[size:]
+    model = PooledOracle(matrix).fit(prefix)
+    afterwards = Afterwards(prefix)
+    length = 1 + int(model.event_horizon_forward)
+    times, chains = [], []
+    for query in queries[:30]:
+        ranking = model.rank(query, tree_roots=0)
+        start = time.perf_counter()
+        chains.append(chain_ahead(model, ranking, query.options, afterwards, query.time_of_day, None, length))
+        times.append((time.perf_counter() - start) * 1000.0)
+    return float(np.median(times)), hashlib.sha256(repr(chains).encode()).hexdigest()[:12]
+
+
+def main(argv: list[str]) -> None:
+    for size in [int(a) for a in argv] or [300, 1000, 10000]:
+        median, digest = check(size)
+        print(f"{size:>6} steps: chain {median:.2f} ms (median of 30), digest {digest}", flush=True)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
