@@ -3,6 +3,7 @@
       task_call/2,                % +TaskIndividual, -Call
       task_calls/2,               % +Tasks, -Pairs
       task_calls_reached/3,       % :Reach, ?Task, -Pairs
+      task_calls_reached/4,       % :Reach, ?Task, +Options, -Pairs
       call_tasks/2,               % +Call, -TaskIndividuals
       call_task_times/3,          % +Call, +Tasks, -Times
       call_time/4,                % +Call, ?BeginTest, ?EndTest, -Begin
@@ -124,9 +125,17 @@ task_calls(Ts, Pairs) :-
 %   roles). A join comes in the ids of its patterns in order, so each task's rows come in
 %   the order task_call/2 reads them and the calls are its calls.
 task_calls_reached(Reach, T, Pairs) :-
+    task_calls_reached(Reach, T, [], Pairs).
+
+%!  task_calls_reached(+Reach, ?Task, +Options, -Pairs) is det.
+%   task_calls_reached/3 with the store-query Options of kb_findall/5 for both joins:
+%   `[plan(written)]` joins them in the order written, from Reach (a Reach that starts at the
+%   interval begins found by value, where SQLite's own plan would start from every typed
+%   individual).
+task_calls_reached(Reach, T, Options, Pairs) :-
     task_role_rows(T, C, R, RC, OC, Rows),
-    kb_findall(T-(C-R-RC-OC), ( Reach, Rows ), any, Found),
-    kb_findall(T-TC, ( Reach, triple(T, rdf:type, TC) ), any, Types),
+    kb_findall(T-(C-R-RC-OC), ( Reach, Rows ), any, Options, Found),
+    kb_findall(T-TC, ( Reach, triple(T, rdf:type, TC) ), any, Options, Types),
     ordered_groups(Found, RowsOf),
     ordered_groups(Types, TypesOf),
     assoc_to_keys(TypesOf, Ts),

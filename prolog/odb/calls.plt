@@ -69,7 +69,9 @@ test(task_calls_reached_equals_task_call, [cleanup(store_reset)]) :-
              findall(T1-Call, ( member(T1-_, Pairs), task_call(T1, Call) ), Expected),
              assertion(Pairs == Expected),
              findall(T2, kb_call(( triple(T2, rdf:type, C2), atom(C2) ), any), Ts0), sort(Ts0, Ts),
-             task_calls(Ts, All), assertion(Pairs == All) )).
+             task_calls(Ts, All), assertion(Pairs == All),
+             task_calls_reached(( triple(T3, rdf:type, C3), atom(C3) ), T3, [plan(written)], Written),
+             assertion(Written == Pairs) )).
 
 %   After the test episode: N pours of the thermos into a red mug from t=300, 10 s apart,
 %   each its own task individual (the call shares its first object's class with the

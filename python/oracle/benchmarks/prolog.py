@@ -265,6 +265,19 @@ def _sql_floor(path: Path, neem: str) -> tuple[int, int, int]:
     return actions, interval_types, imagined
 
 
+def _tail_reads(bridge: Any, n: int) -> list[dict[str, Any]]:
+    """The read of the last 1, 100 and 400 actions of the history (``Bridge.history_view(after)``, what
+    extends a kept view): wall seconds, min/median/max of 3, in process."""
+    begins = [row["begin"] for row in bridge.history()]
+    out = []
+    for last in (1, 100, 400):
+        after = begins[-last - 1]
+        wall, _ = _timed(lambda: bridge.history_view(after))
+        print(f"history read of the last {last:>3} actions, {n:>6,} actions: wall {_fmt(wall)} s (min/median/max)", flush=True)
+        out.append({"area": "prolog", "name": f"history read of the last {last}", "actions": n, "wall_s": wall})
+    return out
+
+
 def _timed(fn: Callable[[], object], repeat: int = 3) -> tuple[dict[str, float], dict[str, float]]:
     """Wall and CPU seconds of ``repeat`` calls (CPU: this process, Prolog included)."""
     walls, cpus = [], []
@@ -316,6 +329,7 @@ def history_figures(quick: bool = False) -> list[dict[str, Any]]:
             ratio = cpu["median"] / floor["median"]
             print(f"history read, {n:>6,} actions ({history[-1]} rows): wall {_fmt(wall)} s, cpu {_fmt(cpu)} s"
                   f" (min/median/max); SQL floor cpu {_fmt(floor)} s; cpu/floor {ratio:.1f}x", flush=True)
+            rows.extend(_tail_reads(bridge, n))
             bridge.why_not("pick", ["banana"])  # the first question loads nothing more; time the ones after
             why_wall, why_cpu = _timed(lambda: bridge.why_not("pick", ["banana"]), 5)
             crossing = _crossing_goal(bridge)
