@@ -220,6 +220,7 @@ exposed(odb_calls, task_call/2, read).
 exposed(odb_calls, task_calls/2, read).
 exposed(odb_calls, task_calls_reached/3, hidden).   % calls the goal it is given
 exposed(odb_calls, task_calls_reached/4, hidden).   % calls the goal it is given
+exposed(odb_calls, task_calls/3, hidden).   % calls the goals it is given
 exposed(odb_calls, call_tasks/2, read).
 exposed(odb_calls, call_task_times/3, read).
 exposed(odb_calls, call_time/4, read).

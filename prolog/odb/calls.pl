@@ -2,6 +2,7 @@
     [ task_class/2,               % ?TaskIndividual, ?Class
       task_call/2,                % +TaskIndividual, -Call
       task_calls/2,               % +Tasks, -Pairs
+      task_calls/3,               % +Tasks, +Reaches, -Pairs
       task_calls_reached/3,       % :Reach, ?Task, -Pairs
       task_calls_reached/4,       % :Reach, ?Task, +Options, -Pairs
       call_tasks/2,               % +Call, -TaskIndividuals
@@ -113,10 +114,29 @@ action_call(A, Call, B, E) :-
 task_calls(Ts, Pairs) :-
     sort(Ts, Distinct),
     length(Distinct, N),
-    (   N =< 64
+    (   few_tasks(N)
     ->  findall(T-C, ( member(T, Distinct), task_call(T, C) ), Pairs)
     ;   factor_calls(Distinct, Pairs)
     ).
+
+%!  task_calls(+Tasks, +Reaches, -Pairs) is det.
+%   The Task-Call pairs of at least Tasks, where Reaches, a list of `Reach-Task` goals, reach
+%   every one of them: for a few tasks task_calls/2's; for more, those of every task the goals
+%   reach (task_calls_reached/4, each joined as written), so that the reads start from the
+%   goals (the intervals begun after a time, say) instead of spanning every task of the NEEM
+%   as task_calls/2's do.
+task_calls(Ts, Reaches, Pairs) :-
+    sort(Ts, Distinct),
+    length(Distinct, N),
+    (   few_tasks(N)
+    ->  task_calls(Distinct, Pairs)
+    ;   findall(P, ( member(Reach-T, Reaches), task_calls_reached(Reach, T, [plan(written)], Ps), member(P, Ps) ), All),
+        sort(All, Pairs)
+    ).
+
+%   Up to this many tasks, one store query per task is the fastest way to their calls.
+few_tasks(N) :-
+    N =< 64.
 
 %!  task_calls_reached(+Reach, ?Task, -Pairs) is det.
 %   task_calls/2 for the tasks the kb_call goal Reach binds Task to (the tasks an imagining

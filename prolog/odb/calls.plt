@@ -73,6 +73,19 @@ test(task_calls_reached_equals_task_call, [cleanup(store_reset)]) :-
              task_calls_reached(( triple(T3, rdf:type, C3), atom(C3) ), T3, [plan(written)], Written),
              assertion(Written == Pairs) )).
 
+test(task_calls_of_many_reached_tasks_equal_task_calls, [cleanup(store_reset)]) :-
+    load_generated_episode(200, 6),
+    findall(T0, kb_call(( triple(T0, rdf:type, C0), atom(C0) ), any), Ts0), sort(Ts0, Ts),
+    length(Ts, N), assertion(N > 64),
+    task_calls(Ts, Expected),
+    % two goals that together reach every task (and the few ones twice)
+    length(First, 10), append(First, _, Ts),
+    task_calls(Ts, [ ( triple(T, rdf:type, C), atom(C) )-T, member(F, First)-F ], Got),
+    findall(Tk-Call, ( member(Tk-Call, Got), memberchk(Tk, Ts) ), Kept),
+    assertion(Kept == Expected),
+    task_calls(First, [fail-_], FewGot),       % a few: task_calls/2, the goals not asked
+    task_calls(First, FewExpected), assertion(FewGot == FewExpected).
+
 %   After the test episode: N pours of the thermos into a red mug from t=300, 10 s apart,
 %   each its own task individual (the call shares its first object's class with the
 %   episode's pour into the green mug, so these tasks are candidates of that call too),

@@ -32,7 +32,7 @@ situation, the one the next ranking is for.
 :- use_module('../model/object', []).
 :- use_module('../model/situation', []).
 :- use_module(names, [odb_iri/2]).
-:- use_module(calls, [task_calls/2, task_calls_reached/3, task_calls_reached/4]).
+:- use_module(calls, [task_calls/2, task_calls/3]).
 :- use_module(decisions, [latest_decision/4, imagined_available/2]).
 
 %!  situation_history(-Situations) is det.
@@ -103,19 +103,15 @@ situation_history(After, Situations, Calls, Acts) :-
     findall(A, member(_-A-_-_-_, Actions), Acts).
 
 %   history_calls(+After, +Ts, -CallPairs): the Task-Call pairs of at least the tasks Ts (those
-%   of the actions read and of the plans their imaginings used). For the whole history, of Ts
-%   (task_calls/2, whose reads span the NEEM, the fastest way for all of it). After a begin, of
-%   the tasks of the events begun since and of every plan (the plans are few): each read starts
-%   from the intervals begun since, so a read of a few new actions costs what they cost, not
-%   what the NEEM does (at 50,000 actions, 50 new ones: 2.1 s and 286 MiB before; docs/prolog.md).
+%   of the actions read and of the plans their imaginings used). After a begin, the tasks of
+%   the events begun since and those of every plan (the plans are few) reach them all
+%   (task_calls/3): reading a few hundred new actions then costs what they cost, not what the
+%   NEEM does (at 50,000 actions, the last 100: 1.96 s before, 0.12 s; docs/prolog.md).
 history_calls(none, Ts, CallPairs) :- !,
     task_calls(Ts, CallPairs).
-history_calls(After, _, CallPairs) :-
-    task_calls_reached(( triple(I, soma:hasIntervalBegin, >(After)), has_time_interval(A, I), executes_task(A, T) ),
-                       T, [plan(written)], Acted),
-    task_calls_reached(plan_defines_task(_, P), P, Planned),
-    append(Acted, Planned, Pairs),
-    sort(Pairs, CallPairs).
+history_calls(After, Ts, CallPairs) :-
+    task_calls(Ts, [ ( triple(I, soma:hasIntervalBegin, >(After)), has_time_interval(A, I), executes_task(A, T) )-T,
+                     plan_defines_task(_, P)-P ], CallPairs).
 
 %   Every action (After `none`), or every action that began after After, with its begin,
 %   task, end and the task's types. The restricted reads start from the interval begins the
