@@ -452,7 +452,8 @@ class Store(ABC):
         ``limit`` by the database ("the latest decision before T" is one row, not a scan);
         with a ``limit``, solutions equal in every key come in no fixed order (a top-N scan
         stops at its last row), so a caller that needs all the rows at the last key's value
-        asks again with a larger limit.
+        asks again with a larger limit; with a ``limit`` and no ``order``, the solutions are any
+        ``limit`` of them (SQLite stops at the first it finds).
         ``select`` names the variables the caller keeps (all of them when None): the others
         are joined on but never converted to Python values; the solutions are the same rows.
         ``group`` names a kept variable whose values are collected: one dict per distinct

@@ -307,8 +307,11 @@ def match_sql(
     # Rows equal in every key come in insertion order, but not in a top-N scan by the key
     # (an order and a limit, joined by the store's plan): SQLite 3.40 then sorts the ties
     # of every key value before it stops, which walks the whole index (0.4 s at 50,000
-    # actions for the latest of two decisions). Groups come in no fixed order (Store.match).
-    if group is None and (limit is None or not order or written_order):
+    # actions for the latest of two decisions). Groups come in no fixed order (Store.match),
+    # and so do the rows of a limit without an order: the scan stops at the Nth row it finds
+    # instead of sorting every row by id first (a "fewer than 64 decisions?" test read all
+    # 50,000 imaginings and sorted them: 40 ms against 0.3 ms).
+    if group is None and (limit is None or (order and written_order)):
         keys += [f"{mark}{query.aliases[i]}.id" for i in query.joined_patterns()]
     source = query.ordered_from_clause(plan) if plan else query.from_clause()
     rest = f"FROM {source} WHERE {query.where()}"
