@@ -268,16 +268,17 @@ class NeemRanker:
         thesis oracle; the routine predictors build none, their chain is re-ranked)."""
         self._fit_break(when.seconds)
         options = self.options(calls)
-        if reranks(self.predictor):
+        rechained = self.predictor if reranks(self.predictor) else None
+        if rechained is not None:
             tree_roots = 0  # its chain is re-ranked: no forward tree is read
         started = time.perf_counter()
         at = when.seconds if self.clocked else None
         ranking = (self.predictor.rank(options, when.part_of_day, at=at) if tree_roots is None
                    else self.predictor.rank(options, when.part_of_day, tree_roots=tree_roots, at=at))
         ms = (time.perf_counter() - started) * 1000
-        if reranks(self.predictor):  # the routine predictors' chain: re-ranked after each step taken as done
-            length = 1 + int(self.predictor.event_horizon_forward)
-            chain = chain_ahead(self.predictor, ranking, options, self.afterwards, when.part_of_day, at, length)
+        if rechained is not None:  # the routine predictors' chain: re-ranked after each step taken as done
+            length = 1 + int(rechained.event_horizon_forward)
+            chain = chain_ahead(rechained, ranking, options, self.afterwards, when.part_of_day, at, length)
             ranking = dataclasses.replace(ranking, ahead=chain)
         return Decision(ranking, when, ms)
 

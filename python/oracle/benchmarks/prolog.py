@@ -265,10 +265,10 @@ def _sql_floor(path: Path, neem: str) -> tuple[int, int, int]:
     return actions, interval_types, imagined
 
 
-def _tail_reads(bridge: Any, n: int) -> list[dict[str, Any]]:
+def _tail_reads(bridge: Any, n: int, begins: list[float]) -> list[dict[str, Any]]:
     """The read of the last 1, 100 and 400 actions of the history (``Bridge.history_view(after)``, what
-    extends a kept view): wall seconds, min/median/max of 3, in process."""
-    begins = [row["begin"] for row in bridge.history()]
+    extends a kept view; ``begins``: the rows' begins of the whole read): wall seconds, min/median/max
+    of 3, in process."""
     out = []
     for last in (1, 100, 400):
         after = begins[-last - 1]
@@ -292,8 +292,8 @@ def _timed(fn: Callable[[], object], repeat: int = 3) -> tuple[dict[str, float],
 def _crossing_goal(bridge: Any) -> str:
     """The least a question costs: one compiled store query of one pattern and one row, the
     interval of one event (its subject known, so the (s, p) index finds the row). An unbound
-    subject with ``limit(1)`` is no floor: SQLite, without statistics, reads every interval
-    triple through the p* index and sorts them by id for the first (56 ms at 50,000 actions)."""
+    subject with ``limit(1)`` was no floor while a limit sorted its matches by id (56 ms at
+    50,000 actions until 2026-12-07); a known subject is the floor either way."""
     from oracle.bridge.values import plain, quote_atom
 
     subject = bridge.query("kb_iri(dul:hasTimeInterval, P), once(store_match([t(S, P, _)], any, [limit(1)]))")[0]["S"]
@@ -323,13 +323,14 @@ def history_figures(quick: bool = False) -> list[dict[str, Any]]:
         for n in sizes:
             neem = f"u{n}"
             bridge = Bridge(store, neem, onto)
-            history: list[Any] = []
-            wall, cpu = _timed(lambda: history.append(len(bridge.history())))
+            read: dict[str, list[Any]] = {}  # the last read's rows (their begins: _tail_reads)
+            wall, cpu = _timed(lambda: read.update(rows=bridge.history()))
+            history = [len(read["rows"])]
             _, floor = _timed(lambda: _sql_floor(path, bridge.neem_id))  # tables are named by the id
             ratio = cpu["median"] / floor["median"]
             print(f"history read, {n:>6,} actions ({history[-1]} rows): wall {_fmt(wall)} s, cpu {_fmt(cpu)} s"
                   f" (min/median/max); SQL floor cpu {_fmt(floor)} s; cpu/floor {ratio:.1f}x", flush=True)
-            rows.extend(_tail_reads(bridge, n))
+            rows.extend(_tail_reads(bridge, n, [row["begin"] for row in read.pop("rows")]))
             bridge.why_not("pick", ["banana"])  # the first question loads nothing more; time the ones after
             why_wall, why_cpu = _timed(lambda: bridge.why_not("pick", ["banana"]), 5)
             crossing = _crossing_goal(bridge)
