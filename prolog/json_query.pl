@@ -23,6 +23,8 @@ under a time limit and a stack limit. Every failure becomes `{"error": Message}`
 :- use_module(library(time)).
 :- use_module(library(http/json)).
 :- use_module(query_policy, [exposed/3, goal_argument/3]).
+% the rosprolog and rosbridge doors ask for rosprolog_json:rosprolog_solution/2 through json_query/2
+:- use_module(rosprolog_json, []).
 
 %!  json_query(+Request, -JSON) is det.
 %   Request is `[Text, Bindings, Offset, Limit, Seconds, Writes]`: the query text, a list of

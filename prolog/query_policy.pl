@@ -41,6 +41,11 @@ exposed(batch_toplevel, batch_goal/2, hidden).
 exposed(json_query, json_query/2, hidden).
 exposed(json_query, safe_query/1, hidden).
 exposed(json_query, safe_query/2, hidden).
+% rosprolog_solution/2 runs the text it is given, checked first with this table's `read` lines
+% (the _writing one with `read` and `write`), as json_query/2 checks /api/prolog's text
+exposed(rosprolog_json, rosprolog_solution/2, read).
+exposed(rosprolog_json, rosprolog_solution_writing/2, write).
+exposed(rosprolog_json, rosprolog_encode/2, read).
 exposed(json_text, json_text/2, hidden).
 exposed(json_text, json_data_text/2, hidden).
 exposed(query_policy, exposed/3, hidden).
