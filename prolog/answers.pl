@@ -24,6 +24,8 @@ Reason terms of why_not/2,3 (each a separate solution, most telling first):
     first perception), else `precondition_failed` (the NEEM does not say which);
   - ranked_lower(Call, When, rank(Rank, Score), Higher): it was available but the
     imagined preference ranked the tasks Higher (`ranked(Call, Rank, Score)`) above it;
+  - ranked_first(Call, When, Score): it was available and ranked first (the question's
+    premise is wrong: it was the suggestion);
   - user_chose(Other, Begin): the user had the robot do Other instead;
   - done_later(Call, Begin) / done_earlier(Call, Begin): when it was done nearest after
     (before) the time asked about.
@@ -75,10 +77,12 @@ reasons_at(Call, At, M, When, Reason) :-
     ->  missing_reason(Call, When, Why),
         R1 = [not_available(Call, When, Why)]
     ;   preference_at(At, _, Ranked),
-        nth1(_, Ranked, ranked(Call, Rank, Score)),
-        Rank > 1
-    ->  findall(ranked(C, R, S), ( member(ranked(C, R, S), Ranked), R < Rank ), Higher),
-        R1 = [ranked_lower(Call, When, rank(Rank, Score), Higher)]
+        nth1(_, Ranked, ranked(Call, Rank, Score))
+    ->  (   Rank > 1
+        ->  findall(ranked(C, R, S), ( member(ranked(C, R, S), Ranked), R < Rank ), Higher),
+            R1 = [ranked_lower(Call, When, rank(Rank, Score), Higher)]
+        ;   R1 = [ranked_first(Call, When, Score)]   % the premise is wrong: it was suggested
+        )
     ;   R1 = []
     ),
     (   chosen_after(When, Other, OB), Other \== Call
@@ -213,6 +217,7 @@ reason_dict(not_available(C, W, Why), D) :-
 reason_dict(ranked_lower(C, W, rank(R, S), Higher), _{reason: ranked_lower, task: T, time: W,
                                                       rank: R, score: S, higher: Hs}) :-
     call_text(C, T), maplist(ranked_dict, Higher, Hs).
+reason_dict(ranked_first(C, W, S), _{reason: ranked_first, task: T, time: W, score: S}) :- call_text(C, T).
 reason_dict(user_chose(C, B), _{reason: user_chose, task: T, time: B}) :- call_text(C, T).
 reason_dict(done_later(C, B), _{reason: done_later, task: T, time: B}) :- call_text(C, T).
 reason_dict(done_earlier(C, B), _{reason: done_earlier, task: T, time: B}) :- call_text(C, T).

@@ -216,9 +216,9 @@ def test_the_terminal_names_the_objects_in_hand_only_where_no_context_backs_a_ta
     mug = "https://ontology.dlr.de/soma/odb#RedMug"
     never = RoutineTask(1, 3.0, Option("https://ontology.dlr.de/soma/odb#Pick", mug), 0, 1.0, (), 0.125, -1, (), (),
                         (mug,))
-    assert describe(never) == "p 0.125 (no past context: by similarity; uses RedMug in hand)"
+    assert describe(never) == "    12% (no past context: by similarity; uses RedMug in hand)"
     followed = RoutineTask(1, 1.0, never.option, 4, 0.0, (), 0.5, 1, ("pick(RedMug)",), (3,), (mug,))
-    assert describe(followed) == "p 0.500 (followed [pick(RedMug)] 4x)"
+    assert describe(followed) == "    50% (followed [pick(RedMug)] 4x)"
 
 
 def test_rank_says_who_usually_does_each_task_and_each_step(tmp_path, capsys):

@@ -18,7 +18,15 @@ def _when(seconds: float | None, clocked: bool = True) -> str:
 
 
 def _ranked(items: list[dict[str, Any]]) -> str:
-    return ", ".join(f"{i['task']} (rank {i['rank']}, score {i['score']:.3g})" for i in items)
+    """Tasks with their ranks; the scores stay in the JSON (lower ranks higher, and what a score
+    means depends on the predictor that wrote it: docs/algorithm.md)."""
+    return ", ".join(f"{i['task']} ({ordinal(int(i['rank']))})" for i in items)
+
+
+def ordinal(n: int) -> str:
+    """1st, 2nd, 3rd, 11th, 22nd."""
+    suffix = "th" if 10 <= n % 100 <= 20 else {1: "st", 2: "nd", 3: "rd"}.get(n % 10, "th")
+    return f"{n}{suffix}"
 
 
 def reason_sentence(reason: dict[str, Any], clocked: bool = True) -> str:
@@ -32,8 +40,9 @@ def reason_sentence(reason: dict[str, Any], clocked: bool = True) -> str:
             return f"{task} was not available at {at}: I had not perceived any {reason['object']}."
         return f"{task} was not available at {at}: a precondition did not hold (the NEEM does not say which)."
     if kind == "ranked_lower":
-        return (f"At {at} I ranked {task} {reason['rank']} (score {reason['score']:.3g}); "
-                f"ranked higher: {_ranked(reason['higher'])}.")
+        return f"At {at} I ranked {task} {ordinal(int(reason['rank']))}; ranked higher: {_ranked(reason['higher'])}."
+    if kind == "ranked_first":
+        return f"At {at} I ranked {task} first: it is what I suggested."
     if kind == "user_chose":
         return f"You chose {task} instead, at {at}."
     if kind == "done_later":
@@ -47,7 +56,19 @@ def why_not_sentence(answer: dict[str, Any], clocked: bool = True) -> str:
     reasons = answer.get("reasons") or []
     if not reasons:
         return f"I cannot tell why {answer['task']} was not done: the NEEM holds no decision about it."
+    if any(r["reason"] == "ranked_first" for r in reasons):
+        # not "already done earlier": that reads as why it was not suggested, and it was
+        return " ".join(_when_done(r, clocked) if r["reason"] in ("done_earlier", "done_later") else
+                        reason_sentence(r, clocked) for r in reasons)
     return " ".join(reason_sentence(r, clocked) for r in reasons)
+
+
+def _when_done(reason: dict[str, Any], clocked: bool) -> str:
+    """When a task suggested first was last (or next) done, as a plain fact."""
+    at = _when(reason.get("time"), clocked)
+    if reason["reason"] == "done_later":
+        return f"It was done later, at {at}."
+    return f"It was last done at {at}."
 
 
 #: How many alternatives a spoken answer names; the JSON answer keeps them all.
@@ -73,7 +94,7 @@ def something_else_sentence(answer: dict[str, Any]) -> str:
     if not alternatives:
         return f"I know of no alternative to {current}."
     best = alternatives[0]
-    return f"Instead of {current} I would do {best['task']} (rank {best['rank']}, score {best['score']:.3g})."
+    return f"Instead of {current} I would do {best['task']} ({ordinal(int(best['rank']))} of my suggestions)."
 
 
 def support_sentence(entry: dict[str, Any]) -> str:

@@ -28,6 +28,7 @@ COMMAND_MODULES = (
     "demo",
     "bench",
     "serve",
+    "rosprolog",
     "simulate",
     "ask",
     "routines",
@@ -36,10 +37,13 @@ COMMAND_MODULES = (
 
 
 class _Parser(argparse.ArgumentParser):
-    """Usage errors as one line on stderr (exit 2), like every other error of the tool."""
+    """Usage errors as one line on stderr (exit 2), like every other error of the tool, with the
+    nearest command or option when a word was misspelt (oracle.commands.manners)."""
 
     def error(self, message: str) -> NoReturn:
-        self.exit(2, f"error: {self.prog}: {message} (see {self.prog} --help)\n")
+        from oracle.commands.manners import reworded
+
+        self.exit(2, f"error: {self.prog}: {reworded(self, message)} (see {self.prog} --help)\n")
 
 
 class _Unused:
@@ -81,6 +85,10 @@ def build_parser(command: str | None = None, *, complete: bool = True) -> argpar
         if importlib.util.find_spec(module_name) is None:
             continue
         importlib.import_module(module_name).register(subparsers)
+    from oracle.commands.manners import mind_repeats
+
+    for sub in action.choices.values():
+        mind_repeats(sub)  # a repeated option adds up or is refused, never silently the last
     return parser
 
 
@@ -93,7 +101,9 @@ def _command(argv: Sequence[str]) -> str | None:
 def main(argv: Sequence[str] | None = None) -> int:
     words = list(sys.argv[1:] if argv is None else argv)
     parser = build_parser(_command(words), complete=False)
-    args = parser.parse_args(words)
+    from oracle.commands.manners import drop_notes
+
+    args = drop_notes(parser.parse_args(words))
     handler = getattr(args, "handler", None)
     if handler is None:
         print(f"error: {parser.prog}: give a command (see {parser.prog} --help)", file=sys.stderr)

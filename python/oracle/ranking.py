@@ -60,6 +60,11 @@ class NeemRanking:
     #: Who usually does each ranked task, and each step of the chain (oracle.past.autonomy).
     usual: tuple[UsualMode, ...] = ()
     chain_modes: tuple[str | None, ...] = ()
+    #: Of ``history``, the idle steps: the breaks the NEEM logged as idle actions (``neems``
+    #: counts them among its actions), and whether the last is the break since the last action
+    #: (not logged yet: the logger writes it with the next action).
+    breaks: int = 0
+    pause: bool = False
 
 
 def make_predictor(ontology: OdbOntology, settings: Hyperparameters | None = None, method: str = DEFAULT) -> Predictor:
@@ -133,7 +138,8 @@ def rank_neem(
     usual, chain_modes = ranked_modes(ranker.modes, [str(c) for c in ranked], [str(c) for c in chain],
                                       instant.part_of_day)
     return NeemRanking(bridge.neem_id, instant.seconds, instant.part_of_day, len(ranker.steps), ranking, ranked,
-                       chain, decision.ms, written, note, method, tuple(usual), tuple(chain_modes))
+                       chain, decision.ms, written, note, method, tuple(usual), tuple(chain_modes),
+                       sum(1 for step in ranker.steps if step.idle), ranker.idle_fitted)
 
 
 def keep_neem(store: Store, ontology: OdbOntology, neem: str, settings: Hyperparameters | None = None,

@@ -9,6 +9,7 @@ task was not chosen.
 from __future__ import annotations
 
 import argparse
+import shlex
 import time
 from datetime import datetime
 from typing import TYPE_CHECKING
@@ -39,11 +40,13 @@ def run(args: argparse.Namespace) -> int:
     from oracle.bridge import Bridge
     from oracle.commands.shown import print_ranking
     from oracle.errors import NeemOracleError
+    from oracle.commands.hints import runnable
+    from oracle.neem.query import summarize_neem
     from oracle.neem.writer import NeemLogger
     from oracle.ontology import build_with_report
     from oracle.ranking import rank_neem
     from oracle.store import open_store
-    from oracle.store.ids import find_neem
+    from oracle.store.ids import find_neem, resolve_neem as find_neem_id
     from oracle.world.generate import simulate
     from oracle.world.personas import make_persona
     from oracle.world.worldfile import load_world
@@ -73,7 +76,9 @@ def run(args: argparse.Namespace) -> int:
         logger.action(row.action, _time(row), row.end, available=row.available)
     logger.available(now.available or (), _time(now))
     logger.close()  # commits, and swaps the new demo NEEM in for the old one
-    print(f"2. NEEM 'demo' in {store.location}: {len(history)} actions of {persona.file_name} over {args.days} days")
+    logged = summarize_neem(store, find_neem_id(store, "demo")).actions  # as 'neems' and 'rank' count them
+    print(f"2. NEEM 'demo' in {store.location}: {logged} actions of {persona.file_name} over {args.days} days"
+          f" ({len(history)} tasks and {logged - len(history)} breaks, logged as idle actions)")
     print(f"   ({persona.persona})")
 
     bridge = Bridge(store, "demo", onto)
@@ -84,7 +89,8 @@ def run(args: argparse.Namespace) -> int:
     asked = result.calls[min(5, len(result.calls) - 1)]
     answer = bridge.why_not(asked.task, list(asked.args), result.at)
     print(f"4. why not {asked}?  {why_not_sentence(answer)}")
-    print(f"done in {time.perf_counter() - started:.1f} s; try: python -m oracle prolog --neem demo")
+    print(f"done in {time.perf_counter() - started:.1f} s; try: {runnable()} prolog --neem demo"
+          + (f" --store {shlex.quote(str(args.store))}" if args.store else ""))
     return 0
 
 

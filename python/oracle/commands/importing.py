@@ -6,7 +6,7 @@ import argparse
 import contextlib
 import signal
 import sys
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -16,6 +16,7 @@ from oracle.errors import NeemOracleError
 if TYPE_CHECKING:
     from oracle.ontology import OdbOntology
     from oracle.store import Store
+    from oracle.writtenview import WrittenView
 
 
 def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -37,44 +38,84 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 
 
 def run(args: argparse.Namespace) -> int:
+    from oracle.chains import read_chains
     from oracle.neem.importing import check_chains, import_chains
+    from oracle.writtenview import views_of_import
+    from oracle.progress import bar
     from oracle.store import open_store
 
     onto = ontology_from(args)
-    checked = check_chains(onto, args.chains, no_clock=args.no_clock)  # before the store is opened: a bad file creates nothing
-    with open_store(args.store, number_format=args.numbers) as store, _first_ctrl_c_between_rows() as stop:
+    lines = _lines(args.chains)
+    with bar(f"checking {args.chains.name}", "rows", lines) as tick:
+        # before the store is opened: a bad file creates nothing
+        checked = check_chains(onto, args.chains, no_clock=args.no_clock, progress=tick)
+    rows = sum(plan.rows for plan in checked.plans.values())
+    with open_store(args.store, number_format=args.numbers) as store:
         report: dict[str, int] = {}
         refused: list[str] = []
         existing = "replace" if args.replace else "new" if args.as_new else "refuse"
         try:
-            import_chains(store, onto, args.chains, report=report, commit_every=args.commit_every, session=args.session,
-                          checked=checked, no_clock=args.no_clock, stop=stop, existing=existing, refused=refused)
+            with _first_ctrl_c_between_rows() as pressed, bar("logging", "actions", rows) as tick:
+                logged = [0]
+
+                def stop() -> bool:  # asked before each row: the row count is the progress
+                    tick(logged[0], rows)
+                    logged[0] += 1
+                    return pressed()
+
+                import_chains(store, onto, args.chains, report=report, commit_every=args.commit_every,
+                              session=args.session, checked=checked, no_clock=args.no_clock, stop=stop,
+                              existing=existing, refused=refused)
+                tick(rows, rows)
         except NeemOracleError:
             _print(report, store)
             raise
         except KeyboardInterrupt:
             _print(report, store)
-            print(f"interrupted: {sum(report.values())} actions committed", file=sys.stderr)
+            print(f"interrupted: {sum(report.values())} actions committed (an unfinished NEEM is listed as"
+                  " INCOMPLETE by 'neems')", file=sys.stderr)
             return 130
         _print(report, store)
-        _keep(store, onto, report)
+        try:
+            _keep(store, onto, report, views_of_import(checked.rows if checked.rows is not None else
+                                                       read_chains(args.chains), no_clock=args.no_clock))
+        except KeyboardInterrupt:
+            # the NEEMs are complete; only the kept fit (an optimisation) is left for the first rank
+            print("interrupted: every NEEM is imported; its first rank will read and fit it", file=sys.stderr)
+            return 130
     for line in refused:
         print(line, file=sys.stderr)
     return 1 if refused else 0
 
 
-def _keep(store: Store, onto: OdbOntology, report: dict[str, int]) -> None:
+def _lines(path: Path) -> int | None:
+    """The file's line count, the check's total (None when it cannot be read: the check says why)."""
+    try:
+        with path.open("rb") as handle:
+            return sum(1 for _ in handle)
+    except OSError:
+        return None
+
+
+def _keep(store: Store, onto: OdbOntology, report: dict[str, int], views: Mapping[str, WrittenView]) -> None:
     """What the first rank of each imported NEEM needs, kept in the store (oracle.ranking.keep_neem):
-    an optimisation, so a failure only leaves that rank to read and fit everything."""
+    an optimisation, so a failure only leaves that rank to read and fit everything. Ctrl-C is
+    honoured here (a KeyboardInterrupt): a fit cut short keeps nothing."""
+    from oracle.progress import bar
     from oracle.ranking import keep_neem
+    from oracle.writtenview import keep_written
 
     public = {info.id for info in store.neems()}
-    for neem_id in report:
-        if neem_id in public:
+    kept = [neem_id for neem_id in report if neem_id in public]
+    with bar("fitting for the first rank", "NEEMs", len(kept)) as tick:
+        for done, neem_id in enumerate(kept):
+            tick(done, len(kept))
             try:
+                keep_written(store, onto, neem_id, views)  # the view as written: no read through Prolog
                 keep_neem(store, onto, neem_id)
             except NeemOracleError:
                 continue
+        tick(len(kept), len(kept))
 
 
 @contextlib.contextmanager
@@ -99,11 +140,17 @@ def _first_ctrl_c_between_rows() -> Iterator[Callable[[], bool]]:
 
 
 def _print(report: dict[str, int], store: Store) -> None:
-    """Each NEEM's id, name and committed actions (a NEEM still hidden has its name in staging)."""
+    """Each NEEM's id, name and actions as ``neems`` counts them: the rows committed and the
+    breaks between them that the logger wrote as idle actions (a NEEM still hidden, cut short,
+    has its name in staging and only its rows counted)."""
+    from oracle.neem.query import summarize_neem
     from oracle.store.staging import STAGING
     from oracle.store.ids import ALIAS_KEY, alias_of
 
-    names = {info.id: alias_of(info) for info in store.neems()}
+    infos = {info.id: info for info in store.neems()}
+    names = {neem_id: alias_of(info) for neem_id, info in infos.items()}
     names.update((str(info.meta.get(STAGING)), info.meta.get(ALIAS_KEY)) for info in store.staging_neems())
     for neem_id, count in report.items():
-        print(f"{neem_id}\t{names.get(neem_id) or '-'}\t{count} actions")
+        total = summarize_neem(store, neem_id, infos[neem_id]).actions if neem_id in infos else count
+        breaks = f" ({count} rows and {total - count} breaks, logged as idle actions)" if total > count else ""
+        print(f"{neem_id}\t{names.get(neem_id) or '-'}\t{total} actions{breaks}")

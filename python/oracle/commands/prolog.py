@@ -64,6 +64,9 @@ def _parse_task(text: str, onto: OdbOntology) -> tuple[str, list[str]]:
 def run_toplevel(args: argparse.Namespace) -> int:
     if args.answers is not None and args.answers < 1:
         raise NeemOracleError("--answers must be at least 1")
+    if args.json:
+        raise NeemOracleError("prolog --json: the toplevel prints answers as Prolog writes them; for JSON use "
+                              "why-not, what-next or something-else --json, or json_write_dict/2 in the goal")
     if args.create:
         _create(args)
     bridge, _ = connect(args, write=True)  # a query typed at the toplevel may assert facts

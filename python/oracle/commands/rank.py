@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+from dataclasses import replace
 
 from oracle.commands.common import AT, JSON, METHOD, NEEM, ONTOLOGY_OPTIONS, SETTINGS, STORE, add_options
 
@@ -16,9 +17,15 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
                         help="rank these calls (e.g. 'pick(red_mug)') instead of the latest imagined situation "
                              "(a NEEM that imagined nothing: the actions done so far)")
     add_options(parser, AT, METHOD, SETTINGS)
-    parser.add_argument("--no-write", action="store_true", help="do not write the ranking back into the NEEM")
+    parser.add_argument("--no-write", "--dry-run", dest="no_write", action="store_true",
+                        help="write nothing into the NEEM (a ranking of --available without --at, a what-if at "
+                             "the present moment, is never written)")
     add_options(parser, JSON, *ONTOLOGY_OPTIONS)
     parser.set_defaults(handler=run)
+
+
+def _joined(note: str | None, more: str) -> str:
+    return more if note is None else f"{note}; {more}"
 
 
 def run(args: argparse.Namespace) -> int:
@@ -30,8 +37,15 @@ def run(args: argparse.Namespace) -> int:
     settings = settings_from(args.settings)
     method = method_from(args)
     at = moment_from(args.at)  # before the store is opened: a bad --at touches nothing
-    bridge, onto = connect(args, write=not args.no_write)
-    result = rank_neem(bridge, onto, settings, args.available, at, write=not args.no_write, method=method)
+    # --available without --at asks "what if these were offered now?": a preference dated today
+    # in a NEEM recorded long ago would be a false record, so that exploration writes nothing
+    exploring = args.available is not None and at is None
+    write = not args.no_write and not exploring
+    bridge, onto = connect(args, write=write)
+    result = rank_neem(bridge, onto, settings, args.available, at, write=write, method=method)
+    if exploring and not args.no_write:
+        result = replace(result, note=_joined(result.note, "not written: --available without --at ranks a what-if "
+                                                            "at the present moment (give --at to record a decision)"))
     if args.json:
         print(json.dumps({
             "neem": result.neem, "method": result.method, "at": result.at, "time_of_day": result.time_of_day,

@@ -21,6 +21,7 @@ from oracle.errors import LoggingError
 from oracle.neem.lifecycle import wipe_temporary_neems
 from oracle.neem.writer import NeemLogger, check_call, check_performer
 from oracle.ontology.model import OdbOntology
+from oracle.progress import Tick
 from oracle.store import Store
 from oracle.store.ontology_tbox import tbox_for
 from oracle.store.tbox import TBox
@@ -57,9 +58,11 @@ class CheckedChains:
     rows: tuple[ChainRow, ...] | None
 
 
-def check_chains(onto: OdbOntology, path: str | Path, *, no_clock: bool = False) -> CheckedChains:
+def check_chains(onto: OdbOntology, path: str | Path, *, no_clock: bool = False,
+                 progress: Tick | None = None) -> CheckedChains:
     """Check every row of a chains file as the logger will; return each user's plan and the rows.
     With ``no_clock`` every row must be time-less (no ``time``, ``end`` or ``duration``).
+    ``progress`` (oracle.progress) is told the line reached after each row.
 
     Raises LoggingError naming the file and line of the first bad row."""
     plans: dict[str, _UserPlan] = {}
@@ -72,6 +75,8 @@ def check_chains(onto: OdbOntology, path: str | Path, *, no_clock: bool = False)
             plan = plans.setdefault(row.user, _UserPlan())
             _check_row(onto, row, plan, checked, no_clock)
             plan.last_line, plan.rows = row.line, plan.rows + 1
+            if progress is not None:
+                progress(row.line, None)
             if kept is not None:
                 kept.append(row)
                 if len(kept) > KEPT_ROWS:

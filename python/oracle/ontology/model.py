@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from oracle.errors import OntologyError
+from oracle.suggest import did_you_mean
 from oracle.namespaces import DUL_IRI, SOMA_IRI, STANDARD_PREFIXES
 from oracle.ontology.distance import DistanceMatrix
 from oracle.ontology.provenance import OntologySource
@@ -118,12 +119,14 @@ class OdbOntology:
 
     def object_iri(self, name: str) -> str:
         if name not in self.objects:
-            raise OntologyError(f"unknown object {name!r}; known objects include {', '.join(sorted(self.objects)[:8])}, ...")
+            raise OntologyError(f"unknown object {name!r}.{did_you_mean(name, self.objects)} Known objects include "
+                                f"{', '.join(sorted(self.objects)[:8])}, ...")
         return self.objects[name].iri
 
     def task_iri(self, name: str) -> str:
         if name not in self.tasks:
-            raise OntologyError(f"unknown task {name!r}; known tasks: {', '.join(sorted(self.tasks))}")
+            raise OntologyError(f"unknown task {name!r}.{did_you_mean(name, self.tasks)} Known tasks: "
+                                f"{', '.join(sorted(self.tasks))}")
         return self.tasks[name].iri
 
     def task_roles(self, task: str, n_args: int) -> tuple[str | None, ...]:

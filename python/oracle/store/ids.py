@@ -65,7 +65,11 @@ def resolve_neem(store: Store, name: str) -> str:
     """The id of the NEEM ``name`` names (an id or an alias); a one-line StoreError otherwise."""
     info = find_neem(store, name)
     if info is None:
-        raise StoreError(f"{store.location}: no NEEM {name!r} (neither an id nor a name; see 'neems')")
+        from oracle.suggest import did_you_mean
+
+        known = [str(n) for info in store.neems() for n in (info.id, alias_of(info)) if n]
+        raise StoreError(f"{store.location}: no NEEM {name!r} (neither an id nor a name; see 'neems')."
+                         f"{did_you_mean(name, known)}")
     return info.id
 
 

@@ -8,6 +8,7 @@ indexes on triples. NEEM registry entries live in ``meta`` as on openEASE.
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from datetime import datetime, timezone
@@ -66,6 +67,15 @@ def _meta_filter(neem_id: str) -> dict[str, Any]:
     return {"_id": {"$in": [neem_id, meta_key(neem_id)]}}
 
 
+def short_reason(error: BaseException) -> str:
+    """pymongo's reason in a few words: its first server's error, without the timeouts and the
+    topology description it appends (600 characters for a refused connection)."""
+    text = str(error).split(", Timeout:", 1)[0]
+    text = re.sub(r"\s*\(configured timeouts:[^)]*\)", "", text)
+    text = text.split(", full error:", 1)[0]
+    return text if len(text) <= 160 else text[:157] + "..."
+
+
 class MongoStore(Store):
     """NEEMs in a MongoDB database (or a pymongo-compatible test double)."""
 
@@ -81,7 +91,7 @@ class MongoStore(Store):
             if self.db["one"].count_documents({}) == 0:
                 self.db["one"].insert_one(dict(ONE_DOCUMENT))
         except Exception as error:  # pymongo raises many types; all mean "no usable server"
-            raise StoreError(f"{self.location}: cannot reach MongoDB ({error})") from None
+            raise StoreError(f"{self.location}: cannot reach MongoDB ({short_reason(error)})") from None
 
     def close(self) -> None:
         self.client.close()
