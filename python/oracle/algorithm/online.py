@@ -103,10 +103,14 @@ class OnlineOracle(RoutineOracle):
             offered, _ = offered_options(step, None)
             if len(offered) > 1 and step.option in offered:
                 when, part = self._clock.decided(step)
-                x = features(self, offered, part, when)
+                x = self._features(offered, part, when)
                 self._learn(x, self._served(x, self._evidence(offered, part).ids, when), offered.index(step.option))
         super()._add(step, score, offers)
         self._clock.passed(step)
+
+    def _features(self, offered: Sequence[Option], time_of_day: str | None, at: float | None) -> np.ndarray:
+        """The evidence rows of an offer (``evidence.features``); a subclass may add columns."""
+        return features(self, offered, time_of_day, at)
 
     def _served(self, x: np.ndarray, ids: list[int], when: float | None) -> np.ndarray:
         """log P: the routine predictor's probability of each option of an evidence block, as its
@@ -190,7 +194,7 @@ class OnlineOracle(RoutineOracle):
         # once for both), then in the ranking's order
         row = {option: i for i, option in enumerate(offered)}
         moment = self._clock.moment() if when is not None else None
-        x = features(self, offered, now, moment)[[row[t.option] for t in tasks]]
+        x = self._features(offered, now, moment)[[row[t.option] for t in tasks]]
         u = self._combined(np.log(np.maximum([t.probability for t in tasks], FLOOR)), x, w)
         p = np.exp(u - u.max())
         p /= p.sum()

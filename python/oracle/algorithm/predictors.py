@@ -19,6 +19,7 @@ from oracle.algorithm.fast import PreferenceOracle
 from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.normalized import normalized_oracle
 from oracle.algorithm.online import OnlineOracle
+from oracle.algorithm.personal import PersonalOracle
 from oracle.algorithm.pooled import PooledOracle
 from oracle.algorithm.routine import RoutineOracle
 from oracle.algorithm.stacked import StackedOracle
@@ -71,6 +72,10 @@ def _pooled(distances: Any, opening: frozenset[str], settings: Hyperparameters) 
     return PooledOracle(distances, opening_tasks=opening)
 
 
+def _personal(distances: Any, opening: frozenset[str], settings: Hyperparameters) -> Predictor:
+    return PersonalOracle(distances, opening_tasks=opening)
+
+
 def _thesis_normalized(distances: Any, opening: frozenset[str], settings: Hyperparameters) -> Predictor:
     return normalized_oracle(distances, settings, opening)
 
@@ -93,6 +98,9 @@ PREDICTORS: dict[str, PredictorSpec] = {
                             "evidence, learnt after every decision (docs/algorithm.md, 'Online predictor')", _online),
     "pooled": PredictorSpec("pooled", "the routine predictor and a per-user conditional logit over its evidence, "
                             "pooled log-linearly (docs/algorithm.md, 'Pooled predictor')", _pooled),
+    "personal": PredictorSpec("personal", "a per-user online conditional logit over the routine predictor's "
+                              "evidence and, given one, the shared prior's (docs/algorithm.md, 'Personal predictor')",
+                              _personal),
     "thesis": PredictorSpec("thesis", "the thesis PreferenceOracle (chapter 4) with the given settings", _thesis),
     "thesis-normalized": PredictorSpec("thesis-normalized", "the thesis oracle over the normalised distances of "
                                        "thesis 6.4 (docs/algorithm.md)", _thesis_normalized),

@@ -44,6 +44,12 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     evaluate.add_argument("--every-step", action="store_true",
                           help="keep predictors by partial_fit (self-tuning on every step) instead of as rank "
                                "serves them (fit on the history: the latest tuning window)")
+    evaluate.add_argument("--population", choices=("none", "loo"), default="none",
+                          help="the shared prior each user's predictor ranks with: none, or loo (built from the "
+                               "other users of the file only, with --k, --epsilon and --clip; docs/evaluation.md)")
+    evaluate.add_argument("--k", type=int, default=5, help="a prior keeps a count only when >= K users gave it (5)")
+    evaluate.add_argument("--epsilon", type=float, default=None, help="Laplace noise for epsilon-DP counts (none)")
+    evaluate.add_argument("--clip", type=int, default=3, help="at most this much of each count from one user (3)")
     evaluate.set_defaults(handler=run_evaluate)
 
     tune = subparsers.add_parser("tune", help="tune the hyperparameters by coordinate search (thesis 4.5)")
@@ -72,7 +78,14 @@ def run_evaluate(args: argparse.Namespace) -> int:
     for name in (n.strip() for n in args.also.split(",") if n.strip()):
         methods.insert(1, OracleMethod(ontology, settings, method=method_from(argparse.Namespace(method=name)),
                                        served=rules.served))
-    result = replay(ontology, users, methods, args.seed, stderr_progress, rules)
+    priors = None
+    if args.population == "loo":
+        from oracle.algorithm.prior_counts import check_privacy
+        from oracle.evaluation.population import leave_one_out
+
+        check_privacy(args.k, args.epsilon, args.clip)
+        priors = leave_one_out(ontology, users, args.k, args.epsilon, args.clip, args.seed)
+    result = replay(ontology, users, methods, args.seed, stderr_progress, rules, priors)
     summary = summarize(result)
     summary["protocol"] = {"candidates": rules.candidates, "decision": rules.decision, "served": rules.served}
     summary["method"] = methods[0].name
@@ -82,6 +95,8 @@ def run_evaluate(args: argparse.Namespace) -> int:
 
         summary["comparisons"] = comparison_summary(result.outcomes, names[0], names[1:], args.seed)
         summary["cold_start"] = cold_start_summary(result, args.seed)
+        summary["first"] = {str(n): cold_start_summary(result, args.seed, n) for n in (50, 200)}
+    summary["population"] = {"kind": args.population, "k": args.k, "epsilon": args.epsilon, "clip": args.clip}
     summary["settings"] = settings.to_dict()
     summary["replay_seconds"] = time.perf_counter() - started
     command = "python -m oracle evaluate"
@@ -125,6 +140,14 @@ def _print_table(summary: dict[str, Any]) -> None:
             d = paired[name]["top3"]
             line += f" {d['difference']:+9.3f} [{d['low']:+.3f}, {d['high']:+.3f}] {d['p_holm']:8.2g}"
         print(line)
+    for n, block in summary.get("first", {}).items():
+        vs = block.get("comparisons", {}).get("methods", {})
+        cells = []
+        for name, entry in block["methods"].items():
+            d = vs.get(name, {}).get("top3")
+            cells.append(f"{name} {entry['top3']:.3f}" + (f" ({d['difference']:+.3f} [{d['low']:+.3f}, {d['high']:+.3f}])"
+                                                          if d else ""))
+        print(f"first {n} per user, top3: " + "; ".join(cells))
     chance = summary["chance"]
     print(f"{'chance':16s} {chance['top1']:7.3f} {chance['top3']:7.3f} {chance['top5']:7.3f}")
     for letter, row in summary.get("ablations", {}).get("settings", {}).items():

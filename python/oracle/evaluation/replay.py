@@ -99,10 +99,18 @@ class OracleMethod:
         self.settings = settings
         self.distances = ontology.distances()
         self.opening = opening_tasks(ontology)
+        self.prior: Any = None
         self.reset()
+
+    def use_prior(self, prior: Any) -> None:
+        """The shared prior the next user's predictor ranks with (None: none; --population)."""
+        self.prior = prior
 
     def reset(self) -> None:
         self.model = make_predictor(self.method, self.distances, self.opening, self.settings).fit([])
+        use = getattr(self.model, "use_prior", None)
+        if use is not None:
+            use(self.prior)
         self.history: list[Step] = []
 
     def rank(self, candidates: Sequence[Option], time_of_day: str | None = None, at: float | None = None) -> list[Option]:
@@ -175,7 +183,10 @@ def replay(
     seed: int = 0,
     progress: Callable[[int, int, str], None] | None = None,
     protocol: ReplayRules = ReplayRules(),
+    priors: Callable[[str], Any] | None = None,
 ) -> ReplayResult:
+    """``priors``: each user's shared prior (built without them, oracle.evaluation.population),
+    given to every method that takes one before it meets the user."""
     result = ReplayResult()
     known: dict[TaskCall, Option] = {}
 
@@ -190,7 +201,11 @@ def replay(
             progress(number, len(users), user)
         vocabulary = list(OrderedDict.fromkeys(option_of(ontology, row.action) for row in rows))
         done: OrderedDict[Option, None] = OrderedDict()  # the user's actions so far, in first-use order
+        prior = priors(user) if priors is not None else None
         for method in methods:
+            use = getattr(method, "use_prior", None)
+            if use is not None:
+                use(prior)
             method.reset()
         previous_end: float | None = None
         for index, row in enumerate(rows):
@@ -255,6 +270,9 @@ def make_methods(ontology: OdbOntology, settings: Hyperparameters, baselines: bo
         from oracle.evaluation.learned import learned_baselines
 
         methods.extend(learned_baselines(ontology.distances(), opening_tasks(ontology)))
+        from oracle.evaluation.population import PopPPM
+
+        methods.append(PopPPM())
     return methods
 
 
