@@ -43,13 +43,17 @@ import re
 from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 from oracle.bridge import ROW_WIDTH, Bridge, HistoryRow, HistoryView, history_rows
 from oracle.files import CacheFolder, written_by_user_alone
 from oracle.neem.terms import BEGIN, EXECUTES, HAS_INTERVAL, IMAGINING
 from oracle.store.base import Appended, AppendMark
 from oracle.store.model import RDF_TYPE, decode_value
+
+if TYPE_CHECKING:
+    from oracle.ontology import OdbOntology
+    from oracle.store import Store
 
 #: More triples added than this (~500 logged actions) and the whole history is read instead:
 #: checking and reading that many added triples costs about as much.
@@ -99,6 +103,22 @@ class HistoryCache(CacheFolder):
         if not store.write_kept(neem, KIND, data):
             self._store(path, data)
         return view
+
+    def keep(self, store: Store, ontology: OdbOntology | None, neem: str, view: HistoryView) -> bool:
+        """Keep ``view`` as NEEM ``neem``'s view at the store's mark now, as ``view`` would after
+        reading it: the caller vouches that it is what the history read gives there (``import``
+        builds it as it writes, oracle.writtenview). False when nothing can be kept (a temporary
+        NEEM, a store that cannot tell what is added later)."""
+        if store.neem(neem).temporary:
+            return False
+        mark = store.append_mark(neem)
+        if mark is None:
+            return False
+        key = _key_of(neem, ontology)
+        data = _dumps(key, mark, view)
+        if not store.write_kept(neem, KIND, data):
+            self._store(self.root / f"{_file_name(key, store.location)}{self.SUFFIX}", data)
+        return True
 
     def _load(self, path: Path) -> bytes | None:
         try:
@@ -325,13 +345,17 @@ def compact(rows: Sequence[HistoryRow]) -> dict[str, Any]:
 
 def _entry_key(bridge: Bridge) -> str:
     """What the rows are computed with: the NEEM, the Prolog sources and the ontology."""
+    return _key_of(bridge.neem_id, bridge.ontology)
+
+
+def _key_of(neem: str, ontology: OdbOntology | None) -> str:
     from oracle import modulecache
     from oracle.ontology.provenance import fingerprint
     from oracle.paths import prolog_dir
 
     digest = hashlib.sha256()
-    ontology = "none" if bridge.ontology is None else fingerprint(bridge.ontology)
-    for part in (_FORMAT, bridge.neem_id, modulecache.modules_key(prolog_dir(), ""), ontology):
+    text = "none" if ontology is None else fingerprint(ontology)
+    for part in (_FORMAT, neem, modulecache.modules_key(prolog_dir(), ""), text):
         digest.update(part.encode() + b"\0")
     return digest.hexdigest()[:32]
 
