@@ -24,6 +24,12 @@ setup:
 	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends chromium \
 	    || echo "chromium not installed: the page's browser test will skip"; \
 	fi
+	@if ! /usr/bin/python3 -c "import rospy, genpy, rosgraph" >/dev/null 2>&1 && [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then \
+	  echo "installing ROS 1's rospy and rosmaster from Debian (the rosprolog door, docs/knowrob.md)"; \
+	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
+	    python3-rospy python3-rosmaster python3-genpy python3-rosgraph \
+	    || echo "ROS 1 not installed: python -m oracle rosprolog and its tests will say so"; \
+	fi
 	@test -x $(PY) || python3 -m venv $(VENV)
 	$(PY) -m pip install -q --upgrade pip
 	$(PY) -m pip install -q -e '.[dev]'
