@@ -33,6 +33,7 @@ COMMAND_MODULES = (
     "ask",
     "routines",
     "prepare",
+    "prior",
 )
 
 
