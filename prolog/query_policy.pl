@@ -114,6 +114,7 @@ exposed(kb_db, load_owl/2, hidden).
 exposed(kb_db, annotation/3, read).
 exposed(kb_db, has_label/2, read).
 exposed(kb_db, has_comment/2, read).
+exposed(kb_aggregate, aggregate/1, read).
 exposed(kb_holds, holds/1, read).
 exposed(kb_holds, holds/3, read).
 exposed(kb_query, kb_call/1, read).

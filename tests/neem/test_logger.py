@@ -425,7 +425,11 @@ def test_a_logged_neem_survives_export_and_load(tmp_path, onto, small_tbox):
             if float(str(d["scope"]["time"]["since"])) > 0
         )
     scoped = role_scopes(store, logger.neem_id)
-    assert len(scoped) == 3 and scoped == role_scopes(other, loaded)  # pour: 2 roles, pick: 1
+    # pour: 2 roles, pick: 1; the imagined plan pick(green_mug)'s role: the instant it was imagined
+    assert len(scoped) == 4 and scoped == role_scopes(other, loaded)
+    (plan_role,) = [row for row in scoped if "Role_pick__green_mug" in row[0]]
+    pour_begin = min(since for _, since, _ in scoped)  # the imagining's time: pour's begin
+    assert plan_role[1] == pour_begin and plan_role[1] < plan_role[2] < pour_begin + 1e-3
     for st, neem in ((store, logger.neem_id), (other, loaded)):
         executed = [d["o"] for a in executed_actions(st, neem) for d in st.find(neem, s=a.iri, p=str(DUL.executesTask))]
         assert len(executed) == len(set(executed)) == 3  # one task individual per action (idle included)

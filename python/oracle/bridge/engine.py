@@ -18,7 +18,7 @@ from oracle.paths import prolog_dir
 #: typed query sees its exports (the facade's re-exports are the same predicates as their home's).
 MODULES = ("neem_store", "store/neem", "store/python", "store/pattern", "store/scope", "store/memory", "store/write",
            "store/read", "store/graph", "store/annotations", "store/tf", "json_text", "lang/triple", "lang/scope",
-           "lang/query", "lang/holds", "lang/temporal", "lang/db",
+           "lang/query", "lang/aggregate", "lang/holds", "lang/temporal", "lang/db",
            "model/rdfs", "model/event", "model/object", "model/situation", "model/action", "model/interval", "model/tf",
            "model/owl", "model/owl_description", "model/dul_object_types", "model/dul_description", "model/soma_types",
            "model/soma_object", "model/soma_workflow", "model/soma_shape", "model/qudt", "reasoning/plowl",

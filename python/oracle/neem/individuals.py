@@ -79,6 +79,17 @@ class Individuals:
         self._counter = counter = (self._counter + 1) & 0xFFFFFF
         return f"{cls_iri}_{int(time.time()):08x}{self._random}{counter:06x}"
 
+    def task_named(self, cls_iri: str) -> str:
+        """A fresh task individual of a task class: ``named`` with the class's local name in
+        CamelCase (``odb:turn_on`` -> ``odb:TurnOn_<id>``), so the IRI holds exactly one ``_``
+        (where the namespace holds none): openEASE's timeline rule splits a task individual
+        with ``atomic_list_concat([Task, _], '_', TaskInstance)`` and drops it otherwise."""
+        cut = max(cls_iri.rfind("#"), cls_iri.rfind("/")) + 1
+        local = cls_iri[cut:]
+        if "_" in local:
+            local = "".join(word[:1].upper() + word[1:] for word in local.split("_"))
+        return self.named(cls_iri[:cut] + local)
+
     def exists(self, iri: str) -> bool:
         if iri in self.known:
             return True
@@ -175,7 +186,10 @@ class Individuals:
             out.add(role, RDF_TYPE, role_class)
             out.add(role, RDF_TYPE, T.NAMED_INDIVIDUAL)
             out.add(task, T.IS_TASK_OF, role)
-            out.add(role, T.CLASSIFIES, obj)
+            # An imagined plan's role classifies its object at the instant the plan was first
+            # imagined (or ranked), not always: ``has_role(O, R) during A`` then names only the
+            # roles O played in the actions of that time (docs/store.md, "Plans").
+            out.add(role, T.CLASSIFIES, obj, *fact_extent(since, since))
         return task
 
     def task_class(self, call: TaskCall) -> tuple[str, tuple[str | None, ...]]:
@@ -201,7 +215,7 @@ class Individuals:
         """A fresh task individual for one action, with one role per argument; the role
         classifies its object during the action only (neem-interface's
         ``has_role(Obj, Role) during Action``), the task's type and roles hold always."""
-        task = self.named(self.task_class(call)[0])
+        task = self.task_named(self.task_class(call)[0])
         roles = self.typed_task(task, call, out)
         for arg, role_class in zip(call.args, roles):
             if role_class is None:
@@ -249,7 +263,7 @@ class Individuals:
 
     def mental(self, task_class: str, at: Instant, out: TripleBuffer, who: str = "robot") -> str:
         action = self.event("MentalAction")
-        task = self.named(task_class)  # one task per action, mental ones too
+        task = self.task_named(task_class)  # one task per action, mental ones too
         out.add(task, RDF_TYPE, task_class)
         out.add(task, RDF_TYPE, T.NAMED_INDIVIDUAL)
         out.add(action, RDF_TYPE, T.MENTAL_ACTION)
@@ -284,7 +298,7 @@ class Individuals:
 
     def idle(self, begin: Instant, end: Instant, out: TripleBuffer) -> str:
         idle = self.event("Action")
-        task = self.named(self.vocab.idle_task)
+        task = self.task_named(self.vocab.idle_task)
         out.add(task, RDF_TYPE, self.vocab.idle_task)
         out.add(task, RDF_TYPE, T.NAMED_INDIVIDUAL)
         out.add(idle, RDF_TYPE, T.ACTION)

@@ -271,7 +271,8 @@ class NeemLogger:
         started and the idle action filling a gap of ``idle_threshold`` seconds or more).
 
         ``state`` is what the robot reports of it (``succeeded``, ``failed``, ``cancelled``, ...:
-        ``soma:hasExecutionState``, KnowRob's action_succeeded/1 and kin); None writes none.
+        ``soma:hasExecutionState``, KnowRob's action_succeeded/1 and kin); None is ``succeeded``:
+        an action logged is one done, as neem-interface's mem_event_set_succeeded marks it.
         ``session`` names the recording session (one soma:Episode each); None: the UTC day of
         ``begin`` (one session per time-less log)."""
         call = self.individuals.resolve(call)
@@ -311,8 +312,7 @@ class NeemLogger:
         out.add(iri, T.EXECUTES, task)
         self.individuals.performers(iri, task, performed_by, start, stop, out)
         out.add(iri, T.HAS_INTERVAL, self.individuals.interval(start, stop, out))
-        if state is not None:
-            self.individuals.state(iri, state, out)
+        self.individuals.state(iri, "succeeded" if state is None else state, out)
         if idle is not None:  # the gap before an action is part of its session
             self._episodes.constituent(idle, start, start, session, out, begin=self._last_end)
         self._episodes.constituent(iri, start, stop, session, out)

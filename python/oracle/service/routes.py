@@ -65,8 +65,8 @@ class ActionIn(BaseModel):
     end: Time = Field(None, description="phase done: when it ended (default: its begin)")
     id: str | None = Field(None, max_length=100, description="the action's key, to end it later")
     performed_by: Mode = Field("robot", description="who did it: the robot, the user by hand, or the two together")
-    state: Literal["succeeded", "failed", "cancelled"] | None = Field(
-        None, description="phase done: how it went, as the robot reports it (soma:hasExecutionState)")
+    state: Literal["succeeded", "failed", "cancelled"] = Field(
+        "succeeded", description="phase done or end: how it went, as the robot reports it (soma:hasExecutionState)")
 
 
 class ChoiceIn(BaseModel):
@@ -242,7 +242,7 @@ def _logged_action(session: NeemSession, body: ActionIn) -> dict[str, Any]:
         opened = session.begin(body.call, body.at, body.performed_by, body.id)
         return {"id": opened.key, "call": str(opened.call), "open": True}
     if body.phase == "end":
-        logged = session.end(body.id, body.call, body.at)
+        logged = session.end(body.id, body.call, body.at, body.state)
     else:
         if body.call is None:
             raise _missing("call")
@@ -406,10 +406,10 @@ async def prolog(body: PrologIn, request: Request) -> dict[str, Any]:
     """A read-only Prolog query over one NEEM, answered as a page of JSON solutions."""
     ctx = _ctx(request)
     neem = body.neem or ctx.default_neem
-    if neem is None:
-        from oracle.errors import StoreError
+    if neem is None:  # KnowRob's clients name no NEEM: the store's only one
+        from oracle.service.neem_choice import store_neem
 
-        raise StoreError("name the NEEM to query: the store holds none yet")
+        neem = await ctx.thread.run(store_neem, ctx.engine.store, "the request's \"neem\" or serve --neem NAME")
     if ctx.queries >= ctx.limits.queries:  # a queue of queries would hold the robot's calls
         from oracle.service.engine import Overloaded
 

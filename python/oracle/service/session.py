@@ -272,7 +272,7 @@ class NeemSession:
         self.open[key] = action
         return action
 
-    def end(self, key: str | None, call_text: str | None, at: Any) -> LoggedAction:
+    def end(self, key: str | None, call_text: str | None, at: Any, state: str | None = None) -> LoggedAction:
         if key is None:
             matches = [a for a in self.open.values() if call_text is not None and str(a.call) == str(parse_call(call_text))]
             if call_text is None:
@@ -283,7 +283,7 @@ class NeemSession:
         action = self.open.get(key)
         if action is None:
             raise LoggingError(f"no open action {key!r} in NEEM {self.neem!r}")
-        logged = self.log(str(action.call), action.begin, at, action.performed_by)
+        logged = self.log(str(action.call), action.begin, at, action.performed_by, state)
         del self.open[key]
         return logged
 

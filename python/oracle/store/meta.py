@@ -7,6 +7,7 @@ import hashlib
 from collections.abc import Mapping
 from datetime import datetime, timezone
 from typing import Any
+from urllib.parse import quote
 
 from bson.objectid import ObjectId
 
@@ -26,7 +27,7 @@ def new_meta(
         "description": f"Episodes of {user or 'a user'} with an assistive robot, logged by neem-oracle",
         "created_by": user,
         "created_at": datetime.now(timezone.utc).isoformat(timespec="seconds"),
-        "url": "",  # openEASE links the NEEM's repository; a private store has none
+        "url": "",  # openEASE links the NEEM's repository; a private store has none (hub_document)
         "model_version": "SOMA/DUL, the neem-oracle core extract",  # the NEEM handbook's fields
         "keywords": ["neem-oracle", "assistive robot", "activities of daily living"],
         "activity": {"name": "activities of daily living", "url": ""}, "environment": "home",
@@ -63,14 +64,35 @@ def hub_id(neem_id: str) -> ObjectId:
     return ObjectId(hashlib.sha1(neem_id.encode("utf-8")).digest()[:12])
 
 
-def hub_document(meta: Mapping[str, Any], neem_id: str, *, visibility: bool) -> dict[str, Any]:
+#: Where openEASE looks for a NEEM's repository (its ``NEEM_DOWNLOAD_URL_PREFIX``; the hub's
+#: repositories live in its ``neems`` group, which its last-updated look-up reads).
+NEEMGIT = "https://neemgit.informatik.uni-bremen.de/"
+
+
+def hub_url(name: str) -> str:
+    """The repository URL openEASE's hub gives a NEEM of this name: ``<neemgit>/neems/<name>``."""
+    return f"{NEEMGIT}neems/{quote(name, safe='')}"
+
+
+def hub_document(meta: Mapping[str, Any], neem_id: str, *, visibility: bool, url: str | None = None) -> dict[str, Any]:
     """The registry entry as a document of openEASE's ``meta`` collection: ``_id`` the NEEM's
     ObjectId (``hub_id``; the collections' prefix of a hub export), every field the hub shows
-    (missing ones empty, claiming nothing), and ``visibility`` as chosen."""
+    (missing ones empty, claiming nothing), and ``visibility`` as chosen.
+
+    ``url``: the NEEM's repository (``export --url``); without one, the entry's own, else the
+    URL the hub would give it (``hub_url`` of its name). openEASE keys a NEEM's overview page by
+    the last part of ``url`` (or ``repo``) and reads its README.md there: an empty ``url`` gives
+    it no page. ``repo`` is that last part, unless the entry names its own."""
     doc: dict[str, Any] = {"_id": hub_id(neem_id)}
     doc.update({k: v for k, v in meta.items() if k not in _PRIVATE and not k.startswith("_")})
     for field in OPENEASE_FIELDS:
         doc.setdefault(field, "")
+    if url:
+        doc["url"] = url
+    elif not doc["url"]:
+        doc["url"] = hub_url(str(doc["name"] or neem_id))
+    if not doc.get("repo"):
+        doc["repo"] = str(doc["url"]).rstrip("/").rsplit("/", 1)[-1]
     doc.setdefault("keywords", [])
     doc["visibility"] = bool(visibility)
     return doc
