@@ -16,7 +16,20 @@ no such quality, as in KnowRob.
 */
 
 :- use_module(library(lists)).
+:- use_module(library(semweb/rdf_prefixes), [rdf_meta/1]).
 :- use_module('../lang/query', [kb_call/1]).
+:- use_module('../lang/triple', [kb_iri/2]).
+
+% KnowRob's export list gives these their argument modes (`r`: an IRI, `prefix:'Local'` too):
+% code compiled against them has a prefixed IRI expanded; a query asked at run time reaches
+% kb_iri/2 (object_shape/5 reads the IRI's local name itself).
+:- rdf_meta((
+    object_localization(r, r),
+    object_shape_type(r, r),
+    object_mesh_path(r, ?),
+    object_color_rgb(r, ?, ?, ?),
+    object_dimensions(r, ?, ?, ?),
+    object_shape(r, ?, ?, ?, ?) )).
 
 :- multifile kb_query:kb_rule/2.
 kb_query:kb_rule(object_localization(O, L), holds(O, soma:hasLocalization, L)).
@@ -61,7 +74,8 @@ kb_query:kb_rule(bbox(R, D, W, H),
 %   `mesh(File, [SX,SY,SZ])`, `box(D,W,H)`, `cylinder(Radius, Length)` or `sphere(Radius)`,
 %   Origin `[Frame, Position, Orientation]` (unbound when the region states none), Material
 %   `material(rgba(R,G,B,A))` (unbound parts when no colour is stated).
-object_shape(O, Frame, Shape, [Frame, Pos, Rot], material(rgba(R, G, B, A))) :-
+object_shape(O0, Frame, Shape, [Frame, Pos, Rot], material(rgba(R, G, B, A))) :-
+    kb_iri(O0, O),
     kb_call(triple(O, soma:hasShape, S)),
     iri_local_name(O, Frame),
     once(kb_call(triple(S, dul:hasRegion, SR))),
