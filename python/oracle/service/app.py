@@ -28,6 +28,7 @@ from oracle.service.events import EventHub
 from oracle.service.guard import STATIC_DOCS, Guard, Limits, allowed_hosts
 from oracle.service.queries import NoSuchNeem, QueryProcess
 from oracle.service.page import Manner, render_token_page
+from oracle.rosprolog.rosbridge import router as rosbridge_router
 from oracle.service.past_routes import router as past_router
 from oracle.service.routes import DuplicateNeem, router
 from oracle.service.session import OutOfOrder
@@ -80,6 +81,7 @@ def create_app(ctx: Context) -> FastAPI:
     app.state.ctx = ctx
     app.include_router(router)
     app.include_router(past_router)
+    app.include_router(rosbridge_router)  # KnowRob's roslibpy/roslibjs clients (docs/knowrob.md)
     _offline_docs(app)
     app.add_middleware(Guard, ctx=ctx, token_page=_token_page)
 
