@@ -103,22 +103,31 @@ def prune_cache(directory: Path, pattern: str, keep: int = MAX_CACHE_ENTRIES) ->
 def cached_pickle(path: Path, key: str, make: Callable[[], _Value], valid: Callable[[object], bool],
                   pattern: str) -> _Value:
     """The value kept at ``path`` for ``key`` (pickled as ``(key, value)``), or else ``make()``,
-    then kept there. Only a regular file of this user that nobody else may write is unpickled,
-    and only a value ``valid`` accepts is returned; one that is missing, damaged or foreign is
-    made again. The entries of the folder matching ``pattern`` are pruned (``prune_cache``); a
-    folder that cannot be written only makes every call make the value."""
+    then kept there. A binary cache the user made alone: an entry is unpickled only when it is a
+    regular file of this user that nobody else may write and its tag verifies under the key kept
+    in the same private folder (oracle.cachekey), so a file put there by anyone else, or copied
+    from another account, is made again before a byte of it is unpickled; and only a value
+    ``valid`` accepts is returned. The entries of the folder matching ``pattern`` are pruned
+    (``prune_cache``); a folder that cannot be written only makes every call make the value."""
+    from oracle.cachekey import signed, user_key, verified
+
+    secret = user_key(path.parent)
     try:
-        with path.open("rb") as handle:
-            if written_by_user_alone(os.fstat(handle.fileno())):
-                entry = pickle.load(handle)
-                if isinstance(entry, tuple) and len(entry) == 2 and entry[0] == key and valid(entry[1]):
-                    used(path)
-                    return cast(_Value, entry[1])
+        fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
+        with os.fdopen(fd, "rb") as handle:
+            data = verified(secret, handle.read()) if written_by_user_alone(os.fstat(handle.fileno())) else None
+        if data is not None:
+            entry = pickle.loads(data)  # tagged under the user's own key: written by this package for this user
+            if isinstance(entry, tuple) and len(entry) == 2 and entry[0] == key and valid(entry[1]):
+                used(path)
+                return cast(_Value, entry[1])
     except Exception:  # noqa: BLE001 - missing or damaged (any unpickling error): made again below
         pass
     value = make()
+    if secret is None:
+        return value  # nothing kept that could not be verified
     try:
-        write_private_bytes(path, pickle.dumps((key, value), protocol=pickle.HIGHEST_PROTOCOL))
+        write_private_bytes(path, signed(secret, pickle.dumps((key, value), protocol=pickle.HIGHEST_PROTOCOL)))
         prune_cache(path.parent, pattern)
     except (OSError, pickle.PicklingError, NeemOracleError):
         pass  # caching is an optimisation

@@ -6,11 +6,15 @@ it (oracle.store.kept; one fit per NEEM there, so the first rank after an import
 the import made), else a file in the user's private cache (``fits/`` beside the compiled Prolog
 modules; folder 0700, file 0600). Its key is a digest of everything a fit depends on besides
 the history: the predictor's class and parameters, the distance matrix's content, the source of
-``oracle.algorithm`` and the Python and numpy versions. Inside: the key, the number of steps
-fitted, the digest of those steps (their pickle) and the model, pickled without its distance
-matrix (the caller's, of the same content, is put back). A store's file may come from someone
-else: its entries are unpickled by ``_Unpickler`` with ``trusted`` False, which makes nothing
-but the predictors' own classes, numpy arrays and builtin containers.
+``oracle.algorithm`` and the Python and numpy versions.
+
+An entry is never unpickled. It is plain data (oracle.plainstate: JSON and raw arrays, only the
+predictors' own classes), behind a tag under the user's own key (oracle.cachekey, kept in the
+cache folder, never in the store): the key, the number of steps fitted, the digest of those
+steps and the model without its distance matrix (the caller's, of the same content, is put
+back). A store may come from someone else: an entry whose tag does not verify (written on
+another account or machine, damaged, planted) is dropped before any of it is decoded, the model
+is fitted afresh, and one line in the log says so.
 
 A predictor takes part when it has ``extend(history)`` (the routine predictor: the model
 ``fit(history)`` gives, from the one fitted on a prefix of it, bit for bit). An entry is used
@@ -22,32 +26,40 @@ cache is an optimisation: a folder that cannot be written only makes every call 
 from __future__ import annotations
 
 import hashlib
-import io
+import importlib
+import json
+import logging
 import os
 import pickle
+import pkgutil
 import sys
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
+import oracle.algorithm
+from oracle import plainstate
 from oracle.algorithm.records import Step
+from oracle.cachekey import signed, user_key, verified
 from oracle.files import CacheFolder, written_by_user_alone
 
 if TYPE_CHECKING:
     from oracle.store.base import Store
 
-_FORMAT = b"neem-oracle fit 2"
+LOG = logging.getLogger("oracle.fitcache")
+_FORMAT = b"neem-oracle fit 3\n"
 #: The kind of entry the store keeps (oracle.store.kept).
 KIND = "fit"
-_DISTANCES = "distances"
+#: The largest kept entry read (a fit of 50,000 actions is about 4 MB).
+MAX_ENTRY_BYTES = 256 << 20
 
 
 @dataclass(frozen=True)
 class FitCache(CacheFolder):
-    """Fitted models under ``root`` (one file each)."""
+    """Fitted models under ``root`` (one file each), tagged under the key kept in ``root``."""
 
     FOLDER: ClassVar[str] = "fits"
     SUFFIX: ClassVar[str] = ".fit"
@@ -62,115 +74,101 @@ class FitCache(CacheFolder):
         if not keep or not callable(getattr(model, "extend", None)):
             return model.fit(steps)
         key = _entry_key(model, neem)
+        secret = user_key(self.root)
         path = self.root / f"{_file_name(key, store)}{self.SUFFIX}"
-        entries = [(raw, trusted) for raw, trusted in ((None if kept is None else kept.read_kept(neem, KIND), False),
-                                                       (self._load(path), True)) if raw is not None]
-        cached = _best(entries, key, model, steps)
+        entries = [raw for raw in (None if kept is None else kept.read_kept(neem, KIND), self._load(path)) if raw]
+        cached = _best(entries, secret, key, model, steps, neem)
         if cached is not None and cached.fitted_steps_ == len(steps):
             return cached
         fitted = cached.extend(steps) if cached is not None else model.fit(steps)
-        data = self._dumps(key, fitted, steps)
+        data = None if secret is None else _dumps(secret, key, fitted, steps)
         if data is not None and (kept is None or not kept.write_kept(neem, KIND, data)):
             self._store(path, data)
         return fitted
 
     def _load(self, path: Path) -> bytes | None:
         try:
-            with path.open("rb") as handle:
-                info = os.fstat(handle.fileno())
-                if not written_by_user_alone(info):
-                    return None  # never unpickled
-                return handle.read()
+            fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
         except OSError:
             return None
-
-    def _dumps(self, key: str, model: Any, steps: Sequence[Step]) -> bytes | None:
-        try:
-            body = io.BytesIO()
-            _Pickler(body, model.distances).dump(model)
-            return pickle.dumps((_FORMAT, key, len(steps), _steps_digest(steps), body.getvalue()), protocol=5)
-        except pickle.PicklingError:
-            return None
+        with os.fdopen(fd, "rb") as handle:
+            info = os.fstat(handle.fileno())
+            if not written_by_user_alone(info) or info.st_size > MAX_ENTRY_BYTES:
+                return None
+            return handle.read(MAX_ENTRY_BYTES)
 
 
-def _best(entries: Sequence[tuple[bytes, bool]], key: str, model: Any, steps: Sequence[Step]) -> Any | None:
-    """The model of the kept entry (raw bytes, whether trusted: the store's is not) that fitted
-    the most of ``steps``. Each entry's head (its key, its number of steps and their digest) is
-    read first; only the chosen one's model is unpickled (4 MB at 50,000 actions), and a damaged
-    one gives way to the next."""
+def model_classes(model: Any) -> dict[str, type]:
+    """The classes a kept model may hold: ``model``'s own and those defined in the modules of
+    ``oracle.algorithm`` (by exact name; nothing named in an entry is looked up anywhere else)."""
+    modules = [importlib.import_module(f"oracle.algorithm.{info.name}")
+               for info in pkgutil.iter_modules(oracle.algorithm.__path__)]
+    return {**plainstate.classes_of(modules), plainstate.class_name(type(model)): type(model)}
+
+
+def _dumps(secret: bytes, key: str, model: Any, steps: Sequence[Step]) -> bytes | None:
+    try:
+        body = plainstate.dumps(model, model_classes(model), shared=model.distances)
+    except plainstate.PlainStateError as error:
+        LOG.debug("a fit of %s is not kept: %s", type(model).__name__, error)
+        return None
+    head = json.dumps({"key": key, "steps": len(steps), "digest": _steps_digest(steps)}).encode()
+    return _FORMAT + signed(secret, len(head).to_bytes(4, "little") + head + body)
+
+
+def _opened(raw: bytes, secret: bytes | None) -> tuple[Mapping[str, Any], bytes] | None:
+    """An entry's head and model bytes, when its tag verifies under ``secret``."""
+    if not raw.startswith(_FORMAT):
+        return None
+    data = verified(secret, raw[len(_FORMAT):])
+    if data is None or len(data) < 4:
+        return None
+    size = int.from_bytes(data[:4], "little")
+    try:
+        head = json.loads(data[4:4 + size])
+    except ValueError:
+        return None
+    return (head, data[4 + size:]) if isinstance(head, dict) else None
+
+
+def _best(entries: Sequence[bytes], secret: bytes | None, key: str, model: Any, steps: Sequence[Step],
+          neem: str) -> Any | None:
+    """The model of the kept entry that fitted the most of ``steps``. Each entry's tag is checked
+    first, then its head (its key, its number of steps and their digest); only the chosen one's
+    model is decoded (4 MB at 50,000 actions), and a damaged one gives way to the next."""
     digests: dict[int, str] = {}
     heads = []
-    for raw, trusted in entries:
-        try:
-            head, entry_key, count, digest, body = _Unpickler(io.BytesIO(raw), None, trusted).load()
-            if head != _FORMAT or entry_key != key or type(count) is not int or not 0 <= count <= len(steps):
-                continue
-            if count not in digests:
-                digests[count] = _steps_digest(steps[:count])
-            if digest == digests[count] and isinstance(body, bytes):
-                heads.append((count, body, trusted))
-        except Exception:
+    for raw in entries:
+        opened = _opened(raw, secret)
+        if opened is None:
+            LOG.warning("a kept fit of NEEM %r was not written by this account here, or is damaged: "
+                        "fitted afresh and replaced", neem)
             continue
-    for count, body, trusted in sorted(heads, key=lambda h: h[0], reverse=True):
-        cached = _parse(body, count, model, trusted=trusted)
+        head, body = opened
+        count = head.get("steps")
+        if head.get("key") != key or type(count) is not int or not 0 <= count <= len(steps):
+            continue
+        if count not in digests:
+            digests[count] = _steps_digest(steps[:count])
+        if head.get("digest") == digests[count]:
+            heads.append((count, body))
+    for count, body in sorted(heads, key=lambda h: h[0], reverse=True):
+        cached = _parse(body, count, model)
         if cached is not None:
             return cached
     return None
 
 
-def _parse(body: bytes, count: int, model: Any, *, trusted: bool) -> Any | None:
-    """The model pickled in an entry's ``body``, fitted on ``count`` steps; None when it is not
+def _parse(body: bytes, count: int, model: Any) -> Any | None:
+    """The model kept in an entry's ``body``, fitted on ``count`` steps; None when it is not
     one (a damaged or foreign entry is fitted afresh and replaced)."""
     try:
-        cached = _Unpickler(io.BytesIO(body), model.distances, trusted).load()
-    except Exception:
+        cached = plainstate.loads(body, model_classes(model), shared=model.distances)
+    except plainstate.PlainStateError:
         return None
     if type(cached) is not type(model) or getattr(cached, "fitted_steps_", None) != count:
         return None
     return cached
-
-
-class _Pickler(pickle.Pickler):
-    """Pickles a model with its distance matrix as a reference (the caller supplies it)."""
-
-    def __init__(self, out: io.BytesIO, distances: Any) -> None:
-        super().__init__(out, protocol=5)
-        self._distances = distances
-
-    def persistent_id(self, obj: Any) -> str | None:
-        return _DISTANCES if obj is self._distances else None
-
-
-#: What an entry from a store may make (``trusted`` False): the predictors' own classes, numpy's
-#: arrays, builtin containers.
-_SAFE_MODULES = ("oracle.algorithm.",)
-_SAFE_GLOBALS = {("numpy", "dtype"), ("numpy", "ndarray"), ("numpy._core.numeric", "_frombuffer"),
-                 ("numpy.core.numeric", "_frombuffer"), ("numpy._core.multiarray", "_reconstruct"),
-                 ("numpy.core.multiarray", "_reconstruct"), ("numpy._core.multiarray", "scalar"),
-                 ("numpy.core.multiarray", "scalar"), ("copyreg", "_reconstructor"), ("builtins", "set"),
-                 ("builtins", "frozenset"), ("builtins", "slice"), ("builtins", "complex"), ("builtins", "object"),
-                 ("collections", "OrderedDict"), ("collections", "defaultdict"), ("collections", "Counter"),
-                 ("collections", "deque")}
-
-
-class _Unpickler(pickle.Unpickler):
-    def __init__(self, data: io.BytesIO, distances: Any, trusted: bool = True) -> None:
-        super().__init__(data)
-        self._distances = distances
-        self._trusted = trusted
-
-    def find_class(self, module: str, name: str) -> Any:
-        if not self._trusted and (module, name) not in _SAFE_GLOBALS:
-            found = super().find_class(module, name) if module.startswith(_SAFE_MODULES) else None
-            if not isinstance(found, type):
-                raise pickle.UnpicklingError(f"{module}.{name} is not made from a kept fit")
-            return found
-        return super().find_class(module, name)
-
-    def persistent_load(self, pid: Any) -> Any:
-        if pid != _DISTANCES:
-            raise pickle.UnpicklingError(f"unknown reference {pid!r}")
-        return self._distances
 
 
 def _steps_digest(steps: Sequence[Step]) -> str:

@@ -5,6 +5,7 @@ have written."""
 
 from __future__ import annotations
 
+import json
 import os
 import pickle
 
@@ -211,50 +212,44 @@ def test_a_fit_kept_in_the_store_serves_the_next_process(tmp_path, monkeypatch):
     matrix = random_matrix(5)
     steps = synthetic_history(80, 5)
     first = FitCache(tmp_path / "a").fitted(RoutineOracle(matrix), steps[:60], "s", "n", kept=store)
-    assert store.kept and not (tmp_path / "a").exists()  # the store kept it, not the user's cache
+    assert store.kept and not list((tmp_path / "a").glob("*.fit"))  # the store kept it, not the user's cache
     monkeypatch.setattr(RoutineOracle, "fit", lambda self, history: pytest.fail("fitted afresh"))
-    again = FitCache(tmp_path / "b").fitted(RoutineOracle(matrix), steps[:60], "s", "n", kept=store)
+    again = FitCache(tmp_path / "a").fitted(RoutineOracle(matrix), steps[:60], "s", "n", kept=store)
     _same(first, again, steps[-5:])
-    grown = FitCache(tmp_path / "b").fitted(RoutineOracle(matrix), steps, "s", "n", kept=store)  # extended
+    grown = FitCache(tmp_path / "a").fitted(RoutineOracle(matrix), steps, "s", "n", kept=store)  # extended
     monkeypatch.undo()
     _same(RoutineOracle(matrix).fit(steps), grown, steps[-5:])
 
 
-class _Planted:
-    def __init__(self, path) -> None:
-        self.path = path
-
-    def __reduce__(self):
-        return (open, (str(self.path), "w"))
-
-
-def test_an_entry_from_a_store_makes_nothing_but_the_predictors_own_classes(tmp_path):
-    # a store file may come from someone else: its entry must not run what it names
-    import oracle.fitcache as fitcache
-
-    matrix = random_matrix(5)
-    steps = synthetic_history(30, 5)
-    planted = tmp_path / "planted"
-    entry = pickle.dumps((fitcache._FORMAT, fitcache._entry_key(RoutineOracle(matrix), "n"), 0,
-                          fitcache._steps_digest([]), pickle.dumps(_Planted(planted))))
-    store = _KeptStore()
-    store.kept[("n", fitcache.KIND)] = entry
-    model = FitCache(tmp_path / "fits").fitted(RoutineOracle(matrix), steps, "s", "n", kept=store)
-    assert not planted.exists() and store.kept[("n", fitcache.KIND)] != entry  # refitted, replaced
-    _same(RoutineOracle(matrix).fit(steps), model, steps[-3:])
+def test_a_fit_another_account_kept_is_fitted_afresh_and_said_once(tmp_path, caplog):
+    # another user's cache folder has another key: their entry in a store they hand over is not used
+    store, matrix, steps = _KeptStore(), random_matrix(5), synthetic_history(40, 5)
+    FitCache(tmp_path / "theirs").fitted(RoutineOracle(matrix), steps, "s", "n", kept=store)
+    theirs = store.kept[("n", "fit")]
+    _Counting.added = 0
+    with caplog.at_level("WARNING", logger="oracle.fitcache"):
+        FitCache(tmp_path / "mine").fitted(_Counting(matrix), steps, "s", "n", kept=store)
+    assert _Counting.added == 40 and store.kept[("n", "fit")] != theirs  # fitted afresh, replaced
+    assert len([r for r in caplog.records if "was not written by this account" in r.getMessage()]) == 1
+    _Counting.added = 0
+    caplog.clear()
+    with caplog.at_level("WARNING", logger="oracle.fitcache"):
+        FitCache(tmp_path / "mine").fitted(_Counting(matrix), steps, "s", "n", kept=store)
+    assert _Counting.added == 0 and not caplog.records  # our own entry now: used, nothing said
 
 
 def test_a_damaged_further_entry_gives_way_to_the_other(tmp_path, monkeypatch):
-    # the user's file is read first by its head; a model that will not load makes the cache
+    # the user's file is read first by its head; a model that will not decode makes the cache
     # extend the store's shorter fit, not fit afresh
     import oracle.fitcache as fitcache
+    from oracle.cachekey import signed, user_key
 
     store, matrix, steps = _KeptStore(), random_matrix(6), synthetic_history(90, 6)
     cache = FitCache(tmp_path / "fits")
     cache.fitted(RoutineOracle(matrix), steps[:70], "s", "n", kept=store)
     key = fitcache._entry_key(RoutineOracle(matrix), "n")
-    (tmp_path / "fits").mkdir(mode=0o700)
-    damaged = pickle.dumps((fitcache._FORMAT, key, 80, fitcache._steps_digest(steps[:80]), b"not a model"))
+    head = json.dumps({"key": key, "steps": 80, "digest": fitcache._steps_digest(steps[:80])}).encode()
+    damaged = fitcache._FORMAT + signed(user_key(tmp_path / "fits"), len(head).to_bytes(4, "little") + head + b"not a model")
     path = tmp_path / "fits" / f"{fitcache._file_name(key, 's')}{FitCache.SUFFIX}"
     path.write_bytes(damaged)
     os.chmod(path, 0o600)

@@ -10,6 +10,7 @@ distribution instead of the uniform one.
 from __future__ import annotations
 
 import math
+from itertools import chain, islice
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 
@@ -49,6 +50,44 @@ class _Level:
 
     def __getstate__(self) -> dict[str, object]:
         return {**self.__dict__, "owned": None}  # an unpickled level shares nothing
+
+    def plain_state(self) -> dict[str, object]:
+        """The level as a few flat arrays (oracle.plainstate keeps a fit this way: one small
+        object per context would cost it ten times pickle's time)."""
+        contexts = list(self.tables)
+        tables = list(self.tables.values())
+        return {"lengths": np.fromiter(map(len, contexts), dtype=np.int64, count=len(contexts)),
+                "contexts": np.fromiter(chain.from_iterable(contexts), dtype=np.int64),
+                "totals": np.fromiter((self.totals.get(context, 0) for context in contexts), dtype=np.int64, count=len(contexts)),
+                "sizes": np.fromiter(map(len, tables), dtype=np.int64, count=len(tables)),
+                "followers": np.fromiter(chain.from_iterable(tables), dtype=np.int64),
+                "counts": np.fromiter(chain.from_iterable(table.values() for table in tables), dtype=np.int64),
+                "extra_totals": [[list(context), total] for context, total in self.totals.items() if context not in self.tables],
+                "once": self.once, "twice": self.twice}
+
+    @classmethod
+    def from_plain_state(cls, state: dict[str, object]) -> _Level:
+        """The level ``plain_state`` gave (its arrays checked against each other)."""
+        lengths, flat, totals, sizes, followers, counts = (
+            np.asarray(state[name], dtype=np.int64) for name in ("lengths", "contexts", "totals", "sizes", "followers", "counts"))
+        if not (len(lengths) == len(totals) == len(sizes) and int(lengths.sum()) == len(flat)
+                and int(sizes.sum()) == len(followers) == len(counts) and (lengths >= 0).all() and (sizes >= 0).all()):
+            raise ValueError("a level whose arrays do not fit together")
+        level = cls(once=int(state["once"]), twice=int(state["twice"]))  # type: ignore[call-overload]
+        flat_list = flat.tolist()
+        if len(lengths) and (lengths == lengths[0]).all():  # one order: tuples made at C speed
+            tokens = iter(flat_list)
+            contexts = list(zip(*[tokens] * int(lengths[0]))) if lengths[0] else [()] * len(lengths)
+        else:
+            ends = np.cumsum(lengths).tolist()
+            contexts = [tuple(flat_list[end - length:end]) for end, length in zip(ends, lengths.tolist())]
+        follower_iter, count_iter = iter(followers.tolist()), iter(counts.tolist())
+        level.tables = {context: dict(zip(islice(follower_iter, size), islice(count_iter, size)))
+                        for context, size in zip(contexts, sizes.tolist())}
+        level.totals = dict(zip(contexts, totals.tolist()))
+        for context, total in state["extra_totals"]:  # type: ignore[attr-defined]
+            level.totals[tuple(context)] = int(total)
+        return level
 
     def fork(self) -> _Level:
         """A copy that shares this level's follower tables: whichever of the two counts in a
