@@ -18,6 +18,9 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
                         help="the NEEM hub's layout: collections <id>_triples etc. in database 'neems' (openEASE)")
     export.add_argument("--visibility", choices=("public", "private"), default=None,
                         help="the registry entry's visibility on a NEEM hub (default: private, said on stderr)")
+    export.add_argument("--url", metavar="URL",
+                        help="the NEEM's repository in the hub's registry entry, where openEASE's overview page reads its"
+                             " README.md (default: https://neemgit.informatik.uni-bremen.de/neems/<name>, the hub's place)")
     export.add_argument("--soma", type=Path, metavar="DIR",
                         help="folder with SOMA.owl, DUL.owl, SOMA-HOME.owl: their whole graphs go into the NEEM")
     export.set_defaults(handler=run_export)
@@ -57,8 +60,11 @@ def run_export(args: argparse.Namespace) -> int:
         if missing:
             names = ", ".join(Path(m).name for m in missing)
             raise StoreError(f"{args.soma}: no {names} there (--soma names the folder of the official files)")
+    if args.url is not None and (args.neem is None or not args.url.startswith(("http://", "https://"))):
+        raise StoreError("--url names one NEEM's repository: an http(s) URL, with --neem" if args.neem is None else
+                         f"--url {args.url!r}: openEASE reads a NEEM's repository over http(s)")
     options = {"db_name": "neems" if args.hub else DEFAULT_DB, "hub_prefix": args.hub,
-               "visibility": args.visibility == "public", "ontology_files": files}
+               "visibility": args.visibility == "public", "ontology_files": files, "url": args.url}
     with open_store(args.store, number_format=args.numbers, read_only=True) as store:
         if args.neem is not None:
             neem_id = resolve_neem(store, args.neem)

@@ -144,18 +144,19 @@ def write_dump(
 
 
 def export_neem(store: Store, neem_id: str, out: Path | str, *, db_name: str = DEFAULT_DB, hub_prefix: bool = False,
-                visibility: bool = False, ontology_files: Sequence[Path] = ()) -> dict[str, int]:  # fmt: skip
+                visibility: bool = False, ontology_files: Sequence[Path] = (), url: str | None = None) -> dict[str, int]:  # fmt: skip
     """Write one NEEM as a KnowRob dump folder, with its registry entry as ``meta.json`` (which
     ``load`` reads) and as the NEEM hub's ``meta`` collection (ObjectId ``_id``, ``visibility``
     as given, the text index openEASE searches). ``hub_prefix``: collections named
     ``<id>_triples`` etc., as the hub keeps them (a NEEM whose id is no ObjectId takes the new
     ObjectId of its registry document). ``ontology_files``: whole OWL files (the official SOMA,
     DUL, SOMA-HOME) written into the NEEM's triples in place of its extract of those graphs, so a
-    read-only KnowRob (openEASE), which loads no ontology, sees all of them."""
+    read-only KnowRob (openEASE), which loads no ontology, sees all of them. ``url``: the NEEM's
+    repository in the hub's entry (``meta.hub_document``; default: the one the hub would give it)."""
     info = store.neem(neem_id)
     # The kept summary belongs to this store's write marks, not to the dump.
     meta = {k: v for k, v in info.meta.items() if k not in ("temporary", STAGING, STAGED_BY, READY, COUNTS_KEY, SUMMARY_KEY)}
-    registry = hub_document(meta, neem_id, visibility=visibility)
+    registry = hub_document(meta, neem_id, visibility=visibility, url=url)
     meta["id"] = neem_id
     docs = {kind: store.read_documents(neem_id, kind) for kind in COLLECTION_KINDS}
     with contextlib.ExitStack() as stack:
