@@ -165,12 +165,13 @@ def _listen(host: str, port: int) -> Any:
 
 def _server(app: Any, on_stop: Callable[[], None], limits: Any) -> Any:
     """uvicorn's server, told to end the page's event streams as soon as it is asked to stop
-    (an open stream would otherwise hold Ctrl-C for the graceful timeout). limit_concurrency:
-    connections beyond it get 503 at once (the guard's in-flight limit is below it);
-    timeout_keep_alive closes idle connections, so a slow crowd cannot hold sockets; the http
-    protocol puts a deadline on request headers (guard.http_protocol)."""
-    from oracle.service.guard import http_protocol
+    (an open stream would otherwise hold Ctrl-C for the graceful timeout). No limit_concurrency:
+    it answered 503 to every request once that many sockets were open, idle or not; the http
+    protocol limits connections per client and closes idle ones instead, and puts deadlines on
+    headers (service.connections); timeout_keep_alive closes idle keep-alive connections."""
     import asyncio
+
+    from oracle.service.connections import http_protocol
 
     import uvicorn
 
@@ -187,6 +188,6 @@ def _server(app: Any, on_stop: Callable[[], None], limits: Any) -> Any:
                 self.loop.call_soon_threadsafe(on_stop)
 
     config = uvicorn.Config(app, access_log=False, log_level="warning", server_header=False, timeout_graceful_shutdown=1,
-                            limit_concurrency=limits.in_flight + 16, timeout_keep_alive=int(limits.keep_alive_seconds),
+                            timeout_keep_alive=int(limits.keep_alive_seconds),
                             backlog=128, http=http_protocol(limits))
     return Server(config)

@@ -3,11 +3,15 @@
 One pure ASGI middleware (cheaper than Starlette's BaseHTTPMiddleware on every request), in
 this order: the Host must be one this service answers to (DNS rebinding: a page of another
 site that resolves its name to 127.0.0.1 sends its own name as Host) -> 421; an Origin of
-another site -> 403; the token when there is one -> 401; too many requests at once -> 503;
-a body over the limit -> 413 (from Content-Length, or while it streams in; never echoed);
-JSON nested too deep -> 400. Every answer carries the headers that keep the page out of
-frames and stop content sniffing. The request log holds the method, the route template, the
-NEEM id, the status and the time; never a task, an object, a query or a token.
+another site -> 403; the token when there is one -> 401; a body over the limit -> 413 (from
+Content-Length, or while it streams in; never echoed), one that comes too slowly -> 408, more
+body bytes buffered at once than the process allows -> 503; JSON too deep, with too many values,
+too long a number or string, or not UTF-8 -> 400 (oracle.service.bodyshape, linear, in a
+worker thread for a big body); then too many requests at once -> 503, with a reserve of slots only the robot's routes
+may take. Every answer carries the headers that keep the page out of frames and stop content
+sniffing. Connections themselves (per-client limits, the header deadline, draining a refused
+body) are oracle.service.connections' job. The request log holds the method, the route
+template, the NEEM id, the status and the time; never a task, an object, a query or a token.
 """
 
 from __future__ import annotations
@@ -23,6 +27,8 @@ from dataclasses import dataclass
 from typing import Any
 from urllib.parse import parse_qs, urlsplit
 
+from oracle.service import bodyshape
+
 LOG = logging.getLogger("oracle.service")
 #: Paths that show no user data: the schema, its viewer, the page's style, script and icon need no token.
 OPEN_PATHS = ("/openapi.json", "/docs", "/docs/", "/favicon.ico")
@@ -33,9 +39,11 @@ LOOPBACK_HOSTS = frozenset({"localhost", "127.0.0.1", "::1"})
 #: Sent with every answer: no site may frame the page (clickjacking), no type sniffing.
 FRAME_POLICY = "frame-ancestors 'none'"
 SAFE_HEADERS = ((b"x-frame-options", b"DENY"), (b"x-content-type-options", b"nosniff"))
-#: JSON strings, removed before brackets are counted (a bracket inside a string nests nothing).
-_STRING = re.compile(rb'"(?:[^"\\]|\\.)*"', re.DOTALL)
-_NOT_BRACKET = bytes(b for b in range(256) if b not in b"[]{}")
+#: The robot's routes (situation, action, perception posts and the situation read): they may
+#: take the in-flight slots other requests may not, so a crowd elsewhere cannot starve them.
+ROBOT_ROUTE = re.compile(r"/api/neems/[^/]+/(situation|actions|perception)")
+#: A body at least this large is measured in a worker thread (about 1 ms of scanning).
+OFF_LOOP_BYTES = 64 << 10
 
 
 @dataclass(frozen=True)
@@ -46,10 +54,24 @@ class Limits:
     body_bytes: int = 1 << 20
     #: Deepest JSON nesting of a body (400 deeper).
     json_depth: int = 32
+    #: Values, keys and containers in one body (400 more): what json.loads and pydantic then
+    #: cost on the event loop stays a few milliseconds.
+    json_values: int = 50_000
+    #: Longest number literal in a body, characters (400 longer).
+    number_chars: int = 100
+    #: Longest string in a body, bytes as sent (400 longer; a Prolog query, the longest text
+    #: the API takes, is at most 10,000 characters).
+    string_bytes: int = 64 << 10
     #: Seconds a client may take to send its body once its headers are in (408 after).
-    body_seconds: float = 10.0
-    #: Requests handled at once; more get 503 (uvicorn's limit_concurrency is set above it).
+    body_seconds: float = 5.0
+    #: Body bytes all requests together may hold while their bodies stream in (503 beyond);
+    #: a body declared at most ``small_body`` bytes long is not counted (connections bound those).
+    buffered_bytes: int = 64 << 20
+    small_body: int = 64 << 10
+    #: Requests handled at once (their bodies read); more get 503.
     in_flight: int = 48
+    #: Of ``in_flight``, the slots only the robot's routes (ROBOT_ROUTE) may take.
+    robot_reserve: int = 16
     #: Prolog queries running or queued at once; more get 429.
     queries: int = 1
     #: Longest a Prolog query may run, seconds (a client asking more gets this).
@@ -63,7 +85,15 @@ class Limits:
     #: Seconds an idle keep-alive connection stays open (uvicorn's timeout_keep_alive).
     keep_alive_seconds: float = 5.0
     #: Seconds a client may take to send a request's headers (a slow trickle is closed).
-    header_seconds: float = 10.0
+    header_seconds: float = 5.0
+    #: Open connections from one client address, and from all: beyond, the oldest idle one
+    #: (no request in progress) is closed to make room, else the new one gets 503.
+    peer_connections: int = 128
+    connections: int = 512
+    #: After an early answer (413, 408), what of the rest of the body is read and dropped so
+    #: the client reads the answer rather than a reset: bytes and seconds.
+    drain_bytes: int = 16 << 20
+    drain_seconds: float = 2.0
 
 
 def allowed_hosts(bound: str, extra: tuple[str, ...] = ()) -> frozenset[str]:
@@ -111,6 +141,7 @@ class Guard:
         #: token sees (a page asking for it) instead of a JSON refusal.
         self.token_page = token_page
         self.in_flight = 0
+        self.budget = BodyBudget(ctx.limits.buffered_bytes)
 
     async def __call__(self, scope: dict[str, Any], receive: Any, send: Any) -> None:
         if scope["type"] != "http":
@@ -129,12 +160,14 @@ class Guard:
         try:
             headers = {k.decode("latin-1").lower(): v.decode("latin-1") for k, v in scope["headers"]}
             self._check(scope, headers)
-            if self.in_flight >= limits.in_flight:
+            body = await self._body(receive, headers, limits)
+            reserve = min(limits.robot_reserve, limits.in_flight // 2)
+            allowed = limits.in_flight if ROBOT_ROUTE.fullmatch(scope["path"]) else limits.in_flight - reserve
+            if self.in_flight >= allowed:
                 raise Refusal(503, "the service is busy: too many requests at once; retry shortly",
                               ((b"retry-after", b"1"),))
             self.in_flight += 1
             try:
-                body = await _read_body(receive, headers, limits)
                 await self.app(scope, _replay(body, receive), framed)
             finally:
                 self.in_flight -= 1
@@ -149,6 +182,12 @@ class Guard:
             neem = scope.get("path_params", {}).get("neem")
             LOG.info("%s %s%s %d %.1f ms", scope["method"], route, f" neem={neem}" if neem else "", status[0],
                      (time.perf_counter() - started) * 1000)
+
+    async def _body(self, receive: Any, headers: dict[str, str], limits: Limits) -> bytes:
+        """The request's body, read within the limits and checked (bodyshape)."""
+        body = await _read_body(receive, headers, limits, self.budget)
+        await check_body(body, limits)
+        return body
 
     def _check(self, scope: dict[str, Any], headers: dict[str, str]) -> None:
         host = headers.get("host")
@@ -170,9 +209,10 @@ class Guard:
             raise Refusal(401, "this service needs its token: Authorization: Bearer <token>")
 
 
-async def _read_body(receive: Any, headers: dict[str, str], limits: Limits) -> bytes:
+async def _read_body(receive: Any, headers: dict[str, str], limits: Limits, budget: BodyBudget) -> bytes:
     """The whole body, at most ``limits.body_bytes`` of it: decided from Content-Length before
-    anything is read, and again while it streams in (a chunked body has no length)."""
+    anything is read, and again while it streams in (a chunked body has no length); the bytes
+    held count against ``budget`` until the body is whole."""
     too_big = Refusal(413, f"the request body is larger than {limits.body_bytes} bytes",
                       ((b"connection", b"close"),))
     declared = headers.get("content-length")
@@ -181,36 +221,59 @@ async def _read_body(receive: Any, headers: dict[str, str], limits: Limits) -> b
             raise Refusal(400, "Content-Length is not a number")
         if int(declared) > limits.body_bytes:
             raise too_big
+    counted = declared is None or int(declared) > limits.small_body
     chunks: list[bytes] = []
     size = 0
     more = True
     deadline = time.monotonic() + limits.body_seconds
-    while more:
-        try:
-            message = await asyncio.wait_for(receive(), max(0.0, deadline - time.monotonic()))
-        except TimeoutError:
-            raise Refusal(408, "the request body came too slowly", ((b"connection", b"close"),)) from None
-        if message["type"] != "http.request":
-            break  # the client went away; the handler sees an empty body and its disconnect
-        chunk = message.get("body", b"")
-        size += len(chunk)
-        if size > limits.body_bytes:
-            raise too_big
-        chunks.append(chunk)
-        more = message.get("more_body", False)
-    body = b"".join(chunks)
-    if body and _depth(body) > limits.json_depth:
-        raise Refusal(400, f"the request body nests deeper than {limits.json_depth} levels")
-    return body
+    try:
+        while more:
+            try:
+                message = await asyncio.wait_for(receive(), max(0.0, deadline - time.monotonic()))
+            except TimeoutError:
+                raise Refusal(408, "the request body came too slowly", ((b"connection", b"close"),)) from None
+            if message["type"] != "http.request":
+                break  # the client went away; the handler sees an empty body and its disconnect
+            chunk = message.get("body", b"")
+            size += len(chunk)
+            if size > limits.body_bytes:
+                raise too_big
+            if counted:
+                budget.take(len(chunk))
+            chunks.append(chunk)
+            more = message.get("more_body", False)
+    finally:
+        if counted:
+            budget.give(size)
+    return b"".join(chunks)
 
 
-def _depth(body: bytes) -> int:
-    """How deep the brackets of a JSON text nest (strings skipped); linear in the body."""
-    depth = deepest = 0
-    for byte in _STRING.sub(b"", body).translate(None, _NOT_BRACKET):
-        depth += 1 if byte in b"[{" else -1
-        deepest = max(deepest, depth)
-    return deepest
+@dataclass
+class BodyBudget:
+    """Body bytes held by requests whose bodies are still streaming in, against a cap."""
+
+    cap: int
+    held: int = 0
+
+    def take(self, size: int) -> None:
+        if self.held + size > self.cap:
+            raise Refusal(503, "the service is busy reading other bodies; retry shortly",
+                          ((b"retry-after", b"1"), (b"connection", b"close")))
+        self.held += size
+
+    def give(self, size: int) -> None:
+        self.held = max(0, self.held - size)
+
+
+async def check_body(body: bytes, limits: Limits) -> None:
+    """Refuse (400) a body too deep, with too many values or too long a number: measured on the
+    loop when small, in a worker thread when it would take more than about a millisecond."""
+    if not body:
+        return
+    shape = bodyshape.measure(body) if len(body) < OFF_LOOP_BYTES else await asyncio.to_thread(bodyshape.measure, body)
+    reason = bodyshape.refusal(shape, limits.json_depth, limits.json_values, limits.number_chars, limits.string_bytes)
+    if reason is not None:
+        raise Refusal(400, reason)
 
 
 def _replay(body: bytes, receive: Any) -> Any:
@@ -248,53 +311,6 @@ def _with_safe_headers(headers: Any) -> list[tuple[bytes, bytes]]:
     return out
 
 
-def http_protocol(limits: Limits) -> Any:
-    """uvicorn's httptools protocol with a deadline on request headers: a connection that has
-    not sent a request's headers ``limits.header_seconds`` after it opened (or after its last
-    answer) is closed, so clients that send nothing or a byte at a time cannot hold sockets
-    (uvicorn times out idle keep-alive connections only). ``"auto"`` without httptools."""
-    try:
-        from uvicorn.protocols.http.httptools_impl import HttpToolsProtocol
-    except ImportError:
-        return "auto"
-
-    class HeaderDeadline(HttpToolsProtocol):
-        _deadline: Any = None
-
-        def connection_made(self, transport: Any) -> None:
-            super().connection_made(transport)
-            self._arm()
-
-        def on_headers_complete(self) -> None:
-            self._disarm()
-            super().on_headers_complete()
-
-        def on_response_complete(self) -> None:
-            super().on_response_complete()
-            if not self.pipeline and not self.transport.is_closing():
-                self._arm()
-
-        def connection_lost(self, exc: Exception | None) -> None:
-            self._disarm()
-            super().connection_lost(exc)
-
-        def _arm(self) -> None:
-            self._disarm()
-            self._deadline = self.loop.call_later(limits.header_seconds, self._too_slow)
-
-        def _disarm(self) -> None:
-            if self._deadline is not None:
-                self._deadline.cancel()
-                self._deadline = None
-
-        def _too_slow(self) -> None:
-            self._deadline = None
-            if not self.transport.is_closing():
-                self.transport.close()
-
-    return HeaderDeadline
-
-
 def _presented(headers: dict[str, str], query: bytes) -> str | None:
     header = headers.get("authorization", "")
     if header.lower().startswith("bearer "):
@@ -303,4 +319,4 @@ def _presented(headers: dict[str, str], query: bytes) -> str | None:
     return values[0] if values else None
 
 
-__all__ = ["Guard", "LOOPBACK_HOSTS", "Limits", "OPEN_PATHS", "Refusal", "allowed_hosts", "http_protocol"]
+__all__ = ["Guard", "LOOPBACK_HOSTS", "Limits", "OPEN_PATHS", "Refusal", "allowed_hosts", "check_body"]
