@@ -9,8 +9,11 @@ from __future__ import annotations
 
 import contextlib
 import errno
+import hashlib
+import hmac
 import os
 import pickle
+import secrets
 import shutil
 import stat
 from collections.abc import Callable, Iterator
@@ -100,17 +103,72 @@ def prune_cache(directory: Path, pattern: str, keep: int = MAX_CACHE_ENTRIES) ->
                 old.unlink()
 
 
+#: The user's own key for what this package keeps (kept fits, cached pickles): 32 random bytes
+#: in ``key`` of a private cache folder (0700, the file 0600), never written into a store, a dump
+#: or a request. An entry is read only when its tag verifies under it, so one from another account,
+#: another machine or a file someone handed over is made afresh before a byte of it is decoded.
+KEY_FILE = "key"
+_SIZE = 32
+TAG_BYTES = hashlib.sha256().digest_size
+
+
+def user_key(folder: Path) -> bytes | None:
+    """The key kept in ``folder`` (made on first use); None where the folder cannot hold one
+    privately (another user's, writable by others, read-only)."""
+    try:
+        private_folder(folder)
+        info = os.stat(folder, follow_symlinks=False)
+        if not stat.S_ISDIR(info.st_mode) or info.st_uid != os.getuid() or info.st_mode & 0o077:
+            return None
+        path = folder / KEY_FILE
+        for _ in range(2):
+            found = _read(path)
+            if found is not None:
+                return found
+            with contextlib.suppress(FileExistsError):
+                fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW, 0o600)
+                with os.fdopen(fd, "wb") as handle:
+                    os.fchmod(handle.fileno(), 0o600)
+                    handle.write(secrets.token_bytes(_SIZE))
+        return _read(path)
+    except OSError:
+        return None
+
+
+def _read(path: Path) -> bytes | None:
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
+    except FileNotFoundError:
+        return None
+    with os.fdopen(fd, "rb") as handle:
+        if not written_by_user_alone(os.fstat(handle.fileno())) or os.fstat(handle.fileno()).st_mode & 0o077:
+            return None
+        data = handle.read(_SIZE + 1)
+    return data if len(data) == _SIZE else None
+
+
+def signed(key: bytes, data: bytes) -> bytes:
+    """``data`` behind its tag under ``key``."""
+    return hmac.new(key, data, hashlib.sha256).digest() + data
+
+
+def verified(key: bytes | None, blob: bytes) -> bytes | None:
+    """The data ``signed`` put behind a tag that verifies under ``key``; None otherwise."""
+    if key is None or len(blob) < TAG_BYTES:
+        return None
+    tag, data = blob[:TAG_BYTES], blob[TAG_BYTES:]
+    return data if hmac.compare_digest(tag, hmac.new(key, data, hashlib.sha256).digest()) else None
+
+
 def cached_pickle(path: Path, key: str, make: Callable[[], _Value], valid: Callable[[object], bool],
                   pattern: str) -> _Value:
     """The value kept at ``path`` for ``key`` (pickled as ``(key, value)``), or else ``make()``,
     then kept there. A binary cache the user made alone: an entry is unpickled only when it is a
     regular file of this user that nobody else may write and its tag verifies under the key kept
-    in the same private folder (oracle.cachekey), so a file put there by anyone else, or copied
+    in the same private folder (``user_key``), so a file put there by anyone else, or copied
     from another account, is made again before a byte of it is unpickled; and only a value
     ``valid`` accepts is returned. The entries of the folder matching ``pattern`` are pruned
     (``prune_cache``); a folder that cannot be written only makes every call make the value."""
-    from oracle.cachekey import signed, user_key, verified
-
     secret = user_key(path.parent)
     try:
         fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)

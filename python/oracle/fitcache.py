@@ -9,7 +9,7 @@ the history: the predictor's class and parameters, the distance matrix's content
 ``oracle.algorithm`` and the Python and numpy versions.
 
 An entry is never unpickled. It is plain data (oracle.plainstate: JSON and raw arrays, only the
-predictors' own classes), behind a tag under the user's own key (oracle.cachekey, kept in the
+predictors' own classes), behind a tag under the user's own key (oracle.files.user_key, kept in the
 cache folder, never in the store): the key, the number of steps fitted, the digest of those
 steps and the model without its distance matrix (the caller's, of the same content, is put
 back). A store may come from someone else: an entry whose tag does not verify (written on
@@ -43,8 +43,7 @@ import numpy as np
 import oracle.algorithm
 from oracle import plainstate
 from oracle.algorithm.records import Step
-from oracle.cachekey import signed, user_key, verified
-from oracle.files import CacheFolder, written_by_user_alone
+from oracle.files import CacheFolder, signed, user_key, verified, written_by_user_alone
 
 if TYPE_CHECKING:
     from oracle.store.base import Store

@@ -242,7 +242,7 @@ def test_a_damaged_further_entry_gives_way_to_the_other(tmp_path, monkeypatch):
     # the user's file is read first by its head; a model that will not decode makes the cache
     # extend the store's shorter fit, not fit afresh
     import oracle.fitcache as fitcache
-    from oracle.cachekey import signed, user_key
+    from oracle.files import signed, user_key
 
     store, matrix, steps = _KeptStore(), random_matrix(6), synthetic_history(90, 6)
     cache = FitCache(tmp_path / "fits")

@@ -1,6 +1,6 @@
 """A kept fit is data, never code: what a store, a cache file or a handed-over file holds in the
 kept-fit place runs nothing, is dropped, and the model is fitted afresh (oracle.fitcache,
-oracle.plainstate, oracle.cachekey; docs/security.md, "Files a user is handed").
+oracle.plainstate, oracle.files.user_key; docs/security.md, "Files a user is handed").
 
 "Runs nothing" is watched with Python's audit hooks: while an entry is read, no pickle global
 is resolved, no process, shell, library or code object is made and no file is opened for
@@ -21,7 +21,7 @@ from oracle import fitcache, plainstate  # noqa: E402
 from oracle.algorithm.predictors import PREDICTORS, make_predictor  # noqa: E402
 from oracle.algorithm.params import Hyperparameters  # noqa: E402
 from oracle.algorithm.routine import RoutineOracle  # noqa: E402
-from oracle.cachekey import signed, user_key  # noqa: E402
+from oracle.files import signed, user_key  # noqa: E402
 from oracle.fitcache import FitCache  # noqa: E402
 
 #: Audit events that would mean an entry ran something.

@@ -23,7 +23,7 @@ ALLOWED = [
      "the chain's copy of a model in memory, pickled on the same line"),
     ("files.py", "entry = pickle.loads(data)",
      "a cache entry of this user's private folder whose HMAC tag verified under the user's own key "
-     "(oracle.cachekey): written by this package on this account, never from a store or a dump"),
+     "(oracle.files.user_key): written by this package on this account, never from a store or a dump"),
     ("ontology/model.py", 'pickle.loads(self.__dict__.pop("_graph_bytes"))',
      "the graph inside an ontology cache entry, itself read only after its tag verified (files.cached_pickle)"),
     ("service/queries.py", "kind, payload = conn.recv()",
