@@ -101,7 +101,7 @@ def test_together_is_written_with_both_performers_and_read_back(tmp_path):
             "pour(thermos, red_mug)", "open_fridge", "pour(thermos, red_mug)", "pour(thermos, red_mug)", "pick(apple)"]
         answer = ask(bridge, onto, "who usually does pour(thermos, red_mug)?")
         assert answer.evidence["counts"] == {"user": 1, "robot": 0, "together": 2, "unknown": 0}
-        assert answer.english == "You usually do pour(thermos, red_mug) together with the robot (2 of 3 times)."
+        assert answer.english == "You usually pour the coffee into the red mug together with the robot (2 of 3 times)."
         rows = bridge.history()
         assert [row["mode"] for row in rows if row["call"] != "idle"] == ["together", "together", "together", "user",
                                                                           "robot"]

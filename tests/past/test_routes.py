@@ -30,8 +30,8 @@ def test_ask_route_answers_in_the_questions_language(client):
     reply = client.get("/api/neems/small/ask", params={"q": "Wann habe ich zuletzt pick(green_mug) gemacht?"})
     assert reply.status_code == 200
     body = reply.json()
-    assert body["language"] == "de" and body["text"] == "pick(green_mug) wurde zuletzt um 08:01 gemacht."
-    assert body["english"] == "pick(green_mug) was last done at 08:01."
+    assert body["language"] == "de" and body["text"] == "Zuletzt um 08:01 den grünen Becher genommen."
+    assert body["english"] == "Picking up the green mug was last done at 08:01."
 
 
 def test_ask_route_as_of_a_time(client):

@@ -448,7 +448,8 @@ def test_tablet_view_speaks_the_persons_language_and_keeps_the_calls(client, nee
     said = {t["task"]: t["said"] for t in english["tasks"]}
     assert said["pour(thermos, red_mug)"] == "Pour the coffee into the red mug"
     assert {t["task"]: t["said"] for t in german["tasks"]}["open(small_drawer)"] == "Die kleine Schublade öffnen"
-    assert english["user"] == "ada" and english["clock"] == "Morning, 08:00" and german["clock"] == "Morgen, 08:00"
+    assert english["user"] == "ada" and english["clock"] == "Morning, 08:00" and german["clock"] == "morgens, 08:00"
+    assert english["person"] == "Ada"  # the header's name; a persona id would give none (test_words)
     for view in (english, german):
         for task in view["tasks"]:  # one short sentence, no call syntax, no scores
             assert task["reason"].endswith(".") and task["reason"].count(". ") == 0 and "(" not in task["reason"], task

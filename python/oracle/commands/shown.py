@@ -67,7 +67,7 @@ def print_ranking(result: NeemRanking, limit: int | None = None, modes: bool = F
     shown = list(zip(result.ranking, result.calls))[:limit]
     usual, chain_modes = (result.usual, result.chain_modes) if modes else ((), ())
     for index, (t, call) in enumerate(shown):
-        said = mode_sentence("en", usual[index].mode, usual[index].counts) if index < len(usual) else ""
+        said = mode_sentence("en", usual[index].mode, usual[index].counts, usual[index].context) if index < len(usual) else ""
         print(f"  {t.rank:2d}. {str(call):32s} {describe(t)}" + (f" {said}" if said else ""))
     if limit is not None and len(result.calls) > limit:
         print(f"  ... and {len(result.calls) - limit} more")

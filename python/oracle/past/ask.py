@@ -15,7 +15,7 @@ from oracle.past.evidence import call_words, request, window
 from oracle.past.forms import Question, QuestionError, read_question
 from oracle.past.kept import KeptPast
 from oracle.past.routines import Done, follows
-from oracle.past.sentences import sentences
+from oracle.past.sentences import Namer, ObjectNamer, sentences
 
 if TYPE_CHECKING:
     from oracle.bridge import Bridge
@@ -54,8 +54,36 @@ def ask(bridge: Bridge, onto: OdbOntology, text: str, at: float | None = None, c
     if question.period is not None and not clocked:
         raise QuestionError("this NEEM was logged without a clock (a time-less log): it has no today or morning")
     evidence = {"now": now, **_evidence(bridge, question, now, kept)}
-    english, german = sentences(question.form, evidence)
+    name, obj = namers(onto)
+    english, german = sentences(question.form, evidence, name, obj)
     return Answer(text.strip(), question.form, question.language, english, german, evidence)
+
+
+def namers(onto: OdbOntology) -> tuple[Namer, ObjectNamer]:
+    """Tasks and objects in the tablet's words (oracle.service.words), a call its words lack in
+    its syntax: what the sentences say instead of code names."""
+    from datetime import timezone
+
+    from oracle.past.phrases import english_third
+    from oracle.service.words import Words, load_lexicon
+
+    lexicon = load_lexicon(ontology=onto)
+    words = {lang: Words(lexicon, lang, timezone.utc) for lang in ("en", "de")}
+
+    def name(call: str, language: str, way: str) -> str:
+        said = words[language]
+        if way in ("do", "does"):
+            text = said.said(call)
+            first = text.split(" ", 1)[0].lower()
+            if language == "en" or first in ("der", "die", "das", "den", "dem", "aus", "ein", "eine", "einen"):
+                text = text[:1].lower() + text[1:]  # mid-sentence; a German noun keeps its capital
+            return english_third(text) if way == "does" else text
+        return said.said(call, "after")
+
+    def obj(thing: str, language: str) -> str:
+        return words[language].obj(thing)
+
+    return name, obj
 
 
 def _done_reading(bridge: Bridge, q: Question) -> Question:

@@ -1,8 +1,9 @@
 """The question forms ``ask`` answers (docs/beyond.md), in English and German, read into a
 ``Question``; any other text is a ``QuestionError`` listing the forms.
 
-A task is written in the chain syntax (``pick(banana)``) in either language, or, in English, as
-words: the task's name then its objects (``pour the thermos into the green mug``); articles and
+A task is written in the chain syntax (``pick(banana)``), or in words as a person says it in
+either language (oracle.past.phrases: "den Kühlschrank geöffnet", "opening the fridge"), or as
+the task's name then its objects (``pour the thermos into the green mug``); articles and
 prepositions are skipped, and the words of a name may be joined by spaces or underscores.
 """
 
@@ -13,6 +14,7 @@ from dataclasses import dataclass
 
 from oracle.chains import TaskCall, parse_call
 from oracle.errors import ChainSyntaxError, NeemOracleError, OntologyError
+from oracle.past.phrases import PhraseBook
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
@@ -36,31 +38,49 @@ class Form:
 
 _PERIOD_EN = r"(?P<period>today|this week)"
 _PERIOD_DE = r"(?P<period>heute|diese woche|in dieser woche)"
-_PART_EN = r"(?P<period>today|this morning|this afternoon|at midday|this evening)"
-_PART_DE = r"(?P<period>heute|heute morgen|heute früh|heute mittag|heute abend)"
+_PART_EN = r"(?P<period>today|this morning|this afternoon|at midday|this evening|this week)"
+_PART_DE = r"(?P<period>heute|heute morgen|heute früh|heute mittag|heute abend|diese woche|in dieser woche)"
+#: Who a question asks about: the person, the robot, both (the NEEM holds the actions of both).
+_WHO_EN = r"(?:i|you|we|the robot)"
+_HAVE_DE = r"(?:habe ich|hab ich|hast du|haben wir|hat der roboter)"
+_DO_DE = r"(?:mache ich|machst du|machen wir|macht der roboter)"
+_USUALLY_DE = r"(?:meistens|normalerweise|gewöhnlich|üblicherweise|sonst|meist)"
+_DONE_DE = r"(?: gemacht| getan)?"
 
-#: The forms, in the order the unknown-form message lists them.
+#: The forms, in the order the unknown-form message lists them. A task is said as a call
+#: (pick(apple)) or in words (oracle.past.phrases: "den Kühlschrank geöffnet", "opening the fridge").
 FORMS: tuple[Form, ...] = (
-    Form("last", "when did I last pick(apple)?", "wann habe ich zuletzt pick(apple) gemacht?",
-         (("en", r"when did (?:i|you|we) last (?P<task>.+)"),
-          ("de", r"wann (?:habe ich|hast du|haben wir) zuletzt (?P<task>.+?)(?: gemacht| getan)?"))),
-    Form("count", "how often did I pick(apple) today / this week?", "wie oft habe ich heute / diese Woche pick(apple) gemacht?",
-         (("en", r"how (?:often|many times) did (?:i|you|we) (?P<task>.+) " + _PERIOD_EN),
-          ("de", r"wie oft (?:habe ich|hast du|haben wir) " + _PERIOD_DE + r" (?P<task>.+?)(?: gemacht| getan)?"))),
-    Form("after", "what do I usually do after pick(apple)?", "was mache ich meistens nach pick(apple)?",
-         (("en", r"what do (?:i|you|we) usually do after (?P<task>.+)"),
-          ("de", r"was (?:mache ich|machst du|machen wir) (?:meistens|normalerweise|gewöhnlich) nach (?P<task>.+)"))),
+    Form("last", "when did I last open the fridge?", "wann habe ich zuletzt den Kühlschrank geöffnet?",
+         (("en", rf"when did {_WHO_EN} last (?P<task>.+)"),
+          ("en", rf"when was the last time (?:that )?{_WHO_EN} (?P<task>.+)"),
+          ("de", rf"wann {_HAVE_DE} (?:zuletzt|das letzte mal|zum letzten mal) (?P<task>.+?){_DONE_DE}"))),
+    Form("count", "how often did I open the fridge today / this week?",
+         "wie oft habe ich heute / diese Woche den Kühlschrank geöffnet?",
+         (("en", rf"how (?:often|many times) (?:did|have) {_WHO_EN} (?P<task>.+) " + _PERIOD_EN),
+          ("de", rf"wie oft {_HAVE_DE} " + _PERIOD_DE + rf" (?P<task>.+?){_DONE_DE}"),
+          ("de", rf"wie oft {_HAVE_DE} (?P<task>.+?) " + _PERIOD_DE + rf"{_DONE_DE}"),
+          # the period inside the phrase: "die Schublade diese Woche geschlossen"
+          ("de", rf"wie oft {_HAVE_DE} (?P<task>.+?) " + _PERIOD_DE + r" (?P<tail>.+)"))),
+    Form("after", "what do I usually do after opening the fridge?",
+         "was mache ich meistens, nachdem ich den Kühlschrank geöffnet habe?",
+         (("en", r"what do (?:i|you|we) usually do after (?:i |you |we )?(?P<task>.+)"),
+          ("en", r"what (?:usually )?comes (?:next )?after (?:i |you |we )?(?P<task>.+)"),
+          ("de", rf"was {_DO_DE} {_USUALLY_DE},? nachdem (?:ich|du|wir|er) (?P<task>.+?) (?:habe|hast|haben|hat)"),
+          ("de", rf"was {_DO_DE} {_USUALLY_DE},? nach (?P<task>.+)"),
+          ("de", rf"was kommt {_USUALLY_DE} nach (?P<task>.+)"))),
     Form("done", "what did you do this morning / today / this evening?", "was hast du heute morgen / heute / heute abend gemacht?",
-         (("en", r"what did (?:you|i|we) do " + _PART_EN),
-          ("de", r"was (?:hast du|habe ich|haben wir) " + _PART_DE + r" gemacht"))),
-    Form("where", "where is the green_mug?", "wo ist der green_mug?",
-         (("en", r"where is (?:the |my )?(?P<obj>.+)"),
-          ("de", r"wo (?:ist|steht|liegt) (?:der |die |das |mein |meine )?(?P<obj>.+)"))),
-    Form("who", "who usually does pour(thermos, red_mug)?", "wer macht meistens pour(thermos, red_mug)?",
+         (("en", r"what (?:did|have) (?:you|i|we|the robot) (?:do|done) " + _PART_EN),
+          ("de", r"was (?:hast du|habe ich|haben wir|hat der roboter) " + _PART_DE + r" (?:gemacht|getan)"))),
+    Form("where", "where is the green mug?", "wo ist der grüne Becher?",
+         (("en", r"where (?:is|are) (?P<obj>.+)"),
+          ("de", r"wo (?:ist|steht|liegt|sind) (?P<obj>.+)"))),
+    Form("who", "who usually opens the fridge?", "wer hat meistens den Kühlschrank geöffnet?",
          (("en", r"who (?:usually )?(?:does|did) (?P<task>.+)"),
-          ("de", r"wer (?:macht|machte|hat) (?:meistens |normalerweise |gewöhnlich )?(?P<task>.+?)(?: gemacht)?"))),
-    Form("suggested", "why did you suggest open(fridge)?", "warum hast du open(fridge) vorgeschlagen?",
-         (("en", r"why did you suggest (?P<task>.+)"),
+          ("en", r"who (?:usually |normally )?(?P<task>.+)"),
+          ("de", rf"wer (?:macht|machte|hat) {_USUALLY_DE}? ?(?P<task>.+?)(?: gemacht)?"))),
+    Form("suggested", "why did you suggest opening the fridge?", "warum hast du vorgeschlagen, den Kühlschrank zu öffnen?",
+         (("en", r"why did you suggest (?:that (?:i|we) )?(?P<task>.+)"),
+          ("de", r"warum hast du vorgeschlagen,? (?:dass ich )?(?P<task>.+)"),
           ("de", r"warum hast du (?P<task>.+) vorgeschlagen"))),
 )
 
@@ -97,25 +117,45 @@ def read_question(text: str, onto: OdbOntology) -> Question:
     if not isinstance(text, str) or not text.strip():
         raise QuestionError(f"ask a question of one of these forms: {forms_line()}")
     said = " ".join(text.strip().rstrip("?!. ").split()).lower()
+    book = phrase_book(onto)
+    problem: QuestionError | None = None
     for form in FORMS:
         for language, pattern in form.patterns:
             found = re.fullmatch(pattern, said)
             if found is None:
                 continue
             groups = found.groupdict()
-            calls = resolve_calls(groups["task"], onto) if groups.get("task") else []
-            obj = resolve_object(groups["obj"], onto) if groups.get("obj") else None
+            try:
+                task = " ".join(groups[g] for g in ("task", "tail") if groups.get(g))
+                calls = resolve_calls(task, onto, book) if task else []
+                obj = resolve_object(groups["obj"], onto, book) if groups.get("obj") else None
+            except QuestionError as error:  # another pattern may read it (who opens / who does)
+                problem = problem or error
+                continue
             period = PERIODS[groups["period"]] if groups.get("period") else None
             return Question(form.key, language, calls[0] if calls else None, obj, period, tuple(calls[1:]))
+    if problem is not None:
+        raise problem
     raise QuestionError(f"{text.strip()!r} is not a question I know; ask one of: {forms_line()}")
 
 
-def resolve_calls(words: str, onto: OdbOntology) -> list[TaskCall]:
-    """The readings of a task in the chain syntax (one) or as words (the task's name, then its
-    objects; the longest task name first), checked against the ontology; QuestionError naming
-    what is unknown when there is none."""
-    words = words.strip()
+def phrase_book(onto: OdbOntology) -> PhraseBook:
+    """The words of the ontology's tasks and objects (the tablet's labels) to read questions with."""
+    from oracle.service.words import load_lexicon
+
+    return PhraseBook(load_lexicon(ontology=onto), onto)
+
+
+def resolve_calls(words: str, onto: OdbOntology, book: PhraseBook | None = None) -> list[TaskCall]:
+    """The readings of a task in the chain syntax (one) or as words: as a person says it
+    (oracle.past.phrases: "den Kühlschrank geöffnet", "opening the fridge"), else the task's
+    name then its objects (the longest task name first), checked against the ontology;
+    QuestionError naming what is unknown when there is none."""
+    words = words.strip().strip(",")
     if "(" not in words:
+        said = (book or phrase_book(onto)).calls(words)
+        if said:
+            return said
         return _calls_from_words(words.replace("_", " ").split(), onto)
     try:
         call = parse_call(words)
@@ -127,13 +167,19 @@ def resolve_calls(words: str, onto: OdbOntology) -> list[TaskCall]:
     return [call]
 
 
-def resolve_object(words: str, onto: OdbOntology) -> str:
-    """An odb object name from words (``green mug``, ``green_mug``); QuestionError if unknown."""
+def resolve_object(words: str, onto: OdbOntology, book: PhraseBook | None = None) -> str:
+    """An odb object name from words (``green mug``, ``green_mug``, ``der grüne Becher``);
+    QuestionError if unknown."""
+    from oracle.suggest import did_you_mean
+
     name = "_".join(w for w in words.replace("_", " ").split() if w not in _FILLERS)
-    if name not in onto.objects:
-        raise QuestionError(f"unknown object {words.strip()!r}; known objects include "
-                            f"{', '.join(sorted(onto.objects)[:8])}, ...")
-    return name
+    if name in onto.objects:
+        return name
+    said = (book or phrase_book(onto)).obj(words)
+    if said is not None:
+        return said
+    raise QuestionError(f"unknown object {words.strip()!r}.{did_you_mean(name, onto.objects)} Known objects include "
+                        f"{', '.join(sorted(onto.objects)[:8])}, ...")
 
 
 def _calls_from_words(tokens: list[str], onto: OdbOntology) -> list[TaskCall]:

@@ -39,7 +39,7 @@ def render_page(view: Mapping[str, Any] | None, text: Mapping[str, str], token: 
     config = json.dumps({"neem": view["neem"], "lang": lang, "view": view, "text": text, "token": token,
                          "confirm": manner.confirm, "dwell_s": manner.dwell_s, "undo_s": manner.undo_s,
                          "hold_ms": manner.hold_ms}).replace("</", "<\\/")
-    user = text["for"].format(user=view["user"]) if view.get("user") else ""
+    user = text["for"].format(user=view["person"]) if view.get("person") else ""  # a name, never an id
     body = f"""
 <p id="link" role="alert" hidden>{escape(text['lost'])}</p>
 <div id="top"><h1>{escape(text['title'])} <small id="when">{escape(view.get('clock') or '')}</small></h1>

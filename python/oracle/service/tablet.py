@@ -28,9 +28,10 @@ def tablet_view(neem: str, user: str | None, latest: Mapping[str, Any] | None, w
     part = words.part_of_day((latest or {}).get("time_of_day"))
     clock = ", ".join(x for x in (part, words.clock(at)) if x) if ranking else ""
     return {
-        "neem": neem, "user": user, "lang": words.lang, "at": at, "clock": clock,
+        "neem": neem, "user": user, "person": words.person(user), "lang": words.lang, "at": at, "clock": clock,
         "tasks": [{"task": t["task"], "rank": t["rank"], "said": words.said(t["task"]), "reason": words.reason(t),
-                   "mode": t.get("mode"), "mode_said": words.mode(t.get("mode"), (t.get("mode_support") or {}).get("counts") or {})}
+                   "mode": t.get("mode"), "mode_said": words.mode(t.get("mode"), (t.get("mode_support") or {}).get("counts") or {},
+                                                                str((t.get("mode_support") or {}).get("context") or "call"))}
                   for t in ranking],
         "workflow": [_step(c, m, words) for c, m in zip(chain, chain_modes)] if len(chain) >= 2 else [],
         "routine": _routine_view((latest or {}).get("routine"), words),

@@ -22,7 +22,7 @@ from oracle.timeline import shown_clock
 
 #: The page's languages; the first is the default.
 LANGS = ("en", "de")
-_SLOT = re.compile(r"\{(\d)(?::(dat|content))?\}")
+_SLOT = re.compile(r"\{(\d)(?::(dat|content|goal))?\}")
 
 
 @dataclass(frozen=True)
@@ -91,6 +91,9 @@ class Words:
     # -- names ----------------------------------------------------------------------------------
     def obj(self, name: str, form: str = "") -> str:
         forms = self.lexicon.objects.get(name, {})
+        if form == "goal":  # where a thing is put: "in the fridge", else "on the counter"
+            found = forms.get(f"{self.lang}_goal")
+            return found or f"{self.text['on']} {self.obj(name)}"
         if form == "content":
             found = forms.get(f"{self.lang}_content")
             if found:
@@ -135,9 +138,11 @@ class Words:
         if order > 0:
             context = entry.get("context") or []
             last = context[-1] if context else "idle"
+            situations = entry.get("situations") or []
+            lately = t["last_at"].format(at=self.clock(float(situations[-1]))) if situations else ""
             if last == "idle":
-                return t["after_break"].format(times=times)
-            return t["after_task"].format(times=times, after=self.said(last, "after"))
+                return t["after_break"].format(times=times, last=lately)
+            return t["after_task"].format(times=times, after=self.said(last, "after"), last=lately)
         held = entry.get("focus") or []
         if entry.get("resumed"):
             return t["resumed"]
@@ -150,7 +155,13 @@ class Words:
             return t["since"].format(ago=self.ago(float(since)))
         if order == 0 or entry.get("done"):
             return t["done_elsewhere"].format(times=times) if n else t["done_before"]
-        return t["never"]
+        likely = entry.get("probability")
+        return t["never"] if likely is None else t["never_likely"].format(chance=self.chance(float(likely)))
+
+    def chance(self, probability: float) -> str:
+        """A probability as a natural frequency: "about 4 in 100", "less than 1 in 100"."""
+        per_100 = round(100 * probability)
+        return self.text["chance_low"] if per_100 < 1 else self.text["chance"].format(n=per_100)
 
     def times(self, n: int) -> str:
         return self.text["once"] if n == 1 else self.text["n_times"].format(n=n)
@@ -182,24 +193,37 @@ class Words:
         return (self.text["routine_one"] if left == 1 else self.text["routine_n"]).format(name=name, n=left)
 
     def part_of_day(self, part: str | None) -> str:
+        """The part of the day as said before a clock time: "Morning, 08:04", "morgens, 08:04"."""
         return self.text.get(f"part_{part}", part or "")
 
+    def person(self, user: str | None, meta: Mapping[str, Any] | None = None) -> str:
+        """The person's name for the page's header: the NEEM's ``person`` entry, else the user
+        when it reads as a name ("ada" -> "Ada"); nothing for an id ("p003-none-blue-yogurt")."""
+        named = (meta or {}).get("person")
+        if isinstance(named, str) and named.strip():
+            return named.strip()
+        if user and re.fullmatch(r"[^\W\d_]+(?:[ '][^\W\d_]+)*", user):
+            return " ".join(w[:1].upper() + w[1:] for w in user.split(" "))
+        return ""
+
     # -- who does it (thesis 6.3, the autonomy mode) ---------------------------------------------
-    def mode(self, mode: str | None, counts: Mapping[str, int]) -> str:
+    def mode(self, mode: str | None, counts: Mapping[str, int], context: str = "call") -> str:
         """Who usually does a task, with how often: "You usually do this yourself (5 of 6 times)."
-        ("" when no action of it is known)."""
-        return mode_sentence(self.lang, mode, counts)
+        ("" when no action of it is known; ``context``: what the counts are of, UsualMode's)."""
+        return mode_sentence(self.lang, mode, counts, context)
 
     def who(self, mode: str) -> str:
         """Who does a step, as the workflow sheet's toggle says it: "You", "The robot", "Together"."""
         return self.text[f"who_{mode}"]
 
 
-def mode_sentence(lang: str, mode: str | None, counts: Mapping[str, int]) -> str:
+def mode_sentence(lang: str, mode: str | None, counts: Mapping[str, int], context: str = "call") -> str:
     """The usual mode of a task with its support, in ``lang`` (``rank`` prints the English one):
     how often it was done so in the most specific context known (oracle.past.autonomy). Where the
     predictor (oracle.past.modelogit) says another mode than those counts' most frequent, the
-    sentence says what is likely, not what is usual, and gives no figure that would contradict it."""
+    sentence says what is likely, not what is usual, and gives no figure that would contradict it.
+    Counts of the task with any objects (``context`` ``task`` or ``task and part``, UsualMode's)
+    are said to be of "this kind of task": they are not of this call, which may never have been done."""
     if mode is None:
         return ""
     t = TEXT[lang]
@@ -207,7 +231,8 @@ def mode_sentence(lang: str, mode: str | None, counts: Mapping[str, int]) -> str
     n = counts.get(mode, 0)
     if not total or n < max(counts.values()):
         return t[f"guess_{mode}"]
-    return t[f"mode_{mode}"].format(of=(t["of_one"] if total == 1 else t["of_n"]).format(n=n, total=total))
+    key = f"kind_{mode}" if context.startswith("task") else f"mode_{mode}"
+    return t[key].format(of=(t["of_one"] if total == 1 else t["of_n"]).format(n=n, total=total))
 
 
 def _parsed(call: TaskCall | str) -> TaskCall | None:
@@ -244,11 +269,14 @@ TEXT: dict[str, dict[str, str]] = {
         "for": "for {user}", "no_neem": "No one is using the robot yet.",
         "token_title": "This robot needs its access code", "token_label": "Access code", "token_go": "Open",
         "like_past": "Like {n} earlier situations.", "new_to_me": "New to me.",
-        "after_break": "You did this {times} after a break.", "after_task": "You did this {times} after {after}.",
+        "after_break": "You did this {times} after a break{last}.", "after_task": "You did this {times} after {after}{last}.",
+        "last_at": ", last at {at}",
         "resumed": "This goes on from before your break.", "in_hand": "It uses {objects}, which you just used.",
         "newly": "This has just become possible.", "since": "You last did this {ago}.",
         "done_elsewhere": "You did this {times}, but not at this point.", "done_before": "You did this before, but not at this point.",
-        "never": "You have not done this yet; it is like what you do.", "once": "once", "n_times": "{n} times", "and": " and ",
+        "never": "You have not done this yet; it is like what you do.",
+        "never_likely": "You have not done this yet; it is like what you do, so I give it {chance}.",
+        "chance": "about {n} in 100", "chance_low": "less than 1 in 100", "once": "once", "n_times": "{n} times", "and": " and ",
         "ago_s": "{n} seconds ago", "ago_min": "{n} minutes ago", "ago_h": "{n} hours ago", "ago_d": "{n} days ago",
         "top": "This is my first suggestion.", "placed": "I put this in place {rank} of {n}.",
         "first_is": "First comes: {task}.", "not_now": "The robot cannot do this now.",
@@ -260,11 +288,15 @@ TEXT: dict[str, dict[str, str]] = {
         "part_Morning": "Morning", "part_Midday": "Midday", "part_Evening": "Evening", "part_Night": "Night",
         "mode_user": "You usually do this yourself ({of}).", "mode_robot": "The robot usually does this for you ({of}).",
         "mode_together": "You usually do this together with the robot ({of}).",
+        "kind_user": "You usually do this kind of task yourself ({of}).",
+        "kind_robot": "The robot usually does this kind of task for you ({of}).",
+        "kind_together": "You usually do this kind of task together with the robot ({of}).",
         "guess_user": "You would likely do this yourself.", "guess_robot": "The robot would likely do this for you.",
         "guess_together": "You would likely do this together with the robot.",
         "of_n": "{n} of {total} times", "of_one": "{n} of 1 time",
         "who_user": "You", "who_robot": "The robot", "who_together": "Together",
         "who_is": "Who does it: {who}", "who_hint": "Tap a step\u2019s button to change who does it.",
+        "on": "on",
     },
     "de": {
         "title": "Was möchten Sie jetzt?", "list": "Was der Roboter jetzt tun kann, das Beste zuerst",
@@ -287,14 +319,16 @@ TEXT: dict[str, dict[str, str]] = {
         "for": "für {user}", "no_neem": "Noch benutzt niemand den Roboter.",
         "token_title": "Dieser Roboter braucht seinen Zugangscode", "token_label": "Zugangscode", "token_go": "Öffnen",
         "like_past": "Wie {n} frühere Situationen.", "new_to_me": "Neu für mich.",
-        "after_break": "Das haben Sie {times} nach einer Pause gemacht.",
-        "after_task": "Das haben Sie {times} gemacht, nachdem Sie {after} haben.",
+        "after_break": "Das haben Sie {times} nach einer Pause gemacht{last}.",
+        "after_task": "Das haben Sie {times} gemacht, nachdem Sie {after} haben{last}.", "last_at": ", zuletzt um {at}",
         "resumed": "Das setzt fort, was Sie vor der Pause gemacht haben.",
         "in_hand": "Das nutzt, was Sie gerade benutzt haben: {objects}.",
         "newly": "Das ist gerade erst möglich geworden.", "since": "Das haben Sie zuletzt {ago} gemacht.",
         "done_elsewhere": "Das haben Sie {times} gemacht, aber nicht an dieser Stelle.",
         "done_before": "Das haben Sie schon gemacht, aber nicht an dieser Stelle.",
-        "never": "Das haben Sie noch nie gemacht; es ähnelt dem, was Sie tun.", "once": "einmal", "n_times": "{n}-mal",
+        "never": "Das haben Sie noch nie gemacht; es ähnelt dem, was Sie tun.",
+        "never_likely": "Das haben Sie noch nie gemacht; es ähnelt dem, was Sie tun, darum gebe ich ihm {chance}.",
+        "chance": "etwa {n} von 100", "chance_low": "weniger als 1 von 100", "once": "einmal", "n_times": "{n}-mal",
         "and": " und ", "ago_s": "vor {n} Sekunden", "ago_min": "vor {n} Minuten", "ago_h": "vor {n} Stunden",
         "ago_d": "vor {n} Tagen", "top": "Das ist mein erster Vorschlag.", "placed": "Ich habe das auf Platz {rank} von {n} gesetzt.",
         "first_is": "Zuerst kommt: {task}.", "not_now": "Das kann der Roboter jetzt nicht tun.",
@@ -303,13 +337,17 @@ TEXT: dict[str, dict[str, str]] = {
         "no_ranking": "Ich habe noch nichts vorgeschlagen.", "next": "Als Nächstes erwarte ich: {task}.",
         "then": "Danach: {task}.", "chosen_pending": "Sie haben \u201e{task}\u201c gewählt; der Roboter hat es noch nicht gemacht.",
         "instead_of": "Statt \u201e{task}\u201c würde ich vorschlagen: {other}.", "no_other": "Ich weiß nichts anderes vorzuschlagen.",
-        "part_Morning": "Morgen", "part_Midday": "Mittag", "part_Evening": "Abend", "part_Night": "Nacht",
+        "part_Morning": "morgens", "part_Midday": "mittags", "part_Evening": "abends", "part_Night": "nachts",
         "mode_user": "Das machen Sie meist selbst ({of}).", "mode_robot": "Das macht meist der Roboter f\u00fcr Sie ({of}).",
         "mode_together": "Das machen Sie meist zusammen mit dem Roboter ({of}).",
+        "kind_user": "Solche Aufgaben machen Sie meist selbst ({of}).",
+        "kind_robot": "Solche Aufgaben macht meist der Roboter f\u00fcr Sie ({of}).",
+        "kind_together": "Solche Aufgaben machen Sie meist zusammen mit dem Roboter ({of}).",
         "guess_user": "Das w\u00fcrden Sie wohl selbst machen.", "guess_robot": "Das w\u00fcrde wohl der Roboter f\u00fcr Sie machen.",
         "guess_together": "Das w\u00fcrden Sie wohl zusammen mit dem Roboter machen.",
         "of_n": "{n} von {total} Malen", "of_one": "{n} von 1 Mal",
         "who_user": "Sie", "who_robot": "Der Roboter", "who_together": "Gemeinsam",
+        "on": "auf",
         "who_is": "Wer es macht: {who}", "who_hint": "Tippen Sie auf den Knopf eines Schritts, um zu \u00e4ndern, wer ihn macht.",
     },
 }
