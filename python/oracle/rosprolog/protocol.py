@@ -8,9 +8,10 @@ an id already open) and an error of the query is told on ``next_solution``.
 
 What differs from rosprolog's node, and why: this project's Prolog answers pages and keeps no
 open query between calls (json_query/2, the same allow-list and time limit as ``/api/prolog``).
-So a query runs when its first solution is asked for, an INCREMENTAL one first for one solution
-(``once`` costs one solution, as there) and then for the rest in one page; an ALL_SOLUTIONS one
-in pages of ``PAGE`` solutions. A later page runs the query again from its offset: a query that
+So a query starts as soon as it is opened (as rosprolog's engine starts on its claim: the first
+solution is computed while the client's ``next_solution`` is on its way), an INCREMENTAL one for
+one solution (``once`` costs one solution, as there) and then for the rest in one page; an
+ALL_SOLUTIONS one in pages of ``PAGE`` solutions. A later page runs the query again from its offset: a query that
 writes should be asked in ALL_SOLUTIONS mode or read only its first solution.
 """
 
@@ -18,6 +19,7 @@ from __future__ import annotations
 
 import threading
 from collections import deque
+from concurrent.futures import ThreadPoolExecutor
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
@@ -97,6 +99,8 @@ class Queries:
         self.page = page
         self._lock = threading.Lock()
         self._open: dict[str, _Open] = {}
+        # first pages computed ahead; Prolog answers one query at a time, so two threads suffice
+        self._ahead = ThreadPoolExecutor(2, thread_name_prefix="rosprolog-first")
 
     def open_ids(self) -> list[str]:
         with self._lock:
@@ -109,7 +113,8 @@ class Queries:
                 return False, f"Another query is already being processed with id {id}."
             if len(self._open) >= self.max_open:
                 return False, f"{len(self._open)} queries are open, this door's limit; finish some first."
-            self._open[id] = _Open(text, incremental=mode == INCREMENTAL)
+            state = self._open[id] = _Open(text, incremental=mode == INCREMENTAL)
+        self._ahead.submit(self._first, state)
         return True, ""
 
     def next_solution(self, id: str) -> tuple[int, str]:
@@ -134,6 +139,11 @@ class Queries:
                 self._open.clear()
             else:
                 self._open.pop(id, None)
+
+    def _first(self, state: _Open) -> None:
+        with state.lock:
+            if state.fetched == 0 and not state.waiting and state.more and state.error is None:
+                self._fetch(state)
 
     def _fetch(self, state: _Open) -> None:
         limit = 1 if state.incremental and state.fetched == 0 else self.page

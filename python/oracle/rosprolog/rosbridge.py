@@ -54,7 +54,7 @@ async def _serve(websocket: WebSocket) -> None:
     ctx: Context = websocket.app.state.ctx
     headers = {k.decode("latin-1").lower(): v.decode("latin-1") for k, v in websocket.scope["headers"]}
     try:
-        Guard(None, ctx)._check(websocket.scope, headers)  # the same Host, Origin and token rules as HTTP
+        Guard(None, ctx)._check(dict(websocket.scope), headers)  # the same Host, Origin and token rules as HTTP
     except Refusal as refusal:
         LOG.info("websocket %s refused %d", websocket.scope["path"], refusal.status)
         await websocket.close(code=REFUSED, reason=str(refusal)[:120])
