@@ -36,7 +36,11 @@ def bar(label: str, unit: str = "it", total: int | None = None, stream: IO[str] 
         return
     from tqdm import tqdm  # type: ignore[import-untyped]  # here: only a terminal run pays its import
 
-    drawn: Any = tqdm(total=total, desc=label, unit=unit, unit_scale=True, file=stream, dynamic_ncols=True,
+    import shutil
+
+    sized = shutil.get_terminal_size((0, 0)).columns > 0  # a pty of no size (script, some CI) draws at 80
+    drawn: Any = tqdm(total=total, desc=label, unit=f" {unit}", file=stream, dynamic_ncols=sized, ncols=None if sized else 80,
+                      nrows=None if sized else 24,
                       mininterval=0.2, leave=True)
 
     def tick(done: int, total_now: int | None = None) -> None:

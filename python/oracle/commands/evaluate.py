@@ -64,8 +64,8 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 
 
 def run_evaluate(args: argparse.Namespace) -> int:
-    from oracle.evaluation.replay import (OracleMethod, ReplayRules, check_users, load_users, make_methods, replay, stderr_progress,
-                                          summarize)
+    from oracle.evaluation.replay import OracleMethod, ReplayRules, check_users, load_users, make_methods, replay, summarize
+    from oracle.progress import bar
 
     method = method_from(args)
     ontology = ontology_from(args)
@@ -85,7 +85,8 @@ def run_evaluate(args: argparse.Namespace) -> int:
 
         check_privacy(args.k, args.epsilon, args.clip)
         priors = leave_one_out(ontology, users, args.k, args.epsilon, args.clip, args.seed)
-    result = replay(ontology, users, methods, args.seed, stderr_progress, rules, priors)
+    with bar("replay", "users", len(users)) as tick:
+        result = replay(ontology, users, methods, args.seed, lambda done, total, user: tick(done, total), rules, priors)
     summary = summarize(result)
     summary["protocol"] = {"candidates": rules.candidates, "decision": rules.decision, "served": rules.served}
     summary["method"] = methods[0].name
@@ -105,8 +106,8 @@ def run_evaluate(args: argparse.Namespace) -> int:
     if args.ablations:
         from oracle.evaluation.ablations import run_ablations
 
-        print("ablations A-N", file=sys.stderr)
-        summary["ablations"] = run_ablations(ontology, users, args.seed, stderr_progress)
+        with bar("ablations A-N", "users", len(users)) as tick:
+            summary["ablations"] = run_ablations(ontology, users, args.seed, lambda done, total, user: tick(done, total))
     _print_table(summary)
     if args.json is not None:
         _write(args.json, json.dumps(summary, indent=1) + "\n")
@@ -172,17 +173,23 @@ def run_tune(args: argparse.Namespace) -> int:
     from oracle.algorithm.params import save_settings
     from oracle.evaluation.replay import check_users, load_users
     from oracle.evaluation.tuning import tune
+    from oracle.progress import bar, shown
 
     ontology = ontology_from(args)
     users = load_users(args.chains)
     check_users(ontology, users, str(args.chains))
 
-    def show(step: TuningStep, candidate: Hyperparameters) -> None:
-        mark = "kept" if step.kept else "    "
-        print(f"[{step.evaluation:3d}/{args.budget}] {step.parameter:30s} = {step.value:<8.4g} "
-              f"{args.metric} {step.score:.4f} {mark}", file=sys.stderr)
+    with bar("tuning", "replays", args.budget) as tick:
+        drawn = shown()
 
-    best, score, history = tune(ontology, users, args.metric, args.budget, settings_from(args.start), args.seed, show)
+        def show(step: TuningStep, candidate: Hyperparameters) -> None:
+            tick(step.evaluation, args.budget)
+            if not drawn:  # a log gets one line per replay; a terminal the bar with its rate and ETA
+                mark = "kept" if step.kept else "    "
+                print(f"[{step.evaluation:3d}/{args.budget}] {step.parameter:30s} = {step.value:<8.4g} "
+                      f"{args.metric} {step.score:.4f} {mark}", file=sys.stderr)
+
+        best, score, history = tune(ontology, users, args.metric, args.budget, settings_from(args.start), args.seed, show)
     save_settings(best, args.out)
     print(f"best {args.metric} on {args.chains}: {score:.4f} after {history[-1].evaluation} replays "
           f"(start {history[0].score:.4f}); settings written to {args.out}")

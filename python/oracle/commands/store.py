@@ -45,7 +45,8 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 
 def run_export(args: argparse.Namespace) -> int:
     from oracle.store import open_store
-    from oracle.store.dump import export_all, export_neem
+    from oracle.progress import bar
+    from oracle.store.dump import export_neem
     from oracle.store.mongo import DEFAULT_DB
     from oracle.store.ids import resolve_neem
 
@@ -66,13 +67,16 @@ def run_export(args: argparse.Namespace) -> int:
     options = {"db_name": "neems" if args.hub else DEFAULT_DB, "hub_prefix": args.hub,
                "visibility": args.visibility == "public", "ontology_files": files, "url": args.url}
     with open_store(args.store, number_format=args.numbers, read_only=True) as store:
-        if args.neem is not None:
-            neem_id = resolve_neem(store, args.neem)
-            counts = export_neem(store, neem_id, args.out, **options)
-            print(f"{neem_id}: {counts['triples']} triples -> {args.out}")
-        else:
-            for neem_id, counts in export_all(store, args.out, **options).items():
-                print(f"{neem_id}: {counts['triples']} triples -> {args.out / neem_id}")
+        ids = [resolve_neem(store, args.neem)] if args.neem is not None else [info.id for info in store.neems()]
+        written: list[str] = []
+        with bar("exporting", "NEEMs", len(ids)) as tick:
+            for done, neem_id in enumerate(ids):  # as export_all, one folder each, with its progress
+                tick(done, len(ids))
+                folder = args.out if args.neem is not None else args.out / neem_id
+                counts = export_neem(store, neem_id, folder, **options)
+                written.append(f"{neem_id}: {counts['triples']} triples -> {folder}")
+            tick(len(ids), len(ids))
+        print("\n".join(written))
     # said after the export succeeded: a failed one prints its one error line only
     if args.soma is None:
         print("hint: the NEEM carries the SOMA/DUL extract it was logged with; --soma DIR writes the whole graphs"
@@ -85,11 +89,14 @@ def run_export(args: argparse.Namespace) -> int:
 
 def run_load(args: argparse.Namespace) -> int:
     from oracle.neem.query import summarize_neem
+    from oracle.progress import bar
     from oracle.store import open_store
     from oracle.store.dump import load_dump
 
+    with open_store(args.store, number_format=args.numbers) as store, bar("loading", "documents") as tick:
+        loaded = load_dump(store, args.dir, neem_id=args.neem, replace=args.replace, progress=tick)
     with open_store(args.store, number_format=args.numbers) as store:
-        for neem_id in load_dump(store, args.dir, neem_id=args.neem, replace=args.replace):
+        for neem_id in loaded:
             summarize_neem(store, neem_id)  # kept in the registry: listings need not count again
             print(neem_id)
     return 0

@@ -13,7 +13,7 @@ import os
 import re
 import struct
 import tempfile
-from collections.abc import Iterable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any, BinaryIO
 
@@ -22,6 +22,7 @@ from bson import json_util
 from bson.codec_options import DEFAULT_CODEC_OPTIONS, DatetimeConversion
 
 from oracle.errors import StoreError
+from oracle.progress import Tick
 from oracle.store.base import COLLECTION_KINDS, SUMMARY_KEY, Store, check_neem_id
 from oracle.store.staging import STAGING
 from oracle.store.ids import ALIAS_KEY, alias_of, check_alias, find_neem, is_object_id, new_neem_id
@@ -261,18 +262,23 @@ def _neem_groups(root: Path) -> dict[tuple[Path, str | None], dict[str, Path]]:
 class _Documents:
     """The documents of one ``.bson`` file, counted as they are read, named for error messages."""
 
-    def __init__(self, path: Path) -> None:
+    def __init__(self, path: Path, progress: Callable[[int], None] | None = None) -> None:
         self.path = path
         self.where = str(path)
         self.count = 0
+        #: Told the documents read so far, every 1,024 (oracle.progress, through load_dump).
+        self.progress = progress
 
     def __iter__(self) -> Iterator[dict[str, Any]]:
         for doc in iter_bson(self.path):
             self.count += 1
+            if self.progress is not None and not self.count % 1024:
+                self.progress(self.count)
             yield doc
 
 
-def load_dump(store: Store, path: Path | str, *, neem_id: str | None = None, replace: bool = False) -> list[str]:
+def load_dump(store: Store, path: Path | str, *, neem_id: str | None = None, replace: bool = False,
+              progress: Tick | None = None) -> list[str]:
     """Load every NEEM found under ``path`` (a NEEM folder, a folder of them, or a hub dump).
 
     The id is the collection prefix, else the ``id`` in meta.json, else the folder name (a dump
@@ -283,6 +289,7 @@ def load_dump(store: Store, path: Path | str, *, neem_id: str | None = None, rep
     Each NEEM is loaded into a hidden staging NEEM and swapped in under its id only when every
     document was read, checked and counted (meta.json's ``documents``, when present, must match):
     on any error, or a kill, an existing NEEM of that id is untouched (``replace``).
+    ``progress`` (oracle.progress) is told the documents read, of those meta.json counts.
     """
     root = Path(path)
     if not root.is_dir():
@@ -313,6 +320,15 @@ def load_dump(store: Store, path: Path | str, *, neem_id: str | None = None, rep
     # Every NEEM is staged before any is swapped in, and the swaps are one transaction (on
     # SQLite): a bad second NEEM leaves the store as it was, not with the first one loaded.
     staged: list[str] = []
+    counted = [meta.get(COUNTS_KEY) for _, _, meta, _ in plans]
+    total = (sum(sum(int(n) for n in c.values() if isinstance(n, int)) for c in counted if isinstance(c, dict))
+             if all(isinstance(c, dict) for c in counted) else None)
+    loaded = 0
+
+    def told(read: int) -> None:
+        if progress is not None:
+            progress(loaded + read, total)
+
     try:
         for target, files, meta, folder in plans:
             counts = meta.pop(COUNTS_KEY, None)
@@ -321,8 +337,10 @@ def load_dump(store: Store, path: Path | str, *, neem_id: str | None = None, rep
             staged.append(staging)
             for kind in COLLECTION_KINDS:
                 if kind in files:
-                    docs = _Documents(files[kind])
+                    docs = _Documents(files[kind], told)
                     store.write_documents(staging, kind, docs)
+                    loaded += docs.count
+                    told(0)
                     expected = counts.get(kind) if isinstance(counts, dict) else None
                     if expected is not None and expected != docs.count:
                         raise StoreError(
