@@ -83,17 +83,24 @@ def run(args: argparse.Namespace) -> int:
             # the NEEMs are complete; only the kept fit (an optimisation) is left for the first rank
             print("interrupted: every NEEM is imported; its first rank will read and fit it", file=sys.stderr)
             return 130
-    for line in refused:
-        print(line, file=sys.stderr)
+    if refused:  # one line, as every refusal (the other users are imported)
+        shown = "; ".join(refused[:3]) + (f"; and {len(refused) - 3} more" if len(refused) > 3 else "")
+        print(f"error: {shown}" if len(refused) == 1 else f"error: {len(refused)} users not imported: {shown}",
+              file=sys.stderr)
     return 1 if refused else 0
 
 
 def _lines(path: Path) -> int | None:
     """The file's line count, the check's total (None when it cannot be read: the check says why)."""
+    from oracle.errors import ChainSyntaxError
+    from oracle.handed import Handed, open_handed
+
+    # Counted in chunks of a regular file only: a FIFO or a device is left to the check, which
+    # refuses it (a line count of /dev/zero would never end).
     try:
-        with path.open("rb") as handle:
-            return sum(1 for _ in handle)
-    except OSError:
+        with open_handed(path, Handed("chains", ChainSyntaxError)) as handle:
+            return sum(chunk.count(b"\n") for chunk in iter(lambda: handle.read(1 << 20), b""))
+    except (OSError, ChainSyntaxError):
         return None
 
 
@@ -103,8 +110,10 @@ def _keep(store: Store, onto: OdbOntology, report: dict[str, int], views: Mappin
     honoured here (a KeyboardInterrupt): a fit cut short keeps nothing."""
     from oracle.progress import bar
     from oracle.ranking import keep_neem
+    from oracle.trim import give_back
     from oracle.writtenview import keep_written
 
+    give_back(store)  # the writes' memory returned before the fits: their peaks do not add up
     public = {info.id for info in store.neems()}
     kept = [neem_id for neem_id in report if neem_id in public]
     with bar("fitting for the first rank", "NEEMs", len(kept)) as tick:

@@ -229,6 +229,11 @@ class Store(ABC):
     def transaction(self) -> AbstractContextManager[None]:
         """Group writes so they commit together (SQLite) or run as they come (MongoDB)."""
 
+    def shrink_memory(self) -> None:
+        """Give back what the store's connection caches in memory (a bulk write's pages), before
+        a long step that needs none of it; nothing for a store that keeps no such cache."""
+        return None
+
     def insert(self, neem_id: str, triples: Iterable[TripleRow]) -> int:
         """Store triples (``Triple``s or plain tuples of the same six values) with KnowRob's
         ``p*``/``o*`` closure; return how many were stored.

@@ -72,6 +72,10 @@ class SQLiteStore(Store):
     def close(self) -> None:
         self._conn.close()
 
+    def shrink_memory(self) -> None:
+        """SQLite's page cache (up to 64 MiB, cache_size) freed: an import's writes filled it."""
+        self._conn.execute("PRAGMA shrink_memory")
+
     def transaction(self) -> AbstractContextManager[None]:
         return self._conn.transaction()
 
