@@ -67,20 +67,21 @@ class ModeLogit:
 
 
 def ranked_modes(counts: ModeCounts, calls: Sequence[str], chain: Sequence[str], part: str | None,
-                 ) -> tuple[list[UsualMode], list[str | None]]:
+                 model: ModeLogit | None = None) -> tuple[list[UsualMode], list[str | None]]:
     """The usual mode of each ranked call and of each step of the predicted chain, in ``part``
     of the day (None: a NEEM without a clock): the logit's, with the counts of the most specific
     context that has any as its support (ModeCounts.usual). A call none of whose task's actions
     is known has no usual mode (None); one done the same way every time, at least OWN times (in
-    this part of the day, or else at all), keeps that mode."""
+    this part of the day, or else at all), keeps that mode. ``model``: ``fit_modes(counts)`` when
+    the caller kept it (the service fits it once per history, oracle.service.warm)."""
     at = part or NO_PART
-    model = fit_modes(counts)
+    logit = fit_modes(counts) if model is None else model
 
     def usual(call: str) -> UsualMode:
         counted = counts.usual(call, at)
         if counted.mode is None or _kept(counted):
             return counted
-        return UsualMode(model.predict(call, at), counted.context, counted.counts)
+        return UsualMode(logit.predict(call, at), counted.context, counted.counts)
 
     known = {call: usual(call) for call in {*calls, *chain}}  # the chain's steps are mostly ranked calls
     return [known[call] for call in calls], [known[call].mode for call in chain]

@@ -25,6 +25,7 @@ from oracle.timeline import Instant, TimeValueError, parse_iso
 from oracle.ontology import OdbOntology
 from oracle.bridge import HistoryRow
 from oracle.ranking import NeemRanker, finite, support_fields
+from oracle.service.warm import Warm
 from oracle.calls import call_of, check_call
 
 #: The forward tree is built for the top suggestion only: the page and the API offer its chain
@@ -153,6 +154,8 @@ class NeemSession:
         self.poses: dict[str, list[float]] = {}
         self.choice: dict[str, Any] | None = None
         self._keys = 0
+        #: What the answers derive from the history alone, fitted once per history.
+        self.warm = Warm()
 
     @property
     def predictor(self) -> Predictor:
@@ -207,17 +210,33 @@ class NeemSession:
         """Log the situation as the imagined one and the ranking as the imagined preference,
         in one transaction; the returned IRI is the preference's."""
         self.logger.available(situation.calls, situation.moment)
+        order = self.write_ranking(situation, ranking)
+        self.imagined(situation)
+        return order
+
+    def write_imagined(self, situation: Situation) -> None:
+        """Log the situation as the imagined one, committed (what the answer waits for)."""
+        self.logger.available(situation.calls, situation.moment)
+        self.logger.flush()
+        self.imagined(situation)
+
+    def write_ranking(self, situation: Situation, ranking: Ranking) -> str:
+        """Log the ranking as the imagined preference (the service writes it after the answer:
+        it is derived, and nothing the robot waits for); its IRI."""
         order = self.logger.preference(
             [(call_of(self.ontology, t.option), finite(t.score)) for t in ranking], situation.moment)
         self.logger.flush()
+        return order
+
+    def imagined(self, situation: Situation) -> None:
         self.pending = situation
         self.ranker.imagine(situation.calls, situation.when.seconds)
-        return order
 
     def describe(self, situation: Situation, ranking: Ranking, ms: float) -> SituationAnswer:
         calls = [str(call_of(self.ontology, t.option)) for t in ranking]
         chain = [str(call_of(self.ontology, o)) for o in ranking.chain()]
-        usual, chain_modes = ranked_modes(self.ranker.modes, calls, chain, situation.when.part_of_day)
+        usual, chain_modes = ranked_modes(self.ranker.modes, calls, chain, situation.when.part_of_day,
+                                          self.warm.modes(self.ranker))
         ranked = []
         for t, call, mode in zip(ranking, calls, usual, strict=True):
             entry = self._entry(t, call)

@@ -1,0 +1,117 @@
+"""What a situation's answer derives from the NEEM's history alone, kept per session until the
+history changes (issue 57: nothing that can wait on the answer's path).
+
+- The autonomy-mode logit (oracle.past.modelogit.fit_modes) changes only when an action is
+  counted: fitted once per count, not once per situation.
+- The routines mined from the actions done (oracle.past.routines), the episode in progress and
+  the routine it continues, likewise; only "has the user been idle since" depends on the
+  situation's time.
+
+The actions done are named by the ranker's steps: their number and the last step itself (a step is
+replaced, never changed, so ``is`` tells a new one). The engine refreshes both right after an
+action is answered (``warm``), off the answer's path; a situation that comes first fits them
+itself, with the same result.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from oracle.past.modelogit import ModeLogit, fit_modes
+from oracle.past.routines import Done, InProgress, Routine, begun_by, done_from_steps, mine_routines, recognise
+from oracle.past.routines import episodes_of
+from oracle.timeline import is_idle_gap
+
+if TYPE_CHECKING:
+    from oracle.ranking import NeemRanker
+
+
+def _version(ranker: NeemRanker) -> tuple[int, object]:
+    steps = ranker.steps
+    return len(steps), steps[-1] if steps else None
+
+
+def _same(a: tuple[int, object] | None, b: tuple[int, object]) -> bool:
+    return a is not None and a[0] == b[0] and a[1] is b[1]
+
+
+@dataclass
+class _Mined:
+    """The actions done by a time, the routines mined from them, and the routine the last
+    episode continues (before the idle test)."""
+
+    done: list[Done]
+    routines: list[Routine]
+    latest_end: float | None
+    found: InProgress | None
+
+
+@dataclass
+class Warm:
+    """One session's kept derivations (module docstring)."""
+
+    _modes: tuple[int, int, ModeLogit] | None = None
+    _done: tuple[tuple[int, object], float | None, list[Done]] | None = None
+    _mined: dict[int, _Mined] = field(default_factory=dict)
+
+    def modes(self, ranker: NeemRanker) -> ModeLogit:
+        """``fit_modes(ranker.modes)``, fitted once per history."""
+        counts = ranker.modes
+        # every action counted adds one to exactly one task's counts: their sum names the counts
+        total = sum(sum(counted.values()) for key, counted in counts.counts.items() if key[0] == "t")
+        if self._modes is None or self._modes[0] != id(counts) or self._modes[1] != total:
+            self._modes = (id(counts), total, fit_modes(counts))
+        return self._modes[2]
+
+    def done(self, ranker: NeemRanker) -> list[Done]:
+        """``done_from_steps`` of the ranker's steps (do not change the list)."""
+        version = _version(ranker)
+        if self._done is None or not _same(self._done[0], version) or self._done[1] != ranker.last_end:
+            self._done = (version, ranker.last_end, done_from_steps(ranker.steps, ranker.begins, ranker.last_end))
+            self._mined.clear()
+        return self._done[2]
+
+    def mined(self, ranker: NeemRanker, at: float) -> _Mined:
+        """The actions begun by ``at``, their routines and the routine their last episode continues."""
+        done = begun_by(self.done(ranker), at)
+        kept = self._mined.get(len(done))
+        if kept is None:
+            routines = mine_routines(done)
+            found = None
+            if done:
+                current = episodes_of(done)[-1]
+                found = recognise(routines, current.calls, current.hour)
+            kept = _Mined(done, routines, max(done, key=lambda d: d.begin).end if done else None, found)
+            self._mined = {len(done): kept}  # one time at once: the situation's
+        return kept
+
+    def in_progress(self, ranker: NeemRanker, at: float, stored: list[dict[str, Any]]) -> tuple[list[Routine], InProgress | None]:
+        """The routines (with the names the user gave, oracle.past.workflows) and the one in
+        progress at ``at``: oracle.past.routines.in_progress over ``mined``."""
+        from oracle.past.workflows import keep_user_names
+
+        mined = self.mined(ranker, at)
+        routines, _ = keep_user_names(mined.routines, stored)
+        if mined.latest_end is None or is_idle_gap(mined.latest_end, at):
+            return routines, None
+        found = mined.found
+        if found is None or not found.remaining:
+            return routines, None
+        return routines, _renamed(found, routines)
+
+    def warm(self, ranker: NeemRanker, at: float | None) -> None:
+        """Fit what the next situation needs now (after an action was answered)."""
+        self.modes(ranker)
+        if ranker.clocked and at is not None:
+            self.mined(ranker, at)
+
+
+def _renamed(found: InProgress, routines: list[Routine]) -> InProgress:
+    """``found`` with its routine as ``keep_user_names`` named it (same key)."""
+    import dataclasses
+
+    for routine in routines:
+        if routine.key == found.routine.key:
+            return dataclasses.replace(found, routine=routine)
+    return found
