@@ -17,11 +17,12 @@ from typing import TYPE_CHECKING, Annotated, Any, Literal, cast
 
 from fastapi import APIRouter, BackgroundTasks, Query, Request
 from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, StreamingResponse
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, ConfigDict, Field
 
 from oracle.errors import LoggingError
 from oracle.service import schemas as S
 from oracle.service.events import Event
+from oracle.service.examples import example
 from oracle.service.page import STATIC, render_page
 from oracle.service.tablet import decision_of as _decision, record_choice, recorded_choice
 
@@ -36,6 +37,7 @@ router = APIRouter(responses=S.ERRORS)
 
 
 class NewNeem(BaseModel):
+    model_config = ConfigDict(json_schema_extra=example("NewNeem"))
     user: str = Field(min_length=1, max_length=200, description="the user's name (kept in the NEEM, never logged)")
     neem: str | None = Field(None, description="NEEM id (default: made from the user's name)")
 
@@ -47,16 +49,19 @@ class Seen(BaseModel):
 
 
 class Perception(BaseModel):
+    model_config = ConfigDict(json_schema_extra=example("Perception"))
     objects: list[Seen] = Field(min_length=1, max_length=1000)
     at: Time = Field(None, description="unix seconds or ISO-8601 (default: now)")
 
 
 class SituationIn(BaseModel):
+    model_config = ConfigDict(json_schema_extra=example("SituationIn"))
     available: list[str] = Field(min_length=1, max_length=1000, description="calls in the chain syntax, e.g. pick(red_mug)")
     at: Time = Field(None, description="unix seconds or ISO-8601 (default: now)")
 
 
 class ActionIn(BaseModel):
+    model_config = ConfigDict(json_schema_extra=example("ActionIn"))
     call: str | None = Field(None, description="the task call, e.g. pick(red_mug)")
     phase: Literal["done", "begin", "end"] = Field(
         "done", description="done: begin (and end) given at once; begin: opens it; end: closes the open action `id`")
@@ -70,6 +75,7 @@ class ActionIn(BaseModel):
 
 
 class ChoiceIn(BaseModel):
+    model_config = ConfigDict(json_schema_extra=example("ChoiceIn"))
     task: str = Field(description="the task the user chose")
     workflow: list[str] | None = Field(None, description="the whole predicted chain, when chosen as one workflow")
     modes: list[Mode] | None = Field(None, max_length=1000, description=(
@@ -79,6 +85,7 @@ class ChoiceIn(BaseModel):
 
 
 class PrologIn(BaseModel):
+    model_config = ConfigDict(json_schema_extra=example("PrologIn"))
     query: str = Field(min_length=1, max_length=10_000, description="a Prolog goal, e.g. kb_call(executes_task(A, T))")
     bindings: dict[str, Any] = Field(default_factory=dict, max_length=100,
                                      description="values for named variables: strings are atoms")

@@ -1,5 +1,6 @@
 """The answers of the HTTP API as typed models: what /openapi.json documents is what is sent
-(every route declares its answer; every refusal is an ``ErrorAnswer``)."""
+(every route declares its answer; every refusal is an ``ErrorAnswer``), each with an example
+(oracle.service.examples)."""
 
 from __future__ import annotations
 
@@ -7,22 +8,27 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field
 
+from oracle.service.examples import example
+
 
 class Answer(BaseModel):
     model_config = ConfigDict(extra="allow")
 
 
 class ErrorAnswer(BaseModel):
+    model_config = ConfigDict(json_schema_extra=example("ErrorAnswer"))
     error: str = Field(description="one line saying what was wrong")
 
 
 class Health(Answer):
+    model_config = ConfigDict(extra="allow", json_schema_extra=example("Health"))
     ok: bool
     sessions: int
     subscribers: int
 
 
 class NeemListed(Answer):
+    model_config = ConfigDict(extra="allow", json_schema_extra=example("NeemListed"))
     id: str
     name: str | None = None
     user: str | None = None
@@ -31,12 +37,14 @@ class NeemListed(Answer):
 
 
 class NeemMade(Answer):
+    model_config = ConfigDict(extra="allow", json_schema_extra=example("NeemMade"))
     id: str
     name: str | None = None
     user: str
 
 
 class PerceptionAnswer(Answer):
+    model_config = ConfigDict(extra="allow", json_schema_extra=example("PerceptionAnswer"))
     neem: str
     objects: list[str]
     logged: list[str]
@@ -45,11 +53,13 @@ class PerceptionAnswer(Answer):
 class ModeSupport(BaseModel):
     """What a usual mode rests on: the most specific context with counts (``call and part``,
     ``call``, ``task and part``, ``task``, ``none``) and the modes counted there."""
+    model_config = ConfigDict(json_schema_extra=example("ModeSupport"))
     context: str | None = None
     counts: dict[str, int] = {}
 
 
 class RankedEntry(Answer):
+    model_config = ConfigDict(extra="allow", json_schema_extra=example("RankedEntry"))
     rank: int
     task: str = Field(description="the task call, e.g. pick(red_mug)")
     score: float | None = None
@@ -67,6 +77,7 @@ class RankedEntry(Answer):
 class RoutineNow(BaseModel):
     """The routine the user is in (oracle.past.routines.recognise): its key and name, how many of
     its steps are done, the calls that remain and how many."""
+    model_config = ConfigDict(json_schema_extra=example("RoutineNow"))
     key: str
     name: str
     done: int
@@ -77,6 +88,7 @@ class RoutineNow(BaseModel):
 
 
 class SituationAnswer(Answer):
+    model_config = ConfigDict(extra="allow", json_schema_extra=example("SituationAnswer"))
     neem: str
     ranking: list[RankedEntry]
     chain: list[str]
@@ -89,6 +101,7 @@ class SituationAnswer(Answer):
 
 
 class ActionAnswer(Answer):
+    model_config = ConfigDict(extra="allow", json_schema_extra=example("ActionAnswer"))
     neem: str
     id: str
     call: str
@@ -101,6 +114,7 @@ class ActionAnswer(Answer):
 
 
 class ChoiceAnswer(Answer):
+    model_config = ConfigDict(extra="allow", json_schema_extra=example("ChoiceAnswer"))
     neem: str
     task: str | None = Field(description="the task the user chose (the workflow's first step)")
     workflow: list[str] | None = None
@@ -110,18 +124,21 @@ class ChoiceAnswer(Answer):
 
 
 class SpokenAnswer(Answer):
+    model_config = ConfigDict(extra="allow", json_schema_extra=example("SpokenAnswer"))
     sentence: str = Field(description="English, for the robot's log and speech")
     said: str = Field(description="the same for the person, in plain words and the asked language")
     answer: dict[str, Any]
 
 
 class PrologAnswer(Answer):
+    model_config = ConfigDict(extra="allow", json_schema_extra=example("PrologAnswer"))
     solutions: list[dict[str, Any]]
     more: bool
     offset: int
 
 
 class TabletTask(BaseModel):
+    model_config = ConfigDict(json_schema_extra=example("TabletTask"))
     task: str = Field(description="the call, as the robot names it")
     rank: int
     said: str = Field(description="the task as a person says it")
@@ -131,6 +148,7 @@ class TabletTask(BaseModel):
 
 
 class TabletStep(BaseModel):
+    model_config = ConfigDict(json_schema_extra=example("TabletStep"))
     task: str
     said: str
     mode: str = Field("robot", description="who does the step unless the person changes it: the usual mode, else the robot")
@@ -138,6 +156,7 @@ class TabletStep(BaseModel):
 
 
 class TabletRoutine(BaseModel):
+    model_config = ConfigDict(json_schema_extra=example("TabletRoutine"))
     key: str
     name: str
     steps_left: int
@@ -146,6 +165,7 @@ class TabletRoutine(BaseModel):
 
 
 class TabletView(BaseModel):
+    model_config = ConfigDict(json_schema_extra=example("TabletView"))
     neem: str
     user: str | None
     lang: str
@@ -157,6 +177,7 @@ class TabletView(BaseModel):
 
 
 class Said(BaseModel):
+    model_config = ConfigDict(json_schema_extra=example("Said"))
     call: str
     said: str
 
@@ -165,6 +186,7 @@ class Said(BaseModel):
 class PastAnswer(Answer):
     """A question about the past (oracle.past.ask): its form, language, the answer in both
     languages and the evidence it rests on."""
+    model_config = ConfigDict(extra="allow", json_schema_extra=example("PastAnswer"))
     question: str
     form: str
     language: str
@@ -176,6 +198,7 @@ class PastAnswer(Answer):
 
 class StateSummary(Answer):
     """The NEEM's state summary (oracle.past.summary): what a language model may take as ground truth."""
+    model_config = ConfigDict(extra="allow", json_schema_extra=example("StateSummary"))
     format: int | str
     neem: str
     now: float | None = None
@@ -187,6 +210,7 @@ class StateSummary(Answer):
 
 class RoutinesAnswer(Answer):
     """The user's routines mined from the NEEM (oracle.past.mine) and the one in progress."""
+    model_config = ConfigDict(extra="allow", json_schema_extra=example("RoutinesAnswer"))
     now: float | None = None
     routines: list[dict[str, Any]] = []
     in_progress: dict[str, Any] | None = None
@@ -194,6 +218,7 @@ class RoutinesAnswer(Answer):
 
 class PrepareAnswer(Answer):
     """What is worth preparing now for the coming part of the day (oracle.past.mine)."""
+    model_config = ConfigDict(extra="allow", json_schema_extra=example("PrepareAnswer"))
 
 
 ERRORS: dict[int | str, dict[str, Any]] = {code: {"model": ErrorAnswer} for code in (400, 401, 403, 404, 405, 409, 422, 500)}
