@@ -5,7 +5,8 @@ service's rosbridge route (a websocket, as roslibpy calls it), beside the same q
 against. Two queries: ``X = 1`` (the transport alone) and a model query over a logged NEEM.
 
 Every client opens its connection as its library does: urllib and rospy a new one per call
-(rospy also asks the master where the service is), the websocket one for all. Rounds alternate
+(rospy also asks the master where the service is), the websocket one for all; the ROS door is
+measured a second time with persistent proxies (one connection), which leaves the door's own cost. Rounds alternate
 the three so each meets the same load. Needs ROS 1 (Debian's python3-rospy, python3-rosmaster)
 for the ROS figures; without it they are left out, said once.
 """
@@ -26,6 +27,9 @@ from oracle.benchmarks.security import call, free_port, start, stop
 QUERIES = ("X = 1", "kb_call(executes_task(A, T))")
 ROUNDS = 3
 ROS_PYTHON = "/usr/bin/python3"
+#: rospy's proxies as rosprolog_client makes them (a new connection and a master look-up per
+#: call), and persistent ones (one connection): the door's own cost without rospy's set-up.
+ROS_DOORS = ("rosprolog (ROS 1)", "ROS 1, persistent")
 #: The ROS client (Debian's python3): per query, ``n`` first solutions timed, in seconds.
 ROS_TIMER = r"""
 import json, sys, time, rospy
@@ -34,21 +38,22 @@ plan = json.loads(sys.argv[1])
 rospy.init_node("rosprolog_bench", anonymous=True, disable_signals=True)
 for name in ("query", "next_solution", "finish"):
     rospy.wait_for_service("/rosprolog/" + name, timeout=60)
-query = rospy.ServiceProxy("/rosprolog/query", PrologQuery)
-next_solution = rospy.ServiceProxy("/rosprolog/next_solution", PrologNextSolution)
-finish = rospy.ServiceProxy("/rosprolog/finish", PrologFinish)
 out = {}
-for text in plan["queries"]:
-    times = []
-    for i in range(plan["n"]):
-        qid = "bench_%d_%d" % (plan["round"], i)
-        started = time.perf_counter()
-        query(id=qid, query=text, mode=1)
-        answer = next_solution(id=qid)
-        times.append(time.perf_counter() - started)
-        finish(id=qid)
-        assert answer.status == 3, answer.solution
-    out[text] = times
+for persistent in (False, True):
+    query = rospy.ServiceProxy("/rosprolog/query", PrologQuery, persistent=persistent)
+    next_solution = rospy.ServiceProxy("/rosprolog/next_solution", PrologNextSolution, persistent=persistent)
+    finish = rospy.ServiceProxy("/rosprolog/finish", PrologFinish, persistent=persistent)
+    for text in plan["queries"]:
+        times = []
+        for i in range(plan["n"]):
+            qid = "bench_%d_%d_%d" % (plan["round"], persistent, i)
+            started = time.perf_counter()
+            query(id=qid, query=text, mode=1)
+            answer = next_solution(id=qid)
+            times.append(time.perf_counter() - started)
+            finish(id=qid)
+            assert answer.status == 3, answer.solution
+        out["%d %s" % (persistent, text)] = times
 print(json.dumps(out))
 """
 
@@ -149,8 +154,9 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
                     plan = json.dumps({"queries": list(QUERIES), "n": n, "round": round_})
                     done = subprocess.run([ROS_PYTHON, "-c", ROS_TIMER, plan], env=ros_env, capture_output=True, text=True,
                                           timeout=600, check=True)
-                    for text, values in json.loads(done.stdout.strip().splitlines()[-1]).items():
-                        times.setdefault(("rosprolog (ROS 1)", text), []).extend(values)
+                    for key, values in json.loads(done.stdout.strip().splitlines()[-1]).items():
+                        persistent, text = key.split(" ", 1)
+                        times.setdefault((ROS_DOORS[int(persistent)], text), []).extend(values)
         finally:
             for process in (door, master):
                 if process is not None:
@@ -160,11 +166,11 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
     rows: list[dict[str, Any]] = []
     for text in QUERIES:
         floor = _median(times[("/api/prolog", text)])
-        for door_name in ("/api/prolog", "rosbridge", "rosprolog (ROS 1)"):
+        for door_name in ("/api/prolog", "rosbridge", *ROS_DOORS):
             if (door_name, text) not in times:
                 continue
             median = _median(times[(door_name, text)])
-            print(f"  first solution of {text!r:34s} {door_name:18s} median {median * 1000:7.2f} ms"
+            print(f"  first solution of {text!r:34s} {door_name:19s} median {median * 1000:7.2f} ms"
                   f"  ({median / floor:.2f}x /api/prolog; {len(times[(door_name, text)])} calls)", flush=True)
             rows.append({"area": "rosprolog", "name": f"{door_name}: {text}", "median_ms": round(median * 1000, 3),
                          "ratio_to_api_prolog": round(median / floor, 3), "calls": len(times[(door_name, text)])})
