@@ -82,6 +82,7 @@ def test_call_by_service_name_checks_fields():
     assert queries.call("query", {"id": "q", "query": "xx", "mode": 1}) == {"ok": True, "message": ""}
     assert queries.call("next_solution", {"id": "q"}) == {"status": OK, "solution": json.dumps({"X": 1})}
     assert queries.call("finish", {"id": "q"}) == {}
+    assert queries.call("simple_query", {"id": "old", "query": "x"}) == {"ok": True, "message": ""}  # json_prolog's name
     for service, args in (("query", {"id": 1, "query": "x"}), ("query", {"id": "q", "query": "x", "mode": "1"}),
                           ("next_solution", {}), ("simple_query", {"id": "q"})):
         with pytest.raises(DoorError):

@@ -164,12 +164,15 @@ def test_topic_ops_taken_quietly_and_unknown_services_answered(service):
         {"op": "publish", "topic": "/tf", "msg": {}},
         {"op": "call_service", "id": "c1", "service": "/rosapi/topics", "args": {}},
         {"op": "call_service", "id": "c2", "service": "rosprolog/query", "args": {"id": "raw", "query": "X = 1", "mode": 1}},
+        {"op": "call_service", "id": "c3", "service": "/json_prolog/simple_query",
+         "args": {"id": "old", "query": "X = 2", "mode": 0}},
         {"op": "no_such_op"},
-    ], 3)
+    ], 4)
     by_id = {reply.get("id"): reply for reply in replies}
     assert by_id["c1"]["result"] is False and "does not exist" in by_id["c1"]["values"]
     assert by_id["c2"] == {"op": "service_response", "service": "rosprolog/query", "id": "c2", "result": True,
                            "values": {"ok": True, "message": ""}}
+    assert by_id["c3"]["values"] == {"ok": True, "message": ""}  # json_prolog's older name, as CRAM calls it
     assert by_id[None]["op"] == "status" and "no_such_op" in by_id[None]["msg"]
 
 

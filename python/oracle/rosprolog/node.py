@@ -2,7 +2,8 @@
 
 It imports nothing of this package: it generates the json_prolog_msgs service classes from the
 .srv files beside it (genpy, into the user's cache, once per version of the files), registers
-``/<ns>/query``, ``/<ns>/next_solution`` and ``/<ns>/finish`` with the master at
+``/<ns>/query``, ``/<ns>/next_solution`` and ``/<ns>/finish`` (and ``/<ns>/simple_query``,
+json_prolog's older name of query) with the master at
 ``ROS_MASTER_URI``, and forwards every call as one JSON line on stdout to the process that
 started it, which answers on stdin (``ros.py``). The pipes are private to the two processes: no
 port, no token. When stdin closes (that process ended) the node leaves the master.
@@ -128,6 +129,9 @@ def main(argv: list[str]) -> int:
         rospy.Service(f"/{namespace}/next_solution", srv.PrologNextSolution,
                       serve("next_solution", srv.PrologNextSolutionResponse, ("id",))),
         rospy.Service(f"/{namespace}/finish", srv.PrologFinish, serve("finish", srv.PrologFinishResponse, ("id",))),
+        # json_prolog's older name of query, which CRAM's client calls (with --namespace json_prolog)
+        rospy.Service(f"/{namespace}/simple_query", srv.PrologQuery,
+                      serve("query", srv.PrologQueryResponse, ("id", "query", "mode"))),
     ]
     with door.lock:
         sys.stdout.write(json.dumps({"ready": master, "classes": str(root)}) + "\n")

@@ -40,8 +40,9 @@ FINISH_ALL = "*"
 PAGE = 1000
 #: Queries open at once (every client's together); more are refused until some finish.
 MAX_OPEN = 256
-#: The three services, by the name after the namespace.
-SERVICES = ("query", "next_solution", "finish")
+#: The three services, by the name after the namespace; ``simple_query`` is ``query`` as the
+#: older json_prolog named it (CRAM's and openEASE's older clients call /json_prolog/simple_query).
+SERVICES = ("query", "next_solution", "finish", "simple_query")
 #: What the doors ask json_query/2 for: the client's text is bound to ``_Q``, never pasted in.
 READ_QUERY = "rosprolog_json:rosprolog_solution(_Q, S)"
 WRITE_QUERY = "rosprolog_json:rosprolog_solution_writing(_Q, S)"
@@ -159,7 +160,7 @@ class Queries:
     def call(self, service: str, args: dict[str, Any]) -> dict[str, Any]:
         """One service call by name (``query``, ``next_solution``, ``finish``) with the fields of
         its request, answered with the fields of its response (DoorError for a bad request)."""
-        if service == "query":
+        if service in ("query", "simple_query"):
             ok, message = self.query(_text(args, "id"), _text(args, "query"), _mode(args))
             return {"ok": ok, "message": message}
         if service == "next_solution":
@@ -168,7 +169,7 @@ class Queries:
         if service == "finish":
             self.finish(_text(args, "id"))
             return {}
-        raise DoorError(f"no service {service!r} (rosprolog has {', '.join(SERVICES)})")
+        raise DoorError(f"no service {service!r} (rosprolog has {', '.join(SERVICES[:3])})")
 
 
 def _text(args: dict[str, Any], name: str) -> str:

@@ -2,7 +2,8 @@
 
 A websocket at ``/rosbridge`` (and at ``/``, where roslibpy's ``Ros(host, port)`` connects)
 takes rosbridge's JSON operations: ``call_service`` for ``/rosprolog/query``,
-``/rosprolog/next_solution`` and ``/rosprolog/finish``, answered with ``service_response``
+``/rosprolog/next_solution`` and ``/rosprolog/finish`` (and json_prolog's older names,
+``/json_prolog/simple_query`` ...), answered with ``service_response``
 (``values``, ``result``); ``advertise``, ``publish``, ``subscribe`` and the other topic
 operations a client sends first are taken without an answer (no topic is served). The route
 passes the service's own checks (guard.Guard: Host, Origin, token) before it accepts, and asks
@@ -27,8 +28,8 @@ if TYPE_CHECKING:
 
 LOG = logging.getLogger("oracle.service")
 router = APIRouter()
-#: The namespace of the services (rosprolog's own).
-NAMESPACE = "rosprolog"
+#: The namespaces of the services: rosprolog's, and json_prolog's of older clients.
+NAMESPACES = ("rosprolog", "json_prolog")
 #: Operations a client may send that need no answer here (topics, and the bridge's own settings).
 QUIET_OPS = frozenset({"advertise", "unadvertise", "publish", "subscribe", "unsubscribe", "advertise_service",
                        "unadvertise_service", "set_level", "status", "auth"})
@@ -86,7 +87,7 @@ async def _serve(websocket: WebSocket) -> None:
                 task.add_done_callback(tasks.discard)
             elif message.get("op") not in QUIET_OPS:
                 await send({"op": "status", "level": "error", "id": message.get("id"),
-                            "msg": f"op {message.get('op')!r} is not served here (call_service for /{NAMESPACE}/...)"})
+                            "msg": f"op {message.get('op')!r} is not served here (call_service for /rosprolog/...)"})
     except (WebSocketDisconnect, RuntimeError):
         pass  # the client went away (RuntimeError: a send after the close)
     finally:
@@ -116,10 +117,10 @@ async def _call_service(queries: Queries, message: dict[str, Any], mine: set[str
         answer["id"] = message["id"]
     namespace, _, service = name.strip("/").rpartition("/")
     args = message.get("args") or {}
-    if namespace != NAMESPACE or service not in SERVICES:
-        return {**answer, "result": False, "values": f"Service {name} does not exist (this bridge serves /{NAMESPACE}/...)"}
+    if namespace not in NAMESPACES or service not in SERVICES:
+        return {**answer, "result": False, "values": f"Service {name} does not exist (this bridge serves /rosprolog/...)"}
     if isinstance(args, list):  # rosbridge also takes the request's fields in order
-        fields = {"query": ("mode", "id", "query")}.get(service, ("id",))
+        fields = ("mode", "id", "query") if service in ("query", "simple_query") else ("id",)
         args = dict(zip(fields, args))
     if not isinstance(args, dict):
         return {**answer, "result": False, "values": "the call's 'args' must be an object"}
