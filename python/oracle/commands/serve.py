@@ -122,7 +122,9 @@ def run(args: argparse.Namespace) -> int:
     print(f"serving {location}; the page: {page_url(args.host, args.port, token)} (API docs at /docs); Ctrl-C stops",
           flush=True)
     os.umask(0o077)  # anything the service writes (a new SQLite file's journal) stays private
-    server = _server(create_app(ctx), ctx.hub.close, limits)
+    app = create_app(ctx)
+    app.state.explore_replay = _explore_replay  # /explore's decisions; the product never imports the evaluation
+    server = _server(app, ctx.hub.close, limits)
     try:
         server.run(sockets=[listening])
     except KeyboardInterrupt:  # uvicorn raises the Ctrl-C it held once it has stopped
@@ -161,6 +163,13 @@ def _listen(host: str, port: int) -> Any:
                               "another service may be using it: pick another --port") from None
     sock.set_inheritable(True)
     return sock
+
+
+def _explore_replay(*args: Any, **kwargs: Any) -> Any:
+    """The replay /explore shows (oracle.evaluation.neem_replay), imported on its first use."""
+    from oracle.evaluation.neem_replay import replay_neem
+
+    return replay_neem(*args, **kwargs)
 
 
 def _server(app: Any, on_stop: Callable[[], None], limits: Any) -> Any:
