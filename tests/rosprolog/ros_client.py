@@ -1,7 +1,7 @@
 """A rospy client of the rosprolog door (run by Debian's python3, not by pytest's Python).
 
 Reads a plan on stdin: ``{"queries": [{"id", "query", "mode", "take", "finish"}], "parallel": N,
-"parallel_query": TEXT}``; calls /rosprolog/query, next_solution and finish through rospy's
+"parallel_query": TEXT, "namespace": NS}``; calls /rosprolog/query (or /NS/query), next_solution and finish through rospy's
 ServiceProxy with the door's generated json_prolog_msgs classes; prints one JSON line: each
 query's ``ok``, ``message`` and ``steps`` (``[status, solution]`` per next_solution, the last
 one after ``finish`` when asked), and for ``parallel`` clients at once the number of errors.
@@ -18,12 +18,16 @@ from json_prolog_msgs.srv import PrologFinish, PrologNextSolution, PrologQuery
 OK = 3
 
 
+NAMESPACE = ["rosprolog"]
+
+
 def proxies():
+    ns = NAMESPACE[0]
     for name in ("query", "next_solution", "finish"):
-        rospy.wait_for_service(f"/rosprolog/{name}", timeout=60)
-    return (rospy.ServiceProxy("/rosprolog/query", PrologQuery),
-            rospy.ServiceProxy("/rosprolog/next_solution", PrologNextSolution),
-            rospy.ServiceProxy("/rosprolog/finish", PrologFinish))
+        rospy.wait_for_service(f"/{ns}/{name}", timeout=60)
+    return (rospy.ServiceProxy(f"/{ns}/query", PrologQuery),
+            rospy.ServiceProxy(f"/{ns}/next_solution", PrologNextSolution),
+            rospy.ServiceProxy(f"/{ns}/finish", PrologFinish))
 
 
 def run(plan_item, query, next_solution, finish):
@@ -66,6 +70,7 @@ def crowd(count, text):
 
 def main():
     plan = json.loads(sys.stdin.read())
+    NAMESPACE[0] = plan.get("namespace", "rosprolog")
     rospy.init_node("rosprolog_test_client", anonymous=True, disable_signals=True)
     query, next_solution, finish = proxies()
     out = {"queries": [run(item, query, next_solution, finish) for item in plan.get("queries", [])]}

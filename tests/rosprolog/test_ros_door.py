@@ -64,9 +64,10 @@ def test_writes_where_allowed(neem_store, ros_env, tmp_path):
 
     store = tmp_path / "w.sqlite"
     shutil.copy(neem_store, store)
-    process, classes = start_door(store, ros_env, "--allow-prolog-writes", "--namespace", "rosprolog")
+    # its own namespace on the same master: the read-only door beside it keeps serving
+    process, classes = start_door(store, ros_env, "--allow-prolog-writes", "--namespace", "rosprolog_w")
     try:
-        result = ros_client({**ros_env, "PYTHONPATH": classes}, {"queries": [
+        result = ros_client({**ros_env, "PYTHONPATH": classes}, {"namespace": "rosprolog_w", "queries": [
             {"id": "w", "query": "kb_project(triple(door_test_s, door_test_p, door_test_o))", "mode": 1, "take": 1},
             {"id": "r", "query": "kb_call(triple(door_test_s, door_test_p, O))", "mode": 0},
         ]})
@@ -83,3 +84,9 @@ def test_no_master_is_one_line(neem_store, ros_env):
                           capture_output=True, text=True, timeout=120)
     assert done.returncode == 1
     assert "error: the rosprolog node did not start" in done.stderr and "no ROS master at http://127.0.0.1:9" in done.stderr
+
+
+def test_the_read_only_door_still_serves_after_another_came_and_went(door):
+    """(runs after test_writes_where_allowed: a second door on the same master replaced nothing)"""
+    result = ros_client(door, {"queries": [{"id": "again", "query": "X = 1", "mode": 1}]})
+    assert solutions(result["queries"][0]["steps"]) == [{"X": 1}]

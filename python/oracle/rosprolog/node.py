@@ -123,7 +123,9 @@ def main(argv: list[str]) -> int:
             return response(**values)
         return handle
 
-    rospy.init_node("rosprolog", disable_signals=True)
+    # named as rosprolog's node is (after its namespace): a second door of another namespace on
+    # the same master does not replace this one
+    rospy.init_node(namespace.replace("/", "_"), disable_signals=True)
     services = [
         rospy.Service(f"/{namespace}/query", srv.PrologQuery, serve("query", srv.PrologQueryResponse, ("id", "query", "mode"))),
         rospy.Service(f"/{namespace}/next_solution", srv.PrologNextSolution,
