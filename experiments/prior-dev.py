@@ -33,11 +33,30 @@ def main() -> int:
     parser.add_argument("--clip", type=int, default=3)
     parser.add_argument("--methods", default="personal")
     parser.add_argument("--no-baselines", action="store_true")
+    parser.add_argument("--set", action="append", default=[], metavar="METHOD:NAME=VALUE",
+                        help="a predictor parameter for one method column (e.g. personal:routine_start=1)")
     args = parser.parse_args()
     ontology = ontology_from(args)
     users = load_users(args.chains)
     check_users(ontology, users, str(args.chains))
-    methods: list = [OracleMethod(ontology, Hyperparameters(), method=m, served=True) for m in args.methods.split(",")]
+    methods: list = []
+    for column in args.methods.split(","):
+        method = column.split("@")[0]
+        made = OracleMethod(ontology, Hyperparameters(), name=column, method=method, served=True)
+        params = {name: float(value) for item in args.set for target, _, pair in [item.partition(":")]
+                  if target == column for name, _, value in [pair.partition("=")]}
+        if params:
+            build = made.reset
+
+            def reset(build=build, made=made, params=params) -> None:
+                build()
+                made.model.set_params(**params).fit([])
+                use = getattr(made.model, "use_prior", None)
+                if use is not None:
+                    use(made.prior)
+            made.reset = reset  # type: ignore[method-assign]
+            made.reset()
+        methods.append(made)
     if not args.no_baselines:
         methods += [learned_baselines(ontology.distances(), opening_tasks(ontology))[0], PopPPM(), NGram()]
     priors = leave_one_out(ontology, users, args.k, args.epsilon, args.clip) if args.population == "loo" else None

@@ -37,6 +37,7 @@ from oracle.past.modelogit import ranked_modes
 from oracle.timeline import IDLE_THRESHOLD_S, Instant, clock, has_clock, is_idle_gap, now, part_of_day_at
 
 if TYPE_CHECKING:
+    from oracle.algorithm.prior import Prior
     from oracle.bridge import Bridge, HistoryRow, HistoryView, LatestSituation
     from oracle.store import Store
 
@@ -67,11 +68,17 @@ class NeemRanking:
     pause: bool = False
 
 
-def make_predictor(ontology: OdbOntology, settings: Hyperparameters | None = None, method: str = DEFAULT) -> Predictor:
-    """The predictor ``method`` names (oracle.algorithm.predictors: ``pooled``, the default,
-    ``routine`` or ``thesis``) for ``ontology``'s tasks and distances, unfitted; ``settings`` (default: the
-    thesis's Table 4.2) apply to ``thesis``. What ``rank``, the service and the import fit."""
-    return make_named(method, ontology.distances(), opening_tasks(ontology), settings or Hyperparameters())
+def make_predictor(ontology: OdbOntology, settings: Hyperparameters | None = None, method: str = DEFAULT,
+                   prior: Prior | None = None) -> Predictor:
+    """The predictor ``method`` names (oracle.algorithm.predictors: ``personal``, the default,
+    ``pooled``, ``routine`` or ``thesis``) for ``ontology``'s tasks and distances, unfitted; ``settings`` (default: the
+    thesis's Table 4.2) apply to ``thesis``; ``prior``: the shared prior a predictor that takes one ranks with.
+    What ``rank``, the service and the import fit."""
+    model = make_named(method, ontology.distances(), opening_tasks(ontology), settings or Hyperparameters())
+    use = getattr(model, "use_prior", None)
+    if prior is not None and use is not None:
+        use(prior)
+    return model
 
 
 def finite(score: float) -> float:
@@ -106,6 +113,7 @@ def rank_neem(
     method: str = DEFAULT,
     cache: FitCache | None = None,
     histories: HistoryCache | None = None,
+    prior: Prior | None = None,
 ) -> NeemRanking:
     """Rank ``available`` (chain syntax) at ``at`` (default: now), or else the NEEM's latest
     imagined situation, at the part of day recorded with it (oracle.timeline's rule); a NEEM
@@ -119,7 +127,7 @@ def rank_neem(
     info = bridge.store.neem(bridge.neem_id)
     clocked = has_clock(info.meta)
     calls, instant, offered = _offer(bridge.neem_id, ontology, view, available, at, clocked)
-    ranker = NeemRanker(ontology, make_predictor(ontology, settings, method),
+    ranker = NeemRanker(ontology, make_predictor(ontology, settings, method, prior),
                         [row for row in view.rows if float(row["begin"]) < instant.seconds],
                         neem=bridge.neem_id, store=bridge.store, clocked=clocked, keep=not info.temporary, fits=cache)
     decision = ranker.rank(calls, instant)
@@ -244,6 +252,9 @@ class NeemRanker:
         self.begins: list[float] = [float(row["begin"]) for row in rows]
         self.predictor: Predictor = (fits or FitCache.default()).fitted(predictor, self.steps, store.location, neem, keep=keep,
                                                              kept=store)
+        prior = getattr(predictor, "prior", None)
+        if prior is not None:  # a kept fit comes back without the process's prior (never kept with it)
+            self.predictor.use_prior(prior)
         #: What the user did so far: the offer of an action logged without an imagined
         #: situation, and which ranked tasks were done before.
         self.done_before = DoneBefore()

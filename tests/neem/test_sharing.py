@@ -20,11 +20,11 @@ from tests.corpus.harness import run_cli
 COMMON = ["pick(apple)", "eat(apple)", "open(fridge)", "pick(red_mug)", "place(red_mug, counter_top)"]
 
 
-def _chains(path, users=6):
+def _chains(path, users=6, days=2):
     rows = []
     for u in range(users):
         minute = 0
-        for day in range(2):
+        for day in range(days):
             calls = COMMON + (["pick(banana)"] if u == 5 else [])  # only u5 ever picks a banana
             for call in calls:
                 rows.append({"user": f"u{u}", "time": f"2026-01-0{day + 1}T08:{minute:02d}:00", "duration": 20,
@@ -105,12 +105,15 @@ def test_every_count_written_has_k_users_and_the_cli_round_trip(tmp_path, onto):
     assert bad.code != 0 and "error:" in bad.stderr
 
 
+@pytest.mark.slow  # mongomock-ng runs the actions' join in pure Python: minutes
 def test_mongodb_counts_what_sqlite_counts(tmp_path, onto):
     import mongomock_ng as mongomock
 
     from oracle.store.mongo import MongoStore
 
-    sqlite, chains = _sqlite(tmp_path, onto)
+    chains = _chains(tmp_path / "c.jsonl", users=3, days=1)
+    sqlite = open_store(tmp_path / "s.sqlite")
+    import_chains(sqlite, onto, chains)
     mongo = MongoStore(mongomock.MongoClient(), "roslog")
     import_chains(mongo, onto, chains)
     for store in (sqlite, mongo):

@@ -39,9 +39,14 @@ PRIOR_COLUMNS = ("log-p-others", "log-p-others-0")
 class PersonalOracle(PooledOracle):
     """A per-user online logit over the evidence and the shared prior (module docstring)."""
 
+    _param_names = PooledOracle._param_names + ("prior_start", "routine_start")
+
     def __init__(self, distances: Any = None, *, pool_weight: float | str | Sequence[float] = 0.0,
-                 online_gate: float | None = None, **pooled: Any) -> None:
+                 online_gate: float | None = None, prior_start: float = 1.0, routine_start: float = 0.0,
+                 **pooled: Any) -> None:
         super().__init__(distances, pool_weight=pool_weight, online_gate=online_gate, **pooled)
+        self.prior_start = prior_start
+        self.routine_start = routine_start
         self._prior: Prior | None = None
 
     def use_prior(self, prior: Prior | None) -> PersonalOracle:
@@ -82,7 +87,9 @@ class PersonalOracle(PooledOracle):
     def _start(self) -> np.ndarray:
         """Where ``w`` starts: 1 on the backed-off prior, 0 elsewhere."""
         w = np.zeros(len(feature_names(self)) + len(PRIOR_COLUMNS))
-        w[-len(PRIOR_COLUMNS)] = 1.0
+        if self.prior is not None:
+            w[-len(PRIOR_COLUMNS)] = self.prior_start
+        w[0] = self.routine_start  # the routine predictor's first variant's log-probability
         return w
 
     def _learn(self, x: np.ndarray, offset: np.ndarray, truth: int) -> None:
@@ -92,7 +99,7 @@ class PersonalOracle(PooledOracle):
         super()._learn(x, offset, truth)
 
     def weights(self) -> np.ndarray | None:
-        if self.coef_ is None and self.prior is not None and hasattr(self, "variants_"):
+        if self.coef_ is None and (self.prior is not None or self.routine_start) and hasattr(self, "variants_"):
             return self._start()  # nothing learnt yet: the others' habits rank
         return super().weights()
 

@@ -153,5 +153,28 @@ def load_prior(path: Path | str, fingerprint: str | None = None) -> Prior:
     return prior
 
 
+def store_prior_path(location: str) -> Path | None:
+    """Where a store's own prior lives: ``PATH.prior.json`` beside a SQLite file (None for a server)."""
+    if "://" in location and not location.startswith("sqlite://"):
+        return None
+    return Path(location.removeprefix("sqlite://") + ".prior.json")
+
+
+def find_prior(given: str | None, location: str, ontology: Any = None) -> Prior | None:
+    """The prior ``--prior`` names ('none': none), else the store's own if it has one; checked
+    against ``ontology``'s fingerprint."""
+    if given == "none":
+        return None
+    fingerprint = None
+    if ontology is not None:
+        from oracle.ontology.provenance import fingerprint as of
+
+        fingerprint = of(ontology)
+    if given is not None:
+        return load_prior(given, fingerprint)
+    own = store_prior_path(location)
+    return load_prior(own, fingerprint) if own is not None and own.is_file() else None
+
+
 __all__ = ["DEFAULT_CLIP", "DEFAULT_K", "FORMAT", "IDLE", "MAX_ORDER", "VERSION", "Context", "Prior", "PriorError",
-           "load_prior", "option_key", "task_key"]
+           "find_prior", "load_prior", "option_key", "store_prior_path", "task_key"]

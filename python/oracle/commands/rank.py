@@ -20,6 +20,9 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     parser.add_argument("--no-write", "--dry-run", dest="no_write", action="store_true",
                         help="write nothing into the NEEM (a ranking of --available without --at, a what-if at "
                              "the present moment, is never written)")
+    parser.add_argument("--prior", metavar="PRIOR.json",
+                        help="rank with this shared prior ('prior build'; default: the store's own, STORE.prior.json "
+                             "beside a SQLite store, if there is one; 'none': without)")
     add_options(parser, JSON, *ONTOLOGY_OPTIONS)
     parser.set_defaults(handler=run)
 
@@ -42,7 +45,10 @@ def run(args: argparse.Namespace) -> int:
     exploring = args.available is not None and at is None
     write = not args.no_write and not exploring
     bridge, onto = connect(args, write=write)
-    result = rank_neem(bridge, onto, settings, args.available, at, write=write, method=method)
+    from oracle.algorithm.prior import find_prior
+
+    prior = find_prior(args.prior, bridge.store.location, onto)
+    result = rank_neem(bridge, onto, settings, args.available, at, write=write, method=method, prior=prior)
     if exploring and not args.no_write:
         result = replace(result, note=_joined(result.note, "not written: --available without --at ranks a what-if "
                                                             "at the present moment (give --at to record a decision)"))
