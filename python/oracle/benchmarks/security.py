@@ -32,6 +32,9 @@ ENDLESS_QUERY = "between(1, inf, X), X < 0"
 class Service:
     process: subprocess.Popen[bytes]
     port: int
+    #: Where the service's stderr (its request log) goes: a file, never an unread pipe, which
+    #: fills after some 1,000 requests and then blocks the service's event loop on its next line.
+    log: Any = None
 
     @property
     def url(self) -> str:
@@ -53,20 +56,27 @@ def free_port() -> int:
 
 def start(store: Path, *extra: str, port: int | None = None, wait_s: float = 120) -> Service:
     """``oracle serve`` over ``store``, once it answers /api/health."""
+    import tempfile
+
     port = port or free_port()
+    log = tempfile.TemporaryFile()
     process = subprocess.Popen([sys.executable, "-m", "oracle", "serve", "--store", str(store), "--port", str(port), *extra],
-                               stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+                               stdout=subprocess.DEVNULL, stderr=log)
     deadline = time.monotonic() + wait_s
     while time.monotonic() < deadline:
         try:
             urllib.request.urlopen(f"http://127.0.0.1:{port}/api/health", timeout=2).read()
-            return Service(process, port)
+            return Service(process, port, log)
         except OSError:
             if process.poll() is not None:
                 break
             time.sleep(0.1)
     process.kill()
-    raise RuntimeError(f"the service did not start: {process.stderr.read().decode() if process.stderr else ''}")
+    process.wait()
+    log.seek(0)
+    said = log.read().decode(errors="replace")
+    log.close()
+    raise RuntimeError(f"the service did not start: {said}")
 
 
 def stop(service: Service) -> None:
@@ -76,6 +86,8 @@ def stop(service: Service) -> None:
     except subprocess.TimeoutExpired:
         service.process.kill()
         service.process.wait()
+    if service.log is not None:
+        service.log.close()
 
 
 def call(url: str, path: str, body: object = None, headers: dict[str, str] | None = None,
