@@ -88,7 +88,7 @@ class Limits:
     header_seconds: float = 5.0
     #: Open connections from one client address, and from all: beyond, the oldest idle one
     #: (no request in progress) is closed to make room, else the new one gets 503.
-    peer_connections: int = 128
+    peer_connections: int = 256
     connections: int = 512
     #: After an early answer (413, 408), what of the rest of the body is read and dropped so
     #: the client reads the answer rather than a reset: bytes and seconds.
