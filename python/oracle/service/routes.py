@@ -17,11 +17,12 @@ from typing import TYPE_CHECKING, Annotated, Any, Literal, cast
 
 from fastapi import APIRouter, BackgroundTasks, Query, Request
 from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, StreamingResponse
-from pydantic import BaseModel, Field
+from pydantic import BaseModel, ConfigDict, Field
 
 from oracle.errors import LoggingError
 from oracle.service import schemas as S
 from oracle.service.events import Event
+from oracle.service.examples import example
 from oracle.service.page import STATIC, render_page
 from oracle.service.tablet import decision_of as _decision, record_choice, recorded_choice
 
@@ -36,6 +37,7 @@ router = APIRouter(responses=S.ERRORS)
 
 
 class NewNeem(BaseModel):
+    model_config = ConfigDict(json_schema_extra=example("NewNeem"))
     user: str = Field(min_length=1, max_length=200, description="the user's name (kept in the NEEM, never logged)")
     neem: str | None = Field(None, description="NEEM id (default: made from the user's name)")
 
@@ -47,16 +49,19 @@ class Seen(BaseModel):
 
 
 class Perception(BaseModel):
+    model_config = ConfigDict(json_schema_extra=example("Perception"))
     objects: list[Seen] = Field(min_length=1, max_length=1000)
     at: Time = Field(None, description="unix seconds or ISO-8601 (default: now)")
 
 
 class SituationIn(BaseModel):
+    model_config = ConfigDict(json_schema_extra=example("SituationIn"))
     available: list[str] = Field(min_length=1, max_length=1000, description="calls in the chain syntax, e.g. pick(red_mug)")
     at: Time = Field(None, description="unix seconds or ISO-8601 (default: now)")
 
 
 class ActionIn(BaseModel):
+    model_config = ConfigDict(json_schema_extra=example("ActionIn"))
     call: str | None = Field(None, description="the task call, e.g. pick(red_mug)")
     phase: Literal["done", "begin", "end"] = Field(
         "done", description="done: begin (and end) given at once; begin: opens it; end: closes the open action `id`")
@@ -70,6 +75,7 @@ class ActionIn(BaseModel):
 
 
 class ChoiceIn(BaseModel):
+    model_config = ConfigDict(json_schema_extra=example("ChoiceIn"))
     task: str = Field(description="the task the user chose")
     workflow: list[str] | None = Field(None, description="the whole predicted chain, when chosen as one workflow")
     modes: list[Mode] | None = Field(None, max_length=1000, description=(
@@ -79,6 +85,7 @@ class ChoiceIn(BaseModel):
 
 
 class PrologIn(BaseModel):
+    model_config = ConfigDict(json_schema_extra=example("PrologIn"))
     query: str = Field(min_length=1, max_length=10_000, description="a Prolog goal, e.g. kb_call(executes_task(A, T))")
     bindings: dict[str, Any] = Field(default_factory=dict, max_length=100,
                                      description="values for named variables: strings are atoms")
@@ -147,9 +154,9 @@ async def perception(neem: str, body: Perception, request: Request) -> dict[str,
 @router.post("/api/neems/{neem}/situation", tags=["robot"], response_model=S.SituationAnswer)
 async def situation(neem: str, body: SituationIn, request: Request, background: BackgroundTasks) -> JSONResponse:
     """Log the available tasks as the imagined situation, rank them, write the ranking back as
-    the imagined preference. The answer is sent once the write is committed (with serve
-    --write-behind: as soon as the ranking is known, the write being the next job on the engine
-    thread, before any later request). The Server-Timing header
+    the imagined preference. The answer is sent once the situation is committed; the ranking is
+    written right after it (derived: nothing the robot waits for), as the next job on the engine
+    thread, before any later request (with serve --write-behind the situation too). The Server-Timing header
     says how long the job waited for the engine thread and how long it ran (ms)."""
     ctx = _ctx(request)
     queued = time.perf_counter()
@@ -161,22 +168,16 @@ async def situation(neem: str, body: SituationIn, request: Request, background: 
         answer = cast(dict[str, Any], session.describe(found, ranking, ms))
         answer["routine"] = routine_now(ctx.engine, session, found.when.seconds)
         if not ctx.write_behind:  # committed in the same job: acknowledged means on disk
-            session.write_situation(found, ranking)
+            session.write_imagined(found)
         return session.neem, found, ranking, answer, started, time.perf_counter()
 
     neem, found, ranking, answer, started, done = await ctx.thread.run(job)
     timing = f"queue;dur={(started - queued) * 1000:.3f}, engine;dur={(done - started) * 1000:.3f}"
-    write = lambda: ctx.engine.session(neem).write_situation(found, ranking)  # noqa: E731
     if ctx.write_behind:
-        # The write is queued now (so no later request overtakes it) but waits until the answer
-        # is on the wire: run at once, it holds the GIL while the event loop sends the answer.
-        sent = threading.Event()
-        ctx.thread.submit(_after, sent, write)
-
-        async def release() -> None:
-            sent.set()
-
-        background.add_task(release)
+        write = lambda: ctx.engine.session(neem).write_situation(found, ranking)  # noqa: E731
+    else:  # the ranking written back after the answer: derived, nothing the robot waits for
+        write = lambda: ctx.engine.session(neem).write_ranking(found, ranking)  # noqa: E731
+    _after_answer(ctx, background, write)
     ctx.hub.publish(Event("situation", neem, answer))
     # answered as JSON directly: FastAPI's jsonable_encoder walks every field of the ranking and
     # cost more than the ranking itself (0.6 ms against 0.8 ms for 15 tasks); the values are plain
@@ -188,18 +189,27 @@ def routine_now(engine: Any, session: NeemSession, at: float) -> dict[str, Any] 
     the session's predictor already holds, with who usually does each step that remains: only
     the user's names are read from the NEEM (one Prolog query); None on a NEEM without a clock
     (its begins are positions, not times of day)."""
-    from oracle.past.mine import neem_routines
-    from oracle.past.routines import done_from_steps
-
     ranker = session.ranker
     if not ranker.clocked:
         return None
-    done = done_from_steps(ranker.steps, ranker.begins, ranker.last_end)
-    current = neem_routines(engine.bridge(session.neem), at, done=done).current
+    # as oracle.past.mine.neem_routines finds it, from what the session keeps per history
+    _, current = session.warm.in_progress(ranker, at, engine.past.stored(engine.bridge(session.neem)))
     if current is None:
         return None
     return {**current.to_json(), "steps_left": len(current.remaining),
             "remaining_modes": [session.usual_mode(call, at) for call in current.remaining]}
+
+
+def _after_answer(ctx: Any, background: BackgroundTasks, work: Any) -> None:
+    """``work`` queued on the engine thread now (so no later request overtakes it) but run once
+    the answer is on the wire: run at once, it would hold the GIL while the event loop sends it."""
+    sent = threading.Event()
+    ctx.thread.submit(_after, sent, work)
+
+    async def release() -> None:
+        sent.set()
+
+    background.add_task(release)
 
 
 def _after(sent: threading.Event, write: Any) -> None:
@@ -220,16 +230,19 @@ async def latest_situation(neem: str, request: Request) -> dict[str, Any]:
 
 
 @router.post("/api/neems/{neem}/actions", tags=["robot"], response_model=S.ActionAnswer)
-async def action(neem: str, body: ActionIn, request: Request) -> dict[str, Any]:
+async def action(neem: str, body: ActionIn, request: Request, background: BackgroundTasks) -> dict[str, Any]:
     """An executed action. `done` logs it at once; `begin` keeps it open (in memory) until its
     `end`. A gap of the logger's idle threshold before it is logged as an idle action."""
     ctx = _ctx(request)
 
-    def job() -> tuple[str, dict[str, Any]]:
+    def job() -> tuple[NeemSession, dict[str, Any]]:
         session = ctx.engine.session(neem)
-        return session.neem, _logged_action(session, body)
+        return session, _logged_action(session, body)
 
-    neem, answer = await ctx.thread.run(job)
+    session, answer = await ctx.thread.run(job)
+    neem = session.neem
+    if not answer.get("open"):  # what the next situation derives from the history, fitted now
+        _after_answer(ctx, background, lambda: session.warm.warm(session.ranker, session.ranker.last_end))
     ctx.hub.publish(Event("action", neem, answer))
     return {"neem": neem, **answer}
 
