@@ -4,13 +4,14 @@ VENV ?= .venv
 PY := $(VENV)/bin/python
 PLT := $(sort $(shell find prolog -name '*.plt'))
 
-.PHONY: setup test lint test-python test-prolog bench demo results up up-host down test-mongo clean help
+.PHONY: setup test lint test-python test-prolog bench fuzz demo results up up-host down test-mongo clean help
 
 help:
 	@echo "make setup      install python3-venv and SWI-Prolog (Debian) if missing, create $(VENV), install the package"
 	@echo "make test       lint, plunit suites, then pytest (the tests marked slow too where CI is set, or with SLOW=1)"
 	@echo "make lint       ruff and mypy (config in pyproject.toml)"
 	@echo "make bench      benchmarks (printed figures)"
+	@echo "make fuzz       atheris on every fuzz target (FUZZ_SECONDS each, default 600) and a longer schemathesis run"
 	@echo "make demo       the main job on the embedded default store"
 	@echo "make results    regenerate docs/results.md's figures into out/ (13-30 min; SHARED=DIR: the real datasets; experiments/README.md)"
 	@echo "make up/down    docker compose dev stack with MongoDB (needs a Docker engine); make up-host: MongoDB also on 127.0.0.1"
@@ -58,6 +59,12 @@ test-python:
 
 bench:
 	$(PY) -m oracle bench
+
+# make test runs each atheris target 30 s and schemathesis ~1,000 requests (tests/fuzz); this runs
+# them longer. A crash is left in pytest's temporary folder: save it under tests/fuzz/regressions/.
+FUZZ_SECONDS ?= 600
+fuzz:
+	NEEM_FUZZ_SECONDS=$(FUZZ_SECONDS) NEEM_SCHEMATHESIS_EXAMPLES=200 $(PY) -m pytest -q -n 0 -p no:cacheprovider tests/fuzz
 
 demo:
 	$(PY) -m oracle demo
