@@ -32,7 +32,8 @@ def test_import_rank_why_not_and_evaluate_the_examples(tmp_path, capsys):
     store = str(tmp_path / "tea.sqlite")
     settings = str(EXAMPLES / "settings.yaml")
     assert main(["import", str(EXAMPLES / "chains.jsonl"), *ONTOLOGY, "--store", store]) == 0
-    assert capsys.readouterr().out.split("\t", 1)[1] == "ada\t10 actions\n"  # id, name, actions
+    # id, name, actions as neems counts them: the 10 rows and the break logged between them
+    assert capsys.readouterr().out.split("\t", 1)[1] == "ada\t11 actions (10 rows and 1 break, logged as idle actions)\n"
     assert main(["rank", "--store", store, "--settings", settings, "--json", "--no-write",
                  "--available", "pick(teapot)", "pick(mug)", "drink_from(mug)", "--at", "2026-03-04T07:35:00"]) == 0
     ranking = json.loads(capsys.readouterr().out)

@@ -395,7 +395,7 @@ for name, args, expected in [
     ("import-odb-missing", "import {good} --store {store} --odb {tmp}/none", "odb folder not found"),
     ("import-mapping-missing", "import {good} --store {store} --mapping {tmp}/none.yaml", "cannot read"),
     ("import-soma-missing", "import {good} --store {store} --soma {tmp}/none", "none"),
-    ("no-command", "", "command"), ("unknown-command", "explode", "invalid choice"), ("unknown-option", "neems --store {store} --colour", "unrecognized"),
+    ("no-command", "", "command"), ("unknown-command", "explode", "no such command"), ("unknown-option", "neems --store {store} --colour", "unrecognized"),
     ("demo-bad-days", "demo --store {store} --days=-1", "--days"), ("demo-zero-days", "demo --store {store} --days 0", "--days"),
     ("demo-huge-days", "demo --store {store} --days 100000000", "--days"),
 ]:

@@ -161,5 +161,6 @@ def _print(report: dict[str, int], store: Store) -> None:
     names.update((str(info.meta.get(STAGING)), info.meta.get(ALIAS_KEY)) for info in store.staging_neems())
     for neem_id, count in report.items():
         total = summarize_neem(store, neem_id, infos[neem_id]).actions if neem_id in infos else count
-        breaks = f" ({count} rows and {total - count} breaks, logged as idle actions)" if total > count else ""
+        idle = total - count
+        breaks = f" ({count} rows and {idle} break{'s' if idle != 1 else ''}, logged as idle actions)" if idle > 0 else ""
         print(f"{neem_id}\t{names.get(neem_id) or '-'}\t{total} actions{breaks}")
