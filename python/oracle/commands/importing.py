@@ -72,7 +72,7 @@ def run(args: argparse.Namespace) -> int:
             raise
         except KeyboardInterrupt:
             _print(report, store)
-            print(f"interrupted: {sum(report.values())} actions committed (an unfinished NEEM is listed as"
+            print(f"interrupted: {sum(report.values())} rows committed (an unfinished NEEM is listed as"
                   " INCOMPLETE by 'neems')", file=sys.stderr)
             return 130
         _print(report, store)
