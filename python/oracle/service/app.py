@@ -23,6 +23,7 @@ from fastapi.responses import JSONResponse, Response
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from oracle.errors import NeemOracleError
+from oracle.service.explore_routes import router as explore_router
 from oracle.service.engine import Engine, EngineThread, NotFound, Overloaded, PrologRefused
 from oracle.service.events import EventHub
 from oracle.service.guard import STATIC_DOCS, Guard, Limits, allowed_hosts
@@ -81,6 +82,7 @@ def create_app(ctx: Context) -> FastAPI:
     app.state.ctx = ctx
     app.include_router(router)
     app.include_router(past_router)
+    app.include_router(explore_router)
     app.include_router(rosbridge_router)  # KnowRob's roslibpy/roslibjs clients (docs/knowrob.md)
     _offline_docs(app)
     app.add_middleware(Guard, ctx=ctx, token_page=_token_page)

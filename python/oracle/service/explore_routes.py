@@ -1,0 +1,206 @@
+"""The researcher's NEEM explorer (``/explore``): one page, and one read-only data route per view.
+
+- ``/explore/api/neems``: the store's NEEMs (user, span, action count, ontology, consent);
+- ``/explore/api/neems/{neem}/timeline``: the history as the oracle reads it (actions, idle
+  actions, the situation each was chosen in), compact;
+- ``/explore/api/neems/{neem}/decisions``: each decision replayed as ``evaluate`` replays it (the
+  predictor's order, what the user did, the truth's rank) and the rolling Top-1/3/5 curve.
+The routines come from ``/api/neems/{neem}/routines`` and the console asks ``/api/prolog``: the
+page uses those routes as they are, so its answers and refusals are theirs.
+
+The product never imports the evaluation (tests/test_architecture.py): the replay is handed in
+by whoever builds the app, as ``app.state.explore_replay`` (the ``serve`` command; tests). A
+replay of a long NEEM takes tens of seconds (37 s at 10,000 actions), so it runs once per NEEM
+state in a worker thread, off the engine thread the robot's calls wait on; the route answers 202
+until it is done.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import threading
+from collections import OrderedDict
+from collections.abc import Sequence
+from concurrent.futures import Future, ThreadPoolExecutor
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Protocol
+
+from fastapi import APIRouter, Query, Request
+from fastapi.responses import FileResponse, HTMLResponse, JSONResponse
+
+from oracle.service.explore_page import EXPLORE_FILES, EXPLORE_STATIC, render_explore
+
+if TYPE_CHECKING:
+    from oracle.algorithm.params import Hyperparameters
+    from oracle.bridge.records import HistoryRow
+    from oracle.ontology import OdbOntology
+    from oracle.service.app import Context
+
+router = APIRouter(include_in_schema=False)  # the page's own data, shaped for it, not an API
+#: Replays kept (one per NEEM state and predictor); each holds a few MB at 10,000 decisions.
+KEPT_REPLAYS = 4
+#: Calls of the predictor's order kept per decision (the page shows them).
+SHOWN = 10
+
+
+class Replayed(Protocol):
+    """What a replay hands back (oracle.evaluation.neem_replay.NeemReplay)."""
+
+    @property
+    def decisions(self) -> Sequence[Any]: ...
+    @property
+    def summary(self) -> dict[str, Any]: ...
+    @property
+    def method(self) -> str: ...
+    def rolling(self, window: int) -> dict[str, list[float]]: ...
+
+
+class Replayer(Protocol):
+    def __call__(self, ontology: OdbOntology, settings: Hyperparameters, method: str, rows: Sequence[HistoryRow],
+                 user: str, keep: int = ...) -> Replayed: ...
+
+
+@dataclass
+class ExploreState:
+    """Replays done or running, by (NEEM id, its history's length and last begin, predictor)."""
+
+    replays: OrderedDict[tuple[Any, ...], Future[Replayed]] = field(default_factory=OrderedDict)
+    lock: threading.Lock = field(default_factory=threading.Lock)
+    # one replay at a time: two would only share the cores the robot's calls need
+    pool: ThreadPoolExecutor = field(default_factory=lambda: ThreadPoolExecutor(1, thread_name_prefix="explore-replay"))
+
+
+def _state(request: Request) -> ExploreState:
+    state = getattr(request.app.state, "explore", None)
+    if state is None:
+        state = request.app.state.explore = ExploreState()
+    assert isinstance(state, ExploreState)
+    return state
+
+
+def _ctx(request: Request) -> Context:
+    ctx: Context = request.app.state.ctx
+    return ctx
+
+
+@router.get("/explore", response_class=HTMLResponse)
+async def explore_page(request: Request, neem: str | None = None) -> HTMLResponse:
+    ctx = _ctx(request)
+    # the NEEM shown first is named in the page, so it asks for the list and the timeline at once
+    chosen = neem or ctx.default_neem or await ctx.thread.run(ctx.engine.newest)
+    return HTMLResponse(render_explore(chosen, ctx.token), headers=PAGE_HEADERS)
+
+
+@router.get(EXPLORE_STATIC + "{name}")
+async def explore_static(name: str) -> FileResponse:
+    """The explorer's script and style (nothing else is served from its folder)."""
+    if name not in EXPLORE_FILES:
+        from starlette.exceptions import HTTPException
+
+        raise HTTPException(404, "Not Found")
+    path, media = EXPLORE_FILES[name]
+    return FileResponse(path, media_type=media, headers={"Cache-Control": "no-cache"})
+
+
+def _neems(ctx: Context) -> list[dict[str, Any]]:
+    from oracle.neem.query import summarize_neem
+    from oracle.store.ids import alias_of
+
+    out = []
+    for info in ctx.engine.store.neems():
+        summary = summarize_neem(ctx.engine.store, info.id, info)
+        ontology = info.meta.get("ontology")
+        out.append({"id": info.id, "name": alias_of(info), "user": info.user, "actions": summary.actions,
+                    "begin": summary.begin, "end": summary.end, "temporary": info.temporary,
+                    "ontology": _ontology_said(ontology, info.meta.get("model_version")),
+                    "consent": info.meta.get("consent")})
+    return out
+
+
+def _ontology_said(ontology: Any, model: Any) -> str:
+    """The NEEM's ontology in a few words: its files where it names them, else its fingerprint."""
+    if isinstance(ontology, dict):
+        files = [f"{k} {v}" for k, v in ontology.items() if k in ("odb", "mapping", "soma", "owl") and v]
+        said = ", ".join(files) or "the sample kitchen"
+        if ontology.get("fingerprint"):
+            said += f" (fingerprint {ontology['fingerprint']})"
+        return said
+    return str(model or "not recorded")
+
+
+@router.get("/explore/api/neems")
+async def explore_neems(request: Request) -> list[dict[str, Any]]:
+    ctx = _ctx(request)
+    return await ctx.thread.run(_neems, ctx)
+
+
+def _view(ctx: Context, neem: str) -> tuple[str, str, list[HistoryRow]]:
+    from oracle.historycache import HistoryCache
+
+    neem_id = ctx.engine.resolve(neem)
+    info = ctx.engine.store.neem(neem_id)
+    rows = HistoryCache.default().view(ctx.engine.bridge(neem_id)).rows
+    return neem_id, info.user or neem_id, rows
+
+
+@router.get("/explore/api/neems/{neem}/timeline")
+async def explore_timeline(neem: str, request: Request) -> dict[str, Any]:
+    """The history compact (historycache.compact's shape): ``calls``, ``sets`` of available call
+    indexes, and ``rows`` flat, six values each: begin, end, call, part of day, set (-1: none),
+    mode. Idle actions are the call ``idle``."""
+    from oracle.historycache import compact
+
+    ctx = _ctx(request)
+    neem_id, user, rows = await ctx.thread.run(_view, ctx, neem)
+    return {"neem": neem_id, "user": user, **compact(rows)}
+
+
+@router.get("/explore/api/neems/{neem}/decisions")
+async def explore_decisions(neem: str, request: Request,
+                            window: int = Query(100, ge=5, le=5000, description="decisions in the rolling window")) -> Any:
+    """Every decision replayed: ``begin``, ``truth`` and ``ranked`` as call indexes, ``rank`` of the
+    truth (0: not offered), ``candidates``; the rolling Top-k; ``summary``: evaluate's figures."""
+    ctx = _ctx(request)
+    replayer: Replayer | None = getattr(request.app.state, "explore_replay", None)
+    if replayer is None:
+        return JSONResponse({"error": "this service was built without the replay (python -m oracle serve hands it in)"},
+                            status_code=501)
+    neem_id, user, rows = await ctx.thread.run(_view, ctx, neem)
+    state = _state(request)
+    key = (neem_id, len(rows), rows[-1]["begin"] if rows else None, ctx.engine.method, repr(ctx.engine.settings))
+    with state.lock:
+        future = state.replays.get(key)
+        if future is None:
+            future = state.pool.submit(replayer, ctx.engine.ontology, ctx.engine.settings, ctx.engine.method, rows, user, SHOWN)
+            state.replays[key] = future
+            while len(state.replays) > KEPT_REPLAYS:
+                state.replays.popitem(last=False)
+    if not future.done():
+        return JSONResponse({"pending": True, "decisions": sum(1 for r in rows if r["call"] != "idle")}, status_code=202)
+    replayed = await asyncio.wrap_future(future)
+    return _decisions_json(replayed, window)
+
+
+def _decisions_json(replayed: Replayed, window: int) -> dict[str, Any]:
+    calls: dict[str, int] = {}
+    begin, truth, rank, candidates, ranked = [], [], [], [], []
+    for d in replayed.decisions:
+        begin.append(d.begin)
+        truth.append(calls.setdefault(d.truth, len(calls)))
+        rank.append(d.rank or 0)
+        candidates.append(d.candidates)
+        ranked.append([calls.setdefault(c, len(calls)) for c in d.ranked])
+    figures = replayed.summary["methods"][replayed.method]
+    return {"method": replayed.method, "calls": list(calls), "begin": begin, "truth": truth, "rank": rank,
+            "candidates": candidates, "ranked": ranked, "window": window, "rolling": replayed.rolling(window),
+            "summary": {k: figures[k] for k in ("top1", "top3", "top5")},
+            "n_predictions": replayed.summary["n_predictions"]}
+
+
+#: As the tablet page's: nothing from elsewhere; images are drawn here (blob: for the exports).
+PAGE_HEADERS = {
+    "Content-Security-Policy": "default-src 'none'; script-src 'self'; style-src 'self'; connect-src 'self'; "
+                               "img-src 'self' blob: data:; base-uri 'none'; form-action 'self'",
+    "Cache-Control": "no-store",
+    "Referrer-Policy": "no-referrer",
+}
