@@ -90,3 +90,17 @@ def test_the_read_only_door_still_serves_after_another_came_and_went(door):
     """(runs after test_writes_where_allowed: a second door on the same master replaced nothing)"""
     result = ros_client(door, {"queries": [{"id": "again", "query": "X = 1", "mode": 1}]})
     assert solutions(result["queries"][0]["steps"]) == [{"X": 1}]
+
+
+#: The MD5 sums of knowrob's json_prolog_msgs services (genmsg's, over the real .srv files):
+#: a client built against the real package is served only when ours are the same.
+JSON_PROLOG_MSGS_MD5 = {"PrologQuery": "b98fb21a498cfd5b16c55f4b1f1cfa7d",
+                        "PrologNextSolution": "b101f472df7bcb78cc53cd5a17ecbda9",
+                        "PrologFinish": "bbfcda76036ebbe3d36caf7af80b260c"}
+
+
+def test_service_types_are_json_prolog_msgs_own(door):
+    code = ("import json; from json_prolog_msgs import srv; "
+            "print(json.dumps({n: getattr(srv, n)._md5sum for n in ('PrologQuery', 'PrologNextSolution', 'PrologFinish')}))")
+    done = subprocess.run(["/usr/bin/python3", "-c", code], env=door, capture_output=True, text=True, timeout=60)
+    assert json.loads(done.stdout) == JSON_PROLOG_MSGS_MD5, done.stderr
