@@ -188,3 +188,17 @@ def test_host_origin_and_token_rules(service, writable):
     assert refused(f"{writable}/rosbridge", Authorization="Bearer wrong-token-123456") == 403
     assert raw(f"{writable}/rosbridge?token={TOKEN}", [{"op": "call_service", "id": 1, "service": "/rosprolog/finish",
                                                         "args": {"id": "*"}}], 1)[0]["result"] is True
+
+
+def test_neem_chosen_on_the_address(service):
+    def first(url: str) -> dict:
+        with websockets_sync.connect(url, open_timeout=30) as socket:  # one call at a time, as roslibpy
+            for name, args in (("query", {"id": url, "query": "kb_call(is_episode(E))", "mode": 1}),
+                               ("next_solution", {"id": url})):
+                socket.send(json.dumps({"op": "call_service", "service": f"/rosprolog/{name}", "args": args}))
+                values = json.loads(socket.recv(timeout=60))["values"]
+        return dict(values)
+
+    assert first(f"{service}/rosbridge?neem=alice")["status"] == OK
+    failed = first(f"{service}/rosbridge?neem=nobody")
+    assert failed["status"] == QUERY_FAILED and "nobody" in failed["solution"]

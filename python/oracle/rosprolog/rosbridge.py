@@ -8,7 +8,8 @@ takes rosbridge's JSON operations: ``call_service`` for ``/rosprolog/query``,
 operations a client sends first are taken without an answer (no topic is served). The route
 passes the service's own checks (guard.Guard: Host, Origin, token) before it accepts, and asks
 Prolog where ``/api/prolog`` asks (backend.service_ask). ``?neem=ID`` picks the NEEM; else the
-service's ``--neem``, else the store's newest.
+service's ``--neem``, else the store's only one (service.neem_choice: with several, the query
+fails saying how to choose).
 """
 
 from __future__ import annotations
@@ -148,13 +149,17 @@ def _queries(websocket: WebSocket, ctx: Context, neem: str | None) -> Queries:
 
 
 def _ask(ctx: Context, neem: str | None) -> Any:
-    """Ask about ``neem``, or the service's default NEEM found when a query first runs (the
-    store may get its first NEEM after the service started)."""
+    """Ask about ``neem``, or the service's default NEEM, found when a query runs (the store
+    may get its first NEEM after the service started)."""
 
     def ask(text: str, offset: int, limit: int) -> Page:
-        chosen = neem or ctx.default_neem or ctx.thread.call(ctx.engine.newest)
-        if chosen is None:
-            raise QueryFailed("the store holds no NEEM yet; name one with ?neem=ID")
+        from oracle.errors import NeemOracleError
+        from oracle.service.neem_choice import store_neem
+
+        try:
+            chosen = neem or ctx.default_neem or ctx.thread.call(store_neem, ctx.engine.store, "?neem=ID on the address")
+        except NeemOracleError as error:
+            raise QueryFailed(str(error)) from None
         return service_ask(ctx, chosen)(text, offset, limit)
 
     return ask
