@@ -7,7 +7,8 @@ takes rosbridge's JSON operations: ``call_service`` for ``/rosprolog/query``,
 (``values``, ``result``); ``advertise``, ``publish``, ``subscribe`` and the other topic
 operations a client sends first are taken without an answer (no topic is served). The route
 passes the service's own checks (guard.Guard: Host, Origin, token) before it accepts, and asks
-Prolog where ``/api/prolog`` asks (backend.service_ask). ``?neem=ID`` picks the NEEM; else the
+Prolog where ``/api/prolog`` asks (backend.service_ask). ``?neem=ID`` picks the NEEM (one the store does not hold is refused before the
+upgrade); else the
 service's ``--neem``, else the store's only one (service.neem_choice: with several, the query
 fails saying how to choose).
 """
@@ -21,6 +22,7 @@ from typing import TYPE_CHECKING, Any
 
 from fastapi import APIRouter, WebSocket, WebSocketDisconnect
 
+from oracle.errors import NeemOracleError
 from oracle.rosprolog.backend import service_ask
 from oracle.rosprolog.protocol import SERVICES, DoorError, Page, Queries, QueryFailed
 
@@ -61,7 +63,14 @@ async def _serve(websocket: WebSocket) -> None:
         LOG.info("websocket %s refused %d", websocket.scope["path"], refusal.status)
         await websocket.close(code=REFUSED, reason=str(refusal)[:120])
         return
-    queries = _queries(websocket, ctx, websocket.query_params.get("neem"))
+    neem = websocket.query_params.get("neem")
+    if neem is not None:  # a NEEM of the store, by id: the open-query tables stay one per NEEM
+        try:
+            neem = await ctx.thread.run(ctx.engine.resolve, neem)
+        except NeemOracleError as error:
+            await websocket.close(code=REFUSED, reason=str(error)[:120])
+            return
+    queries = _queries(websocket, ctx, neem)
     await websocket.accept()
     mine: set[str] = set()
     send_lock = asyncio.Lock()
@@ -153,7 +162,6 @@ def _ask(ctx: Context, neem: str | None) -> Any:
     may get its first NEEM after the service started)."""
 
     def ask(text: str, offset: int, limit: int) -> Page:
-        from oracle.errors import NeemOracleError
         from oracle.service.neem_choice import store_neem
 
         try:
