@@ -201,3 +201,32 @@ def test_neem_chosen_on_the_address(service):
 
     assert first(f"{service}/rosbridge?neem=alice")["status"] == OK
     assert refused(f"{service}/rosbridge?neem=nobody") == 403  # not a NEEM of the store
+
+
+def test_twenty_clients_at_once_without_errors(service):
+    import threading
+
+    counts: dict[int, int] = {}
+    errors: list[str] = []
+
+    def client(i: int) -> None:
+        try:
+            with websockets_sync.connect(f"{service}/rosbridge", open_timeout=60) as socket:
+                def call(name: str, args: dict) -> dict:
+                    socket.send(json.dumps({"op": "call_service", "service": f"/rosprolog/{name}", "args": args}))
+                    return dict(json.loads(socket.recv(timeout=120))["values"])
+
+                assert call("query", {"id": f"crowd{i}", "query": "between(1, 13, X)", "mode": i % 2})["ok"]
+                counts[i] = 0
+                while call("next_solution", {"id": f"crowd{i}"})["status"] == OK:
+                    counts[i] += 1
+                call("finish", {"id": f"crowd{i}"})
+        except Exception as error:  # counted: the assertion below names them
+            errors.append(repr(error))
+
+    threads = [threading.Thread(target=client, args=(i,)) for i in range(20)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert errors == [] and counts == {i: 13 for i in range(20)}

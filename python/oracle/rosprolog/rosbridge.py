@@ -36,7 +36,7 @@ NAMESPACES = ("rosprolog", "json_prolog")
 #: Operations a client may send that need no answer here (topics, and the bridge's own settings).
 QUIET_OPS = frozenset({"advertise", "unadvertise", "publish", "subscribe", "unsubscribe", "advertise_service",
                        "unadvertise_service", "set_level", "status", "auth"})
-#: Service calls of one connection answered at once (more wait their turn).
+#: Service calls of one connection answered at once (its next frames wait unread meanwhile).
 CALLS_PER_SOCKET = 16
 #: The websocket close code for a refused connection (policy violation).
 REFUSED = 1008
@@ -82,8 +82,10 @@ async def _serve(websocket: WebSocket) -> None:
             await websocket.send_text(json.dumps(message))
 
     async def call(message: dict[str, Any]) -> None:
-        async with slots:
+        try:
             await send(await _call_service(queries, message, mine))
+        finally:
+            slots.release()
 
     try:
         while True:
@@ -92,6 +94,7 @@ async def _serve(websocket: WebSocket) -> None:
             if isinstance(message, str):
                 await send({"op": "status", "level": "error", "msg": message})
             elif message.get("op") == "call_service":
+                await slots.acquire()  # no more frames are read while CALLS_PER_SOCKET are running
                 task = asyncio.create_task(call(message))
                 tasks.add(task)
                 task.add_done_callback(tasks.discard)
