@@ -254,3 +254,32 @@ def test_the_cli_starts_without_importing_the_evaluation():
             "print(any(m.startswith('oracle.evaluation') for m in sys.modules))")
     result = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert result.stdout.strip() == "False", result.stderr
+
+
+def _broken(*args, **kwargs):
+    raise ValueError("no replay today")
+
+
+def test_a_failed_replay_is_one_line_and_tried_again(store, tmp_path):
+    from fastapi.testclient import TestClient
+
+    from oracle.ontology import build_ontology
+    from oracle.service import build_context
+    from oracle.service.app import create_app
+
+    copy = tmp_path / "s.sqlite"
+    shutil.copy(store, copy)
+    ctx = build_context(str(copy), build_ontology(), preset("recommended"))
+    try:
+        app = create_app(ctx)
+        app.state.explore_replay = _broken
+        with TestClient(app, base_url="http://127.0.0.1") as test_client:
+            neem = test_client.get("/explore/api/neems").json()[0]["id"]
+            deadline = time.monotonic() + 120
+            while (answer := test_client.get(f"/explore/api/neems/{neem}/decisions")).status_code == 202:
+                assert time.monotonic() < deadline
+                time.sleep(0.2)
+            assert answer.status_code == 500 and answer.json() == {"error": "the replay failed: ValueError: no replay today"}
+            assert test_client.get(f"/explore/api/neems/{neem}/decisions").status_code == 202  # a new try
+    finally:
+        ctx.thread.close()

@@ -11,17 +11,20 @@ page uses those routes as they are, so its answers and refusals are theirs.
 The product never imports the evaluation (tests/test_architecture.py): the replay is handed in
 by whoever builds the app, as ``app.state.explore_replay`` (the ``serve`` command; tests). A
 replay of a long NEEM takes tens of seconds (37 s at 10,000 actions), so it runs once per NEEM
-state in a worker thread, off the engine thread the robot's calls wait on; the route answers 202
-until it is done.
+state in a child process, niced as the query process is (oracle.service.queries): it shares
+neither the engine thread nor the GIL with the robot's calls, and a service that stops ends it
+(a daemon process). The route answers 202 until it is done.
 """
 
 from __future__ import annotations
 
 import asyncio
+import multiprocessing
+import os
 import threading
 from collections import OrderedDict
 from collections.abc import Sequence
-from concurrent.futures import Future, ThreadPoolExecutor
+from concurrent.futures import Future
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Protocol
 
@@ -67,7 +70,50 @@ class ExploreState:
     replays: OrderedDict[tuple[Any, ...], Future[Replayed]] = field(default_factory=OrderedDict)
     lock: threading.Lock = field(default_factory=threading.Lock)
     # one replay at a time: two would only share the cores the robot's calls need
-    pool: ThreadPoolExecutor = field(default_factory=lambda: ThreadPoolExecutor(1, thread_name_prefix="explore-replay"))
+    turn: threading.Lock = field(default_factory=threading.Lock)
+
+    def submit(self, replayer: Replayer, *args: Any) -> Future[Replayed]:
+        """Run ``replayer(*args)`` in a child process after the replays asked before it."""
+        future: Future[Replayed] = Future()
+
+        def wait() -> None:
+            with self.turn:
+                context = multiprocessing.get_context("spawn")
+                parent, child = context.Pipe(duplex=False)
+                process = context.Process(target=_replay_child, args=(child, replayer, args), daemon=True,
+                                          name="explore-replay")
+                process.start()
+                child.close()
+                try:
+                    ok, value = parent.recv()
+                except (EOFError, OSError):
+                    future.set_exception(RuntimeError("the replay process ended without an answer"))
+                else:
+                    if ok:
+                        future.set_result(value)
+                    else:
+                        future.set_exception(RuntimeError(f"the replay failed: {value}"))
+                finally:
+                    parent.close()
+                    process.join()
+
+        threading.Thread(target=wait, name="explore-replay-wait", daemon=True).start()
+        return future
+
+
+def _replay_child(conn: Any, replayer: Replayer, args: tuple[Any, ...]) -> None:
+    from oracle.service.queries import QUERY_NICENESS
+
+    try:
+        os.nice(QUERY_NICENESS)
+    except OSError:
+        pass
+    try:
+        conn.send((True, replayer(*args)))
+    except Exception as error:  # the parent turns it into the route's error answer
+        conn.send((False, f"{type(error).__name__}: {error}"))
+    finally:
+        conn.close()
 
 
 def _state(request: Request) -> ExploreState:
@@ -171,12 +217,17 @@ async def explore_decisions(neem: str, request: Request,
     with state.lock:
         future = state.replays.get(key)
         if future is None:
-            future = state.pool.submit(replayer, ctx.engine.ontology, ctx.engine.settings, ctx.engine.method, rows, user, SHOWN)
+            future = state.submit(replayer, ctx.engine.ontology, ctx.engine.settings, ctx.engine.method, rows, user, SHOWN)
             state.replays[key] = future
             while len(state.replays) > KEPT_REPLAYS:
                 state.replays.popitem(last=False)
     if not future.done():
         return JSONResponse({"pending": True, "decisions": sum(1 for r in rows if r["call"] != "idle")}, status_code=202)
+    failed = future.exception()
+    if failed is not None:
+        with state.lock:
+            state.replays.pop(key, None)  # the next request tries again
+        return JSONResponse({"error": str(failed)}, status_code=500)
     replayed = await asyncio.wrap_future(future)
     return _decisions_json(replayed, window)
 
