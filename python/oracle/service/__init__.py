@@ -59,6 +59,9 @@ def build_context(store_spec: str | None, ontology: OdbOntology, settings: Hyper
     except NeemOracleError:
         thread.close()
         raise
+    from oracle.service.groupcommit import GroupCommit
+
+    thread.group = GroupCommit(engine.store, thread.submit, engine.sessions.clear)
     queries = None if prolog_writes else QueryProcess(store_spec, ontology)
     return Context(engine=engine, thread=thread, default_neem=neem, token=token, write_behind=write_behind,
                    allowed_hosts=allowed_hosts(host, extra_hosts), limits=limits, prolog_writes=prolog_writes,

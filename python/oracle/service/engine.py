@@ -12,7 +12,7 @@ from __future__ import annotations
 import asyncio
 import logging
 from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import Future, ThreadPoolExecutor
 from typing import Any, TypeVar
 
 from oracle.algorithm.params import Hyperparameters
@@ -26,6 +26,7 @@ from oracle.timeline import Instant
 from oracle.ontology import OdbOntology
 from oracle.past.kept import KeptPast
 from oracle.ranking import latest_instant, make_predictor
+from oracle.service.groupcommit import GroupCommit
 from oracle.service.guard import Limits
 from oracle.service.queries import PrologQueryError, PrologRefused, ask
 from oracle.service.session import NeemSession, moment_of
@@ -50,9 +51,19 @@ class EngineThread:
         if EngineThread._shared is None:
             EngineThread._shared = ThreadPoolExecutor(max_workers=1, thread_name_prefix="oracle-engine")
         self._pool: ThreadPoolExecutor = EngineThread._shared
+        #: The group commit of the engine's store (oracle.service.groupcommit), set once it is
+        #: open: a job that ran while a group was open answers only after that group's commit.
+        self.group: GroupCommit | None = None
 
     async def run(self, fn: Callable[..., T], *args: Any) -> T:
-        return await asyncio.get_running_loop().run_in_executor(self._pool, fn, *args)
+        result, pending = await asyncio.get_running_loop().run_in_executor(self._pool, self._job, fn, args)
+        if pending is not None:
+            await asyncio.wrap_future(pending)
+        return result
+
+    def _job(self, fn: Callable[..., T], args: tuple[Any, ...]) -> tuple[T, Future[None] | None]:
+        result = fn(*args)
+        return result, None if self.group is None else self.group.pending()
 
     def submit(self, fn: Callable[..., Any], *args: Any) -> None:
         """Queue fn without waiting (its errors are logged, never raised into a request)."""
@@ -61,7 +72,10 @@ class EngineThread:
 
     def call(self, fn: Callable[..., T], *args: Any) -> T:
         """Run fn on the engine thread from another, non-async thread (startup, tests)."""
-        return self._pool.submit(fn, *args).result()
+        result, pending = self._pool.submit(self._job, fn, args).result()
+        if pending is not None:
+            pending.result()
+        return result
 
     def close(self) -> None:
         """Wait for the jobs queued so far (the thread itself stays, see the class docstring)."""

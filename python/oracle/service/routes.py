@@ -142,6 +142,7 @@ async def perception(neem: str, body: Perception, request: Request) -> dict[str,
     seen = [(o.name, o.pose) for o in body.objects]
 
     def job() -> tuple[str, list[str]]:
+        _join(ctx)
         session = ctx.engine.session(neem)
         return session.neem, session.perceive(seen, body.at)
 
@@ -163,6 +164,8 @@ async def situation(neem: str, body: SituationIn, request: Request, background: 
 
     def job() -> tuple[str, Any, Any, dict[str, Any], float, float]:
         started = time.perf_counter()
+        if not ctx.write_behind:
+            _join(ctx)
         session = ctx.engine.session(neem)
         found, ranking, ms = session.situation(body.available, body.at)
         answer = cast(dict[str, Any], session.describe(found, ranking, ms))
@@ -198,6 +201,13 @@ def routine_now(engine: Any, session: NeemSession, at: float) -> dict[str, Any] 
         return None
     return {**current.to_json(), "steps_left": len(current.remaining),
             "remaining_modes": [session.usual_mode(call, at) for call in current.remaining]}
+
+
+def _join(ctx: Any) -> None:
+    """This job's writes commit with those of every request already waiting (a group commit,
+    oracle.service.groupcommit); the answer waits for that commit (EngineThread.run)."""
+    if ctx.thread.group is not None:
+        ctx.thread.group.join()
 
 
 def _after_answer(ctx: Any, background: BackgroundTasks, work: Any) -> None:
@@ -236,6 +246,7 @@ async def action(neem: str, body: ActionIn, request: Request, background: Backgr
     ctx = _ctx(request)
 
     def job() -> tuple[NeemSession, dict[str, Any]]:
+        _join(ctx)
         session = ctx.engine.session(neem)
         return session, _logged_action(session, body)
 

@@ -125,22 +125,36 @@ class Connection:
 
     @contextmanager
     def transaction(self) -> Iterator[None]:
-        """One write transaction (BEGIN IMMEDIATE: one writer at a time); nested, the outer one."""
-        if self.depth == 0:
-            self.execute("BEGIN IMMEDIATE")
+        """One write transaction (BEGIN IMMEDIATE: one writer at a time). Nested, a savepoint of
+        the outer one: it commits with the outer one, and a failure inside undoes its writes
+        alone (the service's group commit runs each request's writes so, oracle.service.groupcommit)."""
+        nested = self.depth > 0
+        point = f"nest{self.depth}"
+        self.execute(f"SAVEPOINT {point}" if nested else "BEGIN IMMEDIATE")
         self.depth += 1
         try:
             yield
         except BaseException:
             self.depth -= 1
-            if self.depth == 0 and self.conn.in_transaction:
-                self.execute("ROLLBACK")
+            if self.conn.in_transaction:
+                self.execute(f"ROLLBACK TO {point}" if nested else "ROLLBACK")
+                if nested:
+                    self.execute(f"RELEASE {point}")
                 for forget in self.forget:
                     forget()
             raise
         self.depth -= 1
-        if self.depth == 0:
+        if nested:
+            self.execute(f"RELEASE {point}")
+            return
+        try:
             self.execute("COMMIT")
+        except StoreError:
+            if self.conn.in_transaction:  # not committed (an I/O error): the next BEGIN must not fail too
+                self.conn.rollback()
+                for forget in self.forget:
+                    forget()
+            raise
 
     @contextmanager
     def reading(self) -> Iterator[None]:
