@@ -126,3 +126,28 @@ def test_a_host_name_no_resolver_answers_is_refused_before_any_lookup():
     with pytest.raises(StoreError, match=r"host 'ho st' is not a host name") as refused:
         open_store("mongodb://alice:s3cret@ho st/db")
     assert "s3cret" not in str(refused.value)
+
+
+def test_acknowledged_writes_wait_for_a_majority_in_its_journal_unless_the_uri_says_otherwise(monkeypatch):
+    """The client is asked for acknowledgement once a majority of the replica set has a write in
+    its journal (docs/store.md, "Many robots on one hub"); a URI that sets w or journal keeps its
+    own. mongomock-ng stands in for the server; the options are pymongo's own."""
+    import pymongo
+
+    mongomock_ng = pytest.importorskip("mongomock_ng")
+    asked: list[dict[str, object]] = []
+    pymongo_client = pymongo.MongoClient
+
+    def client(uri, **options):
+        real = pymongo_client(uri, connect=False, **options)  # pymongo's reading of the options
+        asked.append(real.write_concern.document)
+        real.close()
+        return mongomock_ng.MongoClient()
+
+    monkeypatch.setattr("pymongo.MongoClient", client)
+    from oracle.store import open_mongo
+
+    with open_mongo("mongodb://127.0.0.1:27999/labdb"):
+        assert asked[-1] == {"w": "majority", "j": True}
+    with open_mongo("mongodb://127.0.0.1:27999/labdb?w=1"):
+        assert asked[-1] == {"w": 1}

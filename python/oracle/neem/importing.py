@@ -11,6 +11,7 @@ file order (docs/time.md, "Logs without a clock").
 
 from __future__ import annotations
 
+import contextlib
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from datetime import datetime
@@ -206,7 +207,11 @@ def import_chains(
     meta: dict[str, object] = {CLOCK_KEY: SEQUENCE_CLOCK} if no_clock else {}
     if not session:
         meta[INCOMPLETE_KEY] = True  # until the user's last row is committed
+    syncing = contextlib.ExitStack()
     try:
+        # commits are written as they come but reach the disk once per user (``store.sync``
+        # below, and when the import ends): a killed import loses none of them
+        syncing.enter_context(store.deferred_sync())
         if session:
             wipe_temporary_neems(store)
         for row in checked.rows if checked.rows is not None else read_chains(path):
@@ -243,6 +248,7 @@ def import_chains(
                 logger.close()  # the user's rows end here: commit (and swap in a replacement) now
                 if not session:
                     store.update_meta(logger.neem_id, **{INCOMPLETE_KEY: None})
+                store.sync()  # the user's NEEM on disk: it survives a power loss too
                 report[name] = logger.committed
                 del loggers[row.user]  # done: its caches need not stay in memory (many users)
             else:
@@ -251,13 +257,14 @@ def import_chains(
     except LoggingError as error:
         raise LoggingError(f"{where}: {error}") from None
     finally:
-        for logger in loggers.values():
-            if not logger.replacing:
-                report[logger.neem_id] = logger.flush()
-            elif not done:
-                name = logger.neem_id
-                logger.abandon()  # the old NEEM stays as it was
-                report.pop(name, None)
+        with syncing:  # whatever is committed below is on disk when this block ends
+            for logger in loggers.values():
+                if not logger.replacing:
+                    report[logger.neem_id] = logger.flush()
+                elif not done:
+                    name = logger.neem_id
+                    logger.abandon()  # the old NEEM stays as it was
+                    report.pop(name, None)
     return report
 
 

@@ -116,7 +116,9 @@ def open_store(
 
 
 def open_mongo(uri: str, *, number_format: NumberFormat = "decimal128", timeout_ms: int = 3000) -> Store:
-    """A MongoStore on a real server; the database is the URI's path or ``roslog``."""
+    """A MongoStore on a real server; the database is the URI's path or ``roslog``. Writes are
+    acknowledged once a majority of the replica set has them in its journal, unless the URI sets
+    ``w`` or ``journal``."""
     import pymongo
     from pymongo import uri_parser
 
@@ -129,7 +131,12 @@ def open_mongo(uri: str, *, number_format: NumberFormat = "decimal128", timeout_
             # no resolver answers such a name: refused here, not after a lookup's timeout
             if not name or any(ch.isspace() or not ch.isprintable() for ch in name):
                 raise ValueError(f"host {name!r} is not a host name")
-        client: pymongo.MongoClient[dict[str, Any]] = pymongo.MongoClient(uri, serverSelectionTimeoutMS=timeout_ms)
+        # An acknowledged write is on a majority of the replica set, in its journal (a standalone
+        # server is its own majority), unless the URI says otherwise (w=, journal=): a failover
+        # then loses nothing a robot was told is stored (docs/store.md, "Many robots on one hub").
+        concern: dict[str, Any] = {} if {"w", "journal"} & set(parsed["options"]) else {"w": "majority", "journal": True}
+        client: pymongo.MongoClient[dict[str, Any]] = pymongo.MongoClient(uri, serverSelectionTimeoutMS=timeout_ms,
+                                                                          **concern)
     except Exception as error:
         # The URI may hold a password (from --store or $NEEM_MONGO_URI): never echo it.
         hint = "; percent-encode '@', '/' and ':' in a user name or password" if "@" in uri else ""

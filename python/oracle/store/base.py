@@ -10,6 +10,8 @@ stored documents with); split, a backend could satisfy half of it.
 
 from __future__ import annotations
 
+import contextlib
+
 import os
 import re
 from abc import ABC, abstractmethod
@@ -228,6 +230,17 @@ class Store(ABC):
     @abstractmethod
     def transaction(self) -> AbstractContextManager[None]:
         """Group writes so they commit together (SQLite) or run as they come (MongoDB)."""
+
+    def deferred_sync(self) -> AbstractContextManager[None]:
+        """Inside, a commit is written but not flushed to disk (it survives a killed process,
+        not a power loss) until ``sync``: a bulk import flushes once per user, not per commit.
+        A store that flushes nothing itself (MongoDB: its write concern) changes nothing."""
+        return contextlib.nullcontext()
+
+    def sync(self) -> None:
+        """Every commit made so far on disk (after ``deferred_sync``'s commits); nothing where
+        each commit already is."""
+        return None
 
     def shrink_memory(self) -> None:
         """Give back what the store's connection caches in memory (a bulk write's pages), before

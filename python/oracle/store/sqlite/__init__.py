@@ -12,6 +12,8 @@ each method hands the call to the part that does it (docs/architecture.md lists 
 
 from __future__ import annotations
 
+import contextlib
+
 import os
 from collections.abc import Iterable, Iterator, Sequence
 from contextlib import AbstractContextManager
@@ -71,6 +73,29 @@ class SQLiteStore(Store):
     # -- connection -------------------------------------------------------------------------
     def close(self) -> None:
         self._conn.close()
+
+    @contextlib.contextmanager
+    def deferred_sync(self) -> Iterator[None]:
+        """synchronous=NORMAL inside: a WAL commit is written, not fsynced (SQLite's recommended
+        setting for WAL; a killed process loses nothing committed), until ``sync``; FULL again after."""
+        self._conn.execute("PRAGMA synchronous=NORMAL")
+        try:
+            yield
+        finally:
+            self._conn.execute("PRAGMA synchronous=FULL")
+            self.sync()
+
+    def sync(self) -> None:
+        """The WAL file fsynced: every commit so far is on disk (a checkpoint fsyncs the rest)."""
+        wal = Path(f"{self.path}-wal")
+        try:
+            fd = os.open(wal, os.O_RDONLY)
+        except FileNotFoundError:
+            return  # checkpointed and truncated: on disk already
+        try:
+            os.fsync(fd)
+        finally:
+            os.close(fd)
 
     def shrink_memory(self) -> None:
         """SQLite's page cache (up to 64 MiB, cache_size) freed: an import's writes filled it."""
