@@ -158,6 +158,47 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
             timer.cancel()
             _stop(process)
         rows.extend(_write_behind(store, plans[0], steps))
+        rows.extend(_hub(Path(folder) / "hub.sqlite", *((4, 200, 8) if quick else (HUB_ROBOTS, actions, HUB_STEPS))))
+    return rows
+
+
+#: The hub phase: this many robots, each posting a situation and its action about once a second
+#: (after ``HUB_STEPS`` steps each, it ends), into NEEMs of the same size as the phases above.
+HUB_ROBOTS = 20
+HUB_STEPS = 20
+
+
+def _hub(store: Path, robots: int, actions: int, steps: int) -> list[dict[str, Any]]:
+    """``robots`` robots at once, each posting one situation and one action a second (started
+    spread over the first second), against one service process: the hub's load (docs/service.md,
+    "Many robots on one hub")."""
+    import random
+
+    plans = _prepare(store, robots, actions, steps)
+    process, url = _serve(store)
+    rows: list[dict[str, Any]] = []
+    try:
+        opened = _open_sessions(url, plans)
+        print(f"  {robots} robots at 1 situation/s: session open {opened:.0f} ms per NEEM", flush=True)
+        results: list[Drive] = [Drive() for _ in plans]
+        offsets = random.Random(0).sample(range(1000), robots)
+
+        def one(index: int) -> None:
+            neem, user, todo = plans[index]
+            time.sleep(offsets[index] / 1000)
+            results[index] = drive(url, user, todo[:steps], neem, delay=1.0, choices=False)
+
+        threads = [threading.Thread(target=one, args=(i,)) for i in range(robots)]
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join()
+        errors = sum(len(r.errors) for r in results)
+        for kind in ("situation", "server", "engine", "action"):
+            rows.append(_row(f"{robots} robots, 1/s each", kind, [v for r in results for v in r.latencies.get(kind, [])],
+                             robots, errors))
+    finally:
+        _stop(process)
     return rows
 
 
