@@ -73,3 +73,13 @@ def test_reasons_differ_where_their_evidence_differs(lexicon):
              for t in (1741330800.0, 1741334400.0)]  # the same count, last done at 07:00 and at 08:00
     assert after == ["You did this 3 times after opening the fridge, last at 07:00.",
                      "You did this 3 times after opening the fridge, last at 08:00."]
+
+
+def test_what_people_usually_do_is_said_where_a_prior_says_so(lexicon):
+    """An entry carrying a shared prior's share (``people``) of a task the person never did here
+    says so, in both languages; the person's own counts win over it."""
+    entry = {"support": 0, "context_order": -1, "probability": 0.05, "people": 0.42}
+    assert words(lexicon, "en").reason(entry) == "Other people often do this next: about 42 in 100."
+    assert words(lexicon, "de").reason(entry) == "Andere Menschen machen das oft als Nächstes: etwa 42 von 100."
+    own = {**entry, "support": 3, "context_order": 0, "done": True}
+    assert words(lexicon, "en").reason(own) == "You did this 3 times, but not at this point."

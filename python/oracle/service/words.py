@@ -153,6 +153,9 @@ class Words:
         since = entry.get("since")
         if since is not None:
             return t["since"].format(ago=self.ago(float(since)))
+        people = entry.get("people")  # a shared prior's share of what others did next (oracle.algorithm.personal)
+        if people is not None and not n:
+            return t["people"].format(chance=self.chance(float(people)))
         if order == 0 or entry.get("done"):
             return t["done_elsewhere"].format(times=times) if n else t["done_before"]
         likely = entry.get("probability")
@@ -276,7 +279,8 @@ TEXT: dict[str, dict[str, str]] = {
         "done_elsewhere": "You did this {times}, but not at this point.", "done_before": "You did this before, but not at this point.",
         "never": "You have not done this yet; it is like what you do.",
         "never_likely": "You have not done this yet; it is like what you do, so I give it {chance}.",
-        "chance": "about {n} in 100", "chance_low": "less than 1 in 100", "once": "once", "n_times": "{n} times", "and": " and ",
+        "chance": "about {n} in 100", "chance_low": "less than 1 in 100",
+        "people": "Other people often do this next: {chance}.", "once": "once", "n_times": "{n} times", "and": " and ",
         "ago_s": "{n} seconds ago", "ago_min": "{n} minutes ago", "ago_h": "{n} hours ago", "ago_d": "{n} days ago",
         "top": "This is my first suggestion.", "placed": "I put this in place {rank} of {n}.",
         "first_is": "First comes: {task}.", "not_now": "The robot cannot do this now.",
@@ -328,7 +332,8 @@ TEXT: dict[str, dict[str, str]] = {
         "done_before": "Das haben Sie schon gemacht, aber nicht an dieser Stelle.",
         "never": "Das haben Sie noch nie gemacht; es ähnelt dem, was Sie tun.",
         "never_likely": "Das haben Sie noch nie gemacht; es ähnelt dem, was Sie tun, darum gebe ich ihm {chance}.",
-        "chance": "etwa {n} von 100", "chance_low": "weniger als 1 von 100", "once": "einmal", "n_times": "{n}-mal",
+        "chance": "etwa {n} von 100", "chance_low": "weniger als 1 von 100",
+        "people": "Andere Menschen machen das oft als Nächstes: {chance}.", "once": "einmal", "n_times": "{n}-mal",
         "and": " und ", "ago_s": "vor {n} Sekunden", "ago_min": "vor {n} Minuten", "ago_h": "vor {n} Stunden",
         "ago_d": "vor {n} Tagen", "top": "Das ist mein erster Vorschlag.", "placed": "Ich habe das auf Platz {rank} von {n} gesetzt.",
         "first_is": "Zuerst kommt: {task}.", "not_now": "Das kann der Roboter jetzt nicht tun.",
