@@ -215,11 +215,10 @@ def _moment(obj: dict[str, Any], key: str, where: str) -> datetime | None:
 
 def read_chains(path: Path | str) -> Iterator[ChainRow]:
     """Yield the rows of a JSONL chains file (blank lines and ``#`` comments are skipped)."""
+    from oracle.handed import Handed, open_handed
+
     path = Path(path)
-    try:
-        handle = path.open("rb")
-    except OSError as error:
-        raise ChainSyntaxError(f"{path}: cannot read ({error.strerror})") from None
+    handle = open_handed(path, Handed("chains", ChainSyntaxError))  # a regular file: no FIFO, no device
     with handle:
         # Line by line in binary with a cap: memory stays bounded (even for /dev/zero), and a
         # byte that is not UTF-8 is reported with its line instead of failing a whole chunk.

@@ -8,16 +8,15 @@ from pathlib import Path
 from typing import Any
 
 from oracle.errors import NeemOracleError
+from oracle.handed import MAPPING_LIMIT, Handed, read_handed_text
 
 
-def read_yaml(path: Path, error: type[NeemOracleError], what: str = "file") -> Any:
-    """Parsed content of ``path``; unreadable or malformed files raise ``error`` naming file and line."""
+def read_yaml(path: Path, error: type[NeemOracleError], what: str = "file", limit: int = MAPPING_LIMIT) -> Any:
+    """Parsed content of ``path``; unreadable or malformed files raise ``error`` naming file and line.
+    Only a regular file of at most ``limit`` bytes, in UTF-8, is read (oracle.handed)."""
     import yaml  # here, not at the top: a cached ontology build reads no YAML (~30 ms saved)
 
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as failure:
-        raise error(f"{path}: cannot read {what} ({failure.strerror})") from None
+    text = read_handed_text(path, Handed(what, error), limit)
     try:
         return yaml.safe_load(text)
     except RecursionError:

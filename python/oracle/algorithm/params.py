@@ -121,13 +121,18 @@ def from_mapping(mapping: dict[str, Any], where: str = "settings") -> Hyperparam
 def load_settings(path: Path | str) -> Hyperparameters:
     """Read a YAML settings file; errors name the file."""
     path = Path(path)
-    data = read_yaml(path, SettingsError, "settings")
+    from oracle.handed import SETTINGS_LIMIT
+
+    data = read_yaml(path, SettingsError, "settings", SETTINGS_LIMIT)
     return from_mapping(data if data is not None else {}, str(path))
 
 
 def save_settings(settings: Hyperparameters, path: Path | str) -> None:
     """Write settings as YAML with the thesis names as comments-free snake_case keys."""
-    Path(path).write_text(yaml.safe_dump(settings.to_dict(), sort_keys=False), encoding="utf-8")
+    from oracle.files import private_file
+
+    with private_file(path) as handle:  # 0600 whatever the umask, like every file the tool writes
+        handle.write(yaml.safe_dump(settings.to_dict(), sort_keys=False))
 
 
 _DEFAULTS = Hyperparameters()  # Table 4.2, "recommended"

@@ -42,11 +42,17 @@ def build_key(odb_dir: Path, mapping: Path, soma_dir: Path | None, core_tbox: Pa
     """The hash of the inputs, or None when one cannot be read (the build then says why)."""
 
     digest = hashlib.sha256(f"neem-oracle ontology cache {FORMAT} {sys.version} {_rdflib_release()}\0".encode())
+    # Read by the rule for handed files (oracle.handed): a FIFO, a device or a link out of the
+    # odb folder is not read here either; the build that follows refuses it in one line.
+    from oracle.errors import NeemOracleError
+    from oracle.handed import OWL_LIMIT, Handed, read_handed
+
     try:
         for path in _input_files(odb_dir, mapping, soma_dir, core_tbox, official):
+            inside = odb_dir if path.name == "manifest.xml" and path.parent.parent == odb_dir else None
             digest.update(str(path).encode() + b"\0")
-            digest.update(hashlib.sha256(path.read_bytes()).digest())
-    except OSError:
+            digest.update(hashlib.sha256(read_handed(path, Handed("input", NeemOracleError, inside), OWL_LIMIT)).digest())
+    except (OSError, NeemOracleError):
         return None
     return digest.hexdigest()[:32]
 

@@ -224,12 +224,11 @@ def load_ontology(path: Path | str, cache_dir: Path | None = None) -> OdbOntolog
         raise OntologyError(f"{path}: ontology file not found")
     from rdflib import Graph
 
+    from oracle.handed import Handed, parse_rdf_file
+
     graph = Graph()
     fmt = "turtle" if path.suffix in (".ttl", ".turtle") else "xml"
-    try:
-        graph.parse(path, format=fmt)
-    except Exception as error:  # rdflib raises parser-specific types
-        raise OntologyError(f"{path}: cannot parse as {fmt} ({error})") from None
+    parse_rdf_file(graph, path, fmt, Handed("ontology file", OntologyError))
     try:
         onto = OdbOntology.from_graph(graph, cache_dir=cache_dir)
     except OntologyError as error:

@@ -14,6 +14,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from oracle.errors import OntologyError
+from oracle.handed import MANIFEST_LIMIT, Handed, handed_files, read_handed
+from oracle.xmlguard import check_entities
 
 _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_\-]{0,127}$")  # at most 128 characters
 _SNIPPET_SUFFIX = re.compile(r"(_sct)?\.(ya?ml)$", re.IGNORECASE)
@@ -48,15 +50,17 @@ def _text(element: ET.Element | None) -> str | None:
     return text or None
 
 
-def read_manifest(path: Path) -> OdbObject:
-    """Parse one ``manifest.xml``; errors name the file and the offending entry."""
+def read_manifest(path: Path, folder: Path | None = None) -> OdbObject:
+    """Parse one ``manifest.xml`` (found in the odb ``folder``: no link followed out of it, see
+    oracle.handed; its entities bounded, see oracle.xmlguard); errors name the file and the
+    offending entry."""
+    data = read_handed(path, Handed("manifest", OntologyError, folder), MANIFEST_LIMIT)
+    check_entities(data, str(path), OntologyError)
     try:
-        root = ET.parse(path).getroot()
+        root = ET.fromstring(data)
     except ET.ParseError as error:
         line, column = error.position
         raise OntologyError(f"{path}:{line}:{column}: malformed XML ({error.msg})") from None
-    except OSError as error:
-        raise OntologyError(f"{path}: cannot read ({error.strerror})") from None
     if root.tag != "object":
         raise OntologyError(f"{path}: root element must be <object>, found <{root.tag}>")
     name = _text(root.find("name"))
@@ -110,8 +114,8 @@ def read_odb(directory: Path | str) -> dict[str, OdbObject]:
     if not directory.is_dir():
         raise OntologyError(f"{directory}: odb folder not found")
     objects: dict[str, OdbObject] = {}
-    for manifest in sorted(directory.glob("*/manifest.xml")):
-        obj = read_manifest(manifest)
+    for manifest in handed_files(directory, "*/manifest.xml", Handed("manifest", OntologyError)):
+        obj = read_manifest(manifest, directory)
         if obj.name in objects:
             raise OntologyError(f"{manifest}: object {obj.name!r} is also defined in {objects[obj.name].source}")
         objects[obj.name] = obj

@@ -12,6 +12,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from oracle.errors import OntologyError
+from oracle.handed import Handed, parse_rdf_file
 from oracle.paths import data_dir
 
 if TYPE_CHECKING:
@@ -36,21 +37,18 @@ def load_upper(soma_dir: Path | str | None = None) -> Graph:
     directory = Path(soma_dir)
     if not directory.is_dir():
         raise OntologyError(f"{directory}: SOMA folder not found")
-    found = [directory / name for name in OFFICIAL_FILES if (directory / name).exists()]
+    found = official_files(directory)
     if not any(p.name in ("SOMA.owl", "SOMA-HOME.owl") for p in found):
         raise OntologyError(f"{directory}: neither SOMA.owl nor SOMA-HOME.owl found")
-    for path in found:
-        try:
-            graph.parse(path, format="xml")
-        except Exception as error:  # rdflib raises many parser-specific types
-            raise OntologyError(f"{path}: cannot parse as RDF/XML ({error})") from None
+    for path in found:  # a regular file in the folder, its entities bounded (oracle.handed)
+        parse_rdf_file(graph, path, "xml", Handed("ontology file", OntologyError, directory))
     return graph
 
 
 def official_files(soma_dir: Path | str) -> list[Path]:
     """The official files of ``soma_dir`` that ``load_upper`` reads, in load order (imports first)."""
     directory = Path(soma_dir)
-    return [directory / name for name in OFFICIAL_FILES if (directory / name).exists()]
+    return [directory / name for name in OFFICIAL_FILES if (directory / name).exists() or (directory / name).is_symlink()]
 
 
 def declared_entities(graph: Graph) -> frozenset[str]:

@@ -23,6 +23,7 @@ from bson.codec_options import DEFAULT_CODEC_OPTIONS, DatetimeConversion
 
 from oracle.errors import StoreError
 from oracle.progress import Tick
+from oracle.handed import JSON_LIMIT, Handed, handed_files, open_handed, read_handed_text
 from oracle.store.base import COLLECTION_KINDS, SUMMARY_KEY, Store, check_neem_id
 from oracle.store.staging import STAGING
 from oracle.store.ids import ALIAS_KEY, alias_of, check_alias, find_neem, is_object_id, new_neem_id
@@ -211,12 +212,19 @@ class LoadedDocument(dict):  # type: ignore[type-arg]
         self.raw = raw
 
 
-def iter_bson(path: Path) -> Iterator[dict[str, Any]]:
-    """Documents of a ``.bson`` file; a truncated or corrupt file is an error naming it."""
-    try:
-        handle = path.open("rb")
-    except OSError as error:
-        raise StoreError(f"{path}: cannot read ({error.strerror})") from None
+#: What json_util.loads raises on a value it cannot make (``{"$oid": "zz"}`` is a BSONError,
+#: ``{"$numberDecimal": "x"}`` an ArithmeticError, ``{"$code": 5}`` a TypeError).
+_JSON_FAULTS = (OSError, ValueError, TypeError, OverflowError, ArithmeticError, LookupError, AttributeError,
+                bson.errors.BSONError)
+
+#: The largest document a dump may hold: MongoDB's own limit (16 MiB) and a little room.
+MAX_DOCUMENT = 16 * 1024 * 1024 + 16 * 1024
+
+
+def iter_bson(path: Path, inside: Path | None = None) -> Iterator[dict[str, Any]]:
+    """Documents of a ``.bson`` file (a regular file, found in the dump folder ``inside``: no
+    link followed out of it, oracle.handed); a truncated or corrupt file is an error naming it."""
+    handle = open_handed(path, Handed("dump file", StoreError, inside))
     with handle:
         number = 0
         while True:
@@ -227,6 +235,8 @@ def iter_bson(path: Path) -> Iterator[dict[str, Any]]:
             if len(head) < 4:
                 raise StoreError(f"{path}: truncated after document {number - 1}")
             (size,) = struct.unpack("<i", head)
+            if size > MAX_DOCUMENT:
+                raise StoreError(f"{path}: document {number} is corrupt (it claims {size} bytes, more than MongoDB's 16 MiB)")
             body = handle.read(size - 4) if size >= 5 else b""
             if size < 5 or len(body) != size - 4:
                 raise StoreError(f"{path}: document {number} is truncated or corrupt")
@@ -243,7 +253,7 @@ _SAFE = re.compile(r"[^A-Za-z0-9\-]+")
 def _neem_groups(root: Path) -> dict[tuple[Path, str | None], dict[str, Path]]:
     """Find the ``.bson`` files of each NEEM under ``root``: (folder, prefix) -> kind -> file."""
     groups: dict[tuple[Path, str | None], dict[str, Path]] = {}
-    for path in sorted(root.rglob("*.bson")):
+    for path in handed_files(root, "**/*.bson", Handed("dump file", StoreError)):
         stem = path.name[: -len(".bson")]
         kind = next((k for k in COLLECTION_KINDS if stem == k or stem.endswith(f"_{k}")), None)
         if kind is None:
@@ -262,15 +272,16 @@ def _neem_groups(root: Path) -> dict[tuple[Path, str | None], dict[str, Path]]:
 class _Documents:
     """The documents of one ``.bson`` file, counted as they are read, named for error messages."""
 
-    def __init__(self, path: Path, progress: Callable[[int], None] | None = None) -> None:
+    def __init__(self, path: Path, root: Path, progress: Callable[[int], None] | None = None) -> None:
         self.path = path
+        self.root = root
         self.where = str(path)
         self.count = 0
         #: Told the documents read so far, every 1,024 (oracle.progress, through load_dump).
         self.progress = progress
 
     def __iter__(self) -> Iterator[dict[str, Any]]:
-        for doc in iter_bson(self.path):
+        for doc in iter_bson(self.path, self.root):
             self.count += 1
             if self.progress is not None and not self.count % 1024:
                 self.progress(self.count)
@@ -301,7 +312,7 @@ def load_dump(store: Store, path: Path | str, *, neem_id: str | None = None, rep
         raise StoreError(f"{root}: holds {len(groups)} NEEMs; --neem names only one")
     plans: list[tuple[str, dict[str, Path], dict[str, Any], Path]] = []
     for (folder, prefix), files in sorted(groups.items(), key=lambda item: (str(item[0][0]), item[0][1] or "")):
-        meta = _read_meta(folder)
+        meta = _read_meta(folder, root)
         target = prefix or meta.pop("id", None) or _SAFE.sub("-", folder.resolve().name).strip("-")
         if neem_id is not None:
             target = _named_target(store, neem_id, meta)
@@ -337,7 +348,7 @@ def load_dump(store: Store, path: Path | str, *, neem_id: str | None = None, rep
             staged.append(staging)
             for kind in COLLECTION_KINDS:
                 if kind in files:
-                    docs = _Documents(files[kind], told)
+                    docs = _Documents(files[kind], root, told)
                     store.write_documents(staging, kind, docs)
                     loaded += docs.count
                     told(0)
@@ -375,7 +386,7 @@ def remember_dump(store: Store, neem_id: str, path: Path | str) -> dict[str, int
     with store.transaction():
         for kind, file in files.items():
             ids = set() if kind == "triples" else {doc.get("_id") for doc in store.read_documents(neem_id, kind)}
-            docs = [doc for doc in iter_bson(file) if not _stored(store, neem_id, kind, doc, ids)]
+            docs = [doc for doc in iter_bson(file, root) if not _stored(store, neem_id, kind, doc, ids)]
             added[kind] = store.write_documents(neem_id, kind, docs)
     return added
 
@@ -402,15 +413,16 @@ def _named_target(store: Store, name: str, meta: dict[str, Any]) -> str:
     return new_neem_id()
 
 
-def _read_meta(folder: Path) -> dict[str, Any]:
+def _read_meta(folder: Path, root: Path) -> dict[str, Any]:
     path = folder / META_FILE
-    if not path.is_file():
+    if not path.exists() and not path.is_symlink():
         return {}
+    text = read_handed_text(path, Handed("meta.json", StoreError, root), JSON_LIMIT)
     try:
-        meta = json_util.loads(path.read_text(encoding="utf-8"))
+        meta = json_util.loads(text)
     except RecursionError:
         raise StoreError(f"{path}: not a JSON object (nested too deeply)") from None
-    except (OSError, ValueError, TypeError, OverflowError) as error:
+    except _JSON_FAULTS as error:
         raise StoreError(f"{path}: not a JSON object ({str(error)[:120]})") from None
     if not isinstance(meta, dict):
         raise StoreError(f"{path}: not a JSON object")
@@ -422,12 +434,16 @@ def _read_meta(folder: Path) -> dict[str, Any]:
         raise StoreError(f"{path}: {COUNTS_KEY!r} must map collection kinds to document counts")
     if "id" in meta and not isinstance(meta["id"], str):
         raise StoreError(f"{path}: 'id' must be a string, got {meta['id']!r}")
-    for metadata_file in folder.rglob("*.metadata.json"):
+    metadata_kind = Handed("mongodump metadata file", StoreError, root)
+    for metadata_file in handed_files(folder, "**/*.metadata.json", metadata_kind):
+        text = read_handed_text(metadata_file, metadata_kind, JSON_LIMIT)
         try:
-            if not isinstance(json_util.loads(metadata_file.read_text(encoding="utf-8")), dict):
+            if not isinstance(json_util.loads(text), dict):
                 raise ValueError("not an object")
-        except (OSError, ValueError) as error:
-            raise StoreError(f"{metadata_file}: not a mongodump metadata JSON object ({error})") from None
+        except RecursionError:
+            raise StoreError(f"{metadata_file}: not a mongodump metadata JSON object (nested too deeply)") from None
+        except _JSON_FAULTS as error:
+            raise StoreError(f"{metadata_file}: not a mongodump metadata JSON object ({str(error)[:120]})") from None
     return meta
 
 

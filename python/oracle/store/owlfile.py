@@ -16,6 +16,7 @@ from rdflib import Graph, URIRef
 from rdflib.namespace import OWL, RDF
 
 from oracle.errors import StoreError
+from oracle.handed import Handed, open_handed, parse_rdf_file
 from oracle.store.tbox import TBox, tbox_from_graph
 
 
@@ -37,6 +38,7 @@ def file_version(path: Path | str) -> str:
 def tbox_from_file(path: Path | str) -> TBox:
     """One OWL file (RDF/XML, Turtle or N-Triples, by its extension) as load_owl loads it."""
     file = Path(path)
+    open_handed(file, Handed("ontology file", StoreError, file.parent)).close()  # before resolve(): no link
     stat = _stat(file)
     return _converted(str(file.resolve()), stat[0], stat[1])
 
@@ -61,10 +63,8 @@ def _converted(path: str, mtime_ns: int, size: int) -> TBox:
     file = Path(path)
     graph = Graph()
     fmt = {".ttl": "turtle", ".nt": "nt"}.get(file.suffix.lower(), "xml")
-    try:
-        graph.parse(file, format=fmt)
-    except Exception as error:  # rdflib raises many parser-specific types
-        raise StoreError(f"{file}: cannot parse as {fmt} ({str(error)[:160]})") from None
+    # a regular file in its folder, at most OWL_LIMIT bytes, its entities bounded (oracle.handed)
+    parse_rdf_file(graph, file, fmt, Handed("ontology file", StoreError, file.parent))
     ontologies = [s for s in graph.subjects(RDF.type, OWL.Ontology) if isinstance(s, URIRef)]
     if not ontologies:
         raise StoreError(f"{file}: declares no owl:Ontology (KnowRob's load_owl refuses such a file)")
