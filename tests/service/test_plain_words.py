@@ -83,3 +83,20 @@ def test_what_people_usually_do_is_said_where_a_prior_says_so(lexicon):
     assert words(lexicon, "de").reason(entry) == "Andere Menschen machen das oft als Nächstes: etwa 42 von 100."
     own = {**entry, "support": 3, "context_order": 0, "done": True}
     assert words(lexicon, "en").reason(own) == "You did this 3 times, but not at this point."
+
+
+def test_a_new_users_reasons_are_not_one_sentence_nine_times(client):
+    """Round 3: a new user's page said the same reason for all nine tasks shown. With two actions
+    logged, the tasks' chances differ, and so do their reasons."""
+    from tests.service.conftest import at
+
+    neem = client.post("/api/neems", json={"user": "newcomer"}).json()["id"]
+    for i, call in enumerate(["open(fridge)", "pick(milk_carton)"]):
+        assert client.post(f"/api/neems/{neem}/actions", json={"call": call, "begin": at(0, 10 * i)}).status_code == 200
+    offered = ["close(fridge)", "pick(apple)", "pick(banana)", "pick(red_mug)", "pour(milk_carton, red_mug)",
+               "place(milk_carton, fridge)", "open(small_drawer)", "turn_on(stove)", "pick(cereal_bowl)"]
+    assert client.post(f"/api/neems/{neem}/situation", json={"available": offered, "at": at(0, 30)}).status_code == 200
+    view = client.get(f"/api/neems/{neem}/tablet", params={"lang": "en"}).json()
+    reasons = [task["reason"] for task in view["tasks"]]
+    assert len(reasons) == 9 and len(set(reasons)) >= 3, reasons
+    assert view["person"] == "Newcomer"

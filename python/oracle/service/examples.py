@@ -113,6 +113,7 @@ EXAMPLES: dict[str, dict[str, Any]] = {
     "TabletView": {
         "neem": "6b1703c1bb5a244c6b90efd5",
         "user": "ada",
+        "person": "Ada",
         "lang": "de",
         "at": 1741421087.9,
         "clock": "morgens, 08:04",

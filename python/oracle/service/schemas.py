@@ -168,6 +168,7 @@ class TabletView(BaseModel):
     model_config = ConfigDict(json_schema_extra=example("TabletView"))
     neem: str
     user: str | None
+    person: str = Field("", description="the person's name for the header (empty: none known; never an id)")
     lang: str
     at: float | None
     clock: str = Field(description="part of the day and time on the person's clock")
