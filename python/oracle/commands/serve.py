@@ -48,6 +48,15 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     parser.add_argument("--dwell", type=float, default=3.0, metavar="S", help="seconds a dwell takes to confirm (default 3)")
     parser.add_argument("--undo", type=float, default=5.0, metavar="S",
                         help="seconds a confirmed choice can be undone before it reaches the robot (default 5)")
+    parser.add_argument("--scan", choices=("off", "one", "two"), default="off",
+                        help="the page's own switch scanning: one switch (it moves by itself, a press selects) or two"
+                             " (Space moves, Enter selects) (default off)")
+    parser.add_argument("--scan-speed", type=float, default=1.5, metavar="S",
+                        help="with --scan one: seconds the highlight rests on each button (default 1.5)")
+    parser.add_argument("--repeat-filter", type=float, default=0.5, metavar="S",
+                        help="a second hit within S seconds of one that counted changes nothing (default 0.5; 0: off)")
+    parser.add_argument("--gaze", type=float, default=0.0, metavar="S",
+                        help="a pointer or eye gaze resting S seconds on a button selects it (default 0: off)")
     add_options(parser, *ONTOLOGY_OPTIONS)
     parser.set_defaults(handler=run)
 
@@ -103,6 +112,9 @@ def run(args: argparse.Namespace) -> int:
         raise NeemOracleError(f"--port {args.port}: expected 1-65535")
     if not (0 < args.dwell <= 60 and 0 <= args.undo <= 60):
         raise NeemOracleError("--dwell and --undo: expected seconds in (0, 60] and [0, 60]")
+    if not (0.3 <= args.scan_speed <= 10 and 0 <= args.repeat_filter <= 5 and (args.gaze == 0 or 0.3 <= args.gaze <= 10)):
+        raise NeemOracleError("--scan-speed and --gaze: expected 0.3 to 10 seconds (--gaze 0: off);"
+                              " --repeat-filter: 0 to 5 seconds")
     try:
         zone = display_zone(args.tz)
     except TimeValueError as error:
@@ -116,7 +128,8 @@ def run(args: argparse.Namespace) -> int:
                         method=method_from(args), host=args.host, extra_hosts=tuple(args.allowed_host),
                         limits=limits, prolog_writes=args.allow_prolog_writes)
     ctx.zone = zone
-    ctx.manner = Manner(confirm=args.confirm, dwell_s=args.dwell, undo_s=args.undo)
+    ctx.manner = Manner(confirm=args.confirm, dwell_s=args.dwell, undo_s=args.undo, scan=args.scan,
+                        scan_s=args.scan_speed, filter_s=args.repeat_filter, gaze_s=args.gaze)
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(name)s %(message)s")
     location = ctx.thread.call(lambda: ctx.engine.store.location)
     print(f"serving {location}; the page: {page_url(args.host, args.port, token)} (API docs at /docs); Ctrl-C stops",

@@ -1,6 +1,6 @@
 // The tablet page (docs/service.md, "The tablet page"). The server renders the first view and
-// every later one (GET .../tablet: plain words in the page's language); this script only keeps
-// the targets steady, asks before it acts, and talks to the service.
+// every later one (GET .../tablet: plain words in the page's language); this script keeps the
+// targets steady, asks before it acts, scans for switches, and talks to the service.
 (function () {
   'use strict';
   var cfg = JSON.parse(document.getElementById('config').textContent);
@@ -8,10 +8,14 @@
   var list = document.getElementById('tasks'), answer = document.getElementById('answer');
   var robot = document.getElementById('robot'), fresh = document.getElementById('fresh');
   var when = document.getElementById('when'), sheet = document.getElementById('sheet');
+  var strip = document.getElementById('strip'), link = document.getElementById('link');
   var auth = cfg.token ? {'Authorization': 'Bearer ' + cfg.token} : {};
   var prefs = settings();
   var shown = cfg.view, pending = null, newest = cfg.view;
-  var lastTouch = 0, choosing = null;
+  var lastTouch = 0, choosing = null, online = true, kept = null;
+  // After a choice the person waits for the robot: its next ranking is shown at once, focus on its top.
+  var following = false;
+  var SHOWN = 5;  // page.py's SHOWN: the top five, then "More suggestions"
 
   function api(path) { return '/api/neems/' + encodeURIComponent(cfg.neem) + path; }
   function lang(path) { return path + (path.indexOf('?') < 0 ? '?' : '&') + 'lang=' + encodeURIComponent(cfg.lang); }
@@ -25,35 +29,65 @@
     if (text !== undefined) e.textContent = text; return e;
   }
   function fill(text, values) { return text.replace(/\{(\w+)\}/g, function (_, k) { return values[k]; }); }
+  function each(selector, fn) { Array.prototype.forEach.call(document.querySelectorAll(selector), fn); }
 
-  // -- who uses the page: confirm by a second tap or by dwelling, the undo window -------------
-  // Set per person by the carer with ?confirm=tap|dwell&dwell=S&undo=S&hold=S, kept in this browser.
+  // -- the carer's settings for this person, kept in this browser for this NEEM ----------------
+  // ?confirm=tap|dwell&dwell=S&undo=S&hold=S&scan=off|one|two&step=S&filter=S&gaze=S
   function settings() {
     var key = 'oracle-prefs-' + cfg.neem, saved = {};
     try { saved = JSON.parse(localStorage.getItem(key) || '{}'); } catch (e) { saved = {}; }
-    var q = new URLSearchParams(location.search), out = {
+    var q = new URLSearchParams(location.search);
+    function num(name, fallback) {
+      var v = parseFloat(q.get(name) !== null ? q.get(name) : (saved[name] !== undefined ? saved[name] : fallback));
+      return isFinite(v) && v >= 0 ? v : fallback;
+    }
+    var out = {
       confirm: q.get('confirm') || saved.confirm || cfg.confirm,
-      dwell: parseFloat(q.get('dwell') || saved.dwell || cfg.dwell_s),
-      undo: parseFloat(q.get('undo') || saved.undo || cfg.undo_s),
-      hold: parseFloat(q.get('hold') || saved.hold || cfg.hold_ms / 1000)
+      dwell: num('dwell', cfg.dwell_s), undo: num('undo', cfg.undo_s), hold: num('hold', cfg.hold_ms / 1000),
+      scan: q.get('scan') || saved.scan || cfg.scan, step: num('step', cfg.scan_s),
+      filter: num('filter', cfg.filter_s), gaze: num('gaze', cfg.gaze_s)
     };
     if (out.confirm !== 'dwell') out.confirm = 'tap';
+    if (['one', 'two'].indexOf(out.scan) < 0) out.scan = 'off';
+    out.step = Math.max(0.3, out.step);
     try { localStorage.setItem(key, JSON.stringify(out)); } catch (e) { /* private mode */ }
     return out;
   }
 
+  // -- one hit counts once: a second within the filter time changes nothing (Grid 3's and TD
+  // Snap's repeat-hit filter), and a target that is off (aria-disabled) does nothing ----------
+  var lastHit = -1e9, passing = false;
+  function hit() {
+    var now = performance.now();
+    if (now - lastHit < prefs.filter * 1000) return false;
+    lastHit = now; return true;
+  }
+  function off(b) { return b.getAttribute('aria-disabled') === 'true'; }
+  function press(b) { passing = true; try { b.click(); } finally { passing = false; } }  // a hit already counted
+  document.addEventListener('click', function (e) {
+    var b = e.target.closest ? e.target.closest('button') : null;
+    if (!b) return;
+    if (off(b) || (!passing && !hit())) { e.preventDefault(); e.stopImmediatePropagation(); }
+  }, true);
+  document.addEventListener('mousedown', function (e) {  // a press on a target that is off leaves the focus where it is
+    var b = e.target.closest ? e.target.closest('button') : null;
+    if (b && off(b)) e.preventDefault();
+  }, true);
+
   // -- steady targets -------------------------------------------------------------------------
-  // While the user is on the page (a touch, pointer or key within the hold time, the keyboard's or
-  // switch's focus on the list, the sheet open), a new ranking waits behind "New suggestions";
-  // otherwise it is shown at once. A tapped button keeps the focus too, but not a visible one: a
-  // touch user who has let go is idle.
-  ['pointerdown', 'pointermove', 'touchstart', 'keydown', 'wheel'].forEach(function (kind) {
-    document.addEventListener(kind, function () { lastTouch = Date.now(); }, {capture: true, passive: true});
+  // While the person is on the list (a touch, pointer or key within the hold time, the keyboard's
+  // or two-switch focus on the list, the sheet open), a new ranking waits behind "New suggestions";
+  // otherwise, and always right after a choice, it is shown at once.
+  ['pointerdown', 'touchstart', 'keydown', 'wheel'].forEach(function (kind) {
+    document.addEventListener(kind, function (e) { if (e.isTrusted) lastTouch = Date.now(); }, {capture: true, passive: true});
   });
+  document.addEventListener('pointermove', function (e) { if (e.isTrusted && e.pointerType !== 'mouse') lastTouch = Date.now(); },
+                            {capture: true, passive: true});
   function engaged() {
+    if (following) return false;
     var focused = document.activeElement;
     return Date.now() - lastTouch < prefs.hold * 1000 || sheet.open ||
-      (list.contains(focused) && focused.matches(':focus-visible'));
+      (prefs.scan !== 'one' && list.contains(focused) && focused.matches(':focus-visible'));
   }
   function said(t) { return t.mode_said ? t.reason + ' ' + t.mode_said : t.reason; }  // why here, and who usually does it
   function calls(view) { return (view && view.tasks || []).map(function (t) { return t.task; }); }
@@ -64,33 +98,41 @@
         same(view.routine, shown && shown.routine)) {
       shown = view; pending = null; showFresh(); when.textContent = view.clock || ''; return;
     }
-    if (engaged()) { pending = view; showFresh(); } else { apply(view); }
+    if (engaged()) { pending = view; showFresh(); } else { apply(view, following); }
   }
-  function showFresh() { fresh.classList.toggle('waiting', !!pending); fresh.disabled = !pending; }
-  setInterval(function () { if (pending && !engaged()) apply(pending); }, 500);
-  function apply(view) {
-    var focused = document.activeElement && document.activeElement.dataset.task;
-    var onFlow = document.activeElement && (document.activeElement.id === 'workflow' || document.activeElement.id === 'routine')
-      ? document.activeElement.id : null;
+  function showFresh() { fresh.classList.toggle('waiting', !!pending); fresh.disabled = !pending; showStrip(); }
+  setInterval(function () { if (pending && !engaged()) apply(pending, false); }, 500);
+  var KEEP = ['workflow', 'routine', 'whatnext', 'otherthing', 'more'];  // controls that keep the focus by id
+  function apply(view, toTop) {
+    var active = document.activeElement;
+    var focused = active && active.dataset && active.dataset.task;
+    var byId = active && KEEP.indexOf(active.id) >= 0 ? active.id : null;
+    var hadFocus = list.contains(active);
     render(view);
     pending = null; showFresh();
-    var target = onFlow ? document.getElementById(onFlow) : focused && list.querySelector('button.task[data-task="' + CSS.escape(focused) + '"]');
+    if (toTop) { following = false; focusTop(); return; }
+    var target = byId ? document.getElementById(byId) : focused && list.querySelector('button.task[data-task="' + CSS.escape(focused) + '"]');
+    if (!target && hadFocus) target = list.querySelector('button.task');
     if (target) target.focus();
   }
-  fresh.addEventListener('click', function () {
-    if (!pending) return;
-    apply(pending);
-    var top = list.querySelector('button.task'); if (top) top.focus();
-  });
+  function focusTop() {
+    var top = list.querySelector('button.task');
+    if (top) { top.focus(); top.scrollIntoView({block: 'nearest'}); }
+    restartScan();
+  }
+  fresh.addEventListener('click', function () { if (pending) { apply(pending, true); } });
 
+  var expanded = false;
   function render(view) {
     shown = view;
+    expanded = false;
     list.textContent = '';
     when.textContent = view && view.clock ? view.clock : '';
     var tasks = view && view.tasks || [];
     if (!tasks.length) { list.appendChild(el('li', 'empty', T.waiting)); return; }
     tasks.forEach(function (t, i) {
-      var li = el('li', i === 0 ? 'top' : '');
+      if (i === SHOWN) list.appendChild(moreItem(tasks.length - SHOWN));
+      var li = el('li', i === 0 ? 'top' : 'rest'); li.hidden = i >= SHOWN;
       var b = el('button', 'task'); b.type = 'button'; b.dataset.task = t.task;
       b.appendChild(el('span', 'rank', String(t.rank)));
       var words = el('span', 'words');
@@ -99,7 +141,8 @@
       b.appendChild(words);
       b.addEventListener('click', function () { open({task: t.task, said: t.said, reason: said(t), rank: t.rank}); });
       li.appendChild(b); list.appendChild(li);
-      if (i === 0 && view.workflow && view.workflow.length >= 2) {
+      if (i > 0) return;
+      if (view.workflow && view.workflow.length >= 2) {
         var fl = el('li', 'flow'), fb = el('button'); fb.type = 'button'; fb.id = 'workflow';
         fb.appendChild(el('span', 'label', T.workflow));
         fb.appendChild(el('span', 'steps', view.workflow.map(function (s) { return s.said; }).join(' \u2192 ')));
@@ -109,7 +152,7 @@
         });
         fl.appendChild(fb); list.appendChild(fl);
       }
-      if (i === 0 && view.routine) {  // the routine in progress: its steps left, as one workflow
+      if (view.routine) {  // the routine in progress: its steps left, as one workflow
         var rl = el('li', 'routine'), rb = el('button', '', view.routine.label); rb.type = 'button'; rb.id = 'routine';
         rb.addEventListener('click', function () {
           open({workflow: view.routine.steps.map(function (s) { return Object.assign({}, s); }), modes: true,
@@ -117,14 +160,34 @@
         });
         rl.appendChild(rb); list.appendChild(rl);
       }
+      // the two questions right under the top suggestion: a few presses away for a switch
+      var ask = el('li', 'ask');
+      var wn = el('button', '', T.whatnext); wn.type = 'button'; wn.id = 'whatnext';
+      wn.addEventListener('click', function () { question(T.whatnext, '/what-next'); });
+      var se = el('button', '', T.instead); se.type = 'button'; se.id = 'otherthing';
+      se.addEventListener('click', function () { question(T.instead, '/something-else?task=' + encodeURIComponent(t.task)); });
+      ask.appendChild(wn); ask.appendChild(se); list.appendChild(ask);
     });
+    if (!online) markOff(true);
+  }
+  function moreItem(n) {
+    var li = el('li', 'more'), b = el('button', '', fill(T.more, {n: n})); b.type = 'button'; b.id = 'more';
+    b.setAttribute('aria-expanded', 'false');
+    b.addEventListener('click', function () {  // the rest unfold below it: nothing above moves
+      expanded = !expanded;
+      b.setAttribute('aria-expanded', String(expanded));
+      b.textContent = expanded ? T.fewer : fill(T.more, {n: n});
+      Array.prototype.forEach.call(list.querySelectorAll('li.rest'), function (item, i) { if (i >= SHOWN - 1) item.hidden = !expanded; });
+    });
+    li.appendChild(b); return li;
   }
 
-  // -- the sheet: what a choice is, why, confirm, undo -----------------------------------------
+  // -- the sheet: what a choice is, why, confirm, undo; and the answers to the two questions ----
   var title = document.getElementById('sheet-title'), note = document.getElementById('sheet-note');
   var steps = document.getElementById('sheet-steps'), yes = document.getElementById('confirm');
   var why = document.getElementById('whyhere'), other = document.getElementById('instead');
   var back = document.getElementById('back'), undo = document.getElementById('undo');
+  var reply = document.getElementById('sheet-answer');
   var timer = null, opener = null;
 
   function available(choice) {
@@ -132,24 +195,45 @@
     var wanted = choice.workflow ? [choice.workflow[0].task] : [choice.task];
     return wanted.every(function (c) { return now.indexOf(c) >= 0; });
   }
+  function reset() {  // every button in its own cell (page.css): hiding one moves no other
+    stopTimer();
+    following = false;
+    yes.textContent = T.confirm; yes.classList.remove('done');
+    if (online) yes.removeAttribute('aria-disabled');
+    steps.textContent = ''; steps.hidden = true; reply.textContent = '';
+    undo.hidden = true; back.hidden = false; yes.hidden = false; why.hidden = false; other.hidden = false;
+  }
+  function show(first) {
+    if (!sheet.open) sheet.showModal();
+    first.focus();
+    restartScan();
+  }
   function open(choice) {
     opener = document.activeElement;
+    reset();
     choosing = choice;
-    stopTimer();
     title.textContent = choice.title || (choice.workflow ? T.workflow_title : choice.said);
-    steps.textContent = '';
     (choice.workflow || []).forEach(function (s, i) { steps.appendChild(step(s, i, choice.modes)); });
     steps.hidden = !choice.workflow;
     sheet.dataset.phase = 'ask';
-    undo.hidden = true; back.hidden = false; yes.hidden = false; why.hidden = !!choice.workflow; other.hidden = !!choice.workflow;
+    why.hidden = !!choice.workflow; other.hidden = !!choice.workflow;
     note.textContent = choice.note || (choice.workflow ? T.workflow_note + ' ' + T.who_hint : choice.reason);
     if (!available(choice)) {
       sheet.dataset.phase = 'gone'; yes.hidden = true; why.hidden = true; other.hidden = true;
       note.textContent = T.gone;
     }
-    sheet.showModal();
-    (yes.hidden ? back : yes).focus();
-    if (!yes.hidden && prefs.confirm === 'dwell') countdown(prefs.dwell, T.dwell, confirm);
+    show(yes.hidden ? back : yes);
+    if (!yes.hidden && prefs.confirm === 'dwell' && online) countdown(prefs.dwell, T.dwell, confirm);
+  }
+  function question(asked, path) {  // the answer opens where the person is looking: in the sheet
+    opener = document.activeElement;
+    reset();
+    choosing = null;
+    sheet.dataset.phase = 'answer';
+    title.textContent = asked; note.textContent = '';
+    yes.hidden = true; why.hidden = true; other.hidden = true;
+    show(back);
+    inSheet(path);
   }
   // -- who does each step of a workflow (thesis 6.3): the person, the robot, or the two together.
   // Each step's button keeps its place and the focus; a tap names the next one, nothing else moves.
@@ -159,21 +243,22 @@
     li.appendChild(words);
     if (!toggles) return li;
     var b = el('button', 'who'); b.type = 'button'; b.dataset.step = String(i);
-    function show() {
+    function label() {
       b.dataset.mode = s.mode; b.textContent = T['who_' + s.mode];
       b.setAttribute('aria-label', s.said + ': ' + fill(T.who_is, {who: T['who_' + s.mode]}));
     }
     b.addEventListener('click', function () {
       s.mode = MODES[(MODES.indexOf(s.mode) + 1) % MODES.length];
-      show();
+      label();
       if (timer && sheet.dataset.phase === 'ask') {  // a dwell starts again: the person is still choosing
         stopTimer(); countdown(prefs.dwell, T.dwell, confirm);
       }
     });
-    show(); li.appendChild(b);
+    label(); li.appendChild(b);
     return li;
   }
   function countdown(seconds, text, then) {
+    if (seconds <= 0) { then(); return; }
     var left = Math.max(1, Math.round(seconds));
     var line = document.getElementById('sheet-count');
     line.textContent = fill(text, {n: left});
@@ -190,36 +275,68 @@
   function close() {
     stopTimer(); choosing = null;
     if (sheet.open) sheet.close();
-    var back = opener && document.contains(opener) ? opener : list.querySelector('button.task');
-    if (back) back.focus();
+    var to = opener && document.contains(opener) ? opener : list.querySelector('button.task');
+    if (to) to.focus();
+    restartScan();
   }
   function confirm() {
     stopTimer();
     if (!choosing || !available(choosing)) { sheet.dataset.phase = 'gone'; note.textContent = T.gone; yes.hidden = true; back.focus(); return; }
+    // "Yes" stays where it was, off and saying "Chosen": a second tap there does nothing. "Undo"
+    // takes the place of "Back", far from it; the focus stays on "Yes".
     sheet.dataset.phase = 'undo';
-    yes.hidden = true; why.hidden = true; other.hidden = true; back.hidden = true; undo.hidden = false;
+    yes.textContent = T.chosen; yes.classList.add('done'); yes.setAttribute('aria-disabled', 'true');
+    why.hidden = true; other.hidden = true; back.hidden = true; undo.hidden = false;
     Array.prototype.forEach.call(steps.querySelectorAll('button.who'), function (b) { b.disabled = true; });
-    note.textContent = fill(T.sending, {task: choosing.workflow ? choosing.workflow[0].said : choosing.said});
-    undo.focus();
-    countdown(prefs.undo, T.undo_in, send);
+    // the note above the buttons stays as it is (a new text there would move them): the countdown
+    // line below them says what is about to happen
+    var sending = fill(T.sending, {task: choosing.workflow ? choosing.workflow[0].said : choosing.said});
+    if (document.activeElement !== yes) yes.focus();
+    restartScan();
+    countdown(prefs.undo, sending + ' ' + T.undo_in, send);
   }
   function send() {
     var choice = choosing;
     var body = choice.workflow ? {task: choice.workflow[0].task, workflow: choice.workflow.map(function (s) { return s.task; })}
                                : {task: choice.task};
     if (choice.modes) body.modes = choice.workflow.map(function (s) { return s.mode; });
+    opener = null;
+    close();
+    following = true;  // the robot's next ranking comes at once, the focus on its top
+    if (pending) apply(pending, false);
+    focusTop();
+    if (!online) { keep(choice, body); return; }
+    post(choice, body, null);
+  }
+  function chosenWords(choice) {
+    return choice.workflow ? fill(T.chose_workflow, {steps: choice.workflow.map(function (s) {
+      return choice.modes ? s.said + ' (' + T['who_' + s.mode] + ')' : s.said; }).join(' \u2192 ')})
+                           : fill(T.chose, {task: choice.said});
+  }
+  function post(choice, body, saying) {
     var headers = Object.assign({'Content-Type': 'application/json'}, auth);
-    fetch(api('/choice'), {method: 'POST', headers: headers, body: JSON.stringify(body)})
-      .then(function (r) { return r.json().then(function (j) { if (!r.ok) throw new Error(j.error || r.status); return j; }); })
-      .then(function () {
-        say(choice.workflow ? fill(T.chose_workflow, {steps: choice.workflow.map(function (s) {
-              return choice.modes ? s.said + ' (' + T['who_' + s.mode] + ')' : s.said; }).join(' \u2192 ')})
-                            : fill(T.chose, {task: choice.said}));
+    return fetch(api('/choice'), {method: 'POST', headers: headers, body: JSON.stringify(body)})
+      .then(function (r) { return r.json().then(function (j) { if (!r.ok) throw new Error(j.error || r.status); return j; }); },
+            function () { keep(choice, body); return null; })  // no answer at all: kept, sent when the robot is back
+      .then(function (j) {
+        if (!j) return;
+        kept = null;
+        say(saying || chosenWords(choice));
         markChosen(body.task, choice.workflow ? choice.item || 'li.flow' : null);
       })
-      .catch(function (e) { say(fill(T.not_sent, {why: e.message})); });
-    close();
+      .catch(function (e) { kept = null; say(fill(T.not_sent, {why: e.message})); });
   }
+  function keep(choice, body) {
+    kept = {choice: choice, body: body};
+    say(fill(T.kept, {task: choice.workflow ? choice.workflow[0].said : choice.said}));
+  }
+  function flushKept() {  // back online: the choice kept goes out if the robot still offers it
+    if (!kept) return;
+    var k = kept, task = k.choice.workflow ? k.choice.workflow[0].said : k.choice.said;
+    if (!available(k.choice)) { kept = null; say(fill(T.kept_gone, {task: task})); return; }
+    post(k.choice, k.body, fill(T.kept_sent, {task: task}));
+  }
+  setInterval(function () { if (kept && online) refresh().then(flushKept); }, 3000);  // a lost POST with the stream up
   function markChosen(task, flow) {
     Array.prototype.forEach.call(list.children, function (li) { li.classList.remove('chosen'); });
     var item = flow ? list.querySelector(flow) : (list.querySelector('button.task[data-task="' + CSS.escape(task) + '"]') || {}).parentNode;
@@ -231,38 +348,108 @@
   sheet.addEventListener('cancel', function (e) { e.preventDefault(); if (sheet.dataset.phase === 'undo') say(T.undone); close(); });
   why.addEventListener('click', function () { stopTimer(); inSheet('/why-not?task=' + encodeURIComponent(choosing.task)); });
   other.addEventListener('click', function () { stopTimer(); inSheet('/something-else?task=' + encodeURIComponent(choosing.task)); });
-  function inSheet(path) {
-    note.textContent = T.asking;
-    getJSON(path).then(function (j) { note.textContent = j.said; }).catch(function (e) { note.textContent = fill(T.no_answer, {why: e.message}); });
+  function inSheet(path) {  // below the buttons: a long answer moves none of them
+    reply.textContent = T.asking;
+    getJSON(path).then(function (j) { reply.textContent = j.said; }).catch(function (e) { reply.textContent = fill(T.no_answer, {why: e.message}); })
+      .then(function () { reply.scrollIntoView({block: 'nearest'}); });
   }
 
-  // -- answers the user asked for stay until the user asks again; the robot has its own line ---
-  function say(text) { answer.textContent = text; }
-  document.getElementById('whatnext').addEventListener('click', function () {
-    say(T.asking);
-    getJSON('/what-next').then(function (j) { say(j.said); }).catch(function (e) { say(fill(T.no_answer, {why: e.message})); });
-  });
+  // -- the strip over the foot of the screen: what was chosen, what the robot did, offline -----
+  function say(text) { answer.textContent = text; showStrip(); }
+  function showStrip() {
+    strip.hidden = !(answer.textContent || robot.textContent || !link.hidden || pending);
+    // a focused button scrolls clear of the strip, never under it
+    document.documentElement.style.scrollPaddingBottom = (strip.hidden ? 0 : strip.offsetHeight + 12) + 'px';
+  }
 
-  // -- keyboard and switch scanning: arrows move through the buttons, as Tab does --------------
-  document.addEventListener('keydown', function (e) {
-    if (e.key !== 'ArrowDown' && e.key !== 'ArrowUp') return;
+  // -- switches: the page's own scanning. Two switches: Space moves, Enter selects. One switch:
+  // the highlight moves by itself every `step` seconds, Space or Enter selects. Without
+  // scanning the arrow keys move through the buttons, as Tab does. -------------------------
+  var scanTimer = null;
+  function scanItems() {
     var scope = sheet.open ? sheet : document;
-    var items = Array.prototype.filter.call(scope.querySelectorAll('button'), function (b) {
-      return !b.disabled && !b.hidden && b.offsetParent !== null;
+    return Array.prototype.filter.call(scope.querySelectorAll('button'), function (b) {
+      return !b.disabled && !b.hidden && b.offsetParent !== null && !off(b) && getComputedStyle(b).visibility === 'visible';
     });
+  }
+  function move(by) {
+    var items = scanItems();
+    if (!items.length) return;
     var i = items.indexOf(document.activeElement);
-    var next = items[(i + (e.key === 'ArrowDown' ? 1 : items.length - 1)) % items.length];
-    if (next) { next.focus(); e.preventDefault(); }
-  });
+    var next = i < 0 ? items[0] : items[(i + by + items.length) % items.length];
+    next.focus();
+    next.scrollIntoView({block: 'nearest'});
+  }
+  function restartScan() {
+    if (scanTimer) clearInterval(scanTimer);
+    scanTimer = prefs.scan === 'one' ? setInterval(function () { move(1); }, prefs.step * 1000) : null;
+  }
+  function select() {
+    var b = document.activeElement;
+    if (b && scanItems().indexOf(b) >= 0) press(b); else move(0);
+  }
+  document.addEventListener('keydown', function (e) {
+    var selects = prefs.scan === 'one' ? (e.key === ' ' || e.key === 'Enter') : prefs.scan === 'two' && e.key === 'Enter';
+    var moves = prefs.scan === 'two' && e.key === ' ';
+    if (selects || moves) {
+      e.preventDefault(); e.stopPropagation();
+      if (e.repeat || !hit()) return;
+      if (moves) move(1); else select();
+      restartScan();
+      return;
+    }
+    if (e.key !== 'ArrowDown' && e.key !== 'ArrowUp') return;
+    move(e.key === 'ArrowDown' ? 1 : -1);
+    e.preventDefault();
+  }, true);
+  document.addEventListener('keyup', function (e) {  // a button's own Space would click on keyup
+    if (prefs.scan !== 'off' && e.key === ' ') { e.preventDefault(); e.stopPropagation(); }
+  }, true);
+
+  // -- dwell to select: a pointer or eye gaze resting `gaze` seconds on a button selects it,
+  // the button filling up meanwhile; it selects again only after the pointer has left it ------
+  var gazeOn = null, gazeTimer = null;
+  function stopGaze() {
+    if (gazeTimer) clearTimeout(gazeTimer);
+    if (gazeOn) gazeOn.classList.remove('gazing');
+    gazeOn = null; gazeTimer = null;
+  }
+  if (prefs.gaze > 0) {
+    document.documentElement.style.setProperty('--gaze', prefs.gaze + 's');
+    document.addEventListener('pointerover', function (e) {
+      if (e.pointerType === 'touch') return;
+      var b = e.target.closest ? e.target.closest('button') : null;
+      if (b === gazeOn) return;
+      stopGaze();
+      if (!b || b.disabled || off(b)) return;
+      gazeOn = b; b.classList.add('gazing');
+      gazeTimer = setTimeout(function () {
+        gazeTimer = null; b.classList.remove('gazing');
+        if (!off(b) && hit()) press(b);
+      }, prefs.gaze * 1000);
+    });
+    document.addEventListener('pointerout', function (e) {
+      if (gazeOn && e.target.closest && e.target.closest('button') === gazeOn && !gazeOn.contains(e.relatedTarget)) stopGaze();
+    });
+  }
 
   // -- live: the robot's events. The browser reconnects a dropped stream by itself (the server
   // asks for 2 s); a refused one (the service restarting) is retried here, backing off to 15 s.
-  // Events sent meanwhile are lost, so every reconnection fetches the latest view.
+  // Events sent meanwhile are lost, so every reconnection fetches the latest view. Offline,
+  // every target that would reach the robot is off (aria-disabled, striped) until it is back.
   var url = '/api/events?neem=' + encodeURIComponent(cfg.neem) + (cfg.token ? '&token=' + encodeURIComponent(cfg.token) : '');
-  var link = document.getElementById('link'), lost = false, delay = 1000, asked = 0;
+  var lost = false, delay = 1000, asked = 0;
+  var REACH = '#tasks button:not(#more), #confirm, #whyhere, #instead';
+  function markOff(isOff) {
+    each(REACH, function (b) {
+      if (isOff) b.setAttribute('aria-disabled', 'true');
+      else if (!(b === yes && sheet.dataset.phase === 'undo')) b.removeAttribute('aria-disabled');
+    });
+    if (isOff && sheet.dataset.phase === 'ask') stopTimer();  // a dwell stops; an undo window runs on, its choice kept
+  }
   function refresh() {
     var mine = ++asked;  // answers arriving out of order: only the latest request counts
-    getJSON('/tablet').then(function (view) { if (mine === asked) incoming(view); }).catch(function () {});
+    return getJSON('/tablet').then(function (view) { if (mine === asked) incoming(view); }).catch(function () {});
   }
   function connect() {
     var source = new EventSource(url);
@@ -270,19 +457,24 @@
     source.addEventListener('action', function (m) {
       var a = JSON.parse(m.data);
       getJSON('/words?call=' + encodeURIComponent(a.call)).then(function (w) { robot.textContent = fill(T.robot_did, {task: w.said}); })
-        .catch(function () { robot.textContent = fill(T.robot_did, {task: a.call}); });
+        .catch(function () { robot.textContent = fill(T.robot_did, {task: a.call}); }).then(showStrip);
     });
     source.onopen = function () {
       document.body.dataset.live = 'yes'; link.hidden = true; delay = 1000;
-      if (lost) { lost = false; refresh(); }
+      if (!online) { online = true; markOff(false); }
+      showStrip();
+      if (lost) { lost = false; refresh().then(flushKept); }
     };
     source.onerror = function () {
       document.body.dataset.live = 'no'; lost = true; link.hidden = false;
+      online = false; markOff(true); showStrip();
       if (source.readyState === EventSource.CLOSED) { setTimeout(connect, delay); delay = Math.min(2 * delay, 15000); }
     };
   }
+  document.body.dataset.scan = prefs.scan;
   render(cfg.view);
   showFresh();
+  if (prefs.scan !== 'off') focusTop();
   document.body.dataset.ready = 'yes';
   connect();
 })();
