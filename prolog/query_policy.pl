@@ -109,6 +109,7 @@ exposed(store_tf, store_pose/4, hidden).
 exposed(store_tf, store_assert_pose/3, hidden).
 exposed(store_tf, store_poses/4, hidden).
 % -- the query language (prolog/lang/)
+exposed(kb_owl_guard, owl_file_safe/1, hidden). % reads a file's head (load_owl's check)
 exposed(kb_db, load_owl/1, hidden).             % reads a file, replaces a graph
 exposed(kb_db, load_owl/2, hidden).
 exposed(kb_db, annotation/3, read).

@@ -48,6 +48,7 @@ Pkg), as ROS's `$ROS_PACKAGE_PATH`; a package found nowhere is an error naming t
 :- use_module('../store/python', [store_python_call/3]).
 :- use_module(triple, [kb_iri/2]).
 :- use_module(subgraph, [add_subgraph/2]).
+:- use_module(owl_guard, [owl_file_safe/1]).
 
 %!  drop_graph(+Graph) is det.
 %   KnowRob's drop_graph/1: delete every fact of named graph Graph (`user`: everything
@@ -95,6 +96,7 @@ load_owl(URL) :-
 load_owl(URL, Options) :-
     must_be(list, Options),
     owl_file(URL, File),
+    owl_file_safe(File),        % a regular file, its XML entities bounded (rdf_load bounds none)
     file_base_name(File, Base),
     file_name_extension(Name, _, Base),
     option(graph(OntoGraph), Options, Name),
