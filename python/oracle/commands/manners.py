@@ -73,6 +73,9 @@ class _Once(argparse._StoreAction):
 def mind_repeats(parser: argparse.ArgumentParser) -> None:
     """Make ``parser``'s list options add up and its one-value options refuse a second value."""
     for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):  # ontology build, ontology distance, ...
+            for sub in action.choices.values():
+                mind_repeats(sub)
         if not action.option_strings or type(action) is not argparse._StoreAction:
             continue
         if action.nargs in ("+", "*"):
