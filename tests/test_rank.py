@@ -145,13 +145,13 @@ def test_rank_method_thesis_writes_the_thesis_ranking_and_names_the_method(store
     assert thesis["method"] == "thesis" and "probability" not in thesis["ranking"][0]
     assert main(["rank", "--store", str(store), "--json", "--no-write"]) == 0
     routine = json.loads(capsys.readouterr().out)
-    assert routine["method"] == "pooled"  # the default: the routine predictor's ranking until its logit leads
+    assert routine["method"] == "personal"  # the default: the routine predictor's ranking until it learnt
     best = routine["ranking"][0]
     # the chain repeats exactly: its last three actions were followed by the next one twice
     assert best["call"] == "place(thermos, counter_top)" and best["context_order"] == 3 and best["similar"] == 2
     assert [r["score"] for r in routine["ranking"]] == sorted(r["score"] for r in routine["ranking"])
     assert main(["rank", "--store", str(store), "--method", "bayes"]) == 1
-    assert ("unknown method 'bayes' (known: routine, routine-fixed, routine-mixture, stacked, online, pooled, thesis, "
+    assert ("unknown method 'bayes' (known: routine, routine-fixed, routine-mixture, stacked, online, pooled, personal, thesis, "
             "thesis-normalized)") in capsys.readouterr().err
 
 

@@ -40,9 +40,12 @@ ACTIONS = 10_000
 #: before (7c8c3cd9... and 521a6a27...) and after are equal, the ranking read back included.
 #: ``python tests/test_rank_pin.py`` prints it.
 EXPECTED = "c4691709fa52cb411227f4286e690e4e15173d46c38524ea59c3bef05c0c1e0d"
-#: the same for the default, ``pooled``, ranked right after on the same NEEM: the routine
-#: predictor's text but for ``"method": "pooled"`` (on this NEEM the pool's gate stays shut)
-EXPECTED_DEFAULT = "7c31cb0202ad871d2bfe4534b397a98263f788c55d3d987ad5706dd419af3c8a"
+#: the same for the default, ranked right after on the same NEEM. For ``pooled`` (the default
+#: before issue 56) it was the routine predictor's text but for ``"method": "pooled"`` (its gate
+#: stays shut here), 7c31cb02...; the default ``personal`` (no prior: a per-user logit over the
+#: routine predictor's evidence) keeps the routine predictor's explanations and chain and gives
+#: its own probabilities and order from the 8th option on.
+EXPECTED_DEFAULT = "1a7a2933363465de762b1c06fd4196030c1f1a0e4f9b512cd36b68e0e6bbdcf9"
 
 
 def _oracle(*argv: str, env: dict[str, str]) -> str:

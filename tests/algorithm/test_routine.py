@@ -16,6 +16,7 @@ from oracle.algorithm.predictors import DEFAULT, PREDICTORS, make_predictor, pre
 from oracle.algorithm.reference import overall_distance
 from oracle.algorithm.contexts import ContextCounts
 from oracle.algorithm.records import RoutineTask
+from oracle.algorithm.personal import PersonalOracle
 from oracle.algorithm.pooled import PooledOracle
 from oracle.algorithm.routine import RoutineOracle
 from oracle.algorithm.selftune import VariantWeights
@@ -209,8 +210,9 @@ def test_parameters_follow_the_estimator_contract():
 
 
 def test_the_registry_names_the_default_and_the_exact_thesis_oracle():
-    assert DEFAULT == "pooled" and set(PREDICTORS) >= {"pooled", "routine", "thesis"}
-    assert isinstance(make_predictor(DEFAULT, kitchen()), PooledOracle)
+    assert DEFAULT == "personal" and set(PREDICTORS) >= {"personal", "pooled", "routine", "thesis"}
+    assert isinstance(make_predictor(DEFAULT, kitchen()), PersonalOracle)
+    assert isinstance(make_predictor("pooled", kitchen()), PooledOracle)
     assert isinstance(make_predictor("routine", kitchen()), RoutineOracle)
     assert make_predictor("routine-fixed", kitchen()).tuning == "fixed"
     steps = synthetic_history(60, seed=3)
@@ -221,7 +223,7 @@ def test_the_registry_names_the_default_and_the_exact_thesis_oracle():
         assert thesis.rank(steps[55]) == direct.rank(steps[55])
     assert predictor_spec(" Thesis ").name == "thesis"
     with pytest.raises(SettingsError, match="known: routine, routine-fixed, routine-mixture, stacked, online, pooled, "
-                                            "thesis, thesis-normalized"):
+                                            "personal, thesis, thesis-normalized"):
         make_predictor("bayes", matrix)
 
 

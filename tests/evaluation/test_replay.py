@@ -133,8 +133,8 @@ def test_evaluate_command_writes_json_report_and_plots(tmp_path, capsys):
     assert code == 0
     summary = json.loads((out / "s.json").read_text())
     reference = next(iter(summary["methods"]))
-    assert reference == summary["method"] == "pooled"  # the default
-    assert set(BASELINES) | {"pooled", "oracle"} <= set(summary["methods"])
+    assert reference == summary["method"] == "personal"  # the default
+    assert set(BASELINES) | {"personal", "oracle", "pop_ppm"} <= set(summary["methods"])
     assert set(summary["chance"]) == {"top1", "top3", "top5"} and summary["n_predictions"] == 12
     # the four first uses of day one are offered nothing (honest candidates); the rest are all in the top 5
     assert summary["methods"]["oracle"]["per_user"]["cy"]["top5"] == 8 / 12 and summary["truth_not_offered"] == 4
@@ -174,4 +174,4 @@ def test_evaluate_method_thesis_scores_the_thesis_oracle_alone_with_its_figures(
     for k in ("top1", "top3", "top5"):
         assert thesis["methods"]["oracle"][k] == direct["methods"]["oracle"][k]
     assert main(["evaluate", str(path), "--json", str(tmp_path / "r.json")]) == 0
-    assert list(json.loads((tmp_path / "r.json").read_text())["methods"]) == ["pooled"]
+    assert list(json.loads((tmp_path / "r.json").read_text())["methods"]) == ["personal"]

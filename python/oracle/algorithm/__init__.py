@@ -1,7 +1,8 @@
 """The predictors: rank the available tasks and predict the chain that follows.
 
 ``make_predictor(name, distances, ...)`` builds one by name (``predictors.PREDICTORS``):
-``pooled`` (the default, ``PooledOracle``: ``RoutineOracle`` pooled with a per-user logit), ``routine``
+``personal`` (the default, ``PersonalOracle``: a per-user online logit over ``RoutineOracle``'s
+evidence and the shared prior's), ``pooled`` (``RoutineOracle`` pooled with a per-user logit), ``routine``
 or ``thesis`` (the thesis PreferenceOracle, chapter 4).
 ``PreferenceOracle`` (fast) and ``ReferenceOracle`` (literal) share parameters and results.
 """

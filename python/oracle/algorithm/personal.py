@@ -107,19 +107,24 @@ class PersonalOracle(PooledOracle):
         return 0.0 if self.weights() is not None else None
 
     def hypothetical(self) -> RoutineOracle:
-        # the prior is shared read-only, never copied (a chain's copy costs what it did)
-        prior, self._prior = self.prior, None
+        # the prior is shared read-only and the names' cache shared, never copied, and the copy
+        # needs only the last three tokens of the history: a chain's copy costs what it did
+        kept: dict[str, Any] = {name: self.__dict__.pop(name) for name in ("_prior", "_keys", "_tokens") if name in self.__dict__}
         try:
             twin = super().hypothetical()
         finally:
-            self._prior = prior
+            self.__dict__.update(kept)
         assert isinstance(twin, PersonalOracle)
-        return twin.use_prior(prior)
+        if "_tokens" in kept:
+            twin._tokens, twin._keys = kept["_tokens"][-3:], kept["_keys"]
+        return twin.use_prior(kept.get("_prior"))
 
     def __getstate__(self) -> dict[str, Any]:
         # the prior is the process's, loaded from its file: never kept with a fit
         state = dict(self.__dict__)
         state["_prior"] = None
+        if "_keys" in state:
+            state["_keys"] = {}  # a cache, made again as it is needed
         return state
 
     def usually(self, option: Option, top: int = 3) -> tuple[int, float] | None:

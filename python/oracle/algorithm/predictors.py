@@ -1,7 +1,8 @@
 """Predictors by name: the CLI's ``--method``, the replay and the Python API all choose here.
 
-``pooled`` (the default, ``pooled.PooledOracle``: the routine predictor pooled with a per-user logit
-where that leads), ``routine`` (``routine.RoutineOracle``; ``routine-fixed`` and ``routine-mixture`` are its
+``personal`` (the default, ``personal.PersonalOracle``: a per-user online logit over the routine
+predictor's evidence and, given one, the shared prior's), ``pooled`` (``pooled.PooledOracle``: the
+routine predictor pooled with a per-user logit where that leads), ``routine`` (``routine.RoutineOracle``; ``routine-fixed`` and ``routine-mixture`` are its
 self-tuning ablations) and ``thesis`` (``fast.PreferenceOracle`` with
 the given Table 4.2 settings, exactly as the thesis defines it). Every predictor has the same
 estimator interface: ``fit(history) -> self``, ``partial_fit(step) -> self`` and
@@ -105,7 +106,7 @@ PREDICTORS: dict[str, PredictorSpec] = {
     "thesis-normalized": PredictorSpec("thesis-normalized", "the thesis oracle over the normalised distances of "
                                        "thesis 6.4 (docs/algorithm.md)", _thesis_normalized),
 }
-DEFAULT = "pooled"
+DEFAULT = "personal"
 THESIS = "thesis"
 
 

@@ -56,7 +56,8 @@ SOMA = Option(("--soma",), {"type": Path, "help": "folder with the official SOMA
 ONTOLOGY = Option(("--ontology",), {"type": Path, "help": "OWL file written by 'ontology build' (instead of --odb/--mapping)"})
 METHOD = Option(("--method",), {
     "metavar": "NAME",
-    "help": "predictor (oracle.algorithm.predictors): pooled (the default: routine and a per-user logit over its "
+    "help": "predictor (oracle.algorithm.predictors): personal (the default: a per-user online logit over "
+            "routine's evidence and, given one, the shared prior's), pooled (routine and a per-user logit over its "
             "evidence, pooled log-linearly where that leads), routine (exact contexts backed off to ontology "
             "similarity, self-tuned), routine-fixed, routine-mixture, stacked (routine re-weighed by a per-user logit "
             "where that leads), online (routine re-weighed by a per-user logit learnt after every decision, where "
