@@ -24,10 +24,11 @@ def reworded(parser: argparse.ArgumentParser, message: str) -> str:
     """A usage error's message with the did-you-mean at its end: a misspelt command is named as
     such (not argparse's list of every choice), an unknown option gets the nearest ones."""
     found = _CHOICE.search(message)
-    if found is not None and message.startswith("argument COMMAND"):
+    if found is not None and message.startswith(("argument COMMAND", "argument SUBCOMMAND")):
         return f"no such command {found.group(1)!r}.{did_you_mean(found.group(1), _choices(parser))}"
     if found is not None:
-        return message + did_you_mean(found.group(1), _choices(parser))
+        hint = did_you_mean(found.group(1), _choices(parser))
+        return message + ("." + hint if hint else "")
     found = _UNKNOWN.search(message)
     if found is not None:
         options = _option_strings(parser)
@@ -65,7 +66,8 @@ class _Once(argparse._StoreAction):
                  option_string: str | None = None) -> None:
         given: dict[str, Any] = namespace.__dict__.setdefault(_GIVEN, {})
         if self.dest in given and given[self.dest] != values:
-            parser.error(f"{option_string or self.dest} given twice ({given[self.dest]!r} and {values!r}): give it once")
+            parser.error(f"{option_string or self.dest} given twice ({str(given[self.dest])!r} and {str(values)!r}): "
+                         "give it once")
         given[self.dest] = values
         super().__call__(parser, namespace, values, option_string)
 
