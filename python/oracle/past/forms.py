@@ -184,7 +184,10 @@ def resolve_object(words: str, onto: OdbOntology, book: PhraseBook | None = None
 
 def _calls_from_words(tokens: list[str], onto: OdbOntology) -> list[TaskCall]:
     calls: list[TaskCall] = []
-    problem = f"{' '.join(tokens)!r} does not start with a task name; known tasks: {', '.join(sorted(onto.tasks))}" \
+    from oracle.suggest import did_you_mean
+
+    hint = did_you_mean(tokens[0], onto.tasks) if tokens else ""
+    problem = f"{' '.join(tokens)!r} does not start with a task name.{hint} Known tasks: {', '.join(sorted(onto.tasks))}" \
               " (or write the call, e.g. pick(apple))"
     for size in (3, 2, 1):  # the longest task name first: drink from, turn on
         name = "_".join(tokens[:size])
