@@ -120,3 +120,16 @@ def test_mongodb_counts_what_sqlite_counts(tmp_path, onto):
         for info in store.neems():
             set_shared(store, info.id, True)
     assert _cells(build_prior(mongo, onto, 2, None, 3)) == _cells(build_prior(sqlite, onto, 2, None, 3))
+
+
+def test_the_sql_count_is_the_count_of_the_tokens_read_back(tmp_path, onto):
+    from oracle.neem.sharing import count_store, store_cells
+
+    store, _ = _sqlite(tmp_path, onto)
+    infos = store.neems()
+    for k in (1, 3):
+        sums, users = store_cells(store, onto, 2, k, infos)  # one SQL statement on SQLite
+        population = count_store(store, onto, 2, infos)      # the actions read back, counted in Python
+        kept = {cell for cell, n in population.users.items() if n >= k}
+        assert sums == {cell: population.sums[cell] for cell in kept} and sums
+        assert users == {cell: population.users[cell] for cell in kept}

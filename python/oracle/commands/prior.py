@@ -56,7 +56,7 @@ def run_build(args: argparse.Namespace) -> int:
     from oracle.algorithm.prior_counts import check_privacy
     from oracle.commands.common import ontology_from
     from oracle.errors import StoreError
-    from oracle.neem.sharing import count_store, shared_neems
+    from oracle.neem.sharing import build_prior, shared_neems
     from oracle.ontology.provenance import Recorded, fingerprint
     from oracle.store import open_store
 
@@ -70,12 +70,11 @@ def run_build(args: argparse.Namespace) -> int:
             if recorded is not None and recorded.fingerprint != mark:
                 raise StoreError(f"NEEM {info.id} was logged under another ontology (fingerprint "
                                  f"{recorded.fingerprint}, given {mark}): give its --odb/--mapping or --ontology")
-        population = count_store(store, ontology, args.clip, neems)
-    prior = population.prior(args.k, args.epsilon, None, mark)
+        prior = build_prior(store, ontology, args.k, args.epsilon, args.clip, None, neems)
     prior.save(args.out)
     noise = f", Laplace noise of scale {args.clip / args.epsilon:g} per count" if args.epsilon is not None else ""
     print(f"{args.out}: {prior.cells()} counts in {prior.contexts()} contexts from {len(neems)} shared NEEMs of "
-          f"{len(population.by_user)} users (k {args.k}, clip {args.clip}{noise})")
+          f"{prior.users} users (k {args.k}, clip {args.clip}{noise})")
     return 0
 
 

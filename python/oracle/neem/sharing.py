@@ -4,23 +4,25 @@ Consent is a field of the NEEM's registry entry (``SHARE_KEY``): ``share`` sets 
 --revoke`` removes it; a NEEM without it is never read by ``prior build`` (nothing is shared by
 default), so a revoked NEEM's counts are gone from the next prior built.
 
-``prior build`` reads each consenting NEEM's executed actions in time order (``executed_actions``:
-one join the store runs, SQL on SQLite, an aggregation pipeline on MongoDB), names each as the
-prior does (``prior.task_key``: the task and its objects' classes; ``idle`` for the idle actions the
-logger wrote) and counts the contexts per user (a user's NEEMs together: ``created_by``, a NEEM
-without one is its own user), then applies clip, k users and noise (``prior_counts``). Only the
-counts leave this module.
+``prior build`` counts, over the consenting NEEMs, each task after each context of the 0-3 tasks
+before it, named as the prior names them (``prior.task_key``: the task and its objects' classes;
+``idle`` for the idle actions the logger wrote), per user (a user's NEEMs together: ``created_by``;
+a NEEM without one is its own user), clipped, and keeps the counts of >= k users: on SQLite all of
+it in one SQL statement (oracle.store.sqlite.contexts), on MongoDB from each NEEM's executed actions
+in time order (``executed_actions``: the aggregation pipeline the store runs per NEEM) counted here.
+Then the noise (``prior_counts.released``). Only the counts leave this module.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from typing import Any
 
 import numpy as np
 
 from oracle.algorithm.prior import IDLE, Prior, task_key
-from oracle.algorithm.prior_counts import Population, check_privacy
+from oracle.algorithm.records import local_name
+from oracle.algorithm.prior_counts import Cell, Population, check_privacy, released
 from oracle.neem.query import executed_actions
 from oracle.ontology import OdbOntology
 from oracle.store import RDF_TYPE, NeemInfo, Store, TriplePattern, Var
@@ -61,23 +63,50 @@ def neem_tokens(store: Store, neem_id: str, ontology: OdbOntology) -> list[str]:
 
 
 def count_store(store: Store, ontology: OdbOntology, clip: int, neems: Iterable[NeemInfo] | None = None) -> Population:
-    """The consenting NEEMs' clipped counts, per user (module docstring)."""
+    """The consenting NEEMs' clipped counts, per user, read in Python (module docstring)."""
     population = Population(clip)
     by_user: dict[str, list[list[str]]] = {}
     for info in shared_neems(store) if neems is None else neems:
-        by_user.setdefault(info.user or f"neem:{info.id}", []).append(neem_tokens(store, info.id, ontology))
+        by_user.setdefault(user_of(info), []).append(neem_tokens(store, info.id, ontology))
     for user, sequences in by_user.items():
         population.add(user, sequences)
     return population
 
 
+def user_of(info: NeemInfo) -> str:
+    """Who a NEEM's counts are clipped and counted as: its user, or the NEEM alone without one."""
+    return info.user or f"neem:{info.id}"
+
+
+def store_cells(store: Store, ontology: OdbOntology, clip: int, k: int,
+                neems: Sequence[NeemInfo]) -> tuple[dict[Cell, float], dict[Cell, int]]:
+    """The clipped sums and user counts of the cells at least ``k`` users gave: on SQLite in one SQL
+    statement (oracle.store.sqlite.contexts), elsewhere from each NEEM's actions as the store's join
+    reads them."""
+    from oracle.store.sqlite import SQLiteStore
+
+    if isinstance(store, SQLiteStore):
+        from oracle.store.sqlite.contexts import count_cells
+
+        tasks = {t.iri: local_name(t.iri) for t in ontology.tasks.values()}
+        tasks[ontology.vocab.idle_task] = IDLE
+        objects = {o.iri: local_name(o.iri) for o in ontology.objects.values()}
+        rows = count_cells(store, [(info.id, user_of(info)) for info in neems], tasks, objects, clip, k)
+        return ({(c, t): n for c, t, n, _ in rows}, {(c, t): u for c, t, _, u in rows})
+    population = count_store(store, ontology, clip, neems)
+    return dict(population.sums), dict(population.users)
+
+
 def build_prior(store: Store, ontology: OdbOntology, k: int, epsilon: float | None, clip: int,
-                rng: np.random.Generator | None = None) -> Prior:
+                rng: np.random.Generator | None = None, neems: Sequence[NeemInfo] | None = None) -> Prior:
     """The prior of the store's consenting NEEMs, under the ontology's fingerprint."""
     from oracle.ontology.provenance import fingerprint
 
     check_privacy(k, epsilon, clip)
-    return count_store(store, ontology, clip).prior(k, epsilon, rng, fingerprint(ontology))
+    chosen = shared_neems(store) if neems is None else list(neems)
+    sums, users = store_cells(store, ontology, clip, k, chosen)
+    return Prior(released(sums, users, k, epsilon, clip, rng), fingerprint(ontology), k, epsilon, clip,
+                 len({user_of(info) for info in chosen}))
 
 
 def describe(prior: Prior) -> dict[str, Any]:
@@ -92,4 +121,4 @@ def describe(prior: Prior) -> dict[str, Any]:
 
 
 __all__ = ["SHARE_KEY", "build_prior", "count_store", "describe", "is_shared", "neem_tokens", "set_shared",
-           "shared_neems"]
+           "shared_neems", "store_cells", "user_of"]
