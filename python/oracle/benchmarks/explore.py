@@ -7,7 +7,7 @@ user's NEEM of about 10,000 actions (1,000 with --quick) served by ``oracle serv
 - pan and zoom: a scripted pan/zoom on every animation frame for 2 s, frames the timeline was
   redrawn in per second and the 95th percentile of one redraw (``timeline-draw`` measures); the
   floor is the browser's own frame rate in the same page, an empty requestAnimationFrame loop.
-Targets (issue 59): first paint <= 1 s, >= 30 frames/s. The replay behind the decisions runs in
+Targets: first paint <= 1 s, >= 30 frames/s. The replay behind the decisions runs in
 the service meanwhile (started by the page's first open), as it would for a researcher.
 """
 

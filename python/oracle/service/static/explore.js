@@ -61,6 +61,11 @@
   function canvasPainter(ctx) {
     return {
       rect: function (x, y, w, h, fill) { ctx.fillStyle = fill; ctx.fillRect(x, y, w, h); },
+      rects: function (fill, r) {  // x, y, w, h, ... in one path: one fill per colour, not per bar
+        ctx.beginPath();
+        for (var i = 0; i < r.length; i += 4) { ctx.rect(r[i], r[i + 1], r[i + 2], r[i + 3]); }
+        ctx.fillStyle = fill; ctx.fill();
+      },
       frame: function (x, y, w, h, stroke, width) { ctx.strokeStyle = stroke; ctx.lineWidth = width; ctx.strokeRect(x, y, w, h); },
       line: function (points, stroke, width, dash) {
         ctx.beginPath(); ctx.setLineDash(dash || []); ctx.strokeStyle = stroke; ctx.lineWidth = width;
@@ -70,9 +75,13 @@
       text: function (x, y, str, fill, align) {
         ctx.fillStyle = fill; ctx.font = "12px system-ui, sans-serif"; ctx.textAlign = align || "left"; ctx.fillText(str, x, y);
       },
-      triangle: function (x, y, size, fill) {
-        ctx.beginPath(); ctx.moveTo(x, y); ctx.lineTo(x - size, y - size * 1.4); ctx.lineTo(x + size, y - size * 1.4);
-        ctx.closePath(); ctx.fillStyle = fill; ctx.fill();
+      triangles: function (fill, points, size) {  // pointing down at each (x, y), one fill
+        ctx.beginPath();
+        for (var i = 0; i < points.length; i += 2) {
+          var x = points[i], y = points[i + 1];
+          ctx.moveTo(x, y); ctx.lineTo(x - size, y - size * 1.4); ctx.lineTo(x + size, y - size * 1.4); ctx.closePath();
+        }
+        ctx.fillStyle = fill; ctx.fill();
       }
     };
   }
@@ -82,6 +91,11 @@
     function n(v) { return Math.round(v * 10) / 10; }
     return {
       rect: function (x, y, w, h, fill) { parts.push('<rect x="' + n(x) + '" y="' + n(y) + '" width="' + n(w) + '" height="' + n(h) + '" fill="' + fill + '"/>'); },
+      rects: function (fill, r) {
+        var d = [];
+        for (var i = 0; i < r.length; i += 4) { d.push("M" + n(r[i]) + " " + n(r[i + 1]) + "h" + n(r[i + 2]) + "v" + n(r[i + 3]) + "h" + n(-r[i + 2]) + "z"); }
+        if (d.length) { parts.push('<path fill="' + fill + '" d="' + d.join("") + '"/>'); }
+      },
       frame: function (x, y, w, h, stroke, width2) {
         parts.push('<rect x="' + n(x) + '" y="' + n(y) + '" width="' + n(w) + '" height="' + n(h) + '" fill="none" stroke="' + stroke + '" stroke-width="' + width2 + '"/>');
       },
@@ -95,8 +109,13 @@
         var anchor = align === "right" ? "end" : align === "center" ? "middle" : "start";
         parts.push('<text x="' + n(x) + '" y="' + n(y) + '" fill="' + fill + '" font-size="12" font-family="sans-serif" text-anchor="' + anchor + '">' + esc(str) + "</text>");
       },
-      triangle: function (x, y, size, fill) {
-        parts.push('<polygon fill="' + fill + '" points="' + n(x) + "," + n(y) + " " + n(x - size) + "," + n(y - size * 1.4) + " " + n(x + size) + "," + n(y - size * 1.4) + '"/>');
+      triangles: function (fill, points, size) {
+        var d = [];
+        for (var i = 0; i < points.length; i += 2) {
+          var x = points[i], y = points[i + 1];
+          d.push("M" + n(x) + " " + n(y) + "L" + n(x - size) + " " + n(y - size * 1.4) + "L" + n(x + size) + " " + n(y - size * 1.4) + "z");
+        }
+        if (d.length) { parts.push('<path fill="' + fill + '" d="' + d.join("") + '"/>'); }
       },
       done: function () {
         return '<svg xmlns="http://www.w3.org/2000/svg" width="' + width + '" height="' + height + '" viewBox="0 0 ' + width + " " + height + '">' +
@@ -193,7 +212,8 @@
       if (d % dayStep === 0) { p.text(AXIS_LEFT - 6, yOf(d) + Math.min(rowH, 14) * 0.8 + 1, dateOf((t.day0 + d) * DAY), "#333", "right"); }
     }
     var barH = Math.max(1, rowH * 0.62), markH = Math.max(1, Math.min(rowH * 0.22, 6));
-    var decided = state.decisions;
+    var decided = state.decisions, buckets = {};
+    function add(fill, x, y, w, h) { (buckets[fill] || (buckets[fill] = [])).push(x, y, w, h); }
     for (d = firstDay; d <= lastDay; d++) {
       var y = yOf(d);
       for (var i = t.firstOfDay[d]; i < t.firstOfDay[d + 1]; i++) {
@@ -201,24 +221,28 @@
         if (e < view.h0 || b > view.h1) { continue; }
         var x0 = xOf(Math.max(b, view.h0)), x1 = xOf(Math.min(e, view.h1, 24));
         if (t.idle[i]) {  // an idle gap: a thin band across the rest of the row
-          p.rect(x0, y + rowH * 0.45, Math.max(x1 - x0, 1), Math.max(1, rowH * 0.1), "#cfcac0");
+          add("#cfcac0", x0, y + rowH * 0.45, Math.max(x1 - x0, 1), Math.max(1, rowH * 0.1));
           continue;
         }
-        p.rect(x0, y + 1, Math.max(x1 - x0, 1.5), barH, PALETTE[t.taskOf[t.call[i]] % PALETTE.length]);
+        add(PALETTE[t.taskOf[t.call[i]] % PALETTE.length], x0, y + 1, Math.max(x1 - x0, 1.5), barH);
         var k = t.decisionOf[i];
         if (decided && k >= 0 && k < decided.rank.length) {
-          p.rect(x0, y + 1 + barH, Math.max(x1 - x0, 1.5), markH, rankColour(decided.rank[k]));
+          add(rankColour(decided.rank[k]), x0, y + 1 + barH, Math.max(x1 - x0, 1.5), markH);
         }
       }
     }
+    Object.keys(buckets).forEach(function (fill) { p.rects(fill, buckets[fill]); });
     // routines' occurrences: a triangle at each episode's begin
+    var size = Math.max(2, Math.min(rowH * 0.3, 5));
     state.routines.forEach(function (r, ri) {
       if (!r.shown) { return; }
+      var points = [];
       r.begins.forEach(function (begin) {
         var dd = Math.floor(begin / DAY) - t.day0, hh = (begin / DAY - t.day0 - dd) * 24;
         if (dd < view.d0 - 1 || dd > view.d1 || hh < view.h0 || hh > view.h1) { return; }
-        p.triangle(xOf(hh), yOf(dd) + 1 + Math.min(rowH * 0.4, 7), Math.max(2, Math.min(rowH * 0.3, 5)), ROUTINE_COLOURS[ri % ROUTINE_COLOURS.length]);
+        points.push(xOf(hh), yOf(dd) + 1 + Math.min(rowH * 0.4, 7));
       });
+      p.triangles(ROUTINE_COLOURS[ri % ROUTINE_COLOURS.length], points, size);
     });
     if (state.selected >= 0) {
       var a = t.actionOfDecision[state.selected];
