@@ -35,7 +35,20 @@ under a time limit and a stack limit. Every failure becomes `{"error": Message}`
 json_query(Request, JSON) :-
     catch(page(Request, Dict), Error, error_dict(Error, Dict)),
     !,
-    with_output_to(string(JSON), json_write_dict(current_output, Dict, [width(0)])).
+    with_output_to(string(JSON0), json_write_dict(current_output, Dict, [width(0)])),
+    query_answer_limit(Max),
+    (   string_length(JSON0, Length), Length > Max
+    ->  format(string(Message), "the answer is ~d characters, more than a service query may return (~d); ask for fewer solutions (limit) or smaller values", [Length, Max]),
+        with_output_to(string(JSON), json_write_dict(current_output, _{error: Message}, [width(0)]))
+    ;   JSON = JSON0
+    ).
+
+%   The longest answer (characters of its JSON) a query may return: the page is built here, in
+%   the query's process, and refused before it travels to the service.
+query_answer_limit(4 000 000).
+
+%   The tables a query may fill (bytes of table space): tabling is memory outside the stacks.
+query_table_space(64 000 000).
 
 %   The stack a query may use (bytes): a query building a huge term fails alone, the
 %   service does not grow by gigabytes.
@@ -51,11 +64,13 @@ page([Text, Bindings, Offset, Limit, Seconds, Writes], _{solutions: Solutions, m
     (   Writes == true -> safe_query(Goal, [read, write]) ; safe_query(Goal, [read]) ),
     Take is Limit + 1,
     query_stack_limit(Stack),
+    query_table_space(Tables),
     current_prolog_flag(stack_limit, Old),
+    current_prolog_flag(table_space, OldTables),
     setup_call_cleanup(
-        set_prolog_flag(stack_limit, Stack),
+        ( set_prolog_flag(stack_limit, Stack), set_prolog_flag(table_space, Tables) ),
         call_with_time_limit(Seconds, findall(Names, limit(Take, offset(Offset, user:Goal)), Rows)),
-        set_prolog_flag(stack_limit, Old)),
+        ( set_prolog_flag(stack_limit, Old), set_prolog_flag(table_space, OldTables) )),
     length(Rows, Got),
     (   Got > Limit
     ->  More = true, length(Page, Limit), append(Page, _, Rows)

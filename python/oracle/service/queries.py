@@ -8,12 +8,23 @@ acknowledged). It shares neither the engine thread nor the GIL with the robot's 
 that does not answer within its query's time limit plus ``GRACE_S`` is killed and the next
 query starts a new one. Queries that may write (``serve --allow-prolog-writes``) still run on
 the engine thread: the service stays the NEEM's only writer.
+
+What a query may cost is bounded in the child, so neither the service nor the other robots pay
+for it: Prolog's stacks and table space per query (prolog/json_query.pl), the answer's size
+(json_query.pl refuses a page of more than 4,000,000 characters before it leaves Prolog, and
+the service reads at most ``ANSWER_BYTES`` from the pipe), and the whole child's address space
+(``QUERY_MEMORY`` past what it holds once started, ``RLIMIT_AS``), which also bounds what no
+Prolog flag does: atoms, strings and Python's copy of the answer. A child that hits it ends;
+the query gets one error and the next query starts a new child. Replies cross the pipe as JSON,
+never pickled.
 """
 
 from __future__ import annotations
 
+import json
 import multiprocessing
 import os
+import resource
 import threading
 from typing import TYPE_CHECKING, Any
 
@@ -36,6 +47,12 @@ QUERY_NICENESS = 5
 STARTUP_S = 120.0
 #: Seconds past a query's own time limit before its process is taken for hung and killed.
 GRACE_S = 5.0
+#: Bytes of address space the query process may add to what it holds once started (its Python,
+#: Prolog and the store): atoms, tables, strings and the answer together.
+QUERY_MEMORY = 512 * 1024 * 1024
+#: The longest reply the service reads from the query process (json_query.pl refuses an answer of
+#: more than 4,000,000 characters first; UTF-8 and the reply's frame fit in this).
+ANSWER_BYTES = 16 * 1024 * 1024
 
 
 class PrologQueryError(NeemOracleError):
@@ -79,15 +96,16 @@ class QueryProcess:
         """The query's page of solutions (blocking: call it off the event loop)."""
         with self._lock:
             conn = self._started()
-            conn.send((neem, query, bindings, offset, limit, seconds))
+            conn.send_bytes(json.dumps([neem, query, bindings, offset, limit, seconds]).encode())
             if not conn.poll(seconds + GRACE_S):
                 self._kill()
                 raise PrologQueryError("the query process did not answer in time; it was restarted")
             try:
-                kind, payload = conn.recv()
-            except (EOFError, OSError):
+                kind, payload = json.loads(conn.recv_bytes(ANSWER_BYTES))
+            except (EOFError, OSError, ValueError):  # OSError: a reply longer than ANSWER_BYTES
                 self._kill()
-                raise PrologQueryError("the query process stopped; the next query starts a new one") from None
+                raise PrologQueryError("the query process stopped (a query past its memory or answer limit ends it);"
+                                       " the next query starts a new one") from None
         if kind == "ok":
             return dict(payload)
         raise {"refused": PrologRefused, "missing": NoSuchNeem, "query": PrologQueryError}.get(kind, NeemOracleError)(payload)
@@ -105,7 +123,7 @@ class QueryProcess:
         self._conn = parent
         # its start (Python, Prolog, the store) is not charged to the first query's time limit
         try:
-            ready = parent.poll(STARTUP_S) and parent.recv() == ("ready", None)
+            ready = parent.poll(STARTUP_S) and parent.recv_bytes(64) == b"ready"
         except (EOFError, OSError):
             ready = False
         if not ready:
@@ -134,6 +152,21 @@ def _yield_cores() -> None:
         pass  # a niceness at its maximum already
 
 
+def _bound_memory() -> None:
+    """The child's address space: what it holds now and ``QUERY_MEMORY`` more (Linux; elsewhere
+    only Prolog's own limits hold)."""
+    try:
+        with open("/proc/self/statm", encoding="ascii") as statm:
+            held = int(statm.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
+        resource.setrlimit(resource.RLIMIT_AS, (held + QUERY_MEMORY, held + QUERY_MEMORY))
+    except (OSError, ValueError):
+        pass
+
+
+def _reply(conn: Connection, kind: str, payload: Any) -> None:
+    conn.send_bytes(json.dumps([kind, payload]).encode())
+
+
 def _serve(conn: Connection, store_spec: str | None, ontology: OdbOntology) -> None:
     """The child's loop: one request in, one ``(kind, payload)`` out, until the pipe closes."""
     from oracle.bridge import Bridge
@@ -146,10 +179,11 @@ def _serve(conn: Connection, store_spec: str | None, ontology: OdbOntology) -> N
     known = store.neems()
     if known:  # load Prolog now rather than in the first query
         bridge = Bridge(store, known[0].id, ontology)
-    conn.send(("ready", None))
+    _bound_memory()
+    conn.send_bytes(b"ready")
     while True:
         try:
-            neem, query, bindings, offset, limit, seconds = conn.recv()
+            neem, query, bindings, offset, limit, seconds = json.loads(conn.recv_bytes())
         except (EOFError, OSError):
             return
         try:
@@ -158,13 +192,15 @@ def _serve(conn: Connection, store_spec: str | None, ontology: OdbOntology) -> N
                 raise NoSuchNeem(f"no NEEM {neem!r} in the store")
             if bridge is None or bridge.neem_id != found.id:
                 bridge = Bridge(store, found.id, ontology)
-            conn.send(("ok", ask(bridge, query, bindings, offset, limit, seconds, writes=False)))
+            _reply(conn, "ok", ask(bridge, query, bindings, offset, limit, seconds, writes=False))
         except PrologRefused as error:
-            conn.send(("refused", str(error)))
+            _reply(conn, "refused", str(error))
         except NoSuchNeem as error:
-            conn.send(("missing", str(error)))
+            _reply(conn, "missing", str(error))
         except NeemOracleError as error:
-            conn.send(("query", str(error)))
+            _reply(conn, "query", str(error))
+        except MemoryError:  # past RLIMIT_AS in Python's own work (the answer's copy)
+            _reply(conn, "query", "the query needed more memory than a service query may use")
 
 
 __all__ = ["GRACE_S", "NoSuchNeem", "PrologQueryError", "PrologRefused", "QueryProcess", "ask"]
