@@ -1,6 +1,6 @@
 """Memory given back between the steps of a long command: ``import`` writes (SQLite's page cache
 and the C heap grow to ~180 MiB at 50,000 actions) and then fits (another ~90 MiB); what the
-writes freed is returned to the system first, so the two peaks do not add up (issue 57)."""
+writes freed is returned to the system first, so the two peaks do not add up."""
 
 from __future__ import annotations
 

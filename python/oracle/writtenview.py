@@ -1,6 +1,6 @@
 """A new NEEM's history view (``Bridge.history_view``) built as the logger writes it, so that
 ``import`` keeps the view and the fit without reading the whole NEEM back through Prolog
-(issue 57: that read held most of the import's memory peak and a third of its time).
+(that read held most of the import's memory peak and a third of its time).
 
 It mirrors odb_history's rules on what the logger wrote, row by row:
 

@@ -1,5 +1,5 @@
 """Group commit: the writes of every request that reaches the engine thread while a commit is
-pending share that commit, and so one fsync (issue 57). Each request is still acknowledged only
+pending share that commit, and so one fsync. Each request is still acknowledged only
 once its writes are committed.
 
 A request's job ``join``s the open group first: the first to join opens the store's transaction

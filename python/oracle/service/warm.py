@@ -1,5 +1,5 @@
 """What a situation's answer derives from the NEEM's history alone, kept per session until the
-history changes (issue 57: nothing that can wait on the answer's path).
+history changes (nothing that can wait belongs on the answer's path).
 
 - The autonomy-mode logit (oracle.past.modelogit.fit_modes) changes only when an action is
   counted: fitted once per count, not once per situation.
