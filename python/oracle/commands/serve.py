@@ -36,6 +36,9 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     parser.add_argument("--max-body", type=int, default=Limits.body_bytes, metavar="BYTES",
                         help=f"largest request body (default {Limits.body_bytes})")
     add_options(parser, METHOD, SETTINGS)
+    parser.add_argument("--prior", metavar="PRIOR.json",
+                        help="rank with this shared prior ('prior build'; default: the store's own, STORE.prior.json "
+                             "beside a SQLite store, if there is one; 'none': without)")
     writes = parser.add_mutually_exclusive_group()
     writes.add_argument("--write-behind", action="store_true",
                         help="answer a situation before its NEEM write is committed (faster; a kill can lose the"
@@ -126,7 +129,7 @@ def run(args: argparse.Namespace) -> int:
     limits = Limits(query_seconds=args.query_seconds, body_bytes=args.max_body)
     ctx = build_context(args.store, ontology, settings, args.neem, token, write_behind=args.write_behind,
                         method=method_from(args), host=args.host, extra_hosts=tuple(args.allowed_host),
-                        limits=limits, prolog_writes=args.allow_prolog_writes)
+                        limits=limits, prolog_writes=args.allow_prolog_writes, prior=args.prior)
     ctx.zone = zone
     ctx.manner = Manner(confirm=args.confirm, dwell_s=args.dwell, undo_s=args.undo, scan=args.scan,
                         scan_s=args.scan_speed, filter_s=args.repeat_filter, gaze_s=args.gaze)

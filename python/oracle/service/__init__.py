@@ -33,10 +33,11 @@ def is_loopback(host: str) -> bool:
 def build_context(store_spec: str | None, ontology: OdbOntology, settings: Hyperparameters, neem: str | None = None,
                   token: str | None = None, write_behind: bool = False, method: str | None = None,
                   host: str = "127.0.0.1", extra_hosts: tuple[str, ...] = (), limits: Limits | None = None,
-                  prolog_writes: bool = False) -> Context:
+                  prolog_writes: bool = False, prior: str | None = None) -> Context:
     """Open the store on the engine thread (its connection belongs there) and check ``neem``;
     sessions fit the predictor ``method`` (default: the one ``rank`` uses). ``host`` is the bound
-    address: with ``extra_hosts`` it makes the Host names the service answers to."""
+    address: with ``extra_hosts`` it makes the Host names the service answers to. ``prior``: the
+    shared prior's file the sessions rank with (None: the store's own if it has one; 'none': none)."""
     from oracle.algorithm.predictors import DEFAULT
     from oracle.service.app import Context
     from oracle.service.engine import Engine, EngineThread
@@ -49,7 +50,15 @@ def build_context(store_spec: str | None, ontology: OdbOntology, settings: Hyper
     thread = EngineThread()
 
     def start() -> Engine:
-        engine = Engine(open_store(store_spec), ontology, settings, method or DEFAULT, limits)
+        from oracle.algorithm.prior import find_prior
+
+        store = open_store(store_spec)
+        try:
+            shared = find_prior(prior, store.location, ontology)
+        except NeemOracleError:
+            store.close()
+            raise
+        engine = Engine(store, ontology, settings, method or DEFAULT, limits, shared)
         if neem is not None:
             engine.session(neem)  # NotFound now rather than on the first request
         return engine

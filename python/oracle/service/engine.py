@@ -17,6 +17,7 @@ from typing import Any, TypeVar
 
 from oracle.algorithm.params import Hyperparameters
 from oracle.algorithm.predictors import DEFAULT
+from oracle.algorithm.prior import Prior
 from oracle.answers import something_else_sentence, what_next_sentence, why_not_sentence
 from oracle.historycache import HistoryCache
 from oracle.bridge import Bridge, LatestSituation
@@ -93,7 +94,7 @@ class Engine:
     """The live model of the store. Call its methods on the engine thread only."""
 
     def __init__(self, store: Store, ontology: OdbOntology, settings: Hyperparameters, method: str = DEFAULT,
-                 limits: Limits | None = None) -> None:
+                 limits: Limits | None = None, prior: Prior | None = None) -> None:
         self.store = store
         self.limits = limits or Limits()
         self.created = 0
@@ -101,6 +102,8 @@ class Engine:
         self.settings = settings
         #: The predictor every session fits (``serve --method``; default: the pooled predictor).
         self.method = method
+        #: The shared prior every session's predictor ranks with (``serve --prior``; None: none).
+        self.prior = prior
         self.sessions: dict[str, NeemSession] = {}
         #: What the answers about the past read of each NEEM, kept while the NEEM is unchanged.
         self.past = KeptPast()
@@ -139,7 +142,7 @@ class Engine:
         self.created += 1
         logger = NeemLogger.create(self.store, self.ontology, user=user, neem_id=neem, commit_every=NEVER)
         self.sessions[logger.neem_id] = NeemSession(logger.neem_id, logger, self.ontology,
-                                                    make_predictor(self.ontology, self.settings, self.method), [])
+                                                    make_predictor(self.ontology, self.settings, self.method, self.prior), [])
         return {"id": logger.neem_id, "name": alias_of(self.store.neem(logger.neem_id)), "user": user}
 
     def resolve(self, neem: str) -> str:
@@ -168,7 +171,7 @@ class Engine:
             self._room_for_a_session()
             view = HistoryCache.default().view(self.bridge(neem))
             logger = NeemLogger(self.store, self.ontology, neem, commit_every=NEVER)
-            session = NeemSession(neem, logger, self.ontology, make_predictor(self.ontology, self.settings, self.method),
+            session = NeemSession(neem, logger, self.ontology, make_predictor(self.ontology, self.settings, self.method, self.prior),
                                   view.rows)
             self.sessions[neem] = session
             self._show_latest(session, view.latest)
