@@ -181,9 +181,9 @@ def served(store, tmp_path_factory) -> Iterator[str]:
     stop_server(process)
 
 
-def _open(browser, served: str):  # noqa: F811 - the fixture imported above
+def _open(browser, served: str, query: str = ""):  # noqa: F811 - the fixture imported above
     page = browser.new_page(viewport={"width": 1280, "height": 1000}, bypass_csp=True, accept_downloads=True)
-    page.goto(served + "/explore")
+    page.goto(served + "/explore" + query)
     page.wait_for_function("performance.getEntriesByName('timeline-painted').length > 0", timeout=60_000)
     page.wait_for_function("window.neemExplorer.state.decisions !== null", timeout=300_000)
     return page
@@ -283,3 +283,21 @@ def test_a_failed_replay_is_one_line_and_tried_again(store, tmp_path):
             assert test_client.get(f"/explore/api/neems/{neem}/decisions").status_code == 202  # a new try
     finally:
         ctx.thread.close()
+
+
+def test_the_page_works_with_a_token(store, browser, tmp_path):  # noqa: F811
+    """Opened as serve prints it (?token=T), the page's own requests carry the token."""
+    copy = tmp_path / "s.sqlite"
+    shutil.copy(store, copy)
+    token = "a-long-enough-token"
+    port = free_port()
+    process = start_server(copy, port, "--token", token)
+    try:
+        page = _open(browser, f"http://127.0.0.1:{port}", f"?token={token}")
+        assert page.locator("#neems tbody tr").count() == 1
+        page.locator("#examples button").nth(3).click()  # aggregate_all(count, is_action(_), N)
+        page.wait_for_selector("#answers tbody tr")
+        assert int(page.locator("#answers tbody td").first.text_content()) > 0
+        page.close()
+    finally:
+        stop_server(process)

@@ -154,7 +154,7 @@
     document.querySelectorAll("#neems tr").forEach(function (tr) {
       var b = tr.querySelector("button"); tr.className = b && b.dataset.neem === neem ? "chosen" : "";
     });
-    var url = new URL(location.href); url.searchParams.set("neem", neem); url.searchParams.delete("token");
+    var url = new URL(location.href); url.searchParams.set("neem", neem);  // the token stays: a reload needs it
     history.replaceState(null, "", url.pathname + url.search);
     loadNeem();
   }
