@@ -13,7 +13,7 @@ import shutil
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
-from oracle.files import prune_cache, used
+from oracle.files import private_folder, prune_cache, used, write_private_bytes
 from oracle.files import default_cache_dir
 
 #: The cache's sub-folder; each entry is a folder named by its key.
@@ -48,10 +48,10 @@ def prepare(compiled: Path, sources: Sequence[Path], quote: Callable[[str], str]
     SWI-Prolog's qcompile writes the ``.qlf`` beside it."""
     scratch = compiled.parent.with_name(f".{compiled.parent.name}.{os.getpid()}.tmp")
     shutil.rmtree(scratch, ignore_errors=True)
-    scratch.mkdir(parents=True, mode=0o700)
+    private_folder(scratch)  # it and each missing folder above it 0700 whatever the umask
     os.chmod(scratch.parent, 0o700)
     loader = scratch / LOADER
-    loader.write_text("".join(f":- use_module({quote(str(path))}).\n" for path in sources))
+    write_private_bytes(loader, "".join(f":- use_module({quote(str(path))}).\n" for path in sources).encode())
     return loader
 
 

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING
 
 
 from oracle.errors import OntologyError
-from oracle.files import default_cache_dir, prune_cache, used
+from oracle.files import default_cache_dir, private_folder, prune_cache, used
 from oracle.ontology.taxonomy import Taxonomy
 
 if TYPE_CHECKING:  # numpy is imported where a matrix is made: why-not and neems never need one
@@ -133,7 +133,7 @@ class DistanceMatrix:
                 pass  # a damaged cache file is recomputed below
         matrix = cls.compute(taxonomy)
         try:
-            directory.mkdir(parents=True, exist_ok=True, mode=0o700)
+            private_folder(directory)  # each missing folder 0700 whatever the umask
             tmp = path.with_name(path.name + f".{os.getpid()}.tmp.npz")
             np.savez_compressed(tmp, classes=np.array(matrix.classes), values=matrix.values, lcs=matrix.lcs_index)
             os.chmod(tmp, 0o600)  # the cache is the user's, like the stores

@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from oracle.errors import StoreError
+from oracle.files import private_folder
 from oracle.store.integrity import IntegrityCheck, damaged, problems_of
 from oracle.store.sqlite.tables import RESERVED_TERMS
 
@@ -83,7 +84,7 @@ def open_writer(path: Path, check_while_reading: bool) -> tuple[sqlite3.Connecti
     at open, or nothing to check)."""
     checked = True  # nothing to check until a connection is open
     try:
-        path.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
+        private_folder(path.parent)  # each missing folder 0700 whatever the umask (~/.local/share too)
         existed = path.exists()
         if existed and not stat.S_ISREG(path.stat().st_mode):
             raise StoreError(f"{path}: not a regular file (a NEEM store is one SQLite file)")
