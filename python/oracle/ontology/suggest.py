@@ -17,6 +17,7 @@ Every part that adds to a score says so in the suggestion's ``why``.
 from __future__ import annotations
 
 import math
+import os
 import re
 from collections import Counter
 from collections.abc import Iterable
@@ -218,6 +219,13 @@ class Suggester:
             return 0.8, f"{name} ends in the words of {cls.local}"
         if shared:
             return 0.6 * overlap, f"{name} shares {', '.join(sorted(shared))} with {cls.local}"
+        # a word and its derivation share a long stem the inflection rules do not reach
+        # (transfer / Transporting): five letters or more, most of the shorter word
+        for word in words:
+            for other in cls.words:
+                common = len(os.path.commonprefix([word, other]))
+                if common >= 5 and common >= 0.6 * min(len(word), len(other)):
+                    return 0.35, f"{name}'s '{word}' and {cls.local}'s '{other}' share the stem '{word[:common]}'"
         return 0.0, ""
 
     def _comment_evidence(self, scores: dict[str, _Score], own: frozenset[str], tasks: frozenset[str]) -> None:
