@@ -8,7 +8,6 @@ indexes on triples. NEEM registry entries live in ``meta`` as on openEASE.
 from __future__ import annotations
 
 import math
-import re
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
 from datetime import datetime, timezone
@@ -20,6 +19,7 @@ from bson.objectid import ObjectId
 from oracle.errors import StoreError
 from oracle.store.base import COLLECTION_KINDS, NeemInfo, Store
 from oracle.store.staging import STAGING
+from oracle.store.uri import short_reason
 from oracle.store.meta import HUB_TEXT_FIELDS, HUB_TEXT_INDEX
 from oracle.store.model import (
     HIERARCHY,
@@ -65,15 +65,6 @@ def meta_key(neem_id: str) -> str | ObjectId:
 def _meta_filter(neem_id: str) -> dict[str, Any]:
     # Entries written before ids became ObjectIds keep the string form.
     return {"_id": {"$in": [neem_id, meta_key(neem_id)]}}
-
-
-def short_reason(error: BaseException) -> str:
-    """pymongo's reason in a few words: its first server's error, without the timeouts and the
-    topology description it appends (600 characters for a refused connection)."""
-    text = str(error).split(", Timeout:", 1)[0]
-    text = re.sub(r"\s*\(configured timeouts:[^)]*\)", "", text)
-    text = text.split(", full error:", 1)[0]
-    return text if len(text) <= 160 else text[:157] + "..."
 
 
 class MongoStore(Store):

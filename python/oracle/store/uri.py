@@ -53,6 +53,15 @@ class PasswordFileError(ValueError):
     """The password file cannot be used with the URI (the message never holds the password)."""
 
 
+def short_reason(error: BaseException) -> str:
+    """pymongo's reason in a few words: its first server's error, without the timeouts and the
+    topology description it appends (600 characters for a refused connection)."""
+    text = str(error).split(", Timeout:", 1)[0]
+    text = re.sub(r"\s*\(configured timeouts:[^)]*\)", "", text)
+    text = text.split(", full error:", 1)[0]
+    return text if len(text) <= 160 else text[:157] + "..."
+
+
 def with_password_file(uri: str, path: str) -> str:
     """``uri`` (``mongodb://USER@host/...``, no password) with the password read from ``path``
     put in, percent-encoded (so a password may hold ``@``, ``/`` or ``:``).
