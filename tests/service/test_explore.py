@@ -301,3 +301,10 @@ def test_the_page_works_with_a_token(store, browser, tmp_path):  # noqa: F811
         page.close()
     finally:
         stop_server(process)
+
+
+def test_a_neem_without_actions_shows_an_empty_timeline(client):
+    assert client.post("/api/neems", json={"user": "new", "neem": "empty"}).status_code == 201
+    assert client.get("/explore/api/neems/empty/timeline").json()["rows"] == []
+    assert client.get("/explore/api/neems/empty/decisions").json()["n_predictions"] == 0
+    assert client.get("/explore/api/neems/nobody/timeline").status_code == 404

@@ -212,6 +212,10 @@ async def explore_decisions(neem: str, request: Request,
         return JSONResponse({"error": "this service was built without the replay (python -m oracle serve hands it in)"},
                             status_code=501)
     neem_id, user, rows = await ctx.thread.run(_view, ctx, neem)
+    if all(r["call"] == "idle" for r in rows):  # nothing was decided: nothing to replay
+        return {"method": ctx.engine.method, "calls": [], "begin": [], "truth": [], "rank": [], "candidates": [],
+                "ranked": [], "window": window, "rolling": {"top1": [], "top3": [], "top5": []},
+                "summary": {"top1": 0.0, "top3": 0.0, "top5": 0.0}, "n_predictions": 0}
     state = _state(request)
     key = (neem_id, len(rows), rows[-1]["begin"] if rows else None, ctx.engine.method, repr(ctx.engine.settings))
     with state.lock:
