@@ -147,6 +147,12 @@ def _phrase(task: str, template: str) -> Phrase:
     return Phrase(task, re.compile("".join(parts).strip(), re.IGNORECASE), max(slots, default=-1) + 1)
 
 
+#: A preposition of a template as it may be said joined with its article ("ins Glas", "into").
+_JOINED = {"in": "(?:in|ins|im|into)", "auf": "(?:auf|aufs)", "an": "(?:an|ans|am)", "von": "(?:von|vom)",
+           "into": "(?:into|in)", "on": "(?:on|onto)"}
+
+
 def _literal(text: str) -> str:
-    """Template words as a pattern: any run of spaces for a space, case ignored."""
-    return r"\s+".join(re.escape(w) for w in text.lower().split(" ")) if text else ""
+    """Template words as a pattern: any run of spaces for a space, a preposition in any of its
+    joined forms, case ignored."""
+    return r"\s+".join(_JOINED.get(w, re.escape(w)) for w in text.lower().split(" ")) if text else ""
