@@ -145,7 +145,8 @@ def routine_in_progress_neem(server: str, name: str) -> dict:
 def open_page(browser, server: str, query: str, width: int = 1024, height: int = 1180, lang: str = "en-US"):
     # the test evaluates its own expressions in the page, which the page's CSP (no eval) would refuse
     page = browser.new_page(viewport={"width": width, "height": height}, bypass_csp=True, locale=lang)
-    page.goto(f"{server}/?{query}")
+    # these tests click as fast as a script can: the repeat-hit filter (test_page_switch.py's) is off
+    page.goto(f"{server}/?{query}" + ("" if "filter=" in query else "&filter=0"))
     page.wait_for_function("document.body.dataset.live === 'yes'")
     return page
 
@@ -183,7 +184,7 @@ def test_page_holds_the_list_while_the_user_is_on_it_and_confirms_before_it_send
     page.wait_for_function("document.getElementById('sheet').open")
     assert page.evaluate("document.activeElement.id") == "confirm"
     page.keyboard.press("Enter")
-    assert page.evaluate("document.activeElement.id") == "undo"
+    assert page.evaluate("document.activeElement.id") == "confirm"  # "Yes" is off now; Undo is where Back was
     assert call(server, "/api/neems/cem/choice")[1] == before  # not yet
     page.wait_for_function("document.getElementById('answer').textContent.startsWith('You chose: ')")  # the service took it
     assert call(server, "/api/neems/cem/choice")[1]["task"] == latest["ranking"][0]["task"]
@@ -197,12 +198,13 @@ def test_page_holds_the_list_while_the_user_is_on_it_and_confirms_before_it_send
     assert page.locator("#answer").text_content().startswith("Undone")
 
     # answers stay: what next? is not overwritten by the robot's next action
-    page.locator("#whatnext").click()
-    page.wait_for_function("document.getElementById('answer').textContent.startsWith('Next I expect')")
-    said = page.locator("#answer").text_content()
+    page.locator("#whatnext").click()  # answered in the sheet, where the person is looking
+    page.wait_for_function("document.getElementById('sheet-answer').textContent.startsWith('Next I expect')")
+    said = page.locator("#sheet-answer").text_content()
     call(server, "/api/neems/cem/actions", {"call": "open(fridge)", "begin": at(2, 6)})
     page.wait_for_function("document.getElementById('robot').textContent === 'The robot did: Open the fridge.'")
-    assert page.locator("#answer").text_content() == said
+    assert page.locator("#sheet-answer").text_content() == said
+    page.locator("#back").click()
 
     # why here? on any task, in the sheet; a task no longer offered says so
     call(server, "/api/neems/cem/situation", {"available": AVAILABLE, "at": at(2, 7)})
@@ -212,7 +214,7 @@ def test_page_holds_the_list_while_the_user_is_on_it_and_confirms_before_it_send
     page.wait_for_function(f"document.querySelectorAll('#tasks .task').length === {len(AVAILABLE)}")
     tasks.nth(2).click()
     page.locator("#whyhere").click()
-    page.wait_for_function("document.getElementById('sheet-note').textContent.startsWith('I put this in place 3')")
+    page.wait_for_function("document.getElementById('sheet-answer').textContent.startsWith('I put this in place 3')")
     page.locator("#back").click()
     call(server, "/api/neems/cem/situation", {"available": ["pick(banana)"], "at": at(2, 8)})
     page.wait_for_timeout(300)
@@ -259,7 +261,7 @@ def test_page_fits_and_a_switch_reaches_every_control_in_n_plus_3_steps(server, 
     assert page.evaluate("document.documentElement.scrollWidth") <= width
     n = page.locator("#tasks button.task").count()
     buttons = page.evaluate("""Array.from(document.querySelectorAll('main > :not(dialog) button')).filter(function (b) {
-        return !b.disabled && getComputedStyle(b).visibility === 'visible'; }).map(function (b) {
+        return !b.disabled && b.offsetParent !== null && getComputedStyle(b).visibility === 'visible'; }).map(function (b) {
         var r = b.getBoundingClientRect();
         return {name: b.textContent.trim(), width: r.width, height: r.height, size: parseFloat(getComputedStyle(b).fontSize)}; })""")
     for button in buttons:  # touch targets far above WCAG's 24 px, type readable at arm's length
@@ -391,8 +393,9 @@ def test_axe_finds_no_serious_violation_in_any_state_of_the_page(server, browser
     states["waiting"] = serious(page, axe_source)
     page.locator("#fresh").click()
     page.locator("#whatnext").click()
-    page.wait_for_function("document.getElementById('answer').textContent.length > 20")
+    page.wait_for_function("document.getElementById('sheet-answer').textContent.length > 20")
     states["answer"] = serious(page, axe_source)
+    page.locator("#back").click()
     page.locator("#tasks button.task").first.click()
     states["sheet"] = serious(page, axe_source)
     page.locator("#whyhere").click()
@@ -483,7 +486,7 @@ def test_dwell_confirms_by_itself_for_a_person_who_cannot_tap_twice(server, brow
     call(server, "/api/neems/gus/situation", {"available": ["open(fridge)", "pick(banana)"], "at": at(0, 0)})
     context = browser.new_context(viewport={"width": 1024, "height": 1180}, bypass_csp=True)
     page = context.new_page()
-    page.goto(f"{server}/?neem=gus&confirm=dwell&dwell=1&undo=1")
+    page.goto(f"{server}/?neem=gus&confirm=dwell&dwell=1&undo=1&filter=0")
     page.wait_for_function("document.body.dataset.live === 'yes'")
     page.locator("#tasks button.task").nth(1).click()  # one tap; then the person only waits
     page.wait_for_function("document.getElementById('sheet').dataset.phase === 'undo'")
@@ -492,7 +495,7 @@ def test_dwell_confirms_by_itself_for_a_person_who_cannot_tap_twice(server, brow
     assert call(server, "/api/neems/gus/choice")[1]["task"] == chosen
     # the setting is the person's: kept in this browser for this NEEM
     again = context.new_page()
-    again.goto(f"{server}/?neem=gus")
+    again.goto(f"{server}/?neem=gus&filter=0")
     again.wait_for_function("document.body.dataset.live === 'yes'")
     again.locator("#tasks button.task").first.click()
     again.wait_for_function("document.getElementById('sheet-count').textContent.startsWith('Chosen in')")
@@ -543,7 +546,7 @@ def test_page_offers_to_finish_the_routine_in_progress(server, browser, axe_sour
     # one more target than the workflow's page: N tasks, the workflow, the routine, what next, new suggestions
     n = page.locator("#tasks button.task").count()
     shown = page.evaluate("""Array.from(document.querySelectorAll('main > :not(dialog) button')).filter(function (b) {
-        return !b.disabled && getComputedStyle(b).visibility === 'visible'; }).length""")
+        return !b.disabled && b.offsetParent !== null && getComputedStyle(b).visibility === 'visible'; }).length""")
     assert shown <= n + 4
     ids = set()
     for _ in range(n + 4):
