@@ -453,7 +453,12 @@ def test_ctrl_c_stops_within_a_second_with_one_line_while_the_page_listens(tmp_p
             process.kill()
     out = process.stdout.read() if process.stdout else ""
     lines = [line for line in out.splitlines() if "oracle.service" not in line]  # the request log
-    assert lines[0].startswith("serving ") and f"http://127.0.0.1:{port}/?token=a-long-enough-token" in lines[0]
+    # the token is never printed to a pipe (stdout is often a log): the link with it is in a 0600 file
+    assert lines[0].startswith("serving ") and f"http://127.0.0.1:{port}/ (with its token: the link in " in lines[0]
+    assert "a-long-enough-token" not in out
+    link = Path(lines[0].split("the link in ", 1)[1].split(",", 1)[0])
+    assert link.read_text().strip() == f"http://127.0.0.1:{port}/?token=a-long-enough-token"
+    assert link.stat().st_mode & 0o077 == 0
     assert lines[1:] == ["stopped"] and "Traceback" not in out
     # an open stream no longer holds the stop (it took ~8 s); the under-a-second figure of a quiet
     # machine is docs/service.md's, a loaded CI machine gets room

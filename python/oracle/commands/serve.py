@@ -27,6 +27,8 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     parser.add_argument("--token-file", type=Path,
                         help="read the token every request must present from this file (0600; needed beyond loopback)")
     parser.add_argument("--token", help="the token itself (visible to other local users in /proc: prefer --token-file)")
+    parser.add_argument("--tokens", type=Path, metavar="FILE",
+                        help="per-user and read-only tokens, one a line: 'TOKEN [user=ID] [read-only]' (0600; docs/security.md)")
     parser.add_argument("--allowed-host", action="append", default=[], metavar="NAME",
                         help="a Host name the service answers to besides its address and localhost (repeatable)")
     parser.add_argument("--allow-prolog-writes", action="store_true",
@@ -103,7 +105,12 @@ def run(args: argparse.Namespace) -> int:
     from oracle.timeline import TimeValueError, display_zone
 
     token = read_token(args)
-    if token is None and not is_loopback(args.host):
+    access = None
+    if args.tokens is not None:
+        from oracle.service.access import read_tokens
+
+        access = read_tokens(args.tokens, strong_token)
+    if token is None and access is None and not is_loopback(args.host):
         raise NeemOracleError(f"--host {args.host}: binding beyond loopback needs --token or --token-file")
     if args.allow_prolog_writes and token is None:
         raise NeemOracleError("--allow-prolog-writes needs --token-file (a page could write the NEEM otherwise)")
@@ -131,11 +138,12 @@ def run(args: argparse.Namespace) -> int:
                         method=method_from(args), host=args.host, extra_hosts=tuple(args.allowed_host),
                         limits=limits, prolog_writes=args.allow_prolog_writes, prior=args.prior)
     ctx.zone = zone
+    ctx.access = access
     ctx.manner = Manner(confirm=args.confirm, dwell_s=args.dwell, undo_s=args.undo, scan=args.scan,
                         scan_s=args.scan_speed, filter_s=args.repeat_filter, gaze_s=args.gaze)
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(name)s %(message)s")
     location = ctx.thread.call(lambda: ctx.engine.store.location)
-    print(f"serving {location}; the page: {page_url(args.host, args.port, token)} (API docs at /docs); Ctrl-C stops",
+    print(f"serving {location}; the page: {shown_link(args.host, args.port, token)} (API docs at /docs); Ctrl-C stops",
           flush=True)
     os.umask(0o077)  # anything the service writes (a new SQLite file's journal) stays private
     app = create_app(ctx)
@@ -149,6 +157,24 @@ def run(args: argparse.Namespace) -> int:
         ctx.thread.close()
     print("stopped", flush=True)
     return 0
+
+
+def shown_link(host: str, port: int, token: str | None) -> str:
+    """The page's address as ``serve`` prints it: the token only to a terminal (stdout is often a
+    log, and logs are kept and shared); otherwise the address without it and the file (0600, in
+    the user's private cache) that holds the whole link."""
+    import sys
+
+    from oracle.files import default_cache_dir, write_private_bytes
+
+    if token is None or sys.stdout.isatty():
+        return page_url(host, port, token)
+    link = default_cache_dir() / f"serve-{port}.link"
+    try:
+        write_private_bytes(link, (page_url(host, port, token) + "\n").encode())
+    except OSError:
+        return f"{page_url(host, port, None)} (add ?token= with the service's token)"
+    return f"{page_url(host, port, None)} (with its token: the link in {link}, 0600)"
 
 
 def page_url(host: str, port: int, token: str | None) -> str:

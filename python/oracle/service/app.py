@@ -27,6 +27,7 @@ from oracle.service.explore_routes import router as explore_router
 from oracle.service.engine import Engine, EngineThread, NotFound, Overloaded, PrologRefused
 from oracle.service.events import EventHub
 from oracle.service.guard import STATIC_DOCS, Guard, Limits, allowed_hosts
+from oracle.service.access import Access, AccessCheck
 from oracle.service.queries import NoSuchNeem, QueryProcess
 from oracle.service.page import Manner, render_token_page
 from oracle.rosprolog.rosbridge import router as rosbridge_router
@@ -65,6 +66,8 @@ class Context:
     manner: Manner = field(default_factory=Manner)
     #: The page's words (oracle.service.words), read on first use.
     lexicon: Lexicon | None = None
+    #: Per-user and read-only tokens (``serve --tokens``, oracle.service.access); None: only ``token``.
+    access: Access | None = None
 
 
 def create_app(ctx: Context) -> FastAPI:
@@ -85,6 +88,7 @@ def create_app(ctx: Context) -> FastAPI:
     app.include_router(explore_router)
     app.include_router(rosbridge_router)  # KnowRob's roslibpy/roslibjs clients (docs/knowrob.md)
     _offline_docs(app)
+    app.add_middleware(AccessCheck, ctx=ctx)  # inside the guard: a token's grant, once admitted
     app.add_middleware(Guard, ctx=ctx, token_page=_token_page)
 
     @app.exception_handler(NeemOracleError)
