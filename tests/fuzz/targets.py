@@ -176,7 +176,7 @@ def guard_read(data: bytes) -> None:
         await send({"type": "http.response.start", "status": 200, "headers": []})
         await send({"type": "http.response.body", "body": b""})
 
-    step = 1 + cut % 16
+    step = 1 + cut % 64
     pieces = [body[i:i + step] for i in range(0, len(body), step)] or [b""]
     messages = [{"type": "http.request", "body": p, "more_body": k < len(pieces) - 1} for k, p in enumerate(pieces)]
     headers = [(b"host", b"127.0.0.1")]
@@ -194,10 +194,11 @@ def guard_read(data: bytes) -> None:
             statuses.append(message["status"])
 
     guard = Guard(app, ctx)
-    scope = {"type": "http", "method": "POST", "path": "/api/prolog", "headers": headers, "query_string": b""}
+    path = "/api/neems/ada/situation" if cut & 128 else "/api/prolog"  # a robot route or not
+    scope = {"type": "http", "method": "POST", "path": path, "headers": headers, "query_string": b""}
     asyncio.run(guard(scope, receive, send))
     assert statuses and statuses[0] in (200, 400, 413, 503), statuses
-    assert guard.budget.held == 0 and guard.in_flight == 0, (guard.budget.held, guard.in_flight)
+    assert guard.budget.held == 0 and guard.in_flight == 0 and guard.robots.running == 0, vars(guard)
     if statuses[0] == 200:
         assert seen == [body], (seen, body)
 

@@ -47,7 +47,7 @@ def test_the_reference_agrees_on_the_worst_bodies():
                     reason="atheris is not installed (make setup installs the dev extra; it has wheels for CPython 3.11-3.13)")
 @pytest.mark.parametrize("target", sorted(TARGETS))
 def test_atheris_finds_no_crash(target, tmp_path):
-    run = subprocess.run([sys.executable, "-m", "tests.fuzz.harness", target, "--", f"-max_total_time={SECONDS}",
+    run = subprocess.run([sys.executable, "-m", "tests.fuzz.harness", target, "--", f"-max_total_time={SECONDS}", "-timeout=20",
                           "-rss_limit_mb=2048", f"-artifact_prefix={tmp_path}/"],
                          cwd=ROOT, capture_output=True, text=True, timeout=SECONDS + 120)  # fmt: skip
     crashes = sorted(tmp_path.glob("crash-*")) + sorted(tmp_path.glob("oom-*")) + sorted(tmp_path.glob("timeout-*"))

@@ -239,3 +239,50 @@ def test_bodies_streaming_in_share_a_byte_budget():
 
     assert asyncio.run(scenario()) == [503, 200, 200]
     assert guard.budget.held == 0
+
+
+def test_a_large_body_waits_while_the_robot_is_served():
+    """While a robot's situation is being answered, a large body is held back (up to 50 ms a
+    step): it reaches its handler after the robot's answer; the robot's own request waits for
+    nobody."""
+    from oracle.service.guard import OFF_LOOP_BYTES
+
+    ctx = SimpleNamespace(limits=Limits(), allowed_hosts=allowed_hosts("127.0.0.1"), token=None)
+    order: list[str] = []
+    robot_may_finish = asyncio.Event()
+
+    async def app(scope: Any, receive: Any, send: Any) -> None:
+        order.append(scope["path"])
+        if scope["path"].endswith("/situation"):
+            await robot_may_finish.wait()
+        await send({"type": "http.response.start", "status": 200, "headers": []})
+        await send({"type": "http.response.body", "body": b""})
+        order.append("done " + scope["path"])
+
+    guard = Guard(app, ctx)
+
+    async def request(path: str, body: bytes) -> None:
+        pieces = [body[i:i + (64 << 10)] for i in range(0, len(body), 64 << 10)]
+        messages = [{"type": "http.request", "body": p, "more_body": k < len(pieces) - 1} for k, p in enumerate(pieces)]
+
+        async def receive() -> dict[str, Any]:
+            return messages.pop(0) if messages else {"type": "http.disconnect"}
+
+        async def send(message: dict[str, Any]) -> None:
+            pass
+
+        headers = [(b"host", b"127.0.0.1"), (b"content-length", str(len(body)).encode())]
+        await guard({"type": "http", "method": "POST", "path": path, "headers": headers, "query_string": b""}, receive, send)
+
+    async def scenario() -> None:
+        robot = asyncio.create_task(request("/api/neems/ada/situation", b'{"available": ["pick(red_mug)"]}'))
+        await asyncio.sleep(0.01)
+        strings = b",".join([b'"' + b"a" * 1000 + b'"'] * (OFF_LOOP_BYTES // 500))  # about twice OFF_LOOP_BYTES
+        large = asyncio.create_task(request("/api/prolog", b'{"query": "X = 1", "bindings": {"X": [' + strings + b"]}}"))
+        await asyncio.sleep(0.03)  # less than one step's wait (guard.ROBOT_FIRST_SECONDS)
+        assert order == ["/api/neems/ada/situation"]  # the large body is held while the robot is served
+        robot_may_finish.set()
+        await asyncio.gather(robot, large)
+
+    asyncio.run(scenario())
+    assert order == ["/api/neems/ada/situation", "done /api/neems/ada/situation", "/api/prolog", "done /api/prolog"]

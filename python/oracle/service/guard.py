@@ -44,6 +44,9 @@ SAFE_HEADERS = ((b"x-frame-options", b"DENY"), (b"x-content-type-options", b"nos
 ROBOT_ROUTE = re.compile(r"/api/neems/[^/]+/(situation|actions|perception)")
 #: A body at least this large is measured in a worker thread (about 1 ms of scanning).
 OFF_LOOP_BYTES = 64 << 10
+#: Longest a large body yields to the robot's requests at each step (each piece read, the
+#: measure, the parse): the robot goes first, a large body still moves on (about 18 steps a MiB).
+ROBOT_FIRST_SECONDS = 0.05
 
 
 @dataclass(frozen=True)
@@ -142,6 +145,7 @@ class Guard:
         self.token_page = token_page
         self.in_flight = 0
         self.budget = BodyBudget(ctx.limits.buffered_bytes)
+        self.robots = RobotFirst()
 
     async def __call__(self, scope: dict[str, Any], receive: Any, send: Any) -> None:
         if scope["type"] != "http":
@@ -157,10 +161,14 @@ class Guard:
             await send(message)
 
         limits: Limits = self.ctx.limits
+        robot = False
         try:
             headers = {k.decode("latin-1").lower(): v.decode("latin-1") for k, v in scope["headers"]}
             self._check(scope, headers)
-            body = await self._body(receive, headers, limits)
+            robot = ROBOT_ROUTE.fullmatch(scope["path"]) is not None and _small(headers, limits)
+            if robot:
+                self.robots.enter()
+            body = await self._body(receive, headers, limits, robot)
             reserve = min(limits.robot_reserve, limits.in_flight // 2)
             allowed = limits.in_flight if ROBOT_ROUTE.fullmatch(scope["path"]) else limits.in_flight - reserve
             if self.in_flight >= allowed:
@@ -178,15 +186,25 @@ class Guard:
             elif status[0] == 0:
                 await _answer(framed, refusal)
         finally:
+            if robot:
+                self.robots.leave()
             route = getattr(scope.get("route"), "path", None) or "(no route)"
             neem = scope.get("path_params", {}).get("neem")
             LOG.info("%s %s%s %d %.1f ms", scope["method"], route, f" neem={neem}" if neem else "", status[0],
                      (time.perf_counter() - started) * 1000)
 
-    async def _body(self, receive: Any, headers: dict[str, str], limits: Limits) -> bytes:
-        """The request's body, read within the limits and checked (bodyshape)."""
-        body = await _read_body(receive, headers, limits, self.budget)
-        await check_body(body, limits)
+    async def _body(self, receive: Any, headers: dict[str, str], limits: Limits, robot: bool) -> bytes:
+        """The request's body, read within the limits and checked (bodyshape); a large one is
+        read, measured and handed on only while no robot request is being served (a robot's own
+        request waits for no other)."""
+        robots = RobotFirst() if robot else self.robots
+        body = await _read_body(receive, headers, limits, self.budget, robots)
+        if len(body) >= OFF_LOOP_BYTES:
+            await robots.wait(ROBOT_FIRST_SECONDS)
+            await check_body(body, limits)
+            await robots.wait(ROBOT_FIRST_SECONDS)  # json.loads and pydantic read it on the loop next
+        else:
+            await check_body(body, limits)
         return body
 
     def _check(self, scope: dict[str, Any], headers: dict[str, str]) -> None:
@@ -209,10 +227,17 @@ class Guard:
             raise Refusal(401, "this service needs its token: Authorization: Bearer <token>")
 
 
-async def _read_body(receive: Any, headers: dict[str, str], limits: Limits, budget: BodyBudget) -> bytes:
+def _small(headers: dict[str, str], limits: Limits) -> bool:
+    """The request declares a body of at most ``limits.small_body`` bytes (or none)."""
+    declared = headers.get("content-length", "0").strip()
+    return declared.isdigit() and int(declared) <= limits.small_body and "transfer-encoding" not in headers
+
+
+async def _read_body(receive: Any, headers: dict[str, str], limits: Limits, budget: BodyBudget, robots: RobotFirst) -> bytes:
     """The whole body, at most ``limits.body_bytes`` of it: decided from Content-Length before
     anything is read, and again while it streams in (a chunked body has no length); the bytes
-    held count against ``budget`` until the body is whole."""
+    held count against ``budget`` until the body is whole. A large body is read only while no
+    robot request is being served (``robots``); the time it waits is not counted against it."""
     too_big = Refusal(413, f"the request body is larger than {limits.body_bytes} bytes",
                       ((b"connection", b"close"),))
     declared = headers.get("content-length")
@@ -228,6 +253,8 @@ async def _read_body(receive: Any, headers: dict[str, str], limits: Limits, budg
     deadline = time.monotonic() + limits.body_seconds
     try:
         while more:
+            if counted:
+                deadline += await robots.wait(ROBOT_FIRST_SECONDS)
             try:
                 message = await asyncio.wait_for(receive(), max(0.0, deadline - time.monotonic()))
             except TimeoutError:
@@ -246,6 +273,39 @@ async def _read_body(receive: Any, headers: dict[str, str], limits: Limits, budg
         if counted:
             budget.give(size)
     return b"".join(chunks)
+
+
+class RobotFirst:
+    """The robot's requests in progress (small ones to ROBOT_ROUTE): while any is, large bodies
+    wait before each piece is read, before they are measured and before they are parsed, so
+    their CPU (and the GIL) goes to the robot first. Each wait is bounded (ROBOT_FIRST_SECONDS):
+    a robot that never pauses slows a large body down, it does not starve it."""
+
+    def __init__(self) -> None:
+        self.running = 0
+        self.idle = asyncio.Event()
+        self.idle.set()
+
+    def enter(self) -> None:
+        self.running += 1
+        self.idle.clear()
+
+    def leave(self) -> None:
+        self.running -= 1
+        if self.running <= 0:
+            self.running = 0
+            self.idle.set()
+
+    async def wait(self, most: float) -> float:
+        """Until no robot request is in progress, at most ``most`` seconds; the seconds waited."""
+        if not self.running:
+            return 0.0
+        started = time.monotonic()
+        try:
+            await asyncio.wait_for(self.idle.wait(), most)
+        except TimeoutError:
+            pass
+        return time.monotonic() - started
 
 
 @dataclass
