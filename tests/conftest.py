@@ -13,14 +13,14 @@ def _private_cache(tmp_path_factory: pytest.TempPathFactory) -> Iterator[None]:
     """Built ontologies, distance matrices, compiled modules, fits and histories of the suite go
     to a folder of its own (child processes inherit it), not to ~/.cache/neem-oracle; a
     NEEM_ORACLE_CACHE set by the caller is kept."""
-    if os.environ.get("NEEM_ORACLE_CACHE"):
-        yield
-        return
-    os.environ["NEEM_ORACLE_CACHE"] = str(tmp_path_factory.mktemp("neem-oracle-cache"))
+    set_here = [name for name in ("NEEM_ORACLE_CACHE", "NEEM_ORACLE_KEY_DIR") if not os.environ.get(name)]
+    for name in set_here:  # the key of kept fits too (oracle.files.default_key_dir), not ~/.config's
+        os.environ[name] = str(tmp_path_factory.mktemp(name.lower()))
     try:
         yield
     finally:
-        os.environ.pop("NEEM_ORACLE_CACHE", None)
+        for name in set_here:
+            os.environ.pop(name, None)
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:

@@ -192,6 +192,18 @@ def cached_pickle(path: Path, key: str, make: Callable[[], _Value], valid: Calla
     return value
 
 
+def default_key_dir() -> Path:
+    """Where the user's own key of kept fits lives (``user_key``): ``$NEEM_ORACLE_KEY_DIR``, else
+    the platform's configuration folder (``~/.config/neem-oracle`` on Linux). Not the cache:
+    a fit kept in a store outlives a cleared or moved cache."""
+    override = os.environ.get("NEEM_ORACLE_KEY_DIR")
+    if override:
+        return Path(override)
+    import platformdirs
+
+    return Path(platformdirs.user_config_dir("neem-oracle"))
+
+
 def default_cache_dir() -> Path:
     """The user's private cache of this package: ``$NEEM_ORACLE_CACHE``, else the platform's
     (``~/.cache/neem-oracle`` on Linux)."""

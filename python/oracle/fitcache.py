@@ -10,7 +10,7 @@ the history: the predictor's class and parameters, the distance matrix's content
 
 An entry is never unpickled. It is plain data (oracle.plainstate: JSON and raw arrays, only the
 predictors' own classes), behind a tag under the user's own key (oracle.files.user_key, kept in the
-cache folder, never in the store): the key, the number of steps fitted, the digest of those
+user's configuration folder, never in the store): the key, the number of steps fitted, the digest of those
 steps and the model without its distance matrix (the caller's, of the same content, is put
 back). A store may come from someone else: an entry whose tag does not verify (written on
 another account or machine, damaged, planted) is dropped before any of it is decoded, the model
@@ -43,7 +43,7 @@ import numpy as np
 import oracle.algorithm
 from oracle import plainstate
 from oracle.algorithm.records import Step
-from oracle.files import CacheFolder, signed, user_key, verified, written_by_user_alone
+from oracle.files import CacheFolder, default_key_dir, signed, user_key, verified, written_by_user_alone
 
 if TYPE_CHECKING:
     from oracle.store.base import Store
@@ -62,6 +62,8 @@ class FitCache(CacheFolder):
 
     FOLDER: ClassVar[str] = "fits"
     SUFFIX: ClassVar[str] = ".fit"
+    #: The folder of the key entries are tagged under (None: the user's, ``default_key_dir``).
+    keys: Path | None = None
 
     def fitted(self, model: Any, steps: Sequence[Step], store: str, neem: str, *, keep: bool = True,
                kept: Store | None = None) -> Any:
@@ -73,7 +75,7 @@ class FitCache(CacheFolder):
         if not keep or not callable(getattr(model, "extend", None)):
             return model.fit(steps)
         key = _entry_key(model, neem)
-        secret = user_key(self.root)
+        secret = user_key(self.keys or default_key_dir())
         path = self.root / f"{_file_name(key, store)}{self.SUFFIX}"
         entries = [raw for raw in (None if kept is None else kept.read_kept(neem, KIND), self._load(path)) if raw]
         cached = _best(entries, secret, key, model, steps, neem)

@@ -224,7 +224,7 @@ def test_a_fit_kept_in_the_store_serves_the_next_process(tmp_path, monkeypatch):
 def test_a_fit_another_account_kept_is_fitted_afresh_and_said_once(tmp_path, caplog):
     # another user's cache folder has another key: their entry in a store they hand over is not used
     store, matrix, steps = _KeptStore(), random_matrix(5), synthetic_history(40, 5)
-    FitCache(tmp_path / "theirs").fitted(RoutineOracle(matrix), steps, "s", "n", kept=store)
+    FitCache(tmp_path / "theirs", keys=tmp_path / "their-key").fitted(RoutineOracle(matrix), steps, "s", "n", kept=store)
     theirs = store.kept[("n", "fit")]
     _Counting.added = 0
     with caplog.at_level("WARNING", logger="oracle.fitcache"):
@@ -242,15 +242,16 @@ def test_a_damaged_further_entry_gives_way_to_the_other(tmp_path, monkeypatch):
     # the user's file is read first by its head; a model that will not decode makes the cache
     # extend the store's shorter fit, not fit afresh
     import oracle.fitcache as fitcache
-    from oracle.files import signed, user_key
+    from oracle.files import default_key_dir, signed, user_key
 
     store, matrix, steps = _KeptStore(), random_matrix(6), synthetic_history(90, 6)
     cache = FitCache(tmp_path / "fits")
     cache.fitted(RoutineOracle(matrix), steps[:70], "s", "n", kept=store)
     key = fitcache._entry_key(RoutineOracle(matrix), "n")
     head = json.dumps({"key": key, "steps": 80, "digest": fitcache._steps_digest(steps[:80])}).encode()
-    damaged = fitcache._FORMAT + signed(user_key(tmp_path / "fits"), len(head).to_bytes(4, "little") + head + b"not a model")
+    damaged = fitcache._FORMAT + signed(user_key(default_key_dir()), len(head).to_bytes(4, "little") + head + b"not a model")
     path = tmp_path / "fits" / f"{fitcache._file_name(key, 's')}{FitCache.SUFFIX}"
+    path.parent.mkdir(mode=0o700, exist_ok=True)
     path.write_bytes(damaged)
     os.chmod(path, 0o600)
     monkeypatch.setattr(RoutineOracle, "fit", lambda self, history: pytest.fail("fitted afresh"))

@@ -21,7 +21,7 @@ from oracle import fitcache, plainstate  # noqa: E402
 from oracle.algorithm.predictors import PREDICTORS, make_predictor  # noqa: E402
 from oracle.algorithm.params import Hyperparameters  # noqa: E402
 from oracle.algorithm.routine import RoutineOracle  # noqa: E402
-from oracle.files import signed, user_key  # noqa: E402
+from oracle.files import default_key_dir, signed, user_key  # noqa: E402
 from oracle.fitcache import FitCache  # noqa: E402
 
 #: Audit events that would mean an entry ran something.
@@ -90,7 +90,8 @@ def test_the_dotted_name_gadget_runs_nothing_anywhere_a_fit_is_read(tmp_path):
     key = fitcache._entry_key(RoutineOracle(matrix), "n")
     user_file = tmp_path / "fits" / f"{fitcache._file_name(key, 's')}{FitCache.SUFFIX}"
     fresh = RoutineOracle(matrix).fit(steps)
-    for entry in _entries(str(planted), user_key(tmp_path / "fits")):
+    user_file.parent.mkdir(mode=0o700)
+    for entry in _entries(str(planted), user_key(default_key_dir())):
         store = _KeptStore()
         store.kept[("n", fitcache.KIND)] = entry
         user_file.write_bytes(entry)
@@ -117,7 +118,7 @@ def test_ten_thousand_random_or_mutated_entries_run_nothing_and_are_refitted(tmp
     cache.fitted(RoutineOracle(matrix), steps, "s", "n", kept=store)
     good = store.kept[("n", fitcache.KIND)]
     key = fitcache._entry_key(RoutineOracle(matrix), "n")
-    secret = user_key(tmp_path / "fits")
+    secret = user_key(default_key_dir())
     rng = random.Random(0)
     model = RoutineOracle(matrix)
     _WATCH.seen.clear()
