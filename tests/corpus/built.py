@@ -114,3 +114,137 @@ for _seed in range(5):
         def _builder(tmp: Path, seed: int = _seed, command: list[str] = _command) -> tuple[list[str], str]:
             return [*command, "--store", "{store}", f"corrupt:{seed}"], "corrupt"
         BUILT[f"corrupted-store-{_seed}-{_command[0]}"] = _builder
+
+
+# -- issue 54: files a user is handed (oracle.handed, oracle.xmlguard) and the sweep's findings --
+def _good_dump(tmp: Path) -> Path:
+    """A valid one-NEEM dump (generate.py's) in ``tmp/dump``; the folder of its NEEM."""
+    from tests.corpus.generate import _write_dump_case
+
+    folder = tmp / "dump"
+    _write_dump_case(folder, {"docs": None, "raw": None, "meta": "default", "meta_raw": None, "extra": {}, "metadata": None})
+    return folder / "corpus-neem"
+
+
+def _planted(place: str, how: str, expected: str) -> Builder:
+    def build(tmp: Path) -> tuple[list[str], str]:
+        neem = _good_dump(tmp)
+        target = neem / place
+        target.unlink()
+        if how == "fifo":
+            os.mkfifo(target)
+        elif how == "dev-zero":
+            target.symlink_to("/dev/zero")
+        else:  # a link out of the dump to a file of the user's
+            secret = tmp / "private.json"
+            secret.write_text('{"name": "diary"}')
+            target.symlink_to(secret)
+        return ["load", str(neem), "--store", "{store}"], expected
+
+    return build
+
+
+for _place in ("triples/roslog/triples.metadata.json", "triples/roslog/triples.bson", "meta.json"):
+    for _how, _expected in (("fifo", "a FIFO, not a regular file"), ("dev-zero", "link"), ("link-out", "link")):
+        BUILT[f"load-{_place.rsplit('/', 1)[-1]}-{_how}"] = _planted(_place, _how, _expected)
+
+
+@built("load-meta-json-bad-oid")
+def _bad_oid(tmp: Path) -> tuple[list[str], str]:
+    # json_util.loads raised bson's InvalidId (a traceback) for {"$oid": "zz"}
+    neem = _good_dump(tmp)
+    (neem / "meta.json").write_text('{"id": "corpus-neem", "created_by": {"$oid": "zz"}}')
+    return ["load", str(neem), "--store", "{store}"], "meta.json: not a JSON object"
+
+
+@built("load-metadata-json-bad-decimal")
+def _bad_decimal(tmp: Path) -> tuple[list[str], str]:
+    neem = _good_dump(tmp)
+    (neem / "triples" / "roslog" / "triples.metadata.json").write_text('{"count": {"$numberDecimal": "x"}}')
+    return ["load", str(neem), "--store", "{store}"], "not a mongodump metadata JSON object"
+
+
+@built("import-fifo")
+def _import_fifo(tmp: Path) -> tuple[list[str], str]:
+    os.mkfifo(tmp / "chains.jsonl")
+    return ["import", str(tmp / "chains.jsonl"), "--store", "{store}"], "a FIFO, not a regular file"
+
+
+@built("settings-fifo")
+def _settings_fifo(tmp: Path) -> tuple[list[str], str]:
+    os.mkfifo(tmp / "s.yaml")
+    return ["rank", "--store", "{store}", "--neem", "p000-tea-red-yogurt", "--settings", str(tmp / "s.yaml")], "a FIFO"
+
+
+@built("settings-over-the-limit")
+def _settings_big(tmp: Path) -> tuple[list[str], str]:
+    (tmp / "s.yaml").write_bytes(b"# " + b"x" * (1 << 20) + b"\n")
+    return ["rank", "--store", "{store}", "--neem", "p000-tea-red-yogurt", "--settings", str(tmp / "s.yaml")], \
+        "larger than the limit of 1048576 bytes"
+
+
+@built("mapping-link-to-dev-zero")
+def _mapping_zero(tmp: Path) -> tuple[list[str], str]:
+    (tmp / "m.yaml").symlink_to("/dev/zero")
+    return ["import", "{good}", "--store", "{store}", "--mapping", str(tmp / "m.yaml")], "a device, not a regular file"
+
+
+for _name, _argv, _data, _expected in (
+    # the sweep's three non-UTF-8 YAML files: a UnicodeDecodeError traceback each
+    ("settings-latin1", ["rank", "--store", "{store}", "--neem", "p000-tea-red-yogurt", "--settings"], b"# caf\xe9\nknockout: 1.2\n",
+     "s.yaml:1: settings is not UTF-8"),
+    ("settings-utf16", ["rank", "--store", "{store}", "--neem", "p000-tea-red-yogurt", "--settings"],
+     "knockout: 1.2\n".encode("utf-16"), "settings is not UTF-8"),
+    ("mapping-latin1", ["import", "{good}", "--store", "{store}", "--mapping"], b"namespace: http://x/\n# m\xfcg\n",
+     "s.yaml:2: mapping is not UTF-8"),
+):
+    def _yaml(tmp: Path, argv: list[str] = _argv, data: bytes = _data, expected: str = _expected) -> tuple[list[str], str]:
+        (tmp / "s.yaml").write_bytes(data)
+        return [*argv, str(tmp / "s.yaml")], expected
+    BUILT[_name] = _yaml
+
+
+@built("odb-manifest-link-to-dev-zero")
+def _odb_zero(tmp: Path) -> tuple[list[str], str]:
+    folder = tmp / "odb" / "a"
+    folder.mkdir(parents=True)
+    (folder / "manifest.xml").symlink_to("/dev/zero")
+    return ["import", "{good}", "--store", "{store}", "--odb", str(tmp / "odb")], "symbolic link"
+
+
+@built("odb-folder-linked-out")
+def _odb_out(tmp: Path) -> tuple[list[str], str]:
+    (tmp / "elsewhere").mkdir()
+    (tmp / "elsewhere" / "manifest.xml").write_text("<object><name>a</name></object>")
+    (tmp / "odb").mkdir()
+    (tmp / "odb" / "a").symlink_to(tmp / "elsewhere")
+    return ["import", "{good}", "--store", "{store}", "--odb", str(tmp / "odb")], "link out of"
+
+
+#: The issue's kind of OWL file: 683 bytes of nested entities cost rdflib 160 s of CPU.
+_NESTED_OWL = (
+    '<?xml version="1.0"?>\n<!DOCTYPE rdf:RDF [<!ENTITY a0 "dododododo">'
+    + "".join(f'<!ENTITY a{i} "{f"&a{i - 1};" * 10}">' for i in range(1, 8))
+    + ']>\n<rdf:RDF xmlns:rdf="http://www.w3.org/1999/02/22-rdf-syntax-ns#" xmlns:owl="http://www.w3.org/2002/07/owl#">'
+    '<owl:Ontology rdf:about="http://x/o"><owl:versionInfo>&a7;</owl:versionInfo></owl:Ontology></rdf:RDF>\n'
+)
+
+
+@built("soma-nested-entities")
+def _soma_nested(tmp: Path) -> tuple[list[str], str]:
+    (tmp / "soma").mkdir()
+    (tmp / "soma" / "SOMA.owl").write_text(_NESTED_OWL)
+    return ["import", "{good}", "--store", "{store}", "--soma", str(tmp / "soma")], "expands to"
+
+
+@built("soma-external-entity")
+def _soma_external(tmp: Path) -> tuple[list[str], str]:
+    (tmp / "soma").mkdir()
+    (tmp / "soma" / "SOMA.owl").write_text(_NESTED_OWL.replace('<!ENTITY a0 "dododododo">', '<!ENTITY a0 SYSTEM "/etc/passwd">'))
+    return ["import", "{good}", "--store", "{store}", "--soma", str(tmp / "soma")], "external entity"
+
+
+@built("import-users-who-have-neems")
+def _again(tmp: Path) -> tuple[list[str], str]:
+    # every user of the file has a NEEM: one error line (was one bare line per user, no 'error:')
+    return ["import", "{good}", "--store", "{store}"], "users not imported: user 'p000-tea-red-yogurt' already has NEEM"

@@ -48,6 +48,9 @@ def build_with_report(
 
 
 def _build(odb_dir: Path, mapping: Path, soma_dir: Path | str | None) -> tuple[OdbOntology, BuildReport]:
+    from oracle.ontology.upper import check_upper_files
+
+    check_upper_files(soma_dir)  # a hostile --soma file is refused before rdflib is imported
     from oracle.ontology.generate import check_upper_iris, generate
     from oracle.ontology.mapping import load_mapping
     from oracle.ontology.odb import read_odb

@@ -45,6 +45,20 @@ def load_upper(soma_dir: Path | str | None = None) -> Graph:
     return graph
 
 
+def check_upper_files(soma_dir: Path | str | None) -> None:
+    """Refuse the official files of ``soma_dir`` that ``load_upper`` would refuse for their kind,
+    size or entities (oracle.handed, oracle.xmlguard), before anything heavier (rdflib, the odb)
+    is loaded: a hostile file is one line at once."""
+    from oracle.handed import OWL_LIMIT, read_handed
+    from oracle.xmlguard import check_entities
+
+    if soma_dir is None or not Path(soma_dir).is_dir():
+        return  # load_upper says why
+    for path in official_files(soma_dir):
+        check_entities(read_handed(path, Handed("ontology file", OntologyError, Path(soma_dir)), OWL_LIMIT), str(path),
+                       OntologyError)
+
+
 def official_files(soma_dir: Path | str) -> list[Path]:
     """The official files of ``soma_dir`` that ``load_upper`` reads, in load order (imports first)."""
     directory = Path(soma_dir)

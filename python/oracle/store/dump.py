@@ -328,6 +328,9 @@ def load_dump(store: Store, path: Path | str, *, neem_id: str | None = None, rep
         if twin is not None:
             raise StoreError(f"{root}: {twin[3]} and {folder} both hold NEEM {target!r}; load them one at a time")
         plans.append((target, files, meta, folder))
+    for _, files, _, _ in plans:  # every file a regular one before anything is staged (oracle.handed)
+        for file in files.values():
+            open_handed(file, Handed("dump file", StoreError, root)).close()
     # Every NEEM is staged before any is swapped in, and the swaps are one transaction (on
     # SQLite): a bad second NEEM leaves the store as it was, not with the first one loaded.
     staged: list[str] = []
