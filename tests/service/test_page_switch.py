@@ -301,6 +301,7 @@ def test_nothing_moves_offline_a_kept_choice_goes_out_on_reconnect_and_answers_a
         assert phase(page) is None
         assert every_rule(page, axe_source) == []
         if SHOTS:
+            page.evaluate("scrollTo(0, 0)")
             page.screenshot(path=f"{SHOTS}/service-offline-en-390.png")
         process = start_server(store, port)
         page.wait_for_function("document.body.dataset.live === 'yes'", timeout=60_000)
@@ -367,8 +368,9 @@ def test_axe_finds_nothing_in_any_state_of_the_switch_page(server, browser, axe_
         shot = open_page(browser, server, f"neem={name}&lang={lang}&scan=one&step=9&undo=30", 800, 1280)
         shot.screenshot(path=f"{SHOTS}/service-scan-{lang}-800.png", clip={"x": 0, "y": 0, "width": 800, "height": 900})
         shot.keyboard.press("Enter")
-        shot.wait_for_timeout(300)
+        shot.wait_for_timeout(700)  # past the repeat-hit filter
         shot.keyboard.press("Enter")
+        shot.wait_for_function("document.getElementById('sheet').dataset.phase === 'undo'")
         shot.screenshot(path=f"{SHOTS}/service-undo-{lang}-800.png", clip={"x": 0, "y": 0, "width": 800, "height": 900})
         shot.close()
     page.close()
