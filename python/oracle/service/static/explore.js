@@ -212,8 +212,15 @@
       if (d % dayStep === 0) { p.text(AXIS_LEFT - 6, yOf(d) + Math.min(rowH, 14) * 0.8 + 1, dateOf((t.day0 + d) * DAY), "#333", "right"); }
     }
     var barH = Math.max(1, rowH * 0.62), markH = Math.max(1, Math.min(rowH * 0.22, 6));
-    var decided = state.decisions, buckets = {};
-    function add(fill, x, y, w, h) { (buckets[fill] || (buckets[fill] = [])).push(x, y, w, h); }
+    var decided = state.decisions, buckets = {}, last = {};
+    // whole pixels (no anti-aliased edges to blend), and a bar that would only repaint the pixel
+    // column its colour just painted in this row is left out: at 10,000 actions most would
+    function add(fill, x, y, w, h) {
+      var x0 = Math.round(x), x1 = Math.max(Math.round(x + w), x0 + 1), y0 = Math.round(y), key = fill + y0;
+      if (last[key] !== undefined && last[key] >= x1) { return; }
+      last[key] = x1;
+      (buckets[fill] || (buckets[fill] = [])).push(x0, y0, x1 - x0, Math.max(Math.round(y + h) - y0, 1));
+    }
     for (d = firstDay; d <= lastDay; d++) {
       var y = yOf(d);
       for (var i = t.firstOfDay[d]; i < t.firstOfDay[d + 1]; i++) {
