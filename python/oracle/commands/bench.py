@@ -32,7 +32,9 @@ def run(args: argparse.Namespace) -> int:
         rows.extend(importlib.import_module(name).run(quick=args.quick))
     if args.json is not None:
         try:
-            args.json.write_text(json.dumps({"rows": rows}, indent=2) + "\n")
+            from oracle.files import write_private_bytes
+
+            write_private_bytes(args.json, (json.dumps({"rows": rows}, indent=2) + "\n").encode())  # 0600, as every file
         except OSError as error:
             raise NeemOracleError(f"{args.json}: cannot write ({error.strerror})") from None
     return 0
