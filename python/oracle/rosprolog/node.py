@@ -39,14 +39,17 @@ def generated(srv_dir: Path, cache: Path) -> Path:
     root = cache / f"{PACKAGE}-{digest}"
     if (root / PACKAGE / "srv" / "__init__.py").is_file():
         return root
-    cache.mkdir(parents=True, exist_ok=True)
-    scratch = Path(tempfile.mkdtemp(dir=cache))
-    out = scratch / PACKAGE / "srv"
-    out.mkdir(parents=True)
+    from oracle.files import private_folder
+
+    private_folder(cache)  # each missing folder 0700 whatever the umask
+    scratch = Path(tempfile.mkdtemp(dir=cache))  # 0700
+    out = private_folder(scratch / PACKAGE / "srv")
     if SrvGenerator().generate_messages(PACKAGE, [str(f) for f in files], str(out), {}):
         raise SystemExit("error: genpy could not generate the json_prolog_msgs service classes")
     write_modules(str(out))
     (scratch / PACKAGE / "__init__.py").write_text("")
+    for made in scratch.rglob("*"):  # genpy writes with the umask's mode
+        os.chmod(made, 0o700 if made.is_dir() else 0o600)
     try:
         os.rename(scratch, root)  # whole or not at all; another node may have made it meanwhile
     except OSError:
