@@ -7,8 +7,9 @@ another site -> 403; the token when there is one -> 401; a body over the limit -
 Content-Length, or while it streams in; never echoed), one that comes too slowly -> 408, more
 body bytes buffered at once than the process allows -> 503; JSON too deep, with too many values,
 too long a number or string, or not UTF-8 -> 400 (oracle.service.bodyshape, linear, in a
-worker thread for a big body); then too many requests at once -> 503, with a reserve of slots only the robot's routes
-may take. Every answer carries the headers that keep the page out of frames and stop content
+worker thread for a big body); then too many requests at once -> 503, with a reserve of slots
+only the robot's routes may take. While a robot request is served, large bodies wait
+(RobotFirst). Every answer carries the headers that keep the page out of frames and stop content
 sniffing. Connections themselves (per-client limits, the header deadline, draining a refused
 body) are oracle.service.connections' job. The request log holds the method, the route
 template, the NEEM id, the status and the time; never a task, an object, a query or a token.
