@@ -24,8 +24,6 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, BinaryIO
 
-from oracle.errors import NeemOracleError
-
 MiB = 1 << 20
 
 #: Size limits of the files read whole, in bytes. Each is tens of times the largest real file of
@@ -43,7 +41,7 @@ class Handed:
     and the folder it was found in (None: named by the user, a link to a regular file is fine)."""
 
     what: str
-    error: type[NeemOracleError]
+    error: type[Exception]
     inside: Path | None = None
 
 

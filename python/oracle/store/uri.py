@@ -76,9 +76,13 @@ def with_password_file(uri: str, path: str) -> str:
     userinfo, host = authority.rsplit("@", 1)
     if ":" in userinfo:
         raise PasswordFileError(f"{PASSWORD_FILE_ENV} is set but the URI {mask_uri(uri)} already holds a password")
+    from oracle.handed import Handed, open_handed
+
     try:
-        with open(path, "rb") as handle:
+        with open_handed(path, Handed("it", PasswordFileError)) as handle:  # a regular file: a FIFO would block
             raw = handle.read(4097)
+    except PasswordFileError as error:
+        raise PasswordFileError(f"{PASSWORD_FILE_ENV}={error}") from None
     except OSError as error:
         raise PasswordFileError(f"{PASSWORD_FILE_ENV}={path}: cannot read it ({error.strerror or type(error).__name__})") from None
     if len(raw) > 4096:
