@@ -20,7 +20,6 @@ import re
 from pyexpat import ExpatError, ParserCreate, errors
 from typing import Any
 
-from oracle.errors import NeemOracleError
 
 #: Longest expansion of one internal entity, in characters.
 MAX_ENTITY = 4096
@@ -81,7 +80,7 @@ class _Check:
                 raise _Refused(f"its entity references expand by more than {self.budget} characters")
 
 
-def check_entities(data: bytes, where: str, error: type[NeemOracleError]) -> None:
+def check_entities(data: bytes, where: str, error: type[Exception]) -> None:
     """Refuse (``error``, one line naming ``where``) an XML document whose entities are external,
     parameter entities or expand beyond the bounds of the module's docstring. A document that is
     not well-formed is left to the real parser, which names the fault."""
@@ -105,7 +104,7 @@ def check_entities(data: bytes, where: str, error: type[NeemOracleError]) -> Non
         _count_references(data, check, where, error)
 
 
-def _count_references(data: bytes, check: _Check, where: str, error: type[NeemOracleError]) -> None:
+def _count_references(data: bytes, check: _Check, where: str, error: type[Exception]) -> None:
     """Parse again with only a default handler, adding up what each reference expands to."""
     counter = ParserCreate()
     counter.SetParamEntityParsing(0)
