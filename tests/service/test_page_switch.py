@@ -257,7 +257,16 @@ def test_the_next_ranking_is_shown_with_focus_on_its_top_right_after_a_switch_ch
     assert done and done[0].errors == []
 
 
-def test_nothing_moves_offline_a_kept_choice_goes_out_on_reconnect_and_answers_are_in_view(tmp_path, browser, axe_source):
+#: What the page says at each step of the offline test, by language.
+SAYS = {"en": {"next": "Next I expect", "kept": "Your choice", "kept_end": "is kept. It goes to the robot as soon as the robot is back.",
+               "back": "The robot is back", "did": "The robot did"},
+        "de": {"next": "Als Nächstes erwarte ich", "kept": "Ihre Wahl",
+               "kept_end": "ist gespeichert. Sie geht an den Roboter, sobald er wieder da ist.",
+               "back": "Der Roboter ist wieder da", "did": "Der Roboter hat gemacht"}}
+
+
+@pytest.mark.parametrize("lang", ["en", "de"])
+def test_nothing_moves_offline_a_kept_choice_goes_out_on_reconnect_and_answers_are_in_view(tmp_path, browser, axe_source, lang):
     """Through a choice, an answer, the service stopping and restarting and a new ranking: the
     task list's cumulative layout shift is 0; every answer appears inside the viewport; offline
     the targets are off (aria-disabled) and a choice made just before is kept and sent on
@@ -269,15 +278,17 @@ def test_nothing_moves_offline_a_kept_choice_goes_out_on_reconnect_and_answers_a
         routine_neem(base, "cls")
         page = browser.new_page(viewport={"width": 390, "height": 844}, bypass_csp=True)
         page.add_init_script(SHIFTS)
-        page.goto(f"{base}/?neem=cls&undo=1.5&filter=0.3")
+        says = SAYS[lang]
+        page.goto(f"{base}/?neem=cls&undo=1.5&filter=0.3&lang={lang}")
         page.wait_for_function("document.body.dataset.live === 'yes'")
         page.wait_for_timeout(300)
         page.evaluate("window.shifts = []")  # from here on: the states of the issue
         top = page.locator("#tasks button.task").first.bounding_box()
-        assert top["y"] < 200  # below 640 px no empty slot above the top task
+        heading = page.locator("h1").bounding_box()
+        assert top["y"] - (heading["y"] + heading["height"]) <= 24  # below 640 px no empty slot above the top task
         # an answer: in the sheet, in view
         page.locator("#whatnext").click()
-        page.wait_for_function("document.getElementById('sheet-answer').textContent.startsWith('Next I expect')")
+        page.wait_for_function(f"document.getElementById('sheet-answer').textContent.startsWith({says['next']!r})")
         assert in_view(page, "#sheet-answer")
         page.wait_for_timeout(350)  # past the repeat-hit filter: a deliberate press
         page.locator("#back").click()
@@ -289,9 +300,9 @@ def test_nothing_moves_offline_a_kept_choice_goes_out_on_reconnect_and_answers_a
         page.locator("#confirm").click()
         stop_server(process)
         page.wait_for_function("document.body.dataset.live === 'no'")
-        page.wait_for_function("document.getElementById('answer').textContent.startsWith('Your choice')", timeout=10_000)
+        page.wait_for_function(f"document.getElementById('answer').textContent.startsWith({says['kept']!r})", timeout=10_000)
         said = page.locator("#answer").text_content()
-        assert said.endswith("is kept. It goes to the robot as soon as the robot is back."), said
+        assert said.endswith(says["kept_end"]), said
         assert in_view(page, "#answer") and in_view(page, "#link")
         offs = page.evaluate("Array.from(document.querySelectorAll('#tasks button.task')).map(b => b.getAttribute('aria-disabled'))")
         assert set(offs) == {"true"}
@@ -302,16 +313,16 @@ def test_nothing_moves_offline_a_kept_choice_goes_out_on_reconnect_and_answers_a
         assert every_rule(page, axe_source) == []
         if SHOTS:
             page.evaluate("scrollTo(0, 0)")
-            page.screenshot(path=f"{SHOTS}/service-offline-en-390.png")
+            page.screenshot(path=f"{SHOTS}/service-offline-{lang}-390.png")
         process = start_server(store, port)
         page.wait_for_function("document.body.dataset.live === 'yes'", timeout=60_000)
-        page.wait_for_function("document.getElementById('answer').textContent.startsWith('The robot is back')", timeout=15_000)
+        page.wait_for_function(f"document.getElementById('answer').textContent.startsWith({says['back']!r})", timeout=15_000)
         assert page.locator("#link").is_hidden()
         assert call(base, "/api/neems/cls/choice")[1]["task"] == chosen
         assert page.locator("#tasks button.task").first.get_attribute("aria-disabled") is None
         # the robot does it and posts a new ranking: shown (right after a choice), nothing shifted
         call(base, "/api/neems/cls/actions", {"call": chosen, "begin": at(2, 1)})
-        page.wait_for_function("document.getElementById('robot').textContent.startsWith('The robot did')")
+        page.wait_for_function(f"document.getElementById('robot').textContent.startsWith({says['did']!r})")
         assert in_view(page, "#robot")
         call(base, "/api/neems/cls/situation", {"available": AVAILABLE[:6], "at": at(2, 2)})
         page.wait_for_function("document.querySelectorAll('#tasks button.task').length === 6")
@@ -344,6 +355,12 @@ def test_axe_finds_nothing_in_any_state_of_the_switch_page(server, browser, axe_
     routine_neem(server, name)
     page = open_page(browser, server, f"neem={name}&lang={lang}&scan=two&undo=30&filter=0.2&gaze=5", 390, 844)
     states = {"list, highlight on the top": every_rule(page, axe_source)}
+    box = page.locator("#tasks button.task").first.bounding_box()
+    page.mouse.move(box["x"] + 30, box["y"] + 30)
+    page.mouse.move(box["x"] + 40, box["y"] + 35)
+    page.wait_for_selector("button.gazing")
+    states["a dwell filling"] = every_rule(page, axe_source)
+    page.mouse.move(5, 5)  # away before it selects
     page.locator("#more").click()
     states["more unfolded"] = every_rule(page, axe_source)
     call(server, f"/api/neems/{name}/situation", {"available": AVAILABLE[:4], "at": at(2, 1)})
