@@ -11,7 +11,7 @@ page uses those routes as they are, so its answers and refusals are theirs.
 The product never imports the evaluation (tests/test_architecture.py): the replay is handed in
 by whoever builds the app, as ``app.state.explore_replay`` (the ``serve`` command; tests). A
 replay of a long NEEM takes tens of seconds (37 s at 10,000 actions), so it runs once per NEEM
-state in a child process, niced as the query process is (oracle.service.queries): it shares
+state in a child process, niced more than the query process (oracle.service.queries): it shares
 neither the engine thread nor the GIL with the robot's calls, and a service that stops ends it
 (a daemon process). The route answers 202 until it is done.
 """
@@ -44,6 +44,9 @@ router = APIRouter(include_in_schema=False)  # the page's own data, shaped for i
 KEPT_REPLAYS = 4
 #: Calls of the predictor's order kept per decision (the page shows them).
 SHOWN = 10
+#: How much nicer than the service a replay runs: nicer than a Prolog query (5, which a person
+#: waits on), since nobody waits on a replay's minute but a page opened meanwhile should not.
+REPLAY_NICENESS = 10
 
 
 class Replayed(Protocol):
@@ -102,10 +105,8 @@ class ExploreState:
 
 
 def _replay_child(conn: Any, replayer: Replayer, args: tuple[Any, ...]) -> None:
-    from oracle.service.queries import QUERY_NICENESS
-
     try:
-        os.nice(QUERY_NICENESS)
+        os.nice(REPLAY_NICENESS)
     except OSError:
         pass
     try:
