@@ -97,6 +97,7 @@ def test_two_switches_choose_the_top_in_two_presses_and_ask_in_few(server, brows
         page.wait_for_function("document.getElementById('sheet-answer').textContent.length > 20")
         assert in_view(page, "#sheet-answer")
         assert moves + 1 <= 6, (target, moves + 1)
+        print(f"two switches: {target} answered in {moves + 1} presses")
         press(page, "Enter", f)  # Back: the sheet closes, the highlight back on the question
         assert phase(page) is None and page.evaluate(FOCUS) == target
     # the sheet's own "Something else?" is one move from "Yes": 3 presses from the top task
