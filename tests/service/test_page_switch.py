@@ -392,3 +392,17 @@ def test_axe_finds_nothing_in_any_state_of_the_switch_page(server, browser, axe_
         shot.screenshot(path=f"{SHOTS}/service-undo-{lang}-800.png", clip={"x": 0, "y": 0, "width": 800, "height": 900})
         shot.close()
     page.close()
+
+
+@pytest.mark.parametrize("option", [["--scan-speed", "0"], ["--repeat-filter", "9"], ["--gaze", "0.1"]])
+def test_serve_refuses_carer_settings_out_of_range_in_one_line(option):
+    import subprocess
+    import sys
+
+    from tests.service.test_server import ROOT
+
+    result = subprocess.run([sys.executable, "-m", "oracle", "serve", "--port", str(free_port()), *option], cwd=ROOT,
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 1 and result.stdout == ""
+    assert result.stderr.strip() == ("error: --scan-speed and --gaze: expected 0.3 to 10 seconds (--gaze 0: off);"
+                                     " --repeat-filter: 0 to 5 seconds")
