@@ -66,6 +66,9 @@ class NeemRanking:
     #: (not logged yet: the logger writes it with the next action).
     breaks: int = 0
     pause: bool = False
+    #: Per ranked task, what the shared prior says of it ("people usually do this after ..."), or
+    #: None where the prior did not carry it (always None without a prior).
+    people: tuple[str | None, ...] = ()
 
 
 def make_predictor(ontology: OdbOntology, settings: Hyperparameters | None = None, method: str = DEFAULT,
@@ -147,7 +150,31 @@ def rank_neem(
                                       instant.part_of_day)
     return NeemRanking(bridge.neem_id, instant.seconds, instant.part_of_day, len(ranker.steps), ranking, ranked,
                        chain, decision.ms, written, note, method, tuple(usual), tuple(chain_modes),
-                       sum(1 for step in ranker.steps if step.idle), ranker.idle_fitted)
+                       sum(1 for step in ranker.steps if step.idle), ranker.idle_fitted,
+                       tuple(people_words(ranker.predictor, ranking)))
+
+
+def people_words(predictor: Predictor, ranking: Ranking) -> list[str | None]:
+    """What the shared prior says of each ranked task (``PersonalOracle.usually``): "people
+    usually do this after X" (the user's own last task, X, the context other people did it after),
+    "people often do this" (order 0), or None."""
+    from oracle.algorithm.prior import IDLE
+
+    usually = getattr(predictor, "usually", None)
+    if usually is None:
+        return [None] * len(ranking.tasks)
+    tokens = getattr(predictor, "_tokens", [])
+    words: list[str | None] = []
+    for task in ranking.tasks:
+        found = usually(task.option)
+        if found is None:
+            words.append(None)
+        elif found[0] == 0:
+            words.append(f"people often do this ({found[1]:.0%} of what they do)")
+        else:
+            after = ", ".join("a break" if t == IDLE else t for t in tokens[len(tokens) - found[0]:])
+            words.append(f"people usually do this after {after} ({found[1]:.0%})")
+    return words
 
 
 def keep_neem(store: Store, ontology: OdbOntology, neem: str, settings: Hyperparameters | None = None,

@@ -155,3 +155,24 @@ def test_with_a_prior_it_starts_as_the_others_habits_and_learns_its_own():
     # the prior is the process's: never kept with the fit, shared by the chain's copies
     assert fresh.__getstate__()["_prior"] is None
     assert fresh.fit(steps[:5]).hypothetical().prior is prior
+
+
+def test_the_explanation_says_what_other_people_usually_do_after_the_same_tasks():
+    from oracle.algorithm.records import Ranking
+    from oracle.ranking import people_words
+
+    matrix = random_matrix(5)
+    steps = [s for s in synthetic_history(80, 5) if not s.idle]
+    model = PersonalOracle(matrix).fit(steps[:40])
+    last = option_key(steps[39].option)
+    offer = list(steps[40].options)
+    chosen, other = offer[0], offer[1]
+    model.use_prior(Prior({(last,): {option_key(chosen): 9.0, "x": 1.0}, (): {option_key(other): 5.0}}))
+    assert model.usually(chosen) == (1, 0.9)
+    assert model.usually(other) == (0, 1.0)
+    ranking = model.rank(offer)
+    words = dict(zip([t.option for t in ranking.tasks], people_words(model, ranking)))
+    assert words[chosen] == f"people usually do this after {last} (90%)"
+    assert words[other].startswith("people often do this")
+    assert people_words(PersonalOracle(matrix).fit(steps[:40]), ranking) == [None] * len(offer)
+    assert people_words(PooledOracle(matrix).fit(steps[:40]), Ranking(())) == []

@@ -57,8 +57,10 @@ def run(args: argparse.Namespace) -> int:
             "neem": result.neem, "method": result.method, "at": result.at, "time_of_day": result.time_of_day,
             "history": result.history, "ms": result.milliseconds,
             "ranking": [{"rank": t.rank, "call": str(c), "score": finite(t.score), "similar": t.n_similar,
-                         **support_fields(t), "mode": u.mode, "mode_support": {"context": u.context, "counts": u.counts}}
-                        for t, c, u in zip(result.ranking, result.calls, result.usual)],
+                         **support_fields(t), "mode": u.mode, "mode_support": {"context": u.context, "counts": u.counts},
+                         **({"people": p} if p else {})}
+                        for t, c, u, p in zip(result.ranking, result.calls, result.usual,
+                                              result.people or (None,) * len(result.calls))],
             "chain": [str(c) for c in result.chain], "chain_modes": list(result.chain_modes),
             "written": result.written, "note": result.note,
         }, indent=1))

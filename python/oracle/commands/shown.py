@@ -68,7 +68,9 @@ def print_ranking(result: NeemRanking, limit: int | None = None, modes: bool = F
     usual, chain_modes = (result.usual, result.chain_modes) if modes else ((), ())
     for index, (t, call) in enumerate(shown):
         said = mode_sentence("en", usual[index].mode, usual[index].counts, usual[index].context) if index < len(usual) else ""
-        print(f"  {t.rank:2d}. {str(call):32s} {describe(t)}" + (f" {said}" if said else ""))
+        people = result.people[index] if index < len(result.people) else None
+        print(f"  {t.rank:2d}. {str(call):32s} {describe(t)}" + (f" {said}" if said else "")
+              + (f" {people[0].upper()}{people[1:]}." if people else ""))
     if limit is not None and len(result.calls) > limit:
         print(f"  ... and {len(result.calls) - limit} more")
     steps = [f"{c} [{chain_modes[i] or '?'}]" if i < len(chain_modes) else str(c) for i, c in enumerate(result.chain)]
