@@ -1,0 +1,57 @@
+"""What a session keeps per history (oracle.service.warm) answers as the uncached path does: the
+routine in progress (oracle.past.routines.in_progress over the routines mined from the actions
+done, named by the stored workflows) and the usual modes (ranked_modes with the logit fitted
+afresh), step after step, across idle gaps, and after actions logged by someone else's mode."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from oracle.algorithm.params import Hyperparameters
+from oracle.neem.writer import NeemLogger
+from oracle.past.modelogit import fit_modes, ranked_modes
+from oracle.past.routines import begun_by, done_from_steps, in_progress, mine_routines
+from oracle.past.workflows import keep_user_names
+from oracle.service.engine import Engine
+from oracle.service.robot import persona_rows
+from oracle.store import open_store
+from oracle.timeline import Instant
+
+
+def _uncached(session, at, stored):
+    ranker = session.ranker
+    done = begun_by(done_from_steps(ranker.steps, ranker.begins, ranker.last_end), at)
+    routines, _ = keep_user_names(mine_routines(done), stored)
+    return in_progress(routines, done, at) if done else None
+
+
+def test_kept_routines_and_modes_answer_as_afresh(tmp_path, onto):
+    _, rows = persona_rows(0, 3, 12)
+    store = open_store(tmp_path / "s.sqlite")
+    logger = NeemLogger.create(store, onto, user="ann", neem_id="ann", commit_every=500)
+    for row in rows[:300]:
+        logger.action(row.action, row.time, row.end, available=row.available)
+    logger.flush()
+    engine = Engine(store, onto, Hyperparameters())
+    session = engine.session("ann")
+    stored = [{"name": "breakfast", "steps": [str(r.action) for r in rows[:6]], "by_user": True}]
+    found = 0
+    for index, row in enumerate(rows[300:360]):
+        performer = ("robot", "user", "together")[index % 3]
+        now = Instant.of(row.time).seconds
+        for at in (now, now + 4 * 3600):  # now, and after an idle gap
+            want = _uncached(session, at, stored)
+            _, got = session.warm.in_progress(session.ranker, at, stored)
+            assert got == want
+            found += want is not None
+        kept, afresh = session.warm.modes(session.ranker), fit_modes(session.ranker.modes)
+        assert kept.rows == afresh.rows and np.array_equal(kept.weights, afresh.weights)
+        calls = [str(c) for c in row.available or (row.action,)]
+        for part in ("Morning", "Evening"):
+            assert ranked_modes(session.ranker.modes, calls, calls[:3], part, session.warm.modes(session.ranker)) \
+                == ranked_modes(session.ranker.modes, calls, calls[:3], part)
+        session.log(str(row.action), row.time.isoformat(), row.end.isoformat() if row.end else None, performer)
+        if index % 2:
+            session.warm.warm(session.ranker, session.ranker.last_end)
+    assert found > 10  # routines were in progress, not only None compared with None
+    store.close()
