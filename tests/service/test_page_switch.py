@@ -294,6 +294,16 @@ def test_nothing_moves_offline_a_kept_choice_goes_out_on_reconnect_and_answers_a
         page.wait_for_timeout(350)  # past the repeat-hit filter: a deliberate press
         page.locator("#back").click()
         page.wait_for_timeout(400)
+        # "Why here?" in a task's sheet: the answer under its buttons, scrolled into the screen
+        page.locator("#tasks button.task").nth(2).click()
+        page.wait_for_timeout(350)
+        page.locator("#whyhere").click()
+        page.wait_for_function("document.getElementById('sheet-answer').textContent.length > 20")
+        page.wait_for_timeout(100)
+        assert in_view(page, "#sheet-answer")
+        page.wait_for_timeout(350)
+        page.locator("#back").click()
+        page.wait_for_timeout(400)
         # a choice, then the service stops inside the undo window: kept, the targets off
         page.locator("#tasks button.task").nth(1).click()
         page.wait_for_timeout(400)
