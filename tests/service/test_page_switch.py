@@ -416,3 +416,50 @@ def test_serve_refuses_carer_settings_out_of_range_in_one_line(option):
     assert result.returncode == 1 and result.stdout == ""
     assert result.stderr.strip() == ("error: --scan-speed and --gaze: expected 0.3 to 10 seconds (--gaze 0: off);"
                                      " --repeat-filter: 0 to 5 seconds")
+
+
+def test_simulate_follow_tablet_the_page_follows_the_robot_after_a_switch_choice(server, browser):
+    """``python -m oracle simulate --follow-tablet`` itself: after a two-switch choice the robot
+    does it and posts its next situation; the page shows that ranking, the focus on its top task,
+    without "New suggestions" (printed: how long after the robot's situation event it was so)."""
+    import subprocess
+    import sys
+
+    from tests.service.test_server import ROOT
+
+    robot = subprocess.Popen([sys.executable, "-m", "oracle", "simulate", "--serve", server, "--persona", "1", "--days", "1",
+                              "--neem", "simcli58", "--follow-tablet", "--wait", "20", "--pace", "0.3"],
+                             cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    try:
+        deadline = time.monotonic() + 120
+        while call(server, "/api/neems/simcli58/situation")[0] != 200 or \
+                not call(server, "/api/neems/simcli58/situation")[1].get("ranking"):
+            assert time.monotonic() < deadline and robot.poll() is None, "the simulated robot posted no situation"
+            time.sleep(0.2)
+        f = 0.2
+        page = browser.new_page(viewport={"width": 800, "height": 1280}, bypass_csp=True)
+        page.add_init_script("""window.situations = []; (function (Plain) {
+            window.EventSource = function (url) { var s = new Plain(url);
+              s.addEventListener('situation', function () { window.situations.push(Date.now()); }); return s; };
+            window.EventSource.CLOSED = Plain.CLOSED; })(window.EventSource);""")
+        page.goto(f"{server}/?neem=simcli58&scan=two&undo=0&filter={f}&hold=30")
+        page.wait_for_function("document.body.dataset.live === 'yes'")
+        before = call(server, "/api/neems/simcli58/situation")[1]["at"]
+        seen = page.evaluate("window.situations.length")
+        press(page, "Enter", f)
+        press(page, "Enter", f)  # chosen with two presses; the robot follows, then posts its next situation
+        deadline = time.monotonic() + 30
+        while call(server, "/api/neems/simcli58/situation")[1]["at"] == before:
+            assert time.monotonic() < deadline, "the robot did not post its next situation"
+            time.sleep(0.05)
+        top = call(server, "/api/neems/simcli58/situation")[1]["ranking"][0]["task"]
+        page.wait_for_function(f"window.situations.length > {seen} && document.activeElement.dataset.task === {top!r} && "
+                               f"document.querySelector('#tasks button.task').dataset.task === {top!r} && "
+                               "(window.shownAt = Date.now())", polling="raf", timeout=10_000)
+        after = page.evaluate("window.shownAt - window.situations[window.situations.length - 1]")
+        print(f"simulate --follow-tablet: the next ranking on screen, focus on its top, {after} ms after the robot's situation event")
+        assert not page.locator("#fresh.waiting").count()
+        page.close()
+    finally:
+        robot.terminate()
+        robot.wait(30)
