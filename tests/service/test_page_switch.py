@@ -7,6 +7,7 @@ choice, offline with a kept choice, and axe-core (every rule, every impact) in E
 from __future__ import annotations
 
 import os
+import shutil
 import threading
 import time
 
@@ -17,7 +18,8 @@ from tests.service.test_server import (  # noqa: F401  (fixtures)
     CHROMIUM, axe_source, browser, call, free_port, routine_neem, server, start_server, stop_server,
 )
 
-pytestmark = pytest.mark.skipif(CHROMIUM is None, reason="no chromium installed (make setup installs Debian's chromium)")
+pytestmark = [pytest.mark.skipif(shutil.which("swipl") is None, reason="SWI-Prolog (swipl) is not installed; run make setup"),
+              pytest.mark.skipif(CHROMIUM is None, reason="no chromium installed (make setup installs Debian's chromium)")]
 
 FOCUS = "document.activeElement.dataset.task || document.activeElement.id"
 SHOTS = os.environ.get("NEEM_ORACLE_SCREENSHOTS")
