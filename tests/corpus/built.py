@@ -248,3 +248,16 @@ def _soma_external(tmp: Path) -> tuple[list[str], str]:
 def _again(tmp: Path) -> tuple[list[str], str]:
     # every user of the file has a NEEM: one error line (was one bare line per user, no 'error:')
     return ["import", "{good}", "--store", "{store}"], "users not imported: user 'p000-tea-red-yogurt' already has NEEM"
+
+
+@built("load-triple-p-bson-code")
+def _code_p(tmp: Path) -> tuple[list[str], str]:
+    # bson's Code is a str subclass: it passed the check and then was a TypeError in the store
+    from bson import Code
+
+    from tests.corpus.generate import _write_dump_case, bson_docs
+
+    docs = bson_docs()
+    docs[1] = {**docs[1], "p": Code("f()")}
+    _write_dump_case(tmp / "dump", {"docs": docs, "raw": None, "meta": "default", "meta_raw": None, "extra": {}, "metadata": None})
+    return ["load", str(tmp / "dump" / "corpus-neem"), "--store", "{store}"], "'p' must be a non-empty string"

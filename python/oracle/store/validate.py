@@ -60,7 +60,8 @@ def _term(value: Any) -> bool:
         return not value.to_decimal().is_nan()
     if isinstance(value, float):
         return not math.isnan(value)
-    return isinstance(value, (str, int, bool, datetime))
+    # a plain str: bson's Code is a str subclass that the store's readers cannot hash
+    return type(value) is str or isinstance(value, (int, bool, datetime))
 
 
 def check_document(kind: str, doc: Mapping[str, Any], where: str) -> None:
@@ -69,20 +70,20 @@ def check_document(kind: str, doc: Mapping[str, Any], where: str) -> None:
     if kind == "triples":
         for field in ("s", "p"):
             value = doc.get(field)
-            if not isinstance(value, str) or not value:
+            if type(value) is not str or not value:
                 raise StoreError(f"{where}: {field!r} must be a non-empty string, got {_short(value)}")
         if "o" not in doc or not _term(doc["o"]):
             raise StoreError(f"{where}: 'o' must be a string, number, boolean or date, got {_short(doc.get('o'))}")
         for field in ("p*", "o*"):
             if field in doc and not (isinstance(doc[field], list) and all(_term(v) for v in doc[field])):
                 raise StoreError(f"{where}: {field!r} must be a list of terms, got {_short(doc[field])}")
-        if "graph" in doc and not isinstance(doc["graph"], str):
+        if "graph" in doc and type(doc["graph"]) is not str:
             raise StoreError(f"{where}: 'graph' must be a string, got {_short(doc['graph'])}")
         if "scope" in doc:
             _check_scope(doc["scope"], where)
     elif kind == "annotations":
         for field in ("s", "p"):
-            if not isinstance(doc.get(field), str):
+            if type(doc.get(field)) is not str:
                 raise StoreError(f"{where}: {field!r} must be a string, got {_short(doc.get(field))}")
 
 
