@@ -78,11 +78,10 @@
   // While the person is on the list (a touch, pointer or key within the hold time, the keyboard's
   // or two-switch focus on the list, the sheet open), a new ranking waits behind "New suggestions";
   // otherwise, and always right after a choice, it is shown at once.
-  ['pointerdown', 'touchstart', 'keydown', 'wheel'].forEach(function (kind) {
+  // (a pointer or eye gaze moving over the page counts: the person is aiming at something)
+  ['pointerdown', 'pointermove', 'touchstart', 'keydown', 'wheel'].forEach(function (kind) {
     document.addEventListener(kind, function (e) { if (e.isTrusted) lastTouch = Date.now(); }, {capture: true, passive: true});
   });
-  document.addEventListener('pointermove', function (e) { if (e.isTrusted && e.pointerType !== 'mouse') lastTouch = Date.now(); },
-                            {capture: true, passive: true});
   function engaged() {
     if (following) return false;
     var focused = document.activeElement;
