@@ -333,6 +333,7 @@ def test_nothing_moves_offline_a_kept_choice_goes_out_on_reconnect_and_answers_a
         assert page.locator("#link").is_hidden()
         assert call(base, "/api/neems/cls/choice")[1]["task"] == chosen
         assert page.locator("#tasks button.task").first.get_attribute("aria-disabled") is None
+        assert every_rule(page, axe_source) == []  # back online, the kept choice sent
         # the robot does it and posts a new ranking: shown (right after a choice), nothing shifted
         call(base, "/api/neems/cls/actions", {"call": chosen, "begin": at(2, 1)})
         page.wait_for_function(f"document.getElementById('robot').textContent.startsWith({says['did']!r})")
@@ -350,13 +351,14 @@ def test_nothing_moves_offline_a_kept_choice_goes_out_on_reconnect_and_answers_a
 
 
 @pytest.mark.parametrize("width,height", [(1024, 1180), (1280, 800)])
-def test_at_200_percent_zoom_the_top_suggestion_is_fully_visible(server, browser, width, height):
+def test_at_200_percent_zoom_the_top_suggestion_is_fully_visible(server, browser, axe_source, width, height):
     """200 % zoom is half the CSS pixels at twice the density."""
     if call(server, "/api/neems/zoom/situation")[0] == 404:
         routine_neem(server, "zoom")
     page = open_page(browser, server, "neem=zoom", width // 2, height // 2, scale=2)
     assert in_view(page, "#tasks button.task")
     assert page.evaluate("document.documentElement.scrollWidth") <= width // 2
+    assert every_rule(page, axe_source) == []
     if SHOTS and width == 1280:
         page.screenshot(path=f"{SHOTS}/service-zoom200-en-1280.png")
     page.close()
