@@ -9,6 +9,10 @@ from __future__ import annotations
 
 import subprocess
 import sys
+from pathlib import Path
+
+#: The repository (``tests`` is a package there): each target's process starts from it.
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def main(argv: list[str]) -> int:
@@ -18,7 +22,7 @@ def main(argv: list[str]) -> int:
         return _fuzz(names[0], options)
     worst = 0
     for name in names:  # one process each: libFuzzer ends the process it runs in
-        worst = max(worst, subprocess.call([sys.executable, "-m", "tests.fuzz.harness", name, "--", *options]))
+        worst = max(worst, subprocess.call([sys.executable, "-m", "tests.fuzz.harness", name, "--", *options], cwd=ROOT))
     return worst
 
 

@@ -93,12 +93,13 @@ class _Scan:
         self.open_string = 0
 
     def feed(self, codes: np.ndarray) -> None:
-        quote = codes == _QUOTE
+        # np.equal, not ==: the fuzzer (atheris) traces every == and kept each array it saw
+        quote = np.equal(codes, _QUOTE)
         # a byte lies in a string when an odd number of quotes precede it (its own included)
         parity = (np.cumsum(quote, dtype=np.int64) + self.in_string) & 1
         self.in_string = bool(parity[-1])
-        outside = (parity == 0) & ~quote
-        self.longest_string, self.open_string = _runs((parity == 1) & ~quote, self.longest_string, self.open_string)
+        outside = np.equal(parity, 0) & ~quote
+        self.longest_string, self.open_string = _runs(np.equal(parity, 1) & ~quote, self.longest_string, self.open_string)
         bare = codes[outside]
         if bare.size == 0:
             return
@@ -106,7 +107,7 @@ class _Scan:
         running = np.cumsum(steps, dtype=np.int64) + self.depth
         self.deepest = max(self.deepest, int(running.max()))
         self.depth = int(running[-1])
-        self.values += int(np.count_nonzero(steps == 1)) + int(np.count_nonzero(_SEPARATOR[bare]))
+        self.values += int(np.count_nonzero(np.equal(steps, 1))) + int(np.count_nonzero(_SEPARATOR[bare]))
         self.longest, self.open_run = _runs(_NUMBER[bare], self.longest, self.open_run)
 
 
@@ -114,7 +115,7 @@ def _runs(mask: np.ndarray, longest: int, carried: int) -> tuple[int, int]:
     """The longest run of True in ``mask`` (a run ``carried`` on from the slice before counted
     in) and the length of the run that reaches its end (0: none does)."""
     edges = np.diff(np.concatenate(([False], mask, [False])).astype(np.int8))
-    lengths = np.flatnonzero(edges == -1) - np.flatnonzero(edges == 1)
+    lengths = np.flatnonzero(np.equal(edges, -1)) - np.flatnonzero(np.equal(edges, 1))
     if lengths.size == 0:
         return longest, 0
     if mask[0]:
