@@ -63,8 +63,9 @@ bench:
 # make test runs each atheris target 30 s and schemathesis ~1,000 requests (tests/fuzz); this runs
 # them longer. A crash is left in pytest's temporary folder: save it under tests/fuzz/regressions/.
 FUZZ_SECONDS ?= 600
+SCHEMATHESIS_EXAMPLES ?= 200
 fuzz:
-	NEEM_FUZZ_SECONDS=$(FUZZ_SECONDS) NEEM_SCHEMATHESIS_EXAMPLES=200 $(PY) -m pytest -q -n 0 -p no:cacheprovider tests/fuzz
+	NEEM_FUZZ_SECONDS=$(FUZZ_SECONDS) NEEM_SCHEMATHESIS_EXAMPLES=$(SCHEMATHESIS_EXAMPLES) $(PY) -m pytest -q -n 0 -p no:cacheprovider tests/fuzz
 
 demo:
 	$(PY) -m oracle demo
