@@ -237,7 +237,7 @@ def test_no_acknowledged_situation_is_lost_over_20_sigkills(tmp_path):
 @pytest.mark.deadline
 def test_clients_that_send_nothing_or_a_trickle_are_closed(served):
     """A socket that sends nothing, and one that sends a header line a second, are closed by the
-    header deadline (10 s) rather than held for ever (slowloris)."""
+    header deadline (5 s, Limits.header_seconds) rather than held for ever (slowloris)."""
     import threading
     import time
 
