@@ -322,6 +322,10 @@ def test_nothing_moves_offline_a_kept_choice_goes_out_on_reconnect_and_answers_a
         stripes = page.evaluate("getComputedStyle(document.querySelector('#tasks button.task')).backgroundImage")
         assert stripes.startswith("repeating-linear-gradient")  # striped, not only grey
         page.locator("#tasks button.task").nth(2).click(force=True)  # off: nothing opens
+        # scrolled to the end, the last target stands clear above the strip
+        page.evaluate("scrollTo(0, document.documentElement.scrollHeight)")
+        assert page.evaluate("""document.getElementById('more').getBoundingClientRect().bottom <=
+            document.getElementById('strip').getBoundingClientRect().top""")
         assert phase(page) is None
         assert every_rule(page, axe_source) == []
         if SHOTS:

@@ -357,8 +357,11 @@
   function say(text) { answer.textContent = text; showStrip(); }
   function showStrip() {
     strip.hidden = !(answer.textContent || robot.textContent || !link.hidden || pending);
-    // a focused button scrolls clear of the strip, never under it
-    document.documentElement.style.scrollPaddingBottom = (strip.hidden ? 0 : strip.offsetHeight + 12) + 'px';
+    // a focused button scrolls clear of the strip, never under it, and the last one can: room for
+    // the strip below the page's end (nothing above it moves)
+    var room = strip.hidden ? 0 : strip.offsetHeight + 12;
+    document.documentElement.style.scrollPaddingBottom = room + 'px';
+    document.querySelector('main').style.paddingBottom = room ? room + 40 + 'px' : '';
   }
 
   // -- switches: the page's own scanning. Two switches: Space moves, Enter selects. One switch:
