@@ -5,6 +5,7 @@ and no token is ever printed to stdout."""
 
 from __future__ import annotations
 
+import json
 import shutil
 import subprocess
 import sys
@@ -117,3 +118,17 @@ def test_a_bad_token_file_is_one_line_before_the_service_starts(tmp_path, text, 
     assert done.returncode != 0 and len(lines) == 1 and lines[0].startswith("error: ") and said in lines[0], done.stderr
     assert ADA not in done.stderr + done.stdout
 
+
+
+def test_the_rosbridge_door_takes_the_services_tokens_only(served):
+    websockets_sync = pytest.importorskip("websockets.sync.client", reason="the websockets client (make setup) is not installed")
+    from websockets.exceptions import InvalidStatus
+
+    url = f"ws://127.0.0.1:{served.port}/rosbridge"
+    for token in (ADA, ADA_READS, ALL_READS):  # a user's or a read-only token: refused before the upgrade
+        with pytest.raises(InvalidStatus):
+            websockets_sync.connect(url, additional_headers={"Authorization": f"Bearer {token}"}, open_timeout=30)
+    with websockets_sync.connect(url, additional_headers={"Authorization": f"Bearer {ADMIN}"}, open_timeout=30) as socket:
+        socket.send(json.dumps({"op": "call_service", "id": "q", "service": "rosprolog/query",
+                                "args": {"id": "q", "query": "X = 1", "mode": 1}}))
+        assert json.loads(socket.recv(timeout=60))["result"] is True
