@@ -71,11 +71,11 @@ def test_idle_sockets_beyond_every_limit_do_not_turn_the_robot_away(served):
 
 @needs_swipl
 def test_slow_bodies_do_not_turn_the_robot_away(served):
-    """60 requests whose bodies come a byte at a time (more than the 48 that may run at once):
+    """80 requests whose bodies come a byte at a time (more than the 64 that may run at once):
     they hold no request slot while their bodies stream in, and the robot is answered."""
     slow = []
     try:
-        for _ in range(60):
+        for _ in range(80):
             sock = socket.create_connection(("127.0.0.1", served.port), timeout=10)
             sock.sendall(_post_head(1000) + b"{")
             slow.append(sock)

@@ -72,8 +72,9 @@ class Limits:
     #: a body declared at most ``small_body`` bytes long is not counted (connections bound those).
     buffered_bytes: int = 64 << 20
     small_body: int = 64 << 10
-    #: Requests handled at once (their bodies read); more get 503.
-    in_flight: int = 48
+    #: Requests handled at once (their bodies read); more get 503. Event streams hold one each
+    #: (at most ``subscribers``): with all 32 open, other requests keep 64 - 16 reserved - 32.
+    in_flight: int = 64
     #: Of ``in_flight``, the slots only the robot's routes (ROBOT_ROUTE) may take.
     robot_reserve: int = 16
     #: Prolog queries running or queued at once; more get 429.
