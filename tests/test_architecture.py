@@ -231,7 +231,7 @@ def test_the_circle_check_finds_a_circle():
 
 
 FOUNDATIONS = {"oracle.errors", "oracle.namespaces", "oracle.paths", "oracle.yamlfile", "oracle.timeline", "oracle.chains",
-               "oracle.modulecache", "oracle.files"}
+               "oracle.modulecache", "oracle.files", "oracle.handed", "oracle.xmlguard"}
 
 
 def test_the_foundations_import_nothing_above_them():

@@ -3,6 +3,10 @@
 A NEEM folder holds ``triples/``, ``annotations/``, ``tf/`` and ``inferred/``, each with
 ``<db>/<collection>.bson`` and ``.metadata.json`` (knowrob-2x-facts §9), plus ``meta.json`` with
 the registry entry. Documents are copied unchanged, so dump -> load -> dump is the identity.
+
+Why this module is large: writing and reading the layout are one format, kept in one place, and
+a dump is a file a user is handed, so its reading checks every file (oracle.handed), document
+and count before the store changes; splitting write from read would split the format.
 """
 
 from __future__ import annotations
