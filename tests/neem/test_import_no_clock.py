@@ -92,7 +92,9 @@ def test_rank_of_a_no_clock_neem_is_the_replay_of_the_same_rows(tmp_path, capsys
     from the time-less rows (no part of the day, no idle steps), so the rankings agree."""
     from oracle.algorithm.params import Hyperparameters
     from oracle.algorithm.predictors import DEFAULT, make_predictor
-    from oracle.calls import opening_tasks, option_of, step_of
+    import dataclasses
+
+    from oracle.calls import DoneBefore, opening_tasks, option_of, step_of
     from oracle.chains import parse_call
     from oracle.ontology import build_ontology
 
@@ -105,7 +107,13 @@ def test_rank_of_a_no_clock_neem_is_the_replay_of_the_same_rows(tmp_path, capsys
     assert ranked["time_of_day"] is None and ranked["at"] == len(ACTIONS) and ranked["history"] == len(ACTIONS)
 
     onto = build_ontology(EXAMPLES / "odb", EXAMPLES / "mapping.yaml")
-    steps = [step_of(onto, parse_call(a)) for a in ACTIONS]
+    # each step offered what was done before it, as the history read gives it (calls.DoneBefore):
+    # the default learns from those decisions
+    steps, done = [], DoneBefore()
+    for a in ACTIONS:
+        step = step_of(onto, parse_call(a))
+        steps.append(dataclasses.replace(step, options=done.offer()))
+        done.add(step.option)
     model = make_predictor(DEFAULT, onto.distances(), opening_tasks(onto), Hyperparameters()).fit(steps)
     expected = model.rank([option_of(onto, parse_call(c)) for c in offered], None)
     assert [row["call"] for row in ranked["ranking"]] == [str(onto_call) for onto_call in _calls(onto, expected)]
