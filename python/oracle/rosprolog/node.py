@@ -29,6 +29,16 @@ PACKAGE = "json_prolog_msgs"
 ANSWER_S = 120.0
 
 
+def _private_folder(path: Path) -> Path:
+    """``path`` and its missing parents, each 0700 whatever the umask. This node runs under
+    Debian's python3, where the package (and oracle.files.private_folder) is not importable."""
+    missing = [folder for folder in [path, *path.parents] if not folder.exists()]
+    for folder in reversed(missing):
+        folder.mkdir(mode=0o700)
+        os.chmod(folder, 0o700)
+    return path
+
+
 def generated(srv_dir: Path, cache: Path) -> Path:
     """The folder holding the ``json_prolog_msgs`` package genpy makes of ``srv_dir``'s files."""
     from genpy.generate_initpy import write_modules
@@ -39,11 +49,9 @@ def generated(srv_dir: Path, cache: Path) -> Path:
     root = cache / f"{PACKAGE}-{digest}"
     if (root / PACKAGE / "srv" / "__init__.py").is_file():
         return root
-    from oracle.files import private_folder
-
-    private_folder(cache)  # each missing folder 0700 whatever the umask
+    _private_folder(cache)  # each missing folder 0700 whatever the umask
     scratch = Path(tempfile.mkdtemp(dir=cache))  # 0700
-    out = private_folder(scratch / PACKAGE / "srv")
+    out = _private_folder(scratch / PACKAGE / "srv")
     if SrvGenerator().generate_messages(PACKAGE, [str(f) for f in files], str(out), {}):
         raise SystemExit("error: genpy could not generate the json_prolog_msgs service classes")
     write_modules(str(out))
