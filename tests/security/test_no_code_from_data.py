@@ -26,12 +26,9 @@ ALLOWED = [
      "(oracle.files.user_key): written by this package on this account, never from a store or a dump"),
     ("ontology/model.py", 'pickle.loads(self.__dict__.pop("_graph_bytes"))',
      "the graph inside an ontology cache entry, itself read only after its tag verified (files.cached_pickle)"),
-    ("service/queries.py", "kind, payload = conn.recv()",
-     "the pipe from the service's own query child (multiprocessing), which pickles what its Prolog answered"),
-    ("service/queries.py", 'parent.recv() == ("ready", None)',
-     "the same pipe: the child's start-up word"),
-    ("service/queries.py", "neem, query, bindings, offset, limit, seconds = conn.recv()",
-     "the same pipe, in the child: what the service process sent it"),
+    ("service/explore_routes.py", "ok, value = parent.recv()",
+     "the pipe from /explore's own replay child (multiprocessing), which pickles the replay it computed; "
+     "the child is this package's code and receives nothing from a request but a NEEM id"),
 ]
 
 
