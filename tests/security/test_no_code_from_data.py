@@ -28,7 +28,7 @@ ALLOWED = [
      "the graph inside an ontology cache entry, itself read only after its tag verified (files.cached_pickle)"),
     ("service/explore_routes.py", "ok, value = parent.recv()",
      "the pipe from /explore's own replay child (multiprocessing), which pickles the replay it computed; "
-     "the child is this package's code and receives nothing from a request but a NEEM id"),
+     "both ends are this package's own processes: the bytes are made by its own pickler, never read from a file or a request"),
 ]
 
 
