@@ -324,7 +324,9 @@ def test_cli_import_neems_export_load_persist(tmp_path, capsys):
     chains = write_jsonl(tmp_path / "c.jsonl", CHAINS)
     assert main(["import", str(chains), "--store", db]) == 0
     printed = [line.split("\t") for line in capsys.readouterr().out.splitlines()]
-    assert [(name, count) for _, name, count in printed] == [("alice", "2 actions"), ("bob", "1 actions")]
+    # the count `neems` shows: the two rows and the break between them, logged as an idle action
+    assert [(name, count) for _, name, count in printed] == [
+        ("alice", "3 actions (2 rows and 1 break, logged as idle actions)"), ("bob", "1 action")]
     alice, bob = (neem_id for neem_id, _, _ in printed)
     assert is_object_id(alice) and is_object_id(bob)
     assert main(["neems", "--store", db, "--json"]) == 0

@@ -163,4 +163,4 @@ def _print(report: dict[str, int], store: Store) -> None:
         total = summarize_neem(store, neem_id, infos[neem_id]).actions if neem_id in infos else count
         idle = total - count
         breaks = f" ({count} rows and {idle} break{'s' if idle != 1 else ''}, logged as idle actions)" if idle > 0 else ""
-        print(f"{neem_id}\t{names.get(neem_id) or '-'}\t{total} actions{breaks}")
+        print(f"{neem_id}\t{names.get(neem_id) or '-'}\t{total} action{'s' if total != 1 else ''}{breaks}")
