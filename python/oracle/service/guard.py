@@ -27,7 +27,6 @@ from dataclasses import dataclass
 from typing import Any
 from urllib.parse import parse_qs, urlsplit
 
-from oracle.service import bodyshape
 from oracle.service.access import admits
 
 LOG = logging.getLogger("oracle.service")
@@ -332,6 +331,8 @@ async def check_body(body: bytes, limits: Limits) -> None:
     loop when small, in a worker thread when it would take more than about a millisecond."""
     if not body:
         return
+    from oracle.service import bodyshape  # numpy: not on the command line's `--help` path (serve's Limits)
+
     shape = bodyshape.measure(body) if len(body) < OFF_LOOP_BYTES else await asyncio.to_thread(bodyshape.measure, body)
     reason = bodyshape.refusal(shape, limits.json_depth, limits.json_values, limits.number_chars, limits.string_bytes)
     if reason is not None:
