@@ -79,6 +79,8 @@ class FitCache(CacheFolder):
         path = self.root / f"{_file_name(key, store)}{self.SUFFIX}"
         entries = [raw for raw in (None if kept is None else kept.read_kept(neem, KIND), self._load(path)) if raw]
         cached = _best(entries, secret, key, model, steps, neem)
+        if cached is not None and callable(getattr(model, "use_prior", None)):
+            cached.use_prior(model.prior)  # a prior is never kept with a fit: the steps to add learn with it
         if cached is not None and cached.fitted_steps_ == len(steps):
             return cached
         fitted = cached.extend(steps) if cached is not None else model.fit(steps)
@@ -187,6 +189,9 @@ def _entry_key(model: Any, neem: str) -> str:
     for part in (_FORMAT.decode(), type(model).__module__, type(model).__qualname__, neem, sys.version,
                  np.__version__, _code_digest()):
         digest.update(part.encode() + b"\0")
+    prior = getattr(model, "prior", None)
+    if prior is not None:  # weights learnt with a prior are kept for that prior only
+        digest.update(b"prior=" + prior.digest().encode() + b"\0")
     for name, value in model.get_params().items():
         digest.update(name.encode() + b"=")
         if value is model.distances:

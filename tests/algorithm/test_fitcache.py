@@ -258,3 +258,30 @@ def test_a_damaged_further_entry_gives_way_to_the_other(tmp_path, monkeypatch):
     grown = cache.fitted(RoutineOracle(matrix), steps, "s", "n", kept=store)  # the store's 70, extended
     monkeypatch.undo()
     _same(RoutineOracle(matrix).fit(steps), grown, steps[-4:])
+
+
+def test_a_kept_fit_learns_its_new_steps_with_the_prior_and_is_kept_per_prior(tmp_path):
+    """The prior is never kept with a fit: the cache gives the kept model the caller's prior
+    before it adds the steps since, so the grown fit equals a fresh one with that prior; a fit
+    learnt under another prior is not used."""
+    from oracle.algorithm.personal import PersonalOracle
+    from oracle.algorithm.prior import Prior, option_key
+
+    matrix = random_matrix(8)
+    steps = synthetic_history(140, 8)
+    prior = Prior({(): {option_key(steps[0].options[-1]): 40.0, option_key(steps[3].options[0]): 10.0}})
+    other = Prior({(): {option_key(steps[0].options[0]): 40.0}})
+    cache = FitCache(tmp_path / "fits")
+    cache.fitted(PersonalOracle(matrix).use_prior(prior), steps[:90], "s", "n")
+    grown = cache.fitted(PersonalOracle(matrix).use_prior(prior), steps, "s", "n")
+    fresh = PersonalOracle(matrix).use_prior(prior).fit(steps)
+    assert grown.prior is prior
+    for step in steps[-6:]:
+        assert [(t.option, t.probability) for t in grown.rank(step)] == [(t.option, t.probability) for t in fresh.rank(step)]
+    assert fitcache_key(PersonalOracle(matrix).use_prior(prior)) != fitcache_key(PersonalOracle(matrix).use_prior(other))
+
+
+def fitcache_key(model):
+    import oracle.fitcache as fitcache
+
+    return fitcache._entry_key(model, "n")

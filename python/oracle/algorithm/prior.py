@@ -16,6 +16,7 @@ context found blends in its followers with escape ``kinds / (seen + kinds)``. do
 
 from __future__ import annotations
 
+import hashlib
 import json
 import math
 from collections.abc import Iterable, Mapping, Sequence
@@ -27,6 +28,7 @@ import numpy as np
 
 from oracle.algorithm.records import Option, local_name
 from oracle.errors import NeemOracleError
+from oracle.files import write_private_bytes
 
 FORMAT = "neem-oracle-prior"
 VERSION = 1
@@ -67,6 +69,7 @@ class Prior:
     clip: int = DEFAULT_CLIP
     users: int | None = None  # how many users were counted (a total, not who)
     _totals: dict[Context, tuple[float, int]] = field(default_factory=dict, repr=False, compare=False)
+    _digest: list[str] = field(default_factory=list, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         for context, followers in self.tables.items():
@@ -129,10 +132,17 @@ class Prior:
         return Prior(tables, None if fingerprint is None else str(fingerprint), k, epsilon, clip,
                      None if users is None else int(users))
 
+    def digest(self) -> str:
+        """A digest of what the prior holds: a fit learnt with it is kept under it (oracle.fitcache)."""
+        if not self._digest:
+            text = json.dumps(self.to_json(), sort_keys=True, separators=(",", ":"))
+            self._digest.append(hashlib.sha256(text.encode()).hexdigest())
+        return self._digest[0]
+
     def save(self, path: Path | str) -> None:
         text = json.dumps(self.to_json(), indent=0, sort_keys=False) + "\n"
         try:
-            Path(path).write_text(text, encoding="utf-8")
+            write_private_bytes(path, text.encode("utf-8"))  # 0600 whatever the umask, written aside and moved
         except OSError as error:
             raise PriorError(f"{path}: cannot write ({error.strerror})") from None
 
