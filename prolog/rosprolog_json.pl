@@ -42,18 +42,11 @@ solution(Text, Classes, JSON) :-
     dict_pairs(Dict, _, Pairs),
     with_output_to(string(JSON), json_write_dict(current_output, Dict, [width(0)])).
 
-%   one_term(+Text, -Goal, -Names): the one term Text holds (its final full stop may be left
-%   out); text after it is a syntax error, never dropped (as json_query reads /api/prolog's text).
+%   one_term(+Text, -Goal, -Names): the one term Text holds, read exactly as json_query reads
+%   /api/prolog's text (text after its full stop is a syntax error, never dropped).
 one_term(Text, Goal, Names) :-
-    split_string(Text, "", " \t\r\n", [Trimmed]),
-    (   Trimmed == "" -> domain_error(query_text, empty) ; true ),
-    (   sub_string(Trimmed, _, 1, 0, ".") -> Full = Trimmed ; string_concat(Trimmed, "\n.", Full) ),
-    setup_call_cleanup(
-        open_string(Full, In),
-        ( read_term(In, Goal, [variable_names(Names), syntax_errors(error), module(user)]),
-          read_term(In, Rest, [syntax_errors(error), module(user)]) ),
-        close(In)),
-    (   Rest == end_of_file -> true ; domain_error(query_text, more_than_one_clause) ).
+    text_to_string(Text, String),
+    json_query:one_clause(String, Goal, Names).
 
 anonymous(Name = _) :- sub_atom(Name, 0, 1, _, '_').
 

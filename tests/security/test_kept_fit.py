@@ -23,6 +23,7 @@ from oracle.algorithm.params import Hyperparameters  # noqa: E402
 from oracle.algorithm.routine import RoutineOracle  # noqa: E402
 from oracle.files import default_key_dir, signed, user_key  # noqa: E402
 from oracle.fitcache import FitCache  # noqa: E402
+from test_fitcache import _KeptStore  # noqa: E402  (a store that keeps entries)
 
 #: Audit events that would mean an entry ran something.
 _RAN = ("pickle.find_class", "os.system", "subprocess.Popen", "os.exec", "os.posix_spawn", "os.fork",
@@ -45,18 +46,6 @@ class _Watch:
 
 
 _WATCH = _Watch()
-
-
-class _KeptStore:
-    def __init__(self) -> None:
-        self.kept: dict[tuple[str, str], bytes] = {}
-
-    def read_kept(self, neem: str, kind: str) -> bytes | None:
-        return self.kept.get((neem, kind))
-
-    def write_kept(self, neem: str, kind: str, data: bytes) -> bool:
-        self.kept[(neem, kind)] = data
-        return True
 
 
 def _gadget(planted: str) -> bytes:

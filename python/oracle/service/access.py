@@ -120,7 +120,8 @@ def read_tokens(path: Path, strong: Any) -> Access:
     return Access(tuple(grants))
 
 
-def _presented(headers: dict[str, str], query: bytes) -> str | None:
+def presented(headers: dict[str, str], query: bytes) -> str | None:
+    """The token a request presents: ``Authorization: Bearer T``, else ``?token=T``."""
     header = headers.get("authorization", "")
     if header.lower().startswith("bearer "):
         return header[7:].strip()
@@ -142,7 +143,7 @@ class AccessCheck:
             await self.app(scope, receive, send)
             return
         headers = {k.decode("latin-1").lower(): v.decode("latin-1") for k, v in scope["headers"]}
-        grant = access.grant(_presented(headers, scope.get("query_string", b"")))
+        grant = access.grant(presented(headers, scope.get("query_string", b"")))
         if grant is None or grant.everything:  # the service's own token, or an open path
             await self.app(scope, receive, send)
             return

@@ -25,9 +25,9 @@ import re
 import time
 from dataclasses import dataclass
 from typing import Any
-from urllib.parse import parse_qs, urlsplit
+from urllib.parse import urlsplit
 
-from oracle.service.access import admits
+from oracle.service.access import admits, presented
 
 LOG = logging.getLogger("oracle.service")
 #: Paths that show no user data: the schema, its viewer, the page's style, script and icon need no token.
@@ -224,7 +224,7 @@ class Guard:
                 or path.startswith((STATIC_DOCS, STATIC_PAGE)):
             return
         # the service's token or one of serve --tokens' (oracle.service.access holds it to its grant)
-        if not admits(self.ctx, _presented(headers, scope.get("query_string", b""))):
+        if not admits(self.ctx, presented(headers, scope.get("query_string", b""))):
             raise Refusal(401, "this service needs its token: Authorization: Bearer <token>")
 
 
@@ -372,14 +372,6 @@ def _with_safe_headers(headers: Any) -> list[tuple[bytes, bytes]]:
     else:
         out.append((b"content-security-policy", FRAME_POLICY.encode()))
     return out
-
-
-def _presented(headers: dict[str, str], query: bytes) -> str | None:
-    header = headers.get("authorization", "")
-    if header.lower().startswith("bearer "):
-        return header[7:].strip()
-    values = parse_qs(query.decode("latin-1")).get("token")
-    return values[0] if values else None
 
 
 __all__ = ["Guard", "LOOPBACK_HOSTS", "Limits", "OPEN_PATHS", "Refusal", "allowed_hosts", "check_body"]
