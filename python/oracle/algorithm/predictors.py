@@ -2,9 +2,10 @@
 
 ``personal`` (the default, ``personal.PersonalOracle``: a per-user online logit over the routine
 predictor's evidence and, given one, the shared prior's), ``pooled`` (``pooled.PooledOracle``: the
-routine predictor pooled with a per-user logit where that leads), ``routine`` (``routine.RoutineOracle``; ``routine-fixed`` and ``routine-mixture`` are its
-self-tuning ablations) and ``thesis`` (``fast.PreferenceOracle`` with
-the given Table 4.2 settings, exactly as the thesis defines it). Every predictor has the same
+routine predictor pooled with a per-user logit where that leads), ``routine``
+(``routine.RoutineOracle``; ``routine-fixed`` and ``routine-mixture`` are its self-tuning
+ablations) and ``thesis`` (``fast.PreferenceOracle`` with the given Table 4.2 settings, exactly
+as the thesis defines it). Every predictor has the same
 estimator interface: ``fit(history) -> self``, ``partial_fit(step) -> self`` and
 ``rank(options, time_of_day, tree_roots=..., present_objects=..., at=...) -> Ranking`` whose scores are
 lower-is-better (thesis: eq. 4.12 distance; routine: -log2 of the probability).

@@ -4,4 +4,5 @@ A module prints its figures as it measures them and returns them as rows (each w
 ``area`` and ``name``); ``python -m oracle bench`` runs them in ``AREAS`` order.
 """
 
-AREAS = ("ontology", "store", "prolog", "algorithm", "evaluation", "service", "security", "querylimits", "handed", "flood", "rosprolog", "past", "explore", "prior", "cli")
+AREAS = ("ontology", "store", "prolog", "algorithm", "evaluation", "service", "security", "querylimits", "handed", "flood",
+         "rosprolog", "past", "explore", "prior", "cli")
