@@ -6,13 +6,18 @@ from __future__ import annotations
 import pickle
 
 import numpy as np
+import pytest
 
 from algoworld import IDLE, OBJECTS, TASKS, random_matrix, synthetic_history
 from oracle.algorithm.chaining import Afterwards, chain_ahead, rankings_ahead, reranks
 from oracle.algorithm.fast import PreferenceOracle
+from oracle.algorithm.online import OnlineOracle
+from oracle.algorithm.personal import PersonalOracle
 from oracle.algorithm.pooled import PooledOracle
+from oracle.algorithm.prior import Prior, option_key
 from oracle.algorithm.records import Option, Step
 from oracle.algorithm.routine import RoutineOracle
+from oracle.algorithm.stacked import StackedOracle
 
 A, B, C, D = (Option(TASKS[i], OBJECTS[i], None) for i in range(4))
 
@@ -162,3 +167,29 @@ def test_a_fork_of_the_option_table_copies_only_what_it_changes():
     fork.decayed(0.5)
     assert fork.table is not known.table and fork._decayed[0.5][0] is not known._decayed[0.5][0]
     assert len(fork.options) == len(known.options) + 1 and fork.options is not known.options
+
+
+def _with_prior(steps: list[Step]) -> PersonalOracle:
+    prior = Prior({(): {option_key(steps[0].options[-1]): 40.0, option_key(steps[3].options[0]): 10.0}})
+    return PersonalOracle(random_matrix(9)).use_prior(prior)
+
+
+@pytest.mark.parametrize("make", [lambda steps: RoutineOracle(random_matrix(9)), lambda steps: OnlineOracle(random_matrix(9)),
+                                  lambda steps: StackedOracle(random_matrix(9)), _with_prior],
+                         ids=["routine", "online", "stacked", "personal-with-prior"])
+def test_every_re_ranking_predictors_copy_learns_as_a_pickled_copy_and_shares_nothing_it_changes(make):
+    # the copy forks each part of the state: a part it shared and changed would show in the model
+    steps = synthetic_history(260, 9)
+    model = make(steps).fit(steps[:200])
+    model.rank(steps[200])
+    before = pickle.dumps(model)
+    twin, plain = model.hypothetical(), pickle.loads(before)
+    if isinstance(model, PersonalOracle):
+        plain.use_prior(model.prior)  # the prior is the process's, never pickled
+    for step in steps[200:215]:
+        twin.partial_fit(step)
+        plain.partial_fit(step)
+        assert twin.rank(step) == plain.rank(step)
+    assert pickle.dumps(model) == before
+    model.partial_fit(steps[215])  # and the model learns on without reaching the copy
+    assert twin.rank(steps[216]) == plain.rank(steps[216])

@@ -17,8 +17,8 @@ RISKY = re.compile(r"pickle\.loads?\(|Unpickler|marshal\.loads?\(|\bshelve\b|(?<
 ALLOWED = [
     ("algorithm/routine.py", "pickle.loads(pickle.dumps(self",
      "a copy of a model in memory: the bytes were made by pickle.dumps on the line itself"),
-    ("algorithm/routine.py", "pickle.loads(pickle.dumps((state, pasts)",
-     "a copy of a model's state in memory, pickled on the same line"),
+    ("algorithm/routine.py", "pickle.loads(pickle.dumps(value",
+     "a copy of a part of a model's state in memory (one without a fork of its own), pickled on the same line"),
     ("algorithm/chaining.py", "pickle.loads(pickle.dumps(model",
      "the chain's copy of a model in memory, pickled on the same line"),
     ("files.py", "entry = pickle.loads(data)",

@@ -75,6 +75,10 @@ class SinceDone:
         if when is not None:
             self.last[option] = when
 
+    def fork(self) -> SinceDone:
+        """A copy."""
+        return SinceDone(self.edges, dict(self.last), list(self.hits), list(self.share))
+
 
 @dataclass
 class ClockGate:
@@ -96,6 +100,10 @@ class ClockGate:
         self.spread += d * d
         if self.kept is not None:
             self.kept.append((position, d))
+
+    def fork(self) -> ClockGate:
+        """A copy (the kept terms are tuples, shared)."""
+        return ClockGate(self.lead, self.spread, None if self.kept is None else list(self.kept))
 
     def keep_from(self, position: int) -> None:
         """Forget the steps scored before history ``position`` (the sums of the later ones, added

@@ -106,6 +106,12 @@ class DecisionClock:
         when = self.moment()
         return (when, part_of_day_at(when)) if when is not None else (None, None)
 
+    def fork(self) -> DecisionClock:
+        """A copy."""
+        twin = DecisionClock()
+        twin.last, twin.paused = self.last, self.paused
+        return twin
+
     def passed(self, step: Step) -> None:
         if step.idle:
             self.paused = True

@@ -76,6 +76,10 @@ class FeatureLift:
         w_in, w_out = self.lift(odds)
         return np.where(inside, w_in, w_out)
 
+    def fork(self) -> FeatureLift:
+        """A copy."""
+        return FeatureLift(self.hits, self.share, self.steps)
+
 
 @dataclass
 class NewOffers:
@@ -93,6 +97,10 @@ class NewOffers:
         """Count a decision (the ids offered, duplicates dropped; the index of the option done)."""
         offer = self.offer
         self.lift.observe([i not in offer for i in offered], truth)
+
+    def fork(self) -> NewOffers:
+        """A copy (the offer is a frozenset, shared)."""
+        return NewOffers(self.lift.fork(), self.offer)
 
 
 def combined(a: np.ndarray | None, b: np.ndarray | None) -> np.ndarray | None:
@@ -142,3 +150,7 @@ class Resumption:
         if self.last >= 0:
             self.followers.setdefault(self.last, set()).add(action)
         self.last = action
+
+    def fork(self) -> Resumption:
+        """A copy."""
+        return Resumption(self.lift.fork(), {action: set(after) for action, after in self.followers.items()}, self.last)

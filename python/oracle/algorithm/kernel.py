@@ -39,6 +39,12 @@ class Rows:
     def view(self) -> np.ndarray:
         return self._data[: self.size, : self.width]
 
+    def fork(self) -> Rows:
+        """A copy of the rows (a block copy: rows are written in place, ``view``)."""
+        twin = object.__new__(Rows)
+        twin._data, twin.width, twin.size = self._data.copy(), self.width, self.size
+        return twin
+
 
 class PastSituations:
     """Each past action's predecessor tokens (``before``) and its *kind*: actions alike in their
@@ -51,6 +57,13 @@ class PastSituations:
         self.kind_before = Rows(depth)  # per kind: its predecessors
         self.kind_tod = Rows(1)         # per kind: its part-of-day code, -1 unknown
         self.kind_of = Rows(1)          # per past action: its kind
+
+    def fork(self) -> PastSituations:
+        """A copy (the kinds' keys are tuples, shared)."""
+        twin = object.__new__(PastSituations)
+        twin.before, twin.kinds, twin.kind_before = self.before.fork(), dict(self.kinds), self.kind_before.fork()
+        twin.kind_tod, twin.kind_of = self.kind_tod.fork(), self.kind_of.fork()
+        return twin
 
     def add(self, before: tuple[int, ...], tod: int) -> None:
         """The next past action: its predecessor tokens and part-of-day code."""

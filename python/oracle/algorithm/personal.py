@@ -29,7 +29,6 @@ from oracle.algorithm.evidence import feature_names, features
 from oracle.algorithm.pooled import PooledOracle
 from oracle.algorithm.prior import IDLE, Prior, option_key
 from oracle.algorithm.records import Option, Step
-from oracle.algorithm.routine import RoutineOracle
 from oracle.algorithm.selftune import FLOOR
 
 #: the prior's columns, after the evidence's
@@ -106,18 +105,14 @@ class PersonalOracle(PooledOracle):
     def served_weight(self) -> float | None:
         return 0.0 if self.weights() is not None else None
 
-    def hypothetical(self) -> RoutineOracle:
+    def _fork_part(self, name: str, value: Any) -> Any:
         # the prior is shared read-only and the names' cache shared, never copied, and the copy
-        # needs only the last three tokens of the history: a chain's copy costs what it did
-        kept: dict[str, Any] = {name: self.__dict__.pop(name) for name in ("_prior", "_keys", "_tokens") if name in self.__dict__}
-        try:
-            twin = super().hypothetical()
-        finally:
-            self.__dict__.update(kept)
-        assert isinstance(twin, PersonalOracle)
-        if "_tokens" in kept:
-            twin._tokens, twin._keys = kept["_tokens"][-3:], kept["_keys"]
-        return twin.use_prior(kept.get("_prior"))
+        # needs only the last three tokens of the history
+        if name in ("_prior", "_keys"):
+            return value
+        if name == "_tokens":
+            return value[-3:]
+        return super()._fork_part(name, value)
 
     def __getstate__(self) -> dict[str, Any]:
         # the prior is the process's, loaded from its file: never kept with a fit

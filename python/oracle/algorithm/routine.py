@@ -83,6 +83,21 @@ class Evidence:
     distances: np.ndarray
 
 
+def _forked(value: Any) -> Any:
+    """``value`` as a hypothetical copy of a model holds it (``RoutineOracle.hypothetical``): a
+    value that is replaced, never changed in place (a number, a string, a tuple: the parameters,
+    the latest evidence), shared; an array copied; a part of the state with a ``fork`` of its own
+    forked; anything else copied whole."""
+    if value is None or isinstance(value, (int, float, str, frozenset, tuple)):
+        return value
+    if isinstance(value, np.ndarray):
+        return value.copy()
+    fork = getattr(value, "fork", None)
+    if fork is not None:
+        return fork()
+    return pickle.loads(pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL))
+
+
 class RoutineOracle(EstimatorParams):
     """The routine predictor, with the estimator contract of the thesis oracle (style.md).
 
@@ -240,20 +255,24 @@ class RoutineOracle(EstimatorParams):
     def hypothetical(self) -> RoutineOracle:
         """A copy of the fitted model to learn steps that were not done (the predicted chain,
         oracle.algorithm.chaining): what it learns never reaches this model, and it ranks as a
-        pickled copy would. The interned options' tables and the context counts, most of a
-        model's bytes, are shared until one of the two would change them (``OptionTable.fork``,
-        ``ContextCounts.fork``)."""
+        pickled copy would. Nothing is pickled: the interned options' tables and the context
+        counts, most of a model's bytes, are shared until one of the two would change them
+        (``OptionTable.fork``, ``ContextCounts.fork``), the rest is copied by each part's own
+        ``fork`` (``_forked``)."""
         if not hasattr(self, "variants_"):
             return cast(RoutineOracle, pickle.loads(pickle.dumps(self, protocol=pickle.HIGHEST_PROTOCOL)))
-        state = {name: value for name, value in self.__dict__.items() if name not in ("_known", "options_", "_streams")}
-        pasts = {name: stream.past for name, stream in self._streams.items()}
-        state, pasts = pickle.loads(pickle.dumps((state, pasts), protocol=pickle.HIGHEST_PROTOCOL))
         twin = object.__new__(type(self))
-        twin.__dict__.update(state)
+        twin.__dict__.update({name: self._fork_part(name, value) for name, value in self.__dict__.items()
+                              if name not in ("_known", "options_", "_streams")})
         twin._known = self._known.fork()
         twin.options_ = twin._known.options
-        twin._streams = {name: stream.forked(pasts[name]) for name, stream in self._streams.items()}
+        twin._streams = {name: stream.forked(stream.past.fork()) for name, stream in self._streams.items()}
         return twin
+
+    def _fork_part(self, name: str, value: Any) -> Any:
+        """The attribute ``name`` as the hypothetical copy holds it: the settings (the distance
+        matrix among them) shared, learning never changes them; the rest ``_forked``."""
+        return value if name in self._param_names else _forked(value)
 
     def _check(self) -> None:
         if not hasattr(self, "variants_"):

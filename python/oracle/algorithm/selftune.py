@@ -52,6 +52,13 @@ class VariantWeights:
         if self.kept is not None:
             self.kept.append((position, terms))
 
+    def fork(self) -> VariantWeights:
+        """A copy (the kept terms are never changed once kept: shared)."""
+        twin = object.__new__(VariantWeights)
+        twin.scores, twin.hits, twin.spread = self.scores.copy(), self.hits.copy(), self.spread.copy()
+        twin.steps, twin.kept = self.steps, None if self.kept is None else list(self.kept)
+        return twin
+
     def _add(self, terms: np.ndarray) -> None:
         self.scores += terms[0]
         self.hits += terms[1]
