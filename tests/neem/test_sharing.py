@@ -105,10 +105,15 @@ def test_every_count_written_has_k_users_and_the_cli_round_trip(tmp_path, onto):
     assert bad.code != 0 and "error:" in bad.stderr
 
 
-@pytest.mark.slow  # mongomock-ng runs the actions' join in pure Python: about a minute a NEEM
+@pytest.mark.slow  # mongomock-ng runs the pipeline's $lookups as scans in pure Python: about 10 s a NEEM
+@pytest.mark.filterwarnings("ignore:'allowDiskUse'")  # a no-op in mongomock-ng, the real server's large groups need it
 def test_mongodb_counts_what_sqlite_counts(tmp_path, onto):
+    """One aggregation pipeline on MongoDB (oracle.store.mongo_contexts) over the very documents the
+    import wrote: the counts of the SQL statement and of the Python reference over the same NEEMs
+    (tests/store/test_mongo_contexts.py: the same on small NEEMs written by hand, unmarked)."""
     import mongomock_ng as mongomock
 
+    from oracle.neem.sharing import count_store, store_cells
     from oracle.store.mongo import MongoStore
 
     chains = _chains(tmp_path / "c.jsonl", users=2, days=1)
@@ -122,6 +127,9 @@ def test_mongodb_counts_what_sqlite_counts(tmp_path, onto):
         for info in store.neems():
             set_shared(store, info.id, True)
     assert _cells(build_prior(mongo, onto, 2, None, 3)) == _cells(build_prior(sqlite, onto, 2, None, 3))
+    sums, users = store_cells(mongo, onto, 1, 1, mongo.neems())  # clipped at 1: clipping shows
+    reference = count_store(sqlite, onto, 1, sqlite.neems())   # the actions read back, counted in Python
+    assert sums == dict(reference.sums) and users == dict(reference.users) and sums
 
 
 def test_the_sql_count_is_the_count_of_the_tokens_read_back(tmp_path, onto):

@@ -8,9 +8,10 @@ default), so a revoked NEEM's counts are gone from the next prior built.
 before it, named as the prior names them (``prior.task_key``: the task and its objects' classes;
 ``idle`` for the idle actions the logger wrote), per user (a user's NEEMs together: ``created_by``;
 a NEEM without one is its own user), clipped, and keeps the counts of >= k users: on SQLite all of
-it in one SQL statement (oracle.store.sqlite.contexts), on MongoDB from each NEEM's executed actions
-in time order (``executed_actions``: the aggregation pipeline the store runs per NEEM) counted here.
-Then the noise (``prior_counts.released``). Only the counts leave this module.
+it in one SQL statement (oracle.store.sqlite.contexts), on MongoDB in one aggregation pipeline
+(oracle.store.mongo_contexts, the same rules); ``count_store`` reads each NEEM's executed actions in
+time order and counts them here (the reference both are tested against). Then the noise
+(``prior_counts.released``). Only the counts leave this module.
 """
 
 from __future__ import annotations
@@ -81,13 +82,15 @@ def user_of(info: NeemInfo) -> str:
 def store_cells(store: Store, ontology: OdbOntology, clip: int, k: int,
                 neems: Sequence[NeemInfo]) -> tuple[dict[Cell, float], dict[Cell, int]]:
     """The clipped sums and user counts of the cells at least ``k`` users gave: on SQLite in one SQL
-    statement (oracle.store.sqlite.contexts), elsewhere from each NEEM's actions as the store's join
-    reads them."""
-    from oracle.store.sqlite import SQLiteStore
+    statement (oracle.store.sqlite.contexts), on MongoDB in one aggregation pipeline
+    (oracle.store.mongo_contexts), elsewhere from each NEEM's actions as the store's join reads them."""
+    from oracle.store import mongo_contexts
+    from oracle.store.mongo import MongoStore
+    from oracle.store.sqlite import SQLiteStore, contexts
 
-    if isinstance(store, SQLiteStore):
-        from oracle.store.sqlite.contexts import count_cells
-
+    count_cells = (contexts.count_cells if isinstance(store, SQLiteStore)
+                   else mongo_contexts.count_cells if isinstance(store, MongoStore) else None)
+    if count_cells is not None:
         tasks = {t.iri: local_name(t.iri) for t in ontology.tasks.values()}
         tasks[ontology.vocab.idle_task] = IDLE
         objects = {o.iri: local_name(o.iri) for o in ontology.objects.values()}
