@@ -134,3 +134,22 @@ def test_a_begin_that_is_no_number_is_a_store_error_not_a_traceback(tmp_path):
     mongo.write_documents("n4", "triples", [{"s": f"{N}d1_interval", "p": T.BEGIN, "o": "soon"}])
     with pytest.raises(StoreError, match="cannot count the shared prior"):
         _mongo(mongo, [("n4", "$cy")], 3, 1)
+
+
+def test_a_real_mongod_counts_the_same(tmp_path):
+    """What mongomock-ng cannot show (the server's own $setWindowFields, $shift over a compound sort,
+    $unionWith with $lookup inside, numeric comparison across BSON types): runs when NEEM_MONGO_URI
+    names a MongoDB >= 5.0, else skips with that reason."""
+    from tests.store.conftest import make_store
+
+    mongo = make_store("mongodb", tmp_path)  # skips: no MongoDB server at NEEM_MONGO_URI
+    try:
+        for neem, user, actions, decimal in NEEMS:
+            mongo.create_neem(neem, user=user)
+            mongo.write_documents(neem, "triples", _neem(actions, decimal))
+        neems = [(neem, user) for neem, user, _, _ in NEEMS]
+        for clip, k in ((1, 1), (3, 2)):
+            assert sorted(mongo_cells(mongo, neems, TASKS, OBJECTS, clip, k)) == _reference(clip, k)
+    finally:
+        mongo._test_cleanup()
+        mongo.close()
