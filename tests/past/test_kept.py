@@ -143,3 +143,20 @@ def test_only_the_answers_that_need_the_actions_read_them_again(grown, onto, mon
     assert last == pytest.approx(seconds_of(t(1, 8, 2))) and len(reads) == 1  # asked of Prolog alone
     assert ask(bridge, onto, "what do I usually do after open(fridge)?", kept=kept).evidence["occurrences"] == 4
     assert len(reads) == 2 and len(whole) == 1  # the new action read alone
+
+
+def test_the_words_are_read_once_per_ontology_and_answers_read_with_them_say_the_same(bridge, onto, monkeypatch):
+    import oracle.service.words as words
+
+    kept, reads = KeptPast(), []
+    real = words.load_lexicon
+
+    def counted(*args, **kwargs):
+        reads.append(1)
+        return real(*args, **kwargs)
+
+    fresh = [ask(bridge, onto, question).to_json() for question in QUESTIONS[:6]]
+    monkeypatch.setattr(words, "load_lexicon", counted)
+    assert [ask(bridge, onto, question, kept=kept).to_json() for question in QUESTIONS[:6]] == fresh
+    assert len(reads) == 1
+    assert kept.lexicon(onto) is kept.lexicon(onto)

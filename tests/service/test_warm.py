@@ -55,3 +55,22 @@ def test_kept_routines_and_modes_answer_as_afresh(tmp_path, onto):
             session.warm.warm(session.ranker, session.ranker.last_end)
     assert found > 10  # routines were in progress, not only None compared with None
     store.close()
+
+
+def test_warm_up_loads_the_answers_prolog_and_words_before_the_first_question_and_reads_no_neem(tmp_path, onto):
+    from oracle.bridge.engine import STATE
+
+    empty = Engine(open_store(tmp_path / "empty.sqlite"), onto, Hyperparameters())
+    empty.warm_up()  # a store without NEEMs: the words only
+    assert empty.past._lexicon is not None and empty._bridge is None
+    store = open_store(tmp_path / "s.sqlite")
+    logger = NeemLogger.create(store, onto, user="ann", neem_id="ann")
+    _, rows = persona_rows(0, 1, 12)
+    for row in rows[:5]:
+        logger.action(row.action, row.time, row.end, available=row.available)
+    logger.flush()
+    engine = Engine(store, onto, Hyperparameters())
+    engine.warm_up()
+    assert STATE["loaded"] and engine._bridge is not None
+    assert engine._bridge.ask("current_predicate(odb_past:past_answer_json/1)", [])
+    assert not engine.past._entries  # nothing of the NEEM read or kept

@@ -100,7 +100,9 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
                         rows.append(_row(neem, f"{name}, after a new action", ms))
             finally:
                 ctx.thread.close()
-    return rows
+    from oracle.benchmarks.pastboot import run as first_after_boot
+
+    return rows + first_after_boot(quick)
 
 
 #: The answers that read the whole history (the kept actions, the routines), timed after an action.

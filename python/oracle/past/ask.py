@@ -20,6 +20,7 @@ from oracle.past.sentences import Namer, ObjectNamer, sentences
 if TYPE_CHECKING:
     from oracle.bridge import Bridge
     from oracle.ontology import OdbOntology
+    from oracle.service.words import Lexicon
 
 @dataclass(frozen=True)
 class Answer:
@@ -49,25 +50,26 @@ def ask(bridge: Bridge, onto: OdbOntology, text: str, at: float | None = None, c
     ``at`` (default: the NEEM's latest event). QuestionError for a question of no known form.
     ``kept``: what earlier answers read of the NEEM (oracle.past.kept; default: nothing)."""
     kept = KeptPast() if kept is None else kept
-    question = _done_reading(bridge, read_question(text, onto))
+    lexicon = kept.lexicon(onto)
+    question = _done_reading(bridge, read_question(text, onto, lexicon))
     now = at if at is not None else kept.now(bridge)
     if question.period is not None and not clocked:
         raise QuestionError("this NEEM was logged without a clock (a time-less log): it has no today or morning")
     evidence = {"now": now, **_evidence(bridge, question, now, kept)}
-    name, obj = namers(onto)
+    name, obj = namers(onto, lexicon)
     english, german = sentences(question.form, evidence, name, obj)
     return Answer(text.strip(), question.form, question.language, english, german, evidence)
 
 
-def namers(onto: OdbOntology) -> tuple[Namer, ObjectNamer]:
-    """Tasks and objects in the tablet's words (oracle.service.words), a call its words lack in
-    its syntax: what the sentences say instead of code names."""
+def namers(onto: OdbOntology, lexicon: Lexicon | None = None) -> tuple[Namer, ObjectNamer]:
+    """Tasks and objects in the tablet's words (oracle.service.words; ``lexicon`` when the caller
+    keeps them), a call its words lack in its syntax: what the sentences say instead of code names."""
     from datetime import timezone
 
     from oracle.past.phrases import english_third
     from oracle.service.words import Words, load_lexicon
 
-    lexicon = load_lexicon(ontology=onto)
+    lexicon = load_lexicon(ontology=onto) if lexicon is None else lexicon
     words = {lang: Words(lexicon, lang, timezone.utc) for lang in ("en", "de")}
 
     def name(call: str, language: str, way: str) -> str:

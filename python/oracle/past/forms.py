@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from oracle.ontology import OdbOntology
+    from oracle.service.words import Lexicon
 
 
 class QuestionError(NeemOracleError):
@@ -119,12 +120,13 @@ def forms_line() -> str:
     return "; ".join(f.english for f in FORMS) + " (German: " + "; ".join(f.german for f in FORMS) + ")"
 
 
-def read_question(text: str, onto: OdbOntology) -> Question:
-    """``text`` as a Question; QuestionError naming the forms, the task or the object otherwise."""
+def read_question(text: str, onto: OdbOntology, lexicon: Lexicon | None = None) -> Question:
+    """``text`` as a Question; QuestionError naming the forms, the task or the object otherwise.
+    ``lexicon``: the tablet's words, when the caller keeps them (default: read here)."""
     if not isinstance(text, str) or not text.strip():
         raise QuestionError(f"ask a question of one of these forms: {forms_line()}")
     said = " ".join(text.strip().rstrip("?!. ").split()).lower()
-    book = phrase_book(onto)
+    book = phrase_book(onto, lexicon)
     problem: QuestionError | None = None
     for form in FORMS:
         for language, pattern in form.patterns:
@@ -146,11 +148,12 @@ def read_question(text: str, onto: OdbOntology) -> Question:
     raise QuestionError(f"{text.strip()!r} is not a question I know; ask one of: {forms_line()}")
 
 
-def phrase_book(onto: OdbOntology) -> PhraseBook:
-    """The words of the ontology's tasks and objects (the tablet's labels) to read questions with."""
+def phrase_book(onto: OdbOntology, lexicon: Lexicon | None = None) -> PhraseBook:
+    """The words of the ontology's tasks and objects (the tablet's labels, ``lexicon`` when the
+    caller keeps them) to read questions with."""
     from oracle.service.words import load_lexicon
 
-    return PhraseBook(load_lexicon(ontology=onto), onto)
+    return PhraseBook(load_lexicon(ontology=onto) if lexicon is None else lexicon, onto)
 
 
 def resolve_calls(words: str, onto: OdbOntology, book: PhraseBook | None = None) -> list[TaskCall]:

@@ -109,6 +109,19 @@ class Engine:
         self.past = KeptPast()
         self._bridge: Bridge | None = None
 
+    def warm_up(self) -> None:
+        """Pay at boot what the first answer of a process would pay once, whatever its NEEM: the
+        Prolog modules (the answers' odb_past among them, loaded through the newest NEEM's
+        bridge), the tablet's words (``KeptPast.lexicon``) and the modules an answer imports.
+        ``serve`` calls it before it listens; nothing of a NEEM is read."""
+        import oracle.past.ask  # noqa: F401  (imported here once, not by the first question)
+        from oracle.past.evidence import ensure_loaded
+
+        self.past.lexicon(self.ontology)
+        neems = self.store.neems()
+        if neems:
+            ensure_loaded(self.bridge(neems[-1].id))
+
     def close(self) -> int:
         """End every open session's recording session (the logger's ``close``: its actions become
         constituents of the episode's top-level action, whose interval gets its end), as the
