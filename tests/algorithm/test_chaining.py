@@ -193,3 +193,37 @@ def test_every_re_ranking_predictors_copy_learns_as_a_pickled_copy_and_shares_no
     assert pickle.dumps(model) == before
     model.partial_fit(steps[215])  # and the model learns on without reaching the copy
     assert twin.rank(steps[216]) == plain.rank(steps[216])
+
+
+def test_a_fork_of_the_context_counts_copies_nothing_and_neither_sees_the_others_counts():
+    from oracle.algorithm.contexts import ContextCounts
+
+    counts = ContextCounts(2, 0)
+    for token in (1, 2, 1, 3, 1, 2):
+        counts.add(token, 0)
+    copy = pickle.loads(pickle.dumps(counts))
+    fork = counts.fork()
+    assert fork.levels[2].tables.base is counts.levels[2].tables  # shared, nothing copied
+    # both count on: a context each had, a new one each, one of them the same new context
+    for token in (4, 1, 2):
+        counts.add(token, 1)
+        copy.add(token, 1)
+    for token in (2, 5, 4):
+        fork.add(token, 2)
+    grown = pickle.loads(pickle.dumps(copy))
+    again = pickle.loads(pickle.dumps(counts))
+    forked = pickle.loads(pickle.dumps(fork))  # written out whole
+    state = lambda c: [(dict(level.tables), dict(level.totals), level.once, level.twice) for level in c.levels + c.timed]
+    assert state(counts) == state(grown) == state(again)
+    reference = pickle.loads(pickle.dumps(ContextCounts(2, 0)))
+    for token in (1, 2, 1, 3, 1, 2):
+        reference.add(token, 0)
+    for token in (2, 5, 4):
+        reference.add(token, 2)
+    assert state(fork) == state(reference) == state(forked)
+    assert [list(level.tables) for level in fork.levels] == [list(level.tables) for level in reference.levels]
+    twin = fork.fork()  # a fork of a fork
+    twin.add(1, 3)
+    fork.add(3, 2)
+    reference.add(3, 2)
+    assert state(fork) == state(reference)

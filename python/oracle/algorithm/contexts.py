@@ -10,8 +10,10 @@ distribution instead of the uniform one.
 from __future__ import annotations
 
 import math
+import weakref
 from itertools import chain, islice
-from collections.abc import Sequence
+from collections.abc import Iterator, MutableMapping, Sequence
+from typing import Any
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -36,6 +38,62 @@ class Blend:
 Memo = dict[tuple[int, tuple[int, ...]], "tuple[np.ndarray, int, int] | None"]
 
 
+_GONE = object()  # a context a fork's layer knows was not there when it was made
+
+
+class _Layer(MutableMapping[Any, Any]):
+    """A fork's view of a level's dict (``_Level.fork``): its own entries over the dict it was
+    forked from (the base). The base is read as it was at the fork: the level that owns it hands
+    down a context's entry before changing it (``keep``). Iterates over the same keys as a copy
+    of the base with the fork's entries added would."""
+
+    __slots__ = ("own", "base")
+
+    def __init__(self, base: dict[Any, Any]) -> None:
+        self.own: dict[Any, Any] = {}
+        self.base = base
+
+    def keep(self, key: Any) -> None:
+        """The base is about to change ``key``: keep its entry (or its absence) as it is now."""
+        if key not in self.own:
+            self.own[key] = self.base.get(key, _GONE)
+
+    def get(self, key: Any, default: Any = None) -> Any:
+        found = self.own.get(key, _GONE)
+        if found is _GONE:
+            if key in self.own:
+                return default
+            return self.base.get(key, default)
+        return found
+
+    def __getitem__(self, key: Any) -> Any:
+        found = self.get(key, _GONE)
+        if found is _GONE:
+            raise KeyError(key)
+        return found
+
+    def __contains__(self, key: object) -> bool:
+        return self.get(key, _GONE) is not _GONE
+
+    def __setitem__(self, key: Any, value: Any) -> None:
+        self.own[key] = value
+
+    def __delitem__(self, key: Any) -> None:
+        raise TypeError("a level's contexts are never deleted")
+
+    def __iter__(self) -> Iterator[Any]:
+        own, base = self.own, self.base
+        for key in base:
+            if own.get(key) is not _GONE:
+                yield key
+        for key, value in own.items():
+            if value is not _GONE and key not in base:
+                yield key
+
+    def __len__(self) -> int:
+        return sum(1 for _ in self)
+
+
 @dataclass
 class _Level:
     """Follower counts of the contexts of one order, with its count-of-counts (for the discount)."""
@@ -47,9 +105,17 @@ class _Level:
     #: the contexts whose follower table this level may change in place; None: all of them (no
     #: fork shares them, ``fork``)
     owned: set[tuple[int, ...]] | None = None
+    #: the forks that read this level's tables through theirs (``fork``), while they live
+    forks: list[weakref.ref[_Level]] = field(default_factory=list)
 
     def __getstate__(self) -> dict[str, object]:
-        return {**self.__dict__, "owned": None}  # an unpickled level shares nothing
+        # an unpickled level shares nothing: a fork's layered tables are written out whole
+        return {**self.__dict__, "tables": dict(self.tables.items()), "totals": dict(self.totals.items()),
+                "owned": None, "forks": []}
+
+    def __setstate__(self, state: dict[str, object]) -> None:
+        self.__dict__.update(state)
+        self.__dict__.setdefault("forks", [])  # a level pickled before forks were kept
 
     def plain_state(self) -> dict[str, object]:
         """The level as a few flat arrays (oracle.plainstate keeps a fit this way: one small
@@ -90,12 +156,31 @@ class _Level:
         return level
 
     def fork(self) -> _Level:
-        """A copy that shares this level's follower tables: whichever of the two counts in a
-        shared table next copies it first (copy on write), so neither sees the other's counts."""
+        """A copy that reads this level's tables through a layer of its own (``_Layer``), so
+        forking copies nothing: a table either of the two counts in next is copied first by
+        it (copy on write), and before this level changes a context it hands its fork the
+        context's entries as they were (``_hand_down``), so neither sees the other's counts."""
+        if isinstance(self.tables, _Layer):  # a fork of a fork: its own tables made whole first
+            self.tables, self.totals = dict(self.tables.items()), dict(self.totals.items())
         self.owned = set()
-        return _Level(dict(self.tables), dict(self.totals), self.once, self.twice, set())
+        twin = _Level(_Layer(self.tables), _Layer(self.totals), self.once, self.twice, set())  # type: ignore[arg-type]
+        self.forks = [ref for ref in self.forks if ref() is not None] + [weakref.ref(twin)]
+        return twin
+
+    def _hand_down(self, context: tuple[int, ...]) -> None:
+        """Before ``context`` changes here: each living fork keeps its entries as they are now."""
+        living = []
+        for ref in self.forks:
+            twin = ref()
+            if twin is not None and isinstance(twin.tables, _Layer) and isinstance(twin.totals, _Layer):
+                twin.tables.keep(context)
+                twin.totals.keep(context)
+                living.append(ref)
+        self.forks = living
 
     def count(self, context: tuple[int, ...], token: int) -> None:
+        if self.forks:
+            self._hand_down(context)
         followers = self.tables.get(context)
         if followers is None:
             followers = self.tables[context] = {}
