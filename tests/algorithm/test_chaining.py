@@ -227,3 +227,20 @@ def test_a_fork_of_the_context_counts_copies_nothing_and_neither_sees_the_others
     fork.add(3, 2)
     reference.add(3, 2)
     assert state(fork) == state(reference)
+
+
+@pytest.mark.parametrize("cls", [RoutineOracle, OnlineOracle, PooledOracle, PersonalOracle, StackedOracle])
+def test_a_ranking_without_its_explanation_orders_as_the_explained_one_and_the_chain_reads_it(cls):
+    matrix = random_matrix(10)
+    steps = synthetic_history(260, 10)
+    model = cls(matrix).fit(steps[:200])
+    after = Afterwards(steps[:200])
+    for step in steps[200:230]:
+        for at in (None, step.time):
+            full = model.rank(list(step.options), step.time_of_day, at=at)
+            bare = model.rank(list(step.options), step.time_of_day, at=at, explain=False)
+            assert [(t.option, t.probability) for t in bare.tasks] == [(t.option, t.probability) for t in full.tasks]
+        ranking = model.rank(step)
+        later = rankings_ahead(model, ranking, step.options, after, step.time_of_day, step.time, 4)
+        chain = chain_ahead(model, ranking, step.options, after, step.time_of_day, step.time, 4)
+        assert chain == ((ranking.tasks[0].option, *(r.tasks[0].option for r in later)) if ranking.tasks else ())

@@ -61,6 +61,13 @@ def rankings_ahead(model: Any, ranking: Ranking, offer: Sequence[Option], afterw
     that has learnt the steps before it as done (from the offer each was chosen from, at
     ``time_of_day`` and ``at``, the decision's). It ends early where nothing is known to be
     feasible."""
+    return _ahead(model, ranking, offer, afterwards, time_of_day, at, length, True)
+
+
+def _ahead(model: Any, ranking: Ranking, offer: Sequence[Option], afterwards: Afterwards,
+           time_of_day: str | None, at: float | None, length: int, explain: bool) -> list[Ranking]:
+    """``rankings_ahead``; without ``explain`` a routine predictor's rankings carry their order
+    alone (``RoutineOracle.rank``), all the chain reads of them."""
     rankings: list[Ranking] = []
     if not ranking.tasks:
         return rankings
@@ -73,7 +80,8 @@ def rankings_ahead(model: Any, ranking: Ranking, offer: Sequence[Option], afterw
             ahead = model.hypothetical() if reranks(model) else pickle.loads(pickle.dumps(model, protocol=pickle.HIGHEST_PROTOCOL))
         ahead.partial_fit(Step(step.task, step.target, step.reference, offer, time_of_day, False, str(step), at))
         offer = feasible
-        following: Ranking = ahead.rank(list(offer), time_of_day, tree_roots=0, at=at)
+        following: Ranking = (ahead.rank(list(offer), time_of_day, tree_roots=0, at=at) if explain or not reranks(ahead)
+                              else ahead.rank(list(offer), time_of_day, tree_roots=0, at=at, explain=False))
         if not following.tasks:
             break
         rankings.append(following)
@@ -84,8 +92,8 @@ def rankings_ahead(model: Any, ranking: Ranking, offer: Sequence[Option], afterw
 def chain_ahead(model: Any, ranking: Ranking, offer: Sequence[Option], afterwards: Afterwards,
                 time_of_day: str | None, at: float | None, length: int) -> tuple[Option, ...]:
     """The predicted chain of at most ``length`` options: ``ranking``'s best, then the best of
-    each of ``rankings_ahead``."""
+    each of ``rankings_ahead`` (ranked without their explanations: the same order, for less)."""
     if not ranking.tasks or length < 1:
         return ()
-    later = rankings_ahead(model, ranking, offer, afterwards, time_of_day, at, length)
+    later = _ahead(model, ranking, offer, afterwards, time_of_day, at, length, False)
     return (ranking.tasks[0].option, *(following.tasks[0].option for following in later))

@@ -181,8 +181,9 @@ class OnlineOracle(RoutineOracle):
 
     def rank(self, current: Step | Iterable[Option], time_of_day: str | None = None, *,
              tree_roots: int | None = 3, present_objects: Iterable[str] | None = None,
-             at: float | None = None) -> Ranking:
-        ranking = super().rank(current, time_of_day, tree_roots=tree_roots, present_objects=present_objects, at=at)
+             at: float | None = None, explain: bool = True) -> Ranking:
+        ranking = super().rank(current, time_of_day, tree_roots=tree_roots, present_objects=present_objects, at=at,
+                               explain=explain)
         w = self.weights()
         if w is None or not self.serves() or len(ranking.tasks) < 2:
             return ranking  # w = 0 (or the gate shut): the routine predictor's own ranking

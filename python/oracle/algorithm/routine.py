@@ -480,10 +480,12 @@ class RoutineOracle(EstimatorParams):
 
     def rank(self, current: Step | Iterable[Option], time_of_day: str | None = None, *,
              tree_roots: int | None = 3, present_objects: Iterable[str] | None = None,
-             at: float | None = None) -> Ranking:
+             at: float | None = None, explain: bool = True) -> Ranking:
         """Rank the available options of ``current`` (a Step, or options plus ``time_of_day``;
         ``at``: the decision's unix seconds, default the Step's ``time``), most probable first
-        (ties: the order offered); the model is not changed."""
+        (ties: the order offered); the model is not changed. Without ``explain`` the ranking is
+        the same but its tasks carry no support (context, situations, trees, lifts): what the
+        predicted chain reads of its hypothetical steps is their order alone."""
         self._check()
         offered, now = offered_options(current, time_of_day)
         when = at if at is not None else current.time if isinstance(current, Step) else None
@@ -493,19 +495,22 @@ class RoutineOracle(EstimatorParams):
             return Ranking(())
         weights = self.weights_.weights(self.tuning, self.switch_margin)
         used = np.flatnonzero(weights > 0).tolist()  # the leader alone, unless mixing
+        if not explain:  # every variant's distributions, as scoring this offer next will read them
+            seen = self._evidence(offered, now)
+            _, mixed = self._mixed(weights, used, [seen.probabilities[v] for v in used], seen.ids, when)
+            order = sorted(range(len(offered)), key=lambda i: (-mixed[i], i))
+            return Ranking(tuple(RoutineTask(rank, -math.log2(mixed[i]) if mixed[i] > 0 else math.inf, offered[i], 0,
+                                             math.inf, (), float(mixed[i])) for rank, i in enumerate(order, start=1)))
         held = self._held()
         ids = self._offer_ids(offered)
         inside = self._in_focus(offered, held, ids) if self.focus else None
         new, resumed = self._offer_flags(ids)
         lifted, goes_on = tells_apart(new), tells_apart(resumed)
         probabilities, blends, cand = self._variant_probabilities(offered, ids, now, used, inside, new, resumed)
-        mixed = mixed_distribution(weights[used], probabilities)  # P(c | offered)
-        clock = self.clock_.weights(self.clock_.buckets(ids, when)) if self.gate_.open(self.recency_gate) else None
-        if clock is not None:
-            mixed = reweighted(mixed, clock)
+        clock, mixed = self._mixed(weights, used, probabilities, ids, when)
         ago = self.clock_.ages(ids, when, clock is not None)
         lead = int(np.argmax(weights[used]))
-        explain = blends[lead]
+        leading = blends[lead]
         stream = self._streams[self.variants_[used[lead]][0]]
         order = sorted(range(len(offered)), key=lambda i: (-mixed[i], i))
         nearest = cand.min(axis=1) if cand.shape[1] else np.full(len(offered), math.inf)
@@ -513,7 +518,7 @@ class RoutineOracle(EstimatorParams):
             obj for option in offered for obj in option.objects())
         tasks = []
         for rank, i in enumerate(order, start=1):
-            option, n = offered[i], int(explain.order[i])
+            option, n = offered[i], int(leading.order[i])
             context = stream.counts.context(n) if n > 0 else ()
             situations = self._support(stream, self._known.ids.get(option, UNKNOWN), context or (), n)
             successors: tuple[TreeNode, ...] = ()
@@ -526,11 +531,21 @@ class RoutineOracle(EstimatorParams):
             probability = float(mixed[i])
             tasks.append(RoutineTask(
                 rank, -math.log2(probability) if probability > 0 else math.inf, option,
-                int(explain.count[i]) if n >= 0 else 0, float(nearest[i]), successors, probability, n,
+                int(leading.count[i]) if n >= 0 else 0, float(nearest[i]), successors, probability, n,
                 tuple(self._label(t) for t in context or ()), tuple(situations[-5:]) if n >= 0 else (),
                 tuple(obj for obj in option.objects() if obj in held) if inside is not None else (),
                 lifted and bool(new[i]), goes_on and bool(resumed[i]), ago[i]))  # type: ignore[index]
         return Ranking(tuple(tasks))
+
+    def _mixed(self, weights: np.ndarray, used: list[int], probabilities: list[np.ndarray], ids: list[int],
+               when: float | None) -> tuple[np.ndarray | None, np.ndarray]:
+        """The clock's weights (None where they do not weigh) and ``P(c | offered)``: the ``used``
+        variants' distributions mixed by ``weights``, reweighted by the clock's odds once its gate is open."""
+        mixed = mixed_distribution(weights[used], probabilities)
+        clock = self.clock_.weights(self.clock_.buckets(ids, when)) if self.gate_.open(self.recency_gate) else None
+        if clock is not None:
+            mixed = reweighted(mixed, clock)
+        return clock, mixed
 
     def _support(self, stream: _Stream, option_id: int, context: tuple[int, ...], n: int) -> list[int]:
         """History positions where ``option_id`` followed ``context`` (all its uses when n is 0)."""

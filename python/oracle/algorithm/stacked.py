@@ -179,8 +179,9 @@ class StackedOracle(RoutineOracle):
 
     def rank(self, current: Step | Iterable[Option], time_of_day: str | None = None, *,
              tree_roots: int | None = 3, present_objects: Iterable[str] | None = None,
-             at: float | None = None) -> Ranking:
-        ranking = super().rank(current, time_of_day, tree_roots=tree_roots, present_objects=present_objects, at=at)
+             at: float | None = None, explain: bool = True) -> Ranking:
+        ranking = super().rank(current, time_of_day, tree_roots=tree_roots, present_objects=present_objects, at=at,
+                               explain=explain)
         if self.coef_ is None or self.spread_ is None or not ranking.tasks:
             return ranking
         _, now = offered_options(current, time_of_day)
