@@ -74,3 +74,18 @@ def test_warm_up_loads_the_answers_prolog_and_words_before_the_first_question_an
     assert STATE["loaded"] and engine._bridge is not None
     assert engine._bridge.ask("current_predicate(odb_past:past_answer_json/1)", [])
     assert not engine.past._entries  # nothing of the NEEM read or kept
+
+
+def test_boot_warms_the_engine_up_and_freezes_what_the_boot_made(tmp_path, onto):
+    import gc
+
+    from oracle.service import boot, build_context
+
+    ctx = build_context(str(tmp_path / "b.sqlite"), onto, Hyperparameters())
+    try:
+        boot(ctx)
+        assert ctx.thread.call(lambda: ctx.engine.past._lexicon) is not None
+        assert gc.get_freeze_count() > 0
+    finally:
+        gc.unfreeze()  # the test process goes on collecting as before
+        ctx.thread.close()

@@ -99,7 +99,7 @@ def run(args: argparse.Namespace) -> int:
     import logging
 
     from oracle.commands.common import method_from, settings_from
-    from oracle.service import build_context, is_loopback
+    from oracle.service import boot, build_context, is_loopback
     from oracle.service.app import create_app
     from oracle.service.page import Manner
     from oracle.timeline import TimeValueError, display_zone
@@ -143,7 +143,7 @@ def run(args: argparse.Namespace) -> int:
                         scan_s=args.scan_speed, filter_s=args.repeat_filter, gaze_s=args.gaze)
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(name)s %(message)s")
     location = ctx.thread.call(lambda: ctx.engine.store.location)
-    ctx.thread.call(ctx.engine.warm_up)  # Prolog's modules and the words loaded before the first question
+    boot(ctx)  # Prolog's modules and the words loaded before the first question
     print(f"serving {location}; the page: {shown_link(args.host, args.port, token)} (API docs at /docs); Ctrl-C stops",
           flush=True)
     os.umask(0o077)  # anything the service writes (a new SQLite file's journal) stays private

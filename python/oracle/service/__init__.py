@@ -78,3 +78,16 @@ def build_context(store_spec: str | None, ontology: OdbOntology, settings: Hyper
 
 
 __all__ = ["build_context", "is_loopback"]
+
+
+def boot(ctx: Context) -> None:
+    """What ``serve`` does once before it listens, so that the first answers pay only for their
+    NEEM: the engine's warm-up (``Engine.warm_up``: Prolog's modules, the words), then one full
+    collection and every object alive frozen out of the collector's view (``gc.freeze``): the
+    boot's many long-lived objects would otherwise be scanned by the first full collection,
+    which falls in one of the first requests."""
+    import gc
+
+    ctx.thread.call(ctx.engine.warm_up)
+    gc.collect()
+    gc.freeze()
