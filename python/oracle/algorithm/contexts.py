@@ -5,6 +5,11 @@ A token is an option id (>= 0) or ``IDLE``. ``ContextCounts`` counts, for every 
 (order 0). ``blend`` turns them into a distribution over candidates by PPM-C without exclusion
 (or, with ``discount``, by interpolated absolute discounting), starting from a given base
 distribution instead of the uniform one.
+
+Why this module is large: the counts, their copy-on-write forks and the blend that reads them are
+one structure (a level's tables, their owners and the blend's look-ups of the same contexts);
+split, each part would reach into the others' attributes. The fork's layered view is its own
+module (``layer``).
 """
 
 from __future__ import annotations
@@ -12,11 +17,12 @@ from __future__ import annotations
 import math
 import weakref
 from itertools import chain, islice
-from collections.abc import Iterator, MutableMapping, Sequence
-from typing import Any
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+
+from oracle.algorithm.layer import Layer
 
 IDLE = -1      # the odb:IdleTask token
 UNKNOWN = -3   # a candidate the history never saw (never counted)
@@ -36,62 +42,6 @@ class Blend:
 #: Per (level, context): the candidates' follower counts, the distinct followers and the total,
 #: or None for a context never followed (``_Level.apply``).
 Memo = dict[tuple[int, tuple[int, ...]], "tuple[np.ndarray, int, int] | None"]
-
-
-_GONE = object()  # a context a fork's layer knows was not there when it was made
-
-
-class _Layer(MutableMapping[Any, Any]):
-    """A fork's view of a level's dict (``_Level.fork``): its own entries over the dict it was
-    forked from (the base). The base is read as it was at the fork: the level that owns it hands
-    down a context's entry before changing it (``keep``). Iterates over the same keys as a copy
-    of the base with the fork's entries added would."""
-
-    __slots__ = ("own", "base")
-
-    def __init__(self, base: dict[Any, Any]) -> None:
-        self.own: dict[Any, Any] = {}
-        self.base = base
-
-    def keep(self, key: Any) -> None:
-        """The base is about to change ``key``: keep its entry (or its absence) as it is now."""
-        if key not in self.own:
-            self.own[key] = self.base.get(key, _GONE)
-
-    def get(self, key: Any, default: Any = None) -> Any:
-        found = self.own.get(key, _GONE)
-        if found is _GONE:
-            if key in self.own:
-                return default
-            return self.base.get(key, default)
-        return found
-
-    def __getitem__(self, key: Any) -> Any:
-        found = self.get(key, _GONE)
-        if found is _GONE:
-            raise KeyError(key)
-        return found
-
-    def __contains__(self, key: object) -> bool:
-        return self.get(key, _GONE) is not _GONE
-
-    def __setitem__(self, key: Any, value: Any) -> None:
-        self.own[key] = value
-
-    def __delitem__(self, key: Any) -> None:
-        raise TypeError("a level's contexts are never deleted")
-
-    def __iter__(self) -> Iterator[Any]:
-        own, base = self.own, self.base
-        for key in base:
-            if own.get(key) is not _GONE:
-                yield key
-        for key, value in own.items():
-            if value is not _GONE and key not in base:
-                yield key
-
-    def __len__(self) -> int:
-        return sum(1 for _ in self)
 
 
 @dataclass
@@ -156,14 +106,14 @@ class _Level:
         return level
 
     def fork(self) -> _Level:
-        """A copy that reads this level's tables through a layer of its own (``_Layer``), so
+        """A copy that reads this level's tables through a layer of its own (``Layer``), so
         forking copies nothing: a table either of the two counts in next is copied first by
         it (copy on write), and before this level changes a context it hands its fork the
         context's entries as they were (``_hand_down``), so neither sees the other's counts."""
-        if isinstance(self.tables, _Layer):  # a fork of a fork: its own tables made whole first
+        if isinstance(self.tables, Layer):  # a fork of a fork: its own tables made whole first
             self.tables, self.totals = dict(self.tables.items()), dict(self.totals.items())
         self.owned = set()
-        twin = _Level(_Layer(self.tables), _Layer(self.totals), self.once, self.twice, set())  # type: ignore[arg-type]
+        twin = _Level(Layer(self.tables), Layer(self.totals), self.once, self.twice, set())  # type: ignore[arg-type]
         self.forks = [ref for ref in self.forks if ref() is not None] + [weakref.ref(twin)]
         return twin
 
@@ -172,7 +122,7 @@ class _Level:
         living = []
         for ref in self.forks:
             twin = ref()
-            if twin is not None and isinstance(twin.tables, _Layer) and isinstance(twin.totals, _Layer):
+            if twin is not None and isinstance(twin.tables, Layer) and isinstance(twin.totals, Layer):
                 twin.tables.keep(context)
                 twin.totals.keep(context)
                 living.append(ref)
