@@ -13,7 +13,6 @@ from html import escape
 from pathlib import Path
 from typing import Any
 
-from oracle.service.page_text import page_text
 
 #: The page's own files (style, script, icon).
 STATIC = Path(__file__).resolve().parent / "static"
@@ -46,7 +45,6 @@ def render_page(view: Mapping[str, Any] | None, text: Mapping[str, str], token: 
     lang = str(view["lang"]) if view else "en"
     if view is None:
         return _shell(lang, text["no_neem"], "", f"<p class='empty'>{escape(text['no_neem'])}</p>")
-    text = page_text(lang, dict(text))
     config = json.dumps({"neem": view["neem"], "lang": lang, "view": view, "text": text, "token": token,
                          "confirm": manner.confirm, "dwell_s": manner.dwell_s, "undo_s": manner.undo_s,
                          "hold_ms": manner.hold_ms, "scan": manner.scan, "scan_s": manner.scan_s,

@@ -301,6 +301,13 @@ TEXT: dict[str, dict[str, str]] = {
         "who_user": "You", "who_robot": "The robot", "who_together": "Together",
         "who_is": "Who does it: {who}", "who_hint": "Tap a step\u2019s button to change who does it.",
         "on": "on",
+        # the page's own controls (the More button, the offline line, a kept choice)
+        "more": "More suggestions ({n})", "fewer": "Fewer suggestions",
+        "offline": "The robot cannot be reached. The buttons are off until it is back; reconnecting\u2026",
+        "kept": "Your choice \u201c{task}\u201d is kept. It goes to the robot as soon as the robot is back.",
+        "kept_sent": "The robot is back. Your choice \u201c{task}\u201d has been sent.",
+        "kept_gone": "The robot is back, but it cannot do \u201c{task}\u201d any more. Nothing was sent.",
+        "chosen": "Chosen", "off": "(not now: the robot cannot be reached)",
     },
     "de": {
         "title": "Was möchten Sie jetzt?", "list": "Was der Roboter jetzt tun kann, das Beste zuerst",
@@ -354,5 +361,12 @@ TEXT: dict[str, dict[str, str]] = {
         "who_user": "Sie", "who_robot": "Der Roboter", "who_together": "Gemeinsam",
         "on": "auf",
         "who_is": "Wer es macht: {who}", "who_hint": "Tippen Sie auf den Knopf eines Schritts, um zu \u00e4ndern, wer ihn macht.",
+        # the page's own controls
+        "more": "Weitere Vorschl\u00e4ge ({n})", "fewer": "Weniger Vorschl\u00e4ge",
+        "offline": "Der Roboter ist nicht erreichbar. Die Kn\u00f6pfe sind aus, bis er wieder da ist; verbinde neu\u2026",
+        "kept": "Ihre Wahl \u201e{task}\u201c ist gespeichert. Sie geht an den Roboter, sobald er wieder da ist.",
+        "kept_sent": "Der Roboter ist wieder da. Ihre Wahl \u201e{task}\u201c wurde gesendet.",
+        "kept_gone": "Der Roboter ist wieder da, kann \u201e{task}\u201c aber nicht mehr tun. Nichts wurde gesendet.",
+        "chosen": "Gew\u00e4hlt", "off": "(gerade nicht: der Roboter ist nicht erreichbar)",
     },
 }
