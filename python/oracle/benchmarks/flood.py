@@ -259,8 +259,8 @@ async def _post(app: Any, path: str, body: bytes) -> int:
 
 
 def run(quick: bool = False) -> list[dict[str, Any]]:
-    from oracle.benchmarks.security import call, start, stop
-    from oracle.service.robot import percentile, persona_rows
+    from oracle.benchmarks.security import call, robot_neem, start, stop
+    from oracle.service.robot import percentile
 
     rows: list[dict[str, Any]] = []
     seconds = 10 if quick else FLOOD_SECONDS
@@ -269,12 +269,7 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
     with tempfile.TemporaryDirectory() as folder:
         service = start(Path(folder) / "s.sqlite")
         try:
-            user, steps = persona_rows(0, 3, 3)
-            call(service.url, "/api/neems", {"user": user, "neem": "robot"})
-            for row in steps[:20]:
-                call(service.url, "/api/neems/robot/actions", {"call": str(row.action), "begin": row.time.timestamp()})
-            available = sorted({str(c) for row in steps[:20] for c in row.available} | {str(steps[0].action)})
-            at = steps[19].time.timestamp() + 10
+            available, at = robot_neem(service.url, "robot")
             call(service.url, "/api/neems/robot/situation", {"available": available, "at": at})  # the session's fit
             alone = _robot(service.url, "robot", available, at + 1, None, n)
             cpu_before = _cpu_s(service.process.pid)

@@ -211,7 +211,7 @@ def commit_ms(folder: Path, synchronous: str, n: int) -> list[float]:
 def run(quick: bool = False) -> list[dict[str, Any]]:
     import tempfile
 
-    from oracle.service.robot import percentile, persona_rows
+    from oracle.service.robot import percentile
 
     rows: list[dict[str, Any]] = []
     n = 30 if quick else 100
@@ -225,12 +225,7 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
                          "p99_ms": round(p99, 3)})
         service = start(Path(folder) / "s.sqlite")
         try:
-            user, steps = persona_rows(0, 3, 3)
-            call(service.url, "/api/neems", {"user": user, "neem": "sec"})
-            for row in steps[:20]:
-                call(service.url, "/api/neems/sec/actions", {"call": str(row.action), "begin": row.time.timestamp()})
-            available = sorted({str(c) for row in steps[:20] for c in row.available} | {str(steps[0].action)})
-            at = steps[19].time.timestamp() + 10
+            available, at = robot_neem(service.url, "sec")
             rss_before = peak_rss_mb(service.process.pid)
             one = post_oversized(service.port)
             print(f"  50 MB body (Content-Length): {one.status} in {one.seconds * 1000:.1f} ms, answer {len(one.body)} bytes",
@@ -277,3 +272,16 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
         finally:
             stop(service)
     return rows
+
+
+def robot_neem(url: str, neem: str) -> tuple[list[str], float]:
+    """A NEEM ``neem`` of persona 0 with its first 20 actions logged through the service at
+    ``url``: the tasks available after them and a moment 10 s after the last."""
+    from oracle.service.robot import persona_rows
+
+    user, steps = persona_rows(0, 3, 3)
+    call(url, "/api/neems", {"user": user, "neem": neem})
+    for row in steps[:20]:
+        call(url, f"/api/neems/{neem}/actions", {"call": str(row.action), "begin": row.time.timestamp()})
+    available = sorted({str(c) for row in steps[:20] for c in row.available} | {str(steps[0].action)})
+    return available, steps[19].time.timestamp() + 10
