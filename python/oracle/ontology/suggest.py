@@ -1,6 +1,6 @@
 """Suggest SOMA/DUL classes for odb objects and tasks the mapping YAML does not cover (thesis 6.3.1).
 
-A lexical and structural scorer, no language model: each candidate class of the upper ontology
+A lexical and structural scorer with a small language model's word beside it: each candidate class of the upper ontology
 (the descendants of dul:PhysicalObject for an object, of dul:Task for a task) is scored on
 - its name and label against the entry's name (a compound written together, the head noun, shared
   words weighed by how rare they are among the classes' names),
@@ -10,7 +10,9 @@ A lexical and structural scorer, no language model: each candidate class of the 
 - the odb's structure: the class the entry already inherits from a mapped ancestor, and the
   classes of the mapped objects that afford the same tasks (its nearest neighbours by the SOMA
   tasks their odb tasks map to), with those classes' direct parents,
-- how often the mapping already uses the class (a tie breaker).
+- how often the mapping already uses the class (a tie breaker),
+- where the bundled language model is installed, how near it puts the entry's name to the
+  class's name (oracle.ontology.suggest_embed).
 Every part that adds to a score says so in the suggestion's ``why``.
 """
 
@@ -27,6 +29,7 @@ from typing import TYPE_CHECKING
 from oracle.namespaces import DUL_IRI
 from oracle.ontology.mapping import Mapping
 from oracle.ontology.odb import OdbObject, inherited_tasks
+from oracle.ontology.suggest_embed import Nearness, class_text
 from oracle.ontology.words import STOP_WORDS, joined, name_words, text_words
 
 if TYPE_CHECKING:
@@ -36,6 +39,8 @@ PHYSICAL_OBJECT = DUL_IRI + "PhysicalObject"
 TASK = DUL_IRI + "Task"
 #: Weights of the parts of a score (a name match is the strongest evidence a person would take).
 W_NAME, W_ANCESTOR, W_COMMENT, W_INHERITED, W_NEIGHBOURS, W_PRIOR = 1.0, 0.5, 0.35, 0.45, 0.6, 0.08
+#: The language model's probability for a class: a sure one weighs as much as a name match.
+W_MODEL = 1.0
 NEIGHBOURS = 5
 
 
@@ -139,10 +144,12 @@ class _Score:
 class Suggester:
     """Ranks upper classes for the odb entries of one mapping (read once, asked many times)."""
 
-    def __init__(self, objects: dict[str, OdbObject], maps: Mapping, classes: dict[str, UpperClass]) -> None:
+    def __init__(self, objects: dict[str, OdbObject], maps: Mapping, classes: dict[str, UpperClass],
+                 nearness: Nearness | None = None) -> None:
         self.objects = objects
         self.maps = maps
         self.classes = classes
+        self.nearness = nearness
         self.object_pool = sorted(descendants(classes, PHYSICAL_OBJECT))
         self.task_pool = sorted(descendants(classes, TASK))
         self._idf = self._rarity(classes[i].words for i in self.object_pool + self.task_pool)
@@ -182,6 +189,7 @@ class Suggester:
                 elif cls in self.classes[iri].parents:
                     score.add(W_INHERITED, 0.6, f"refines {self._curie(cls)}, inherited from {source}")
         self._neighbour_evidence(name, scores)
+        self._model_evidence(name, self.object_pool, scores)
         self._prior(scores, exclude=name)
         return self._ranked(scores, top)
 
@@ -196,6 +204,7 @@ class Suggester:
         for other, action in self.maps.actions.items():
             if other != name and name.startswith(other + "_") and action.task in scores:
                 scores[action.task].add(W_INHERITED, 1.0, f"named after the mapped task {other}")
+        self._model_evidence(name, self.task_pool, scores)
         counts = Counter(a.task for n, a in self.maps.actions.items() if n != name)
         self._add_prior(scores, counts)
         return self._ranked(scores, top)
@@ -274,6 +283,14 @@ class Suggester:
         for iri, vote in votes.items():
             if iri in scores:
                 scores[iri].add(W_NEIGHBOURS, min(vote, 1.0), f"affords the tasks of {', '.join(voters[iri])}")
+
+    def _model_evidence(self, name: str, pool: list[str], scores: dict[str, _Score]) -> None:
+        if self.nearness is None:
+            return
+        texts = [class_text(self.classes[iri].local) for iri in pool]
+        for iri, p in self.nearness.probabilities(name, pool, texts).items():
+            if p >= 0.01:  # below one in a hundred it says nothing worth a line of why
+                scores[iri].add(W_MODEL, p, f"the language model puts {name} near {self.classes[iri].local} ({p:.0%})")
 
     def _prior(self, scores: dict[str, _Score], exclude: str) -> None:
         self._add_prior(scores, Counter(c for o, c in self.maps.object_map.items() if o != exclude))

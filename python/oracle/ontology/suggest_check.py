@@ -10,6 +10,7 @@ from dataclasses import dataclass
 from oracle.ontology.mapping import Mapping
 from oracle.ontology.odb import OdbObject
 from oracle.ontology.suggest import Suggester, UpperClass
+from oracle.ontology.suggest_embed import Nearness
 
 
 @dataclass(frozen=True)
@@ -36,7 +37,8 @@ def _accepted(hand: str, classes: dict[str, UpperClass]) -> set[str]:
     return {hand, *(classes[hand].parents if hand in classes else ())}
 
 
-def leave_one_out(objects: dict[str, OdbObject], maps: Mapping, classes: dict[str, UpperClass], top: int = 5) -> LeaveOneOut:
+def leave_one_out(objects: dict[str, OdbObject], maps: Mapping, classes: dict[str, UpperClass], top: int = 5,
+                  nearness: Nearness | None = None) -> LeaveOneOut:
     """Every object line and every task with its own ``task`` field, held out one at a time."""
     held_objects: list[HeldOut] = []
     for name, hand in sorted(maps.object_map.items()):
@@ -44,14 +46,14 @@ def leave_one_out(objects: dict[str, OdbObject], maps: Mapping, classes: dict[st
             continue
         rest = dict(maps.object_map)
         del rest[name]
-        suggester = Suggester(objects, dataclasses.replace(maps, object_map=rest), classes)
+        suggester = Suggester(objects, dataclasses.replace(maps, object_map=rest), classes, nearness)
         held_objects.append(_row(name, hand, [s.iri for s in suggester.suggest_object(name, top)], classes))
     held_tasks: list[HeldOut] = []
     for name, action in sorted(maps.actions.items()):
         if not action.explicit_task or action.parent is not None:
             continue  # a child's class is its parent's: nothing to guess
         rest_actions = {n: a for n, a in maps.actions.items() if n != name}
-        suggester = Suggester(objects, dataclasses.replace(maps, actions=rest_actions), classes)
+        suggester = Suggester(objects, dataclasses.replace(maps, actions=rest_actions), classes, nearness)
         held_tasks.append(_row(name, action.task, [s.iri for s in suggester.suggest_task(name, top)], classes))
     return LeaveOneOut(tuple(held_objects), tuple(held_tasks))
 
