@@ -148,12 +148,22 @@ class Nearness:
         if key not in self._pools:
             self._pools[key] = (self.cache.vectors(self.embedder, texts) if self.cache is not None
                                 else self.embedder.embed(texts, query=False))
+        mine = self._entry(entry)
+        return _softmax(pool, [_dot(mine, theirs) for theirs in self._pools[key]])
+
+    def _entry(self, entry: str) -> Vector:
         text = name_text(entry)
         if text not in self._entries:
             self._entries[text] = self.embedder.embed([text], query=True)[0]
-        mine = self._entries[text]
-        sims = [sum(a * b for a, b in zip(mine, theirs, strict=True)) for theirs in self._pools[key]]
-        top = max(sims, default=0.0)
-        weights = [math.exp((s - top) / TEMPERATURE) for s in sims]
-        total = sum(weights)
-        return {iri: w / total for iri, w in zip(pool, weights, strict=True)} if total else {}
+        return self._entries[text]
+
+
+def _dot(a: Vector, b: Vector) -> float:
+    return sum(x * y for x, y in zip(a, b, strict=True))
+
+
+def _softmax(keys: Sequence[str], sims: Sequence[float]) -> dict[str, float]:
+    top = max(sims, default=0.0)
+    weights = [math.exp((s - top) / TEMPERATURE) for s in sims]
+    total = sum(weights)
+    return {key: w / total for key, w in zip(keys, weights, strict=True)} if total else {}
