@@ -130,6 +130,29 @@ class HistoryCache(CacheFolder):
             return None
 
 
+def kept_history(store: Store, ontology: OdbOntology | None, neem: str) -> dict[str, Any] | None:
+    """The NEEM's history in ``compact``'s shape as the store keeps it, when its entry is at the
+    store's mark now (what ``HistoryCache.view`` would give without reading anything); None
+    otherwise (nothing kept in the store, kept behind the mark, a temporary NEEM, a store that
+    cannot tell). Reads only the store, never Prolog: a reader with a connection of its own (the
+    explorer's, oracle.service.explore_reader) sends the first paint's timeline with it."""
+    if store.neem(neem).temporary:
+        return None
+    mark = store.append_mark(neem)
+    raw = None if mark is None else store.read_kept(neem, KIND)
+    if raw is None:
+        return None
+    key = _key_of(neem, ontology)
+    if _header(raw, key) != mark:
+        return None
+    try:
+        data = json.loads(raw)
+        history = data["history"]
+        return history if _well_formed(history) else None
+    except (ValueError, KeyError, TypeError, IndexError):
+        return None
+
+
 def _best(mark: AppendMark, key: str, raws: Sequence[bytes]) -> _Entry | None:
     """Of the kept entries ``raws`` (the store's, the user's file), the one to start from at
     ``mark``: one taken at ``mark`` itself, else the one the fewest triples behind it that

@@ -78,13 +78,24 @@ def _decisions(client, neem: str, window: int = 100) -> dict:
         time.sleep(0.2)
 
 
+def _timeline(client, neem: str) -> dict:
+    """The timeline, once the NEEM's first read is done (nothing is kept for a NEEM imported in
+    process: the route answers 202 while the service reads it)."""
+    deadline = time.monotonic() + 120
+    while (response := client.get(f"/explore/api/neems/{neem}/timeline")).status_code == 202:
+        assert response.json()["reading"] and time.monotonic() < deadline, "the first read did not finish"
+        time.sleep(0.1)
+    assert response.status_code == 200, response.text
+    return response.json()
+
+
 def test_the_list_and_the_timeline_show_the_store(client, chains):
     neems = client.get("/explore/api/neems").json()
     assert len(neems) == 1
     rows = chains.read_text().splitlines()
     neem = neems[0]
     assert neem["user"] == json.loads(rows[0])["user"] and neem["actions"] >= len(rows) and neem["begin"] < neem["end"]
-    timeline = client.get(f"/explore/api/neems/{neem['id']}/timeline").json()
+    timeline = _timeline(client, neem["id"])
     calls = [timeline["calls"][timeline["rows"][i + 2]] for i in range(0, len(timeline["rows"]), 6)]
     assert [c for c in calls if c != "idle"] == [json.loads(r)["action"].replace(" ", "") for r in rows]
     assert "idle" in calls  # the nights are idle actions, drawn as gaps
@@ -101,7 +112,7 @@ def test_the_curve_equals_evaluate_on_the_same_neem_replayed(client, tmp_path, c
     n = len(found["rank"])
     for k in (1, 3, 5):  # a window over the whole NEEM ends on the whole NEEM's rate
         assert found["rolling"][f"top{k}"][-1] == pytest.approx(found["summary"][f"top{k}"], abs=1e-12)
-    history = client.get(f"/explore/api/neems/{neem['id']}/timeline").json()
+    history = _timeline(client, neem["id"])
     from oracle.bridge.records import history_rows
 
     rows = history_rows(history)
@@ -305,6 +316,6 @@ def test_the_page_works_with_a_token(store, browser, tmp_path):  # noqa: F811
 
 def test_a_neem_without_actions_shows_an_empty_timeline(client):
     assert client.post("/api/neems", json={"user": "new", "neem": "empty"}).status_code == 201
-    assert client.get("/explore/api/neems/empty/timeline").json()["rows"] == []
+    assert _timeline(client, "empty")["rows"] == []
     assert client.get("/explore/api/neems/empty/decisions").json()["n_predictions"] == 0
     assert client.get("/explore/api/neems/nobody/timeline").status_code == 404

@@ -139,4 +139,21 @@ class PersonalOracle(PooledOracle):
         return None
 
 
-__all__ = ["PRIOR_COLUMNS", "PersonalOracle"]
+def prior_share(log_p: np.ndarray, x: np.ndarray, w: np.ndarray, pooled: float) -> float | None:
+    """How much of a ranking came from the shared prior, from what ``_combined`` scored it with:
+    the routine predictor's ``log_p``, the rows ``x`` (the prior's columns last), the weights ``w``
+    and the routine predictor's weight ``pooled`` in the pool (0 for this predictor). The scores
+    split into the prior's part ``(1 - a) x_prior . w_prior`` and the user's own (their evidence's
+    part and the routine predictor's); a softmax sees only differences between options, so each
+    part counts by its spread over the offer (the sum of its distances from its mean), and the
+    share is the prior's spread over both. None when neither part tells the options apart."""
+    k = len(PRIOR_COLUMNS)
+    prior = (1.0 - pooled) * (x[:, -k:] @ w[-k:])
+    own = pooled * log_p + (1.0 - pooled) * (x[:, :-k] @ w[:-k])
+    spread_prior = float(np.abs(prior - prior.mean()).sum())
+    spread_own = float(np.abs(own - own.mean()).sum())
+    total = spread_prior + spread_own
+    return spread_prior / total if total > 0 else None
+
+
+__all__ = ["PRIOR_COLUMNS", "PersonalOracle", "prior_share"]

@@ -4,6 +4,12 @@ and a recording wrapper keeps the order the predictor gave, not only the truth's
 
 ``neem_chains`` is the same rows as a chains file, so ``python -m oracle evaluate`` on it gives
 the figures the explorer shows (tests/service/test_explore.py holds them equal).
+
+With a shared prior (``serve --prior``, or the store's own), the personal predictor blends the
+others' habits into each score; the recording wrapper then also notes, per decision, the prior's
+share of the ranking (``personal.prior_share``) from the very rows and weights the predictor
+scored the offer with: it wraps the replay's own model's ``_combined``, the one place that holds
+both, and hands back its result unchanged (no ranking differs; a test holds both equal).
 """
 
 from __future__ import annotations
@@ -13,7 +19,11 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
+import numpy as np
+
 from oracle.algorithm.params import Hyperparameters
+from oracle.algorithm.personal import PersonalOracle, prior_share
+from oracle.algorithm.prior import Prior
 from oracle.algorithm.records import Option, Step
 from oracle.bridge.records import HistoryRow
 from oracle.calls import option_of
@@ -37,6 +47,9 @@ class Decision:
     ranked: tuple[str, ...]
     rank: int | None
     candidates: int
+    #: the shared prior's share of the ranking (0..1), None where it took no part (no prior,
+    #: or the routine predictor ranked alone)
+    prior_share: float | None = None
 
 
 @dataclass(frozen=True)
@@ -45,6 +58,8 @@ class NeemReplay:
     #: ``summarize``'s JSON, as ``evaluate --json`` writes it.
     summary: dict[str, Any]
     method: str
+    #: whether the predictor was given a shared prior
+    prior: bool = False
 
     def rolling(self, window: int) -> dict[str, list[float]]:
         """Top-k over the last ``window`` decisions at each decision (fewer at the start)."""
@@ -79,13 +94,32 @@ class _Recording:
         self.name = inner.name
         self.keep = keep
         self.orders: list[tuple[Option, ...]] = []
+        self.shares: list[float | None] = []
+        self._seen: list[float | None] = []
+
+    def use_prior(self, prior: Any) -> None:
+        use = getattr(self.inner, "use_prior", None)
+        if use is not None:
+            use(prior)
 
     def reset(self) -> None:
         self.inner.reset()
+        model = getattr(self.inner, "model", None)
+        if isinstance(model, PersonalOracle):
+            combined = model._combined  # the class's, bound: the wrapper only looks at its arguments
+
+            def seen(log_p: np.ndarray, x: np.ndarray, w: np.ndarray) -> np.ndarray:
+                given = model.prior is not None  # without one its columns are 0: it took no part
+                self._seen.append(prior_share(log_p, x, w, model.served_weight() or 0.0) if given else None)
+                return combined(log_p, x, w)
+
+            model._combined = seen  # type: ignore[method-assign]
 
     def rank(self, candidates: Sequence[Option], time_of_day: str | None = None, at: float | None = None) -> list[Option]:
+        self._seen.clear()
         order = self.inner.rank(candidates, time_of_day, at)
         self.orders.append(tuple(order[: self.keep]))
+        self.shares.append(self._seen[-1] if self._seen else None)
         return order
 
     def observe(self, step: Step) -> None:
@@ -93,23 +127,26 @@ class _Recording:
 
 
 def replay_neem(ontology: OdbOntology, settings: Hyperparameters, method: str, rows: Sequence[HistoryRow],
-                user: str, keep: int = 10) -> NeemReplay:
-    """Replay the NEEM's history with ``method`` under evaluate's default rules."""
+                user: str, keep: int = 10, prior: Prior | None = None) -> NeemReplay:
+    """Replay the NEEM's history with ``method`` under evaluate's default rules (``prior``: the
+    shared prior the predictor ranks with, as the service's sessions do)."""
     chains = neem_chains(rows, user)
     rules = ReplayRules()
     recording = _Recording(make_methods(ontology, settings, False, method, rules.served)[0], keep)
-    result = replay(ontology, OrderedDict([(user, chains)]), [recording], protocol=rules)
+    result = replay(ontology, OrderedDict([(user, chains)]), [recording], protocol=rules,
+                    priors=None if prior is None else lambda _: prior)
     said: dict[Option, str] = {}
     for row in chains:
         for call in (row.action, *(row.available or ())):
             said.setdefault(option_of(ontology, call), str(call))
     decisions: list[Decision] = []
-    orders = iter(recording.orders)
+    orders, shares = iter(recording.orders), iter(recording.shares)
     for outcome, row in zip(result.outcomes, chains):
-        order = next(orders) if outcome.n_candidates else ()
+        order, share = (next(orders), next(shares)) if outcome.n_candidates else ((), None)
         decisions.append(Decision(outcome.index, row.time.timestamp() if row.time else 0.0, str(row.action),
-                                  tuple(said.get(o, str(o)) for o in order), outcome.ranks[recording.name], outcome.n_candidates))
-    return NeemReplay(tuple(decisions), summarize(result), recording.name)
+                                  tuple(said.get(o, str(o)) for o in order), outcome.ranks[recording.name], outcome.n_candidates,
+                                  share))
+    return NeemReplay(tuple(decisions), summarize(result), recording.name, prior is not None)
 
 
 __all__ = ["Decision", "NeemReplay", "neem_chains", "replay_neem"]

@@ -70,7 +70,7 @@ a click selects a decision.</p>
 <label for="window">Rolling window</label> <input id="window" type="number" min="5" max="5000" value="100">
 <button type="button" id="curve-png">Export PNG</button><button type="button" id="curve-svg">Export SVG</button></div>
 <canvas id="curve" width="1000" height="260" role="img"
- aria-label="Rolling Top-1, Top-3 and Top-5 against the decision's position"></canvas>
+ aria-label="Rolling Top-1, Top-3 and Top-5 (with a shared prior also its share) against the decision's position"></canvas>
 <p id="figures" role="status"></p>
 </section>
 <section aria-labelledby="routines-title">

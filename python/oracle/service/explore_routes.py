@@ -13,15 +13,25 @@ by whoever builds the app, as ``app.state.explore_replay`` (the ``serve`` comman
 replay of a long NEEM takes tens of seconds (37 s at 10,000 actions), so it runs once per NEEM
 state in a child process, niced more than the query process (oracle.service.queries): it shares
 neither the engine thread nor the GIL with the robot's calls, and a service that stops ends it
-(a daemon process). The route answers 202 until it is done.
+(a daemon process), niced from its start (its imports and unpickling are a second of CPU). The
+route answers 202 until it is done.
+
+The page's first paint needs only the NEEM's timeline: the explorer's own reader
+(oracle.service.explore_reader, a thread with a read-only connection) sends the view the store
+keeps, so an open never queues behind the engine thread's work (another page's routines, a robot's
+call, a NEEM's first read). Where nothing is kept, the engine reads the history through Prolog
+once (6-10 s at 10,000 actions) while the route answers 202 with what it is reading, and the page
+says so; the next open finds it kept.
 """
 
 from __future__ import annotations
 
 import asyncio
+import json
 import multiprocessing
 import os
 import threading
+import time
 from collections import OrderedDict
 from collections.abc import Sequence
 from concurrent.futures import Future
@@ -29,12 +39,14 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Protocol
 
 from fastapi import APIRouter, Query, Request
-from fastapi.responses import FileResponse, HTMLResponse, JSONResponse
+from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, Response
 
 from oracle.service.explore_page import EXPLORE_FILES, EXPLORE_STATIC, render_explore
+from oracle.service.explore_reader import ExploreReader, kept_timeline, newest
 
 if TYPE_CHECKING:
     from oracle.algorithm.params import Hyperparameters
+    from oracle.algorithm.prior import Prior
     from oracle.bridge.records import HistoryRow
     from oracle.ontology import OdbOntology
     from oracle.service.app import Context
@@ -47,6 +59,9 @@ SHOWN = 10
 #: How much nicer than the service a replay runs: nicer than a Prolog query (5, which a person
 #: waits on), since nobody waits on a replay's minute but a page opened meanwhile should not.
 REPLAY_NICENESS = 10
+#: How long a request waits for a NEEM's first read before it answers what is being read: a
+#: small NEEM's read ends sooner, and its page then shows no passing status.
+QUICK_READ_S = 0.3
 
 
 class Replayed(Protocol):
@@ -58,12 +73,23 @@ class Replayed(Protocol):
     def summary(self) -> dict[str, Any]: ...
     @property
     def method(self) -> str: ...
+    @property
+    def prior(self) -> bool: ...
     def rolling(self, window: int) -> dict[str, list[float]]: ...
 
 
 class Replayer(Protocol):
     def __call__(self, ontology: OdbOntology, settings: Hyperparameters, method: str, rows: Sequence[HistoryRow],
-                 user: str, keep: int = ...) -> Replayed: ...
+                 user: str, keep: int = ..., prior: Prior | None = ...) -> Replayed: ...
+
+
+@dataclass
+class Reading:
+    """A NEEM's history being read through Prolog, what it is (``said``) and since when."""
+
+    task: asyncio.Future[tuple[str, str, list[HistoryRow]]]
+    said: dict[str, Any]
+    began: float = field(default_factory=time.monotonic)
 
 
 @dataclass
@@ -74,6 +100,9 @@ class ExploreState:
     lock: threading.Lock = field(default_factory=threading.Lock)
     # one replay at a time: two would only share the cores the robot's calls need
     turn: threading.Lock = field(default_factory=threading.Lock)
+    #: the first reads of NEEMs nothing was kept for, on the engine thread, by the name asked
+    reading: dict[str, Reading] = field(default_factory=dict)
+    reader: ExploreReader | None = None
 
     def submit(self, replayer: Replayer, *args: Any) -> Future[Replayed]:
         """Run ``replayer(*args)`` in a child process after the replays asked before it."""
@@ -83,9 +112,12 @@ class ExploreState:
             with self.turn:
                 context = multiprocessing.get_context("spawn")
                 parent, child = context.Pipe(duplex=False)
-                process = context.Process(target=_replay_child, args=(child, replayer, args), daemon=True,
+                niceness = min(19, os.getpriority(os.PRIO_PROCESS, 0) + REPLAY_NICENESS)
+                process = context.Process(target=_replay_child, args=(child, niceness, replayer, args), daemon=True,
                                           name="explore-replay")
                 process.start()
+                if process.pid is not None:  # at once: the child's start-up is CPU work too
+                    _nice(process.pid, niceness)
                 child.close()
                 try:
                     ok, value = parent.recv()
@@ -104,11 +136,15 @@ class ExploreState:
         return future
 
 
-def _replay_child(conn: Any, replayer: Replayer, args: tuple[Any, ...]) -> None:
+def _nice(pid: int, niceness: int) -> None:
     try:
-        os.nice(REPLAY_NICENESS)
+        os.setpriority(os.PRIO_PROCESS, pid, niceness)
     except OSError:
-        pass
+        pass  # the process ended already, or the system refuses: it runs as nice as its parent
+
+
+def _replay_child(conn: Any, niceness: int, replayer: Replayer, args: tuple[Any, ...]) -> None:
+    _nice(0, niceness)  # the parent set it as the child started; this covers a parent too slow for that
     try:
         conn.send((True, replayer(*args)))
     except Exception as error:  # the parent turns it into the route's error answer
@@ -120,9 +156,24 @@ def _replay_child(conn: Any, replayer: Replayer, args: tuple[Any, ...]) -> None:
 def _state(request: Request) -> ExploreState:
     state = getattr(request.app.state, "explore", None)
     if state is None:
-        state = request.app.state.explore = ExploreState()
+        ctx = _ctx(request)
+        state = request.app.state.explore = ExploreState(reader=ExploreReader(ctx.engine.store.location, ctx.engine.ontology))
     assert isinstance(state, ExploreState)
     return state
+
+
+async def _read(request: Request, job: Any, *args: Any) -> Any:
+    """``job(store, *args)`` on the explorer's reader; None where it cannot answer (no file
+    store, or the store refuses the name: the engine then answers, with its own error)."""
+    from oracle.errors import NeemOracleError
+
+    reader = _state(request).reader
+    if reader is None:
+        return None
+    try:
+        return await reader.run(job, *args)
+    except NeemOracleError:
+        return None
 
 
 def _ctx(request: Request) -> Context:
@@ -134,7 +185,7 @@ def _ctx(request: Request) -> Context:
 async def explore_page(request: Request, neem: str | None = None) -> HTMLResponse:
     ctx = _ctx(request)
     # the NEEM shown first is named in the page, so it asks for the list and the timeline at once
-    chosen = neem or ctx.default_neem or await ctx.thread.run(ctx.engine.newest)
+    chosen = neem or ctx.default_neem or await _read(request, newest) or await ctx.thread.run(ctx.engine.newest)
     return HTMLResponse(render_explore(chosen, ctx.token), headers=PAGE_HEADERS)
 
 
@@ -190,16 +241,68 @@ def _view(ctx: Context, neem: str) -> tuple[str, str, list[HistoryRow]]:
     return neem_id, info.user or neem_id, rows
 
 
+def _unread(ctx: Context, neem: str) -> dict[str, Any] | None:
+    """What a NEEM's first read will read (its id, user and number of actions), or None when
+    the history is kept: the engine then reads it at once."""
+    from oracle.historycache import kept_history
+    from oracle.neem.query import summarize_neem
+
+    neem_id = ctx.engine.resolve(neem)
+    info = ctx.engine.store.neem(neem_id)
+    if info.temporary or kept_history(ctx.engine.store, ctx.engine.ontology, neem_id) is not None:
+        return None
+    return {"neem": neem_id, "user": info.user or neem_id, "actions": summarize_neem(ctx.engine.store, neem_id, info).actions}
+
+
+async def _rows(request: Request, neem: str) -> tuple[str, str, list[HistoryRow]] | dict[str, Any]:
+    """The NEEM's id, user and history: from the reader when the store keeps it, else read by
+    the engine. A NEEM whose history nothing kept is read once in the background (6-10 s at
+    10,000 actions): until then the answer is what is being read, as a dict."""
+    from oracle.bridge import history_rows
+
+    ctx, state = _ctx(request), _state(request)
+    kept = await _read(request, kept_timeline, ctx.engine.ontology, neem)
+    if kept is not None:
+        return kept[0], kept[1], history_rows(kept[2])
+    reading = state.reading.get(neem)
+    if reading is None:
+        unread = await ctx.thread.run(_unread, ctx, neem)
+        if unread is None:  # kept after all (a temporary NEEM, or a store the reader cannot open)
+            return await ctx.thread.run(_view, ctx, neem)
+        reading = state.reading.get(neem)  # another request may have started it meanwhile
+        if reading is None:
+            reading = state.reading[neem] = Reading(asyncio.ensure_future(ctx.thread.run(_view, ctx, neem)), unread)
+    if not reading.task.done():
+        await asyncio.wait({reading.task}, timeout=QUICK_READ_S)
+    if not reading.task.done():
+        return {"reading": True, **reading.said, "seconds": round(time.monotonic() - reading.began, 1)}
+    if state.reading.get(neem) is reading:
+        del state.reading[neem]  # kept now: the next request finds it in the store
+    return reading.task.result()
+
+
+def _json(data: Any, status: int = 200) -> Response:
+    """JSON written at once (the timeline is 60,000 numbers at 10,000 actions: FastAPI's encoder
+    would walk each of them in Python first)."""
+    return Response(json.dumps(data, separators=(",", ":")), status_code=status, media_type="application/json")
+
+
 @router.get("/explore/api/neems/{neem}/timeline")
-async def explore_timeline(neem: str, request: Request) -> dict[str, Any]:
+async def explore_timeline(neem: str, request: Request) -> Response:
     """The history compact (historycache.compact's shape): ``calls``, ``sets`` of available call
     indexes, and ``rows`` flat, six values each: begin, end, call, part of day, set (-1: none),
-    mode. Idle actions are the call ``idle``."""
+    mode. Idle actions are the call ``idle``. 202 with ``reading``, the NEEM's ``actions`` and
+    ``seconds`` since the read began while a history nothing kept is read through Prolog."""
     from oracle.historycache import compact
 
-    ctx = _ctx(request)
-    neem_id, user, rows = await ctx.thread.run(_view, ctx, neem)
-    return {"neem": neem_id, "user": user, **compact(rows)}
+    kept = await _read(request, kept_timeline, _ctx(request).engine.ontology, neem)
+    if kept is not None:
+        return _json({"neem": kept[0], "user": kept[1], **kept[2]})
+    got = await _rows(request, neem)
+    if isinstance(got, dict):
+        return _json(got, 202)
+    neem_id, user, rows = got
+    return _json({"neem": neem_id, "user": user, **compact(rows)})
 
 
 @router.get("/explore/api/neems/{neem}/decisions")
@@ -212,17 +315,24 @@ async def explore_decisions(neem: str, request: Request,
     if replayer is None:
         return JSONResponse({"error": "this service was built without the replay (python -m oracle serve hands it in)"},
                             status_code=501)
-    neem_id, user, rows = await ctx.thread.run(_view, ctx, neem)
+    got = await _rows(request, neem)
+    if isinstance(got, dict):  # the history is still being read: the replay waits for it
+        return JSONResponse({"pending": True, **got}, status_code=202)
+    neem_id, user, rows = got
     if all(r["call"] == "idle" for r in rows):  # nothing was decided: nothing to replay
         return {"method": ctx.engine.method, "calls": [], "begin": [], "truth": [], "rank": [], "candidates": [],
                 "ranked": [], "window": window, "rolling": {"top1": [], "top3": [], "top5": []},
-                "summary": {"top1": 0.0, "top3": 0.0, "top5": 0.0}, "n_predictions": 0}
+                "summary": {"top1": 0.0, "top3": 0.0, "top5": 0.0}, "n_predictions": 0,
+                "prior": _prior_json(ctx.engine.prior is not None, [])}
     state = _state(request)
-    key = (neem_id, len(rows), rows[-1]["begin"] if rows else None, ctx.engine.method, repr(ctx.engine.settings))
+    prior = ctx.engine.prior  # the one every session's predictor ranks with (serve --prior)
+    key = (neem_id, len(rows), rows[-1]["begin"] if rows else None, ctx.engine.method, repr(ctx.engine.settings),
+           prior.digest() if prior is not None else None)
     with state.lock:
         future = state.replays.get(key)
         if future is None:
-            future = state.submit(replayer, ctx.engine.ontology, ctx.engine.settings, ctx.engine.method, rows, user, SHOWN)
+            future = state.submit(replayer, ctx.engine.ontology, ctx.engine.settings, ctx.engine.method, rows, user, SHOWN,
+                                  prior)
             state.replays[key] = future
             while len(state.replays) > KEPT_REPLAYS:
                 state.replays.popitem(last=False)
@@ -239,8 +349,9 @@ async def explore_decisions(neem: str, request: Request,
 
 def _decisions_json(replayed: Replayed, window: int) -> dict[str, Any]:
     calls: dict[str, int] = {}
-    begin, truth, rank, candidates, ranked = [], [], [], [], []
+    begin, truth, rank, candidates, ranked, shares = [], [], [], [], [], []
     for d in replayed.decisions:
+        shares.append(None if d.prior_share is None else round(d.prior_share, 4))
         begin.append(d.begin)
         truth.append(calls.setdefault(d.truth, len(calls)))
         rank.append(d.rank or 0)
@@ -250,7 +361,15 @@ def _decisions_json(replayed: Replayed, window: int) -> dict[str, Any]:
     return {"method": replayed.method, "calls": list(calls), "begin": begin, "truth": truth, "rank": rank,
             "candidates": candidates, "ranked": ranked, "window": window, "rolling": replayed.rolling(window),
             "summary": {k: figures[k] for k in ("top1", "top3", "top5")},
-            "n_predictions": replayed.summary["n_predictions"]}
+            "n_predictions": replayed.summary["n_predictions"], "prior": _prior_json(replayed.prior, shares)}
+
+
+def _prior_json(given: bool, shares: list[float | None]) -> dict[str, Any]:
+    """Where the shared prior took part: each decision's share (None: it took no part), how many
+    decisions it took part in, and its mean share over them."""
+    used = [s for s in shares if s is not None]
+    return {"given": given, "shares": shares, "decisions": len(used),
+            "mean": round(sum(used) / len(used), 4) if used else None}
 
 
 #: As the tablet page's: nothing from elsewhere; images are drawn here (blob: for the exports).

@@ -424,6 +424,7 @@
     var d = state.decisions;
     if (!d) { box.appendChild(el("p", {}, "The predictor's ranking appears when the replay is done.")); return; }
     if (k >= d.rank.length) { return; }
+    if (d.prior && d.prior.given) { box.appendChild(el("p", { class: "share" }, shareText(d.prior.shares[k]))); }
     var rank = d.rank[k], verdict = el("p");
     verdict.appendChild(el("span", { class: rank === 1 ? "hit" : "miss" },
       rank === 0 ? "Not offered: the user's action was not among the candidates." :
@@ -437,6 +438,13 @@
       list.appendChild(li);
     });
     box.appendChild(list);
+  }
+
+  function pctOf(v) { return Math.round(v * 100) + " %"; }
+  function shareText(share) {
+    if (share === null || share === undefined) { return "The shared prior took no part in this ranking (the routine predictor ranked alone)."; }
+    return "Where the ranking came from: " + pctOf(share) + " the shared prior (what other people usually do next), " +
+      pctOf(1 - share) + " the user's own history.";
   }
 
   // -- the curve ------------------------------------------------------------------------------
@@ -462,6 +470,17 @@
       p.line([left + plotW + 10, top + 14 + ci * 18, left + plotW + 34, top + 14 + ci * 18], c[2], 2, c[3]);
       p.text(left + plotW + 40, top + 18 + ci * 18, c[1], "#111");
     });
+    if (d.prior && d.prior.given) {  // the prior's share, rolling over the same window (a decision it took no part in: 0)
+      var shares = d.prior.shares, sum = 0, sp = [], w = d.window;
+      for (var j = 0; j < n; j++) {
+        sum += shares[j] || 0;
+        if (j >= w) { sum -= shares[j - w] || 0; }
+        if (j % stride === 0 || j === n - 1) { sp.push(xOf(j), yOf(sum / Math.min(j + 1, w))); }
+      }
+      p.line(sp, "#5a5a5a", 1.5, [1, 2]);
+      p.line([left + plotW + 10, top + 14 + 3 * 18, left + plotW + 34, top + 14 + 3 * 18], "#5a5a5a", 1.5, [1, 2]);
+      p.text(left + plotW + 40, top + 18 + 3 * 18, "prior share", "#111");
+    }
     if (state.selected >= 0 && state.selected < n) {
       p.line([xOf(state.selected), top, xOf(state.selected), top + plotH], "#c25400", 1, [3, 3]);
     }
@@ -495,6 +514,10 @@
     var pct = function (v) { return (v * 100).toFixed(1) + " %"; };
     f.textContent = "Over the whole NEEM (" + d.n_predictions + " decisions, predictor " + d.method + "): Top-1 " + pct(d.summary.top1) +
       ", Top-3 " + pct(d.summary.top3) + ", Top-5 " + pct(d.summary.top5) + " (what python -m oracle evaluate prints for this NEEM's chains).";
+    var p = d.prior || { given: false };
+    f.textContent += p.given ? (p.decisions ? " The shared prior took part in " + p.decisions + " of " + d.rank.length +
+      " rankings, on average " + pct(p.mean) + " of each (the rest: the user's own history)." :
+      " A shared prior was given but took part in no ranking.") : " No shared prior was used: every ranking is the user's own.";
   }
 
   // -- loading a NEEM -------------------------------------------------------------------------
@@ -505,6 +528,14 @@
     document.getElementById("neem-shown").textContent = "";
     getJSON("/explore/api/neems/" + encodeURIComponent(neem) + "/timeline").then(function (r) {
       if (neem !== state.neem) { return; }
+      if (r.status === 202) {  // nothing kept for this NEEM: the service reads its history once, through Prolog
+        status.textContent = "Reading the history of " + (r.body.user || neem) + " (" + r.body.actions +
+          " actions) through Prolog for the first time: " + r.body.seconds + " s so far. Nothing was kept for this NEEM" +
+          " (a loaded dump, a NEEM from an older version, or a server store); the next open is quick.";
+        if (!performance.getEntriesByName("timeline-reading").length) { performance.mark("timeline-reading"); }
+        setTimeout(function () { if (neem === state.neem) { loadNeem(); } }, 1000);
+        return;
+      }
       if (r.status !== 200) { status.textContent = r.body.error || "error"; return; }
       state.timeline = buildTimeline(r.body);
       state.view = wholeView(state.timeline);

@@ -1,0 +1,200 @@
+"""/explore's first paint and the prior's share: the timeline sent by the explorer's own reader
+from the view the store keeps (equal to the engine's read, and answered while the engine thread
+is busy), a NEEM nothing was kept for read once with a 202 that says what is being read, and the
+shared prior's share of each ranking equal to what the personal predictor scored with."""
+
+from __future__ import annotations
+
+import shutil
+import sqlite3
+import threading
+import time
+from collections import Counter
+from collections.abc import Iterator
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from oracle.algorithm.params import preset
+from tests.service.test_explore import _decisions, chains, store  # noqa: F401 - the module's fixtures
+
+pytestmark = pytest.mark.skipif(shutil.which("swipl") is None, reason="SWI-Prolog (swipl) is not installed; run make setup")
+
+
+def _client(path: Path, prior=None) -> Iterator:
+    from fastapi.testclient import TestClient
+
+    from oracle.evaluation.neem_replay import replay_neem
+    from oracle.ontology import build_ontology
+    from oracle.service import build_context
+    from oracle.service.app import create_app
+
+    ctx = build_context(str(path), build_ontology(), preset("recommended"), prior="none")
+    ctx.engine.prior = prior
+    app = create_app(ctx)
+    app.state.explore_replay = replay_neem
+    with TestClient(app, base_url="http://127.0.0.1") as test_client:
+        yield test_client, ctx
+    ctx.thread.close()
+
+
+@pytest.fixture()
+def served(store, tmp_path) -> Iterator:  # noqa: F811
+    """The service over a copy of the store whose history was read once (and so is kept)."""
+    from oracle.historycache import HistoryCache
+
+    copy = tmp_path / "s.sqlite"
+    shutil.copy(store, copy)
+    for client, ctx in _client(copy):
+        ctx.thread.call(_read_once, ctx.engine, HistoryCache.default())
+        yield client, ctx
+
+
+def _read_once(engine, cache) -> None:
+    cache.view(engine.bridge(engine.newest()))
+
+
+def _prior_of(chains_path: Path):  # noqa: F811
+    """A prior counted from the NEEM's own chains (orders 0 and 1): enough to take part in every
+    ranking, which is all these tests need of it."""
+    import json
+
+    from oracle.algorithm.prior import Prior, option_key
+    from oracle.calls import option_of
+    from oracle.chains import parse_call
+    from oracle.ontology import build_ontology
+
+    onto = build_ontology()
+    keys = [option_key(option_of(onto, parse_call(json.loads(line)["action"]))) for line in chains_path.read_text().splitlines()]
+    tables: dict[tuple[str, ...], Counter[str]] = {(): Counter(keys)}
+    for before, after in zip(keys, keys[1:]):
+        tables.setdefault((before,), Counter())[after] += 1
+    return Prior({context: {k: float(n) for k, n in counts.items()} for context, counts in tables.items()})
+
+
+def test_the_timeline_comes_from_the_kept_view_as_the_engine_reads_it(served):
+    from oracle.historycache import HistoryCache, compact
+
+    client, ctx = served
+    neem = client.get("/explore/api/neems").json()[0]["id"]
+    sent = client.get(f"/explore/api/neems/{neem}/timeline")
+    assert sent.status_code == 200
+    rows = ctx.thread.call(lambda: HistoryCache.default().view(ctx.engine.bridge(neem)).rows)
+    assert sent.json() == {"neem": neem, "user": ctx.thread.call(lambda: ctx.engine.store.neem(neem).user), **compact(rows)}
+
+
+def test_the_timeline_and_the_page_do_not_wait_for_the_engine_thread(served):
+    """A page opened while the engine thread is held (another page's routines, a robot's call)
+    gets its shell and its timeline all the same."""
+    client, ctx = served
+    neem = client.get("/explore/api/neems").json()[0]["id"]
+    held, release = threading.Event(), threading.Event()
+
+    def hold() -> None:
+        held.set()
+        release.wait(30)
+
+    ctx.thread.submit(hold)
+    assert held.wait(10)
+    try:
+        began = time.monotonic()
+        page = client.get("/explore")
+        timeline = client.get(f"/explore/api/neems/{neem}/timeline")
+        took = time.monotonic() - began
+        assert page.status_code == 200 and neem in page.text
+        assert timeline.status_code == 200 and timeline.json()["rows"]
+        assert not release.is_set() and took < 25  # answered while the engine thread was still held
+    finally:
+        release.set()
+
+
+def test_a_neem_nothing_was_kept_for_is_read_once_and_says_so(served, monkeypatch):
+    from oracle.historycache import kept_history
+    from oracle.service import explore_routes
+
+    client, ctx = served
+    monkeypatch.setattr(explore_routes, "QUICK_READ_S", 0.0)  # the page is told at once, however quick the read
+    with sqlite3.connect(ctx.engine.store.location) as conn:  # as a loaded dump or a NEEM of an older version
+        assert conn.execute("DELETE FROM kept WHERE kind='history'").rowcount == 1
+    neem = client.get("/explore/api/neems").json()[0]
+    assert ctx.thread.call(lambda: kept_history(ctx.engine.store, ctx.engine.ontology, neem["id"])) is None
+    first = client.get(f"/explore/api/neems/{neem['id']}/timeline")
+    assert first.status_code == 202
+    said = first.json()
+    assert said["reading"] is True and said["actions"] == neem["actions"] and said["user"] == neem["user"]
+    deadline = time.monotonic() + 120
+    while (answer := client.get(f"/explore/api/neems/{neem['id']}/timeline")).status_code == 202:
+        assert time.monotonic() < deadline, "the first read did not finish"
+        time.sleep(0.1)
+    assert answer.status_code == 200 and answer.json()["rows"]
+    kept = ctx.thread.call(lambda: kept_history(ctx.engine.store, ctx.engine.ontology, neem["id"]))
+    assert kept is not None and answer.json()["rows"] == kept["rows"]  # kept now: the next open is the reader's
+
+
+def test_the_prior_shares_are_what_the_predictor_scored_with(store, chains, monkeypatch):  # noqa: F811
+    """Every share shown is the prior's part of the very scores the personal predictor ranked
+    with: the scores those parts sum to order the offer as the ranking shown, and no ranking
+    differs from evaluate's replay with the same prior."""
+    from oracle.algorithm.personal import PRIOR_COLUMNS, PersonalOracle
+    from oracle.evaluation.neem_replay import neem_chains, replay_neem
+    from oracle.evaluation.replay import OracleMethod, ReplayRules, replay, summarize
+    from oracle.historycache import HistoryCache
+    from oracle.ontology import build_ontology
+    from oracle.service import build_context
+
+    onto, settings, prior = build_ontology(), preset("recommended"), _prior_of(chains)
+    ctx = build_context(str(store), onto, settings, prior="none")
+    try:
+        neem = ctx.thread.call(ctx.engine.newest)
+        rows = ctx.thread.call(lambda: HistoryCache.default().view(ctx.engine.bridge(neem)).rows)
+        user = ctx.thread.call(lambda: ctx.engine.store.neem(neem).user)
+    finally:
+        ctx.thread.close()
+    scored: list[tuple[float, float | None]] = []  # each _combined call: how far the parts' sum is from its scores, the share
+    combined = PersonalOracle._combined
+
+    def noted(self, log_p, x, w):
+        a = self.served_weight() or 0.0
+        k = len(PRIOR_COLUMNS)
+        prior_part = (1 - a) * (x[:, -k:] @ w[-k:])
+        own_part = a * log_p + (1 - a) * (x[:, :-k] @ w[:-k])
+        spreads = [np.abs(v - v.mean()).sum() for v in (prior_part, own_part)]
+        served = combined(self, log_p, x, w)
+        # the two parts sum to the scores served, up to the one constant a softmax ignores
+        scored.append((float(np.ptp(served - (prior_part + own_part))), spreads[0] / sum(spreads) if sum(spreads) else None))
+        return served
+
+    monkeypatch.setattr(PersonalOracle, "_combined", noted)
+    shown = replay_neem(onto, settings, "personal", rows, user, keep=10, prior=prior)
+    assert shown.prior and len(scored) > 10
+    shares = [d.prior_share for d in shown.decisions if d.candidates]
+    assert [s for s in shares if s is not None] == pytest.approx([s for _, s in scored if s is not None], abs=1e-12)
+    assert shares[0] == pytest.approx(1.0)  # nothing learnt yet: the others' habits alone rank
+    assert 0.0 < min(s for s in shares if s is not None) < max(s for s in shares if s is not None) <= 1.0
+    assert max(off for off, _ in scored) < 1e-9  # the parts are the very scores the ranking was made with
+    # and no ranking differs from evaluate's replay with the same prior
+    monkeypatch.setattr(PersonalOracle, "_combined", combined)
+    plain = replay(onto, {user: neem_chains(rows, user)}, [OracleMethod(onto, settings, method="personal",
+                                                                        served=ReplayRules().served)],
+                   protocol=ReplayRules(), priors=lambda _: prior)
+    assert [o.ranks["personal"] for o in plain.outcomes] == [d.rank for d in shown.decisions]
+    assert summarize(plain)["methods"]["personal"]["top1"] == shown.summary["methods"]["personal"]["top1"]
+
+
+def test_the_decisions_route_shows_the_prior_share(store, chains, tmp_path):  # noqa: F811
+    copy = tmp_path / "s.sqlite"
+    shutil.copy(store, copy)
+    for client, ctx in _client(copy, _prior_of(chains)):
+        if ctx.engine.method != "personal":
+            pytest.skip(f"the service's predictor is {ctx.engine.method}, not personal: no prior is blended")
+        neem = client.get("/explore/api/neems").json()[0]["id"]
+        found = _decisions(client, neem)
+        prior = found["prior"]
+        assert prior["given"] is True and len(prior["shares"]) == len(found["rank"])
+        used = [s for s in prior["shares"] if s is not None]
+        assert prior["decisions"] == len(used) > 0 and prior["mean"] == pytest.approx(sum(used) / len(used), abs=1e-3)
+    for client, _ in _client(copy):  # without a prior: said so, no shares
+        neem = client.get("/explore/api/neems").json()[0]["id"]
+        prior = _decisions(client, neem)["prior"]
+        assert prior["given"] is False and prior["decisions"] == 0 and prior["mean"] is None
