@@ -103,3 +103,58 @@ def test_a_failed_commit_acknowledges_none_and_drops_the_sessions(engine_thread)
         first.result(timeout=10)
     assert first is second and dropped == [True] and group.commits == 0
     assert group.pending() is None  # the next request opens a new group
+
+
+def test_the_ranking_written_back_commits_with_a_group_not_alone(client, ctx):
+    """The ranking a situation writes back after its answer joins the open group commit: a
+    step of the robot (situation, then action) commits at most twice, and every preference is
+    in the store once the service is idle."""
+    from tests.service.conftest import AVAILABLE, ROUTINE, at
+
+    neem = client.post("/api/neems", json={"user": "ann"}).json()["id"]
+    group = ctx.thread.group
+    before = group.commits
+    for i, call in enumerate(ROUTINE):
+        assert client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(0, 10 * i)}).status_code == 200
+        assert client.post(f"/api/neems/{neem}/actions", json={"call": call, "begin": at(0, 10 * i),
+                                                                "end": at(0, 10 * i + 5)}).status_code == 200
+    ctx.thread.close()  # the queued write-backs done, and their group committed
+    assert group.pending() is None
+    steps = len(ROUTINE)
+    # without the write-back in a group: 3 commits a step (situation, its ranking, action)
+    assert group.commits - before <= 2 * steps
+    preferences = ctx.thread.call(lambda: ctx.engine.store.neem(neem))
+    assert preferences is not None
+
+
+def test_a_lingering_group_commits_by_itself_or_with_the_next_request(tmp_path, onto, engine_thread):
+    """A write nobody waits for (``join(linger=...)``) opens a group whose commit waits for the
+    next request (one commit for both) or, when none comes, for the linger to pass."""
+    import time
+
+    path = tmp_path / "s.sqlite"
+    store = engine_thread.submit(open_store, path).result()
+    logger = engine_thread.submit(lambda: NeemLogger.create(store, onto, user="ann", commit_every=10**9)).result()
+    group = GroupCommit(store, engine_thread.submit, lambda: None)
+
+    def write(minute: int, linger: float | None):
+        done = group.join(linger)
+        logger.action("pick(apple)", datetime(2024, 5, 1, 8, minute))
+        logger.flush()
+        return done
+
+    alone = engine_thread.submit(write, 1, 0.05).result()
+    assert not alone.done()  # lingering: not committed yet
+    alone.result(timeout=10)  # ... until the linger passed
+    assert group.commits == 1
+    lingering = engine_thread.submit(write, 2, 30.0).result()
+    shared = engine_thread.submit(write, 3, None).result()  # the next request: one commit for both
+    assert shared is lingering
+    shared.result(timeout=10)
+    assert group.commits == 2
+    before = _count(path, logger.writes_to)
+    engine_thread.submit(write, 4, 30.0).result()
+    assert engine_thread.submit(group.pending).result() is not None  # a job that asks: commit queued
+    time.sleep(0.2)
+    assert group.commits == 3 and _count(path, logger.writes_to) > before
+    engine_thread.submit(store.close).result()

@@ -79,8 +79,11 @@ class EngineThread:
         return result
 
     def close(self) -> None:
-        """Wait for the jobs queued so far (the thread itself stays, see the class docstring)."""
+        """Wait for the jobs queued so far and commit the open group, a lingering one included
+        (the thread itself stays, see the class docstring)."""
         self.call(lambda: None)
+        if self.group is not None:
+            self.call(self.group.commit)
 
 
 def _log_failure(future: Any) -> None:

@@ -11,6 +11,7 @@ lines that hand one job to the engine. The questions about the past have their o
 from __future__ import annotations
 
 import asyncio
+from collections.abc import Callable
 import threading
 import time
 from typing import TYPE_CHECKING, Annotated, Any, Literal, cast
@@ -179,11 +180,19 @@ async def situation(neem: str, body: SituationIn, request: Request, background: 
     if ctx.write_behind:  # before any later request: the robot's next action counts this offer
         _after_answer(ctx, background, lambda: ctx.engine.session(neem).write_situation(found, ranking))
     else:  # the ranking written back after the answer: derived, nothing the robot waits for
-        _once_answered(ctx, background, lambda: ctx.engine.session(neem).write_ranking(found, ranking))
+        _once_answered(ctx, background, lambda: _write_ranking(ctx, neem, found, ranking))
     ctx.hub.publish(Event("situation", neem, answer))
     # answered as JSON directly: FastAPI's jsonable_encoder walks every field of the ranking and
     # cost more than the ranking itself (0.6 ms against 0.8 ms for 15 tasks); the values are plain
     return JSONResponse(answer, headers={"Server-Timing": timing})
+
+
+def _write_ranking(ctx: Any, neem: str, found: Any, ranking: Any) -> None:
+    """The ranking written back in a group commit that lingers for the robot's next request
+    (its own commit would cost an fsync per situation; nothing waits for it)."""
+    if ctx.thread.group is not None:
+        ctx.thread.group.join(linger=LINGER_S)
+    ctx.engine.session(neem).write_ranking(found, ranking)
 
 
 def routine_now(engine: Any, session: NeemSession, at: float) -> dict[str, Any] | None:
@@ -195,11 +204,16 @@ def routine_now(engine: Any, session: NeemSession, at: float) -> dict[str, Any] 
     if not ranker.clocked:
         return None
     # as oracle.past.mine.neem_routines finds it, from what the session keeps per history
-    _, current = session.warm.in_progress(ranker, at, engine.past.stored(engine.bridge(session.neem)))
+    _, current = session.warm.in_progress(ranker, at, session.warm.stored(stored_reader(engine, session)))
     if current is None:
         return None
     return {**current.to_json(), "steps_left": len(current.remaining),
             "remaining_modes": [session.usual_mode(call, at) for call in current.remaining]}
+
+
+def stored_reader(engine: Any, session: NeemSession) -> Callable[[], list[dict[str, Any]]]:
+    """The read of the workflows stored in the session's NEEM (one Prolog query), for ``Warm.stored``."""
+    return lambda: cast(list[dict[str, Any]], engine.past.stored(engine.bridge(session.neem)))
 
 
 def _join(ctx: Any) -> None:
@@ -238,6 +252,8 @@ def _after(sent: threading.Event, write: Any) -> None:
     write()
 
 
+#: Longest the ranking written back waits, uncommitted, for a request to share its commit.
+LINGER_S = 0.05
 #: Longest a queued write waits for its answer to be sent (a client that vanished).
 RELEASE_S = 1.0
 
@@ -264,7 +280,8 @@ async def action(neem: str, body: ActionIn, request: Request, background: Backgr
     session, answer = await ctx.thread.run(job)
     neem = session.neem
     if not answer.get("open"):  # what the next situation derives from the history, fitted now
-        _once_answered(ctx, background, lambda: session.warm.warm(session.ranker, session.ranker.last_end))
+        _once_answered(ctx, background, lambda: session.warm.warm(session.ranker, session.ranker.last_end,
+                                                                  stored_reader(ctx.engine, session)))
     ctx.hub.publish(Event("action", neem, answer))
     return {"neem": neem, **answer}
 

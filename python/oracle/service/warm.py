@@ -7,6 +7,10 @@ history changes (nothing that can wait belongs on the answer's path).
   the routine it continues, likewise; only "has the user been idle since" depends on the
   situation's time.
 
+- The workflows stored in the NEEM (the names the user gave routines: one Prolog query), read
+  again after each action is answered; a situation reads them itself only when none were read
+  yet. A workflow saved by another process meanwhile names the routine from the next action on.
+
 The actions done are named by the ranker's steps: their number and the last step itself (a step is
 replaced, never changed, so ``is`` tells a new one). The engine refreshes both right after an
 action is answered (``warm``), off the answer's path; a situation that comes first fits them
@@ -15,6 +19,7 @@ itself, with the same result.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -54,6 +59,13 @@ class Warm:
     _modes: tuple[int, int, ModeLogit] | None = None
     _done: tuple[tuple[int, object], float | None, list[Done]] | None = None
     _mined: dict[int, _Mined] = field(default_factory=dict)
+    _stored: list[dict[str, Any]] | None = None
+
+    def stored(self, read: Callable[[], list[dict[str, Any]]]) -> list[dict[str, Any]]:
+        """The workflows stored in the NEEM as last read (``read``: the read, made now if none was)."""
+        if self._stored is None:
+            self._stored = read()
+        return self._stored
 
     def modes(self, ranker: NeemRanker) -> ModeLogit:
         """``fit_modes(ranker.modes)``, fitted once per history."""
@@ -100,8 +112,12 @@ class Warm:
             return routines, None
         return routines, _renamed(found, routines)
 
-    def warm(self, ranker: NeemRanker, at: float | None) -> None:
-        """Fit what the next situation needs now (after an action was answered)."""
+    def warm(self, ranker: NeemRanker, at: float | None,
+             read: Callable[[], list[dict[str, Any]]] | None = None) -> None:
+        """Fit what the next situation needs now (after an action was answered); ``read``: the
+        stored workflows' read, made again now."""
+        if read is not None:
+            self._stored = read()
         self.modes(ranker)
         if ranker.clocked and at is not None:
             self.mined(ranker, at)
