@@ -227,6 +227,8 @@ def import_chains(
                                            hidden=session, meta=meta or None)  # fmt: skip
                 loggers[row.user] = logger
                 report[logger.neem_id] = 0
+                # a new NEEM, its TBox in: the indexes its writes do not read are built at its end
+                store.defer_indexes(logger.writes_to)
             action_id = row.extra.get("id")
             begin: datetime | Instant | None = row.time
             end: datetime | Instant | None = row.end
@@ -245,6 +247,8 @@ def import_chains(
             )
             name = logger.neem_id
             if row.line == plans[row.user].last_line:
+                logger.flush()
+                store.make_indexes(logger.writes_to)  # before the NEEM is complete or swapped in
                 logger.close()  # the user's rows end here: commit (and swap in a replacement) now
                 if not session:
                     store.update_meta(logger.neem_id, **{INCOMPLETE_KEY: None})
@@ -261,6 +265,7 @@ def import_chains(
             for logger in loggers.values():
                 if not logger.replacing:
                     report[logger.neem_id] = logger.flush()
+                    store.make_indexes(logger.writes_to)  # a NEEM cut short (INCOMPLETE) is read as fast
                 elif not done:
                     name = logger.neem_id
                     logger.abandon()  # the old NEEM stays as it was

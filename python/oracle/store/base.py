@@ -247,6 +247,17 @@ class Store(ABC):
         a long step that needs none of it; nothing for a store that keeps no such cache."""
         return None
 
+    def defer_indexes(self, neem_id: str) -> None:
+        """Before a bulk write into a new NEEM: its indexes that the writer's own reads do not use
+        are left out until ``make_indexes`` builds each in one sorted pass (cheaper than keeping
+        them row by row). Reads stay correct meanwhile, only slower. Nothing elsewhere."""
+        return None
+
+    def make_indexes(self, neem_id: str) -> None:
+        """Every index of the NEEM there again (those ``defer_indexes`` left out, or a killed
+        bulk write's); nothing when they are."""
+        return None
+
     def insert(self, neem_id: str, triples: Iterable[TripleRow]) -> int:
         """Store triples (``Triple``s or plain tuples of the same six values) with KnowRob's
         ``p*``/``o*`` closure; return how many were stored.

@@ -104,6 +104,12 @@ class SQLiteStore(Store):
     def transaction(self) -> AbstractContextManager[None]:
         return self._conn.transaction()
 
+    def defer_indexes(self, neem_id: str) -> None:
+        self._registry.defer_indexes(neem_id)
+
+    def make_indexes(self, neem_id: str) -> None:
+        self._registry.make_indexes(neem_id)
+
     # -- registry ---------------------------------------------------------------------------
     def neems(self) -> list[NeemInfo]:
         return self._registry.neems()

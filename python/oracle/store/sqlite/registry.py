@@ -18,7 +18,7 @@ from oracle.store.staging import STAGING
 from oracle.store.model import TAXONOMIC
 from oracle.store.sqlite.connection import Connection
 from oracle.store.sqlite.sides import SideRow
-from oracle.store.sqlite.tables import SIDE, TRIPLE_COLUMNS, indexes, neem_table, quote
+from oracle.store.sqlite.tables import DEFERRED, SIDE, TRIPLE_COLUMNS, index_targets, indexes, neem_table, quote, target_of
 from oracle.store.sqlite.terms import Terms
 
 
@@ -103,6 +103,34 @@ class Registry:
             for _, sql in indexes(neem_id, taken, side=side_property is not None):
                 conn.execute(sql)
             self._track(neem_id)
+
+    def _present_indexes(self, neem_id: str) -> dict[str, str]:
+        """{``ON ...`` target: name} of the indexes on the NEEM's tables (tables.index_targets)."""
+        tables = [f"{neem_id}_{kind}" for kind in (*COLLECTION_KINDS, SIDE)]
+        rows = self.conn.execute(
+            f"SELECT name, sql FROM sqlite_master WHERE type='index' AND sql IS NOT NULL"
+            f" AND tbl_name IN ({', '.join('?' * len(tables))})", tables).fetchall()
+        return {target_of(str(sql)): str(name) for name, sql in rows}
+
+    def defer_indexes(self, neem_id: str) -> None:
+        """Drop the NEEM's indexes of ``tables.DEFERRED`` (Store.defer_indexes); ``make_indexes``
+        builds them again. Each statement is one transaction: a kill leaves all or none."""
+        self.require(neem_id)
+        with self.conn.transaction():
+            present = self._present_indexes(neem_id)
+            for kind, target in index_targets(neem_id, side=self.side_row(neem_id) is not None):
+                if kind in DEFERRED and target in present:
+                    self.conn.execute(f"DROP INDEX {quote(present[target])}")
+
+    def make_indexes(self, neem_id: str) -> None:
+        """Build each index of the NEEM that is not there (Store.make_indexes), in one transaction."""
+        self.require(neem_id)
+        with self.conn.transaction():
+            present = self._present_indexes(neem_id)
+            taken = {name for (name,) in self.conn.execute("SELECT name FROM sqlite_master WHERE type='index'")}
+            for _, sql in indexes(neem_id, taken, side=self.side_row(neem_id) is not None):
+                if target_of(sql) not in present:
+                    self.conn.execute(sql)
 
     def drop(self, neem_id: str) -> None:
         conn = self.conn

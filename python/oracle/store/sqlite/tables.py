@@ -73,15 +73,34 @@ def neem_table(neem_id: str, kind: str) -> str:
     return quote(f"{neem_id}_{kind}")
 
 
-def indexes(neem_id: str, taken: Collection[str] = (), side: bool = False) -> list[tuple[str, str]]:
-    """(name, CREATE INDEX statement) of every index of a NEEM's tables, each name made
-    unique against ``taken`` (the store's index names: a renamed NEEM keeps its old ones)."""
+#: The indexes a bulk write into a new NEEM leaves out until it ends (Store.defer_indexes), by
+#: kind: all but those the logger's own reads use while it writes (whether an individual
+#: exists: (s, p), and the side table's (s)). Built after the rows, each is one sorted pass
+#: instead of a B-tree insert per row (docs/store.md, "Import").
+DEFERRED = frozenset({"triples_op", "triples_postar", "triples_pstaro", "side_o"})
+
+
+def index_targets(neem_id: str, side: bool = False) -> list[tuple[str, str]]:
+    """(kind, ``ON table(columns) WHERE ...``) of every index of a NEEM's tables: what an index
+    is, whatever its name (SQLite keeps this text in sqlite_master, the table renamed in it)."""
     t = partial(neem_table, neem_id)
-    made = [(f"{neem_id}_triples_{name}", f"ON {t('triples')}({cols}){where}") for name, cols, where in TRIPLE_INDEXES]
-    made += [(f"{neem_id}_annotations_sp", f"ON {t('annotations')}(s, p)"), (f"{neem_id}_tf_cs", f"ON {t('tf')}(child, stamp)")]
+    made = [(f"triples_{name}", f"ON {t('triples')}({cols}){where}") for name, cols, where in TRIPLE_INDEXES]
+    made += [("annotations_sp", f"ON {t('annotations')}(s, p)"), ("tf_cs", f"ON {t('tf')}(child, stamp)")]
     if side:
         # (o): whether a NEEM only grew (Reads.appended) asks if an old side row names a new
         # subject; without it SQLite scans the side table (0.17 s at 50,000 actions).
-        made += [(f"{neem_id}_side_s", f"ON {t(SIDE)}(s)"), (f"{neem_id}_side_o", f"ON {t(SIDE)}(o)")]
+        made += [(f"{SIDE}_s", f"ON {t(SIDE)}(s)"), (f"{SIDE}_o", f"ON {t(SIDE)}(o)")]
+    return made
+
+
+def target_of(sql: str) -> str:
+    """The ``ON ...`` part of a CREATE INDEX statement (``index_targets``)."""
+    return sql[sql.index(" ON ") + 1:]
+
+
+def indexes(neem_id: str, taken: Collection[str] = (), side: bool = False) -> list[tuple[str, str]]:
+    """(name, CREATE INDEX statement) of every index of a NEEM's tables, each name made
+    unique against ``taken`` (the store's index names: a renamed NEEM keeps its old ones)."""
+    made = [(f"{neem_id}_{kind}", target) for kind, target in index_targets(neem_id, side)]
     unique = [(name if name not in taken else f"{name}_{os.urandom(4).hex()}", target) for name, target in made]
     return [(name, f"CREATE INDEX {quote(name)} {target}") for name, target in unique]
