@@ -1,6 +1,8 @@
 """Benchmark of the predictors: time per prediction of the thesis oracle's ``fast`` and ``reference``
-and of the pooled predictor, the default, and the routine predictor it pools (median <= 1 ms at 300,
-<= 20 ms at 10,000).
+and of the personal predictor, the default (with a shared prior of other users of the same
+synthetic world, ``bench_data``), the pooled one and the routine predictor they build on (median
+<= 1 ms at 300, <= 20 ms at 10,000); the predicted chain of the personal and pooled ones
+(``perso chain``, ``poole chain``: <= 5 ms at 10,000).
 
 Synthetic histories of 100 to 10,000 steps with ~20 available options per situation, over a
 random 90-class taxonomy whose distances follow thesis eq. 4.5; a routine-like Markov chain over
@@ -25,7 +27,9 @@ from oracle.algorithm.params import PRESETS
 from oracle.algorithm.reference import ReferenceOracle
 from oracle.algorithm.routine import RoutineOracle
 from oracle.algorithm.online import OnlineOracle
+from oracle.algorithm.personal import PersonalOracle
 from oracle.algorithm.pooled import PooledOracle
+from oracle.algorithm.prior import Prior
 from oracle.algorithm.stacked import StackedOracle
 from oracle.algorithm.records import Option, Ranking, Step
 from oracle.ontology.distance import DistanceMatrix
@@ -104,6 +108,27 @@ def history(n: int, seed: int = 0, n_options: int = 20, n_states: int = 60) -> t
     return matrix, steps
 
 
+#: The shared prior of the bench: this many other users of the same synthetic world, each
+#: ``PRIOR_STEPS`` steps of it after the queries, counted as ``prior build`` counts (k = users).
+PRIOR_USERS, PRIOR_STEPS = 5, 2000
+
+
+def bench_data(size: int, queries: int) -> tuple[DistanceMatrix, list[Step], list[Step], Prior]:
+    """The history of ``size`` steps (seed ``size``), the ``queries`` steps after it, and the
+    shared prior counted from ``PRIOR_USERS`` other users of the same world (the steps after the
+    queries, one slice each: what the personal predictor, the default, ranks with)."""
+    from oracle.algorithm.prior import IDLE, option_key
+    from oracle.algorithm.prior_counts import Population
+
+    matrix, steps = history(size + queries + PRIOR_USERS * PRIOR_STEPS, seed=size)
+    others = steps[size + queries:]
+    population = Population()
+    for user in range(PRIOR_USERS):
+        part = others[user * PRIOR_STEPS:(user + 1) * PRIOR_STEPS]
+        population.add(user, [[IDLE if step.idle else option_key(step.option) for step in part]])
+    return matrix, steps[:size], steps[size:size + queries], population.prior(k=PRIOR_USERS)
+
+
 class _Ranker(Protocol):
     """What the timing loops need of an oracle: the reference one has no partial_fit."""
 
@@ -172,8 +197,7 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
     rows: list[dict[str, Any]] = []
     print(f"{'history':>8} {'settings':<14} {'impl':<10} {'median ms':>10} {'p99 ms':>9} {'peak MB':>8} {'ratio':>7}")
     for size in sizes:
-        matrix, steps = history(size + fast_queries, seed=size)
-        prefix, queries = steps[:size], steps[size:]
+        matrix, prefix, queries, prior = bench_data(size, fast_queries)  # = history(size + fast_queries, seed=size)
         for name in SETTINGS:
             settings = PRESETS[name].to_dict()
             found = {}
@@ -205,36 +229,43 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
             print(f"{size:>8} {name:<14} {'fast add':<10} {np.median(adds):>10.3f} {np.percentile(adds, 99):>9.3f}",
                   flush=True)
         floor_ms = fit_floor_ms(prefix)  # one floor per history, beside each predictor's fit on it
-        for learned, impl in ((PooledOracle, "pooled"), (RoutineOracle, "routine"), (StackedOracle, "stacked"),
-                              (OnlineOracle, "online")):
-            rows.extend(_routine_rows(matrix, prefix, queries, fast_queries, size, floor_ms, learned, impl))
+        for learned, impl in ((PersonalOracle, "personal"), (PooledOracle, "pooled"), (RoutineOracle, "routine"),
+                              (StackedOracle, "stacked"), (OnlineOracle, "online")):
+            rows.extend(_routine_rows(matrix, prefix, queries, fast_queries, size, floor_ms, learned, impl,
+                                      prior if learned is PersonalOracle else None))
     return rows
 
 
 def _routine_rows(matrix: DistanceMatrix, prefix: Sequence[Step], queries: Sequence[Step], count: int, size: int,
-                  floor_ms: float, cls: type = RoutineOracle, impl: str = "routine") -> list[dict[str, Any]]:
-    """The routine predictor (or ``cls``, ``impl``: the pooled, stacked or online one) on the same history and
-    queries (its own defaults, self-tuned): rank, partial_fit and one whole fit, beside the fits'
-    floor on that history (``floor_ms``)."""
+                  floor_ms: float, cls: type = RoutineOracle, impl: str = "routine",
+                  prior: Prior | None = None) -> list[dict[str, Any]]:
+    """The routine predictor (or ``cls``, ``impl``: the personal, pooled, stacked or online one) on the same history and
+    queries (its own defaults, self-tuned; the personal one with ``prior``, the bench's shared
+    prior): rank, partial_fit and one whole fit, beside the fits' floor on that history
+    (``floor_ms``); the predicted chain of the personal and the pooled ones."""
+
+    def make() -> Any:
+        return cls(matrix).use_prior(prior) if prior is not None else cls(matrix)
+
     start = time.perf_counter()
-    model = cls(matrix).fit(prefix)
+    model = make().fit(prefix)
     fit_ms = (time.perf_counter() - start) * 1000.0
     model.rank(queries[0], tree_roots=1)
     times = _times(model, queries[:count], 3)
     median, p99 = float(np.median(times)), float(np.percentile(times, 99))
-    peak = _peak_mb(lambda: cls(matrix), prefix, queries)
+    peak = _peak_mb(make, prefix, queries)
     print(f"{size:>8} {'default':<14} {impl:<10} {median:>10.3f} {p99:>9.3f} {peak:>8.1f}   fit {fit_ms:.0f} ms"
           f" (floor {floor_ms:.1f} ms, {fit_ms / floor_ms:.0f}x)",
           flush=True)
     adds = []
-    model = cls(matrix).fit(prefix[:-20])
+    model = make().fit(prefix[:-20])
     for step in prefix[-20:]:  # adding a step also scores the variants on it: one rank
         start = time.perf_counter()
         model.partial_fit(step)
         adds.append((time.perf_counter() - start) * 1000.0)
     print(f"{size:>8} {'default':<14} {impl[:5] + ' add':<10} {np.median(adds):>10.3f} "
           f"{np.percentile(adds, 99):>9.3f}", flush=True)
-    chain = _chain_rows(model, prefix, queries, size, impl, median) if cls is PooledOracle else []
+    chain = _chain_rows(model, prefix, queries, size, impl, median) if cls in (PooledOracle, PersonalOracle) else []
     return chain + [{"area": "algorithm", "name": "rank", "history": size, "impl": impl, "settings": "default",
              "median_ms": round(median, 4), "p99_ms": round(p99, 4), "peak_mb": round(peak, 2)},
             {"area": "algorithm", "name": "partial_fit", "history": size, "impl": impl, "settings": "default",
@@ -251,14 +282,16 @@ def _chain_rows(model: Any, prefix: Sequence[Step], queries: Sequence[Step], siz
     """The predicted chain beside the ranking (oracle.algorithm.chaining): its median time per
     decision over 20 queries, and its floor, one hypothetical copy of the fitted model (what the
     chain must pay before its first re-ranking; its option tables shared until written) plus the
-    ranking's own median per step."""
+    ranking's own median per step. The pooled chain without the clock (as first measured), the
+    personal one, the default, at the decision's time, as the service chains."""
     afterwards = Afterwards(prefix)
     length = 1 + int(model.event_horizon_forward)
     times, copies, steps = [], [], []
     for query in queries[:20]:
         ranking = model.rank(query, tree_roots=0)
+        at = query.time if impl == "personal" else None
         start = time.perf_counter()
-        chain = chain_ahead(model, ranking, query.options, afterwards, query.time_of_day, None, length)
+        chain = chain_ahead(model, ranking, query.options, afterwards, query.time_of_day, at, length)
         times.append((time.perf_counter() - start) * 1000.0)
         steps.append(len(chain))
         start = time.perf_counter()
