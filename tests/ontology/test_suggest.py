@@ -131,11 +131,12 @@ def test_leave_one_out_on_the_kitchen_holds_its_measured_floor(kitchen_loo):
 
 
 def test_leave_one_out_with_the_model_holds_its_measured_floor(kitchen_loo_model):
-    """With the language model (docs/ontology.md: 64 % first, 82 % top 3; the floor one object
-    below the first figure). Still short of the issue's target."""
+    """With the language model (docs/ontology.md: 64 % first, 82 % top 3; each floor one object
+    below, as a 4-bit model's sums may differ in the last bit on another CPU). Still short of
+    the issue's target."""
     assert len(kitchen_loo_model.objects) == 22
-    assert LeaveOneOut.rate(kitchen_loo_model.objects, 1) >= 0.59
-    assert LeaveOneOut.rate(kitchen_loo_model.objects, 3) >= 0.8
+    assert LeaveOneOut.rate(kitchen_loo_model.objects, 1) >= 13 / 22
+    assert LeaveOneOut.rate(kitchen_loo_model.objects, 3) >= 17 / 22
     # what only the model knows: no name, comment or structure says a fridge is a refrigerator
     ranks = {r.entry: r.rank for r in kitchen_loo_model.objects}
     assert ranks["fridge"] == 1 and ranks["human"] == 1 and ranks["_robot"] == 1
