@@ -244,3 +244,51 @@ def test_a_ranking_without_its_explanation_orders_as_the_explained_one_and_the_c
         later = rankings_ahead(model, ranking, step.options, after, step.time_of_day, step.time, 4)
         chain = chain_ahead(model, ranking, step.options, after, step.time_of_day, step.time, 4)
         assert chain == ((ranking.tasks[0].option, *(r.tasks[0].option for r in later)) if ranking.tasks else ())
+
+
+class _Afresh(PersonalOracle):
+    """The personal predictor without the kept evidence and rows: each made anew when asked."""
+
+    def _evidence(self, offered, now):  # type: ignore[no-untyped-def]
+        self._evidence_at = None
+        return super()._evidence(offered, now)
+
+    def _rows(self, offered, time_of_day, at):  # type: ignore[no-untyped-def]
+        self._rows_at = None
+        return super()._rows(offered, time_of_day, at)
+
+
+def test_the_kept_evidence_and_rows_rank_learn_and_chain_as_made_afresh():
+    """What ranking a decision computes is kept for learning it next (the predicted chain's steps,
+    at the decision's time and at the part of day it will be learnt at): the same rankings, the
+    same weights learnt, the same chains, and the kept rows cannot be changed in place."""
+    from oracle.benchmarks.algorithm import bench_data
+
+    matrix, prefix, queries, prior = bench_data(400, 40)
+    kept, afresh = (cls(matrix).use_prior(prior).fit(prefix) for cls in (PersonalOracle, _Afresh))
+    afterwards = Afterwards(prefix)
+    for query in queries:
+        ranked = kept.rank(query, tree_roots=0)
+        assert ranked == afresh.rank(query, tree_roots=0)
+        chains = [chain_ahead(m, ranked, query.options, afterwards, query.time_of_day, query.time, 6) for m in (kept, afresh)]
+        assert chains[0] == chains[1]
+        kept.partial_fit(query)
+        afresh.partial_fit(query)
+        afterwards.add(query)
+        assert np.array_equal(kept.coef_, afresh.coef_)
+    rows = kept._rows(list(queries[-1].options), queries[-1].time_of_day, queries[-1].time)
+    with pytest.raises(ValueError):
+        rows[0, 0] = 1.0
+
+
+def test_a_fork_shares_the_followers_sets_and_neither_changes_the_others():
+    from oracle.algorithm.focus import Resumption
+
+    base = Resumption()
+    for action in (1, 2, 1, 3):
+        base.follow(action)
+    fork = base.fork()
+    fork.follow(4)  # 3 -> 4 in the fork only
+    base.follow(5)  # 3 -> 5 in the base only
+    assert base.followers[3] == {5} and fork.followers[3] == {4}
+    assert base.followers[1] == fork.followers[1] == {2, 3} and base.followers[1] is fork.followers[1]

@@ -148,9 +148,12 @@ class Resumption:
     def follow(self, action: int) -> None:
         """The next action done (after a gap or not)."""
         if self.last >= 0:
-            self.followers.setdefault(self.last, set()).add(action)
+            after = self.followers.get(self.last)
+            if after is None or action not in after:
+                # a new set, never one changed in place: a fork shares the sets (``fork``)
+                self.followers[self.last] = {action} if after is None else after | {action}
         self.last = action
 
     def fork(self) -> Resumption:
-        """A copy."""
-        return Resumption(self.lift.fork(), {action: set(after) for action, after in self.followers.items()}, self.last)
+        """A copy (the followers' sets shared: neither side changes one in place, ``follow``)."""
+        return Resumption(self.lift.fork(), dict(self.followers), self.last)

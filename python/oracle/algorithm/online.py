@@ -18,7 +18,6 @@ score are the combination's. docs/algorithm.md, "Online predictor".
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Iterable, Sequence
 from typing import Any, cast
@@ -37,6 +36,16 @@ from oracle.errors import SettingsError
 #: pseudo-rows of unit variance in each column's spread: the few rows of a user's first decisions
 #: do not blow a column up (a column that barely varied yet would weigh as if it decided)
 SPREAD_PRIOR = 20.0
+
+def _reranked(task: RoutineTask, rank: int, probability: float) -> RoutineTask:
+    """``dataclasses.replace(task, rank=rank, probability=probability, score=-log2 probability)``
+    without replace's work per field (a ranking of 20 options is re-made per hypothetical step of
+    the predicted chain): the same fields, the three given."""
+    twin = object.__new__(type(task))
+    twin.__dict__.update(task.__dict__, rank=rank, probability=probability,
+                         score=-math.log2(probability) if probability > 0 else math.inf)
+    return twin
+
 
 class OnlineOracle(RoutineOracle):
     """The routine predictor with an online-learnt combination of its evidence (module docstring):
@@ -81,6 +90,7 @@ class OnlineOracle(RoutineOracle):
         self.spread_ = 0.0                       # the sum of its squares
         self._learn_from = 0
         self._clock = DecisionClock()
+        self._rows_at: tuple[tuple[Any, ...], np.ndarray] | None = None  # _rows's latest answer
         super().fit(history)
         return self
 
@@ -103,10 +113,29 @@ class OnlineOracle(RoutineOracle):
             offered, _ = offered_options(step, None)
             if len(offered) > 1 and step.option in offered:
                 when, part = self._clock.decided(step)
-                x = self._features(offered, part, when)
+                x = self._rows(offered, part, when)
                 self._learn(x, self._served(x, self._evidence(offered, part).ids, when), offered.index(step.option))
         super()._add(step, score, offers)
         self._clock.passed(step)
+
+    def _rows(self, offered: Sequence[Option], time_of_day: str | None, at: float | None) -> np.ndarray:
+        """``_features`` of an offer (read-only), kept while the model is as it is: ranking a
+        decision and then learning it (the predicted chain's hypothetical steps: each ranked, then
+        taken as done) read the same rows. The number of steps counted is part of the key (only
+        counting a step changes the evidence; ``fit`` and a new prior start afresh)."""
+        key = (tuple(offered), time_of_day, at, self.n_steps_)
+        kept = self.__dict__.get("_rows_at")
+        if kept is not None and kept[0] == key:
+            return cast(np.ndarray, kept[1])
+        x = self._features(offered, time_of_day, at)
+        x.flags.writeable = False
+        self._rows_at = (key, x)
+        return x
+
+    def __getstate__(self) -> dict[str, Any]:
+        state = dict(self.__dict__)
+        state.pop("_rows_at", None)  # a cache of the present state only
+        return state
 
     def _features(self, offered: Sequence[Option], time_of_day: str | None, at: float | None) -> np.ndarray:
         """The evidence rows of an offer (``evidence.features``); a subclass may add columns."""
@@ -195,11 +224,9 @@ class OnlineOracle(RoutineOracle):
         # once for both), then in the ranking's order
         row = {option: i for i, option in enumerate(offered)}
         moment = self._clock.moment() if when is not None else None
-        x = self._features(offered, now, moment)[[row[t.option] for t in tasks]]
+        x = self._rows(offered, now, moment)[[row[t.option] for t in tasks]]
         u = self._combined(np.log(np.maximum([t.probability for t in tasks], FLOOR)), x, w)
         p = np.exp(u - u.max())
         p /= p.sum()
         order = sorted(range(len(tasks)), key=lambda i: (-p[i], i))  # ties: the routine predictor's order
-        return Ranking(tuple(dataclasses.replace(
-            tasks[i], rank=rank, probability=float(p[i]),
-            score=-math.log2(float(p[i])) if p[i] > 0 else math.inf) for rank, i in enumerate(order, start=1)))
+        return Ranking(tuple(_reranked(tasks[i], rank, float(p[i])) for rank, i in enumerate(order, start=1)))

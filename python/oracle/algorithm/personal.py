@@ -51,6 +51,7 @@ class PersonalOracle(PooledOracle):
     def use_prior(self, prior: Prior | None) -> PersonalOracle:
         """Rank with ``prior`` (None: without one) from now on; the weights learnt are kept."""
         self._prior = prior
+        self._rows_at = None  # rows with the other prior's columns
         return self
 
     @property
@@ -116,7 +117,7 @@ class PersonalOracle(PooledOracle):
 
     def __getstate__(self) -> dict[str, Any]:
         # the prior is the process's, loaded from its file: never kept with a fit
-        state = dict(self.__dict__)
+        state = super().__getstate__()
         state["_prior"] = None
         if "_keys" in state:
             state["_keys"] = {}  # a cache, made again as it is needed

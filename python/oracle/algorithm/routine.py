@@ -215,7 +215,7 @@ class RoutineOracle(EstimatorParams):
         self.gate_ = ClockGate(kept=[])
         self.n_steps_ = 0
         self.fitted_steps_: int | None = 0  # the length of the history fit() saw; None once partial_fit
-        self._evidence_at: tuple[tuple[Any, ...], Evidence] | None = None  # _evidence's latest answer
+        self._evidence_at: tuple[Any, ...] | None = None  # _evidence's latest answers: key, evidence, ...
         self._grow(list(history))
         return self
 
@@ -338,14 +338,18 @@ class RoutineOracle(EstimatorParams):
         counts, and ``fit`` starts afresh)."""
         key = (tuple(offered), now, self.n_steps_)
         kept = self.__dict__.get("_evidence_at")
-        if kept is not None and kept[0] == key:
-            return cast(Evidence, kept[1])
+        if kept is not None:
+            # the latest two answers: learning a decision asks for its evidence at the part of day
+            # it will be learnt at and at the one it was ranked at (the predicted chain's first step)
+            for at in (0, 2):
+                if len(kept) > at and kept[at] == key:
+                    return cast(Evidence, kept[at + 1])
         ids = self._offer_ids(offered)
         inside = self._in_focus(offered, ids=ids) if self.focus else None
         new, resumed = self._offer_flags(ids)
         probabilities, _, cand = self._variant_probabilities(offered, ids, now, None, inside, new, resumed)
         seen = Evidence(ids, inside, new, resumed, probabilities, cand)
-        self._evidence_at = (key, seen)
+        self._evidence_at = (key, seen) if kept is None or kept[0][2] != key[2] else (key, seen, *kept[:2])
         return seen
 
     def _in_focus(self, offered: Sequence[Option], held: frozenset[str] | None = None,
