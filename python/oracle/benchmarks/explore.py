@@ -2,14 +2,18 @@
 user's NEEM of about 10,000 actions (1,000 with --quick) served by ``oracle serve``.
 
 - first paint of the timeline: the page's own ``timeline-painted`` mark (chromium's performance
-  API, ms since navigation), on the page's first open after the service started, on a later open
-  while the replay that first open started runs, and on one after it is done; its floor is the
-  same page's first contentful paint (the shell, before any data);
+  API, ms since navigation) while the NEEM's replay runs in the service (started just before by
+  a request for the decisions, as a first open starts it): cold (the service's first page, in a
+  fresh browser: nothing cached on either side) and warm (the same page opened again in that
+  browser), then once the replay is done; each one's floor is the same page's first contentful
+  paint (the shell, before any data);
+- a NEEM nothing was kept for (the same store with its kept view removed, as a loaded dump or a
+  server's store): when the page says what is being read (``timeline-reading``) and when the
+  timeline paints after the one read through Prolog, beside the same floor;
 - pan and zoom: a scripted pan/zoom on every animation frame for 2 s, frames the timeline was
   redrawn in per second and the 95th percentile of one redraw (``timeline-draw`` measures); the
   floor is the browser's own frame rate in the same page, an empty requestAnimationFrame loop.
-Targets: first paint <= 1 s, >= 30 frames/s. The replay behind the decisions runs in
-the service meanwhile (started by the page's first open), as it would for a researcher.
+Targets: first paint <= 1 s, >= 30 frames/s.
 """
 
 from __future__ import annotations
@@ -69,13 +73,69 @@ def _neem(folder: Path, days: int) -> tuple[Path, int]:
     return folder / "s.sqlite", len(rows)
 
 
-def _paint(browser: Any, url: str) -> tuple[float, float, Any]:
-    page = browser.new_page(viewport={"width": 1280, "height": 1000}, bypass_csp=True)
+def _paint(context: Any, url: str, mark: str = "timeline-painted") -> tuple[float, float, Any]:
+    page = context.new_page()
     page.goto(url)
-    page.wait_for_function("performance.getEntriesByName('timeline-painted').length > 0", timeout=120_000)
-    painted = page.evaluate("performance.getEntriesByName('timeline-painted')[0].startTime")
+    page.wait_for_function(f"performance.getEntriesByName('{mark}').length > 0", timeout=120_000)
+    painted = page.evaluate(f"performance.getEntriesByName('{mark}')[0].startTime")
     shell = page.evaluate("(performance.getEntriesByName('first-contentful-paint')[0] || {startTime: NaN}).startTime")
     return float(painted), float(shell), page
+
+
+def _pending(url: str, neem: str) -> bool:
+    return call(url, f"/explore/api/neems/{neem}/decisions", timeout=120)[0] == 202
+
+
+def _row(name: str, actions: int, painted: float, shell: float, **more: Any) -> dict[str, Any]:
+    return {"area": "explore", "name": name, "actions": actions, "ms": round(painted, 1), "floor_ms": round(shell, 1), **more}
+
+
+def _opens(browser: Any, url: str, neem: str, actions: int) -> tuple[list[dict[str, Any]], Any]:
+    """The three opens of a kept NEEM; the last page, for the pan and zoom."""
+    rows = []
+    context = browser.new_context(viewport={"width": 1280, "height": 1000}, bypass_csp=True)
+    _pending(url, neem)  # starts the replay, as a first open does once its timeline is painted
+    page = None
+    for when in ("cold", "warm"):
+        if page is not None:
+            page.close()
+        painted, shell, page = _paint(context, url + "/explore")
+        running = _pending(url, neem)
+        print(f"  {actions} actions, {when} open, the replay running: timeline painted at {painted:7.1f} ms"
+              f" (floor: the shell's first contentful paint {shell:6.1f} ms)"
+              f"{'' if running else '; the replay ended meanwhile'}", flush=True)
+        rows.append(_row(f"first paint, {when}, the replay running", actions, painted, shell, replay_running=running))
+    deadline = time.monotonic() + 600
+    while _pending(url, neem) and time.monotonic() < deadline:
+        time.sleep(1)
+    assert page is not None
+    page.close()
+    painted, shell, page = _paint(context, url + "/explore")
+    print(f"  {actions} actions, warm open, the replay done: timeline painted at {painted:7.1f} ms"
+          f" (floor: the shell's first contentful paint {shell:6.1f} ms)", flush=True)
+    rows.append(_row("first paint, warm, the replay done", actions, painted, shell))
+    return rows, page
+
+
+def _unkept(browser: Any, path: Path, actions: int) -> list[dict[str, Any]]:
+    """A copy of the store with nothing kept: what the page says, and when the timeline comes."""
+    import sqlite3
+
+    copy = path.with_name("unkept.sqlite")
+    shutil.copy(path, copy)
+    with sqlite3.connect(copy) as conn:
+        conn.execute("DELETE FROM kept")
+    service = start(copy)
+    try:
+        context = browser.new_context(viewport={"width": 1280, "height": 1000}, bypass_csp=True)
+        painted, shell, page = _paint(context, service.url + "/explore")
+        said = page.evaluate("(performance.getEntriesByName('timeline-reading')[0] || {startTime: NaN}).startTime")
+        print(f"  {actions} actions, nothing kept: the page says what it reads at {said:7.1f} ms, timeline painted at"
+              f" {painted:7.1f} ms (floor: the shell's first contentful paint {shell:6.1f} ms)", flush=True)
+        context.close()
+        return [_row("first paint, nothing kept", actions, painted, shell, reading_said_ms=round(float(said), 1))]
+    finally:
+        stop(service)
 
 
 def run(quick: bool = False) -> list[dict[str, Any]]:
@@ -96,23 +156,9 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
             with sync_playwright() as playwright:
                 browser = playwright.chromium.launch(executable_path=chromium, headless=True,
                                                      args=["--no-sandbox", "--disable-gpu", "--no-first-run"])
-                url = service.url + "/explore"
                 listed: Any = call(service.url, "/explore/api/neems")[1]  # a JSON list, where call's type says dict
-                neem = listed[0]["id"]
-                for when in ("first open", "a later open, the replay running", "a later open, the replay done"):
-                    if when.endswith("done"):
-                        deadline = time.monotonic() + 600
-                        while call(service.url, f"/explore/api/neems/{neem}/decisions", timeout=120)[0] == 202:
-                            if time.monotonic() > deadline:
-                                break
-                            time.sleep(1)
-                    painted, shell, page = _paint(browser, url)
-                    print(f"  {actions} actions, {when}: timeline painted at {painted:7.1f} ms"
-                          f" (floor: the shell's first contentful paint {shell:6.1f} ms)", flush=True)
-                    rows.append({"area": "explore", "name": f"first paint, {when}", "actions": actions,
-                                 "ms": round(painted, 1), "floor_ms": round(shell, 1)})
-                    if not when.endswith("done"):
-                        page.close()
+                opened, page = _opens(browser, service.url, listed[0]["id"], actions)
+                rows += opened
                 motion = page.evaluate(MOTION_JS, 2)
                 floor = page.evaluate(FLOOR_JS, 2)
                 print(f"  pan and zoom: {motion['fps']:5.1f} redraws/s, one redraw p95 {motion['p95']:5.2f} ms"
@@ -120,6 +166,8 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
                 rows.append({"area": "explore", "name": "pan and zoom", "actions": actions, "fps": round(motion["fps"], 1),
                              "p95_draw_ms": round(motion["p95"], 2), "floor_fps": round(floor, 1)})
                 page.close()
+                stop(service)
+                rows += _unkept(browser, path, actions)
                 browser.close()
         finally:
             stop(service)

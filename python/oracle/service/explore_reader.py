@@ -9,16 +9,24 @@ and by every read since): this reader sends it when it is at the store's mark no
 ``None`` otherwise (nothing kept, kept behind the mark, a temporary NEEM, a store that cannot tell
 such as MongoDB), and the caller then reads through the engine as before.
 
+What it read is kept in memory by NEEM and the store's mark (``KeptTimeline``: the parsed history,
+the answer's bytes, the rows the replay takes): an open of a NEEM unchanged since, and each poll a
+page makes while the replay runs, costs a mark and a name looked up, not 10,000 rows parsed again.
+
 Only a SQLite store is opened here (read-only, at its first use): a second connection to a server
 would only double the sessions for nothing, since a server's store keeps no view.
 """
 
 from __future__ import annotations
 
+import json
 import threading
+from collections import OrderedDict
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
+
+from oracle.bridge.records import HistoryRow, history_rows
 
 if TYPE_CHECKING:
     from oracle.ontology import OdbOntology
@@ -30,6 +38,34 @@ def _is_file_store(location: str) -> bool:
 
 
 @dataclass
+class KeptTimeline:
+    """A NEEM's kept history as read at ``mark``: the timeline route's answer and the replay's rows."""
+
+    mark: Any
+    neem: str
+    user: str
+    history: dict[str, Any]
+    _body: list[bytes] = field(default_factory=list)
+    _rows: list[list[HistoryRow]] = field(default_factory=list)
+
+    def body(self) -> bytes:
+        """The timeline route's answer (written once)."""
+        if not self._body:
+            self._body.append(json.dumps({"neem": self.neem, "user": self.user, **self.history}, separators=(",", ":")).encode())
+        return self._body[0]
+
+    def rows(self) -> list[HistoryRow]:
+        """The history as rows (made once; the replay and its key read them)."""
+        if not self._rows:
+            self._rows.append(history_rows(self.history))
+        return self._rows[0]
+
+
+#: NEEMs whose timeline is kept in memory at once (each a few MB at 10,000 actions)
+KEPT_TIMELINES = 4
+
+
+@dataclass
 class ExploreReader:
     """One thread, one read-only store of ``location`` (opened on first use)."""
 
@@ -38,6 +74,8 @@ class ExploreReader:
     pool: ThreadPoolExecutor = field(default_factory=lambda: ThreadPoolExecutor(1, thread_name_prefix="explore-read"))
     _store: list[Store] = field(default_factory=list)
     _lock: threading.Lock = field(default_factory=threading.Lock)
+    #: by NEEM id, the latest read last (used on the reader's thread only)
+    timelines: OrderedDict[str, KeptTimeline] = field(default_factory=OrderedDict)
 
     async def run(self, job: Any, *args: Any) -> Any:
         """``job(store, *args)`` on the reader's thread; None when there is no store to read."""
@@ -70,6 +108,30 @@ class ExploreReader:
                 store.close()
             self._store.clear()
 
+    def kept_timeline(self, store: Store, neem: str) -> KeptTimeline | None:
+        """The NEEM's history as the store keeps it at its mark now, from memory when it was read
+        at that mark; None when the store keeps none at its mark (the engine then reads it)."""
+        from oracle.historycache import kept_history
+        from oracle.store.ids import find_neem
+
+        info = find_neem(store, neem)
+        if info is None or info.temporary:
+            return None
+        mark = store.append_mark(info.id)
+        known = self.timelines.get(info.id)
+        if mark is not None and known is not None and known.mark == mark:
+            self.timelines.move_to_end(info.id)
+            return known
+        history = kept_history(store, self.ontology, info.id)
+        if history is None or mark is None:
+            return None
+        # kept_history checked the entry against the mark it read; marks only grow, so an entry
+        # newer than ``mark`` is only ever found again under a newer mark and read once more
+        kept = self.timelines[info.id] = KeptTimeline(mark, info.id, info.user or info.id, history)
+        while len(self.timelines) > KEPT_TIMELINES:
+            self.timelines.popitem(last=False)
+        return kept
+
 
 def newest(store: Store) -> str | None:
     """The newest NEEM of the store (the engine's rule, engine.Engine.newest)."""
@@ -77,19 +139,4 @@ def newest(store: Store) -> str | None:
     return max(infos, key=lambda info: (info.created_at or "", info.id)).id if infos else None
 
 
-def kept_timeline(store: Store, ontology: OdbOntology | None, neem: str) -> tuple[str, str, dict[str, Any]] | None:
-    """The NEEM's id, user and its history in ``historycache.compact``'s shape, as the store
-    keeps it at its mark now; None when it does not (the engine then reads it)."""
-    from oracle.historycache import kept_history
-    from oracle.store.ids import find_neem
-
-    info = find_neem(store, neem)
-    if info is None:
-        return None
-    history = kept_history(store, ontology, info.id)
-    if history is None:
-        return None
-    return info.id, info.user or info.id, history
-
-
-__all__ = ["ExploreReader", "kept_timeline", "newest"]
+__all__ = ["ExploreReader", "KeptTimeline", "newest"]

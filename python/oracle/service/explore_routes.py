@@ -42,7 +42,7 @@ from fastapi import APIRouter, Query, Request
 from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, Response
 
 from oracle.service.explore_page import EXPLORE_FILES, EXPLORE_STATIC, render_explore
-from oracle.service.explore_reader import ExploreReader, kept_timeline, newest
+from oracle.service.explore_reader import ExploreReader, KeptTimeline, newest
 
 if TYPE_CHECKING:
     from oracle.algorithm.params import Hyperparameters
@@ -254,16 +254,22 @@ def _unread(ctx: Context, neem: str) -> dict[str, Any] | None:
     return {"neem": neem_id, "user": info.user or neem_id, "actions": summarize_neem(ctx.engine.store, neem_id, info).actions}
 
 
+async def _kept(request: Request, neem: str) -> KeptTimeline | None:
+    reader = _state(request).reader
+    if reader is None:
+        return None
+    kept: KeptTimeline | None = await _read(request, reader.kept_timeline, neem)
+    return kept
+
+
 async def _rows(request: Request, neem: str) -> tuple[str, str, list[HistoryRow]] | dict[str, Any]:
     """The NEEM's id, user and history: from the reader when the store keeps it, else read by
     the engine. A NEEM whose history nothing kept is read once in the background (6-10 s at
     10,000 actions): until then the answer is what is being read, as a dict."""
-    from oracle.bridge import history_rows
-
     ctx, state = _ctx(request), _state(request)
-    kept = await _read(request, kept_timeline, ctx.engine.ontology, neem)
+    kept = await _kept(request, neem)
     if kept is not None:
-        return kept[0], kept[1], history_rows(kept[2])
+        return kept.neem, kept.user, kept.rows()
     reading = state.reading.get(neem)
     if reading is None:
         unread = await ctx.thread.run(_unread, ctx, neem)
@@ -295,9 +301,9 @@ async def explore_timeline(neem: str, request: Request) -> Response:
     ``seconds`` since the read began while a history nothing kept is read through Prolog."""
     from oracle.historycache import compact
 
-    kept = await _read(request, kept_timeline, _ctx(request).engine.ontology, neem)
+    kept = await _kept(request, neem)
     if kept is not None:
-        return _json({"neem": kept[0], "user": kept[1], **kept[2]})
+        return Response(kept.body(), media_type="application/json")
     got = await _rows(request, neem)
     if isinstance(got, dict):
         return _json(got, 202)
