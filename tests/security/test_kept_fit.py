@@ -144,7 +144,7 @@ def _mutated(data: bytes, rng: random.Random) -> bytes:
 def test_the_decoder_itself_makes_only_data_from_mutated_models():
     """Behind the tag, the plain decoder alone: 2,000 mutations of a real model's bytes either
     decode or fail with PlainStateError; nothing runs."""
-    matrix, steps = random_matrix(3), synthetic_history(60, 3)
+    matrix, steps = random_matrix(3), synthetic_history(20, 3)
     model = RoutineOracle(matrix).fit(steps)
     classes = fitcache.model_classes(model)
     data = plainstate.dumps(model, classes, shared=matrix)
