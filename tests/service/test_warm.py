@@ -89,3 +89,33 @@ def test_boot_warms_the_engine_up_and_freezes_what_the_boot_made(tmp_path, onto)
     finally:
         gc.unfreeze()  # the test process goes on collecting as before
         ctx.thread.close()
+
+
+def test_the_stored_workflows_are_read_once_then_after_an_action_at_most_every_stored_s(monkeypatch):
+    from oracle.service import warm as warm_module
+    from oracle.service.warm import Warm
+
+    reads: list[int] = []
+
+    def read() -> list[dict]:
+        reads.append(1)
+        return [{"name": f"read {len(reads)}", "steps": [], "by_user": True}]
+
+    class _Ranker:  # what warm() reads of a ranker, with no action counted
+        steps: list = []
+        begins: list = []
+        last_end = None
+        clocked = False
+
+        class modes:
+            counts: dict = {}
+
+    kept = Warm()
+    monkeypatch.setattr(warm_module, "fit_modes", lambda counts: object())
+    assert kept.stored(read)[0]["name"] == "read 1"
+    assert kept.stored(read)[0]["name"] == "read 1" and len(reads) == 1  # a situation: no read
+    kept.warm(_Ranker(), None, read)  # an action within STORED_S: no read either
+    assert len(reads) == 1
+    monkeypatch.setattr(warm_module, "STORED_S", 0.0)
+    kept.warm(_Ranker(), None, read)
+    assert kept.stored(read)[0]["name"] == "read 2"

@@ -7,9 +7,11 @@ history changes (nothing that can wait belongs on the answer's path).
   the routine it continues, likewise; only "has the user been idle since" depends on the
   situation's time.
 
-- The workflows stored in the NEEM (the names the user gave routines: one Prolog query), read
-  again after each action is answered; a situation reads them itself only when none were read
-  yet. A workflow saved by another process meanwhile names the routine from the next action on.
+- The workflows stored in the NEEM (the names the user gave routines: one Prolog query, and a
+  switch of the one Prolog bridge to the NEEM, which with many robots is most of its cost), read
+  again after an action is answered once ``STORED_S`` have passed since the last read; a
+  situation reads them itself only when none were read yet. A workflow saved by another process
+  meanwhile names the routine from the first action after that on.
 
 The actions done are named by the ranker's steps: their number and the last step itself (a step is
 replaced, never changed, so ``is`` tells a new one). The engine refreshes both right after an
@@ -19,6 +21,7 @@ itself, with the same result.
 
 from __future__ import annotations
 
+import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
@@ -30,6 +33,10 @@ from oracle.timeline import is_idle_gap
 
 if TYPE_CHECKING:
     from oracle.ranking import NeemRanker
+
+
+#: The stored workflows are read again after an action at most this often (seconds).
+STORED_S = 10.0
 
 
 def _version(ranker: NeemRanker) -> tuple[int, object]:
@@ -60,11 +67,12 @@ class Warm:
     _done: tuple[tuple[int, object], float | None, list[Done]] | None = None
     _mined: dict[int, _Mined] = field(default_factory=dict)
     _stored: list[dict[str, Any]] | None = None
+    _stored_at: float = 0.0  # when they were read (time.monotonic)
 
     def stored(self, read: Callable[[], list[dict[str, Any]]]) -> list[dict[str, Any]]:
         """The workflows stored in the NEEM as last read (``read``: the read, made now if none was)."""
         if self._stored is None:
-            self._stored = read()
+            self._stored, self._stored_at = read(), time.monotonic()
         return self._stored
 
     def modes(self, ranker: NeemRanker) -> ModeLogit:
@@ -115,9 +123,9 @@ class Warm:
     def warm(self, ranker: NeemRanker, at: float | None,
              read: Callable[[], list[dict[str, Any]]] | None = None) -> None:
         """Fit what the next situation needs now (after an action was answered); ``read``: the
-        stored workflows' read, made again now."""
-        if read is not None:
-            self._stored = read()
+        stored workflows' read, made again if ``STORED_S`` have passed since the last."""
+        if read is not None and (self._stored is None or time.monotonic() - self._stored_at >= STORED_S):
+            self._stored, self._stored_at = read(), time.monotonic()
         self.modes(ranker)
         if ranker.clocked and at is not None:
             self.mined(ranker, at)
