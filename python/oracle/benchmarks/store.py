@@ -1,4 +1,5 @@
-"""Store figures: logging throughput into the embedded store, export/load of a 10,000-action NEEM."""
+"""Store figures: logging throughput into the embedded store, export/load of a 10,000-action NEEM,
+and ``import`` of 10,000 and 50,000 actions with the first rank after it (benchmarks.importbench)."""
 
 from __future__ import annotations
 
@@ -124,4 +125,6 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
         target.close()
     finally:
         shutil.rmtree(work, ignore_errors=True)
-    return rows
+    from oracle.benchmarks import importbench
+
+    return rows + importbench.run(quick)
