@@ -119,3 +119,41 @@ def test_the_stored_workflows_are_read_once_then_after_an_action_at_most_every_s
     monkeypatch.setattr(warm_module, "STORED_S", 0.0)
     kept.warm(_Ranker(), None, read)
     assert kept.stored(read)[0]["name"] == "read 2"
+
+
+def test_the_kept_clustering_mines_the_routines_of_mining_all_at_once():
+    """Warm keeps the clustering of every episode but the last and grows it: after each action
+    of three simulated weeks, the routines are those of mining the actions afresh."""
+    from oracle.past.routines import Done, episodes_of
+    from oracle.service.warm import Warm
+
+    _, rows = persona_rows(1, 5, 21)
+    done = [Done(row.time.timestamp(), (row.end or row.time).timestamp(), str(row.action)) for row in rows]
+    kept = Warm()
+    found = 0
+    for count in range(1, len(done), 3):
+        mined = kept._mine(episodes_of(done[:count]))
+        assert mined == mine_routines(done[:count])
+        found += bool(mined)
+    assert found > 10  # routines were found, not only empty lists compared
+
+
+def test_the_kept_episodes_cut_as_cutting_all_at_once():
+    """Warm cuts only the actions from the last episode on again while the earlier ones are the
+    same objects: the episodes of each action list are those of cutting it afresh, when the
+    last action's end changes (a new object) and when the list is made anew."""
+    from dataclasses import replace
+
+    from oracle.past.routines import Done, episodes_of
+    from oracle.service.warm import Warm
+
+    _, rows = persona_rows(2, 5, 14)
+    made = [Done(row.time.timestamp(), (row.end or row.time).timestamp(), str(row.action)) for row in rows]
+    kept, done = Warm(), []
+    for count, action in enumerate(made):
+        # as Warm.done makes it: the earlier actions the same objects, the last one made again
+        done = done[:-1] + [replace(done[-1])] + [action] if done else [action]
+        if count % 50 == 49:
+            done = list(map(lambda d: replace(d), done))  # made anew: nothing kept applies
+        assert kept._episodes(done) == episodes_of(done)
+    assert kept._cut is not None and len(episodes_of(done)) > 20

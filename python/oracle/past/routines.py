@@ -122,12 +122,38 @@ def _hours_apart(a: float, b: float) -> float:
 
 def mine_routines(done: Sequence[Done], settings: MiningSettings | None = None) -> list[Routine]:
     """The routines of a user's actions, by usual time."""
-    settings = settings or MiningSettings()
-    episodes = episodes_of(done)
-    clusters: list[list[Episode]] = []
-    sets: list[list[frozenset[str]]] = []  # each member's set of calls, made once
-    hours: list[float] = []  # the sum of the members' start hours
-    for episode in episodes:
+    clustering = Clustering(settings or MiningSettings())
+    for episode in episodes_of(done):
+        clustering.add(episode)
+    return clustering.routines()
+
+
+class Clustering:
+    """``mine_routines``'s clustering of episodes, one at a time in order (each joins the cluster
+    it is most like, or starts one), so that a caller may keep it and add the episodes that come
+    later (the service, oracle.service.warm): the routines are those of mining them all at once."""
+
+    def __init__(self, settings: MiningSettings) -> None:
+        self.settings = settings
+        self.episodes: list[Episode] = []
+        self.clusters: list[list[Episode]] = []
+        self.sets: list[list[frozenset[str]]] = []  # each member's set of calls, made once
+        self.hours: list[float] = []  # the sum of the members' start hours
+        # the routine of a cluster by its index, size, last member and key (a cluster only grows, so
+        # they name its members; copies share it)
+        self._made: dict[tuple[int, int, Episode, str], Routine] = {}
+
+    def copy(self) -> Clustering:
+        """A copy to add episodes to (this one stays as it is)."""
+        twin = object.__new__(Clustering)
+        twin.settings, twin.episodes, twin._made = self.settings, list(self.episodes), self._made
+        twin.clusters, twin.sets, twin.hours = [list(c) for c in self.clusters], [list(s) for s in self.sets], list(self.hours)
+        return twin
+
+    def add(self, episode: Episode) -> None:
+        """The next episode (by begin)."""
+        settings, clusters, sets, hours = self.settings, self.clusters, self.sets, self.hours
+        self.episodes.append(episode)
         mine = frozenset(episode.calls)
         best, best_score = None, settings.min_similarity
         for index, cluster in enumerate(clusters):
@@ -145,12 +171,28 @@ def mine_routines(done: Sequence[Done], settings: MiningSettings | None = None) 
             clusters[best].append(episode)
             sets[best].append(mine)
             hours[best] += episode.hour
-    observed = len({e.day for e in episodes})
-    needed = max(settings.min_days, settings.min_share * observed)
-    kept = [i for i, c in enumerate(clusters) if len({e.day for e in c}) >= needed]
-    kept.sort(key=lambda i: statistics.median(e.hour for e in clusters[i]))
-    routines = [_routine(f"r{n}", clusters[i], sets[i]) for n, i in enumerate(kept, start=1)]
-    return _distinct_names(routines)
+
+    def routines(self) -> list[Routine]:
+        """The routines of the episodes added, by usual time."""
+        clusters, sets = self.clusters, self.sets
+        observed = len({e.day for e in self.episodes})
+        needed = max(self.settings.min_days, self.settings.min_share * observed)
+        kept = [i for i, c in enumerate(clusters) if len({e.day for e in c}) >= needed]
+        kept.sort(key=lambda i: statistics.median(e.hour for e in clusters[i]))
+        routines = []
+        if len(self._made) > MADE:
+            self._made.clear()
+        for n, i in enumerate(kept, start=1):
+            key = (i, len(clusters[i]), clusters[i][-1], f"r{n}")
+            made = self._made.get(key)
+            if made is None:
+                made = self._made[key] = _routine(key[3], clusters[i], sets[i])
+            routines.append(made)
+        return _distinct_names(routines)
+
+
+#: How many routines a clustering and its copies keep made, at most.
+MADE = 1024
 
 
 def _routine(key: str, cluster: list[Episode], sets: list[frozenset[str]]) -> Routine:

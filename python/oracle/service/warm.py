@@ -27,8 +27,8 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from oracle.past.modelogit import ModeLogit, fit_modes
-from oracle.past.routines import Done, InProgress, Routine, begun_by, done_from_steps, mine_routines, recognise
-from oracle.past.routines import episodes_of
+from oracle.past.routines import Clustering, Done, Episode, InProgress, MiningSettings, Routine, begun_by
+from oracle.past.routines import done_from_steps, episodes_of, recognise
 from oracle.timeline import is_idle_gap
 
 if TYPE_CHECKING:
@@ -68,6 +68,8 @@ class Warm:
     _mined: dict[int, _Mined] = field(default_factory=dict)
     _stored: list[dict[str, Any]] | None = None
     _stored_at: float = 0.0  # when they were read (time.monotonic)
+    _clustering: Clustering | None = None  # the episodes' clustering but for the last (``_mine``)
+    _cut: tuple[int, Done, list[Episode]] | None = None  # the episodes but the last (``_episodes``)
 
     def stored(self, read: Callable[[], list[dict[str, Any]]]) -> list[dict[str, Any]]:
         """The workflows stored in the NEEM as last read (``read``: the read, made now if none was)."""
@@ -87,24 +89,65 @@ class Warm:
     def done(self, ranker: NeemRanker) -> list[Done]:
         """``done_from_steps`` of the ranker's steps (do not change the list)."""
         version = _version(ranker)
-        if self._done is None or not _same(self._done[0], version) or self._done[1] != ranker.last_end:
-            self._done = (version, ranker.last_end, done_from_steps(ranker.steps, ranker.begins, ranker.last_end))
+        kept = self._done
+        if kept is None or not _same(kept[0], version) or kept[1] != ranker.last_end:
+            kept = self._done = (version, ranker.last_end, _done_since(kept, ranker))
             self._mined.clear()
-        return self._done[2]
+        return kept[2]
 
     def mined(self, ranker: NeemRanker, at: float) -> _Mined:
         """The actions begun by ``at``, their routines and the routine their last episode continues."""
         done = begun_by(self.done(ranker), at)
         kept = self._mined.get(len(done))
         if kept is None:
-            routines = mine_routines(done)
+            episodes = self._episodes(done)
+            routines = self._mine(episodes)
             found = None
             if done:
-                current = episodes_of(done)[-1]
+                current = episodes[-1]
                 found = recognise(routines, current.calls, current.hour)
             kept = _Mined(done, routines, max(done, key=lambda d: d.begin).end if done else None, found)
             self._mined = {len(done): kept}  # one time at once: the situation's
         return kept
+
+    def _episodes(self, done: list[Done]) -> list[Episode]:
+        """``episodes_of(done)``: the episodes before the last are kept with the actions they were
+        cut from, and only the actions from the last episode's first on are cut again, while the
+        actions before are the same (the same objects: ``done`` is made so) and all are in order
+        of begin (else the whole list is cut afresh)."""
+        kept = self._cut
+        if kept is not None:
+            first, before, complete = kept
+            rest = done[first:]
+            if 0 < first <= len(done) and done[first - 1] is before and _in_order([before, *rest]):
+                episodes = complete + episodes_of(rest)
+                self._keep_cut(done, episodes)
+                return episodes
+        episodes = episodes_of(done)
+        self._cut = None
+        if _in_order(done):
+            self._keep_cut(done, episodes)
+        return episodes
+
+    def _keep_cut(self, done: list[Done], episodes: list[Episode]) -> None:
+        """Keep the episodes but the last and the action before the last (``done`` in order of begin)."""
+        first = len(done) - len(episodes[-1].calls) if episodes else 0
+        self._cut = (first, done[first - 1], episodes[:-1]) if first > 0 else None
+
+    def _mine(self, episodes: list[Episode]) -> list[Routine]:
+        """``mine_routines`` of the actions cut into ``episodes``: the clustering of every episode
+        but the last (which the next action may still extend) is kept and grown, and a copy of it
+        takes the last one."""
+        base = self._clustering
+        complete = episodes[:-1]
+        if base is None or base.episodes != complete[:len(base.episodes)]:
+            base = self._clustering = Clustering(MiningSettings())
+        for episode in complete[len(base.episodes):]:
+            base.add(episode)
+        clustering = base.copy()
+        for episode in episodes[len(complete):]:
+            clustering.add(episode)
+        return clustering.routines()
 
     def in_progress(self, ranker: NeemRanker, at: float, stored: list[dict[str, Any]]) -> tuple[list[Routine], InProgress | None]:
         """The routines (with the names the user gave, oracle.past.workflows) and the one in
@@ -129,6 +172,23 @@ class Warm:
         self.modes(ranker)
         if ranker.clocked and at is not None:
             self.mined(ranker, at)
+
+
+def _in_order(done: list[Done]) -> bool:
+    return all(a.begin <= b.begin for a, b in zip(done, done[1:]))
+
+
+def _done_since(kept: tuple[tuple[int, object], float | None, list[Done]] | None, ranker: NeemRanker) -> list[Done]:
+    """``done_from_steps`` of the ranker's steps, from the ``kept`` list when the steps only grew
+    since it was made (its last step still where it was): only the last action of the kept list
+    (the step after it sets its end) and the actions after it are made again."""
+    steps, begins, end = ranker.steps, ranker.begins, ranker.last_end
+    if kept is not None:
+        (counted, last), _, done = kept
+        if 0 < counted <= len(steps) and steps[counted - 1] is last:
+            head = done if steps[counted - 1].idle else done[:-1]
+            return head + done_from_steps(steps[counted - 1:], begins[counted - 1:], end)
+    return done_from_steps(steps, begins, end)
 
 
 def _renamed(found: InProgress, routines: list[Routine]) -> InProgress:
