@@ -95,6 +95,7 @@ def test_the_list_and_the_timeline_show_the_store(client, chains):
     rows = chains.read_text().splitlines()
     neem = neems[0]
     assert neem["user"] == json.loads(rows[0])["user"] and neem["actions"] >= len(rows) and neem["begin"] < neem["end"]
+    assert neem["consent"] == "not shared"  # nothing is shared by default (python -m oracle share)
     timeline = _timeline(client, neem["id"])
     calls = [timeline["calls"][timeline["rows"][i + 2]] for i in range(0, len(timeline["rows"]), 6)]
     assert [c for c in calls if c != "idle"] == [json.loads(r)["action"].replace(" ", "") for r in rows]

@@ -18,6 +18,7 @@ import pytest
 
 from oracle.algorithm.params import preset
 from tests.service.test_explore import _decisions, chains, store  # noqa: F401 - the module's fixtures
+from tests.service.test_server import axe_source, browser  # noqa: F401 - fixtures
 
 pytestmark = pytest.mark.skipif(shutil.which("swipl") is None, reason="SWI-Prolog (swipl) is not installed; run make setup")
 
@@ -82,6 +83,16 @@ def test_the_timeline_comes_from_the_kept_view_as_the_engine_reads_it(served):
     assert sent.status_code == 200
     rows = ctx.thread.call(lambda: HistoryCache.default().view(ctx.engine.bridge(neem)).rows)
     assert sent.json() == {"neem": neem, "user": ctx.thread.call(lambda: ctx.engine.store.neem(neem).user), **compact(rows)}
+
+
+def test_the_list_says_which_neems_are_shared(served):
+    from oracle.neem.sharing import set_shared
+
+    client, ctx = served
+    neem = client.get("/explore/api/neems").json()[0]
+    assert neem["consent"] == "not shared"
+    ctx.thread.call(set_shared, ctx.engine.store, neem["id"], True)
+    assert client.get("/explore/api/neems").json()[0]["consent"] == "shared: its counts may enter a prior"
 
 
 def test_the_timeline_and_the_page_do_not_wait_for_the_engine_thread(served):
@@ -198,3 +209,61 @@ def test_the_decisions_route_shows_the_prior_share(store, chains, tmp_path):  # 
         neem = client.get("/explore/api/neems").json()[0]["id"]
         prior = _decisions(client, neem)["prior"]
         assert prior["given"] is False and prior["decisions"] == 0 and prior["mean"] is None
+
+
+# -- the page in chromium ------------------------------------------------------------------------
+def test_the_page_says_what_it_reads_and_shows_the_prior_share(store, chains, browser, axe_source, tmp_path):  # noqa: F811
+    """A first read through Prolog is said on the page (no blank page) and the timeline follows;
+    with ``serve --prior`` each decision says the prior's share, the figures its mean, and the page
+    stays keyboard usable and axe-clean with them."""
+    import json
+    import urllib.request
+
+    from tests.service.test_server import free_port, serious, start_server, stop_server
+
+    copy = tmp_path / "s.sqlite"
+    shutil.copy(store, copy)
+    prior = tmp_path / "prior.json"
+    _prior_of(chains).save(prior)
+    port = free_port()
+    process = start_server(copy, port, "--prior", str(prior))
+    try:
+        url = f"http://127.0.0.1:{port}"
+        page = browser.new_page(viewport={"width": 1280, "height": 1000}, bypass_csp=True)
+        told = []
+
+        def reading_once(route):  # the service's answer while it reads a NEEM nothing was kept for
+            if told:
+                route.continue_()
+                return
+            told.append(True)
+            route.fulfill(status=202, content_type="application/json",
+                          body=json.dumps({"reading": True, "neem": "n", "user": "someone", "actions": 1234, "seconds": 2.5}))
+
+        page.route("**/timeline", reading_once)
+        page.goto(url + "/explore")
+        page.wait_for_function("document.getElementById('timeline-status').textContent.startsWith('Reading')")
+        said = page.locator("#timeline-status").text_content()
+        assert "someone (1234 actions) through Prolog" in said and "2.5 s so far" in said
+        page.wait_for_function("performance.getEntriesByName('timeline-painted').length > 0", timeout=60_000)
+        assert page.evaluate("performance.getEntriesByName('timeline-reading').length") == 1
+        page.wait_for_function("window.neemExplorer.state.decisions !== null", timeout=300_000)
+        neem = json.loads(urllib.request.urlopen(url + "/explore/api/neems", timeout=30).read())[0]["id"]
+        found = json.loads(urllib.request.urlopen(f"{url}/explore/api/neems/{neem}/decisions", timeout=60).read())
+        shares = found["prior"]["shares"]
+        page.locator("#timeline").focus()
+        page.keyboard.press("Home")
+        page.keyboard.press("ArrowRight")
+        shown = page.locator("#decision .share").text_content()
+        if shares[1] is None:
+            assert "took no part" in shown
+        else:
+            percent = int(shares[1] * 100 + 0.5)  # as Math.round: half up
+            assert shown.startswith(f"Where the ranking came from: {percent} % the shared prior")
+        figures = page.locator("#figures").text_content()
+        assert f"The shared prior took part in {found['prior']['decisions']} of {len(found['rank'])} rankings" in figures
+        assert f"on average {found['prior']['mean'] * 100:.1f} %" in figures
+        assert serious(page, axe_source) == []
+        page.close()
+    finally:
+        stop_server(process)

@@ -202,6 +202,7 @@ async def explore_static(name: str) -> FileResponse:
 
 def _neems(ctx: Context) -> list[dict[str, Any]]:
     from oracle.neem.query import summarize_neem
+    from oracle.neem.sharing import is_shared
     from oracle.store.ids import alias_of
 
     out = []
@@ -211,7 +212,7 @@ def _neems(ctx: Context) -> list[dict[str, Any]]:
         out.append({"id": info.id, "name": alias_of(info), "user": info.user, "actions": summary.actions,
                     "begin": summary.begin, "end": summary.end, "temporary": info.temporary,
                     "ontology": _ontology_said(ontology, info.meta.get("model_version")),
-                    "consent": info.meta.get("consent")})
+                    "consent": "shared: its counts may enter a prior" if is_shared(info) else "not shared"})
     return out
 
 

@@ -140,7 +140,7 @@
         tr.appendChild(el("td", {}, n.begin ? clockOf(n.begin) + " to " + clockOf(n.end) : "-"));
         tr.appendChild(el("td", {}, String(n.actions)));
         tr.appendChild(el("td", {}, n.ontology));
-        tr.appendChild(el("td", {}, n.consent === null || n.consent === undefined ? "not recorded" : JSON.stringify(n.consent)));
+        tr.appendChild(el("td", {}, n.consent));
         if (n.id === state.neem || n.name === state.neem) { tr.className = "chosen"; }
         body.appendChild(tr);
       });
