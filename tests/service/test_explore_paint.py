@@ -85,6 +85,25 @@ def test_the_timeline_comes_from_the_kept_view_as_the_engine_reads_it(served):
     assert sent.json() == {"neem": neem, "user": ctx.thread.call(lambda: ctx.engine.store.neem(neem).user), **compact(rows)}
 
 
+def test_a_logged_action_is_on_the_next_timeline(served):
+    """The reader keeps a timeline by the store's mark: an action logged since is on the next one."""
+    client, ctx = served
+    neem = client.get("/explore/api/neems").json()[0]["id"]
+    before = client.get(f"/explore/api/neems/{neem}/timeline").json()
+    last = max(before["rows"][1::6])
+    logged = client.post(f"/api/neems/{neem}/actions", json={"call": "pick(banana)", "begin": last + 3600, "end": last + 3605})
+    assert logged.status_code == 200, logged.text
+    deadline = time.monotonic() + 30
+    while True:
+        after = client.get(f"/explore/api/neems/{neem}/timeline")
+        rows = after.json()["rows"] if after.status_code == 200 else []
+        if rows and rows[-6] == last + 3600:
+            break
+        assert time.monotonic() < deadline, "the logged action never reached the timeline"
+        time.sleep(0.2)
+    assert after.json()["calls"][rows[-4]] == "pick(banana)" and len(rows) > len(before["rows"])
+
+
 def test_the_list_says_which_neems_are_shared(served):
     from oracle.neem.sharing import set_shared
 
