@@ -132,3 +132,14 @@ def test_the_rosbridge_door_takes_the_services_tokens_only(served):
         socket.send(json.dumps({"op": "call_service", "id": "q", "service": "rosprolog/query",
                                 "args": {"id": "q", "query": "X = 1", "mode": 1}}))
         assert json.loads(socket.recv(timeout=60))["result"] is True
+
+
+def test_the_explorer_opens_the_users_own_newest_neem(served):
+    """/explore with a user's token names that user's newest NEEM, never another's (bob's is newer)."""
+    ids = {n["user"]: n["id"] for n in call(served.url, "/api/neems", headers=as_(ADMIN))[1]}
+    status, page, _ = call(served.url, "/explore", headers=as_(ADA))
+    assert status == 200 and f'"neem": "{ids["ada"]}"' in page["text"] and ids["bob"] not in page["text"]
+    assert call(served.url, "/explore?neem=bob", headers=as_(ADA))[0] == 404
+    assert call(served.url, "/explore/api/neems/bob/timeline", headers=as_(ADA))[0] == 404
+    status, page, _ = call(served.url, "/explore", headers=as_(ADMIN))
+    assert status == 200 and f'"neem": "{ids["bob"]}"' in page["text"]

@@ -167,7 +167,7 @@ class AccessCheck:
         path = scope["path"]
         query = parse_qs(scope.get("query_string", b"").decode("latin-1"))
         named = NEEM_PATH.match(path)
-        if named is not None or (path in ("/api/events", "/") and "neem" in query):
+        if named is not None or (path in ("/api/events", "/", "/explore") and "neem" in query):
             neem = named.group(1) if named is not None else query["neem"][0]
             if await self._user_of(neem) != user:
                 await _refuse(send, 404, f"no NEEM {neem[:80]!r} in the store")
@@ -175,7 +175,7 @@ class AccessCheck:
         elif path == "/api/events":
             await _refuse(send, 403, f"this token reaches only the NEEMs of user {user}: name one (?neem=)")
             return
-        elif path == "/":
+        elif path in ("/", "/explore"):  # each page opens a NEEM: the user's own newest, never the store's
             newest = await self._newest_of(user)
             if newest is None:
                 await _refuse(send, 404, f"user {user} has no NEEM in the store yet")
