@@ -46,6 +46,7 @@ class GroupCommit:
         self._transaction: AbstractContextManager[None] | None = None
         self._done: Future[None] | None = None
         self._queued = False  # whether the open group's commit is queued on the engine thread
+        self._timer: threading.Timer | None = None  # a lingering group's
         #: How many commits and how many requests they carried (the bench prints them).
         self.commits = 0
         self.joined = 0
@@ -59,9 +60,9 @@ class GroupCommit:
             transaction.__enter__()
             self._transaction, self._done, self._queued = transaction, Future(), False
             if linger is not None:
-                timer = threading.Timer(linger, self._submit, (self._commit,))
-                timer.daemon = True
-                timer.start()
+                self._timer = threading.Timer(linger, self._lingered)
+                self._timer.daemon = True
+                self._timer.start()
         if linger is None and not self._queued:
             self._queued = True
             self._submit(self._commit)
@@ -76,6 +77,13 @@ class GroupCommit:
             self._submit(self._commit)
         return self._done
 
+    def _lingered(self) -> None:
+        """The linger passed (on the timer's thread): queue the commit of whatever group is open."""
+        try:
+            self._submit(self._commit)
+        except RuntimeError:
+            pass  # the engine thread has shut down, and committed as it closed (EngineThread.close)
+
     def commit(self) -> None:
         """Commit the open group now (nothing when none is open)."""
         self._commit()
@@ -84,6 +92,9 @@ class GroupCommit:
         transaction, done = self._transaction, self._done
         self._transaction = self._done = None
         self._queued = False
+        if self._timer is not None:
+            self._timer.cancel()  # committed now: nothing left to linger for
+            self._timer = None
         if transaction is None or done is None:
             return
         try:
