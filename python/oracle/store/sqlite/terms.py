@@ -66,8 +66,14 @@ class Terms:
         #: Every term of the table is in ``values`` (read in one scan).
         self.all_read = False
         self.misses = 0
+        #: Whether ``value`` may read every term in one scan (``forget`` says when no longer).
+        self.scan = True
 
     def forget(self) -> None:
+        if self.all_read and len(self.values) > TERM_CACHE:
+            # the table outgrew the cache: a scan would be thrown away by the next new term
+            # (20 robots' NEEMs logging at once scanned it every few requests), so look up
+            self.scan = False
         self.ids.clear()
         self.values.clear()
         self.all_read = False
@@ -134,7 +140,7 @@ class Terms:
         value = self.values.get(tid)
         if value is None:
             self.misses += 1
-            if not self.all_read and self.misses > TERM_SCAN_AFTER:
+            if not self.all_read and self.misses > TERM_SCAN_AFTER and self.scan:
                 # Reading a NEEM touches most of its terms: one scan beats many lookups. A
                 # question touches a few hundred of a table of every NEEM's terms: it looks
                 # them up one by one (the scan cost 0.2-0.3 s at 50,000 actions).
