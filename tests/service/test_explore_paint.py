@@ -162,6 +162,38 @@ def test_a_neem_nothing_was_kept_for_is_read_once_and_says_so(served, monkeypatc
     assert kept is not None and answer.json()["rows"] == kept["rows"]  # kept now: the next open is the reader's
 
 
+def test_a_store_that_keeps_nothing_is_read_once_per_open_not_per_poll(store, tmp_path, monkeypatch):  # noqa: F811
+    """Where the store cannot keep a view (a MongoDB server: no append mark), an open reads the
+    history once and the replay's polls take that read, not one whole read each second."""
+    from oracle.service import explore_routes
+
+    copy = tmp_path / "s.sqlite"
+    shutil.copy(store, copy)
+    reads = []
+    view = explore_routes._view
+
+    def counted(ctx, neem):
+        reads.append(neem)
+        return view(ctx, neem)
+
+    monkeypatch.setattr(explore_routes, "_view", counted)
+    monkeypatch.setattr(explore_routes, "QUICK_READ_S", 0.0)
+    for client, ctx in _client(copy):
+        monkeypatch.setattr(ctx.engine.store, "append_mark", lambda neem: None)  # as a server's store answers
+        neem = client.get("/explore/api/neems").json()[0]["id"]
+        first = client.get(f"/explore/api/neems/{neem}/timeline")
+        assert first.status_code == 202 and first.json()["kept_after"] is False
+        deadline = time.monotonic() + 120
+        while client.get(f"/explore/api/neems/{neem}/timeline").status_code == 202:
+            assert time.monotonic() < deadline
+            time.sleep(0.1)
+        found = _decisions(client, neem)
+        assert found["n_predictions"] > 0 and reads == [neem]  # the polls read nothing again
+        while client.get(f"/explore/api/neems/{neem}/timeline").status_code == 202:  # a new open reads it again:
+            time.sleep(0.1)                                                           # nothing tells it is unchanged
+        assert len(reads) == 2
+
+
 def test_the_prior_shares_are_what_the_predictor_scored_with(store, chains, monkeypatch):  # noqa: F811
     """Every share shown is the prior's part of the very scores the personal predictor ranked
     with: the scores those parts sum to order the offer as the ranking shown, and no ranking

@@ -102,6 +102,9 @@ class ExploreState:
     turn: threading.Lock = field(default_factory=threading.Lock)
     #: the first reads of NEEMs nothing was kept for, on the engine thread, by the name asked
     reading: dict[str, Reading] = field(default_factory=dict)
+    #: the latest read of each NEEM whose store keeps nothing (MongoDB), by the name asked: what
+    #: its page shows, so the replay's polls do not read it all again each second
+    unkept: OrderedDict[str, tuple[str, str, list[HistoryRow]]] = field(default_factory=OrderedDict)
     reader: ExploreReader | None = None
 
     def submit(self, replayer: Replayer, *args: Any) -> Future[Replayed]:
@@ -252,7 +255,8 @@ def _unread(ctx: Context, neem: str) -> dict[str, Any] | None:
     info = ctx.engine.store.neem(neem_id)
     if info.temporary or kept_history(ctx.engine.store, ctx.engine.ontology, neem_id) is not None:
         return None
-    return {"neem": neem_id, "user": info.user or neem_id, "actions": summarize_neem(ctx.engine.store, neem_id, info).actions}
+    return {"neem": neem_id, "user": info.user or neem_id, "actions": summarize_neem(ctx.engine.store, neem_id, info).actions,
+            "kept_after": ctx.engine.store.append_mark(neem_id) is not None}
 
 
 async def _kept(request: Request, neem: str) -> KeptTimeline | None:
@@ -263,14 +267,17 @@ async def _kept(request: Request, neem: str) -> KeptTimeline | None:
     return kept
 
 
-async def _rows(request: Request, neem: str) -> tuple[str, str, list[HistoryRow]] | dict[str, Any]:
+async def _rows(request: Request, neem: str, again: bool = True) -> tuple[str, str, list[HistoryRow]] | dict[str, Any]:
     """The NEEM's id, user and history: from the reader when the store keeps it, else read by
     the engine. A NEEM whose history nothing kept is read once in the background (6-10 s at
-    10,000 actions): until then the answer is what is being read, as a dict."""
+    10,000 actions): until then the answer is what is being read, as a dict. Where the store
+    keeps nothing at all (MongoDB), ``again`` False takes the latest read (the replay's polls)."""
     ctx, state = _ctx(request), _state(request)
     kept = await _kept(request, neem)
     if kept is not None:
         return kept.neem, kept.user, kept.rows()
+    if not again and neem in state.unkept:
+        return state.unkept[neem]
     reading = state.reading.get(neem)
     if reading is None:
         unread = await ctx.thread.run(_unread, ctx, neem)
@@ -285,7 +292,12 @@ async def _rows(request: Request, neem: str) -> tuple[str, str, list[HistoryRow]
         return {"reading": True, **reading.said, "seconds": round(time.monotonic() - reading.began, 1)}
     if state.reading.get(neem) is reading:
         del state.reading[neem]  # kept now: the next request finds it in the store
-    return reading.task.result()
+    read = reading.task.result()
+    if not reading.said["kept_after"]:
+        state.unkept[neem] = read
+        while len(state.unkept) > KEPT_REPLAYS:
+            state.unkept.popitem(last=False)
+    return read
 
 
 def _json(data: Any, status: int = 200) -> Response:
@@ -322,7 +334,7 @@ async def explore_decisions(neem: str, request: Request,
     if replayer is None:
         return JSONResponse({"error": "this service was built without the replay (python -m oracle serve hands it in)"},
                             status_code=501)
-    got = await _rows(request, neem)
+    got = await _rows(request, neem, again=False)
     if isinstance(got, dict):  # the history is still being read: the replay waits for it
         return JSONResponse({"pending": True, **got}, status_code=202)
     neem_id, user, rows = got

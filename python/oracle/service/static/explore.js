@@ -530,8 +530,9 @@
       if (neem !== state.neem) { return; }
       if (r.status === 202) {  // nothing kept for this NEEM: the service reads its history once, through Prolog
         status.textContent = "Reading the history of " + (r.body.user || neem) + " (" + r.body.actions +
-          " actions) through Prolog for the first time: " + r.body.seconds + " s so far. Nothing was kept for this NEEM" +
-          " (a loaded dump, a NEEM from an older version, or a server store); the next open is quick.";
+          " actions) through Prolog: " + r.body.seconds + " s so far. " + (r.body.kept_after === false ?
+          "This store keeps no view of a NEEM (a MongoDB server): each open reads it again." :
+          "Nothing was kept for this NEEM yet (a loaded dump, or a NEEM from an older version); the next open is quick.");
         if (!performance.getEntriesByName("timeline-reading").length) { performance.mark("timeline-reading"); }
         setTimeout(function () { if (neem === state.neem) { loadNeem(); } }, 1000);
         return;
