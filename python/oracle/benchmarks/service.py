@@ -4,8 +4,9 @@ on a free loopback port, each into its own NEEM of 1,000 logged actions. Bounded
 counts and a wall-clock cap; it stops by itself.
 
 Printed per phase: round-trip p50/p99 (client side, over HTTP), the server's own ranking time,
-and the floor measured in the same run: GET /api/health, a round trip through the HTTP stack and
-the engine thread doing nothing.
+and the floors measured in the same run: GET /api/health, a round trip through the HTTP stack and
+the engine thread doing nothing, and a durable commit (a plain SQLite WAL commit with
+synchronous=FULL, one fsync: what every acknowledged situation waits for at the least).
 """
 
 from __future__ import annotations
@@ -86,6 +87,30 @@ def _floor(url: str, n: int) -> list[float]:
         client.close()
 
 
+def _fsync_floor(folder: Path, n: int) -> list[float]:
+    """What acknowledging a durable write costs at the least on this disk: plain SQLite commits of
+    one small row each, in WAL with synchronous=FULL as the store commits (each an fsync of the
+    WAL), in the store's folder (ms each, sorted)."""
+    import sqlite3
+
+    path = folder / "fsync-floor.sqlite"
+    conn = sqlite3.connect(path, isolation_level=None)
+    try:
+        conn.execute("PRAGMA journal_mode=WAL")
+        conn.execute("PRAGMA synchronous=FULL")
+        conn.execute("CREATE TABLE t(a INTEGER, b TEXT)")
+        times = []
+        for i in range(n):
+            started = time.perf_counter()
+            conn.execute("BEGIN IMMEDIATE")
+            conn.execute("INSERT INTO t VALUES (?, ?)", (i, "x" * 200))
+            conn.execute("COMMIT")
+            times.append((time.perf_counter() - started) * 1000)
+        return sorted(times)
+    finally:
+        conn.close()
+
+
 def _row(phase: str, kind: str, values: list[float], robots: int, errors: int) -> dict[str, Any]:
     values = sorted(values)
     row = {"area": "service", "name": f"{phase} {kind}", "robots": robots, "n": len(values), "errors": errors,
@@ -127,6 +152,7 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
             timer.start()  # the cap bounds the load, not the preparation
             rows.append({"area": "service", "name": "session open", "ms": round(opened, 1), "actions": actions})
             rows.append(_row("floor (GET /api/health)", "round trip", _floor(url, 300), 1, 0))
+            rows.append(_row("floor (a durable commit)", "fsync", _fsync_floor(Path(folder), 300), 1, 0))
 
             neem, user, todo = plans[0]
             alone = drive(url, user, todo[:steps], neem, stop=stop, choices=False)
