@@ -15,7 +15,7 @@ import contextlib
 import os
 import re
 from abc import ABC, abstractmethod
-from collections.abc import Iterable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import AbstractContextManager
 from dataclasses import dataclass, field
 from datetime import datetime
@@ -387,8 +387,10 @@ class Store(ABC):
         return cached
 
     @abstractmethod
-    def _hierarchy_source(self, neem_id: str) -> tuple[list[tuple[str, tuple[Any, ...]]], set[Any]]:
-        """(subject, o*) of every hierarchy edge, and every term used in a stored closure."""
+    def _hierarchy_source(self, neem_id: str) -> tuple[list[tuple[str, tuple[Any, ...]]],
+                                                       set[Any] | Callable[[], set[Any]]]:  # fmt: skip
+        """(subject, o*) of every hierarchy edge, and every term used in a stored closure (or
+        how to find them when a new edge first asks: model.Hierarchy)."""
 
     # -- reading ----------------------------------------------------------------------------
     @abstractmethod

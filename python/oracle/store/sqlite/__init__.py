@@ -15,7 +15,7 @@ from __future__ import annotations
 import contextlib
 
 import os
-from collections.abc import Iterable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from contextlib import AbstractContextManager
 from pathlib import Path
 from typing import Any
@@ -206,7 +206,7 @@ class SQLiteStore(Store):
                      graph: str | None = None) -> list[tuple[Any, float, float]]:  # fmt: skip
         return self._reads.overlapping(neem_id, s, p, o, scope, graph)
 
-    def _hierarchy_source(self, neem_id: str) -> tuple[list[tuple[str, tuple[Any, ...]]], set[Any]]:
+    def _hierarchy_source(self, neem_id: str) -> tuple[list[tuple[str, tuple[Any, ...]]], Callable[[], set[Any]]]:
         return self._reads.hierarchy_source(neem_id)
 
     def annotations(self, neem_id: str, s: str | None = None, p: str | None = None) -> Iterator[Annotation]:

@@ -7,7 +7,8 @@ from __future__ import annotations
 
 import heapq
 import math
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
+from functools import partial
 from operator import itemgetter
 from typing import Any
 
@@ -126,8 +127,9 @@ class Reads:
                 ).fetchone()
         return Appended(docs, stale is None)
 
-    def hierarchy_source(self, neem_id: str) -> tuple[list[tuple[str, tuple[Any, ...]]], set[Any]]:
-        """(subject, o*) of every hierarchy edge, and every term used in a stored closure."""
+    def hierarchy_source(self, neem_id: str) -> tuple[list[tuple[str, tuple[Any, ...]]], Callable[[], set[Any]]]:
+        """(subject, o*) of every hierarchy edge, and how to find every term used in a stored
+        closure (a scan of the NEEM's rows: read only when a new edge needs it, model.Hierarchy)."""
         table = neem_table(neem_id, "triples")
         value, members = self.terms.value, self.closures.members
         edges = [
@@ -136,6 +138,11 @@ class Reads:
                 f"SELECT s, ostar FROM {table} WHERE p IN {HIERARCHY_SQL} AND ostar > 0 AND s IS NOT NULL ORDER BY id"
             ).fetchall()
         ]
+        return edges, partial(self._used_terms, neem_id)
+
+    def _used_terms(self, neem_id: str) -> set[Any]:
+        table = neem_table(neem_id, "triples")
+        value, members = self.terms.value, self.closures.members
         used = {
             value(term)
             for (term,) in self.conn.execute(
@@ -146,7 +153,7 @@ class Reads:
         side = self.registry.side_row(neem_id)
         if side is not None:  # the closures its rows hold are recorded: no scan of the side table
             used.update(v for cid in held(side) for v in members(cid) if type(v) is str)
-        return edges, used
+        return used
 
     def annotations(self, neem_id: str, s: str | None = None, p: str | None = None) -> Iterator[Annotation]:
         self.registry.require(neem_id)
