@@ -23,6 +23,7 @@ from fastapi.responses import JSONResponse, Response
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from oracle.errors import NeemOracleError
+from oracle.service.explore_routes import close_explorer
 from oracle.service.explore_routes import router as explore_router
 from oracle.service.engine import Engine, EngineThread, NotFound, Overloaded, PrologRefused
 from oracle.service.events import EventHub
@@ -75,6 +76,7 @@ def create_app(ctx: Context) -> FastAPI:
     async def lifespan(app: FastAPI) -> Any:
         yield
         ctx.stopping.set()  # ends the event streams so the server can stop
+        close_explorer(app)  # its reader's thread and read-only connection
         # each NEEM's recording session ends as KnowRob's mem_episode_stop ends one
         await ctx.thread.run(ctx.engine.close)
         if ctx.query_process is not None:

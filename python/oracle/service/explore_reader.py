@@ -102,7 +102,7 @@ class ExploreReader:
             return self._store[0]
 
     def close(self) -> None:
-        self.pool.shutdown(wait=False, cancel_futures=True)
+        self.pool.shutdown(wait=True, cancel_futures=True)  # a read under way ends before its connection closes
         with self._lock:
             for store in self._store:
                 store.close()

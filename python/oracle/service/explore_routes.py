@@ -179,6 +179,13 @@ async def _read(request: Request, job: Any, *args: Any) -> Any:
         return None
 
 
+def close_explorer(app: Any) -> None:
+    """End the explorer's reader (its thread and read-only connection) when the service stops."""
+    state = getattr(app.state, "explore", None)
+    if isinstance(state, ExploreState) and state.reader is not None:
+        state.reader.close()
+
+
 def _ctx(request: Request) -> Context:
     ctx: Context = request.app.state.ctx
     return ctx
