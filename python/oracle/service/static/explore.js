@@ -513,8 +513,10 @@
     if (!d) { f.textContent = "Replaying the NEEM as evaluate would (this takes a while for a long NEEM)..."; return; }
     var pct = function (v) { return (v * 100).toFixed(1) + " %"; };
     f.textContent = "Over the whole NEEM (" + d.n_predictions + " decisions, predictor " + d.method + "): Top-1 " + pct(d.summary.top1) +
-      ", Top-3 " + pct(d.summary.top3) + ", Top-5 " + pct(d.summary.top5) + " (what python -m oracle evaluate prints for this NEEM's chains).";
+      ", Top-3 " + pct(d.summary.top3) + ", Top-5 " + pct(d.summary.top5);
     var p = d.prior || { given: false };
+    f.textContent += p.given ? " (evaluate's replay of this NEEM's chains with the same prior)." :
+      " (what python -m oracle evaluate prints for this NEEM's chains).";
     f.textContent += p.given ? (p.decisions ? " The shared prior took part in " + p.decisions + " of " + d.rank.length +
       " rankings, on average " + pct(p.mean) + " of each (the rest: the user's own history)." :
       " A shared prior was given but took part in no ranking.") : " No shared prior was used: every ranking is the user's own.";
