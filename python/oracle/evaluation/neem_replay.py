@@ -87,7 +87,8 @@ def neem_chains(rows: Sequence[HistoryRow], user: str) -> list[ChainRow]:
 
 
 class _Recording:
-    """A method that notes the order it ranked each decision in (the replay keeps only ranks)."""
+    """A method that notes the order it ranked each decision in (the replay keeps only ranks) and,
+    for the personal predictor, the shared prior's share of that ranking (module docstring)."""
 
     def __init__(self, inner: Method, keep: int) -> None:
         self.inner = inner
