@@ -1,14 +1,17 @@
 :- begin_tests(kb_owl_guard).
 
 :- use_module(library(process)).
+:- use_module(library(uuid)).
 
 :- use_module(owl_guard).
 :- use_module(db).
 :- use_module('../neem_store').
 
-%   A file of Text in a fresh temporary folder.
+%   A file of Text in a fresh temporary folder, removed when the suite's swipl halts. The uuid:
+%   tmp_file/2's name repeats when a later process gets the same pid.
 owl(Name, Text, File) :-
-    tmp_file(owlguard, Dir), make_directory(Dir),
+    tmp_file(owlguard, Base), uuid(Id), atomic_list_concat([Base, '_', Id], Dir),
+    make_directory(Dir), at_halt(catch(delete_directory_and_contents(Dir), _, true)),
     atomic_list_concat([Dir, '/', Name], File),
     setup_call_cleanup(open(File, write, Out), write(Out, Text), close(Out)).
 
@@ -41,7 +44,7 @@ test(many_references_refused) :-
 
 test(a_fifo_is_not_opened) :-
     tmp_file(owlfifo, F),
-    process_create(path(mkfifo), [F], []),
+    process_create(path(mkfifo), [F], []), at_halt(catch(delete_file(F), _, true)),
     refused_because(F, 'not a regular file').
 
 test(iri_prefix_entities_load, [setup(store_reset), cleanup(store_reset)]) :-
