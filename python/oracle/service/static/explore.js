@@ -536,6 +536,10 @@
           "This store keeps no view of a NEEM (a MongoDB server): each open reads it again." :
           "Nothing was kept for this NEEM yet (a loaded dump, or a NEEM from an older version); the next open is quick.");
         if (!performance.getEntriesByName("timeline-reading").length) { performance.mark("timeline-reading"); }
+        var canvas = document.getElementById("timeline"), size = fitCanvas(canvas), p = canvasPainter(canvas.getContext("2d"));
+        p.rect(0, 0, size.w, size.h, "#ffffff");  // where the timeline will be: what is being read, and for how long
+        p.text(size.w / 2, size.h / 2 - 8, "Reading " + r.body.actions + " actions through Prolog (" + r.body.seconds + " s so far)...", "#333", "center");
+        p.text(size.w / 2, size.h / 2 + 12, "The timeline appears when the read is done.", "#333", "center");
         setTimeout(function () { if (neem === state.neem) { loadNeem(); } }, 1000);
         return;
       }
