@@ -79,13 +79,23 @@ def test_warm_up_loads_the_answers_prolog_and_words_before_the_first_question_an
 def test_boot_warms_the_engine_up_and_freezes_what_the_boot_made(tmp_path, onto):
     import gc
 
+    import re
+
+    from oracle.past.forms import FORMS
     from oracle.service import boot, build_context
+    from oracle.service.app import create_app
 
     ctx = build_context(str(tmp_path / "b.sqlite"), onto, Hyperparameters())
     try:
-        boot(ctx)
+        app = create_app(ctx)
+        assert app.middleware_stack is None  # Starlette builds it on its first request
+        re.purge()
+        boot(ctx, app)
         assert ctx.thread.call(lambda: ctx.engine.past._lexicon) is not None
         assert gc.get_freeze_count() > 0
+        assert app.middleware_stack is not None  # the first request went through the app at boot
+        pattern = FORMS[0].patterns[0][1]
+        assert any(key[1] == pattern for key in re._cache)  # type: ignore[attr-defined]  # the forms compiled
     finally:
         gc.unfreeze()  # the test process goes on collecting as before
         ctx.thread.close()

@@ -71,8 +71,9 @@ def _child(store: str, first: str) -> None:
     ctx = build_context(store, build_ontology(), Hyperparameters())
     order = ("health", "why", "again") if first == "health" else ("why", "again", "health")
     try:
-        boot(ctx)
-        with TestClient(create_app(ctx), base_url="http://127.0.0.1") as client:
+        app = create_app(ctx)
+        boot(ctx, app)  # as serve boots
+        with TestClient(app, base_url="http://127.0.0.1") as client:
             times: dict[str, Any] = {"first": first}
             for key in order:
                 started = time.perf_counter()

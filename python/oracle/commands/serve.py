@@ -143,11 +143,11 @@ def run(args: argparse.Namespace) -> int:
                         scan_s=args.scan_speed, filter_s=args.repeat_filter, gaze_s=args.gaze)
     logging.basicConfig(level=logging.INFO, format="%(asctime)s %(name)s %(message)s")
     location = ctx.thread.call(lambda: ctx.engine.store.location)
-    boot(ctx)  # Prolog's modules and the words loaded before the first question
+    app = create_app(ctx)
+    boot(ctx, app)  # Prolog's modules, the words and the app's first request before the first question
     print(f"serving {location}; the page: {shown_link(args.host, args.port, token)} (API docs at /docs); Ctrl-C stops",
           flush=True)
     os.umask(0o077)  # anything the service writes (a new SQLite file's journal) stays private
-    app = create_app(ctx)
     app.state.explore_replay = _explore_replay  # /explore's decisions; the product never imports the evaluation
     server = _server(app, ctx.hub.close, limits)
     try:

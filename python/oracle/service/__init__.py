@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import ipaddress
 import socket
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from oracle.errors import NeemOracleError
 
@@ -80,14 +80,36 @@ def build_context(store_spec: str | None, ontology: OdbOntology, settings: Hyper
 __all__ = ["build_context", "is_loopback"]
 
 
-def boot(ctx: Context) -> None:
+def boot(ctx: Context, app: Any = None) -> None:
     """What ``serve`` does once before it listens, so that the first answers pay only for their
-    NEEM: the engine's warm-up (``Engine.warm_up``: Prolog's modules, the words), then one full
-    collection and every object alive frozen out of the collector's view (``gc.freeze``): the
-    boot's many long-lived objects would otherwise be scanned by the first full collection,
-    which falls in one of the first requests."""
+    NEEM: the engine's warm-up (``Engine.warm_up``: Prolog's modules, the words, the question
+    forms), one request through ``app`` in process (``GET /api/health``: Starlette builds its
+    middleware stack on its first call, ~30 ms), then one full collection and every object alive
+    frozen out of the collector's view (``gc.freeze``): the boot's many long-lived objects would
+    otherwise be scanned by the first full collection, which falls in one of the first requests."""
     import gc
 
     ctx.thread.call(ctx.engine.warm_up)
+    if app is not None:
+        _first_request(app)
     gc.collect()
     gc.freeze()
+
+
+def _first_request(app: Any) -> int:
+    """``GET /api/health`` through the ASGI ``app`` on a loop of its own; its status."""
+    import asyncio
+
+    sent: list[dict[str, Any]] = []
+    scope = {"type": "http", "asgi": {"version": "3.0"}, "http_version": "1.1", "method": "GET", "scheme": "http",
+             "path": "/api/health", "raw_path": b"/api/health", "query_string": b"", "root_path": "",
+             "headers": [(b"host", b"127.0.0.1")], "client": ("127.0.0.1", 0), "server": ("127.0.0.1", 0)}
+
+    async def receive() -> dict[str, Any]:
+        return {"type": "http.request", "body": b"", "more_body": False}
+
+    async def send(message: dict[str, Any]) -> None:
+        sent.append(message)
+
+    asyncio.run(app(scope, receive, send))
+    return int(sent[0].get("status", 0)) if sent else 0

@@ -115,12 +115,25 @@ class Engine:
     def warm_up(self) -> None:
         """Pay at boot what the first answer of a process would pay once, whatever its NEEM: the
         Prolog modules (the answers' odb_past among them, loaded through the newest NEEM's
-        bridge), the tablet's words (``KeptPast.lexicon``) and the modules an answer imports.
+        bridge), the tablet's words (``KeptPast.lexicon``), the modules an answer imports and
+        the question forms' patterns and words (``oracle.past.forms``).
         ``serve`` calls it before it listens; nothing of a NEEM is read."""
-        import oracle.past.ask  # noqa: F401  (imported here once, not by the first question)
-        from oracle.past.evidence import ensure_loaded
+        import re
 
-        self.past.lexicon(self.ontology)
+        import oracle.past.ask  # noqa: F401  (imported here once, not by the first question)
+        from oracle.errors import NeemOracleError
+        from oracle.past.evidence import ensure_loaded
+        from oracle.past.forms import FORMS, read_question
+
+        lexicon = self.past.lexicon(self.ontology)
+        # the questions' patterns compiled into re's cache and the phrase book's words (no NEEM)
+        for form in FORMS:
+            for _, pattern in form.patterns:
+                re.compile(pattern)
+        try:
+            read_question("why did you suggest it", self.ontology, lexicon)
+        except NeemOracleError:
+            pass  # "it" names no task: the words were read all the same
         neems = self.store.neems()
         if neems:
             ensure_loaded(self.bridge(neems[-1].id))
