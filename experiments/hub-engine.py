@@ -1,0 +1,104 @@
+"""The engine thread's own work per robot-step with many robots on one process, without HTTP:
+where one process stops scaling (docs/service.md, "Many robots on one hub").
+
+Usage: python experiments/hub-engine.py ROBOTS [FOLDER]
+Prepares (once, kept in FOLDER, default /tmp/neem-hub-engine) ROBOTS NEEMs of 1,000 logged actions
+each, as `bench --only service` does (`benchmarks.service._prepare`), copies the store, builds the
+service's context and boots it as `serve` does, opens every NEEM's session, then posts 20 steps per
+robot interleaved (robot 1's step, robot 2's, ...): per step the situation's job (ranking, chain,
+routine, the imagined situation written), its commit, the ranking written back in a lingering
+group, the action's job, its commit and the warm-up after it, each timed on the engine thread; the
+first two rounds are not counted. Printed: p50, p99 and mean ms of each part, and of their sum per
+robot-step; one engine thread serves at most 1,000 / mean-sum robot-steps a second.
+"""
+
+from __future__ import annotations
+
+import os
+import pickle
+import shutil
+import sys
+import time
+from pathlib import Path
+
+from oracle.algorithm.params import Hyperparameters
+from oracle.benchmarks.service import _prepare
+from oracle.ontology import build_ontology
+from oracle.service import boot, build_context
+from oracle.service.robot import percentile
+from oracle.service.routes import routine_now, stored_reader
+
+STEPS, WARM_ROUNDS = 20, 2
+
+
+def main(robots: int, folder: Path) -> None:
+    folder.mkdir(parents=True, exist_ok=True)
+    store, plans_file = folder / f"hub{robots}.sqlite", folder / f"hub{robots}.plans"
+    if not store.exists():
+        started = time.perf_counter()
+        plans = _prepare(store, robots, 1000, STEPS)
+        plans_file.write_bytes(pickle.dumps(plans))  # our own file, written just now
+        print(f"prepared {robots} NEEMs in {time.perf_counter() - started:.0f} s", flush=True)
+    plans = pickle.loads(plans_file.read_bytes())  # noqa: S301  (this script's own file)
+    work = folder / "work.sqlite"
+    for suffix in ("", "-wal", "-shm"):
+        if os.path.exists(f"{work}{suffix}"):
+            os.remove(f"{work}{suffix}")
+    shutil.copy(store, work)
+    ctx = build_context(str(work), build_ontology(), Hyperparameters())
+    boot(ctx)
+    started = time.perf_counter()
+    for neem, _, _ in plans:
+        ctx.thread.call(ctx.engine.session, neem)
+    print(f"session open: {(time.perf_counter() - started) * 1000 / len(plans):.0f} ms per NEEM", flush=True)
+    times: dict[str, list[float]] = {}
+
+    def step(neem: str, row: object) -> None:
+        group, marks = ctx.thread.group, [time.perf_counter()]
+        assert group is not None
+        group.join()
+        session = ctx.engine.session(neem)
+        available = [str(c) for c in row.available or (row.action,)]  # type: ignore[attr-defined]
+        at = row.time.isoformat()  # type: ignore[attr-defined]
+        found, ranking, ms = session.situation(available, at)
+        session.describe(found, ranking, ms)
+        routine_now(ctx.engine, session, found.when.seconds)
+        session.write_imagined(found)
+        marks.append(time.perf_counter())
+        group.commit()
+        marks.append(time.perf_counter())
+        group.join(linger=10.0)
+        session.write_ranking(found, ranking)
+        marks.append(time.perf_counter())
+        group.join()
+        end = row.end.isoformat() if row.end is not None else None  # type: ignore[attr-defined]
+        session.log(str(row.action), at, end)  # type: ignore[attr-defined]
+        marks.append(time.perf_counter())
+        group.commit()
+        marks.append(time.perf_counter())
+        session.warm.warm(session.ranker, session.ranker.last_end, stored_reader(ctx.engine, session))
+        marks.append(time.perf_counter())
+        for name, (a, b) in zip(("situation", "its commit", "ranking written back", "action", "its commit 2",
+                                 "warm-up after the action"), zip(marks, marks[1:])):
+            times.setdefault(name, []).append((b - a) * 1000)
+        times.setdefault("robot-step", []).append((marks[-1] - marks[0]) * 1000)
+
+    try:
+        for round_ in range(STEPS):
+            if round_ == WARM_ROUNDS:
+                times.clear()
+            for neem, _, todo in plans:
+                ctx.thread.call(step, neem, todo[round_])
+    finally:
+        ctx.thread.close()
+    print(f"{robots} robots, {STEPS - WARM_ROUNDS} steps each; load average {os.getloadavg()[0]:.1f}", flush=True)
+    for name, values in times.items():
+        values.sort()
+        print(f"  {name:26s} p50 {percentile(values, 50):7.2f}  p99 {percentile(values, 99):7.2f}"
+              f"  mean {sum(values) / len(values):7.2f} ms", flush=True)
+    mean = sum(times["robot-step"]) / len(times["robot-step"])
+    print(f"  one engine thread: at most {1000 / mean:.0f} robot-steps a second", flush=True)
+
+
+if __name__ == "__main__":
+    main(int(sys.argv[1]), Path(sys.argv[2]) if len(sys.argv) > 2 else Path("/tmp/neem-hub-engine"))
