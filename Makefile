@@ -52,9 +52,14 @@ test-prolog:
 
 # The tests marked slow (a 10,000-action NEEM imported and ranked, a wheel built) run in a second
 # invocation, in CI (where CI is set: .ci/run sets it) or when asked: make test SLOW=1.
+# The tests' temporary files go to memory (/dev/shm) where it is a tmpfs with 4 GB free: on a disk
+# mounted with `discard` each test store's fsyncs and deletes cost more than the test itself
+# (TEST_TMP= keeps pytest's own choice; what a failed test left stays there until the next run).
+TEST_TMP ?= $(shell df -Pk /dev/shm 2>/dev/null | awk -v uid="$$(id -u)" 'NR == 2 && $$4 > 4000000 { print "/dev/shm/neem-oracle-test-" uid }')
 test-python:
-	$(PY) -m pytest -q -n auto -m "not slow"
-	@if [ -n "$(SLOW)$$CI" ]; then echo "slow tests:"; $(PY) -m pytest -q -n auto -m slow; \
+	@$(if $(TEST_TMP),mkdir -p -m 700 $(TEST_TMP))
+	$(PY) -m pytest -q -n auto -m "not slow" $(if $(TEST_TMP),--basetemp=$(TEST_TMP)/fast)
+	@if [ -n "$(SLOW)$$CI" ]; then echo "slow tests:"; $(PY) -m pytest -q -n auto -m slow $(if $(TEST_TMP),--basetemp=$(TEST_TMP)/slow); \
 	else echo "slow tests skipped here (they run in CI; make test SLOW=1 runs them)"; fi
 
 bench:
