@@ -37,6 +37,8 @@ class Registry:
         self.present: set[str] = set()
         #: NEEM ids whose updates and deletions are counted (revisions, append_mark).
         self.tracked: set[str] = set()
+        #: NEEM ids this connection left indexes out of (defer_indexes), until make_indexes.
+        self.deferred: set[str] = set()
 
     # -- registry rows ----------------------------------------------------------------------
     def neems(self) -> list[NeemInfo]:
@@ -121,6 +123,7 @@ class Registry:
             for kind, target in index_targets(neem_id, side=self.side_row(neem_id) is not None):
                 if kind in DEFERRED and target in present:
                     self.conn.execute(f"DROP INDEX {quote(present[target])}")
+        self.deferred.add(neem_id)
 
     def make_indexes(self, neem_id: str) -> None:
         """Build each index of the NEEM that is not there (Store.make_indexes), in one transaction."""
@@ -131,6 +134,7 @@ class Registry:
             for _, sql in indexes(neem_id, taken, side=self.side_row(neem_id) is not None):
                 if target_of(sql) not in present:
                     self.conn.execute(sql)
+        self.deferred.discard(neem_id)
 
     def drop(self, neem_id: str) -> None:
         conn = self.conn
@@ -143,6 +147,7 @@ class Registry:
             kept.drop(conn, neem_id)
         self.present.discard(neem_id)
         self.tracked.discard(neem_id)
+        self.deferred.discard(neem_id)
 
     def rename(self, neem_id: str, new_id: str) -> None:
         conn = self.conn
@@ -160,6 +165,7 @@ class Registry:
             kept.rename(conn, neem_id, new_id)
         self.present.discard(neem_id)
         self.tracked.discard(neem_id)
+        self.deferred.discard(neem_id)
 
     def side_row(self, neem_id: str) -> SideRow | None:
         """(term id of the side property, the closure ids its rows hold) of a NEEM with a side table."""
