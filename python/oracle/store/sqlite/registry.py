@@ -116,7 +116,7 @@ class Registry:
 
     def defer_indexes(self, neem_id: str) -> None:
         """Drop the NEEM's indexes of ``tables.DEFERRED`` (Store.defer_indexes); ``make_indexes``
-        builds them again. Each statement is one transaction: a kill leaves all or none."""
+        builds them again. One transaction: a kill leaves all of them or none."""
         self.require(neem_id)
         with self.conn.transaction():
             present = self._present_indexes(neem_id)
