@@ -281,6 +281,8 @@ def test_the_page_says_what_it_reads_and_shows_the_prior_share(store, chains, br
     try:
         url = f"http://127.0.0.1:{port}"
         page = browser.new_page(viewport={"width": 1280, "height": 1000}, bypass_csp=True)
+        errors: list[str] = []
+        page.on("pageerror", lambda error: errors.append(str(error)))
         told = []
 
         def reading_once(route):  # the service's answer while it reads a NEEM nothing was kept for
@@ -296,6 +298,8 @@ def test_the_page_says_what_it_reads_and_shows_the_prior_share(store, chains, br
         page.wait_for_function("document.getElementById('timeline-status').textContent.startsWith('Reading')")
         said = page.locator("#timeline-status").text_content()
         assert "someone (1234 actions) through Prolog" in said and "2.5 s so far" in said
+        for button in ("#zoom-in", "#zoom-out", "#zoom-reset"):  # before any timeline: nothing to zoom, no error
+            page.locator(button).click()
         page.wait_for_function("performance.getEntriesByName('timeline-painted').length > 0", timeout=60_000)
         assert page.evaluate("performance.getEntriesByName('timeline-reading').length") == 1
         page.wait_for_function("window.neemExplorer.state.decisions !== null", timeout=300_000)
@@ -315,6 +319,7 @@ def test_the_page_says_what_it_reads_and_shows_the_prior_share(store, chains, br
         assert f"The shared prior took part in {found['prior']['decisions']} of {len(found['rank'])} rankings" in figures
         assert f"on average {found['prior']['mean'] * 100:.1f} %" in figures
         assert serious(page, axe_source) == []
+        assert errors == []
         page.close()
     finally:
         stop_server(process)

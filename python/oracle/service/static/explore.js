@@ -299,16 +299,19 @@
     return v;
   }
   function zoomHours(factor, atHour) {
+    if (!state.timeline) { return; }  // nothing to zoom or pan before the first timeline
     var v = state.view, at = atHour === undefined ? (v.h0 + v.h1) / 2 : atHour;
     v.h0 = at - (at - v.h0) * factor; v.h1 = at + (v.h1 - at) * factor;
     clampView(v, state.timeline); redraw();
   }
   function zoomDays(factor, atDay) {
+    if (!state.timeline) { return; }  // nothing to zoom or pan before the first timeline
     var v = state.view, at = atDay === undefined ? (v.d0 + v.d1) / 2 : atDay;
     v.d0 = at - (at - v.d0) * factor; v.d1 = at + (v.d1 - at) * factor;
     clampView(v, state.timeline); redraw();
   }
   function pan(dh, dd) {
+    if (!state.timeline) { return; }  // nothing to zoom or pan before the first timeline
     var v = state.view;
     v.h0 += dh; v.h1 += dh; v.d0 += dd; v.d1 += dd;
     clampView(v, state.timeline); redraw();
@@ -365,7 +368,9 @@
     });
     document.getElementById("zoom-in").addEventListener("click", function () { zoomHours(0.5); zoomDays(0.5); });
     document.getElementById("zoom-out").addEventListener("click", function () { zoomHours(2); zoomDays(2); });
-    document.getElementById("zoom-reset").addEventListener("click", function () { state.view = wholeView(state.timeline); redraw(); });
+    document.getElementById("zoom-reset").addEventListener("click", function () {
+      if (state.timeline) { state.view = wholeView(state.timeline); redraw(); }
+    });
     document.getElementById("timeline-png").addEventListener("click", function () {
       canvas.toBlob(function (blob) { download("timeline.png", blob); }, "image/png");
     });
