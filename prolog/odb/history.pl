@@ -3,6 +3,8 @@
       situation_history_after/2,  % +After, -Situations
       situation_history_json/1,   % -JSONString
       situation_history_json/2,   % +After, -JSONString
+      situation_history_json/3,   % +After, +Until, -JSONString
+      history_slice_bounds/2,     % +Size, -Bounds
       latest_situation/2,         % -Begin, -Calls
       latest_situation/3,         % -Begin, -Calls, -Part
       latest_situation_json/1,    % -JSONString
@@ -18,7 +20,7 @@ situation, the one the next ranking is for.
 */
 
 :- use_module(library(error), [must_be/2]).
-:- use_module(library(lists), [append/3, member/2, nth0/3]).
+:- use_module(library(lists), [append/3, last/2, member/2, nth0/3]).
 :- use_module(library(apply), [foldl/5, include/3, maplist/3]).
 :- use_module(library(pairs), [group_pairs_by_key/2, transpose_pairs/2]).
 :- use_module(library(assoc), [assoc_to_list/2, assoc_to_values/2, empty_assoc/1, get_assoc/3,
@@ -45,7 +47,7 @@ situation, the one the next ranking is for.
 %   pass over the actions in begin order that merges the imaginings (also in begin order)
 %   and looks parts of day and calls up in AVL trees: O(n log n) in the rows read.
 situation_history(Situations) :-
-    situation_history(none, Situations, _).
+    situation_history(range(none, none), Situations, _).
 
 %!  situation_history_after(+After, -Situations) is det.
 %   The situations of situation_history/1 whose action began after the number After, as
@@ -55,19 +57,21 @@ situation_history(Situations) :-
 %   (oracle.historycache); After `none` is the whole history.
 situation_history_after(After, Situations) :-
     after_bound(After),
-    situation_history(After, Situations, _).
+    situation_history(range(After, none), Situations, _).
 
-%   situation_history(+After, -Situations, -Calls): also the AVL tree of task individual ->
-%   call the rows were made from (every call in Situations but `idle` is one of its values).
-situation_history(After, Situations, Calls) :-
-    situation_history(After, Situations, Calls, _).
+%   situation_history(+Range, -Situations, -Calls): the situations of the actions that began
+%   in Range, `range(After, Until)`: after After and not after Until (`none`: no bound); also
+%   the AVL tree of task individual -> call the rows were made from (every call in Situations
+%   but `idle` is one of its values).
+situation_history(Range, Situations, Calls) :-
+    situation_history(Range, Situations, Calls, _).
 
-%   situation_history(+After, -Situations, -Calls, -Actions): also the rows' actions, in the
+%   situation_history(+Range, -Situations, -Calls, -Actions): also the rows' actions, in the
 %   order of Situations.
-situation_history(After, Situations, Calls, Acts) :-
+situation_history(Range, Situations, Calls, Acts) :-
     odb_iri('IdleTask', Idle),
     % Each action with its task's types, grouped by the store (a logged task has two).
-    typed_actions(After, Typed),
+    typed_actions(Range, Typed),
     % The few distinct types are checked once, not once per action.
     findall(C, ( member(_-Cs, Typed), member(C, Cs) ), AllTypes),
     sort(AllTypes, Types),
@@ -78,10 +82,10 @@ situation_history(After, Situations, Calls, Acts) :-
     % the next reads make the stacks grow past them (at 50,000 actions the read's peak RSS went
     % from 649 to 466 MiB with the three collections, its time unchanged; docs/prolog.md).
     garbage_collect,
-    interval_types(After, IntervalTypes),
+    interval_types(Range, IntervalTypes),
     findall(PC-P, ( member(P, ['Morning', 'Midday', 'Evening', 'Night']), odb_iri(P, PC) ), PartClasses),
     findall(A-P, ( member(A-PC, IntervalTypes), memberchk(PC-P, PartClasses) ), Parts),
-    imagined_plans(After, ImaginedPlans),
+    imagined_plans(Range, ImaginedPlans),
     garbage_collect,
     % The few plans' tasks once, not once per (imagining, plan) row: the same join, in Prolog.
     kb_findall(Plan-T, plan_defines_task(Plan, T), any, PlanTasks0),
@@ -93,11 +97,12 @@ situation_history(After, Situations, Calls, Acts) :-
     plans_tasks(TasksOf, Used, Ts1),
     findall(T, ( member(_-_-T-_-C, Actions), C \== Idle ), Ts0),
     append(Ts0, Ts1, Ts),
-    history_calls(After, Ts, CallPairs),
+    history_calls(Range, Ts, CallPairs),
     list_to_assoc(CallPairs, Calls),
     empty_assoc(Memo),
     imagined_calls(ImaginedPlans, TasksOf, Calls, Memo, ByBegin),
     first_values(Parts, PartOf),
+    Range = range(After, _),
     (   After == none -> Prev = inf ; Prev = After ),
     history_rows(Actions, Prev, Idle, PartOf, ByBegin, none, Calls, Situations),
     findall(A, member(_-A-_-_-_, Actions), Acts).
@@ -107,39 +112,51 @@ situation_history(After, Situations, Calls, Acts) :-
 %   the events begun since and those of every plan (the plans are few) reach them all
 %   (task_calls/3): reading a few hundred new actions then costs what they cost, not what the
 %   NEEM does (at 50,000 actions, the last 100: 1.96 s before, 0.12 s; docs/prolog.md).
-history_calls(none, Ts, CallPairs) :- !,
+history_calls(range(none, none), Ts, CallPairs) :- !,
     task_calls(Ts, CallPairs).
-history_calls(After, Ts, CallPairs) :-
-    task_calls(Ts, [ ( triple(I, soma:hasIntervalBegin, >(After)), has_time_interval(A, I), executes_task(A, T) )-T,
+history_calls(Range, Ts, CallPairs) :-
+    begun_in(Range, I, _, Begun),
+    task_calls(Ts, [ ( Begun, has_time_interval(A, I), executes_task(A, T) )-T,
                      plan_defines_task(_, P)-P ], CallPairs).
+
+%   begun_in(+Range, ?I, ?B, -Goal): Goal finds the intervals I that began in Range at B, by
+%   value (the store's index on property and value), a bound Until as a second test of the
+%   same begin: a slice of the history reads the rows of its own actions alone.
+begun_in(range(After, none), I, B, triple(I, soma:hasIntervalBegin, >(After)->B)) :- !.
+begun_in(range(none, Until), I, B, triple(I, soma:hasIntervalBegin, =<(Until)->B)) :- !.
+begun_in(range(After, Until), I, B,
+         ( triple(I, soma:hasIntervalBegin, >(After)->B), triple(I, soma:hasIntervalBegin, =<(Until)) )).
 
 %   Every action (After `none`), or every action that began after After, with its begin,
 %   task, end and the task's types. The restricted reads start from the interval begins the
 %   store finds by value (its index on property and value), before fanning out.
-typed_actions(none, Typed) :- !,
+typed_actions(range(none, none), Typed) :- !,
     kb_group(B-A-T-E, C, ( executes_task(A, T), triple(T, rdf:type, C), event_interval(A, B, E) ),
              any, Typed).
-typed_actions(After, Typed) :-
-    kb_group(B-A-T-E, C, ( triple(I, soma:hasIntervalBegin, >(After)->B), has_time_interval(A, I),
+typed_actions(Range, Typed) :-
+    begun_in(Range, I, B, Begun),
+    kb_group(B-A-T-E, C, ( Begun, has_time_interval(A, I),
                            has_interval_end(I, E), executes_task(A, T), triple(T, rdf:type, C) ),
              any, Typed).
 
 %   Each event (of an interval that began after After) with the types of its interval.
-interval_types(none, IntervalTypes) :- !,
+interval_types(range(none, none), IntervalTypes) :- !,
     kb_findall(A-PC, ( has_time_interval(A, I), triple(I, rdf:type, PC) ), any, IntervalTypes).
-interval_types(After, IntervalTypes) :-
-    kb_findall(A-PC, ( triple(I, soma:hasIntervalBegin, >(After)), has_time_interval(A, I),
+interval_types(Range, IntervalTypes) :-
+    begun_in(Range, I, _, Begun),
+    kb_findall(A-PC, ( Begun, has_time_interval(A, I),
                        triple(I, rdf:type, PC) ), any, IntervalTypes).
 
 %   Each imagining's begin with its plans, grouped by the store (one row per begin, not one
 %   per imagined plan). The mental action's own patterns come first: SQLite then joins its
 %   interval before fanning out to the ~20 plans (4x faster at 10,000 actions).
-imagined_plans(none, ImaginedPlans) :- !,
+imagined_plans(range(none, none), ImaginedPlans) :- !,
     kb_group(B, Plan, ( executes_task(M, MT), instance_of(MT, soma:'Imagining'),
                         event_interval(M, B, _), holds(M, odb:imagines_situation, Plan) ),
              any, ImaginedPlans).
-imagined_plans(After, ImaginedPlans) :-
-    kb_group(B, Plan, ( triple(I, soma:hasIntervalBegin, >(After)->B), has_time_interval(M, I),
+imagined_plans(Range, ImaginedPlans) :-
+    begun_in(Range, I, B, Begun),
+    kb_group(B, Plan, ( Begun, has_time_interval(M, I),
                         has_interval_end(I, _), executes_task(M, MT), instance_of(MT, soma:'Imagining'),
                         holds(M, odb:imagines_situation, Plan) ),
              any, ImaginedPlans).
@@ -216,10 +233,22 @@ situation_history_json(JSON) :-
 %!  situation_history_json(+After, -JSON) is det.
 %   situation_history_after/2 as JSON, in the shape of situation_history_json/1.
 situation_history_json(After, JSON) :-
+    situation_history_json(After, none, JSON).
+
+%!  situation_history_json(+After, +Until, -JSON) is det.
+%   The situations of situation_history_json/2 whose action began after After and not after
+%   Until (`none`: no bound), as one slice of the whole read: the rows that read gives them
+%   when After and Until are begins of its rows (a slice ends at an action's begin, so the
+%   imaginings that began before an action are read with it). Read one after another from
+%   the bounds of history_slice_bounds/2 and joined, the slices are the whole history, each
+%   read holding the rows of its own actions alone (oracle.slicedread).
+situation_history_json(After, Until, JSON) :-
     after_bound(After),
-    situation_history(After, Situations, Calls, Actions),
+    after_bound(Until),
+    Range = range(After, Until),
+    situation_history(Range, Situations, Calls, Actions),
     garbage_collect,    % the read's intermediate lists, before the JSON text is made
-    action_modes(After, ModeOf),
+    range_modes(Range, ModeOf),
     maplist(action_mode(ModeOf), Actions, Modes),
     assoc_to_values(Calls, CallList),
     sort([idle|CallList], Distinct),
@@ -316,8 +345,42 @@ history_view_json(After, JSON) :-
 %   (performers_typed/4).
 action_modes(After, ModeOf) :-
     after_bound(After),
-    performers_typed(After, Pairs, Persons, Agents),
+    range_modes(range(After, none), ModeOf).
+
+range_modes(Range, ModeOf) :-
+    performers_typed(Range, Pairs, Persons, Agents),
     pairs_modes(Pairs, Persons, Agents, ModeOf).
+
+%!  history_slice_bounds(+Size, -Bounds) is det.
+%   The begins at which to end the slices of the history (situation_history_json/3) so that
+%   each holds about Size actions: the ascending begins of every Size-th row of
+%   situation_history/1, but the last (its slice reads to the end, `none`). Equal begins
+%   stay in one slice (a bound is the last of them), so a slice may hold more. One store
+%   query of the actions' begins and task types, however long the NEEM.
+history_slice_bounds(Size, Bounds) :-
+    must_be(positive_integer, Size),
+    odb_iri('IdleTask', Idle),
+    kb_group(B-A, C, ( executes_task(A, T), triple(T, rdf:type, C), event_interval(A, B, _) ), any, Typed),
+    findall(C, ( member(_-Cs, Typed), member(C, Cs) ), AllTypes),
+    sort(AllTypes, Types),
+    include(odb_or_idle(Idle), Types, Kept),
+    findall(B, ( member(B-_-Cs, Typed), once(( member(C, Cs), ord_memberchk(C, Kept) )) ), Begins0),
+    msort(Begins0, Begins),
+    every_nth(Begins, Size, Size, Bounds0),
+    last_dropped(Bounds0, Begins, Bounds).
+
+%   every_nth(+Begins, +K, +Size, -Bounds): the begin of every Size-th row (K rows to the next),
+%   each distinct and not the begin of the rows after it.
+every_nth([], _, _, []).
+every_nth([B|Bs], K, Size, Bounds) :-
+    (   K =:= 1, \+ Bs = [B|_]
+    ->  Bounds = [B|Rest], every_nth(Bs, Size, Size, Rest)
+    ;   K1 is max(1, K-1), every_nth(Bs, K1, Size, Bounds)
+    ).
+
+%   The last row's begin is no bound: the last slice reads to the end.
+last_dropped(Bounds0, Begins, Bounds) :-
+    (   append(Bounds, [Last], Bounds0), last(Begins, Last) -> true ; Bounds = Bounds0 ).
 
 %!  typed_modes(+Rows, -ModeOf) is det.
 %   ModeOf as action_modes/2 gives it, from rows `Action-Agent-Type`: an action, one of its
@@ -340,15 +403,16 @@ pairs_modes(Pairs, Persons, Agents, ModeOf) :-
 %   After a time: one query of the few new actions' pairs with their agents' types, joined as
 %   written from the interval begins found by value (SQLite's own plan drives from every
 %   performer triple instead: 250 ms against 3 ms at 50,000 actions).
-performers_typed(none, Pairs, Persons, Agents) :- !,
+performers_typed(range(none, none), Pairs, Persons, Agents) :- !,
     kb_findall(A-Ag, is_performed_by(A, Ag), any, Pairs0),
     sort(Pairs0, Pairs),
     kb_findall(P, triple(P, rdf:type, dul:'NaturalPerson'), any, Persons0),
     sort(Persons0, Persons),
     kb_findall(R, triple(R, rdf:type, dul:'PhysicalAgent'), any, Agents0),
     sort(Agents0, Agents).
-performers_typed(After, Pairs, Persons, Agents) :-
-    kb_findall(A-Ag-C, ( triple(I, soma:hasIntervalBegin, >(After)), has_time_interval(A, I),
+performers_typed(Range, Pairs, Persons, Agents) :-
+    begun_in(Range, I, _, Begun),
+    kb_findall(A-Ag-C, ( Begun, has_time_interval(A, I),
                          is_performed_by(A, Ag), triple(Ag, rdf:type, C) ), any, [plan(written)], Rows),
     typed_pairs(Rows, Pairs, Persons, Agents).
 

@@ -103,4 +103,54 @@ test(after_none_is_everything, [nondet, setup(load_test_episode), cleanup(store_
 test(after_must_be_a_number, [error(type_error(number, soon)), setup(load_test_episode), cleanup(store_reset)]) :-
     situation_history_after(soon, _).
 
+%   A situation_history_json reply as rows of texts (its call and set indexes are its own).
+decoded(J, Rows) :-
+    atom_json_dict(J, D, []),
+    findall([B, E, C, P, S, M],
+            ( append(_, [B, E, CI, P, SI, M|Rest], D.rows), length(Rest, L), L mod 6 =:= 0,
+              nth0(CI, D.calls, C),
+              ( SI < 0 -> S = none ; nth0(SI, D.sets, Is), maplist([I, T]>>nth0(I, D.calls, T), Is, S) ) ),
+            Rows).
+
+%   The history read slice by slice from the bounds for Size, joined.
+sliced(Size, Rows) :-
+    history_slice_bounds(Size, Bounds),
+    append([none|Bounds], [none], Ends),
+    slices(Ends, Parts),
+    append(Parts, Rows).
+
+slices([_], []).
+slices([After, Until|Ends], [Rows|Parts]) :-
+    situation_history_json(After, Until, J), decoded(J, Rows),
+    slices([Until|Ends], Parts).
+
+test(slices_joined_are_the_whole_read, [cleanup(store_reset)]) :-
+    forall(member(Seed, [1, 2]),
+           ( load_generated_episode(300, Seed),
+             situation_history_json(J), decoded(J, Whole),
+             length(Whole, N), N >= 300,
+             forall(member(Size, [1, 2, 7, 50, 299, 1000]),
+                    ( sliced(Size, Got), assertion(Got == Whole) )) )).
+
+test(slices_of_the_small_episode, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
+    history_slice_bounds(1, Bounds), Bounds = [B1, B2], B1 =:= 101, B2 > B1,
+    situation_history_json(J), decoded(J, Whole),
+    sliced(1, Got), Got == Whole,
+    situation_history_json(none, B1, J1), decoded(J1, [First]), Whole = [First|_].
+
+test(slice_bounds_keep_equal_begins_together) :-
+    every_nth_bounds([1, 2, 2, 2, 3, 4, 4], 2, Bounds), Bounds == [2],    % 4 ends the last slice
+    every_nth_bounds([1, 2, 3, 4, 5], 2, Five), Five == [2, 4],
+    every_nth_bounds([], 2, None), None == [].
+
+every_nth_bounds(Begins, Size, Bounds) :-
+    odb_history:every_nth(Begins, Size, Size, Bounds0),
+    odb_history:last_dropped(Bounds0, Begins, Bounds).
+
+test(slice_bounds_need_a_positive_size, [error(type_error(positive_integer, 0))]) :-
+    history_slice_bounds(0, _).
+
+test(until_must_be_a_number, [error(type_error(number, later))]) :-
+    situation_history_json(none, later, _).
+
 :- end_tests(odb_history).
