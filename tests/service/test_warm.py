@@ -167,3 +167,23 @@ def test_the_kept_episodes_cut_as_cutting_all_at_once():
             done = list(map(lambda d: replace(d), done))  # made anew: nothing kept applies
         assert kept._episodes(done) == episodes_of(done)
     assert kept._cut is not None and len(episodes_of(done)) > 20
+
+
+def test_a_session_opened_is_frozen_out_of_the_collectors_view(tmp_path, onto):
+    import gc
+
+    store = open_store(tmp_path / "s.sqlite")
+    logger = NeemLogger.create(store, onto, user="ann", neem_id="ann")
+    _, rows = persona_rows(0, 1, 12)
+    for row in rows[:20]:
+        logger.action(row.action, row.time, row.end, available=row.available)
+    logger.flush()
+    engine = Engine(store, onto, Hyperparameters())
+    gc.unfreeze()
+    try:
+        session = engine.session("ann")
+        assert gc.get_freeze_count() > 0
+        assert not any(obj is session for obj in gc.get_objects())  # frozen: not scanned by a collection
+    finally:
+        gc.unfreeze()
+        store.close()
