@@ -5,7 +5,7 @@ predictor and for the default, the personal predictor with the bench's shared pr
 Usage: python experiments/chain-check.py [SIZE ...]   (default 300 1000 10000)
 For each size N: the predictor fitted on the first N steps of a history of
 `oracle.benchmarks.algorithm` (seed N; the personal one with `bench_data`'s prior of other users of
-the same world) ranks each of the next 30 steps' offers and chains ahead of it
+the same world, made here so that older code runs it) ranks each of the next 30 steps' offers and chains ahead of it
 (`oracle.algorithm.chaining.chain_ahead`, the offers that followed each option before); printed:
 N, the predictor, the median ms of a chain, and the first 12 hex digits of the SHA-256 of the
 chains' texts. To run the code of another commit, put its `python` folder first on PYTHONPATH
@@ -31,10 +31,17 @@ def check(size: int, personal: bool = False) -> tuple[float, str]:
     model: Any
     if personal:
         from oracle.algorithm.personal import PersonalOracle
-        from oracle.benchmarks.algorithm import bench_data
+        from oracle.algorithm.prior import IDLE, option_key
+        from oracle.algorithm.prior_counts import Population
 
-        matrix, prefix, queries, prior = bench_data(size, 200)
-        model = PersonalOracle(matrix).use_prior(prior).fit(prefix)
+        # benchmarks.algorithm.bench_data's prior, made here so that older code runs it too
+        matrix, steps = history(size + 200 + 5 * 2000, seed=size)
+        prefix, queries, others = steps[:size], steps[size:size + 200], steps[size + 200:]
+        population = Population()
+        for user in range(5):
+            part = others[user * 2000:(user + 1) * 2000]
+            population.add(user, [[IDLE if step.idle else option_key(step.option) for step in part]])
+        model = PersonalOracle(matrix).use_prior(population.prior(k=5)).fit(prefix)
     else:
         matrix, steps = history(size + 200, seed=size)
         prefix, queries = steps[:size], steps[size:]
