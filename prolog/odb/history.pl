@@ -5,6 +5,7 @@
       situation_history_json/2,   % +After, -JSONString
       situation_history_json/3,   % +After, +Until, -JSONString
       history_slice_bounds/2,     % +Size, -Bounds
+      history_slice_bounds_json/2, % +Size, -JSONString
       latest_situation/2,         % -Begin, -Calls
       latest_situation/3,         % -Begin, -Calls, -Part
       latest_situation_json/1,    % -JSONString
@@ -368,6 +369,12 @@ history_slice_bounds(Size, Bounds) :-
     msort(Begins0, Begins),
     every_nth(Begins, Size, Size, Bounds0),
     last_dropped(Bounds0, Begins, Bounds).
+
+%!  history_slice_bounds_json(+Size, -JSON) is det.
+%   history_slice_bounds/2 as a JSON list of numbers (each reads back as the same number).
+history_slice_bounds_json(Size, JSON) :-
+    history_slice_bounds(Size, Bounds),
+    json_text(Bounds, JSON).
 
 %   every_nth(+Begins, +K, +Size, -Bounds): the begin of every Size-th row (K rows to the next),
 %   each distinct and not the begin of the rows after it.

@@ -134,6 +134,7 @@ test(slices_joined_are_the_whole_read, [cleanup(store_reset)]) :-
 
 test(slices_of_the_small_episode, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
     history_slice_bounds(1, Bounds), Bounds = [B1, B2], B1 =:= 101, B2 > B1,
+    history_slice_bounds_json(1, BJ), term_string(JBounds, BJ), JBounds == Bounds,
     situation_history_json(J), decoded(J, Whole),
     sliced(1, Got), Got == Whole,
     situation_history_json(none, B1, J1), decoded(J1, [First]), Whole = [First|_].

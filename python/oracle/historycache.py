@@ -28,7 +28,8 @@ since cannot change them (``extends``):
   change, and nothing is read.
 
 Otherwise (a store that cannot tell, such as MongoDB; an entry missing, damaged or not the
-user's own; anything else) the whole history is read and the entry replaced. A temporary NEEM
+user's own; anything else) the whole history is read (in bounded slices, oracle.slicedread)
+and the entry replaced. A temporary NEEM
 (a session not yet persisted, wiped when the next one starts; thesis 3.5) is never kept. The cache is an
 optimisation: a folder that cannot be written only makes every call read the whole history.
 """
@@ -40,7 +41,7 @@ import json
 import math
 import os
 import re
-from collections.abc import Collection, Mapping, Sequence
+from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar
@@ -48,6 +49,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 from oracle.bridge import ROW_WIDTH, Bridge, HistoryRow, HistoryView, history_rows
 from oracle.files import CacheFolder, written_by_user_alone
 from oracle.neem.terms import BEGIN, EXECUTES, HAS_INTERVAL, IMAGINING
+from oracle.slicedread import sliced_view
 from oracle.store.base import Appended, AppendMark
 from oracle.store.model import RDF_TYPE, decode_value
 
@@ -82,15 +84,17 @@ class HistoryCache(CacheFolder):
         """``bridge.history()``, as ``view`` keeps it."""
         return self.view(bridge).rows
 
-    def view(self, bridge: Bridge) -> HistoryView:
+    def view(self, bridge: Bridge, whole: Callable[[Bridge], HistoryView] = sliced_view) -> HistoryView:
         """``bridge.history_view()``, from the kept entry and the actions added since when the
-        store shows they extend it (module docstring); the entry then holds the result."""
+        store shows they extend it (module docstring); the entry then holds the result. ``whole``
+        reads the whole view when it must be (the service's reads the first slices before, each
+        its own job on the engine thread: oracle.service.explore_routes)."""
         store, neem = bridge.store, bridge.neem_id
         if store.neem(neem).temporary:
-            return bridge.history_view()  # wiped when its session ends: nothing of it may outlive it
+            return whole(bridge)  # wiped when its session ends: nothing of it may outlive it
         mark = store.append_mark(neem)
         if mark is None:
-            return bridge.history_view()
+            return whole(bridge)
         key = _entry_key(bridge)
         path = self.root / f"{_file_name(key, store.location)}{self.SUFFIX}"
         entry = _best(mark, key, [raw for raw in (store.read_kept(neem, KIND), self._load(path)) if raw is not None])
@@ -98,7 +102,7 @@ class HistoryCache(CacheFolder):
             return entry.view
         view = _extended(bridge, entry, mark) if entry is not None else None
         if view is None:
-            view = bridge.history_view()
+            view = whole(bridge)
         data = _dumps(key, mark, view)
         if not store.write_kept(neem, KIND, data):
             self._store(path, data)

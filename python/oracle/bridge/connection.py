@@ -148,6 +148,22 @@ class Bridge:
         number = repr(after) if isinstance(after, int) else repr(float(after))
         return history_rows(self._json("odb_history:situation_history_json", f"{number}, "))
 
+    def history_slice(self, after: float | None, until: float | None) -> list[HistoryRow]:
+        """The rows of history() whose action began after ``after`` and not after ``until`` (None:
+        no bound), as history() gives them when both are begins of its rows
+        (odb_history:situation_history_json/3): one slice of a whole read (oracle.slicedread)."""
+        return history_rows(self._json("odb_history:situation_history_json",
+                                       f"{_bound(after, 'history_slice')}, {_bound(until, 'history_slice')}, "))
+
+    def history_bounds(self, size: int) -> list[float]:
+        """Where to end the slices of the history so that each holds about ``size`` actions
+        (odb_history:history_slice_bounds/2): ascending begins of its rows, the last slice's end
+        (the history's end) not among them."""
+        if isinstance(size, bool) or not isinstance(size, int) or size < 1:
+            raise PrologError(f"history_bounds needs a positive number of actions, got {size!r}")
+        bounds = self._json("odb_history:history_slice_bounds_json", f"{size}, ")
+        return [float(b) if isinstance(b, float) else int(b) for b in bounds]
+
     def latest_situation(self) -> LatestSituation | None:
         """The latest imagined situation as ``{"begin", "available", "part"}`` (``part``: the
         part of day its interval was logged with, ``none`` if none), or None."""
@@ -197,6 +213,15 @@ class Bridge:
                 if STATE.get("active") is self:
                     STATE["active"] = None
                     run("neem_store:store_use_memory")
+
+
+def _bound(value: float | None, what: str) -> str:
+    """A begin as Prolog text (``none`` for None) that reads back as the same number."""
+    if value is None:
+        return "none"
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise PrologError(f"{what} needs a finite number, got {value!r}")
+    return repr(value)
 
 
 def _ontology_request(ontology: OdbOntology) -> list[Any]:
