@@ -170,13 +170,13 @@ def test_a_store_that_keeps_nothing_is_read_once_per_open_not_per_poll(store, tm
     copy = tmp_path / "s.sqlite"
     shutil.copy(store, copy)
     reads = []
-    view = explore_routes._view
+    view = explore_routes._view_in_slices
 
-    def counted(ctx, neem):
+    async def counted(ctx, neem):
         reads.append(neem)
-        return view(ctx, neem)
+        return await view(ctx, neem)
 
-    monkeypatch.setattr(explore_routes, "_view", counted)
+    monkeypatch.setattr(explore_routes, "_view_in_slices", counted)
     monkeypatch.setattr(explore_routes, "QUICK_READ_S", 0.0)
     for client, ctx in _client(copy):
         monkeypatch.setattr(ctx.engine.store, "append_mark", lambda neem: None)  # as a server's store answers

@@ -252,6 +252,16 @@ def _view(ctx: Context, neem: str) -> tuple[str, str, list[HistoryRow]]:
     return neem_id, info.user or neem_id, rows
 
 
+async def _view_in_slices(ctx: Context, neem_id: str) -> tuple[str, str, list[HistoryRow]]:
+    """``_view``, its whole read one slice per engine-thread job: a robot's situation waits one
+    slice, not the read (oracle.service.sliced_jobs)."""
+    from oracle.service.sliced_jobs import view_in_jobs
+
+    view = await view_in_jobs(ctx.thread, ctx.engine, neem_id)
+    info = await ctx.thread.run(ctx.engine.store.neem, neem_id)
+    return neem_id, info.user or neem_id, view.rows
+
+
 def _unread(ctx: Context, neem: str) -> dict[str, Any] | None:
     """What a NEEM's first read will read (its id, user and number of actions), or None when
     the history is kept: the engine then reads it at once."""
@@ -292,7 +302,7 @@ async def _rows(request: Request, neem: str, again: bool = True) -> tuple[str, s
             return await ctx.thread.run(_view, ctx, neem)
         reading = state.reading.get(neem)  # another request may have started it meanwhile
         if reading is None:
-            reading = state.reading[neem] = Reading(asyncio.ensure_future(ctx.thread.run(_view, ctx, neem)), unread)
+            reading = state.reading[neem] = Reading(asyncio.ensure_future(_view_in_slices(ctx, unread["neem"])), unread)
     if not reading.task.done():
         await asyncio.wait({reading.task}, timeout=QUICK_READ_S)
     if not reading.task.done():
