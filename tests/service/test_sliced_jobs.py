@@ -1,0 +1,84 @@
+"""/explore's first read of a NEEM nothing kept, one slice per engine-thread job
+(oracle.service.sliced_jobs): each slice is its own job, so a job queued meanwhile runs between
+two slices; the view equals the one-call read, and a NEEM that grows between slices is read again."""
+
+from __future__ import annotations
+
+import asyncio
+import random
+from collections.abc import Callable
+from datetime import datetime, timedelta
+from types import SimpleNamespace
+from typing import Any
+
+import pytest
+
+from oracle.bridge import Bridge
+from oracle.neem.writer import NeemLogger
+from oracle.service.sliced_jobs import view_in_jobs
+from oracle.store import open_store
+
+CALLS = ["pick(apple)", "pour(thermos, green_mug)", "pick(banana)", "open(fridge)"]
+
+
+class Thread:
+    """The engine thread's ``run`` in order, each job counted; ``between`` runs after the
+    ``at``-th job (another request's job queued meanwhile)."""
+
+    def __init__(self, at: int = -1, between: Callable[[], None] | None = None) -> None:
+        self.jobs = 0
+        self.at, self.between = at, between
+
+    async def run(self, fn: Callable[..., Any], *args: Any) -> Any:
+        result = fn(*args)
+        self.jobs += 1
+        if self.jobs == self.at and self.between is not None:
+            self.between()
+        return result
+
+
+def _log(log: NeemLogger, rng: random.Random, t: datetime, n: int) -> datetime:
+    for _ in range(n):
+        t += timedelta(seconds=rng.choice([0, 1, 30, 3600]))
+        for _ in range(rng.choice([0, 1, 2])):
+            log.available(rng.sample(CALLS, rng.randint(1, len(CALLS))), t)
+            t += timedelta(seconds=rng.choice([0, 1]))
+        end = t + timedelta(seconds=rng.choice([0, 2, 25]))
+        log.action(rng.choice(CALLS), t, end)
+        t = end
+    log.flush()
+    return t
+
+
+@pytest.fixture()
+def neem(tmp_path, onto):
+    store = open_store(tmp_path / "h.sqlite")
+    log = NeemLogger.create(store, onto, user="r", neem_id="r")
+    for obj in ("apple", "thermos", "green_mug", "banana", "fridge"):
+        log.perceive(obj, datetime(2024, 1, 1, 5))
+    rng = random.Random(5)
+    t = _log(log, rng, datetime(2024, 1, 1, 5), 90)
+    bridge = Bridge(store, "r", onto)
+    yield SimpleNamespace(store=store, bridge=lambda neem: bridge, id=bridge.neem_id), log, rng, t
+    bridge.close()
+    store.close()
+
+
+def test_each_slice_is_its_own_job_and_the_view_is_the_whole_read(neem):
+    engine, _, _, _ = neem
+    bridge = engine.bridge("r")
+    thread = Thread()
+    view = asyncio.run(view_in_jobs(thread, engine, engine.id, size=10))  # type: ignore[arg-type]
+    whole = bridge.history_view()
+    assert view.rows == whole.rows and view.latest == whole.latest
+    slices = len(bridge.history_bounds(10))
+    assert slices >= 8 and thread.jobs == slices + 2  # the bounds, each slice, the last one with the cache
+
+
+def test_a_neem_grown_between_slices_is_read_again(neem):
+    engine, log, rng, t = neem
+    thread = Thread(at=3, between=lambda: _log(log, rng, t, 2))  # a robot logs between two slices
+    view = asyncio.run(view_in_jobs(thread, engine, engine.id, size=10))  # type: ignore[arg-type]
+    whole = engine.bridge("r").history_view()
+    assert view.rows == whole.rows and view.latest == whole.latest
+    assert thread.jobs > 2 * (len(engine.bridge("r").history_bounds(10)) + 1)  # begun again
