@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 from oracle.benchmarks.coldstart import crossings, kept_floor, one_more_action, rank_cli, service_first
 from oracle.benchmarks.figures import growth_exponent, spread, spread_text
 from oracle.benchmarks.ontology import SHARED_SOMA
+from oracle.benchmarks.slices import slice_figures
 from oracle.historycache import HistoryCache
 
 if TYPE_CHECKING:
@@ -104,6 +105,7 @@ def run(quick: bool = False) -> list[dict[str, Any]]:
         bridge.close()
         store.close()
     rows.extend(history_figures(quick))
+    rows.extend(slice_figures(quick))
     rows.extend(owl_figures(quick))
     return rows
 
