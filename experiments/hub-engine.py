@@ -15,14 +15,13 @@ robot-step; one engine thread serves at most 1,000 / mean-sum robot-steps a seco
 from __future__ import annotations
 
 import os
-import pickle
 import shutil
 import sys
 import time
 from pathlib import Path
 
 from oracle.algorithm.params import Hyperparameters
-from oracle.benchmarks.service import _prepare
+from oracle.benchmarks.service import _prepare, robot_rows
 from oracle.ontology import build_ontology
 from oracle.service import boot, build_context
 from oracle.service.robot import percentile
@@ -33,13 +32,17 @@ STEPS, WARM_ROUNDS = 20, 2
 
 def main(robots: int, folder: Path) -> None:
     folder.mkdir(parents=True, exist_ok=True)
-    store, plans_file = folder / f"hub{robots}.sqlite", folder / f"hub{robots}.plans"
+    store = folder / f"hub{robots}.sqlite"
     if not store.exists():
         started = time.perf_counter()
-        plans = _prepare(store, robots, 1000, STEPS)
-        plans_file.write_bytes(pickle.dumps(plans))  # our own file, written just now
+        _prepare(store, robots, 1000, STEPS)
         print(f"prepared {robots} NEEMs in {time.perf_counter() - started:.0f} s", flush=True)
-    plans = pickle.loads(plans_file.read_bytes())  # noqa: S301  (this script's own file)
+    # the steps to post made again (the personas' rows are the same each call): nothing is read
+    # back from the folder but the store
+    plans = []
+    for robot in range(robots):
+        user, rows = robot_rows(robot, 1000 + STEPS)
+        plans.append((f"bench-{robot}", user, rows[1000:1000 + STEPS]))
     work = folder / "work.sqlite"
     for suffix in ("", "-wal", "-shm"):
         if os.path.exists(f"{work}{suffix}"):

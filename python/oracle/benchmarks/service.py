@@ -45,11 +45,7 @@ def _prepare(store: Path, robots: int, actions: int, steps: int) -> list[tuple[s
     db = open_store(store)
     plans = []
     for robot in range(robots):
-        days = 2 + (actions + steps) // 30
-        user, rows = persona_rows(robot, 3, days)
-        while len(rows) < actions + steps:  # personas differ in how much they do a day
-            days = days * 3 // 2
-            user, rows = persona_rows(robot, 3, days)
+        user, rows = robot_rows(robot, actions + steps)
         logger = NeemLogger.create(db, onto, user=user, neem_id=f"bench-{robot}", commit_every=500)
         for row in rows[:actions]:
             logger.action(row.action, row.time, row.end, available=row.available)
@@ -57,6 +53,16 @@ def _prepare(store: Path, robots: int, actions: int, steps: int) -> list[tuple[s
         plans.append((f"bench-{robot}", user, rows[actions:actions + steps]))
     db.close()
     return plans
+
+
+def robot_rows(robot: int, count: int) -> tuple[str, list[Any]]:
+    """Robot ``robot``'s user and at least ``count`` rows of its persona's days (the same each call)."""
+    days = 2 + count // 30
+    user, rows = persona_rows(robot, 3, days)
+    while len(rows) < count:  # personas differ in how much they do a day
+        days = days * 3 // 2
+        user, rows = persona_rows(robot, 3, days)
+    return user, rows
 
 
 def _serve(store: Path, *extra: str) -> tuple[subprocess.Popen[bytes], str]:
