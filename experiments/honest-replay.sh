@@ -16,16 +16,16 @@ KA=(out/kasteren/chains.jsonl --odb out/kasteren/odb --mapping out/kasteren/mapp
 EG=(out/egtea/chains.jsonl --odb out/egtea/odb --mapping out/egtea/mapping.yaml)
 $PY -m oracle evaluate "${KA[@]}" --baselines --also stacked --json out/i39-kasteren.json
 for r in 0:8 8:16 16:24 24:; do
-  $PY experiments/shards.py run "${EG[@]}" --users "$r" --out "out/i39-egtea-${r%%:*}.pkl" &
+  $PY experiments/shards.py run "${EG[@]}" --users "$r" --out "out/i39-egtea-${r%%:*}.shard.json" &
 done
 wait
-$PY experiments/shards.py merge out/i39-egtea-{0,8,16,24}.pkl --json out/i39-egtea.json
+$PY experiments/shards.py merge out/i39-egtea-{0,8,16,24}.shard.json --json out/i39-egtea.json
 # the persona test split in three shards of users side by side, merged into what one evaluate writes
 for r in 0:30 30:60 60:; do
-  $PY experiments/shards.py run out/bench/test.jsonl --users "$r" --out "out/i39-persona-${r%%:*}.pkl" &
+  $PY experiments/shards.py run out/bench/test.jsonl --users "$r" --out "out/i39-persona-${r%%:*}.shard.json" &
 done
 wait
-$PY experiments/shards.py merge out/i39-persona-0.pkl out/i39-persona-30.pkl out/i39-persona-60.pkl \
+$PY experiments/shards.py merge out/i39-persona-0.shard.json out/i39-persona-30.shard.json out/i39-persona-60.shard.json \
     --json out/i39-persona.json
 $PY experiments/chains.py "${KA[@]}" --json out/i39-chains-kasteren.json
 $PY experiments/chains.py "${EG[@]}" --json out/i39-chains-egtea.json

@@ -4,9 +4,9 @@ the shards run side by side). Each user is replayed from an empty history and it
 shuffled by user and position, so the merged outcomes, in the set's user order, are those of one
 run, and so are the summary, the paired intervals and the cold start.
 
-usage: python experiments/shards.py run CHAINS [--odb DIR --mapping YAML] --users A:B --out SHARD.pkl
+usage: python experiments/shards.py run CHAINS [--odb DIR --mapping YAML] --users A:B --out SHARD.json
            [--also stacked[,NAME]] [--without NAME[,NAME]]
-       python experiments/shards.py merge SHARD.pkl ... --json OUT [--against NAME]
+       python experiments/shards.py merge SHARD.json ... --json OUT [--against NAME]
 (``--also``: the registry's predictors replayed beside the default, ``stacked`` unless given; ``--without``:
 baselines left out, e.g. ``gbdt`` where its figures of an earlier run are cited instead.)
 """
@@ -15,14 +15,14 @@ from __future__ import annotations
 
 import argparse
 import json
-import pickle
+import dataclasses
 import sys
 from collections import OrderedDict
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
 from oracle.algorithm.params import Hyperparameters  # noqa: E402
-from oracle.evaluation.replay import (OracleMethod, ReplayResult, ReplayRules, load_users, make_methods,  # noqa: E402
+from oracle.evaluation.replay import (OracleMethod, Outcome, ReplayResult, ReplayRules, load_users, make_methods,  # noqa: E402
                                       replay, summarize)
 from oracle.evaluation.statistics import cold_start_summary, comparison_summary  # noqa: E402
 from oracle.ontology import build_ontology  # noqa: E402
@@ -38,11 +38,12 @@ def run(args: argparse.Namespace) -> None:
     for at, name in enumerate((n for n in args.also.split(",") if n), start=1):
         methods.insert(at, OracleMethod(ontology, Hyperparameters(), method=name, served=True))
     result = replay(ontology, chosen, methods, 0, None, ReplayRules())
-    Path(args.out).write_bytes(pickle.dumps(result.outcomes))
+    # plain JSON, never a pickle: a shard is a file merge reads back
+    Path(args.out).write_text(json.dumps([dataclasses.asdict(o) for o in result.outcomes]) + "\n", encoding="utf-8")
 
 
 def merge(args: argparse.Namespace) -> None:
-    outcomes = [o for path in args.shards for o in pickle.loads(Path(path).read_bytes())]
+    outcomes = [Outcome(**o) for path in args.shards for o in json.loads(Path(path).read_text(encoding="utf-8"))]
     result = ReplayResult(outcomes)
     summary = summarize(result)
     names = result.methods()
