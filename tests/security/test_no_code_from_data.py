@@ -9,6 +9,9 @@ import re
 from pathlib import Path
 
 PRODUCT = Path(__file__).resolve().parents[2] / "python" / "oracle"
+#: The reproductions read files too (a shard, a report): held to the same rule, named from the
+#: package's folder as ``../../experiments/NAME``.
+EXPERIMENTS = PRODUCT.parents[1] / "experiments"
 #: What turns bytes into objects that can name code.
 RISKY = re.compile(r"pickle\.loads?\(|Unpickler|marshal\.loads?\(|\bshelve\b|(?<![\w.])eval\(|(?<![\w.])exec\(|"
                    r"yaml\.load\(|yaml\.unsafe_load|allow_pickle\s*=\s*True|jsonpickle|\bdill\b|\.recv\(\)")
@@ -26,6 +29,10 @@ ALLOWED = [
      "(oracle.files.user_key): written by this package on this account, never from a store or a dump"),
     ("ontology/model.py", 'pickle.loads(self.__dict__.pop("_graph_bytes"))',
      "the graph inside an ontology cache entry, itself read only after its tag verified (files.cached_pickle)"),
+    ("../../experiments/chains.py", "model = pickle.loads(pickle.dumps(model))",
+     "a copy of a model in memory, pickled on the same line"),
+    ("../../experiments/plainstate-cost.py", "pickle.loads(pickled)",
+     "the cost of reading back the pickle this script made two lines above, in memory (what the plain format replaced)"),
     ("service/explore_routes.py", "ok, value = parent.recv()",
      "the pipe from /explore's own replay child (multiprocessing), which pickles the replay it computed; "
      "both ends are this package's own processes: the bytes are made by its own pickler, never read from a file or a request"),
@@ -34,11 +41,13 @@ ALLOWED = [
 
 def _risky_lines() -> list[tuple[str, str]]:
     found = []
-    for path in sorted(PRODUCT.rglob("*.py")):
+    for path in sorted(PRODUCT.rglob("*.py")) + sorted(EXPERIMENTS.rglob("*.py")):
+        inside = PRODUCT in path.parents
+        name = path.relative_to(PRODUCT).as_posix() if inside else f"../../experiments/{path.relative_to(EXPERIMENTS).as_posix()}"
         for line in path.read_text(encoding="utf-8").splitlines():
             code = line.split("#", 1)[0]
             if RISKY.search(code) and not code.strip().startswith(('"', "'")):
-                found.append((path.relative_to(PRODUCT).as_posix(), line.strip()))
+                found.append((name, line.strip()))
     return found
 
 
