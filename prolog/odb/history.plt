@@ -112,17 +112,21 @@ decoded(J, Rows) :-
               ( SI < 0 -> S = none ; nth0(SI, D.sets, Is), maplist([I, T]>>nth0(I, D.calls, T), Is, S) ) ),
             Rows).
 
-%   The history read slice by slice from the bounds for Size, joined.
+%   The history read slice by slice from the bounds for Size, joined; each slice read from
+%   its After (From `after`) or its Until (`until`).
 sliced(Size, Rows) :-
+    sliced(Size, after, Rows).
+
+sliced(Size, From, Rows) :-
     history_slice_bounds(Size, Bounds),
     append([none|Bounds], [none], Ends),
-    slices(Ends, Parts),
+    slices(Ends, From, Parts),
     append(Parts, Rows).
 
-slices([_], []).
-slices([After, Until|Ends], [Rows|Parts]) :-
-    situation_history_json(After, Until, J), decoded(J, Rows),
-    slices([Until|Ends], Parts).
+slices([_], _, []).
+slices([After, Until|Ends], From, [Rows|Parts]) :-
+    situation_history_json(After, Until, From, J), decoded(J, Rows),
+    slices([Until|Ends], From, Parts).
 
 test(slices_joined_are_the_whole_read, [cleanup(store_reset)]) :-
     forall(member(Seed, [1, 2]),
@@ -130,7 +134,8 @@ test(slices_joined_are_the_whole_read, [cleanup(store_reset)]) :-
              situation_history_json(J), decoded(J, Whole),
              length(Whole, N), N >= 300,
              forall(member(Size, [1, 2, 7, 50, 299, 1000]),
-                    ( sliced(Size, Got), assertion(Got == Whole) )) )).
+                    ( sliced(Size, after, Got), assertion(Got == Whole),
+                      sliced(Size, until, FromUntil), assertion(FromUntil == Whole) )) )).
 
 test(slices_of_the_small_episode, [nondet, setup(load_test_episode), cleanup(store_reset)]) :-
     history_slice_bounds(1, Bounds), Bounds = [B1, B2], B1 =:= 101, B2 > B1,
@@ -153,5 +158,8 @@ test(slice_bounds_need_a_positive_size, [error(type_error(positive_integer, 0))]
 
 test(until_must_be_a_number, [error(type_error(number, later))]) :-
     situation_history_json(none, later, _).
+
+test(a_slice_is_read_from_after_or_until, [error(type_error(oneof([after, until]), middle))]) :-
+    situation_history_json(1, 2, middle, _).
 
 :- end_tests(odb_history).
