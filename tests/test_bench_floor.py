@@ -10,7 +10,8 @@ from pathlib import Path
 from oracle.algorithm.records import Option
 from oracle.algorithm.routine import RoutineOracle
 from oracle.benchmarks.algorithm import fit_floor_ms, floor_counts, history
-from oracle.benchmarks.prolog import _neem, _sql_floor
+from oracle.benchmarks.prolog import _neem
+from oracle.benchmarks.readfloor import sql_floor as _sql_floor
 from oracle.ontology import build_ontology
 from oracle.store import open_store
 from oracle.store.ids import resolve_neem

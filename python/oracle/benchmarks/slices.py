@@ -99,7 +99,8 @@ def _robot_child(store_path: str, big: str, small: str, mode: str) -> None:
 
 def slice_figures(quick: bool = False) -> list[dict[str, Any]]:
     """The rows: per size, each mode's read (median of 3 processes; 1 when quick), and the robot's wait."""
-    from oracle.benchmarks.prolog import _chains_store, _sql_floor
+    from oracle.benchmarks.readfloor import chains_store as _chains_store
+    from oracle.benchmarks.readfloor import sql_floor as _sql_floor
     from oracle.store import open_store
     from oracle.store.ids import resolve_neem
 
