@@ -65,7 +65,7 @@ test-python:
 bench:
 	$(PY) -m oracle bench
 
-# make test runs each atheris target 10 s (30 s in CI) and schemathesis ~1,000 requests (tests/fuzz); this runs
+# make test runs each atheris target 10 s and schemathesis ~600 requests (in CI: 30 s, ~1,000; tests/fuzz); this runs
 # them longer. A crash is left in pytest's temporary folder: save it under tests/fuzz/regressions/.
 FUZZ_SECONDS ?= 600
 SCHEMATHESIS_EXAMPLES ?= 200

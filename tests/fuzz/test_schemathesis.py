@@ -1,6 +1,6 @@
 """schemathesis against a live ``serve`` from its own /openapi.json: at least 1,000 generated
-requests, no server error (5xx), no status, content type or body outside what the document says
-(``make fuzz`` runs more: NEEM_SCHEMATHESIS_EXAMPLES)."""
+requests in CI (500 in a developer's make test), no server error (5xx), no status, content type
+or body outside what the document says (``make fuzz`` runs more: NEEM_SCHEMATHESIS_EXAMPLES)."""
 
 from __future__ import annotations
 
@@ -18,8 +18,11 @@ from oracle.benchmarks.security import call, start, stop
 from tests.service.conftest import AVAILABLE, ROUTINE, at
 
 CONFIG = Path(__file__).with_name("schemathesis.toml")
-#: Examples per operation and phase (20 operations: about 1,000 requests in all at 25).
-EXAMPLES = int(os.environ.get("NEEM_SCHEMATHESIS_EXAMPLES", "25"))
+#: Examples per operation and phase (20 operations: about 1,000 requests in all at 25, as CI
+#: runs it; about 600 at 8, as a developer's make test does, kept within its 3 minutes).
+EXAMPLES = int(os.environ.get("NEEM_SCHEMATHESIS_EXAMPLES") or (25 if os.environ.get("CI") else 8))
+#: The generated requests a run must reach: CI's run at least 1,000.
+AT_LEAST = 1000 if EXAMPLES >= 25 else 500
 CHECKS = "not_a_server_error,status_code_conformance,content_type_conformance,response_schema_conformance"
 
 pytestmark = [
@@ -46,4 +49,4 @@ def test_generated_requests_get_no_server_error_and_only_documented_answers(tmp_
     found = re.search(r"(\d+) generated.*", run.stdout)
     print(found.group(0) if found else "no count in schemathesis' output")  # pytest -s shows it
     assert run.returncode == 0, run.stdout[-8000:] + run.stderr[-2000:]
-    assert found is not None and int(found.group(1)) >= 1000, run.stdout[-3000:]
+    assert found is not None and int(found.group(1)) >= AT_LEAST, run.stdout[-3000:]
