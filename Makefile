@@ -56,10 +56,13 @@ test-prolog:
 # mounted with `discard` each test store's fsyncs and deletes cost more than the test itself
 # (TEST_TMP= keeps pytest's own choice; what a failed test left stays there until the next run).
 TEST_TMP ?= $(shell df -Pk /dev/shm 2>/dev/null | awk -v uid="$$(id -u)" 'NR == 2 && $$4 > 4000000 { print "/dev/shm/neem-oracle-test-" uid }')
+# pytest may keep its assertion-rewritten test modules in __pycache__ even where the shell sets
+# PYTHONDONTWRITEBYTECODE: otherwise every worker rewrites and compiles all ~280 of them each run.
+PYTEST := env -u PYTHONDONTWRITEBYTECODE $(PY) -m pytest
 test-python:
 	@$(if $(TEST_TMP),mkdir -p -m 700 $(TEST_TMP))
-	$(PY) -m pytest -q -n auto -m "not slow" $(if $(TEST_TMP),--basetemp=$(TEST_TMP)/fast)
-	@if [ -n "$(SLOW)$$CI" ]; then echo "slow tests:"; $(PY) -m pytest -q -n auto -m slow $(if $(TEST_TMP),--basetemp=$(TEST_TMP)/slow); \
+	$(PYTEST) -q -n auto -m "not slow" $(if $(TEST_TMP),--basetemp=$(TEST_TMP)/fast)
+	@if [ -n "$(SLOW)$$CI" ]; then echo "slow tests:"; $(PYTEST) -q -n auto -m slow $(if $(TEST_TMP),--basetemp=$(TEST_TMP)/slow); \
 	else echo "slow tests skipped here (they run in CI; make test SLOW=1 runs them)"; fi
 
 bench:
