@@ -46,9 +46,9 @@ class NoProlog(Counting):
         raise AssertionError("read again")
 
 
-def _log_some(log: NeemLogger, rng: random.Random, t: datetime, n: int, durations=(2, 25)) -> datetime:
+def _log_some(log: NeemLogger, rng: random.Random, t: datetime, n: int, durations=(2, 25), gaps=(1, 5, 30, 3600)) -> datetime:
     for _ in range(n):
-        t += timedelta(seconds=rng.choice([1, 5, 30, 3600]))  # idle gaps and parts of day
+        t += timedelta(seconds=rng.choice(gaps))  # idle gaps and parts of day
         for _ in range(rng.choice([0, 1, 2])):
             log.available(rng.sample(CALLS, rng.randint(1, len(CALLS))), t)
             t += timedelta(seconds=rng.choice([0, 1]))

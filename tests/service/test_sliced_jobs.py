@@ -17,6 +17,7 @@ from oracle.bridge import Bridge
 from oracle.neem.writer import NeemLogger
 from oracle.service.sliced_jobs import view_in_jobs
 from oracle.store import open_store
+from tests.prolog.test_historycache import _log_some
 
 CALLS = ["pick(apple)", "pour(thermos, green_mug)", "pick(banana)", "open(fridge)"]
 
@@ -38,16 +39,8 @@ class Thread:
 
 
 def _log(log: NeemLogger, rng: random.Random, t: datetime, n: int) -> datetime:
-    for _ in range(n):
-        t += timedelta(seconds=rng.choice([0, 1, 30, 3600]))
-        for _ in range(rng.choice([0, 1, 2])):
-            log.available(rng.sample(CALLS, rng.randint(1, len(CALLS))), t)
-            t += timedelta(seconds=rng.choice([0, 1]))
-        end = t + timedelta(seconds=rng.choice([0, 2, 25]))
-        log.action(rng.choice(CALLS), t, end)
-        t = end
-    log.flush()
-    return t
+    """Equal begins (a gap of 0) and instant actions among the rest."""
+    return _log_some(log, rng, t, n, durations=(0, 2, 25), gaps=(0, 1, 30, 3600))
 
 
 @pytest.fixture()
