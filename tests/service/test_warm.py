@@ -57,18 +57,24 @@ def test_kept_routines_and_modes_answer_as_afresh(tmp_path, onto):
     store.close()
 
 
+def _ann(tmp_path, onto, n: int):
+    """A store holding ann's NEEM of a persona's first ``n`` actions."""
+    store = open_store(tmp_path / "s.sqlite")
+    logger = NeemLogger.create(store, onto, user="ann", neem_id="ann")
+    _, rows = persona_rows(0, 1, 12)
+    for row in rows[:n]:
+        logger.action(row.action, row.time, row.end, available=row.available)
+    logger.flush()
+    return store
+
+
 def test_warm_up_loads_the_answers_prolog_and_words_before_the_first_question_and_reads_no_neem(tmp_path, onto):
     from oracle.bridge.engine import STATE
 
     empty = Engine(open_store(tmp_path / "empty.sqlite"), onto, Hyperparameters())
     empty.warm_up()  # a store without NEEMs: the words only
     assert empty.past._lexicon is not None and empty._bridge is None
-    store = open_store(tmp_path / "s.sqlite")
-    logger = NeemLogger.create(store, onto, user="ann", neem_id="ann")
-    _, rows = persona_rows(0, 1, 12)
-    for row in rows[:5]:
-        logger.action(row.action, row.time, row.end, available=row.available)
-    logger.flush()
+    store = _ann(tmp_path, onto, 5)
     engine = Engine(store, onto, Hyperparameters())
     engine.warm_up()
     assert STATE["loaded"] and engine._bridge is not None
@@ -172,12 +178,7 @@ def test_the_kept_episodes_cut_as_cutting_all_at_once():
 def test_a_session_opened_is_frozen_out_of_the_collectors_view(tmp_path, onto):
     import gc
 
-    store = open_store(tmp_path / "s.sqlite")
-    logger = NeemLogger.create(store, onto, user="ann", neem_id="ann")
-    _, rows = persona_rows(0, 1, 12)
-    for row in rows[:20]:
-        logger.action(row.action, row.time, row.end, available=row.available)
-    logger.flush()
+    store = _ann(tmp_path, onto, 20)
     engine = Engine(store, onto, Hyperparameters())
     gc.unfreeze()
     try:
