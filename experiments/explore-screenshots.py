@@ -14,7 +14,6 @@ from __future__ import annotations
 import argparse
 import json
 import shutil
-import sqlite3
 import subprocess
 import sys
 import tempfile
@@ -22,6 +21,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+from oracle.benchmarks.explore import unkept_copy
 from oracle.benchmarks.security import call, start, stop
 
 ORACLE = [sys.executable, "-m", "oracle"]
@@ -87,11 +87,7 @@ def _shots(browser: Any, url: str, neem: str, out: Path) -> None:
 
 def _reading(browser: Any, store: Path, neem: str, out: Path) -> None:
     """The page of a NEEM nothing was kept for, while its history is read through Prolog."""
-    copy = store.with_name("unkept.sqlite")
-    shutil.copy(store, copy)
-    with sqlite3.connect(copy) as conn:
-        conn.execute("DELETE FROM kept")
-    service = start(copy)
+    service = start(unkept_copy(store))
     try:
         context = browser.new_context(viewport={"width": WIDTH, "height": 800}, bypass_csp=True)
         page = context.new_page()

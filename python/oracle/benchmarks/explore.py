@@ -117,15 +117,21 @@ def _opens(browser: Any, url: str, neem: str, actions: int) -> tuple[list[dict[s
     return rows, page
 
 
-def _unkept(browser: Any, path: Path, actions: int) -> list[dict[str, Any]]:
-    """A copy of the store with nothing kept: what the page says, and when the timeline comes."""
+def unkept_copy(path: Path) -> Path:
+    """A copy of the store beside it with nothing kept (no view, no fit): what a MongoDB store or a
+    lost entry gives."""
     import sqlite3
 
     copy = path.with_name("unkept.sqlite")
     shutil.copy(path, copy)
     with sqlite3.connect(copy) as conn:
         conn.execute("DELETE FROM kept")
-    service = start(copy)
+    return copy
+
+
+def _unkept(browser: Any, path: Path, actions: int) -> list[dict[str, Any]]:
+    """A copy of the store with nothing kept: what the page says, and when the timeline comes."""
+    service = start(unkept_copy(path))
     try:
         context = browser.new_context(viewport={"width": 1280, "height": 1000}, bypass_csp=True)
         painted, shell, page = _paint(context, service.url + "/explore")
