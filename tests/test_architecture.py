@@ -230,6 +230,20 @@ def test_the_circle_check_finds_a_circle():
     assert circles(graph) == [frozenset({"a", "b", "c"})]
 
 
+
+def test_only_the_doors_import_the_service():
+    """The service sits on top: the words, the answers and the CLI's own commands read nothing of
+    it (oracle.words lives below both), only the doors that serve (serve, simulate, rosprolog) and
+    the benchmarks that measure it."""
+    above = {"service", "rosprolog", "benchmarks", "commands/serve.py", "commands/simulate.py"}
+    leaning = []
+    for path in modules():
+        rel = path.relative_to(PACKAGE)
+        if rel.parts[0] in above or rel.as_posix() in above:
+            continue
+        leaning += [f"{rel} imports {m}" for m in imported(path) if m == "oracle.service" or m.startswith("oracle.service.")]
+    assert not leaning, leaning
+
 FOUNDATIONS = {"oracle.errors", "oracle.namespaces", "oracle.paths", "oracle.yamlfile", "oracle.timeline", "oracle.chains",
                "oracle.modulecache", "oracle.files", "oracle.handed", "oracle.xmlguard"}
 

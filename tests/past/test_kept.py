@@ -146,7 +146,7 @@ def test_only_the_answers_that_need_the_actions_read_them_again(grown, onto, mon
 
 
 def test_the_words_are_read_once_per_ontology_and_answers_read_with_them_say_the_same(bridge, onto, monkeypatch):
-    import oracle.service.words as words
+    import oracle.words as words
 
     kept, reads = KeptPast(), []
     real = words.load_lexicon

@@ -8,7 +8,7 @@ from datetime import timezone
 
 import pytest
 
-from oracle.service.words import Words, load_lexicon
+from oracle.words import Words, load_lexicon
 
 
 @pytest.fixture(scope="module")

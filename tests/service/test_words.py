@@ -9,7 +9,7 @@ from datetime import timezone
 import pytest
 
 from oracle.paths import data_dir
-from oracle.service.words import LANGS, TEXT, Words, load_lexicon, pick_lang
+from oracle.words import LANGS, TEXT, Words, load_lexicon, pick_lang
 
 
 @pytest.mark.parametrize("lang", LANGS)

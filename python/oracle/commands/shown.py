@@ -57,7 +57,7 @@ def print_ranking(result: NeemRanking, limit: int | None = None, modes: bool = F
     """The ranking, best first; with ``modes`` who usually does each task (the result's
     ``usual``), in the tablet's English words, and each step of the chain."""
     from oracle.algorithm.records import RoutineTask
-    from oracle.service.words import mode_sentence
+    from oracle.words import mode_sentence
     from oracle.timeline import format_clock
 
     when = f"{format_clock(result.at)} ({result.time_of_day})" if result.time_of_day else f"position {result.at:g} (no clock)"

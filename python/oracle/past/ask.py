@@ -20,7 +20,7 @@ from oracle.past.sentences import Namer, ObjectNamer, sentences
 if TYPE_CHECKING:
     from oracle.bridge import Bridge
     from oracle.ontology import OdbOntology
-    from oracle.service.words import Lexicon
+    from oracle.words import Lexicon
 
 @dataclass(frozen=True)
 class Answer:
@@ -62,12 +62,12 @@ def ask(bridge: Bridge, onto: OdbOntology, text: str, at: float | None = None, c
 
 
 def namers(onto: OdbOntology, lexicon: Lexicon | None = None) -> tuple[Namer, ObjectNamer]:
-    """Tasks and objects in the tablet's words (oracle.service.words; ``lexicon`` when the caller
+    """Tasks and objects in the tablet's words (oracle.words; ``lexicon`` when the caller
     keeps them), a call its words lack in its syntax: what the sentences say instead of code names."""
     from datetime import timezone
 
     from oracle.past.phrases import english_third
-    from oracle.service.words import Words, load_lexicon
+    from oracle.words import Words, load_lexicon
 
     lexicon = load_lexicon(ontology=onto) if lexicon is None else lexicon
     words = {lang: Words(lexicon, lang, timezone.utc) for lang in ("en", "de")}

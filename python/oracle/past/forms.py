@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from oracle.ontology import OdbOntology
-    from oracle.service.words import Lexicon
+    from oracle.words import Lexicon
 
 
 class QuestionError(NeemOracleError):
@@ -151,7 +151,7 @@ def read_question(text: str, onto: OdbOntology, lexicon: Lexicon | None = None) 
 def phrase_book(onto: OdbOntology, lexicon: Lexicon | None = None) -> PhraseBook:
     """The words of the ontology's tasks and objects (the tablet's labels, ``lexicon`` when the
     caller keeps them) to read questions with."""
-    from oracle.service.words import load_lexicon
+    from oracle.words import load_lexicon
 
     return PhraseBook(load_lexicon(ontology=onto) if lexicon is None else lexicon, onto)
 

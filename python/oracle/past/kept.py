@@ -28,7 +28,7 @@ from oracle.past.routines import Done, MiningSettings, Routine, begun_by, done_f
 if TYPE_CHECKING:
     from oracle.bridge import Bridge, HistoryRow
     from oracle.ontology import OdbOntology
-    from oracle.service.words import Lexicon
+    from oracle.words import Lexicon
     from oracle.store.base import AppendMark
 
 #: How many NEEMs an engine keeps the history of (the least recently asked is dropped).
@@ -61,9 +61,9 @@ class KeptPast:
         self._lexicon: tuple[OdbOntology, Lexicon] | None = None
 
     def lexicon(self, onto: OdbOntology) -> Lexicon:
-        """The tablet's words of ``onto`` (oracle.service.words.load_lexicon), read once: the
+        """The tablet's words of ``onto`` (oracle.words.load_lexicon), read once: the
         labels file and the ontology's labels do not change while a process runs."""
-        from oracle.service.words import load_lexicon
+        from oracle.words import load_lexicon
 
         if self._lexicon is None or self._lexicon[0] is not onto:
             self._lexicon = (onto, load_lexicon(ontology=onto))

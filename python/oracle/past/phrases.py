@@ -2,7 +2,7 @@
 geöffnet", "opening the fridge", "the blue mug" (``ask``, oracle.past.forms).
 
 The words come from the tablet's labels (``ontology/labels.yaml`` and the ontology's tagged
-rdfs:labels, oracle.service.words): each task's templates (the imperative, ``-ing``, German
+rdfs:labels, oracle.words): each task's templates (the imperative, ``-ing``, German
 infinitive and participle), the forms derived from them (English past and third person, German
 ``zu``-infinitive), and each object's forms (with or without article, dative, content). A noun
 is compared with its articles and possessives dropped and German endings cut, so "der blaue
@@ -19,7 +19,7 @@ from oracle.chains import TaskCall
 
 if TYPE_CHECKING:
     from oracle.ontology import OdbOntology
-    from oracle.service.words import Lexicon
+    from oracle.words import Lexicon
 
 _SLOT = re.compile(r"\{(\d)(?::(\w+))?\}")
 #: Words a noun may start with that name no object: articles, possessives, prepositions.

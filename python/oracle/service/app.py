@@ -35,7 +35,7 @@ from oracle.rosprolog.rosbridge import router as rosbridge_router
 from oracle.service.past_routes import router as past_router
 from oracle.service.routes import DuplicateNeem, router
 from oracle.service.session import OutOfOrder
-from oracle.service.words import TEXT, Lexicon, pick_lang
+from oracle.words import TEXT, Lexicon, pick_lang
 from oracle.timeline import display_zone
 
 LOG = logging.getLogger("oracle.service")
@@ -65,7 +65,7 @@ class Context:
     zone: tzinfo = field(default_factory=lambda: display_zone(None))
     #: How the page confirms and undoes a choice (``serve --confirm``, ``--undo``).
     manner: Manner = field(default_factory=Manner)
-    #: The page's words (oracle.service.words), read on first use.
+    #: The page's words (oracle.words), read on first use.
     lexicon: Lexicon | None = None
     #: Per-user and read-only tokens (``serve --tokens``, oracle.service.access); None: only ``token``.
     access: Access | None = None

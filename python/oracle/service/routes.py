@@ -410,7 +410,7 @@ async def something_else(neem: str, request: Request,
 # -- the tablet's words -----------------------------------------------------------------------
 def _words(request: Request, lang: str | None) -> Any:
     """The words for this request: ``lang``, else the browser's language; the service's zone."""
-    from oracle.service.words import Words, load_lexicon, pick_lang
+    from oracle.words import Words, load_lexicon, pick_lang
 
     ctx = _ctx(request)
     if ctx.lexicon is None:

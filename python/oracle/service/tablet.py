@@ -9,7 +9,7 @@ from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from oracle.neem.decisions import Decision
-from oracle.service.words import Words
+from oracle.words import Words
 
 if TYPE_CHECKING:
     from oracle.service.session import NeemSession
