@@ -242,6 +242,13 @@ class Store(ABC):
         each commit already is."""
         return None
 
+    def unsynced(self) -> AbstractContextManager[None]:
+        """Like ``deferred_sync`` but nothing is flushed as it ends: the caller calls ``sync``
+        (from any thread) before it tells anyone the commits inside are stored (the service's
+        group commit flushes on a thread of its own while the engine goes on). Enter it outside
+        any transaction."""
+        return contextlib.nullcontext()
+
     def shrink_memory(self) -> None:
         """Give back what the store's connection caches in memory (a bulk write's pages), before
         a long step that needs none of it; nothing for a store that keeps no such cache."""

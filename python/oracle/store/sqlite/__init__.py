@@ -85,6 +85,16 @@ class SQLiteStore(Store):
             self._conn.execute("PRAGMA synchronous=FULL")
             self.sync()
 
+    @contextlib.contextmanager
+    def unsynced(self) -> Iterator[None]:
+        """synchronous=NORMAL inside, FULL again after, with no flush (SQLite refuses the switch
+        inside a transaction: enter it before one)."""
+        self._conn.execute("PRAGMA synchronous=NORMAL")
+        try:
+            yield
+        finally:
+            self._conn.execute("PRAGMA synchronous=FULL")
+
     def sync(self) -> None:
         """The WAL file fsynced: every commit so far is on disk (a checkpoint fsyncs the rest)."""
         wal = Path(f"{self.path}-wal")
