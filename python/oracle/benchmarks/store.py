@@ -62,7 +62,7 @@ def _python_share(store: Store, onto: OdbOntology, tbox: TBox | None, steps: lis
     from oracle.neem.writer import NeemLogger
 
     logger = NeemLogger.create(store, onto, user="bench-python", tbox=tbox, commit_every=100)
-    store._writes.write_rows = lambda *args: None  # type: ignore[attr-defined] # rows built, never written: this store is not used for anything else
+    store._writes._insert_flat = lambda *args: None  # type: ignore[attr-defined] # rows built, never written: this store is not used for anything else
     t0 = time.process_time()
     for call, begin, end, available in steps:
         logger.action(call, begin, end, available=available)
