@@ -94,6 +94,13 @@ class _FailingCommit:
         yield
         raise OSError("disk full")
 
+    @contextmanager
+    def unsynced(self):
+        yield
+
+    def sync(self):
+        raise AssertionError("a failed commit is not flushed")
+
 
 def test_a_failed_commit_acknowledges_none_and_drops_the_sessions(engine_thread):
     dropped = []
@@ -157,4 +164,85 @@ def test_a_lingering_group_commits_by_itself_or_with_the_next_request(tmp_path, 
     assert engine_thread.submit(group.pending).result() is not None  # a job that asks: commit queued
     time.sleep(0.2)
     assert group.commits == 3 and _count(path, logger.writes_to) > before
+    engine_thread.submit(store.close).result()
+
+
+def _gated_group(tmp_path, onto, engine_thread, fail: bool = False):
+    """A group commit over a real store whose flush (``Store.sync``) waits for ``gate``; the
+    names of the threads that flushed are in ``flushed``."""
+    import threading
+
+    path = tmp_path / "s.sqlite"
+    store = engine_thread.submit(open_store, path).result()
+    logger = engine_thread.submit(lambda: NeemLogger.create(store, onto, user="ann", commit_every=10**9)).result()
+    gate, flushed, real = threading.Event(), [], store.sync
+
+    def sync():
+        gate.wait(10)
+        flushed.append(threading.current_thread().name)
+        if fail:
+            raise OSError("I/O error")
+        real()
+
+    store.sync = sync
+    group = GroupCommit(store, engine_thread.submit, lambda: None)
+
+    def write(minute: int):
+        done = group.join()
+        logger.action("pick(apple)", datetime(2024, 5, 1, 8, minute))
+        logger.flush()
+        return done
+
+    return path, store, logger, group, gate, flushed, write
+
+
+def _synchronous(engine_thread, store) -> int:
+    return engine_thread.submit(lambda: store._conn.execute("PRAGMA synchronous").fetchone()[0]).result()
+
+
+def test_a_group_is_flushed_off_the_engine_thread_and_answered_after(tmp_path, onto, engine_thread):
+    """The group's COMMIT does not wait for the disk (synchronous=NORMAL inside the group only):
+    the engine thread runs the next job while another thread fsyncs, and the group's future (what
+    its answers wait for) resolves only after that flush; a job that runs meanwhile waits for it too."""
+    path, store, logger, group, gate, flushed, write = _gated_group(tmp_path, onto, engine_thread)
+    assert _synchronous(engine_thread, store) == 2  # FULL outside a group
+    before = _count(path, logger.writes_to)
+    done = engine_thread.submit(write, 1).result()
+    assert engine_thread.submit(lambda: "next job").result(timeout=10) == "next job"  # the commit ran, then this
+    assert _count(path, logger.writes_to) > before  # committed (another connection sees it) ...
+    assert not done.done() and flushed == []  # ... but not acknowledged: the flush waits
+    assert engine_thread.submit(group.pending).result() is done  # a job run now answers after it too
+    assert _synchronous(engine_thread, store) == 2  # FULL again once the group committed
+    gate.set()
+    done.result(timeout=10)
+    assert flushed == ["oracle-sync"] and group.commits == 1
+    assert engine_thread.submit(group.pending).result() is None
+    group.close()
+    engine_thread.submit(store.close).result()
+
+
+def test_groups_committed_during_a_flush_share_the_next(tmp_path, onto, engine_thread):
+    _, store, _, group, gate, flushed, write = _gated_group(tmp_path, onto, engine_thread)
+    futures = []
+    for minute in (1, 2, 3):  # three groups, one after the other (each committed before the next)
+        futures.append(engine_thread.submit(write, minute).result())
+        engine_thread.submit(lambda: None).result()
+    assert group.commits == 3 and not any(f.done() for f in futures)
+    gate.set()
+    for done in futures:
+        done.result(timeout=10)
+    assert len(flushed) == 2  # the first group's flush, then one for the two committed meanwhile
+    group.close()
+    engine_thread.submit(store.close).result()
+
+
+def test_a_failed_flush_acknowledges_none_of_its_groups(tmp_path, onto, engine_thread):
+    from oracle.errors import StoreError
+
+    _, store, _, group, gate, _, write = _gated_group(tmp_path, onto, engine_thread, fail=True)
+    done = engine_thread.submit(write, 1).result()
+    gate.set()
+    with pytest.raises(StoreError, match="not flushed"):
+        done.result(timeout=10)
+    group.close()
     engine_thread.submit(store.close).result()

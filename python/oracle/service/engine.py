@@ -83,7 +83,8 @@ class EngineThread:
         (the thread itself stays, see the class docstring)."""
         self.call(lambda: None)
         if self.group is not None:
-            self.call(self.group.commit)
+            self.call(self.group.commit)  # answered once flushed too (``_job``)
+            self.group.close()
 
 
 def _freeze() -> None:
