@@ -42,7 +42,7 @@ def test_the_ontology_cache_keeps_at_most_its_bound_and_the_entry_in_use(tmp_pat
     base = DEFAULT_MAPPING.read_text()
     mapping.write_text(base)
     build_with_report(odb, mapping, cache_dir=cache)
-    (kept,) = cache.glob("ontology-*.pickle")
+    (kept,) = cache.glob("ontology-*.json")
     for i in range(MAX_CACHE_ENTRIES + 3):
         os.utime(kept, (1e9, 1e9))                      # written long ago ...
         build_with_report(odb, mapping, cache_dir=cache)
@@ -50,5 +50,5 @@ def test_the_ontology_cache_keeps_at_most_its_bound_and_the_entry_in_use(tmp_pat
         mapping.write_text(base + f"\n# edit {i}\n")
         build_with_report(odb, mapping, cache_dir=cache)
         mapping.write_text(base)
-    assert len(list(cache.glob("ontology-*.pickle"))) == MAX_CACHE_ENTRIES
+    assert len(list(cache.glob("ontology-*.json"))) == MAX_CACHE_ENTRIES
     assert kept.exists()

@@ -12,14 +12,13 @@ import errno
 import hashlib
 import hmac
 import os
-import pickle
 import secrets
 import shutil
 import stat
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import IO, Any, ClassVar, TextIO, TypeVar, cast
+from typing import IO, Any, ClassVar, TextIO, TypeVar
 
 from oracle.errors import NeemOracleError
 
@@ -29,7 +28,7 @@ _Value = TypeVar("_Value")
 
 def written_by_user_alone(info: os.stat_result) -> bool:
     """Whether a file (its ``stat``) is a regular file of this user that nobody else may write:
-    the only kind a cache unpickles."""
+    the only kind a cache reads back."""
     return stat.S_ISREG(info.st_mode) and info.st_uid == os.getuid() and not info.st_mode & 0o022
 
 
@@ -103,7 +102,7 @@ def prune_cache(directory: Path, pattern: str, keep: int = MAX_CACHE_ENTRIES) ->
                 old.unlink()
 
 
-#: The user's own key for what this package keeps (kept fits, cached pickles): 32 random bytes
+#: The user's own key for what this package keeps (kept fits, cache entries): 32 random bytes
 #: in ``key`` of a private cache folder (0700, the file 0600), never written into a store, a dump
 #: or a request. An entry is read only when its tag verifies under it, so one from another account,
 #: another machine or a file someone handed over is made afresh before a byte of it is decoded.
@@ -160,34 +159,40 @@ def verified(key: bytes | None, blob: bytes) -> bytes | None:
     return data if hmac.compare_digest(tag, hmac.new(key, data, hashlib.sha256).digest()) else None
 
 
-def cached_pickle(path: Path, key: str, make: Callable[[], _Value], valid: Callable[[object], bool],
-                  pattern: str) -> _Value:
-    """The value kept at ``path`` for ``key`` (pickled as ``(key, value)``), or else ``make()``,
-    then kept there. A binary cache the user made alone: an entry is unpickled only when it is a
-    regular file of this user that nobody else may write and its tag verifies under the key kept
-    in the same private folder (``user_key``), so a file put there by anyone else, or copied
-    from another account, is made again before a byte of it is unpickled; and only a value
-    ``valid`` accepts is returned. The entries of the folder matching ``pattern`` are pruned
-    (``prune_cache``); a folder that cannot be written only makes every call make the value."""
+def cached_plain(path: Path, key: str, make: Callable[[], _Value], encode: Callable[[_Value], Any],
+                 decode: Callable[[Any], _Value], pattern: str) -> _Value:
+    """The value kept at ``path`` for ``key``, or else ``make()``, then kept there. An entry is
+    JSON (``{"key": ..., "value": encode(value)}``): reading it makes lists, dicts, strings and
+    numbers, which ``decode`` turns back into the value, checking each part as it goes; nothing in
+    the bytes names code, and nothing is unpickled. It is read only when it is a regular file of
+    this user that nobody else may write and its HMAC tag verifies under the key kept in the same
+    private folder (``user_key``), so a file put there by anyone else, or copied from another
+    account, is made again before a byte of it is decoded; one ``decode`` refuses (any error) is
+    made again too. The entries of the folder matching ``pattern`` are pruned (``prune_cache``);
+    a folder that cannot be written only makes every call make the value."""
+    import json
+
     secret = user_key(path.parent)
     try:
         fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
         with os.fdopen(fd, "rb") as handle:
             data = verified(secret, handle.read()) if written_by_user_alone(os.fstat(handle.fileno())) else None
         if data is not None:
-            entry = pickle.loads(data)  # tagged under the user's own key: written by this package for this user
-            if isinstance(entry, tuple) and len(entry) == 2 and entry[0] == key and valid(entry[1]):
+            entry = json.loads(data)
+            if isinstance(entry, dict) and entry.get("key") == key:
+                value = decode(entry["value"])
                 used(path)
-                return cast(_Value, entry[1])
-    except Exception:  # noqa: BLE001 - missing or damaged (any unpickling error): made again below
+                return value
+    except Exception:  # noqa: BLE001 - missing, damaged or refused by decode: made again below
         pass
     value = make()
     if secret is None:
         return value  # nothing kept that could not be verified
     try:
-        write_private_bytes(path, signed(secret, pickle.dumps((key, value), protocol=pickle.HIGHEST_PROTOCOL)))
+        text = json.dumps({"key": key, "value": encode(value)}, separators=(",", ":"), ensure_ascii=False)
+        write_private_bytes(path, signed(secret, text.encode("utf-8")))
         prune_cache(path.parent, pattern)
-    except (OSError, pickle.PicklingError, NeemOracleError):
+    except (OSError, TypeError, ValueError, NeemOracleError):
         pass  # caching is an optimisation
     return value
 

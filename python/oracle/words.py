@@ -54,15 +54,13 @@ def load_lexicon(path: Path | None = None, ontology: Any = None) -> Lexicon:
 
 def _tagged_labels(ontology: Any) -> dict[str, dict[str, str]]:
     """{object name: {lang: label}} from rdfs:label literals with a language tag (the generated
-    labels carry none: they are the odb names)."""
-    from rdflib import RDFS, URIRef
-
+    labels carry none: they are the odb names; ``OdbOntology.labels``)."""
+    labels = ontology.labels
     found: dict[str, dict[str, str]] = {}
     for name, cls in ontology.objects.items():
-        for label in ontology.graph.objects(URIRef(cls.iri), RDFS.label):
-            lang = getattr(label, "language", None)
+        for lang, label in labels.get(cls.iri, {}).items():
             if lang in LANGS:
-                found.setdefault(name, {})[lang] = str(label)
+                found.setdefault(name, {})[lang] = label
     return found
 
 

@@ -11,7 +11,7 @@ from oracle.ontology.inputs import DEFAULT_MAPPING, DEFAULT_ODB
 
 
 def _entries(cache):
-    return sorted(cache.glob("ontology-*.pickle"))
+    return sorted(cache.glob("ontology-*.json"))
 
 
 def _copy_inputs(tmp_path):
@@ -32,6 +32,30 @@ def test_a_second_build_is_the_cached_one_and_equal(tmp_path):
     assert again is not first and again_report == report
     assert set(again.graph) == set(first.graph) and again.tasks == first.tasks and again.objects == first.objects
     assert again.source == first.source and again.cache_dir == cache
+    assert again.prefixes == first.prefixes and again.labels == first.labels
+    assert again.taxonomy.parent_table() == first.taxonomy.parent_table()
+    assert all(again.taxonomy.ancestors(c) == first.taxonomy.ancestors(c) for c in first.taxonomy.classes)
+
+
+def test_an_entry_is_json_and_a_tagged_one_of_the_wrong_shape_is_rebuilt(tmp_path):
+    """The entry is plain JSON behind its tag; an entry that verifies under the user's key but whose
+    parts are not what the cache writes (a class where a text belongs) is built again, not used."""
+    import json
+
+    from oracle.files import TAG_BYTES, signed, user_key
+
+    cache = tmp_path / "cache"
+    odb, mapping = _copy_inputs(tmp_path)
+    good, _ = build_with_report(odb, mapping, cache_dir=cache)
+    (entry,) = _entries(cache)
+    data = json.loads(entry.read_bytes()[TAG_BYTES:])
+    assert set(data) == {"key", "value"} and data["value"]["namespace"] == good.namespace
+    for part, wrong in (("objects", [[{"py/object": "os.system"}, "x", [], [], False]]), ("taxonomy", ["not a mapping"]),
+                        ("graph", {"prefixes": [], "triples": [[["x", "y"], "p", "o"]]})):
+        spoiled = {**data, "value": {**data["value"], part: wrong}}
+        entry.write_bytes(signed(user_key(cache), json.dumps(spoiled).encode()))
+        rebuilt, _ = build_with_report(odb, mapping, cache_dir=cache)
+        assert rebuilt.objects == good.objects and len(rebuilt.graph) == len(good.graph), part
 
 
 def test_a_changed_input_is_built_again_never_read_stale(tmp_path):
@@ -54,7 +78,7 @@ def test_a_damaged_entry_is_rebuilt_not_fatal(tmp_path):
     odb, mapping = _copy_inputs(tmp_path)
     good, _ = build_with_report(odb, mapping, cache_dir=cache)
     (entry,) = _entries(cache)
-    for damage in (b"not a pickle", entry.read_bytes()[:1000], b""):
+    for damage in (b"not an entry", entry.read_bytes()[:1000], b""):
         entry.write_bytes(damage)
         rebuilt, _ = build_with_report(odb, mapping, cache_dir=cache)
         assert len(rebuilt.graph) == len(good.graph) and rebuilt.tasks == good.tasks  # fresh blank nodes
@@ -68,7 +92,7 @@ def test_entries_are_private_and_a_foreign_writable_one_is_not_loaded(tmp_path):
     (entry,) = _entries(cache)
     assert stat.S_IMODE(entry.stat().st_mode) == 0o600
     assert stat.S_IMODE(cache.stat().st_mode) == 0o700
-    entry.chmod(0o666)  # anyone could have replaced it: it is rebuilt, not unpickled
+    entry.chmod(0o666)  # anyone could have replaced it: it is rebuilt, not read
     entry.write_bytes(b"\x80\x05anything")
     rebuilt, _ = build_with_report(odb, mapping, cache_dir=cache)
     assert rebuilt.tasks and stat.S_IMODE(entry.stat().st_mode) == 0o600

@@ -24,11 +24,6 @@ ALLOWED = [
      "a copy of a part of a model's state in memory (one without a fork of its own), pickled on the same line"),
     ("algorithm/chaining.py", "pickle.loads(pickle.dumps(model",
      "the chain's copy of a model in memory, pickled on the same line"),
-    ("files.py", "entry = pickle.loads(data)",
-     "a cache entry of this user's private folder whose HMAC tag verified under the user's own key "
-     "(oracle.files.user_key): written by this package on this account, never from a store or a dump"),
-    ("ontology/model.py", 'pickle.loads(self.__dict__.pop("_graph_bytes"))',
-     "the graph inside an ontology cache entry, itself read only after its tag verified (files.cached_pickle)"),
     ("../../experiments/chains.py", "model = pickle.loads(pickle.dumps(model))",
      "a copy of a model in memory, pickled on the same line"),
     ("../../experiments/plainstate-cost.py", "pickle.loads(pickled)",
@@ -57,8 +52,9 @@ def test_every_place_that_could_turn_bytes_into_code_is_listed_with_its_reason()
     assert not unlisted, f"unpickling or evaluation not listed in {__file__} (with the reason its bytes are ours): {unlisted}"
 
 
-def test_the_kept_fit_and_the_history_view_use_no_pickle_to_read():
-    for name in ("fitcache.py", "historycache.py", "plainstate.py", "store/kept.py", "store/dump.py"):
+def test_the_kept_fit_the_history_view_and_the_users_cache_use_no_pickle_to_read():
+    for name in ("fitcache.py", "historycache.py", "plainstate.py", "store/kept.py", "store/dump.py",
+                 "files.py", "ontology/cache.py", "ontology/plain.py", "ontology/model.py", "store/ontology_tbox.py"):
         text = (PRODUCT / name).read_text(encoding="utf-8")
         assert not re.search(r"pickle\.loads?\(|Unpickler", text), name
 

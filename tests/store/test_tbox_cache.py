@@ -15,7 +15,7 @@ from oracle.store.ontology_tbox import tbox_for
 
 
 def _entries(cache: Path) -> list[Path]:
-    return sorted(cache.glob("tbox-*.pickle"))
+    return sorted(cache.glob("tbox-*.json"))
 
 
 def test_the_second_tbox_is_the_cached_one_and_equal(tmp_path, monkeypatch):
@@ -59,9 +59,9 @@ def test_a_damaged_or_foreign_entry_is_made_again(tmp_path):
     onto = build_ontology(cache_dir=cache)
     good = tbox_for(onto)
     (entry,) = _entries(cache)
-    for damage in (b"not a pickle", entry.read_bytes()[:1000], b""):
+    for damage in (b"not an entry", entry.read_bytes()[:1000], b""):
         entry.write_bytes(damage)
         assert tbox_for(onto) == good
         assert entry.stat().st_size > 1000
-    entry.chmod(0o666)  # anyone could have replaced it: made again, not unpickled
+    entry.chmod(0o666)  # anyone could have replaced it: made again, not read
     assert tbox_for(onto) == good and stat.S_IMODE(entry.stat().st_mode) == 0o600

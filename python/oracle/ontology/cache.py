@@ -15,14 +15,14 @@ from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from oracle.files import cached_pickle
+from oracle.files import cached_plain
 
 if TYPE_CHECKING:
     from oracle.ontology.inputs import BuildReport
     from oracle.ontology.model import OdbOntology
 
 #: Bumped when the layout of an entry changes.
-FORMAT = "3"
+FORMAT = "4"
 _CODE_DIR = Path(__file__).resolve().parent
 
 
@@ -59,7 +59,7 @@ def build_key(odb_dir: Path, mapping: Path, soma_dir: Path | None, core_tbox: Pa
 
 def _rdflib_release() -> str:
     """The installed rdflib's distribution folder name (``rdflib-7.1.1.dist-info``), found
-    without importing rdflib: an entry holds the graph as rdflib pickled it, read on first use."""
+    without importing rdflib: a build made with another rdflib may differ, so its entry is another."""
     import importlib.util
 
     spec = importlib.util.find_spec("rdflib")
@@ -76,5 +76,6 @@ def cached_build(
     """The entry for ``key`` when there is a good one, else ``build()`` saved under ``key``."""
     if key is None:
         return build()
-    return cached_pickle(directory / f"ontology-{key}.pickle", key, build,
-                         lambda value: isinstance(value, tuple) and len(value) == 2, "ontology-*.pickle")
+    from oracle.ontology.plain import from_plain, to_plain
+
+    return cached_plain(directory / f"ontology-{key}.json", key, build, to_plain, from_plain, "ontology-*.json")

@@ -6,7 +6,6 @@ loaded from an OWL file written earlier, so both routes give the same answers.
 
 from __future__ import annotations
 
-import pickle
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
@@ -62,9 +61,9 @@ class TaskClass:
 
 @dataclass(eq=False)
 class OdbOntology:
-    """The odb classes read from an RDF graph. Pickled (oracle.ontology.cache), the graph goes
-    as bytes of its own and is read back on first use, with rdflib: what most commands need (the
-    names, classes, taxonomy and prefixes) loads without rdflib."""
+    """The odb classes read from an RDF graph. Kept in the user's cache as plain data
+    (oracle.ontology.plain), the graph is made again on first use, with rdflib: what most commands
+    need (the names, classes, taxonomy, prefixes and labels) loads without rdflib."""
 
     namespace: str
     graph: Graph
@@ -77,24 +76,35 @@ class OdbOntology:
     #: what the TBox a NEEM stores is cached by (oracle.store.ontology_tbox.tbox_for).
     cache_key: str | None = field(default=None, repr=False)
 
-    def __getstate__(self) -> dict[str, Any]:
-        state = dict(self.__dict__)
-        state["taxonomy"], state["prefixes"] = self.taxonomy, self.prefixes
-        state["graph"] = pickle.dumps(self.graph, protocol=pickle.HIGHEST_PROTOCOL)
-        return state
-
-    def __setstate__(self, state: dict[str, Any]) -> None:
-        state = dict(state)
-        state["_graph_bytes"] = state.pop("graph")
-        self.__dict__.update(state)
-
     def __getattr__(self, name: str) -> Any:
-        # Only reached for an attribute not in the instance: the graph of an unpickled copy.
-        if name == "graph" and "_graph_bytes" in self.__dict__:
-            graph = pickle.loads(self.__dict__.pop("_graph_bytes"))
+        # Only reached for an attribute not in the instance: the graph of an ontology read from
+        # the user's cache (oracle.ontology.plain), made into an rdflib graph on first use.
+        if name == "graph" and "_graph_plain" in self.__dict__:
+            from oracle.ontology.plaingraph import graph_from_plain
+
+            graph = graph_from_plain(self.__dict__["_graph_plain"])
             self.__dict__["graph"] = graph
+            del self.__dict__["_graph_plain"]
             return graph
         raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+
+    @property
+    def labels(self) -> dict[str, dict[str, str]]:
+        """{object class IRI: {language tag: rdfs:label}} of the labels that carry a language tag
+        (the generated ones carry none: they are the odb names): what the person's words read.
+        Read from the graph, or, while the graph of an ontology from the cache is not yet made,
+        as the cache kept them."""
+        if "graph" not in self.__dict__ and "_labels_plain" in self.__dict__:
+            return dict(self.__dict__["_labels_plain"])
+        from rdflib import RDFS, URIRef
+
+        found: dict[str, dict[str, str]] = {}
+        for cls in self.objects.values():
+            for label in self.graph.objects(URIRef(cls.iri), RDFS.label):
+                lang = getattr(label, "language", None)
+                if lang:
+                    found.setdefault(cls.iri, {})[str(lang)] = str(label)
+        return found
 
     @cached_property
     def prefixes(self) -> tuple[tuple[str, str], ...]:

@@ -38,6 +38,11 @@ class Taxonomy:
         for cls in self._parents:
             self.depth(cls)
 
+    def parent_table(self) -> dict[str, tuple[str, ...]]:
+        """Every class with its named parents (``owl:Thing`` for a root): what ``Taxonomy(...)``
+        is made from again."""
+        return dict(self._parents)
+
     @classmethod
     def from_graph(cls, graph: Graph) -> Taxonomy:
         from rdflib import URIRef

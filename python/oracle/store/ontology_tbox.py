@@ -9,16 +9,18 @@ from __future__ import annotations
 import hashlib
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING
+from datetime import datetime
+from typing import TYPE_CHECKING, Any
 
-from oracle.files import cached_pickle
+from oracle.files import cached_plain
+from oracle.store.model import Annotation, Triple, Value
 from oracle.store.tbox import TBox, tbox_from_graph
 
 if TYPE_CHECKING:
     from oracle.ontology.model import OdbOntology
 
 #: Bumped when the layout of a cached TBox changes.
-_CACHE_FORMAT = "1"
+_CACHE_FORMAT = "2"
 #: The code a TBox is made with: an edit to any of these makes a new cache entry.
 _CODE = ("store/tbox.py", "store/owlfile.py", "store/ontology_tbox.py", "store/model.py", "namespaces.py")
 
@@ -35,8 +37,7 @@ def tbox_for(onto: OdbOntology) -> TBox:
     from oracle.files import default_cache_dir
 
     folder = onto.cache_dir if onto.cache_dir is not None else default_cache_dir()
-    return cached_pickle(folder / f"tbox-{key}.pickle", key, lambda: _converted(onto),
-                         lambda value: isinstance(value, TBox), "tbox-*.pickle")
+    return cached_plain(folder / f"tbox-{key}.json", key, lambda: _converted(onto), _plain, _from_plain, "tbox-*.json")
 
 
 def _cache_key(onto: OdbOntology) -> str | None:
@@ -68,3 +69,47 @@ def _converted(onto: OdbOntology) -> TBox:
 
     own = tbox_from_graph(generated_graph(source.odb, source.mapping), one_graph=True)
     return TBox.combined([*(tbox_from_file(path) for path in official_files(source.soma)), own])
+
+
+def _plain(tbox: TBox) -> dict[str, Any]:
+    """A TBox as JSON-ready lists (a datetime value as ``{"datetime": ISO text}``)."""
+    return {"triples": [[s, p, _value(o), graph, since, until] for s, p, o, graph, since, until in tbox.triples],
+            "annotations": [[a.s, a.p, _value(a.v)] for a in tbox.annotations],
+            "markers": [list(marker) for marker in tbox.markers]}
+
+
+def _from_plain(data: Any) -> TBox:
+    """What ``_plain`` made, each part checked; ValueError/TypeError/KeyError for anything else."""
+    triples = []
+    for s, p, o, graph, since, until in data["triples"]:
+        if not (isinstance(s, str) and isinstance(p, str) and isinstance(graph, str)
+                and isinstance(since, (int, float)) and isinstance(until, (int, float))):
+            raise ValueError("a triple is not (text, text, value, text, number, number)")
+        triples.append(Triple(s, p, _read_value(o), graph, float(since), float(until)))
+    annotations = []
+    for s, p, v in data["annotations"]:
+        if not (isinstance(s, str) and isinstance(p, str)):
+            raise ValueError("an annotation's subject or property is not text")
+        annotations.append(Annotation(s, p, _read_value(v)))
+    markers = []
+    for iri, name, version in data["markers"]:
+        if not (isinstance(iri, str) and isinstance(name, str) and isinstance(version, str)):
+            raise ValueError("a version marker is not three texts")
+        markers.append((iri, name, version))
+    return TBox(tuple(triples), tuple(annotations), tuple(markers))
+
+
+def _value(value: Any) -> Any:
+    if isinstance(value, datetime):
+        return {"datetime": value.isoformat()}
+    if isinstance(value, (str, bool, int, float)):
+        return value
+    raise TypeError(f"a TBox value of type {type(value).__name__} cannot be kept")
+
+
+def _read_value(value: Any) -> Value:
+    if isinstance(value, (str, bool, int, float)):
+        return value
+    if isinstance(value, dict) and set(value) == {"datetime"} and isinstance(value["datetime"], str):
+        return datetime.fromisoformat(value["datetime"])
+    raise ValueError("a TBox value is neither text, a number, a boolean nor a datetime")
