@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import asyncio
 import logging
+import threading
+import time
 from collections.abc import Callable
 from concurrent.futures import Future, ThreadPoolExecutor
 from typing import Any, TypeVar
@@ -38,6 +40,8 @@ T = TypeVar("T")
 LOG = logging.getLogger("oracle.service")
 #: A whole request is one transaction: the logger never commits on its own.
 NEVER = 10**9
+#: Longest a job queued with ``EngineThread.submit_idle`` yields to the jobs queued before its turn.
+IDLE_WITHIN_S = 1.0
 
 
 class EngineThread:
@@ -47,6 +51,9 @@ class EngineThread:
     attaches to it (``oracle.bridge.engine.attach_engine``) is attached once and never left behind."""
 
     _shared: ThreadPoolExecutor | None = None
+    #: Jobs queued on the shared thread and not started yet (``submit_idle`` yields to them).
+    _waiting = 0
+    _count = threading.Lock()
 
     def __init__(self) -> None:
         if EngineThread._shared is None:
@@ -56,8 +63,20 @@ class EngineThread:
         #: open: a job that ran while a group was open answers only after that group's commit.
         self.group: GroupCommit | None = None
 
+    def _queue(self, fn: Callable[..., T], *args: Any) -> Future[T]:
+        """fn queued on the thread, counted as waiting until it starts."""
+        with EngineThread._count:
+            EngineThread._waiting += 1
+        try:
+            return self._pool.submit(_started, fn, *args)
+        except BaseException:  # not queued (the thread shut down): not waiting either
+            with EngineThread._count:
+                EngineThread._waiting -= 1
+            raise
+
     async def run(self, fn: Callable[..., T], *args: Any) -> T:
-        result, pending = await asyncio.get_running_loop().run_in_executor(self._pool, self._job, fn, args)
+        done: tuple[T, Future[None] | None] = await asyncio.wrap_future(self._queue(self._job, fn, args))
+        result, pending = done
         if pending is not None:
             await asyncio.wrap_future(pending)
         return result
@@ -68,12 +87,28 @@ class EngineThread:
 
     def submit(self, fn: Callable[..., Any], *args: Any) -> None:
         """Queue fn without waiting (its errors are logged, never raised into a request)."""
-        future = self._pool.submit(fn, *args)
+        future = self._queue(fn, *args)
         future.add_done_callback(_log_failure)
+
+    def submit_idle(self, fn: Callable[[], Any], within: float = IDLE_WITHIN_S) -> None:
+        """Queue fn (work nobody waits for, e.g. the warm-up after an action) behind every job
+        queued when its turn comes, again and again, but for at most ``within`` seconds: a
+        robot's situation queued meanwhile runs first (it computes itself what it needs of that
+        work). Its errors are logged."""
+        deadline = time.monotonic() + within
+
+        def turn() -> None:
+            if EngineThread._waiting > 0 and time.monotonic() < deadline:
+                self.submit(turn)  # behind the jobs waiting now
+                return
+            fn()
+
+        self.submit(turn)
 
     def call(self, fn: Callable[..., T], *args: Any) -> T:
         """Run fn on the engine thread from another, non-async thread (startup, tests)."""
-        result, pending = self._pool.submit(self._job, fn, args).result()
+        done: tuple[T, Future[None] | None] = self._queue(self._job, fn, args).result()
+        result, pending = done
         if pending is not None:
             pending.result()
         return result
@@ -85,6 +120,13 @@ class EngineThread:
         if self.group is not None:
             self.call(self.group.commit)  # answered once flushed too (``_job``)
             self.group.close()
+
+
+def _started(fn: Callable[..., T], *args: Any) -> T:
+    """fn run on the engine thread, no longer counted as waiting."""
+    with EngineThread._count:
+        EngineThread._waiting -= 1
+    return fn(*args)
 
 
 def _freeze() -> None:

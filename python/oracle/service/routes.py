@@ -235,14 +235,19 @@ def _after_answer(ctx: Any, background: BackgroundTasks, work: Any) -> None:
     background.add_task(release)
 
 
-def _once_answered(ctx: Any, background: BackgroundTasks, work: Any) -> None:
+def _once_answered(ctx: Any, background: BackgroundTasks, work: Any, idle: bool = False) -> None:
     """``work`` queued on the engine thread once the answer is on the wire, behind whatever came
     meanwhile (a preference stamped with its decision's time may follow a later action: the
     history read skips it, oracle.historycache). Unlike ``_after_answer`` the engine thread never
-    waits for the event loop, which with many robots kept it idle between answers."""
+    waits for the event loop, which with many robots kept it idle between answers. ``idle``: work
+    that changes no answer (the warm-up after an action), run after the requests queued when its
+    turn comes (``EngineThread.submit_idle``)."""
 
     async def queue() -> None:
-        ctx.thread.submit(work)
+        if idle:
+            ctx.thread.submit_idle(work)
+        else:
+            ctx.thread.submit(work)
 
     background.add_task(queue)
 
@@ -281,7 +286,7 @@ async def action(neem: str, body: ActionIn, request: Request, background: Backgr
     neem = session.neem
     if not answer.get("open"):  # what the next situation derives from the history, fitted now
         _once_answered(ctx, background, lambda: session.warm.warm(session.ranker, session.ranker.last_end,
-                                                                  stored_reader(ctx.engine, session)))
+                                                                  stored_reader(ctx.engine, session)), idle=True)
     ctx.hub.publish(Event("action", neem, answer))
     return {"neem": neem, **answer}
 
