@@ -255,7 +255,6 @@ exposed(odb_history, situation_history_after/2, read).
 exposed(odb_history, situation_history_json/1, read).
 exposed(odb_history, situation_history_json/2, read).
 exposed(odb_history, situation_history_json/3, read).
-exposed(odb_history, situation_history_json/4, read).
 exposed(odb_history, history_slice_bounds/2, read).
 exposed(odb_history, history_slice_bounds_json/2, read).
 exposed(odb_history, latest_situation/2, read).

@@ -4,7 +4,6 @@
       situation_history_json/1,   % -JSONString
       situation_history_json/2,   % +After, -JSONString
       situation_history_json/3,   % +After, +Until, -JSONString
-      situation_history_json/4,   % +After, +Until, +From, -JSONString
       history_slice_bounds/2,     % +Size, -Bounds
       history_slice_bounds_json/2, % +Size, -JSONString
       latest_situation/2,         % -Begin, -Calls
@@ -49,7 +48,7 @@ situation, the one the next ranking is for.
 %   pass over the actions in begin order that merges the imaginings (also in begin order)
 %   and looks parts of day and calls up in AVL trees: O(n log n) in the rows read.
 situation_history(Situations) :-
-    situation_history(range(none, none, after), Situations, _).
+    situation_history(range(none, none), Situations, _).
 
 %!  situation_history_after(+After, -Situations) is det.
 %   The situations of situation_history/1 whose action began after the number After, as
@@ -59,11 +58,10 @@ situation_history(Situations) :-
 %   (oracle.historycache); After `none` is the whole history.
 situation_history_after(After, Situations) :-
     after_bound(After),
-    situation_history(range(After, none, after), Situations, _).
+    situation_history(range(After, none), Situations, _).
 
 %   situation_history(+Range, -Situations, -Calls): the situations of the actions that began
-%   in Range, `range(After, Until, From)`: after After and not after Until (`none`: no bound),
-%   the store queries starting from the begins of the bound From names (begun_in/4); also
+%   in Range, `range(After, Until)`: after After and not after Until (`none`: no bound); also
 %   the AVL tree of task individual -> call the rows were made from (every call in Situations
 %   but `idle` is one of its values).
 situation_history(Range, Situations, Calls) :-
@@ -105,7 +103,7 @@ situation_history(Range, Situations, Calls, Acts) :-
     empty_assoc(Memo),
     imagined_calls(ImaginedPlans, TasksOf, Calls, Memo, ByBegin),
     first_values(Parts, PartOf),
-    Range = range(After, _, _),
+    Range = range(After, _),
     (   After == none -> Prev = inf ; Prev = After ),
     history_rows(Actions, Prev, Idle, PartOf, ByBegin, none, Calls, Situations),
     findall(A, member(_-A-_-_-_, Actions), Acts).
@@ -115,7 +113,7 @@ situation_history(Range, Situations, Calls, Acts) :-
 %   the events begun since and those of every plan (the plans are few) reach them all
 %   (task_calls/3): reading a few hundred new actions then costs what they cost, not what the
 %   NEEM does (at 50,000 actions, the last 100: 1.96 s before, 0.12 s; docs/prolog.md).
-history_calls(range(none, none, _), Ts, CallPairs) :- !,
+history_calls(range(none, none), Ts, CallPairs) :- !,
     task_calls(Ts, CallPairs).
 history_calls(Range, Ts, CallPairs) :-
     begun_in(Range, I, _, Begun),
@@ -123,22 +121,18 @@ history_calls(Range, Ts, CallPairs) :-
                      plan_defines_task(_, P)-P ], CallPairs).
 
 %   begun_in(+Range, ?I, ?B, -Goal): Goal finds the intervals I that began in Range at B, by
-%   value (the store's index on property and value), a bound Until as a second test of the
-%   same begin: a slice of the history reads the rows of its own actions alone.
-%   The store compares a begin with one number per pattern, so the first of the two tests scans
-%   the begins from its bound to the NEEM's end (From `after`) or from its start (`until`): a
-%   slice near the start is read from Until, one near the end from After (oracle.slicedread).
-begun_in(range(After, none, _), I, B, triple(I, soma:hasIntervalBegin, >(After)->B)) :- !.
-begun_in(range(none, Until, _), I, B, triple(I, soma:hasIntervalBegin, =<(Until)->B)) :- !.
-begun_in(range(After, Until, after), I, B,
-         ( triple(I, soma:hasIntervalBegin, >(After)->B), triple(I, soma:hasIntervalBegin, =<(Until)) )) :- !.
-begun_in(range(After, Until, until), I, B,
-         ( triple(I, soma:hasIntervalBegin, =<(Until)->B), triple(I, soma:hasIntervalBegin, >(After)) )).
+%   value (the store's index on property and value). Both bounds compare the same begin B:
+%   the store asks for them in one pattern (store_read's fused ranges), one index range, so a
+%   slice of the history reads the rows of its own actions alone (oracle.slicedread).
+begun_in(range(After, none), I, B, triple(I, soma:hasIntervalBegin, >(After)->B)) :- !.
+begun_in(range(none, Until), I, B, triple(I, soma:hasIntervalBegin, =<(Until)->B)) :- !.
+begun_in(range(After, Until), I, B,
+         ( triple(I, soma:hasIntervalBegin, >(After)->B), triple(I, soma:hasIntervalBegin, =<(Until)->B) )).
 
 %   Every action (After `none`), or every action that began after After, with its begin,
 %   task, end and the task's types. The restricted reads start from the interval begins the
 %   store finds by value (its index on property and value), before fanning out.
-typed_actions(range(none, none, _), Typed) :- !,
+typed_actions(range(none, none), Typed) :- !,
     kb_group(B-A-T-E, C, ( executes_task(A, T), triple(T, rdf:type, C), event_interval(A, B, E) ),
              any, Typed).
 typed_actions(Range, Typed) :-
@@ -148,7 +142,7 @@ typed_actions(Range, Typed) :-
              any, Typed).
 
 %   Each event (of an interval that began after After) with the types of its interval.
-interval_types(range(none, none, _), IntervalTypes) :- !,
+interval_types(range(none, none), IntervalTypes) :- !,
     kb_findall(A-PC, ( has_time_interval(A, I), triple(I, rdf:type, PC) ), any, IntervalTypes).
 interval_types(Range, IntervalTypes) :-
     begun_in(Range, I, _, Begun),
@@ -158,7 +152,7 @@ interval_types(Range, IntervalTypes) :-
 %   Each imagining's begin with its plans, grouped by the store (one row per begin, not one
 %   per imagined plan). The mental action's own patterns come first: SQLite then joins its
 %   interval before fanning out to the ~20 plans (4x faster at 10,000 actions).
-imagined_plans(range(none, none, _), ImaginedPlans) :- !,
+imagined_plans(range(none, none), ImaginedPlans) :- !,
     kb_group(B, Plan, ( executes_task(M, MT), instance_of(MT, soma:'Imagining'),
                         event_interval(M, B, _), holds(M, odb:imagines_situation, Plan) ),
              any, ImaginedPlans).
@@ -249,19 +243,11 @@ situation_history_json(After, JSON) :-
 %   when After and Until are begins of its rows (a slice ends at an action's begin, so the
 %   imaginings that began before an action are read with it). Read one after another from
 %   the bounds of history_slice_bounds/2 and joined, the slices are the whole history, each
-%   read holding the rows of its own actions alone (oracle.slicedread).
+%   read holding the rows of its own actions alone and costing what they cost (oracle.slicedread).
 situation_history_json(After, Until, JSON) :-
-    situation_history_json(After, Until, after, JSON).
-
-%!  situation_history_json(+After, +Until, +From, -JSON) is det.
-%   situation_history_json/3, its store queries starting from the begins after After (From
-%   `after`) or from those up to Until (`until`): the same rows, read fastest from the bound
-%   nearer the NEEM's end or start respectively.
-situation_history_json(After, Until, From, JSON) :-
     after_bound(After),
     after_bound(Until),
-    must_be(oneof([after, until]), From),
-    Range = range(After, Until, From),
+    Range = range(After, Until),
     situation_history(Range, Situations, Calls, Actions),
     garbage_collect,    % the read's intermediate lists, before the JSON text is made
     range_modes(Range, ModeOf),
@@ -361,7 +347,7 @@ history_view_json(After, JSON) :-
 %   (performers_typed/4).
 action_modes(After, ModeOf) :-
     after_bound(After),
-    range_modes(range(After, none, after), ModeOf).
+    range_modes(range(After, none), ModeOf).
 
 range_modes(Range, ModeOf) :-
     performers_typed(Range, Pairs, Persons, Agents),
@@ -425,7 +411,7 @@ pairs_modes(Pairs, Persons, Agents, ModeOf) :-
 %   After a time: one query of the few new actions' pairs with their agents' types, joined as
 %   written from the interval begins found by value (SQLite's own plan drives from every
 %   performer triple instead: 250 ms against 3 ms at 50,000 actions).
-performers_typed(range(none, none, _), Pairs, Persons, Agents) :- !,
+performers_typed(range(none, none), Pairs, Persons, Agents) :- !,
     kb_findall(A-Ag, is_performed_by(A, Ag), any, Pairs0),
     sort(Pairs0, Pairs),
     kb_findall(P, triple(P, rdf:type, dul:'NaturalPerson'), any, Persons0),

@@ -98,6 +98,12 @@ mem_pattern(S, P, C, Scope, Since, Until) :-
     mem_pattern(S, P, X, Scope, Since, Until),
     number(X),
     store_compare(Op, X, A).
+mem_pattern(S, P, C, Scope, Since, Until) :-
+    nonvar(C), C = cmp(Op1, A1, Op2, A2, X), !,
+    mem_pattern(S, P, X, Scope, Since, Until),
+    number(X),
+    store_compare(Op1, X, A1),
+    store_compare(Op2, X, A2).
 mem_pattern(S, P, O, Scope, Since, Until) :-
     atom(P), store_taxonomic(P), !,
     (   var(O)

@@ -9,7 +9,8 @@
 
 A store query is a list of triple patterns `t(S, P, O)`: each term a variable or an atomic
 value, the object also `cmp(Op, Number, X)` (the stored object compared with a number, X
-bound to it). This module checks them at the boundary and holds the rule of KnowRob 2.x's
+bound to it) or `cmp(Op1, Number1, Op2, Number2, X)` (with two numbers: a range, which the
+store answers with one index range where two patterns would scan from one bound on). This module checks them at the boundary and holds the rule of KnowRob 2.x's
 `p*`/`o*` semantics (knowrob-2x-facts §5) that every backend shares: which properties are
 taxonomic, so that a bound object is matched against its class closure `o*` instead of
 the property against its closure `p*`.
@@ -35,7 +36,8 @@ store_closure_edge(P) :- subproperty_of_iri(P).
 
 %!  store_check_pattern(@Pattern) is det.
 %   Pattern is `t(S, P, O)` with S and P variables or atomic and O also `cmp(Op, Number, X)`
-%   (Op one of `<`, `=<`, `>`, `>=`); raises a type or domain error otherwise.
+%   or `cmp(Op1, Number1, Op2, Number2, X)` (each Op one of `<`, `=<`, `>`, `>=`); raises a
+%   type or domain error otherwise.
 store_check_pattern(t(S,P,O)) :-
     !,
     store_check_term(S), store_check_term(P), check_object(O).
@@ -43,12 +45,20 @@ store_check_pattern(X) :-
     type_error(triple_pattern, X).
 
 %   cmp(Op, Number, X): the object compared with a number in the database; X binds it.
+%   cmp(Op1, Number1, Op2, Number2, X): compared with two numbers (both must hold).
 check_object(C) :-
     nonvar(C), C = cmp(Op, A, _), !,
-    must_be(oneof([<, =<, >, >=]), Op),
-    must_be(number, A).
+    check_comparison(Op, A).
+check_object(C) :-
+    nonvar(C), C = cmp(Op1, A1, Op2, A2, _), !,
+    check_comparison(Op1, A1),
+    check_comparison(Op2, A2).
 check_object(O) :-
     store_check_term(O).
+
+check_comparison(Op, A) :-
+    must_be(oneof([<, =<, >, >=]), Op),
+    must_be(number, A).
 
 %!  store_check_term(@Term) is det.
 %   Term is a variable or atomic; raises `type_error(atomic_or_var, Term)` otherwise.

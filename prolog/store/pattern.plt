@@ -17,7 +17,14 @@ test(closures_climb_subclass_and_subproperty_not_type) :-
 test(good_patterns) :-
     store_check_pattern(t(_, _, _)),
     store_check_pattern(t(s, p, 1.5)),
-    store_check_pattern(t(s, p, cmp(>=, 3, _))).
+    store_check_pattern(t(s, p, cmp(>=, 3, _))),
+    store_check_pattern(t(s, p, cmp(>, 3, =<, 4.5, _))).
+
+test(range_operators, [error(type_error(oneof([<, =<, >, >=]), =))]) :-
+    store_check_pattern(t(s, p, cmp(>, 3, =, 4, _))).
+
+test(range_with_numbers, [error(type_error(number, four))]) :-
+    store_check_pattern(t(s, p, cmp(>, 3, <, four, _))).
 
 test(pattern_not_a_triple, [error(type_error(triple_pattern, triple(a, b, c)))]) :-
     store_check_pattern(triple(a, b, c)).

@@ -78,19 +78,53 @@ store_match_scoped(Patterns0, Scope, FactScope) :-
 
 %   The scope of one matched (now ground) pattern's document, intersected with Acc.
 doc_scope(Neem, Scope, t(S, P, O0), Acc, FS) :-
-    (   nonvar(O0), O0 = cmp(_, _, O) -> true ; O = O0 ),
+    compared_value(O0, O),
     (   store_query_graphs(Graphs) -> Request = [Neem, S, P, O, Graphs] ; Request = [Neem, S, P, O] ),
     store_python_call(scopes, Request, Rows),
     member([Since, Until], Rows),
     store_in_scope(Scope, Since, Until),
     store_scope_intersection(Acc, Since, Until, FS).
 
+%   The value an object stands for: a comparison's variable, or the object itself.
+compared_value(C, X) :- nonvar(C), C = cmp(_, _, X), !.
+compared_value(C, X) :- nonvar(C), C = cmp(_, _, _, _, X), !.
+compared_value(O, O).
+
 %   A comparison whose value is already bound is that value, if it passes.
 bound_comparison(t(S, P, C), t(S, P, O)) :-
     nonvar(C), C = cmp(Op, A, X), nonvar(X), !,
     number(X), store_compare(Op, X, A),
     O = X.
+bound_comparison(t(S, P, C), t(S, P, O)) :-
+    nonvar(C), C = cmp(Op1, A1, Op2, A2, X), nonvar(X), !,
+    number(X), store_compare(Op1, X, A1), store_compare(Op2, X, A2),
+    O = X.
 bound_comparison(T, T).
+
+%   fused_ranges(+Patterns, -Fused): two comparisons of one value, `t(S, P, cmp(Op1, A1, X))`
+%   and a later `t(S, P, cmp(Op2, A2, X))` (S, P and X the same terms), as one pattern
+%   `t(S, P, cmp(Op1, A1, Op2, A2, X))` where the first stood: KnowRob's way to ask for a
+%   range, `triple(I, P, >(A)->B), triple(I, P, =<(U)->B)`, then costs the store one index
+%   range (the begins of a slice of a NEEM), not a scan from one bound to the end with the
+%   other tested on each row. The same solutions: the second pattern binds nothing new and
+%   is a test (a ground goal, one answer), and a document passing both comparisons passes it.
+fused_ranges([], []).
+fused_ranges([T|Ts], [F|Fs]) :-
+    (   T = t(S, P, C), nonvar(C), C = cmp(Op1, A1, X), var(X),
+        same_comparison(Ts, S, P, X, Op2, A2, Rest)
+    ->  F = t(S, P, cmp(Op1, A1, Op2, A2, X)),
+        fused_ranges(Rest, Fs)
+    ;   F = T,
+        fused_ranges(Ts, Fs)
+    ).
+
+%   The first of Patterns comparing X of S and P, and Patterns without it.
+same_comparison([T|Ts], S, P, X, Op, A, Rest) :-
+    (   T = t(S1, P1, C), S1 == S, P1 == P, nonvar(C), C = cmp(Op, A, X1), X1 == X
+    ->  Rest = Ts
+    ;   Rest = [T|Rest1],
+        same_comparison(Ts, S, P, X, Op, A, Rest1)
+    ).
 
 mem_conj(Patterns, Scope) :-
     store_memory_match(Patterns, Scope, _).
@@ -124,7 +158,8 @@ match(memory, Patterns, Scope, Options) :-
     ->  limit(N, mem_conj(Patterns, Scope))
     ;   mem_conj(Patterns, Scope)
     ).
-match(python(Neem), Patterns, Scope, Options) :-
+match(python(Neem), Patterns0, Scope, Options) :-
+    fused_ranges(Patterns0, Patterns),
     term_variables(Patterns, All),
     selected_first(Options, All, Vars, Order0),
     maplist(encode_pattern(Order0), Patterns, Encoded0),
@@ -244,6 +279,8 @@ encode_term(Vars, X, v, I) :-
     var(X), !,
     nth0_var(Vars, X, 0, I).
 encode_term(Vars, cmp(Op, A, X), cmp, [Op, A, I]) :- !,
+    nth0_var(Vars, X, 0, I).
+encode_term(Vars, cmp(Op1, A1, Op2, A2, X), cmp2, [Op1, A1, Op2, A2, I]) :- !,
     nth0_var(Vars, X, 0, I).
 encode_term(_, X, c, X).
 

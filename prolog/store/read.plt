@@ -66,6 +66,29 @@ test(python_request, [cleanup(python_unstub)]) :-
     Request == [n1, 1.0, 2.0, 5, 2, [[1, desc]], -1, store,
                 [c, a, c, p, v, 0], [v, 0, c, w, cmp, [>, 1, 1]]].
 
+test(two_comparisons_of_one_value_are_one_range, [cleanup(python_unstub)]) :-
+    python_stub("r(d(i1, 2.5, 7), [[1, 2, 3]])", "[]"),
+    findall(I-B, store_match([t(a, p, I), t(I, begin, cmp(>, 1, B)), t(I, end, _), t(I, begin, cmp(=<, 3, B))], any),
+            Rows),
+    Rows == [i1-2.5],
+    sent(Request),
+    Request == [n1, -1, -1, -1, 3, [], -1, store,
+                [c, a, c, p, v, 0], [v, 0, c, begin, cmp2, [>, 1, =<, 3, 1]], [v, 0, c, end, v, 2]].
+
+test(comparisons_of_other_values_stay_apart, [cleanup(python_unstub)]) :-
+    python_stub("r(d(i1, 2.5), [])", "[]"),
+    \+ store_match([t(I, begin, cmp(>, 1, _)), t(I, begin, cmp(=<, 3, _)), t(I, end, cmp(<, 9, E)),
+                    t(j, end, cmp(>, 0, E))], any),
+    sent(Request),
+    Request = [_, _, _, _, _, _, _, _|Patterns],
+    length(Patterns, 4),
+    \+ ( member(P, Patterns), memberchk(cmp2, P) ).
+
+test(a_range_in_memory, [setup(weights), cleanup(store_reset)]) :-
+    findall(S, store_match([t(S, weight, cmp(>, 1, =<, 2, _))], any), Ss), msort(Ss, [c, d]),
+    once(store_match([t(a, weight, cmp(>=, 3, <, 4, 3))], any)),
+    \+ store_match([t(a, weight, cmp(>, 1, <, 3, 3))], any).
+
 test(python_request_selects_groups_and_reads_graphs, [cleanup(python_unstub)]) :-
     python_stub("r(d(a, b, c), g([2, 3]), [[1, 4]])", "[]"),
     findall(S-Os, store_in_graphs([g1], store_match([t(S, p, O)], any, [select(S-O), group(O, Os), plan(written)])),

@@ -55,10 +55,7 @@ class SlicedRead:
             raise ValueError("no slice left before the last")
         assert self.bounds is not None
         until = self.bounds[self.done]
-        # The store scans the begins from the bound a slice's queries start at to that end of
-        # the NEEM: the first half of the slices starts from Until, the rest from After.
-        start = "until" if 2 * self.done < len(self.bounds) else "after"
-        self._add(bridge.history_slice(self.after, until, start))
+        self._add(bridge.history_slice(self.after, until))
         self.after, self.done = until, self.done + 1
 
     def finish(self, bridge: Bridge) -> HistoryView:

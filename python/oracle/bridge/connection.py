@@ -148,16 +148,13 @@ class Bridge:
         number = repr(after) if isinstance(after, int) else repr(float(after))
         return history_rows(self._json("odb_history:situation_history_json", f"{number}, "))
 
-    def history_slice(self, after: float | None, until: float | None, start: str = "after") -> list[HistoryRow]:
+    def history_slice(self, after: float | None, until: float | None) -> list[HistoryRow]:
         """The rows of history() whose action began after ``after`` and not after ``until`` (None:
         no bound), as history() gives them when both are begins of its rows
-        (odb_history:situation_history_json/4): one slice of a whole read (oracle.slicedread).
-        ``start``: the bound (``after`` or ``until``) whose begins the store queries start from,
-        the one nearer the NEEM's end or start respectively (the same rows either way)."""
-        if start not in ("after", "until"):
-            raise PrologError(f"history_slice starts from after or until, got {start!r}")
+        (odb_history:situation_history_json/3): one slice of a whole read (oracle.slicedread),
+        its store queries one index range of begins each."""
         return history_rows(self._json("odb_history:situation_history_json",
-                                       f"{_bound(after, 'history_slice')}, {_bound(until, 'history_slice')}, {start}, "))
+                                       f"{_bound(after, 'history_slice')}, {_bound(until, 'history_slice')}, "))
 
     def history_bounds(self, size: int) -> list[float]:
         """Where to end the slices of the history so that each holds about ``size`` actions

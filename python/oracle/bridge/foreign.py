@@ -60,6 +60,9 @@ def _decode_request(
             elif kind == "cmp":  # cmp(Op, Number, Var), checked by store_pattern
                 op, number, index = value
                 terms.append(Cmp(plain(op), number, Var(f"v{index}")))
+            elif kind == "cmp2":  # cmp(Op, Number, Op2, Number2, Var): a range, one index range
+                op, number, op2, number2, index = value
+                terms.append(Cmp(plain(op), number, Var(f"v{index}"), plain(op2), number2))
             else:
                 terms.append(plain(value))
         s, p, o = terms

@@ -577,7 +577,8 @@ def validate_patterns(patterns: Sequence[TriplePattern]) -> None:
             raise StoreError(f"a comparison may only stand for the object: {pattern!r}")
         for term in (pattern.s, pattern.p, pattern.o):
             if isinstance(term, Cmp):
-                check_literal(term.value)
+                for _, number in term.conditions():
+                    check_literal(number)
             elif not isinstance(term, Var):
                 check_literal(term)
 

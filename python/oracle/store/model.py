@@ -103,31 +103,48 @@ CMP_OPS: tuple[str, ...] = ("<", "=<", ">", ">=")
 
 @dataclass(frozen=True)
 class Cmp:
-    """The object of a pattern compared with a number: ``o OP value`` (``=<`` as in Prolog).
+    """The object of a pattern compared with a number: ``o OP value`` (``=<`` as in Prolog),
+    and with a second number too when ``op2`` is given (``o OP value and o OP2 value2``).
 
     Only numeric objects match (numbers of any BSON type, and Dates as unix seconds), as
     KnowRob's ``triple(S, P, >=(V))``; ``var`` (optional) binds the object's value. The
-    database evaluates it: an SQL ``WHERE`` on SQLite, a ``$match`` on MongoDB.
+    database evaluates it: an SQL ``WHERE`` on SQLite, a ``$match`` on MongoDB. Two bounds in
+    one pattern are one index range (the begins of a slice of a NEEM): as two patterns, the
+    first bound alone would drive the scan, to the end of the NEEM.
     """
 
     op: str
     value: float
     var: Var | None = None
+    op2: str | None = None
+    value2: float | None = None
 
     def __post_init__(self) -> None:
-        if self.op not in CMP_OPS:
-            raise ValueError(f"comparison operator must be one of {', '.join(CMP_OPS)}, got {self.op!r}")
-        if isinstance(self.value, bool) or not isinstance(self.value, (int, float)):
-            raise ValueError(f"a comparison needs a number, got {self.value!r}")
+        for op, value in self.conditions():
+            if op not in CMP_OPS:
+                raise ValueError(f"comparison operator must be one of {', '.join(CMP_OPS)}, got {op!r}")
+            if isinstance(value, bool) or not isinstance(value, (int, float)):
+                raise ValueError(f"a comparison needs a number, got {value!r}")
+        if (self.op2 is None) != (self.value2 is None):
+            raise ValueError("a second comparison needs both its operator and its number")
+
+    def conditions(self) -> list[tuple[str, Any]]:
+        """The comparisons the object must pass, (operator, number) each."""
+        first: list[tuple[str, Any]] = [(self.op, self.value)]
+        return first if self.op2 is None or self.value2 is None else [*first, (self.op2, self.value2)]
 
     def holds(self, value: Any) -> bool:
-        if self.op == "<":
-            return bool(value < self.value)
-        if self.op == "=<":
-            return bool(value <= self.value)
-        if self.op == ">":
-            return bool(value > self.value)
-        return bool(value >= self.value)
+        return all(_compare(op, value, number) for op, number in self.conditions())
+
+
+def _compare(op: str, value: Any, number: Any) -> bool:
+    if op == "<":
+        return bool(value < number)
+    if op == "=<":
+        return bool(value <= number)
+    if op == ">":
+        return bool(value > number)
+    return bool(value >= number)
 
 
 #: A pattern term: a variable, a constant, or None for "anything" (an anonymous variable);

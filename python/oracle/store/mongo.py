@@ -430,16 +430,23 @@ _MONGO_OPS = {"<": "$lt", "=<": "$lte", ">": "$gt", ">=": "$gte"}
 def _compare_condition(cmp: Cmp) -> dict[str, Any]:
     """``o OP value`` for numbers of every BSON type (MongoDB compares them by value) and,
     as Prolog sees Dates as unix seconds, for Dates."""
-    op = _MONGO_OPS[cmp.op]
-    value = float(cmp.value)
+    tests = [(_MONGO_OPS[op], float(value)) for op, value in cmp.conditions()]
+    if len({op for op, _ in tests}) < len(tests):  # one operator twice: each its own test
+        return {"$and": [_compare_condition(Cmp(op, value)) for op, value in cmp.conditions()]}
     # One form per BSON type, each guarded by $type: MongoDB would compare across numeric
     # types by itself, but the mongomock-ng test double cannot compare Decimal128 with int.
+    # Two bounds sit in one document on the field ("$gt" and "$lte"): one index range.
     forms: list[dict[str, Any]] = [
-        {"o": {"$type": "double", op: value}},
-        {"o": {"$type": "int", op: value}},
-        {"o": {"$type": "long", op: value}},
-        {"o": {"$type": "decimal", op: encode_number(value, "decimal128")}},
+        {"o": {"$type": "double", **{op: value for op, value in tests}}},
+        {"o": {"$type": "int", **{op: value for op, value in tests}}},
+        {"o": {"$type": "long", **{op: value for op, value in tests}}},
+        {"o": {"$type": "decimal", **{op: encode_number(value, "decimal128") for op, value in tests}}},
     ]
-    if math.isfinite(value) and abs(value) < 2.5e11:
-        forms.append({"o": {"$type": "date", op: datetime.fromtimestamp(value, timezone.utc).replace(tzinfo=None)}})
+    if all(math.isfinite(value) and abs(value) < 2.5e11 for _, value in tests):
+        forms.append({"o": {"$type": "date", **{op: _date(value) for op, value in tests}}})
     return {"$or": forms}
+
+
+def _date(seconds: float) -> datetime:
+    """Unix seconds as the naive UTC datetime pymongo stores as a BSON Date."""
+    return datetime.fromtimestamp(seconds, timezone.utc).replace(tzinfo=None)

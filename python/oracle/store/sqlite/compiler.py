@@ -234,9 +234,11 @@ class SqlCompiler:
             self._term(o, f"{a}.o", f"{a}.ok")
             return
         self._term(o.var, f"{a}.o", f"{a}.ok")
-        # NaN is stored as NULL, so it never compares, as in Prolog.
-        self.conds.append(f"{a}.ok IN {_COMPARABLE_SQL} AND {a}.o {_SQL_OPS[o.op]} ?")
-        self.params.append(float(o.value))
+        # NaN is stored as NULL, so it never compares, as in Prolog. Two bounds side by side
+        # are one range of the (pstar, o) index: a slice's begins, not every begin past one.
+        tests = " AND ".join(f"{a}.o {_SQL_OPS[op]} ?" for op, _ in o.conditions())
+        self.conds.append(f"{a}.ok IN {_COMPARABLE_SQL} AND {tests}")
+        self.params.extend(float(value) for _, value in o.conditions())
 
     def _filters(self, a: str, pattern: TriplePattern) -> None:
         if isinstance(pattern.graph, str):
