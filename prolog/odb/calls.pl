@@ -121,17 +121,49 @@ task_calls(Ts, Pairs) :-
 
 %!  task_calls(+Tasks, +Reaches, -Pairs) is det.
 %   The Task-Call pairs of at least Tasks, where Reaches, a list of `Reach-Task` goals, reach
-%   every one of them: for a few tasks task_calls/2's; for more, those of every task the goals
-%   reach (task_calls_reached/4, each joined as written), so that the reads start from the
-%   goals (the intervals begun after a time, say) instead of spanning every task of the NEEM
-%   as task_calls/2's do.
+%   every one of them: for a few tasks task_calls/2's; for more, those of every typed task the
+%   goals reach (reached_factors/4, each joined as written), so that the reads start from the
+%   goals (the intervals begun in a slice of the NEEM, say) instead of spanning every task of
+%   the NEEM as task_calls/2's do.
 task_calls(Ts, Reaches, Pairs) :-
     sort(Ts, Distinct),
     length(Distinct, N),
     (   few_tasks(N)
     ->  task_calls(Distinct, Pairs)
-    ;   findall(P, ( member(Reach-T, Reaches), task_calls_reached(Reach, T, [plan(written)], Ps), member(P, Ps) ), All),
+    ;   findall(P, ( member(Reach-T, Reaches), reached_factors(Reach, T, [plan(written)], Ps), member(P, Ps) ), All),
         sort(All, Pairs)
+    ).
+
+%   reached_factors(+Reach, ?Task, +Options, -Pairs): the Task-Call pairs of every typed task
+%   the kb_call goal Reach binds Task to, read as factor_calls/2 reads them: the tasks' types,
+%   their role-object pairs and the roles' types, each a store query from Reach (Options: how
+%   it is joined), and the types of the few distinct objects one query each. The rows read are
+%   the sum of the factors, not their product as in task_calls_reached/4 (~11 rows a role):
+%   a slice of 2,000 actions read its calls in 0.33 s that way, in ~0.12 s this way.
+reached_factors(Reach, T, Options, Pairs) :-
+    kb_findall(T-C, ( Reach, triple(T, rdf:type, C) ), any, Options, TCs),
+    kb_findall(T-(R-O), ( Reach, task_role(T, R), has_role(O, R) ), any, Options, TROs),
+    kb_findall(R-RC, ( Reach, task_role(T, R), triple(R, rdf:type, RC) ), any, Options, RCs),
+    findall(O, member(_-(_-O), TROs), Os0),
+    sort(Os0, Os),
+    findall(O-OC, ( member(O, Os), kb_call(triple(O, rdf:type, OC), any) ), OCs),
+    ordered_groups(TROs, RolesOf),
+    append([TCs, RCs, OCs], Typed),
+    ordered_groups(Typed, TypesOf),
+    findall(Tk, member(Tk-_, TCs), Ts0),
+    sort(Ts0, Ts),
+    findall(Tk-Call, ( member(Tk, Ts), factored_call(TypesOf, RolesOf, Tk, Call) ), Pairs).
+
+%   A typed task's call from the factors: task_call_from/4, but for a task with no role
+%   classifying an odb object the name of its first odb type from its types already read (the
+%   call rows_call/3 gives it with a store query of its own).
+factored_call(TypesOf, RolesOf, T, Call) :-
+    (   get_assoc(T, RolesOf, ROs0) -> true ; ROs0 = [] ),
+    (   include(odb_pair(TypesOf), ROs0, [])
+    ->  types_of(TypesOf, T, TTs),
+        first_odb(TTs, C),
+        odb_iri(Call, C)
+    ;   task_call_from(TypesOf, RolesOf, T, Call)
     ).
 
 %   Up to this many tasks, one store query per task is the fastest way to their calls.

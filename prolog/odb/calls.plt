@@ -73,6 +73,17 @@ test(task_calls_reached_equals_task_call, [cleanup(store_reset)]) :-
              task_calls_reached(( triple(T3, rdf:type, C3), atom(C3) ), T3, [plan(written)], Written),
              assertion(Written == Pairs) )).
 
+test(reached_factors_equal_task_call, [cleanup(store_reset)]) :-
+    forall(member(Load, [load_generated_episode(200, 5), ( load_test_episode, odd_tasks )]),
+           ( call(Load),
+             odb_calls:reached_factors(( triple(T, rdf:type, C), atom(C) ), T, [], Pairs),
+             findall(T1-Call, ( member(T1-_, Pairs), task_call(T1, Call) ), Expected),
+             assertion(Pairs == Expected),
+             findall(T2, kb_call(( triple(T2, rdf:type, C2), atom(C2) ), any), Ts0), sort(Ts0, Ts),
+             task_calls(Ts, All), assertion(Pairs == All),
+             odb_calls:reached_factors(( triple(T3, rdf:type, C3), atom(C3) ), T3, [plan(written)], Written),
+             assertion(Written == Pairs) )).
+
 test(task_calls_of_many_reached_tasks_equal_task_calls, [cleanup(store_reset)]) :-
     load_generated_episode(200, 6),
     findall(T0, kb_call(( triple(T0, rdf:type, C0), atom(C0) ), any), Ts0), sort(Ts0, Ts),

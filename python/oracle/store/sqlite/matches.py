@@ -80,8 +80,13 @@ class Matches:
         # Checks: a grouped value that is no integer, a key that is a REAL zero.
         checks = [f"sum(typeof(c{width}) != 'integer' OR typeof(c{width + 1}) != 'integer')"]
         checks += [f"sum(typeof(c{i}) = 'real' AND c{i} = 0)" for i in range(0, width, 2)]
+        # "LIMIT -1" (no limit) keeps SQLite from flattening the join into the GROUP BY (its
+        # flattening rule: a subquery with a LIMIT is not flattened into an aggregate), where
+        # it would plan the join anew and start from every interval rather than a slice's
+        # range of begins (a slice's imaginings at 50,000 actions: 0.25 -> 0.07 s; a whole
+        # read's the same, 1.7 s).
         sql = (f"SELECT {', '.join(keys + [f'group_concat(c{width})', f'group_concat(c{width + 1})'] + checks)}"
-               f" FROM ({inner}) GROUP BY {', '.join(keys)}")
+               f" FROM ({inner} LIMIT -1) GROUP BY {', '.join(keys)}")
         rows = self.conn.execute(sql, params).fetchall()
         if any(any(row[width + 2:]) for row in rows):
             return None
