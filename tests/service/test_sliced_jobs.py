@@ -75,3 +75,39 @@ def test_a_neem_grown_between_slices_is_read_again(neem):
     whole = engine.bridge("r").history_view()
     assert view.rows == whole.rows and view.latest == whole.latest
     assert thread.jobs > 2 * (len(engine.bridge("r").history_bounds(10)) + 1)  # begun again
+
+
+
+def test_a_session_opens_with_its_history_read_a_slice_a_job(tmp_path, onto):
+    from oracle.algorithm.params import Hyperparameters
+    from oracle.service.engine import Engine
+    from oracle.service.sliced_jobs import open_session
+
+    store = open_store(tmp_path / "s.sqlite")
+    log = NeemLogger.create(store, onto, user="r", neem_id="r")
+    for obj in ("apple", "thermos", "green_mug", "banana", "fridge"):
+        log.perceive(obj, datetime(2024, 1, 1, 5))
+    _log(log, random.Random(7), datetime(2024, 1, 1, 5), 60)
+    log.flush()
+    engine = Engine(store, onto, Hyperparameters())
+    given: list[Any] = []
+    opened = engine.session
+    engine.session = lambda name, view=None: given.append(view) or opened(name, view)  # type: ignore[method-assign]
+    try:
+        whole = engine.bridge("r").history_view()
+        ran: list[str] = []
+        thread = Thread(at=2, between=lambda: ran.append("robot"))  # another robot's job between two slices
+        asyncio.run(open_session(thread, engine, "r", size=10))  # type: ignore[arg-type]
+        slices = len(engine.bridge("r").history_bounds(10))
+        assert slices >= 5 and ran == ["robot"]
+        assert thread.jobs == slices + 4  # which NEEM, the bounds, each slice, the last one, the open
+        assert log.neem_id in engine.sessions and given[0].rows == whole.rows and given[0].latest == whole.latest
+        asyncio.run(open_session(thread, engine, log.neem_id, size=10))  # type: ignore[arg-type]
+        assert thread.jobs == slices + 4 and len(given) == 1  # open: no job
+        asyncio.run(open_session(thread, engine, "r", size=10))  # type: ignore[arg-type]
+        assert thread.jobs == slices + 5 and len(given) == 1  # open under its name: one job to say so
+        asyncio.run(open_session(thread, engine, "no such NEEM", size=10))  # type: ignore[arg-type]
+        assert thread.jobs == slices + 6 and len(given) == 1  # the request's own job answers 404
+    finally:
+        engine.close()
+        store.close()

@@ -22,7 +22,7 @@ from oracle.algorithm.predictors import DEFAULT
 from oracle.algorithm.prior import Prior
 from oracle.answers import something_else_sentence, what_next_sentence, why_not_sentence
 from oracle.historycache import HistoryCache
-from oracle.bridge import Bridge, LatestSituation
+from oracle.bridge import Bridge, HistoryView, LatestSituation
 from oracle.errors import NeemOracleError, StoreError
 from oracle.neem.writer import NeemLogger
 from oracle.timeline import Instant
@@ -90,6 +90,10 @@ class EngineThread:
         future = self._queue(fn, *args)
         future.add_done_callback(_log_failure)
 
+    def busy(self) -> bool:
+        """Whether a job waits for the thread (on the thread: behind the one running)."""
+        return EngineThread._waiting > 0
+
     def submit_idle(self, fn: Callable[[], Any], within: float = IDLE_WITHIN_S) -> None:
         """Queue fn (work nobody waits for, e.g. the warm-up after an action) behind every job
         queued when its turn comes, again and again, but for at most ``within`` seconds: a
@@ -98,7 +102,7 @@ class EngineThread:
         deadline = time.monotonic() + within
 
         def turn() -> None:
-            if EngineThread._waiting > 0 and time.monotonic() < deadline:
+            if self.busy() and time.monotonic() < deadline:
                 self.submit(turn)  # behind the jobs waiting now
                 return
             fn()
@@ -245,16 +249,17 @@ class Engine:
             self._bridge = Bridge(self.store, neem, self.ontology)
         return self._bridge
 
-    def session(self, name: str) -> NeemSession:
+    def session(self, name: str, view: HistoryView | None = None) -> NeemSession:
         """The NEEM's live session (``name``: its id or alias), opened on first use: one history
-        read, one fit."""
+        read, one fit. ``view``: the history read already (service.sliced_jobs.open_session)."""
         session = self.sessions.get(name)
         if session is None:
             neem = self.resolve(name)
             if neem in self.sessions:
                 return self.sessions[neem]
             self._room_for_a_session()
-            view = HistoryCache.default().view(self.bridge(neem))
+            if view is None:
+                view = HistoryCache.default().view(self.bridge(neem))
             logger = NeemLogger(self.store, self.ontology, neem, commit_every=NEVER)
             session = NeemSession(neem, logger, self.ontology, make_predictor(self.ontology, self.settings, self.method, self.prior),
                                   view.rows)

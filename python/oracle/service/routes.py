@@ -26,6 +26,7 @@ from oracle.service.events import Event
 from oracle.service.examples import example
 from oracle.service.page import STATIC, render_page
 from oracle.service.tablet import decision_of as _decision, record_choice, recorded_choice
+from oracle.service.sliced_jobs import open_session
 
 if TYPE_CHECKING:
     from oracle.service.app import Context
@@ -140,6 +141,7 @@ async def create_neem(body: NewNeem, request: Request) -> dict[str, Any]:
 @router.post("/api/neems/{neem}/perception", tags=["robot"], response_model=S.PerceptionAnswer)
 async def perception(neem: str, body: Perception, request: Request) -> dict[str, Any]:
     ctx = _ctx(request)
+    await open_session(ctx.thread, ctx.engine, neem)  # its history read a slice a job
     seen = [(o.name, o.pose) for o in body.objects]
 
     def job() -> tuple[str, list[str]]:
@@ -161,18 +163,26 @@ async def situation(neem: str, body: SituationIn, request: Request, background: 
     thread, before any later request (with serve --write-behind the situation too). The Server-Timing header
     says how long the job waited for the engine thread and how long it ran (ms)."""
     ctx = _ctx(request)
+    await open_session(ctx.thread, ctx.engine, neem)  # its history read a slice a job
     queued = time.perf_counter()
 
     def job() -> tuple[str, Any, Any, dict[str, Any], float, float]:
         started = time.perf_counter()
-        if not ctx.write_behind:
-            _join(ctx)
         session = ctx.engine.session(neem)
-        found, ranking, ms = session.situation(body.available, body.at)
+        if ctx.write_behind:
+            found, ranking, ms = session.situation(body.available, body.at)
+        else:  # committed in the same job: acknowledged means on disk
+            alone = not ctx.thread.busy()  # no other request waits to share the group's commit
+            _join(ctx)
+            found = session.offer(body.available, body.at)
+            # written, and committed when alone, before it is ranked: the disk flushes (on the
+            # syncer's thread, oracle.service.groupcommit) while the engine ranks
+            session.write_imagined(found)
+            if alone and ctx.thread.group is not None:
+                ctx.thread.group.commit()
+            ranking, ms = session.rank(found)
         answer = cast(dict[str, Any], session.describe(found, ranking, ms))
         answer["routine"] = routine_now(ctx.engine, session, found.when.seconds)
-        if not ctx.write_behind:  # committed in the same job: acknowledged means on disk
-            session.write_imagined(found)
         return session.neem, found, ranking, answer, started, time.perf_counter()
 
     neem, found, ranking, answer, started, done = await ctx.thread.run(job)
@@ -267,6 +277,7 @@ RELEASE_S = 1.0
 async def latest_situation(neem: str, request: Request) -> dict[str, Any]:
     """The latest ranking this service answered for the NEEM (`ranking` empty before the first)."""
     ctx = _ctx(request)
+    await open_session(ctx.thread, ctx.engine, neem)  # its history read a slice a job
     latest = await ctx.thread.run(lambda: ctx.engine.session(neem).latest)
     return cast(dict[str, Any], latest) if latest else {"neem": neem, "ranking": [], "chain": [], "chain_modes": []}
 
@@ -276,6 +287,7 @@ async def action(neem: str, body: ActionIn, request: Request, background: Backgr
     """An executed action. `done` logs it at once; `begin` keeps it open (in memory) until its
     `end`. A gap of the logger's idle threshold before it is logged as an idle action."""
     ctx = _ctx(request)
+    await open_session(ctx.thread, ctx.engine, neem)  # its history read a slice a job
 
     def job() -> tuple[NeemSession, dict[str, Any]]:
         _join(ctx)
@@ -322,6 +334,7 @@ async def choice(neem: str, body: ChoiceIn, request: Request) -> dict[str, Any]:
     mode, "I bring the cup, you pour"), and handed to the robot (event `choice`, and GET
     .../choice). What the robot then does is logged apart, as its action."""
     ctx = _ctx(request)
+    await open_session(ctx.thread, ctx.engine, neem)  # its history read a slice a job
 
     def job() -> tuple[str, dict[str, Any]]:
         session = ctx.engine.session(neem)
@@ -342,6 +355,7 @@ async def choice(neem: str, body: ChoiceIn, request: Request) -> dict[str, Any]:
 async def latest_choice(neem: str, request: Request) -> dict[str, Any]:
     """The user's latest decision: this service's, or after a restart the NEEM's."""
     ctx = _ctx(request)
+    await open_session(ctx.thread, ctx.engine, neem)  # its history read a slice a job
 
     def job() -> tuple[str, dict[str, Any] | None]:
         session = ctx.engine.session(neem)
@@ -366,6 +380,7 @@ async def why_not(neem: str, request: Request, task: str = Query(description="a 
                   at: str | None = Query(None, description="time asked about (default: the latest decision)"),
                   lang: str | None = Lang) -> dict[str, Any]:
     ctx = _ctx(request)
+    await open_session(ctx.thread, ctx.engine, neem)  # its history read a slice a job
     when: Time = float(at) if at is not None and _is_number(at) else at
     words = _words(request, lang)
 
@@ -383,6 +398,7 @@ async def why_not(neem: str, request: Request, task: str = Query(description="a 
 @router.get("/api/neems/{neem}/what-next", tags=["answers"], response_model=S.SpokenAnswer)
 async def what_next(neem: str, request: Request, lang: str | None = Lang) -> dict[str, Any]:
     ctx = _ctx(request)
+    await open_session(ctx.thread, ctx.engine, neem)  # its history read a slice a job
     words = _words(request, lang)
 
     def job() -> dict[str, Any]:
@@ -401,6 +417,7 @@ async def something_else(neem: str, request: Request,
                          task: str | None = Query(None, description="proposed task (default: the latest action's)"),
                          lang: str | None = Lang) -> dict[str, Any]:
     ctx = _ctx(request)
+    await open_session(ctx.thread, ctx.engine, neem)  # its history read a slice a job
     words = _words(request, lang)
 
     def job() -> dict[str, Any]:
@@ -428,6 +445,7 @@ async def tablet(neem: str, request: Request, lang: str | None = Lang) -> dict[s
     """The latest ranking as the page shows it: plain words in the asked language, the time on
     the person's clock, the user's name (the robot's calls kept beside each)."""
     ctx = _ctx(request)
+    await open_session(ctx.thread, ctx.engine, neem)  # its history read a slice a job
     words = _words(request, lang)
     return await ctx.thread.run(_view, ctx, neem, words)
 
@@ -444,6 +462,7 @@ async def said(neem: str, request: Request, call: str = Query(description="a tas
                lang: str | None = Lang) -> dict[str, Any]:
     """A call as a person says it (what the page shows for the robot's latest action)."""
     ctx = _ctx(request)
+    await open_session(ctx.thread, ctx.engine, neem)  # its history read a slice a job
     words = _words(request, lang)
     parsed = await ctx.thread.run(lambda: ctx.engine.session(neem).calls([call], "call")[0])
     return {"call": str(parsed), "said": words.said(parsed)}

@@ -1,6 +1,7 @@
 """A NEEM's whole history read on the engine thread one slice per job (oracle.slicedread), so that
 the jobs queued meanwhile (a robot's situation) run between two slices instead of behind the whole
-read: /explore's first read of a NEEM nothing kept (oracle.service.explore_routes).
+read: /explore's first read of a NEEM nothing kept (oracle.service.explore_routes), and the read
+that opens a NEEM's session (``open_session``, before the request's own job).
 
 The slices are read at the store's append mark of the first job; when the NEEM grows before the
 last (a robot logging into it), the read starts again, and after ``ATTEMPTS`` it is done in one
@@ -16,6 +17,7 @@ from typing import TYPE_CHECKING
 from oracle.bridge.records import HistoryView
 from oracle.historycache import HistoryCache
 from oracle.slicedread import SLICE_ACTIONS, SlicedRead
+from oracle.store.ids import find_neem
 
 if TYPE_CHECKING:
     from oracle.service.engine import Engine, EngineThread
@@ -27,6 +29,12 @@ ATTEMPTS = 3
 async def view_in_jobs(thread: EngineThread, engine: Engine, neem: str, size: int = SLICE_ACTIONS) -> HistoryView:
     """``HistoryCache.default().view`` of NEEM ``neem`` (its id), its whole read (when one is
     needed) done one slice per engine-thread job."""
+    view, _ = await _read_in_jobs(thread, engine, neem, size)
+    return view
+
+
+async def _read_in_jobs(thread: EngineThread, engine: Engine, neem: str, size: int) -> tuple[HistoryView, object]:
+    """``view_in_jobs`` and the store's append mark it was read at."""
     cache = HistoryCache.default()
     for _ in range(ATTEMPTS):
         read = SlicedRead(size)
@@ -46,5 +54,34 @@ async def view_in_jobs(thread: EngineThread, engine: Engine, neem: str, size: in
 
         view = await thread.run(finish)
         if view is not None:
-            return view
-    return await thread.run(lambda: cache.view(engine.bridge(neem)))
+            return view, mark
+    return await thread.run(lambda: (cache.view(engine.bridge(neem)), engine.store.append_mark(neem)))
+
+
+async def open_session(thread: EngineThread, engine: Engine, name: str, size: int = SLICE_ACTIONS) -> None:
+    """Open the session of NEEM ``name`` (its id or alias) as ``Engine.session`` would on first
+    use, its history read one slice per job when nothing is kept: a robot's job queued meanwhile
+    (another NEEM's situation) waits one slice, not the whole read. Nothing happens when the
+    session is open, the NEEM unknown or no session may open: ``Engine.session`` in the request's
+    own job then answers as it does (NotFound, Overloaded)."""
+
+    def which() -> str | None:
+        if name in engine.sessions or len(engine.sessions) >= engine.limits.sessions:
+            return None
+        found = find_neem(engine.store, name)
+        return None if found is None or found.id in engine.sessions else found.id
+
+    if name in engine.sessions:
+        return  # open: no job (a dict look-up, safe beside the engine thread's writes)
+    neem = await thread.run(which)
+    if neem is None:
+        return
+    view, mark = await _read_in_jobs(thread, engine, neem, size)
+
+    def opened() -> None:
+        # Nothing but its own session logs into a NEEM here; another process might: then the
+        # view is no longer the NEEM's, and the session reads what the cache extends it by.
+        fresh = engine.store.append_mark(neem) == mark
+        engine.session(neem, view if fresh else None)
+
+    await thread.run(opened)
