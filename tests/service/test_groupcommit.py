@@ -246,3 +246,24 @@ def test_a_failed_flush_acknowledges_none_of_its_groups(tmp_path, onto, engine_t
         done.result(timeout=10)
     group.close()
     engine_thread.submit(store.close).result()
+
+
+def test_a_situation_alone_is_committed_before_it_is_ranked(client, ctx):
+    """With no other request waiting, a situation's imagining is committed before the ranking
+    starts, so the disk flushes while the engine ranks; the answer still comes after the flush."""
+    from tests.service.conftest import AVAILABLE, at
+
+    neem = client.post("/api/neems", json={"user": "ann"}).json()["id"]
+    session = ctx.thread.call(ctx.engine.session, neem)
+    group, seen = ctx.thread.group, []
+    rank = session.rank
+
+    def ranked(found):
+        seen.append(group.commits)
+        return rank(found)
+
+    session.rank = ranked
+    before = group.commits
+    answer = client.post(f"/api/neems/{neem}/situation", json={"available": AVAILABLE, "at": at(0, 0)})
+    assert answer.status_code == 200 and answer.json()["ranking"]
+    assert seen == [before + 1]  # committed when the ranking began

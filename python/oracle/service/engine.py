@@ -90,6 +90,10 @@ class EngineThread:
         future = self._queue(fn, *args)
         future.add_done_callback(_log_failure)
 
+    def busy(self) -> bool:
+        """Whether a job waits for the thread (on the thread: behind the one running)."""
+        return EngineThread._waiting > 0
+
     def submit_idle(self, fn: Callable[[], Any], within: float = IDLE_WITHIN_S) -> None:
         """Queue fn (work nobody waits for, e.g. the warm-up after an action) behind every job
         queued when its turn comes, again and again, but for at most ``within`` seconds: a
@@ -98,7 +102,7 @@ class EngineThread:
         deadline = time.monotonic() + within
 
         def turn() -> None:
-            if EngineThread._waiting > 0 and time.monotonic() < deadline:
+            if self.busy() and time.monotonic() < deadline:
                 self.submit(turn)  # behind the jobs waiting now
                 return
             fn()

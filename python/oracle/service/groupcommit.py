@@ -47,7 +47,7 @@ LOG = logging.getLogger("oracle.service")
 class GroupCommit:
     """The open group of one engine thread. ``join`` and the commit run on that thread only."""
 
-    def __init__(self, store: Store, submit: Callable[[Callable[[], None]], Any], dropped: Callable[[], None]) -> None:
+    def __init__(self, store: Store, submit: Callable[..., Any], dropped: Callable[[], None]) -> None:
         """``submit`` queues a job on the engine thread; ``dropped`` forgets the live sessions
         (after a failed commit)."""
         self.store = store
@@ -78,12 +78,12 @@ class GroupCommit:
                 raise
             self._unsynced, self._transaction, self._done, self._queued = unsynced, transaction, Future(), False
             if linger is not None:
-                self._timer = threading.Timer(linger, self._lingered)
+                self._timer = threading.Timer(linger, self._lingered, (self._done,))
                 self._timer.daemon = True
                 self._timer.start()
         if linger is None and not self._queued:
             self._queued = True
-            self._submit(self._commit)
+            self._submit(self._commit, self._done)
         self.joined += 1
         return self._done
 
@@ -93,13 +93,13 @@ class GroupCommit:
         queued now."""
         if self._done is not None and not self._queued:
             self._queued = True
-            self._submit(self._commit)
+            self._submit(self._commit, self._done)
         return self._done if self._done is not None else self._syncer.latest()
 
-    def _lingered(self) -> None:
-        """The linger passed (on the timer's thread): queue the commit of whatever group is open."""
+    def _lingered(self, group: Future[None]) -> None:
+        """The linger passed (on the timer's thread): queue the commit of ``group`` if still open."""
         try:
-            self._submit(self._commit)
+            self._submit(self._commit, group)
         except RuntimeError:
             pass  # the engine thread has shut down, and committed as it closed (EngineThread.close)
 
@@ -107,7 +107,11 @@ class GroupCommit:
         """Commit the open group now (nothing when none is open)."""
         self._commit()
 
-    def _commit(self) -> None:
+    def _commit(self, group: Future[None] | None = None) -> None:
+        """Commit the open group (``group``: only if it is still the one open; a job may have
+        committed it early, ``commit``, and a later one opened since must keep its own turn)."""
+        if group is not None and group is not self._done:
+            return
         transaction, done, unsynced = self._transaction, self._done, self._unsynced
         self._transaction = self._done = self._unsynced = None
         self._queued = False

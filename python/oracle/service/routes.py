@@ -168,14 +168,21 @@ async def situation(neem: str, body: SituationIn, request: Request, background: 
 
     def job() -> tuple[str, Any, Any, dict[str, Any], float, float]:
         started = time.perf_counter()
-        if not ctx.write_behind:
-            _join(ctx)
         session = ctx.engine.session(neem)
-        found, ranking, ms = session.situation(body.available, body.at)
+        if ctx.write_behind:
+            found, ranking, ms = session.situation(body.available, body.at)
+        else:  # committed in the same job: acknowledged means on disk
+            alone = not ctx.thread.busy()  # no other request waits to share the group's commit
+            _join(ctx)
+            found = session.offer(body.available, body.at)
+            # written, and committed when alone, before it is ranked: the disk flushes (on the
+            # syncer's thread, oracle.service.groupcommit) while the engine ranks
+            session.write_imagined(found)
+            if alone and ctx.thread.group is not None:
+                ctx.thread.group.commit()
+            ranking, ms = session.rank(found)
         answer = cast(dict[str, Any], session.describe(found, ranking, ms))
         answer["routine"] = routine_now(ctx.engine, session, found.when.seconds)
-        if not ctx.write_behind:  # committed in the same job: acknowledged means on disk
-            session.write_imagined(found)
         return session.neem, found, ranking, answer, started, time.perf_counter()
 
     neem, found, ranking, answer, started, done = await ctx.thread.run(job)

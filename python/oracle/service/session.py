@@ -197,14 +197,25 @@ class NeemSession:
     # -- situations ---------------------------------------------------------------------------
     def situation(self, available: Sequence[str], at: Any) -> tuple[Situation, Ranking, float]:
         """Validate and rank (no write): the ranking and how long ranking took (ms)."""
+        found = self.offer(available, at)
+        ranking, ms = self.rank(found)
+        return found, ranking, ms
+
+    def offer(self, available: Sequence[str], at: Any) -> Situation:
+        """The situation the robot posts, validated (nothing ranked, nothing written)."""
         if not available:
             raise LoggingError("available must name at least one task, e.g. [\"pick(red_mug)\"]")
         calls = self.calls(available, "available")
         moment = moment_of(at, "at")
         when = Instant.of(moment)
         self._check_time(when, "situation")
-        decision = self.ranker.rank(calls, when, tree_roots=TREE_ROOTS)
-        return Situation(calls, when, moment), decision.ranking, decision.ms
+        return Situation(calls, when, moment)
+
+    def rank(self, situation: Situation) -> tuple[Ranking, float]:
+        """The situation ranked (no write; whether it is written yet changes nothing): the
+        ranking and how long ranking took (ms)."""
+        decision = self.ranker.rank(situation.calls, situation.when, tree_roots=TREE_ROOTS)
+        return decision.ranking, decision.ms
 
     def write_situation(self, situation: Situation, ranking: Ranking) -> str:
         """Log the situation as the imagined one and the ranking as the imagined preference,
