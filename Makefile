@@ -8,7 +8,7 @@ PLT := $(sort $(shell find prolog -name '*.plt'))
 
 help:
 	@echo "make setup      install python3-venv and SWI-Prolog (Debian) if missing, create $(VENV), install the package"
-	@echo "make test       lint, plunit suites, then pytest (the tests marked slow too where CI is set, or with SLOW=1)"
+	@echo "make test       pytest, lint and the plunit suites at once (the tests marked slow too where CI is set, or with SLOW=1)"
 	@echo "make lint       ruff and mypy (config in pyproject.toml)"
 	@echo "make bench      benchmarks (printed figures)"
 	@echo "make fuzz       atheris on every fuzz target (FUZZ_SECONDS each, default 600) and a longer schemathesis run"
@@ -39,16 +39,24 @@ setup:
 	$(PY) -m compileall -q python
 	@$(PY) -c "import oracle, pyswip, rdflib, owlready2, numpy, yaml, pymongo; print('neem-oracle', oracle.__version__, 'ready')"
 
-test: lint test-prolog test-python
+# lint, the plunit suites and pytest run at once, pytest first and the other two at a lower
+# priority: the suite is CPU-bound, and mypy (one core, ~20 s without a cache) and plunit fill the
+# moments pytest's workers wait instead of running before it. Each one's output is printed whole
+# when it ends (make --output-sync); any failure fails make test once the others have ended.
+test:
+	@echo "make test: pytest, lint and plunit run at once; each one's output is printed when it ends"
+	@$(MAKE) --no-print-directory -j3 --output-sync=target test-python lint test-prolog BESIDE="nice -n 10"
 
+# BESIDE: how lint and plunit run while pytest runs beside them (make test); nothing on their own.
+BESIDE ?=
 lint:
-	$(VENV)/bin/ruff check python tests
-	$(VENV)/bin/mypy
+	$(BESIDE) $(VENV)/bin/ruff check python tests
+	$(BESIDE) $(VENV)/bin/mypy
 
 # Each plunit suite runs in its own swipl, one per core; a failing suite prints its output and
 # the target fails once all have run.
 test-prolog:
-	@printf '%s\n' $(PLT) | xargs -P "$$(nproc)" -n 1 sh scripts/plunit.sh
+	@printf '%s\n' $(PLT) | $(BESIDE) xargs -P "$$(nproc)" -n 1 sh scripts/plunit.sh
 
 # The tests marked slow (a 10,000-action NEEM imported and ranked, a wheel built) run in a second
 # invocation, in CI (where CI is set: .ci/run sets it) or when asked: make test SLOW=1.
