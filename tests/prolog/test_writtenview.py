@@ -18,7 +18,7 @@ from oracle.chains import read_chains
 from oracle.historycache import HistoryCache
 from oracle.neem.importing import import_chains
 from oracle.store import open_store
-from oracle.writtenview import views_of_import
+from oracle.writtenview import WrittenView, views_of_import
 
 CALLS = ["pick(apple)", "pour(thermos, green_mug)", "pick(banana)", "open(fridge)", "close(fridge)",
          "place(apple, kitchen_table)"]
@@ -53,7 +53,8 @@ def _write(path: Path, rows: list[dict[str, object]]) -> Path:
 def _compare(tmp_path: Path, onto, rows: list[dict[str, object]], no_clock: bool = False) -> int:
     chains = _write(tmp_path / "chains.jsonl", rows)
     store = open_store(tmp_path / "s.sqlite")
-    import_chains(store, onto, chains, commit_every=50, no_clock=no_clock)
+    written: dict[str, WrittenView] = {}  # as the import builds it while it logs
+    import_chains(store, onto, chains, commit_every=50, no_clock=no_clock, views=written)
     views = views_of_import(read_chains(chains), no_clock=no_clock)
     compared = 0
     for info in store.neems():
@@ -62,10 +63,11 @@ def _compare(tmp_path: Path, onto, rows: list[dict[str, object]], no_clock: bool
             want = bridge.history_view()
         finally:
             bridge.close()
-        got = views[info.user].view()
-        assert got is not None
-        assert got.rows == want.rows
-        assert got.latest == want.latest
+        for view in (views, written):
+            got = view[info.user].view()
+            assert got is not None
+            assert got.rows == want.rows
+            assert got.latest == want.latest
         compared += len(want.rows)
     store.close()
     return compared

@@ -38,9 +38,7 @@ def register(subparsers: argparse._SubParsersAction[argparse.ArgumentParser]) ->
 
 
 def run(args: argparse.Namespace) -> int:
-    from oracle.chains import read_chains
     from oracle.neem.importing import check_chains, import_chains
-    from oracle.writtenview import views_of_import
     from oracle.progress import bar
     from oracle.store import open_store
 
@@ -53,6 +51,7 @@ def run(args: argparse.Namespace) -> int:
     with open_store(args.store, number_format=args.numbers) as store:
         report: dict[str, int] = {}
         refused: list[str] = []
+        views: dict[str, WrittenView] = {}  # each user's history view, as the import writes it
         existing = "replace" if args.replace else "new" if args.as_new else "refuse"
         try:
             with _first_ctrl_c_between_rows() as pressed, bar("logging", "actions", rows) as tick:
@@ -65,7 +64,7 @@ def run(args: argparse.Namespace) -> int:
 
                 import_chains(store, onto, args.chains, report=report, commit_every=args.commit_every,
                               session=args.session, checked=checked, no_clock=args.no_clock, stop=stop,
-                              existing=existing, refused=refused)
+                              existing=existing, refused=refused, views=views)
                 tick(rows, rows)
         except NeemOracleError:
             _print(report, store)
@@ -77,8 +76,6 @@ def run(args: argparse.Namespace) -> int:
             return 130
         _print(report, store)
         try:
-            views = views_of_import(checked.rows if checked.rows is not None else read_chains(args.chains),
-                                    no_clock=args.no_clock)
             del checked  # the parsed rows (13 MiB at 50,000 actions) are not held through the fits
             _keep(store, onto, report, views)
         except KeyboardInterrupt:

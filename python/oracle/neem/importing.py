@@ -14,8 +14,8 @@ from __future__ import annotations
 import contextlib
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
-from datetime import datetime
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from oracle.chains import ChainRow, TaskCall, read_chains
 from oracle.errors import LoggingError
@@ -26,7 +26,11 @@ from oracle.progress import Tick
 from oracle.store import Store
 from oracle.store.ontology_tbox import tbox_for
 from oracle.store.tbox import TBox
-from oracle.timeline import CLOCK_KEY, IDLE_THRESHOLD_S, SEQUENCE_CLOCK, Instant, TimeValueError, seconds_of, sequence_instant
+from oracle.neem.records import checked_instant
+from oracle.timeline import CLOCK_KEY, IDLE_THRESHOLD_S, SEQUENCE_CLOCK, TimeValueError, seconds_of, sequence_instant
+
+if TYPE_CHECKING:
+    from oracle.writtenview import WrittenView  # loaded only when asked for (it loads oracle.bridge)
 
 #: Registry key of a NEEM whose import has not reached its user's last row: set when the
 #: NEEM is made, cleared once that row is committed. ``neems`` names such a NEEM incomplete
@@ -164,6 +168,7 @@ def import_chains(
     stop: Callable[[], bool] | None = None,
     existing: str | None = None,
     refused: list[str] | None = None,
+    views: dict[str, WrittenView] | None = None,
 ) -> dict[str, int]:
     """Log a chains JSONL file, one NEEM per user; return {NEEM id: actions committed}.
 
@@ -186,6 +191,10 @@ def import_chains(
     default) skips that user's rows and appends one line saying so to ``refused``, ``replace``
     (also ``replace=True``) replaces the NEEM, ``new`` adds another. A user's NEEM that an
     earlier import left incomplete (killed before the user's last row) is always replaced.
+
+    ``views``, when given, gets each user's ``WrittenView`` (oracle.writtenview) of the rows
+    logged, told each action as the logger writes it, with the same instants: the history view
+    is kept from it (``keep_written``) without a second pass over the rows.
     """
     if commit_every < 1:
         raise LoggingError(f"commit_every must be at least 1, got {commit_every}")
@@ -227,24 +236,37 @@ def import_chains(
                                            hidden=session, meta=meta or None)  # fmt: skip
                 loggers[row.user] = logger
                 report[logger.neem_id] = 0
-                # a new NEEM, its TBox in: the indexes its writes do not read are built at its end
+                # a new NEEM, its TBox in, written by this logger alone: it knows every subject
+                # (so it reads none back), and the indexes are built at its end
+                logger.individuals.know_all()
                 store.defer_indexes(logger.writes_to)
             action_id = row.extra.get("id")
-            begin: datetime | Instant | None = row.time
-            end: datetime | Instant | None = row.end
+            # The instants made once, for the logger and the view alike
             if no_clock:
                 position = positions[row.user] = positions.get(row.user, -1) + 1
                 begin, end = sequence_instant(position), sequence_instant(position + 1)
+            else:
+                assert row.time is not None  # checked by the first pass
+                begin = checked_instant(row.time)
+                end = begin if row.end is None else checked_instant(row.end)
+            performed_by = str(row.extra.get("performed_by", "robot"))
             logger.action(
                 row.action,
-                begin,  # type: ignore[arg-type]  # checked by the first pass
+                begin,
                 end,
-                performed_by=str(row.extra.get("performed_by", "robot")),
+                performed_by=performed_by,
                 action_id=None if action_id is None else str(action_id),
                 available=row.available,
                 state=None if row.extra.get("state") is None else str(row.extra["state"]),
                 session=None if row.extra.get("session") is None else str(row.extra["session"]),
             )
+            if views is not None:
+                view = views.get(row.user)
+                if view is None:
+                    from oracle.writtenview import WrittenView
+
+                    view = views[row.user] = WrittenView(idle_threshold)
+                view.logged(row.action, begin, end, performed_by, row.available)
             name = logger.neem_id
             if row.line == plans[row.user].last_line:
                 logger.flush()

@@ -52,6 +52,9 @@ class Individuals:
         self.clocked = clocked
         #: Individuals known to be stored (or buffered): no store query needed for them.
         self.known: set[str] = set()
+        #: Whether ``known`` holds every subject the NEEM has that ``exists`` may be asked
+        #: about (``know_all``): then it asks the store nothing.
+        self.complete = False
         self._keys: dict[TaskCall, str] = {}
         #: Calls already checked, and plans of calls already in ``known``: an available set of
         #: 20 plans that were logged before costs 20 dictionary look-ups, not 20 checks.
@@ -90,9 +93,24 @@ class Individuals:
             local = "".join(word[:1].upper() + word[1:] for word in local.split("_"))
         return self.named(cls_iri[:cut] + local)
 
+    def know_all(self) -> None:
+        """Read every subject of the NEEM once (a new one: its TBox's, ~1,000) and answer
+        ``exists`` from them and what this logger writes from now on: for a writer no other one
+        writes beside, such as an import's into the NEEM it made, whose subject index is then
+        left out until it ends (tables.DEFERRED)."""
+        self.known.update(doc["s"] for doc in self.store.find(self.target.writing))
+        self.complete = True
+
+    def forget(self) -> None:
+        """After a commit that failed: what ``known`` holds may name individuals never stored."""
+        self.known.clear()
+        self.complete = False
+
     def exists(self, iri: str) -> bool:
         if iri in self.known:
             return True
+        if self.complete:
+            return False
         if next(self.store.find(self.target.writing, s=iri, limit=1, exact=True), None) is not None:
             self.known.add(iri)
             return True

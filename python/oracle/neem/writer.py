@@ -380,7 +380,7 @@ class NeemLogger:
                 self._summary = summary
             except BaseException as error:
                 # The in-memory view may now name individuals that were never stored.
-                self.individuals.known.clear()
+                self.individuals.forget()
                 self._episodes.current = None
                 self.individuals.plans.clear()
                 self._sets.clear()

@@ -74,10 +74,11 @@ def neem_table(neem_id: str, kind: str) -> str:
 
 
 #: The indexes a bulk write into a new NEEM leaves out until it ends (Store.defer_indexes), by
-#: kind: all but those the logger's own reads use while it writes (whether an individual
-#: exists: (s, p), and the side table's (s)). Built after the rows, each is one sorted pass
-#: instead of a B-tree insert per row (docs/store.md, "Import").
-DEFERRED = frozenset({"triples_op", "triples_postar", "triples_pstaro", "side_o"})
+#: kind: every index of its triple tables. Built after the rows, each is one sorted pass
+#: instead of a B-tree insert per row (docs/store.md, "Import"). The import's logger reads
+#: nothing back meanwhile (it knows every subject, Individuals.know_all); other reads stay
+#: correct, only slower.
+DEFERRED = frozenset({"triples_sp", "triples_op", "triples_postar", "triples_pstaro", "side_s", "side_o"})
 
 
 def index_targets(neem_id: str, side: bool = False) -> list[tuple[str, str]]:
