@@ -89,6 +89,14 @@ def steps_from_history(ontology: OdbOntology, rows: Iterable[Mapping[str, Any]],
     """The oracle's history from the Prolog bridge's ``situation_history`` rows (begin order);
     each action's step carries its begin as ``time`` when the NEEM has a clock (``clocked``: on
     the sequence clock a begin is a position, not a time)."""
+    return history_steps(ontology, rows, clocked)[0]
+
+
+def history_steps(ontology: OdbOntology, rows: Iterable[Mapping[str, Any]],
+                  clocked: bool = True) -> tuple[list[Step], DoneBefore]:
+    """``steps_from_history`` and what the user did in them (``DoneBefore`` of every action's
+    option, first done first): made in the same pass, so a ranker need not walk the steps again
+    (50,000 of them at the first rank after an import)."""
     from oracle.chains import parse_call
 
     # A long NEEM repeats a few dozen calls and available sets thousands of times: each is
@@ -110,6 +118,7 @@ def steps_from_history(ontology: OdbOntology, rows: Iterable[Mapping[str, Any]],
     made: dict[tuple[str, int, str | None], Step] = {}
     steps: list[Step] = []
     before = DoneBefore()  # the offer of the actions no imagined situation came before
+    added: set[str] = set()  # the calls in ``before`` (a few dozen, each added once, not per row)
     for row in rows:
         part = row.get("part")
         part = part if part not in (None, "none") else None
@@ -129,7 +138,9 @@ def steps_from_history(ontology: OdbOntology, rows: Iterable[Mapping[str, Any]],
                     options = sets[key] = tuple(option(c) for c in key)
                 found = by_list[id(available)] = (available, options)
             seen = found
-        before.add(option(text))
+        if text not in added:
+            added.add(text)
+            before.add(option(text))
         same = (text, id(seen[1]), part)
         step = made.get(same)
         if step is None:
@@ -139,7 +150,7 @@ def steps_from_history(ontology: OdbOntology, rows: Iterable[Mapping[str, Any]],
                 label = labels[text] = str(parse_call(text))
             step = made[same] = Step(done.task, done.target, done.reference, seen[1], part, False, label)
         steps.append(step.began(float(row["begin"])) if clocked else step)
-    return steps
+    return steps, before
 
 
 def steps_before(ontology: OdbOntology, rows: Iterable[Mapping[str, Any]], at: float, clocked: bool = True) -> list[Step]:

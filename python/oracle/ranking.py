@@ -29,7 +29,7 @@ from oracle.chains import TaskCall, parse_call
 from oracle.errors import LoggingError, NeemOracleError
 from oracle.fitcache import FitCache
 from oracle.historycache import HistoryCache
-from oracle.calls import DoneBefore, call_of, check_call, idle_step, opening_tasks, option_of, steps_from_history
+from oracle.calls import DoneBefore, call_of, check_call, history_steps, idle_step, opening_tasks, option_of
 from oracle.neem.writer import NeemLogger
 from oracle.ontology import OdbOntology
 from oracle.past.autonomy import NO_PART, ModeCounts, Performed, UsualMode, modes_from_rows
@@ -275,7 +275,8 @@ class NeemRanker:
         self.idle_threshold = idle_threshold
         #: The steps fitted so far, and when each began (the predictor's history positions: what
         #: a ranking's supporting past situations are shown as).
-        self.steps: list[Step] = steps_from_history(ontology, rows, clocked)
+        steps, done = history_steps(ontology, rows, clocked)
+        self.steps: list[Step] = steps
         self.begins: list[float] = [float(row["begin"]) for row in rows]
         self.predictor: Predictor = (fits or FitCache.default()).fitted(predictor, self.steps, store.location, neem, keep=keep,
                                                              kept=store)
@@ -283,11 +284,8 @@ class NeemRanker:
         if prior is not None:  # a kept fit comes back without the process's prior (never kept with it)
             self.predictor.use_prior(prior)
         #: What the user did so far: the offer of an action logged without an imagined
-        #: situation, and which ranked tasks were done before.
-        self.done_before = DoneBefore()
-        for step in self.steps:
-            if not step.idle:
-                self.done_before.add(Option(step.task, step.target, step.reference))
+        #: situation, and which ranked tasks were done before (made with the steps).
+        self.done_before: DoneBefore = done
         #: What was offered after each option done: what the predicted chain may continue with.
         self.afterwards = Afterwards(self.steps)
         ends = [float(row["end"] if row.get("end") is not None else row["begin"]) for row in rows]
