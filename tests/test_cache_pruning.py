@@ -52,3 +52,20 @@ def test_the_ontology_cache_keeps_at_most_its_bound_and_the_entry_in_use(tmp_pat
         mapping.write_text(base)
     assert len(list(cache.glob("ontology-*.json"))) == MAX_CACHE_ENTRIES
     assert kept.exists()
+
+
+def test_a_new_entry_removes_the_former_formats_pickles(tmp_path):
+    """Entries were pickles until 2026-12-08: nothing reads them now, so writing a new entry
+    removes them rather than leaving them in the user's cache for ever."""
+    cache = tmp_path / "cache"
+    cache.mkdir(mode=0o700)
+    for name in ("ontology-old1.pickle", "ontology-old2.pickle", "tbox-old.pickle"):
+        (cache / name).write_bytes(b"\x80\x05old")
+    odb = tmp_path / "odb"
+    shutil.copytree(DEFAULT_ODB, odb)
+    onto, _ = build_with_report(odb, DEFAULT_MAPPING, cache_dir=cache)
+    assert not list(cache.glob("ontology-*.pickle")) and len(list(cache.glob("ontology-*.json"))) == 1
+    from oracle.store.ontology_tbox import tbox_for
+
+    tbox_for(onto)
+    assert not list(cache.glob("tbox-*.pickle")) and len(list(cache.glob("tbox-*.json"))) == 1

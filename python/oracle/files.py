@@ -160,7 +160,7 @@ def verified(key: bytes | None, blob: bytes) -> bytes | None:
 
 
 def cached_plain(path: Path, key: str, make: Callable[[], _Value], encode: Callable[[_Value], Any],
-                 decode: Callable[[Any], _Value], pattern: str) -> _Value:
+                 decode: Callable[[Any], _Value], pattern: str, former: str | None = None) -> _Value:
     """The value kept at ``path`` for ``key``, or else ``make()``, then kept there. An entry is
     JSON (``{"key": ..., "value": encode(value)}``): reading it makes lists, dicts, strings and
     numbers, which ``decode`` turns back into the value, checking each part as it goes; nothing in
@@ -168,8 +168,9 @@ def cached_plain(path: Path, key: str, make: Callable[[], _Value], encode: Calla
     this user that nobody else may write and its HMAC tag verifies under the key kept in the same
     private folder (``user_key``), so a file put there by anyone else, or copied from another
     account, is made again before a byte of it is decoded; one ``decode`` refuses (any error) is
-    made again too. The entries of the folder matching ``pattern`` are pruned (``prune_cache``);
-    a folder that cannot be written only makes every call make the value."""
+    made again too. The entries of the folder matching ``pattern`` are pruned (``prune_cache``),
+    and those matching ``former`` (an earlier format's, never read now) removed when an entry is
+    written; a folder that cannot be written only makes every call make the value."""
     import json
 
     secret = user_key(path.parent)
@@ -192,6 +193,8 @@ def cached_plain(path: Path, key: str, make: Callable[[], _Value], encode: Calla
         text = json.dumps({"key": key, "value": encode(value)}, separators=(",", ":"), ensure_ascii=False)
         write_private_bytes(path, signed(secret, text.encode("utf-8")))
         prune_cache(path.parent, pattern)
+        if former is not None:
+            prune_cache(path.parent, former, keep=0)
     except (OSError, TypeError, ValueError, NeemOracleError):
         pass  # caching is an optimisation
     return value

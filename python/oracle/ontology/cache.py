@@ -78,4 +78,5 @@ def cached_build(
         return build()
     from oracle.ontology.plain import from_plain, to_plain
 
-    return cached_plain(directory / f"ontology-{key}.json", key, build, to_plain, from_plain, "ontology-*.json")
+    return cached_plain(directory / f"ontology-{key}.json", key, build, to_plain, from_plain, "ontology-*.json",
+                        former="ontology-*.pickle")  # the pickles kept until 2026-12-08 go

@@ -37,7 +37,8 @@ def tbox_for(onto: OdbOntology) -> TBox:
     from oracle.files import default_cache_dir
 
     folder = onto.cache_dir if onto.cache_dir is not None else default_cache_dir()
-    return cached_plain(folder / f"tbox-{key}.json", key, lambda: _converted(onto), _plain, _from_plain, "tbox-*.json")
+    return cached_plain(folder / f"tbox-{key}.json", key, lambda: _converted(onto), _plain, _from_plain, "tbox-*.json",
+                        former="tbox-*.pickle")  # the pickles kept until 2026-12-08 go
 
 
 def _cache_key(onto: OdbOntology) -> str | None:
