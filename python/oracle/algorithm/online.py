@@ -25,6 +25,7 @@ from typing import Any, cast
 import numpy as np
 
 from oracle.algorithm.clock import reweighted
+from oracle.algorithm.contexts import Blend
 from oracle.algorithm.evidence import DecisionClock, features
 from oracle.algorithm.records import Option, Ranking, RoutineTask, Step
 from oracle.algorithm.reference import offered_options
@@ -136,6 +137,16 @@ class OnlineOracle(RoutineOracle):
         state = dict(self.__dict__)
         state.pop("_rows_at", None)  # a cache of the present state only
         return state
+
+    def _used_evidence(self, offered: Sequence[Option], ids: list[int], now: str | None, used: list[int],
+                       inside: np.ndarray | None, new: np.ndarray | None, resumed: np.ndarray | None
+                       ) -> tuple[list[np.ndarray], list[Blend], np.ndarray]:
+        # a ranking this model re-weighs reads every variant's evidence of the offer next
+        # (``_rows``): the used variants' are taken from it, not computed a second time
+        if len(offered) < 2 or not self.serves():
+            return super()._used_evidence(offered, ids, now, used, inside, new, resumed)
+        seen = self._evidence(offered, now)
+        return [seen.probabilities[v] for v in used], [seen.blends[v] for v in used], seen.distances
 
     def _features(self, offered: Sequence[Option], time_of_day: str | None, at: float | None) -> np.ndarray:
         """The evidence rows of an offer (``evidence.features``); a subclass may add columns."""

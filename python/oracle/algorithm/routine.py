@@ -81,6 +81,8 @@ class Evidence:
     resumed: np.ndarray | None
     probabilities: list[np.ndarray]
     distances: np.ndarray
+    #: each variant's blend (its distribution with the context order and count behind each option)
+    blends: list[Blend]
 
 
 def _forked(value: Any) -> Any:
@@ -347,8 +349,8 @@ class RoutineOracle(EstimatorParams):
         ids = self._offer_ids(offered)
         inside = self._in_focus(offered, ids=ids) if self.focus else None
         new, resumed = self._offer_flags(ids)
-        probabilities, _, cand = self._variant_probabilities(offered, ids, now, None, inside, new, resumed)
-        seen = Evidence(ids, inside, new, resumed, probabilities, cand)
+        probabilities, blends, cand = self._variant_probabilities(offered, ids, now, None, inside, new, resumed)
+        seen = Evidence(ids, inside, new, resumed, probabilities, cand, blends)
         self._evidence_at = (key, seen) if kept is None or kept[0][2] != key[2] else (key, seen, *kept[:2])
         return seen
 
@@ -510,7 +512,7 @@ class RoutineOracle(EstimatorParams):
         inside = self._in_focus(offered, held, ids) if self.focus else None
         new, resumed = self._offer_flags(ids)
         lifted, goes_on = tells_apart(new), tells_apart(resumed)
-        probabilities, blends, cand = self._variant_probabilities(offered, ids, now, used, inside, new, resumed)
+        probabilities, blends, cand = self._used_evidence(offered, ids, now, used, inside, new, resumed)
         clock, mixed = self._mixed(weights, used, probabilities, ids, when)
         ago = self.clock_.ages(ids, when, clock is not None)
         lead = int(np.argmax(weights[used]))
@@ -540,6 +542,14 @@ class RoutineOracle(EstimatorParams):
                 tuple(obj for obj in option.objects() if obj in held) if inside is not None else (),
                 lifted and bool(new[i]), goes_on and bool(resumed[i]), ago[i]))  # type: ignore[index]
         return Ranking(tuple(tasks))
+
+    def _used_evidence(self, offered: Sequence[Option], ids: list[int], now: str | None, used: list[int],
+                       inside: np.ndarray | None, new: np.ndarray | None, resumed: np.ndarray | None
+                       ) -> tuple[list[np.ndarray], list[Blend], np.ndarray]:
+        """What ``rank`` reads of the ``used`` variants (``_variant_probabilities`` of those alone);
+        a subclass that reads every variant's evidence of the same offer anyway takes them from
+        there (each variant's distribution is the same computed alone or with the others)."""
+        return self._variant_probabilities(offered, ids, now, used, inside, new, resumed)
 
     def _mixed(self, weights: np.ndarray, used: list[int], probabilities: list[np.ndarray], ids: list[int],
                when: float | None) -> tuple[np.ndarray | None, np.ndarray]:
