@@ -126,8 +126,16 @@ def _one_ontology():
         setattr(module, name, original)
 
 
+@pytest.fixture(scope="session")
+def states_seen() -> dict[str, tuple[str, dict[str, int]]]:
+    """The logical state of each store met, by the digest of its bytes (store_state): nearly every
+    load case starts from the same bytes (a copy of the world's store), whose rows are read once
+    rather than before each case (~45 ms each)."""
+    return {}
+
+
 @pytest.mark.parametrize("case", CASES, ids=[f"{c.entry}/{c.name}" for c in CASES])
-def test_bad_input_is_refused_in_one_line_and_changes_nothing(case: Case, world, tmp_path: Path, monkeypatch):
+def test_bad_input_is_refused_in_one_line_and_changes_nothing(case: Case, world, states_seen, tmp_path: Path, monkeypatch):
     store = tmp_path / "store.sqlite"
     shutil.copy(world["store"], store)
     scratch = tmp_path / "scratch"
@@ -148,14 +156,21 @@ def test_bad_input_is_refused_in_one_line_and_changes_nothing(case: Case, world,
     # A refused load may have written and dropped a hidden staging NEEM: its pages differ, so
     # for loads the store's content (every NEEM's registry entry and documents) is compared.
     logical = case.entry == "load" or (argv[:1] == ["load"] and not corrupted)
-    before = logical_state(store) if logical else store_state(store)
+    before_bytes = store_state(store)
+    if logical and before_bytes not in states_seen:
+        states_seen[before_bytes] = logical_state(store)
+    before = states_seen[before_bytes] if logical else before_bytes
 
     outcome = run_cli(argv)
 
     assert "Traceback" not in outcome.stderr
     assert_refused(outcome, expected)
-    after = logical_state(store, before[1]) if isinstance(before, tuple) else store_state(store)
-    assert after == before, "the store changed"
+    after_bytes = store_state(store)
+    # the same bytes hold the same rows: the rows are read again only where the bytes changed
+    if isinstance(before, tuple) and after_bytes != before_bytes:
+        assert logical_state(store, before[1]) == before, "the store changed"
+    else:
+        assert after_bytes == before_bytes, "the store changed"
 
 
 #: The store's shared dictionaries (interned terms, closures), with their key column: a refused
