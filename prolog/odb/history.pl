@@ -355,18 +355,20 @@ range_modes(Range, ModeOf) :-
 
 %!  history_slice_bounds(+Size, -Bounds) is det.
 %   The begins at which to end the slices of the history (situation_history_json/3) so that
-%   each holds about Size actions: the ascending begins of every Size-th row of
-%   situation_history/1, but the last (its slice reads to the end, `none`). Equal begins
-%   stay in one slice (a bound is the last of them), so a slice may hold more. One store
-%   query of the actions' begins and task types, however long the NEEM.
+%   each holds about Size actions: the ascending begins of every Size-th distinct begin of
+%   the rows of situation_history/1, but the last (its slice reads to the end, `none`). Equal
+%   begins count once and stay in one slice, so a slice may hold more. One store query of
+%   the actions' begins and task types, grouped by begin (one row a begin reaches Prolog,
+%   not one an action: 1.9 -> 1.2 s at 50,000 actions), however long the NEEM.
 history_slice_bounds(Size, Bounds) :-
     must_be(positive_integer, Size),
     odb_iri('IdleTask', Idle),
-    kb_group(B-A, C, ( executes_task(A, T), triple(T, rdf:type, C), event_interval(A, B, _) ), any, Typed),
+    kb_group(B, C, ( executes_task(A, T), triple(T, rdf:type, C), event_interval(A, B, _) ), any, Typed),
     findall(C, ( member(_-Cs, Typed), member(C, Cs) ), AllTypes),
     sort(AllTypes, Types),
     include(odb_or_idle(Idle), Types, Kept),
-    findall(B, ( member(B-_-Cs, Typed), once(( member(C, Cs), ord_memberchk(C, Kept) )) ), Begins0),
+    % a begin some row has: one of the actions begun then has a kept type
+    findall(B, ( member(B-Cs, Typed), once(( member(C, Cs), ord_memberchk(C, Kept) )) ), Begins0),
     msort(Begins0, Begins),
     every_nth(Begins, Size, Size, Bounds0),
     last_dropped(Bounds0, Begins, Bounds).
