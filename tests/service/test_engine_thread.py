@@ -60,3 +60,19 @@ def test_idle_work_yields_for_a_bounded_time_only():
     finally:
         stop.set()
         thread.call(lambda: None)
+
+
+def test_idle_work_does_not_yield_to_idle_work():
+    """Two pieces of idle work queued with nothing else waiting both run at once (each yielding
+    to the other would spin the thread until their deadline)."""
+    thread, ran = EngineThread(), []
+    gate = _blocked(thread)
+    thread.submit_idle(lambda: ran.append(time.monotonic()), within=5.0)
+    thread.submit_idle(lambda: ran.append(time.monotonic()), within=5.0)
+    released = time.monotonic()
+    gate.set()
+    deadline = released + 10
+    while len(ran) < 2 and time.monotonic() < deadline:
+        time.sleep(0.01)
+    assert len(ran) == 2 and max(ran) - released < 2.0
+    assert not thread.busy()

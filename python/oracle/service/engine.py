@@ -51,8 +51,11 @@ class EngineThread:
     attaches to it (``oracle.bridge.engine.attach_engine``) is attached once and never left behind."""
 
     _shared: ThreadPoolExecutor | None = None
-    #: Jobs queued on the shared thread and not started yet (``submit_idle`` yields to them).
+    #: Jobs queued on the shared thread and not started yet (``submit_idle`` yields to them), and
+    #: how many of them are idle work themselves (which yields to none of its kind: two would
+    #: otherwise pass the turn to each other until their deadline, spinning the thread).
     _waiting = 0
+    _idle = 0
     _count = threading.Lock()
 
     def __init__(self) -> None:
@@ -91,8 +94,9 @@ class EngineThread:
         future.add_done_callback(_log_failure)
 
     def busy(self) -> bool:
-        """Whether a job waits for the thread (on the thread: behind the one running)."""
-        return EngineThread._waiting > 0
+        """Whether a job other than idle work waits for the thread (on the thread: behind the
+        one running)."""
+        return EngineThread._waiting - EngineThread._idle > 0
 
     def submit_idle(self, fn: Callable[[], Any], within: float = IDLE_WITHIN_S) -> None:
         """Queue fn (work nobody waits for, e.g. the warm-up after an action) behind every job
@@ -102,12 +106,24 @@ class EngineThread:
         deadline = time.monotonic() + within
 
         def turn() -> None:
+            with EngineThread._count:
+                EngineThread._idle -= 1
             if self.busy() and time.monotonic() < deadline:
-                self.submit(turn)  # behind the jobs waiting now
+                queue()  # behind the jobs waiting now
                 return
             fn()
 
-        self.submit(turn)
+        def queue() -> None:
+            with EngineThread._count:
+                EngineThread._idle += 1
+            try:
+                self.submit(turn)
+            except BaseException:
+                with EngineThread._count:
+                    EngineThread._idle -= 1
+                raise
+
+        queue()
 
     def call(self, fn: Callable[..., T], *args: Any) -> T:
         """Run fn on the engine thread from another, non-async thread (startup, tests)."""
