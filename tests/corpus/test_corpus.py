@@ -90,10 +90,12 @@ def world(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
     return {"store": store, "good": good, "dump": dump}
 
 
-@pytest.fixture(scope="session", autouse=True)
+@pytest.fixture(scope="module", autouse=True)
 def _one_ontology():
-    """Build the default ontology once per session instead of once per command (a speed-up only:
-    the ontology every command builds from the shipped files is the same)."""
+    """Build the default ontology once per module instead of once per command (a speed-up only:
+    the ontology every command builds from the shipped files is the same). Module-scoped: a
+    session-scoped patch stayed on for every test the worker ran after the corpus (test_tbox_cache's
+    and the cache's tests among them) and answered their builds from this list."""
     import oracle.ontology
     import oracle.store.tbox
 
