@@ -51,7 +51,7 @@ def _standard_order(call: TaskCall) -> tuple[object, ...]:
     return (0, call.task) if not call.args else (1, len(call.args), call.task, call.args)
 
 
-@dataclass
+@dataclass(slots=True)  # one per action, held through the import (50,000 and more)
 class _Row:
     begin: float
     end: float
@@ -74,6 +74,8 @@ class WrittenView:
     #: The available sets seen (by the identity of their tuple, kept so that its id stays its
     #: own): a chains file's rows share one tuple per distinct set.
     _sets: dict[int, tuple[object, list[str]]] = field(default_factory=dict)
+    #: Each call's text (``prolog_text``), made once.
+    _calls: dict[TaskCall, str] = field(default_factory=dict)
     _last_end: Instant | None = None
     _ambiguous: bool = False
 
@@ -85,7 +87,12 @@ class WrittenView:
         last = self._last_end
         if last is not None and is_idle_gap(last.seconds, begin.seconds, self.idle_threshold):
             self._rows.append(_Row(last.seconds, begin.seconds, IDLE, _part(last), "robot"))
-        self._rows.append(_Row(begin.seconds, end.seconds, prolog_text(call), _part(begin), performed_by))
+        text = self._calls.get(call)
+        if text is None:  # one string per distinct call, shared by its rows
+            if len(self._calls) >= 4096:
+                self._calls.clear()
+            text = self._calls[call] = prolog_text(call)
+        self._rows.append(_Row(begin.seconds, end.seconds, text, _part(begin), performed_by))
         if available is not None:
             self._imaginings.append((begin.seconds, self._texts(available)))
             self._parts.append(_part(begin))
