@@ -19,6 +19,11 @@ class StoreError(NeemOracleError):
     """A NEEM store cannot be opened, read or written as asked."""
 
 
+class CorruptStoreError(StoreError):
+    """The store's file is damaged: nothing may be written into it (oracle.store.integrity). Never
+    softened into a note: a command that meets it fails."""
+
+
 class ChainSyntaxError(NeemOracleError):
     """An action string such as ``pour(thermos, green_mug)`` is malformed."""
 

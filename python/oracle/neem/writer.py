@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING, Any
 from datetime import datetime, timezone
 
 from oracle.chains import TaskCall
-from oracle.errors import LoggingError, StoreError
+from oracle.errors import CorruptStoreError, LoggingError, StoreError
 from oracle.neem import terms as T
 from oracle.neem.checks import PERFORMERS, check_call, check_performer, check_state
 from oracle.neem.episodes import Episodes
@@ -384,7 +384,7 @@ class NeemLogger:
                 self._episodes.current = None
                 self.individuals.plans.clear()
                 self._sets.clear()
-                if isinstance(error, StoreError):
+                if isinstance(error, StoreError) and not isinstance(error, CorruptStoreError):
                     raise LoggingError(f"NEEM {self._public_id}: {error}") from None
                 raise
         self.committed += calls

@@ -14,7 +14,7 @@ import threading
 import urllib.parse
 from pathlib import Path
 
-from oracle.errors import StoreError
+from oracle.errors import CorruptStoreError
 
 
 def problems_of(conn: sqlite3.Connection) -> list[str]:
@@ -26,10 +26,10 @@ def problems_of(conn: sqlite3.Connection) -> list[str]:
     return [] if found == ["ok"] else found
 
 
-def damaged(path: Path, problems: list[str]) -> StoreError:
+def damaged(path: Path, problems: list[str]) -> CorruptStoreError:
     """The one-line error of a damaged store file (SQLite's report spans lines: one here)."""
     found = " ".join("; ".join(problems).split())[:200]
-    return StoreError(f"{path}: the store file is corrupt ({found}); nothing was written"
+    return CorruptStoreError(f"{path}: the store file is corrupt ({found}); nothing was written"
                       " (restore it from a backup or an export)")
 
 
