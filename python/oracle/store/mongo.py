@@ -3,6 +3,10 @@
 Database ``roslog`` unless the URI names one; collections ``<neem>_triples``, ``_annotations``,
 ``_tf``, ``_inferred``; the ``one`` collection every mongolog query starts from; the 15
 indexes on triples. NEEM registry entries live in ``meta`` as on openEASE.
+
+Why this module is large: it is the whole of one backend against the Store interface (writes,
+reads, registry, indexes, the compiled patterns' ``$match`` documents with their two-bound
+ranges); the aggregation pipelines and contexts already live apart (mongo_contexts.py).
 """
 
 from __future__ import annotations
