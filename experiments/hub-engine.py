@@ -17,15 +17,11 @@ robot-step; one engine thread serves at most 1,000 / mean-sum robot-steps a seco
 from __future__ import annotations
 
 import os
-import shutil
 import sys
 import time
 from pathlib import Path
 
-from oracle.algorithm.params import Hyperparameters
-from oracle.benchmarks.service import _prepare, robot_rows
-from oracle.ontology import build_ontology
-from oracle.service import boot, build_context
+from oracle.benchmarks.service import _prepare, booted_copy, robot_rows
 from oracle.service.robot import percentile
 from oracle.service.routes import routine_now, stored_reader
 
@@ -45,13 +41,7 @@ def main(robots: int, folder: Path) -> None:
     for robot in range(robots):
         user, rows = robot_rows(robot, 1000 + STEPS)
         plans.append((f"bench-{robot}", user, rows[1000:1000 + STEPS]))
-    work = folder / "work.sqlite"
-    for suffix in ("", "-wal", "-shm"):
-        if os.path.exists(f"{work}{suffix}"):
-            os.remove(f"{work}{suffix}")
-    shutil.copy(store, work)
-    ctx = build_context(str(work), build_ontology(), Hyperparameters())
-    boot(ctx)
+    ctx = booted_copy(store, folder / "work.sqlite")
     started = time.perf_counter()
     for neem, _, _ in plans:
         ctx.thread.call(ctx.engine.session, neem)

@@ -16,17 +16,13 @@ service runs them; the first 5 are not counted. Printed: p50, p99 and mean ms of
 from __future__ import annotations
 
 import os
-import shutil
 import sys
 import time
 from pathlib import Path
 
 from starlette.responses import JSONResponse
 
-from oracle.algorithm.params import Hyperparameters
-from oracle.benchmarks.service import _prepare, robot_rows
-from oracle.ontology import build_ontology
-from oracle.service import boot, build_context
+from oracle.benchmarks.service import _prepare, booted_copy, robot_rows
 from oracle.service.robot import percentile
 from oracle.service.routes import routine_now, stored_reader
 
@@ -40,13 +36,7 @@ def main(steps: int, folder: Path) -> None:
         _prepare(store, 1, 1000, steps)
     _, rows = robot_rows(0, 1000 + steps)
     todo = rows[1000:1000 + steps]
-    work = folder / "work.sqlite"
-    for suffix in ("", "-wal", "-shm"):
-        if os.path.exists(f"{work}{suffix}"):
-            os.remove(f"{work}{suffix}")
-    shutil.copy(store, work)
-    ctx = build_context(str(work), build_ontology(), Hyperparameters())
-    boot(ctx)
+    ctx = booted_copy(store, folder / "work.sqlite")
     ctx.thread.call(ctx.engine.session, "bench-0")
     times: dict[str, list[float]] = {}
 

@@ -65,6 +65,24 @@ def robot_rows(robot: int, count: int) -> tuple[str, list[Any]]:
     return user, rows
 
 
+def booted_copy(store: Path, work: Path) -> Any:
+    """A service context (booted, no HTTP) over a fresh copy of ``store`` at ``work``: what the
+    engine-only experiments (experiments/hub-engine.py, situation-parts.py) time."""
+    import shutil
+
+    from oracle.algorithm.params import Hyperparameters
+    from oracle.ontology import build_ontology
+    from oracle.service import boot, build_context
+
+    for suffix in ("", "-wal", "-shm"):
+        if os.path.exists(f"{work}{suffix}"):
+            os.remove(f"{work}{suffix}")
+    shutil.copy(store, work)
+    ctx = build_context(str(work), build_ontology(), Hyperparameters())
+    boot(ctx)
+    return ctx
+
+
 def _serve(store: Path, *extra: str) -> tuple[subprocess.Popen[bytes], str]:
     port = _free_port()
     process = subprocess.Popen([sys.executable, "-m", "oracle", "serve", "--store", str(store), "--port", str(port), *extra],
